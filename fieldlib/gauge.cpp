@@ -1,0 +1,59 @@
+#include "gauge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace softtrace {
+
+double power_sum(const double* u, int k, double n, double* dfdu) {
+  double m = 0;
+  for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
+  if (m == 0) {
+    if (dfdu) std::fill(dfdu, dfdu + k, 0.0);
+    return 0;
+  }
+  double s = 0;
+  for (int i = 0; i < k; ++i) s += std::pow(u[i] / m, n);
+  const double f = m * std::pow(s, 1 / n);
+  if (dfdu)
+    for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? std::pow(u[i] / f, n - 1) : 0.0;
+  return f;
+}
+
+Interval power_sum(const Interval* u, int k, double n) {
+  std::vector<double> lo(k), hi(k);
+  for (int i = 0; i < k; ++i) {
+    lo[i] = std::max(0.0, u[i].lo);
+    hi[i] = std::max(0.0, u[i].hi);
+  }
+  // pow is faithfully but not correctly rounded: widen by a relative margin well above its error.
+  const double l = power_sum(lo.data(), k, n, nullptr), h = power_sum(hi.data(), k, n, nullptr);
+  return {std::max(0.0, l * (1 - 1e-13)), h * (1 + 1e-13)};
+}
+
+double power_sum_partial_bound(Interval ui, Interval f_range, double n) {
+  if (n >= 1) {
+    // (u/f)^(n-1) <= min(1, (u_hi/f_lo)^(n-1)).
+    if (f_range.lo <= 0) return 1;
+    return std::min(1.0, std::pow(std::max(0.0, ui.hi) / f_range.lo, n - 1) * (1 + 1e-13));
+  }
+  if (ui.lo <= 0) return std::numeric_limits<double>::infinity();
+  return std::pow(std::max(f_range.hi, ui.lo) / ui.lo, 1 - n) * (1 + 1e-13);
+}
+
+double gauge_lipschitz(const double* w, int k, double n) {
+  if (n < 1) return std::numeric_limits<double>::infinity();
+  if (n >= 2) {
+    double m = 0;
+    for (int i = 0; i < k; ++i) m = std::max(m, std::abs(w[i]));
+    return m;
+  }
+  const double r = 2 * n / (2 - n);
+  double s = 0;
+  for (int i = 0; i < k; ++i) s += std::pow(std::abs(w[i]), r);
+  return std::pow(s, 1 / r) * (1 + 1e-13);
+}
+
+}  // namespace softtrace

@@ -1,0 +1,26 @@
+// Weighted power sums (Σ u_i^n)^(1/n), u_i >= 0: the building block of every LP-type distance
+// function (MATH.md §2.5–§2.10), with the derivative and bound facts of MATH.md §8.
+#pragma once
+
+#include "interval.h"
+
+namespace softtrace {
+
+// f = (Σ u_i^n)^(1/n), evaluated relative to the largest u_i so n = 20 neither overflows nor
+// underflows. When dfdu is non-null it receives ∂f/∂u_i = (u_i/f)^(n-1) (0 where u_i = 0 and
+// n < 1, and 0 at f = 0, both elements of the subdifferential by symmetry).
+double power_sum(const double* u, int k, double n, double* dfdu);
+
+// f is non-decreasing in every u_i, so its image over a box of u is [f(lo), f(hi)].
+Interval power_sum(const Interval* u, int k, double n);
+
+// Bound on ∂f/∂u_i = (u_i/f)^(n-1) where u_i ∈ ui and f ∈ f_range: at most 1 for n >= 1
+// (u_i <= f); (f_hi/u_lo)^(1-n) for n < 1, infinite when u_i can reach 0.
+double power_sum_partial_bound(Interval ui, Interval f_range, double n);
+
+// The global Lipschitz constant of g(v) = (Σ |w_i v_i|^n)^(1/n) over R^k (Euclidean): the
+// l_q -> l_2 norm of diag(w) with 1/n + 1/q = 1, i.e. max_i w_i for n >= 2 and
+// ||w||_r with r = 2n/(2-n) for 1 <= n < 2 (Hölder, attained). Infinite for n < 1 (MATH.md §8).
+double gauge_lipschitz(const double* w, int k, double n);
+
+}  // namespace softtrace

@@ -1,0 +1,92 @@
+// Closed interval arithmetic over doubles, as libfive's interval evaluator uses it: every result
+// contains the exact image of its arguments. Each operation rounds outward by one ulp so the
+// enclosure stays sound under floating-point rounding (pow/exp/log are faithfully rounded by glibc).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace softtrace {
+
+struct Interval {
+  double lo = 0, hi = 0;
+
+  constexpr Interval() = default;
+  constexpr Interval(double v) : lo(v), hi(v) {}  // NOLINT: a point is an interval
+  constexpr Interval(double l, double h) : lo(l), hi(h) {}
+
+  static constexpr Interval entire() {
+    return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  }
+  bool contains(double v) const { return lo <= v && v <= hi; }
+  double width() const { return hi - lo; }
+};
+
+namespace iv {
+inline double down(double v) { return std::nextafter(v, -std::numeric_limits<double>::infinity()); }
+inline double up(double v) { return std::nextafter(v, std::numeric_limits<double>::infinity()); }
+inline Interval out(double l, double h) {
+  // NaN from inf-inf or 0*inf means "no information".
+  if (std::isnan(l) || std::isnan(h)) return Interval::entire();
+  return {down(l), up(h)};
+}
+}  // namespace iv
+
+inline Interval operator+(Interval a, Interval b) { return iv::out(a.lo + b.lo, a.hi + b.hi); }
+inline Interval operator-(Interval a, Interval b) { return iv::out(a.lo - b.hi, a.hi - b.lo); }
+inline Interval operator-(Interval a) { return {-a.hi, -a.lo}; }
+inline Interval operator*(Interval a, Interval b) {
+  const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  double l = p[0], h = p[0];
+  for (double v : p) {
+    if (std::isnan(v)) return Interval::entire();
+    l = std::min(l, v);
+    h = std::max(h, v);
+  }
+  return iv::out(l, h);
+}
+inline Interval operator/(Interval a, Interval b) {
+  if (b.lo <= 0 && b.hi >= 0) return Interval::entire();
+  return a * Interval(iv::down(1 / b.hi), iv::up(1 / b.lo));
+}
+
+inline Interval abs(Interval a) {
+  if (a.lo >= 0) return a;
+  if (a.hi <= 0) return -a;
+  return {0, std::max(-a.lo, a.hi)};
+}
+inline Interval sqr(Interval a) {
+  const Interval m = abs(a);
+  return {std::max(0.0, iv::down(m.lo * m.lo)), iv::up(m.hi * m.hi)};
+}
+inline Interval sqrt(Interval a) {
+  return {std::max(0.0, iv::down(std::sqrt(std::max(0.0, a.lo)))),
+          iv::up(std::sqrt(std::max(0.0, a.hi)))};
+}
+// x^p for x >= 0 (negative parts are clamped to 0) and p > 0: monotone increasing.
+inline Interval pow_nonneg(Interval a, double p) {
+  const double l = std::max(0.0, a.lo), h = std::max(0.0, a.hi);
+  return {std::max(0.0, iv::down(std::pow(l, p))), iv::up(std::pow(h, p))};
+}
+inline Interval max(Interval a, Interval b) {
+  return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)};
+}
+inline Interval min(Interval a, Interval b) {
+  return {std::min(a.lo, b.lo), std::min(a.hi, b.hi)};
+}
+inline Interval hull(Interval a, Interval b) {
+  return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
+}
+// Image of a monotone non-increasing function g over `a`.
+template <class F>
+Interval decreasing(F g, Interval a) {
+  return iv::out(g(a.hi), g(a.lo));
+}
+// Image of a monotone non-decreasing function g over `a`.
+template <class F>
+Interval increasing(F g, Interval a) {
+  return iv::out(g(a.lo), g(a.hi));
+}
+
+}  // namespace softtrace

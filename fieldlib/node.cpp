@@ -1,0 +1,12 @@
+#include "node.h"
+
+namespace softtrace {
+
+Interval FieldNode::interval(const Box& b) const {
+  const double L = lipschitz(b);
+  if (!std::isfinite(L) || !b.bounded()) return Interval::entire();
+  const double v = value(b.center()), r = L * 0.5 * b.diagonal();
+  return iv::out(v - r, v + r);
+}
+
+}  // namespace softtrace

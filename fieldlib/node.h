@@ -1,0 +1,49 @@
+// The one interface every field node answers (MATH.md §8 for the bounds it promises).
+// Models are built once from a scene and then only evaluated, from many threads at once:
+// every method is const and thread-safe.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "box.h"
+#include "interval.h"
+#include "vec.h"
+
+namespace softtrace {
+
+// Which side of a level set a region bound encloses.
+enum class Side { Above, Below };  // {f >= level} or {f <= level}
+
+class FieldNode {
+ public:
+  virtual ~FieldNode() = default;
+
+  // f(p), and ∇f(p) into *grad when grad is non-null. Where f is not differentiable (kinks of
+  // min/max, the skeleton of a gauge) any element of the Clarke subdifferential is acceptable.
+  virtual double eval(const Vec3& p, Vec3* grad) const = 0;
+
+  // A sound enclosure of f over the box. The default is f(centre) ± L(box)·half-diagonal, which
+  // is sound for any node whose box Lipschitz bound is; nodes override it with tighter ones.
+  virtual Interval interval(const Box& b) const;
+
+  // Bounds on |∇f|: globally and over a box. +inf where no bound exists (exponents below 1).
+  virtual double lipschitz() const = 0;
+  virtual double lipschitz(const Box& b) const { return lipschitz(); }
+
+  // A box containing {p : f(p) >= level} (Side::Above) or {f(p) <= level} (Side::Below);
+  // Box::unbounded() when no finite box is known. For soft fields, region(l, Above) with
+  // l > 0 is the support box.
+  virtual Box region(double level, Side side) const { return Box::unbounded(); }
+
+  double value(const Vec3& p) const { return eval(p, nullptr); }
+  Vec3 gradient(const Vec3& p) const {
+    Vec3 g;
+    eval(p, &g);
+    return g;
+  }
+};
+
+using NodePtr = std::unique_ptr<FieldNode>;
+
+}  // namespace softtrace

@@ -1,0 +1,74 @@
+// Scene parameters with their location: pbrt's ParameterDictionary idea over nlohmann::json.
+// Every read records the key, `finish()` reports keys nobody read (misspellings), and every error
+// names the place as `file: /json/pointer: what was expected`.
+#pragma once
+
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vec.h"
+
+namespace softtrace {
+
+// Bad input: the message is the one line the user sees.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Params {
+ public:
+  using json = nlohmann::json;
+
+  // `j` must outlive the Params and everything created from it during loading.
+  Params(const json& j, std::string pointer, std::shared_ptr<const std::string> file);
+
+  const std::string& pointer() const { return pointer_; }
+  const json& raw() const { return *j_; }
+  bool has(const std::string& key) const;
+
+  double number(const std::string& key) const;
+  double number(const std::string& key, double fallback) const;
+  double positive(const std::string& key) const;  // finite and > 0
+  double positive(const std::string& key, double fallback) const;
+  int integer(const std::string& key, int lo, int hi) const;
+  int integer(const std::string& key, int lo, int hi, int fallback) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  std::string string(const std::string& key) const;
+  std::string string(const std::string& key, const std::string& fallback) const;
+  Vec3 vec3(const std::string& key) const;
+  Vec3 vec3(const std::string& key, const Vec3& fallback) const;
+  std::vector<double> numbers(const std::string& key) const;  // a non-empty array of numbers
+  // A number or an array of `count` numbers (a number is repeated).
+  std::vector<double> numbers_or_scalar(const std::string& key, size_t count) const;
+
+  Params object(const std::string& key) const;
+  std::vector<Params> objects(const std::string& key) const;  // an array of objects
+
+  // Errors about a key of this object (or the object itself when key is empty).
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  void check(bool ok, const std::string& key, const std::string& what) const {
+    if (!ok) fail(key, what);
+  }
+  // Reports the first key that no one read.
+  void finish() const;
+
+  std::string where(const std::string& key) const;  // "file: /pointer/key"
+
+ private:
+  const json& at(const std::string& key) const;  // marks the key used; fails if missing
+
+  const json* j_;
+  std::string pointer_;
+  std::shared_ptr<const std::string> file_;
+  mutable std::set<std::string> used_;
+};
+
+std::string json_pointer_escape(const std::string& key);
+
+}  // namespace softtrace

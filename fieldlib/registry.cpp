@@ -1,0 +1,103 @@
+#include "registry.h"
+
+#include <cmath>
+
+#include "blends.h"
+#include "distances.h"
+#include "placement.h"
+#include "potentials.h"
+#include "soft_object.h"
+
+namespace softtrace {
+
+const std::vector<NodeKind>& node_kinds() {
+  static const std::vector<NodeKind> kinds = {
+      // Distance functions, MATH.md §2.
+      {"lp_metric", "distance", "(|x/a|^n+|y/b|^n+|z/c|^n)^(1/n); radii [a,b,c], n",
+       create_lp_metric},
+      {"superquadric", "distance", "000 Eq.3; radii [a1,a2,a3], n1, n2", create_superquadric},
+      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)",
+       create_segment},
+      // Soft objects, MATH.md §4.
+      {"soft_object", "object", "P(d): distance, potential (default blanc s=0)",
+       create_soft_object},
+      // Blends, MATH.md §5-§7.
+      {"soft_blend", "blend", "sum of the children (000 Eq.12)", create_soft_blend},
+  };
+  return kinds;
+}
+
+namespace {
+
+struct PotentialKind {
+  const char* name;
+  PotentialPtr (*create)(const Params&);
+};
+
+const PotentialKind kPotentials[] = {
+    {"blanc", create_blanc},
+    {"wyvill", create_wyvill},
+    {"murakami", create_murakami},
+};
+
+template <class Kinds>
+std::string names_of(const Kinds& kinds) {
+  std::string s;
+  for (const auto& k : kinds) s += (s.empty() ? "" : ", ") + std::string(k.name);
+  return s;
+}
+
+}  // namespace
+
+PotentialPtr build_potential(const Params& p) {
+  const std::string type = p.string("type");
+  for (const auto& k : kPotentials)
+    if (type == k.name) {
+      PotentialPtr P = k.create(p);
+      p.finish();
+      return P;
+    }
+  p.fail("type", "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) +
+                     ")");
+}
+
+NodePtr build_field(const Params& p, const BuildContext& ctx) {
+  const std::string type = p.string("type");
+  const NodeKind* kind = nullptr;
+  for (const auto& k : node_kinds())
+    if (type == k.name) kind = &k;
+  if (!kind)
+    p.fail("type", "unknown node type '" + type + "' (expected one of: " +
+                       names_of(node_kinds()) + ")");
+  NodePtr node = kind->create(p, ctx);
+
+  const Vec3 translate = p.vec3("translate", {});
+  Mat3 rotation;
+  bool rotated = false;
+  if (p.has("rotate")) {
+    const Params r = p.object("rotate");
+    const Vec3 axis = r.vec3("axis");
+    r.check(length(axis) > 0 && std::isfinite(length(axis)), "axis", "expected a non-zero axis");
+    rotation = Mat3::rotation(axis, r.number("deg"));
+    r.finish();
+    rotated = true;
+  }
+  p.finish();
+  if (rotated || translate.x != 0 || translate.y != 0 || translate.z != 0)
+    node = place(std::move(node), rotation, translate);
+  return node;
+}
+
+std::vector<NodePtr> build_children(const Params& p, const std::string& key,
+                                    const BuildContext& ctx, size_t min_count) {
+  std::vector<Params> items = p.objects(key);
+  if (items.size() < min_count)
+    p.fail(key, "expected at least " + std::to_string(min_count) + " children, got " +
+                    std::to_string(items.size()));
+  std::vector<NodePtr> out;
+  out.reserve(items.size());
+  for (const auto& item : items) out.push_back(build_field(item, ctx));
+  return out;
+}
+
+}  // namespace softtrace

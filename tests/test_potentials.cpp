@@ -1,0 +1,99 @@
+// Potential properties of MATH.md §3 ([PB-1]..[PB-6]) for several s, and Wyvill/quartic facts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "potentials.h"
+
+namespace softtrace {
+namespace {
+
+double P(const Potential& p, double d) { return p.eval(d, nullptr); }
+double dP(const Potential& p, double d) {
+  double g;
+  p.eval(d, &g);
+  return g;
+}
+
+class Blanc : public testing::TestWithParam<double> {};
+
+TEST_P(Blanc, StatedValues) {  // [PB-1], [PB-6] at the level
+  const auto p = make_blanc(GetParam());
+  EXPECT_DOUBLE_EQ(P(*p, 0), 1);
+  EXPECT_NEAR(P(*p, 0.5), 0.5, 1e-15);
+  EXPECT_NEAR(P(*p, std::nextafter(0.5, 1.0)), 0.5, 1e-12);  // both branches meet
+  EXPECT_EQ(P(*p, 1), 0);
+  EXPECT_EQ(P(*p, 1.7), 0);
+  EXPECT_EQ(P(*p, -0.3), 1) << "d is clamped at 0 (MATH.md §3.1)";
+}
+
+TEST_P(Blanc, FlatAtBothEnds) {  // [PB-2]
+  const auto p = make_blanc(GetParam());
+  EXPECT_EQ(dP(*p, 0), 0);
+  EXPECT_NEAR(dP(*p, 1e-9), 0, 1e-7);
+  EXPECT_NEAR(dP(*p, 1 - 1e-9), 0, 1e-7);
+  EXPECT_EQ(dP(*p, 1), 0);
+}
+
+TEST_P(Blanc, C1AtTheJoint) {  // [PB-3]
+  const double s = GetParam();
+  const auto p = make_blanc(s);
+  const double expect = -2 - 16.0 / 9.0 * s;
+  EXPECT_NEAR(dP(*p, 0.5), expect, 1e-12);
+  EXPECT_NEAR(dP(*p, std::nextafter(0.5, 1.0)), expect, 1e-9);
+}
+
+TEST_P(Blanc, MonotoneAndLipschitz) {  // [PB-4], [PB-5], and P = 0.5 only at d = 0.5 ([PB-6])
+  const auto p = make_blanc(GetParam());
+  double prev = P(*p, 0), max_slope = 0;
+  for (int i = 1; i <= 20000; ++i) {
+    const double d = i / 20000.0, v = P(*p, d);
+    ASSERT_LE(v, prev + 1e-15) << "at d = " << d;
+    if (std::abs(d - 0.5) > 1e-3) ASSERT_NE(v, 0.5) << "at d = " << d;
+    max_slope = std::max(max_slope, std::abs(dP(*p, d)));
+    // analytic derivative agrees with the values
+    if (d > 1e-3 && d < 1 - 1e-3 && std::abs(d - 0.5) > 1e-3) {
+      const double h = 1e-7, fd = (P(*p, d + h) - P(*p, d - h)) / (2 * h);
+      ASSERT_NEAR(dP(*p, d), fd, 1e-6 * std::max(1.0, std::abs(fd))) << "at d = " << d;
+    }
+    prev = v;
+  }
+  EXPECT_LE(max_slope, p->lipschitz());
+  EXPECT_NEAR(max_slope, p->lipschitz(), 1e-3) << "the bound is attained at d = 0.5";
+}
+
+INSTANTIATE_TEST_SUITE_P(Softness, Blanc, testing::Values(0.0, 0.25, 0.5, 1.0, 3.0, 20.0));
+
+TEST(Wyvill, RequirementsAndBound) {
+  const auto p = create_wyvill(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
+  EXPECT_EQ(P(*p, 0), 1);
+  EXPECT_NEAR(P(*p, 0.5), 0.5, 1e-15);
+  EXPECT_NEAR(P(*p, 1), 0, 1e-15);
+  EXPECT_NEAR(dP(*p, 1), 0, 1e-14);
+  double max_slope = 0;
+  for (int i = 0; i <= 20000; ++i) max_slope = std::max(max_slope, std::abs(dP(*p, i / 20000.0)));
+  EXPECT_LE(max_slope, p->lipschitz());
+  EXPECT_NEAR(max_slope, p->lipschitz(), 1e-6);
+}
+
+TEST(Murakami, QuarticFacts) {
+  const auto p = create_murakami(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
+  EXPECT_NEAR(P(*p, 0.5), 9.0 / 16.0, 1e-15);
+  EXPECT_NEAR(P(*p, std::sqrt(1 - std::sqrt(0.5))), 0.5, 1e-15);  // its 0.5 level, d = 0.5412
+  double max_slope = 0;
+  for (int i = 0; i <= 20000; ++i) max_slope = std::max(max_slope, std::abs(dP(*p, i / 20000.0)));
+  EXPECT_LE(max_slope, p->lipschitz());
+  EXPECT_NEAR(max_slope, p->lipschitz(), 1e-6);
+}
+
+TEST(Potential, IntervalIsTheMonotoneImage) {
+  const auto p = make_blanc(0.3);
+  const Interval I = p->interval({0.2, 0.7});
+  EXPECT_LE(I.lo, P(*p, 0.7));
+  EXPECT_GE(I.hi, P(*p, 0.2));
+  EXPECT_NEAR(I.lo, P(*p, 0.7), 1e-15);
+  EXPECT_EQ(p->lipschitz(Interval{1.0, 3.0}), 0) << "flat beyond the influential radius";
+}
+
+}  // namespace
+}  // namespace softtrace
