@@ -16,8 +16,8 @@
 
 namespace softtrace {
 
-NodePtr create_lp_metric(const Params& p, const BuildContext& ctx);      // 000 Eq. 2, §2.5
-NodePtr create_superquadric(const Params& p, const BuildContext& ctx);   // 000 Eq. 3, §2.6
-NodePtr create_segment(const Params& p, const BuildContext& ctx);        // 000 Eq. 5, §2.8
+NodePtr create_lp_metric(const Params& p, const BuildContext& ctx);     // 000 Eq. 2, §2.5
+NodePtr create_superquadric(const Params& p, const BuildContext& ctx);  // 000 Eq. 3, §2.6
+NodePtr create_segment(const Params& p, const BuildContext& ctx);       // 000 Eq. 5, §2.8
 
 }  // namespace softtrace

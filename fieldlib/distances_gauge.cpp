@@ -8,7 +8,9 @@ namespace softtrace {
 
 namespace {
 
-double sgn(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
+double sgn(double v) {
+  return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+}
 
 Box scaled_box(const Vec3& half, double c) {
   if (c < 0) return Box();
@@ -27,8 +29,7 @@ class LpMetric final : public FieldNode {
     const double u[3] = {std::abs(p.x / a_.x), std::abs(p.y / a_.y), std::abs(p.z / a_.z)};
     double du[3];
     const double f = power_sum(u, 3, n_, grad ? du : nullptr);
-    if (grad)
-      *grad = {du[0] * sgn(p.x) / a_.x, du[1] * sgn(p.y) / a_.y, du[2] * sgn(p.z) / a_.z};
+    if (grad) *grad = {du[0] * sgn(p.x) / a_.x, du[1] * sgn(p.y) / a_.y, du[2] * sgn(p.z) / a_.z};
     return f;
   }
   Interval interval(const Box& b) const override {

@@ -1,6 +1,7 @@
 // Closed interval arithmetic over doubles, as libfive's interval evaluator uses it: every result
 // contains the exact image of its arguments. Each operation rounds outward by one ulp so the
-// enclosure stays sound under floating-point rounding (pow/exp/log are faithfully rounded by glibc).
+// enclosure stays sound under floating-point rounding (pow/exp/log are faithfully rounded by
+// glibc).
 #pragma once
 
 #include <algorithm>
@@ -24,8 +25,12 @@ struct Interval {
 };
 
 namespace iv {
-inline double down(double v) { return std::nextafter(v, -std::numeric_limits<double>::infinity()); }
-inline double up(double v) { return std::nextafter(v, std::numeric_limits<double>::infinity()); }
+inline double down(double v) {
+  return std::nextafter(v, -std::numeric_limits<double>::infinity());
+}
+inline double up(double v) {
+  return std::nextafter(v, std::numeric_limits<double>::infinity());
+}
 inline Interval out(double l, double h) {
   // NaN from inf-inf or 0*inf means "no information".
   if (std::isnan(l) || std::isnan(h)) return Interval::entire();
@@ -33,9 +38,15 @@ inline Interval out(double l, double h) {
 }
 }  // namespace iv
 
-inline Interval operator+(Interval a, Interval b) { return iv::out(a.lo + b.lo, a.hi + b.hi); }
-inline Interval operator-(Interval a, Interval b) { return iv::out(a.lo - b.hi, a.hi - b.lo); }
-inline Interval operator-(Interval a) { return {-a.hi, -a.lo}; }
+inline Interval operator+(Interval a, Interval b) {
+  return iv::out(a.lo + b.lo, a.hi + b.hi);
+}
+inline Interval operator-(Interval a, Interval b) {
+  return iv::out(a.lo - b.hi, a.hi - b.lo);
+}
+inline Interval operator-(Interval a) {
+  return {-a.hi, -a.lo};
+}
 inline Interval operator*(Interval a, Interval b) {
   const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
   double l = p[0], h = p[0];

@@ -41,7 +41,9 @@ void Params::fail(const std::string& key, const std::string& what) const {
   throw SceneError(where(key) + ": " + what);
 }
 
-bool Params::has(const std::string& key) const { return j_->contains(key); }
+bool Params::has(const std::string& key) const {
+  return j_->contains(key);
+}
 
 const nlohmann::json& Params::at(const std::string& key) const {
   auto it = j_->find(key);

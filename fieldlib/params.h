@@ -4,12 +4,11 @@
 #pragma once
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "vec.h"
 
@@ -46,6 +45,9 @@ class Params {
   std::vector<double> numbers(const std::string& key) const;  // a non-empty array of numbers
   // A number or an array of `count` numbers (a number is repeated).
   std::vector<double> numbers_or_scalar(const std::string& key, size_t count) const;
+
+  // The raw value of a required key, marked as read, for shapes no typed reader covers.
+  const json& get(const std::string& key) const { return at(key); }
 
   Params object(const std::string& key) const;
   std::vector<Params> objects(const std::string& key) const;  // an array of objects

@@ -23,9 +23,7 @@ class Placed final : public FieldNode {
     if (grad) *grad = R_ * *grad;
     return v;
   }
-  Interval interval(const Box& b) const override {
-    return child_->interval(to_local(b));
-  }
+  Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
   double lipschitz() const override { return child_->lipschitz(); }
   double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
   Box region(double level, Side side) const override {

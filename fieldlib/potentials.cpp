@@ -93,8 +93,12 @@ std::unique_ptr<Potential> create_blanc(const Params& p) {
   p.check(s >= 0, "s", "expected a softness s >= 0 (MATH.md §3.2)");
   return make_blanc(s);
 }
-PotentialPtr make_blanc(double s) { return std::make_unique<Blanc>(s); }
-std::unique_ptr<Potential> create_wyvill(const Params&) { return std::make_unique<Wyvill>(); }
+PotentialPtr make_blanc(double s) {
+  return std::make_unique<Blanc>(s);
+}
+std::unique_ptr<Potential> create_wyvill(const Params&) {
+  return std::make_unique<Wyvill>();
+}
 std::unique_ptr<Potential> create_murakami(const Params&) {
   return std::make_unique<Murakami>();
 }

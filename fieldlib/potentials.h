@@ -24,8 +24,8 @@ class Potential {
 
 using PotentialPtr = std::unique_ptr<Potential>;
 
-std::unique_ptr<Potential> create_blanc(const Params& p);     // 002 Eq. 2, §3.2
-PotentialPtr make_blanc(double s);  // the default potential is make_blanc(0)
+std::unique_ptr<Potential> create_blanc(const Params& p);  // 002 Eq. 2, §3.2
+PotentialPtr make_blanc(double s);                         // the default potential is make_blanc(0)
 std::unique_ptr<Potential> create_wyvill(const Params& p);    // Wyvill's sextic, §3.3
 std::unique_ptr<Potential> create_murakami(const Params& p);  // quartic (1-d^2)^2, §3.3
 

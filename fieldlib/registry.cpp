@@ -16,8 +16,7 @@ const std::vector<NodeKind>& node_kinds() {
       {"lp_metric", "distance", "(|x/a|^n+|y/b|^n+|z/c|^n)^(1/n); radii [a,b,c], n",
        create_lp_metric},
       {"superquadric", "distance", "000 Eq.3; radii [a1,a2,a3], n1, n2", create_superquadric},
-      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)",
-       create_segment},
+      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)", create_segment},
       // Soft objects, MATH.md §4.
       {"soft_object", "object", "P(d): distance, potential (default blanc s=0)",
        create_soft_object},
@@ -57,8 +56,8 @@ PotentialPtr build_potential(const Params& p) {
       p.finish();
       return P;
     }
-  p.fail("type", "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) +
-                     ")");
+  p.fail("type",
+         "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) + ")");
 }
 
 NodePtr build_field(const Params& p, const BuildContext& ctx) {
@@ -67,8 +66,8 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   for (const auto& k : node_kinds())
     if (type == k.name) kind = &k;
   if (!kind)
-    p.fail("type", "unknown node type '" + type + "' (expected one of: " +
-                       names_of(node_kinds()) + ")");
+    p.fail("type",
+           "unknown node type '" + type + "' (expected one of: " + names_of(node_kinds()) + ")");
   NodePtr node = kind->create(p, ctx);
 
   const Vec3 translate = p.vec3("translate", {});

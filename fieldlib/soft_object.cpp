@@ -43,8 +43,7 @@ class SoftObject final : public FieldNode {
 
 NodePtr create_soft_object(const Params& p, const BuildContext& ctx) {
   NodePtr d = build_field(p.object("distance"), ctx);
-  PotentialPtr P =
-      p.has("potential") ? build_potential(p.object("potential")) : make_blanc(0);
+  PotentialPtr P = p.has("potential") ? build_potential(p.object("potential")) : make_blanc(0);
   return std::make_unique<SoftObject>(std::move(d), std::move(P));
 }
 

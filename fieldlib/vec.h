@@ -27,13 +27,21 @@ struct Vec3 {
   }
 };
 
-constexpr Vec3 operator*(double s, const Vec3& v) { return v * s; }
-constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 operator*(double s, const Vec3& v) {
+  return v * s;
+}
+constexpr double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-inline Vec3 normalize(const Vec3& v) { return v / length(v); }
+inline double length(const Vec3& v) {
+  return std::sqrt(dot(v, v));
+}
+inline Vec3 normalize(const Vec3& v) {
+  return v / length(v);
+}
 inline bool isfinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

@@ -59,9 +59,8 @@ TEST_P(NodeSweep, GradientMatchesCentralDifferences) {
     if (length(fd) > 0) ++smooth_nonzero;
     const Vec3 g = n->gradient(p);
     ASSERT_LE(length(g - fd), 1e-4 * scale)
-        << c.name << " at (" << p.x << ", " << p.y << ", " << p.z << "): analytic (" << g.x
-        << ", " << g.y << ", " << g.z << ") vs FD (" << fd.x << ", " << fd.y << ", " << fd.z
-        << ")";
+        << c.name << " at (" << p.x << ", " << p.y << ", " << p.z << "): analytic (" << g.x << ", "
+        << g.y << ", " << g.z << ") vs FD (" << fd.x << ", " << fd.y << ", " << fd.z << ")";
   }
   EXPECT_GE(checked, kPoints * 8 / 10) << "too few smooth points to judge";
   EXPECT_GT(smooth_nonzero, 0) << "the domain shows no variation of the field";
@@ -119,8 +118,8 @@ TEST_P(NodeSweep, RegionContainsItsLevelSet) {
     const bool in = c.region_side == Side::Above ? v >= c.region_level : v <= c.region_level;
     if (!in) continue;
     ++inside;
-    ASSERT_TRUE(r.contains(p)) << c.name << ": f = " << v << " at (" << p.x << ", " << p.y
-                               << ", " << p.z << ") outside the region box";
+    ASSERT_TRUE(r.contains(p)) << c.name << ": f = " << v << " at (" << p.x << ", " << p.y << ", "
+                               << p.z << ") outside the region box";
   }
   EXPECT_GT(inside, 0) << "no sample reached the level: the check proved nothing";
 }

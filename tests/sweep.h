@@ -24,7 +24,9 @@ struct SweepCase {
   Side region_side = Side::Above;
 };
 
-inline void PrintTo(const SweepCase& c, std::ostream* os) { *os << c.name; }
+inline void PrintTo(const SweepCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 inline std::string SweepCaseName(const testing::TestParamInfo<SweepCase>& info) {
   return info.param.name;

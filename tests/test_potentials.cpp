@@ -8,7 +8,9 @@
 namespace softtrace {
 namespace {
 
-double P(const Potential& p, double d) { return p.eval(d, nullptr); }
+double P(const Potential& p, double d) {
+  return p.eval(d, nullptr);
+}
 double dP(const Potential& p, double d) {
   double g;
   p.eval(d, &g);
@@ -65,7 +67,8 @@ TEST_P(Blanc, MonotoneAndLipschitz) {  // [PB-4], [PB-5], and P = 0.5 only at d 
 INSTANTIATE_TEST_SUITE_P(Softness, Blanc, testing::Values(0.0, 0.25, 0.5, 1.0, 3.0, 20.0));
 
 TEST(Wyvill, RequirementsAndBound) {
-  const auto p = create_wyvill(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
+  const auto p =
+      create_wyvill(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
   EXPECT_EQ(P(*p, 0), 1);
   EXPECT_NEAR(P(*p, 0.5), 0.5, 1e-15);
   EXPECT_NEAR(P(*p, 1), 0, 1e-15);
@@ -77,7 +80,8 @@ TEST(Wyvill, RequirementsAndBound) {
 }
 
 TEST(Murakami, QuarticFacts) {
-  const auto p = create_murakami(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
+  const auto p =
+      create_murakami(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
   EXPECT_NEAR(P(*p, 0.5), 9.0 / 16.0, 1e-15);
   EXPECT_NEAR(P(*p, std::sqrt(1 - std::sqrt(0.5))), 0.5, 1e-15);  // its 0.5 level, d = 0.5412
   double max_slope = 0;

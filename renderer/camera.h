@@ -1,0 +1,35 @@
+// Pinhole camera from eye/target/up and a vertical field of view (SCENE.md "camera").
+#pragma once
+
+#include <cmath>
+
+#include "scene.h"
+#include "tracer.h"
+
+namespace softtrace {
+
+class PinholeCamera {
+ public:
+  PinholeCamera(const Camera& c, int width, int height)
+      : eye_(c.eye), width_(width), height_(height) {
+    forward_ = normalize(c.target - c.eye);
+    right_ = normalize(cross(forward_, c.up));
+    up_ = cross(right_, forward_);
+    tan_half_ = std::tan(0.5 * c.fov * M_PI / 180.0);
+  }
+
+  // (px, py) in pixel units: x to the right, y down from the top-left corner.
+  Ray generate(double px, double py) const {
+    const double aspect = static_cast<double>(width_) / height_;
+    const double sx = (2 * px / width_ - 1) * tan_half_ * aspect;
+    const double sy = (1 - 2 * py / height_) * tan_half_;
+    return {eye_, normalize(forward_ + right_ * sx + up_ * sy)};
+  }
+
+ private:
+  Vec3 eye_, forward_, right_, up_;
+  int width_, height_;
+  double tan_half_;
+};
+
+}  // namespace softtrace

@@ -1,0 +1,64 @@
+// `softtrace bench`: primary-ray throughput of a scene, shading included, without output.
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "frame.h"
+
+namespace softtrace {
+
+int run_bench(const BenchArgs& a) {
+  try {
+    Scene scene = load_scene(a.scene);
+    if (a.width) scene.image.width = a.width;
+    if (a.height) scene.image.height = a.height;
+    std::unique_ptr<tbb::global_control> threads;
+    if (a.threads)
+      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      a.threads);
+    const EmbreeScene rt(scene, a.lipschitz);
+    RenderOptions opt;
+    opt.lipschitz = a.lipschitz;
+    std::vector<double> secs;
+    FrameStats stats;
+    for (int i = 0; i < a.repeat; ++i) {
+      Film film(scene.image.width, scene.image.height);
+      const auto t0 = std::chrono::steady_clock::now();
+      render_frame(scene, rt, opt, film, nullptr, &stats);
+      secs.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(secs.begin(), secs.end());
+    const double best = secs.front(), median = secs[secs.size() / 2];
+    const double rays = static_cast<double>(stats.primary_rays);
+    const double evals = static_cast<double>(stats.steps) / std::max(1.0, rays);
+    const char* mode = a.lipschitz == LipschitzMode::Local ? "local" : "global";
+    if (a.json) {
+      std::printf(
+          "{\"scene\": \"%s\", \"width\": %d, \"height\": %d, \"spp\": %d, \"lipschitz\": "
+          "\"%s\", \"frames\": %d, \"best_s\": %.6f, \"median_s\": %.6f, "
+          "\"mrays_per_s\": %.4f, \"evaluations_per_ray\": %.3f}\n",
+          a.scene.c_str(), scene.image.width, scene.image.height, scene.image.spp, mode, a.repeat,
+          best, median, rays / best * 1e-6, evals);
+    } else {
+      std::printf("%s: %dx%d, %d spp, lipschitz %s, %d frames\n", a.scene.c_str(),
+                  scene.image.width, scene.image.height, scene.image.spp, mode, a.repeat);
+      std::printf("  best %.4f s, median %.4f s, %.3f M primary rays/s, %.1f evaluations/ray\n",
+                  best, median, rays / best * 1e-6, evals);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    report_error(e.what());
+    return 2;
+  }
+}
+
+int run_nodes() {
+  for (const auto& k : node_kinds()) std::printf("%-32s %-9s %s\n", k.name, k.family, k.summary);
+  return 0;
+}
+
+}  // namespace softtrace

@@ -1,0 +1,153 @@
+#include "embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace softtrace {
+
+namespace {
+
+// Extends Embree's context with what our callbacks report back; Embree passes the pointer to
+// the callbacks unchanged, so the context must be the first member.
+// The callbacks trace the double-precision ray kept here; Embree's float copy only culls.
+struct RayContext {
+  RTCIntersectContext rtc;
+  Ray ray;
+  double tnear = 0;
+  double t = std::numeric_limits<double>::infinity();  // tfar, then the closest hit so far
+  int steps = 0;
+  int object = -1;
+};
+
+struct GeometryData {
+  const ObjectTracer* tracer;
+  int object;
+};
+
+void bounds_callback(const RTCBoundsFunctionArguments* args) {
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  const Box& b = data->tracer->object().bounds;
+  // Round outward so the float box contains the double one.
+  args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lo.x), -INFINITY);
+  args->bounds_o->lower_y = std::nextafter(static_cast<float>(b.lo.y), -INFINITY);
+  args->bounds_o->lower_z = std::nextafter(static_cast<float>(b.lo.z), -INFINITY);
+  args->bounds_o->upper_x = std::nextafter(static_cast<float>(b.hi.x), INFINITY);
+  args->bounds_o->upper_y = std::nextafter(static_cast<float>(b.hi.y), INFINITY);
+  args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.hi.z), INFINITY);
+}
+
+void intersect_callback(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
+  // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
+  const MarchResult m = data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->steps);
+  if (!m.hit || m.t >= ctx->t) return;
+  ctx->t = m.t;
+  ctx->object = data->object;
+  rh->ray.tfar = static_cast<float>(m.t);
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z =
+      0;  // the normal is computed once, for the closest hit
+}
+
+void occluded_callback(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->steps).hit) r->tfar = -INFINITY;
+}
+
+}  // namespace
+
+struct EmbreeScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<GeometryData> data;
+};
+
+EmbreeScene::EmbreeScene(const Scene& scene, LipschitzMode mode) : impl_(std::make_unique<Impl>()) {
+  tracers_.reserve(scene.objects.size());
+  for (const auto& o : scene.objects) tracers_.emplace_back(o, mode);
+  impl_->data.reserve(scene.objects.size());  // the callbacks hold pointers into it
+
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
+  impl_->scene = rtcNewScene(impl_->device);
+  for (size_t i = 0; i < tracers_.size(); ++i) {
+    impl_->data.push_back({&tracers_[i], static_cast<int>(i)});
+    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, &impl_->data.back());
+    rtcSetGeometryBoundsFunction(geom, bounds_callback, nullptr);
+    rtcSetGeometryIntersectFunction(geom, intersect_callback);
+    rtcSetGeometryOccludedFunction(geom, occluded_callback);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);  // the scene holds the reference now
+  }
+  rtcCommitScene(impl_->scene);
+}
+
+EmbreeScene::~EmbreeScene() {
+  rtcReleaseScene(impl_->scene);
+  rtcReleaseDevice(impl_->device);
+}
+
+namespace {
+RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
+  RTCRay r{};
+  r.org_x = static_cast<float>(ray.o.x);
+  r.org_y = static_cast<float>(ray.o.y);
+  r.org_z = static_cast<float>(ray.o.z);
+  r.dir_x = static_cast<float>(ray.d.x);
+  r.dir_y = static_cast<float>(ray.d.y);
+  r.dir_z = static_cast<float>(ray.d.z);
+  r.tnear = static_cast<float>(tnear);
+  r.tfar = std::isinf(tfar) ? INFINITY : static_cast<float>(tfar);
+  r.mask = 0xFFFFFFFF;
+  r.flags = 0;
+  return r;
+}
+}  // namespace
+
+TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar) const {
+  RayContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = ray;
+  ctx.tnear = tnear;
+  ctx.t = tfar;
+  RTCRayHit rh{};
+  rh.ray = make_ray(ray, tnear, tfar);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx.rtc, &rh);
+  TraceHit h;
+  h.steps = ctx.steps;
+  if (ctx.object >= 0) {
+    h.hit = true;
+    h.t = ctx.t;
+    h.object = ctx.object;
+  }
+  return h;
+}
+
+bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, int& steps) const {
+  RayContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = ray;
+  ctx.tnear = tnear;
+  ctx.t = tfar;
+  RTCRay r = make_ray(ray, tnear, tfar);
+  rtcOccluded1(impl_->scene, &ctx.rtc, &r);
+  steps += ctx.steps;
+  return r.tfar < 0;
+}
+
+}  // namespace softtrace

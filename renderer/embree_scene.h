@@ -1,0 +1,41 @@
+// The only code that sees Embree: one user geometry per scene object, whose bounds callback
+// returns the object's box and whose intersect/occluded callbacks call the ObjectTracer
+// (Mitsuba's thin adapter; the objects never see Embree).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "tracer.h"
+
+namespace softtrace {
+
+struct TraceHit {
+  bool hit = false;
+  double t = std::numeric_limits<double>::infinity();
+  int object = -1;  // index into Scene::objects
+  int steps = 0;    // field and interval evaluations spent on the ray
+};
+
+class EmbreeScene {
+ public:
+  // The scene must outlive this object.
+  EmbreeScene(const Scene& scene, LipschitzMode mode);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Closest hit along the ray in [tnear, tfar]; thread-safe.
+  TraceHit intersect(const Ray& ray, double tnear, double tfar) const;
+  // Whether anything lies along the ray in [tnear, tfar]; thread-safe.
+  bool occluded(const Ray& ray, double tnear, double tfar, int& steps) const;
+
+  const ObjectTracer& tracer(int object) const { return tracers_[object]; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<ObjectTracer> tracers_;
+};
+
+}  // namespace softtrace

@@ -1,0 +1,46 @@
+// The rendered pixels and their output. Only this file's implementation includes OpenImageIO.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace softtrace {
+
+struct AovSelection {
+  bool depth = false, normal = false, steps = false;
+};
+
+struct Film {
+  int width = 0, height = 0;
+  std::vector<float> rgba;    // linear RGB composited over the background; A = object coverage
+  std::vector<float> depth;   // ray distance of the pixel-centre ray, +inf for background
+  std::vector<float> normal;  // unit normal (x,y,z) at that hit, 0 for background
+  std::vector<float> steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
+
+  Film(int w, int h)
+      : width(w),
+        height(h),
+        rgba(size_t(w) * h * 4),
+        depth(size_t(w) * h),
+        normal(size_t(w) * h * 3),
+        steps(size_t(w) * h) {}
+};
+
+// Parses "depth,normal,steps" (any subset); throws std::invalid_argument naming a bad entry.
+AovSelection parse_aovs(const std::string& list);
+
+// Checks, before any rendering, that `path` can be written: a known extension (.exr, .png), an
+// existing folder we may write to. Throws std::invalid_argument with the reason.
+void check_output_path(const std::string& path);
+bool is_exr_path(const std::string& path);
+
+// Writes the film: EXR with R,G,B,A (+ Z, N.X,N.Y,N.Z, steps as selected), or 8-bit sRGB PNG
+// (RGB only: AOVs go to EXR outputs).
+// The image goes to a temporary file in the target folder that is renamed over `path` only when
+// complete, so an existing file is never half-overwritten. Throws std::runtime_error.
+void write_image(const std::string& path, const Film& film, const AovSelection& aovs);
+
+// Removes temporary files of writes in progress; safe to call from a signal handler.
+void abandon_pending_writes();
+
+}  // namespace softtrace

@@ -1,0 +1,80 @@
+#include "frame.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "camera.h"
+#include "shading.h"
+
+namespace softtrace {
+
+namespace {
+
+constexpr int kTile = 16;
+
+// Sample s of a pixel: s = 0 is the centre (its hit feeds the AOVs); the rest follow the R2
+// low-discrepancy sequence, so results need no random state.
+void sample_offset(int s, double& dx, double& dy) {
+  dx = std::fmod(0.5 + s * 0.7548776662466927, 1.0);
+  dy = std::fmod(0.5 + s * 0.5698402909980532, 1.0);
+}
+
+}  // namespace
+
+bool render_frame(const Scene& scene, const EmbreeScene& rt, const RenderOptions& opt, Film& film,
+                  Progress* progress, FrameStats* stats) {
+  const int W = film.width, H = film.height, spp = scene.image.spp;
+  const PinholeCamera camera(scene.camera, W, H);
+  tbb::combinable<long long> steps_total([] { return 0LL; });
+
+  tbb::parallel_for(
+      tbb::blocked_range2d<int>(0, H, kTile, 0, W, kTile),
+      [&](const tbb::blocked_range2d<int>& tile) {
+        if (opt.cancel && *opt.cancel) return;
+        long long& steps_acc = steps_total.local();
+        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+            const size_t i = size_t(y) * W + x;
+            Vec3 sum{0, 0, 0};
+            int covered = 0;
+            for (int s = 0; s < spp; ++s) {
+              double dx, dy;
+              sample_offset(s, dx, dy);
+              const Ray ray = camera.generate(x + dx, y + dy);
+              const TraceHit hit = rt.intersect(ray, 0, std::numeric_limits<double>::infinity());
+              int steps = hit.steps;
+              if (hit.hit) {
+                const Shaded sh = shade(scene, rt, ray, hit, steps);
+                sum += sh.color;
+                ++covered;
+                if (s == 0) {
+                  film.depth[i] = static_cast<float>(hit.t);
+                  for (int k = 0; k < 3; ++k)
+                    film.normal[i * 3 + k] = static_cast<float>(sh.normal[k]);
+                }
+              } else {
+                sum += scene.background;
+                if (s == 0) film.depth[i] = std::numeric_limits<float>::infinity();
+              }
+              if (s == 0) film.steps[i] = static_cast<float>(steps);
+              steps_acc += steps;
+            }
+            for (int k = 0; k < 3; ++k) film.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
+            film.rgba[i * 4 + 3] = static_cast<float>(covered) / spp;
+          }
+        }
+        if (progress) progress->advance(tile.rows().size() * tile.cols().size());
+      },
+      tbb::simple_partitioner());
+
+  if (stats) {
+    stats->primary_rays = static_cast<long long>(W) * H * spp;
+    stats->steps = steps_total.combine([](long long a, long long b) { return a + b; });
+  }
+  return !(opt.cancel && *opt.cancel);
+}
+
+}  // namespace softtrace

@@ -1,0 +1,27 @@
+// Pixel -> tile -> frame: the frame is a TBB parallel loop over tiles. Every pixel depends only
+// on its own rays, so the result is the same bits for any thread count.
+#pragma once
+
+#include <atomic>
+
+#include "embree_scene.h"
+#include "film.h"
+#include "progress.h"
+
+namespace softtrace {
+
+struct RenderOptions {
+  LipschitzMode lipschitz = LipschitzMode::Local;
+  const std::atomic<bool>* cancel = nullptr;  // stops the frame early when set
+};
+
+struct FrameStats {
+  long long primary_rays = 0;
+  long long steps = 0;  // all field/interval evaluations, shadow rays included
+};
+
+// Renders scene.image.{width,height,spp}; returns false if cancelled.
+bool render_frame(const Scene& scene, const EmbreeScene& rt, const RenderOptions& opt, Film& film,
+                  Progress* progress, FrameStats* stats);
+
+}  // namespace softtrace

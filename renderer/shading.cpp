@@ -1,0 +1,46 @@
+#include "shading.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace softtrace {
+
+Shaded shade(const Scene& scene, const EmbreeScene& rt, const Ray& ray, const TraceHit& hit,
+             int& steps) {
+  const ObjectTracer& tracer = rt.tracer(hit.object);
+  const SceneObject& obj = tracer.object();
+  const Vec3 p = ray.o + ray.d * hit.t;
+  Vec3 n = tracer.normal(p);
+  if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
+  if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
+
+  // Leave the surface by a little more than the tracer's tolerance before casting shadow rays.
+  const double offset = 1e-4 * obj.bounds.diagonal();
+  const Vec3 origin = p + n * offset;
+
+  Vec3 light{0, 0, 0};
+  for (const Light& l : scene.lights) {
+    const Vec3 power = l.color * l.intensity;
+    if (l.type == Light::Type::Ambient) {
+      light += power;
+      continue;
+    }
+    Vec3 to_light;
+    double distance = std::numeric_limits<double>::infinity();
+    if (l.type == Light::Type::Directional) {
+      to_light = -l.direction;
+    } else {
+      const Vec3 v = l.position - origin;
+      distance = length(v);
+      if (distance == 0) continue;
+      to_light = v / distance;
+    }
+    const double cosine = dot(n, to_light);
+    if (cosine <= 0) continue;
+    if (l.shadows && rt.occluded({origin, to_light}, 0, distance, steps)) continue;
+    light += power * cosine;
+  }
+  return {{obj.color.x * light.x, obj.color.y * light.y, obj.color.z * light.z}, n};
+}
+
+}  // namespace softtrace

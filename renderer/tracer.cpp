@@ -1,0 +1,136 @@
+#include "tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace softtrace {
+
+namespace {
+// A ray that needs more evaluations than this is given up as a miss; no test scene comes close.
+constexpr int kMaxSteps = 200000;
+}  // namespace
+
+bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
+  for (int i = 0; i < 3; ++i) {
+    if (ray.d[i] == 0) {
+      if (ray.o[i] < box.lo[i] || ray.o[i] > box.hi[i]) return false;
+      continue;
+    }
+    const double inv = 1 / ray.d[i];
+    double a = (box.lo[i] - ray.o[i]) * inv, b = (box.hi[i] - ray.o[i]) * inv;
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t0 <= t1;
+}
+
+ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
+    : object_(&object), mode_(mode) {
+  global_L_ = object.field->lipschitz();
+  min_step_ = 1e-5 * object.bounds.diagonal();
+}
+
+Interval ObjectTracer::g(const Box& b) const {
+  const Interval f = object_->field->interval(b);
+  return object_->inside_sign > 0 ? Interval(f.lo - object_->iso, f.hi - object_->iso)
+                                  : Interval(object_->iso - f.hi, object_->iso - f.lo);
+}
+
+double ObjectTracer::lipschitz(const Box& b) const {
+  return mode_ == LipschitzMode::Global ? global_L_ : object_->field->lipschitz(b);
+}
+
+Vec3 ObjectTracer::normal(const Vec3& p) const {
+  const Vec3 grad = object_->field->gradient(p) * -object_->inside_sign;
+  const double len = length(grad);
+  return len > 0 && std::isfinite(len) ? grad / len : Vec3{};
+}
+
+double ObjectTracer::bisect(const Ray& ray, double a, double b, int& steps) const {
+  // Invariant: g(a) < 0 <= g(b). Stop far below a pixel's footprint.
+  for (int i = 0; i < 60 && b - a > 1e-3 * min_step_; ++i) {
+    const double m = 0.5 * (a + b);
+    ++steps;
+    (g(ray.o + ray.d * m) >= 0 ? b : a) = m;
+  }
+  return b;
+}
+
+MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, int& steps) const {
+  double t0 = tnear, t1 = tfar;
+  if (!clip_to_box(ray, object_->bounds, t0, t1)) return {};
+  const auto at = [&](double t) { return ray.o + ray.d * t; };
+  const auto stretch_box = [&](double a, double b) {
+    Box box;
+    box.extend(at(a));
+    box.extend(at(b));
+    return box;
+  };
+
+  double t = t0, h = std::max((t1 - t0) / 8, min_step_);
+  ++steps;
+  double gt = g(at(t));
+  bool gt_known = true;
+  if (gt >= 0) return {true, t};
+
+  while (t < t1 && steps < kMaxSteps) {
+    const double b = std::min(t + h, t1);
+    const Box box = stretch_box(t, b);
+    ++steps;
+    if (g(box).hi < 0) {  // the solid cannot be reached anywhere in this stretch
+      t = b;
+      gt_known = false;
+      h *= 2;
+      continue;
+    }
+    const double L = lipschitz(box);
+    if (!std::isfinite(L)) {
+      if (b - t > min_step_) {  // no slope bound here: decide on shorter stretches
+        h = 0.5 * (b - t);
+        continue;
+      }
+      if (!gt_known) {
+        ++steps;
+        gt = g(at(t));
+        if (gt >= 0) return {true, t};
+      }
+      ++steps;
+      const double gb = g(at(b));
+      if (gb >= 0) return {true, bisect(ray, t, b, steps)};
+      t = b;
+      gt = gb;
+      gt_known = true;
+      continue;
+    }
+    // Sphere tracing inside the stretch: from a point with g < 0, g stays negative for at least
+    // -g/L along any path inside the box, so a step of that length cannot cross the surface.
+    int stretch_steps = 0;
+    double prev = t;
+    while (steps < kMaxSteps) {
+      if (!gt_known) {
+        ++steps;
+        gt = g(at(t));
+        gt_known = true;
+      }
+      if (gt >= 0) return {true, t == prev ? t : bisect(ray, prev, t, steps)};
+      ++stretch_steps;
+      const double step = L > 0 ? std::max(-gt / L, min_step_) : b - t;
+      prev = t;
+      if (t + step >= b) {
+        // The bound certifies the rest of the stretch; at its end, g is not known yet.
+        t = b;
+        gt_known = false;
+        break;
+      }
+      t += step;
+      gt_known = false;
+    }
+    // Many steps mean a loose bound: shorter stretches give tighter box bounds.
+    h = stretch_steps > 16 ? std::max(0.5 * h, min_step_) : h;
+  }
+  return {};
+}
+
+}  // namespace softtrace

@@ -1,0 +1,57 @@
+// Finding the first point of an object's solid along a ray: interval-guided sphere tracing.
+// Pure fieldlib maths, no Embree: the Embree adapter only calls in here.
+//
+// The ray is cut into stretches. A stretch whose value interval (over the box around it) shows
+// the solid cannot be reached is skipped whole. Otherwise the tracer steps by |f - iso| / L with L
+// the Lipschitz bound over that stretch's box, which can never step over the surface; where no
+// finite bound exists the stretch is halved until it is short enough to decide by sign. A sign
+// change is then refined by bisection.
+#pragma once
+
+#include "scene.h"
+
+namespace softtrace {
+
+enum class LipschitzMode { Local, Global };
+
+struct Ray {
+  Vec3 o, d;  // d has unit length, so t is a distance
+};
+
+struct MarchResult {
+  bool hit = false;
+  double t = 0;
+};
+
+class ObjectTracer {
+ public:
+  ObjectTracer(const SceneObject& object, LipschitzMode mode);
+
+  // The first t in [tnear, tfar] where the ray is inside the solid, if any; `steps` counts field
+  // and interval evaluations.
+  MarchResult first_hit(const Ray& ray, double tnear, double tfar, int& steps) const;
+
+  const SceneObject& object() const { return *object_; }
+  // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
+  Vec3 normal(const Vec3& p) const;
+  // Whether p is inside the solid.
+  bool inside(const Vec3& p) const { return g(p) >= 0; }
+
+ private:
+  double g(const Vec3& p) const {
+    return object_->inside_sign * (object_->field->value(p) - object_->iso);
+  }
+  Interval g(const Box& b) const;
+  double lipschitz(const Box& b) const;
+  double bisect(const Ray& ray, double a, double b, int& steps) const;
+
+  const SceneObject* object_;
+  LipschitzMode mode_;
+  double global_L_;
+  double min_step_;  // shortest step and stretch: 1e-5 of the object's box diagonal
+};
+
+// [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
+bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1);
+
+}  // namespace softtrace
