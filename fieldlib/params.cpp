@@ -32,7 +32,7 @@ Params::Params(const json& j, std::string pointer, std::shared_ptr<const std::st
 }
 
 std::string Params::where(const std::string& key) const {
-  std::string p = key.empty() ? pointer_ : pointer_ + "/" + json_pointer_escape(key);
+  std::string p = key.empty() ? pointer_ : pointer_ + "/" + key;
   if (p.empty()) p = "/";
   return *file_ + ": " + p;
 }
@@ -149,7 +149,8 @@ std::vector<Params> Params::objects(const std::string& key) const {
 
 void Params::finish() const {
   for (auto it = j_->begin(); it != j_->end(); ++it)
-    if (!used_.count(it.key())) fail(it.key(), "unknown parameter '" + it.key() + "'");
+    if (!used_.count(it.key()))
+      fail(json_pointer_escape(it.key()), "unknown parameter '" + it.key() + "'");
 }
 
 }  // namespace softtrace

@@ -52,7 +52,8 @@ class Params {
   Params object(const std::string& key) const;
   std::vector<Params> objects(const std::string& key) const;  // an array of objects
 
-  // Errors about a key of this object (or the object itself when key is empty).
+  // Errors about a key of this object (or the object itself when key is empty). `key` is a
+  // relative JSON pointer ("radii/2"); keys from the scene must be escaped first.
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
   void check(bool ok, const std::string& key, const std::string& what) const {
     if (!ok) fail(key, what);

@@ -153,23 +153,42 @@ Box Scene::bounds() const {
   return b;
 }
 
-Scene parse_scene(const std::string& text, const std::string& name) {
-  json doc;
-  try {
-    doc = json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 7: ...".
-    const std::string what = e.what();
+// nlohmann's DOM builder, keeping where a syntax error or an out-of-range number is: its own
+// exception for "1e400" carries no position.
+class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
+ public:
+  LocatingParser(json& root, const std::string& text)
+      : json_sax_dom_parser(root, false), text_(text) {}
+
+  bool parse_error(std::size_t position, const std::string& token,
+                   const nlohmann::detail::exception& ex) {
+    const std::string what = ex.what();
     unsigned line = 0, column = 0;
     const size_t at = what.find("at line ");
-    const size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
     if (at != std::string::npos &&
-        std::sscanf(what.c_str() + at, "at line %u, column %u", &line, &column) == 2 &&
-        colon != std::string::npos)
-      throw SceneError(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                       ": invalid JSON: " + what.substr(colon + 2));
-    throw SceneError(name + ":" + line_col(text, e.byte) + ": invalid JSON: " + what);
+        std::sscanf(what.c_str() + at, "at line %u, column %u", &line, &column) == 2) {
+      where = std::to_string(line) + ":" + std::to_string(column);
+      message = what.substr(what.find(": ", at) + 2);
+    } else {  // a number token: no escapes, so its length locates its start
+      where = line_col(text_, position >= token.size() ? position - token.size() : 0);
+      message = ex.id == 406 ? "number out of range: " + token : what;
+    }
+    return false;
   }
+
+  std::string where, message;  // empty where: no error
+
+ private:
+  const std::string& text_;
+};
+
+Scene parse_scene(const std::string& text, const std::string& name) {
+  json doc;
+  LocatingParser parser(doc, text);
+  json::sax_parse(text, &parser, nlohmann::detail::input_format_t::json, true,
+                  /*ignore_comments=*/true);
+  if (!parser.where.empty())
+    throw SceneError(name + ":" + parser.where + ": invalid JSON: " + parser.message);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
 

@@ -1,0 +1,21 @@
+// Running the softtrace binary from tests: exit status, stdout and stderr of one command.
+#pragma once
+
+#include <string>
+
+namespace softtrace::test {
+
+struct RunResult {
+  int status = -1;
+  std::string out, err;
+};
+
+// Runs `softtrace <args>` (args are passed to /bin/sh: quote as needed), optionally with stdin
+// from a file.
+RunResult run_softtrace(const std::string& args, const std::string& stdin_file = "");
+
+std::string source_path(const std::string& relative);  // a path in the source tree
+std::string temp_dir(const std::string& name);         // a fresh, empty folder in the build tree
+std::string read_file(const std::string& path);
+
+}  // namespace softtrace::test

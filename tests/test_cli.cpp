@@ -1,0 +1,183 @@
+// The command line as users meet it: bad scenes, output safety, eval, AOVs, determinism.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "cli_util.h"
+
+namespace softtrace::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kDefaultScene = "scenes/fig12b_soft_blend.json";
+
+// Every file in tests/bad_scenes starts with "// expect: <text>": exit status 2, exactly one
+// line on stderr naming the place and containing <text>, and no output file.
+TEST(BadScenes, OneLocatedLineExitTwoNoOutput) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(source_path("tests/bad_scenes"))) {
+    const std::string path = entry.path().string(), text = read_file(path);
+    ASSERT_EQ(text.rfind("// expect: ", 0), 0u) << path << " has no '// expect:' first line";
+    const std::string expect = text.substr(11, text.find('\n') - 11);
+    const std::string dir = temp_dir("bad_scene");
+    const RunResult r = run_softtrace("render " + path + " -o " + dir + "/out.exr");
+    EXPECT_EQ(r.status, 2) << path;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << path << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("softtrace: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << path << "\n  expected: " << expect
+                                                     << "\n  got: " << r.err;
+    EXPECT_TRUE(fs::is_empty(dir)) << path << " left a file behind";
+    ++count;
+  }
+  EXPECT_GE(count, 10);
+}
+
+TEST(Output, UnwritableOrMissingFolderIsReportedBeforeRendering) {
+  const RunResult r = run_softtrace(std::string("render ") + source_path(kDefaultScene) +
+                                    " -o /nonexistent-folder/x.exr --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/nonexistent-folder/x.exr: the folder '/nonexistent-folder' does not exist"),
+            std::string::npos)
+      << r.err;
+  const RunResult bad_ext = run_softtrace(std::string("render ") + source_path(kDefaultScene) +
+                                          " -o " + temp_dir("ext") + "/x.tiff --quiet");
+  EXPECT_EQ(bad_ext.status, 2);
+  EXPECT_NE(bad_ext.err.find("unsupported output format '.tiff'"), std::string::npos);
+}
+
+TEST(Output, ExistingFileSurvivesABadScene) {
+  const std::string dir = temp_dir("keep");
+  const std::string out = dir + "/precious.exr";
+  std::ofstream(out) << "precious";
+  const RunResult r =
+      run_softtrace("render " + source_path("tests/bad_scenes/unknown_key.json") + " -o " + out);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(read_file(out), "precious");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(Usage, HelpAndBadOptions) {
+  const RunResult help = run_softtrace("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("render"), std::string::npos);
+  EXPECT_NE(help.out.find("eval"), std::string::npos);
+  EXPECT_EQ(run_softtrace("render --help").status, 0);
+  EXPECT_EQ(run_softtrace("").status, 2);
+  EXPECT_EQ(run_softtrace("render").status, 2);
+  EXPECT_EQ(run_softtrace(std::string("render ") + source_path(kDefaultScene) + " --width 0").status,
+            2);
+  EXPECT_EQ(run_softtrace(std::string("render ") + source_path(kDefaultScene) +
+                          " --aov depth,bogus -o " + temp_dir("aov") + "/x.exr")
+                .status,
+            2);
+}
+
+// The Fig. 12(b) field written out independently of fieldlib (MATH.md §3.2, 000 Eqs. 19-20).
+double blanc0(double d) {
+  if (d >= 1) return 0;
+  if (d <= 0.5) return 1 - 2 * d * d;
+  return (1 - d * d) * (1 - d * d) / (0.75 + 1.5 * d * d);
+}
+double fig12b(double x, double y, double z) {
+  const double h = std::abs(x / 8) + std::abs(y / 8);  // n1 = 1
+  const double d1 = std::pow(std::pow(h, 20) + std::pow(std::abs(z / 24), 20), 1.0 / 20);
+  const double d2 = std::pow(std::pow(std::abs(x / 30), 20) + std::pow(std::abs(y / 30), 20) +
+                                 std::pow(std::abs(z / 12), 20),
+                             1.0 / 20);
+  return blanc0(d1) + blanc0(d2);
+}
+
+TEST(Eval, MatchesTheFormulas) {
+  const std::string dir = temp_dir("eval");
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-20, 20);
+  std::vector<std::array<double, 3>> pts;
+  {
+    std::ofstream f(dir + "/points.txt");
+    f.precision(17);
+    for (int i = 0; i < 200; ++i) {
+      const std::array<double, 3> p{u(rng), u(rng), 0.7 * u(rng)};
+      pts.push_back(p);
+      f << p[0] << " " << p[1] << " " << p[2] << "\n";
+    }
+  }
+  const RunResult r = run_softtrace(std::string("eval ") + source_path(kDefaultScene) +
+                                    " --points " + dir + "/points.txt");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream out(r.out);
+  int nonzero = 0;
+  for (const auto& p : pts) {
+    double v, gx, gy, gz;
+    ASSERT_TRUE(out >> v >> gx >> gy >> gz);
+    // The text round trip loses nothing: %.17g.
+    ASSERT_NEAR(v, fig12b(p[0], p[1], p[2]), 1e-12);
+    const double h = 1e-6;
+    const double fd[3] = {
+        (fig12b(p[0] + h, p[1], p[2]) - fig12b(p[0] - h, p[1], p[2])) / (2 * h),
+        (fig12b(p[0], p[1] + h, p[2]) - fig12b(p[0], p[1] - h, p[2])) / (2 * h),
+        (fig12b(p[0], p[1], p[2] + h) - fig12b(p[0], p[1], p[2] - h)) / (2 * h)};
+    EXPECT_NEAR(gx, fd[0], 1e-5);
+    EXPECT_NEAR(gy, fd[1], 1e-5);
+    EXPECT_NEAR(gz, fd[2], 1e-5);
+    nonzero += v > 0;
+  }
+  EXPECT_GT(nonzero, 50);
+
+  std::ofstream(dir + "/bad.txt") << "1 2 3\n1 2\n";
+  const RunResult bad = run_softtrace(std::string("eval ") + source_path(kDefaultScene) +
+                                      " --points " + dir + "/bad.txt");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("bad.txt:2: expected three finite numbers"), std::string::npos) << bad.err;
+}
+
+OIIO::ImageBuf read_image(const std::string& path) {
+  OIIO::ImageBuf b(path);
+  b.read(0, 0, true, OIIO::TypeDesc::FLOAT);
+  return b;
+}
+
+TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
+  const std::string dir = temp_dir("threads");
+  const std::string base = std::string("render ") + source_path(kDefaultScene) +
+                           " --width 96 --height 72 --spp 2 --quiet --aov depth,normal,steps";
+  ASSERT_EQ(run_softtrace(base + " --threads 1 -o " + dir + "/t1.exr").status, 0);
+  ASSERT_EQ(run_softtrace(base + " --threads 2 -o " + dir + "/t2.exr").status, 0);
+  ASSERT_EQ(run_softtrace(base + " --threads 2 -o " + dir + "/t2b.exr -o " + dir + "/t2.png").status, 0);
+
+  const OIIO::ImageBuf a = read_image(dir + "/t1.exr"), b = read_image(dir + "/t2.exr"),
+                       c = read_image(dir + "/t2b.exr");
+  const std::vector<std::string> expected = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "steps"};
+  std::vector<std::string> names = a.spec().channelnames;
+  std::sort(names.begin(), names.end());
+  std::vector<std::string> sorted = expected;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(names, sorted);
+  ASSERT_EQ(a.spec().image_pixels(), 96u * 72u);
+  std::vector<float> pa(a.spec().image_pixels() * a.nchannels()), pb(pa.size()), pc(pa.size());
+  a.get_pixels(a.roi(), OIIO::TypeDesc::FLOAT, pa.data());
+  b.get_pixels(b.roi(), OIIO::TypeDesc::FLOAT, pb.data());
+  c.get_pixels(c.roi(), OIIO::TypeDesc::FLOAT, pc.data());
+  EXPECT_EQ(0, std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)))
+      << "--threads 1 and --threads 2 differ";
+  EXPECT_EQ(0, std::memcmp(pb.data(), pc.data(), pb.size() * sizeof(float)))
+      << "two runs in a row differ";
+  int hits = 0, nonfinite = 0;
+  const int zc = a.spec().channelindex("Z"), ac = a.spec().channelindex("A");
+  for (size_t i = 0; i < a.spec().image_pixels(); ++i) {
+    hits += pa[i * a.nchannels() + ac] > 0;
+    for (int k = 0; k < a.nchannels(); ++k)
+      if (k != zc && !std::isfinite(pa[i * a.nchannels() + k])) ++nonfinite;
+  }
+  EXPECT_GT(hits, 96 * 72 / 5) << "the object should cover a good part of the frame";
+  EXPECT_EQ(nonfinite, 0);
+  EXPECT_TRUE(fs::exists(dir + "/t2.png"));
+}
+
+}  // namespace
+}  // namespace softtrace::test
