@@ -7,6 +7,20 @@
 
 namespace softtrace {
 
+namespace {
+// x^n for x >= 0. The papers' exponents are mostly small integers (n = 20 for cubes and bars):
+// squaring is several times faster than std::pow there and within a few ulps of it.
+double pow_fast(double x, double n) {
+  if (n >= 1 && n <= 64 && n == static_cast<int>(n)) {
+    double r = 1, b = x;
+    for (int k = static_cast<int>(n); k; k >>= 1, b *= b)
+      if (k & 1) r *= b;
+    return r;
+  }
+  return std::pow(x, n);
+}
+}  // namespace
+
 double power_sum(const double* u, int k, double n, double* dfdu) {
   double m = 0;
   for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
@@ -15,10 +29,10 @@ double power_sum(const double* u, int k, double n, double* dfdu) {
     return 0;
   }
   double s = 0;
-  for (int i = 0; i < k; ++i) s += std::pow(u[i] / m, n);
+  for (int i = 0; i < k; ++i) s += pow_fast(u[i] / m, n);
   const double f = m * std::pow(s, 1 / n);
   if (dfdu)
-    for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? std::pow(u[i] / f, n - 1) : 0.0;
+    for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? pow_fast(u[i] / f, n - 1) : 0.0;
   return f;
 }
 
