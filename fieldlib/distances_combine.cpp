@@ -7,6 +7,7 @@
 #include "distances.h"
 #include "gauge.h"
 #include "one_sided.h"
+#include "scratch.h"
 
 namespace softtrace {
 
@@ -24,8 +25,8 @@ class SuperEllipsoidalUnion final : public FieldNode {
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
-    std::vector<double> x(k);
-    std::vector<Vec3> g(k);
+    Scratch<double> x(k);
+    Scratch<Vec3> g(k);
     for (size_t i = 0; i < k; ++i) x[i] = c_[i]->eval(p, grad ? &g[i] : nullptr);
     const double U = combine(x.data());
     if (grad) {
@@ -44,7 +45,7 @@ class SuperEllipsoidalUnion final : public FieldNode {
     return U;
   }
   Interval interval(const Box& b) const override {
-    std::vector<Interval> x;
+    Scratch<Interval> x(c_.size());
     return terms(b, x);
   }
   double lipschitz() const override {
@@ -53,7 +54,7 @@ class SuperEllipsoidalUnion final : public FieldNode {
     return L;
   }
   double lipschitz(const Box& b) const override {
-    std::vector<Interval> x;
+    Scratch<Interval> x(c_.size());
     const Interval U = terms(b, x);
     double sum = 0, L_max = 0;
     for (size_t i = 0; i < c_.size(); ++i) {
@@ -86,12 +87,12 @@ class SuperEllipsoidalUnion final : public FieldNode {
     for (size_t i = 0; i < c_.size(); ++i) s += std::pow(m / x[i], n_);
     return m * std::pow(s, -1 / n_);
   }
-  Interval terms(const Box& b, std::vector<Interval>& x) const {
-    std::vector<double> lo, hi;
-    for (const auto& c : c_) {
-      x.push_back(c->interval(b));
-      lo.push_back(std::max(0.0, x.back().lo));
-      hi.push_back(std::max(0.0, x.back().hi));
+  Interval terms(const Box& b, Scratch<Interval>& x) const {
+    Scratch<double> lo(c_.size()), hi(c_.size());
+    for (size_t i = 0; i < c_.size(); ++i) {
+      x[i] = c_[i]->interval(b);
+      lo[i] = std::max(0.0, x[i].lo);
+      hi[i] = std::max(0.0, x[i].hi);
     }
     // pow is faithfully rounded: widen by a relative margin well above its error.
     return {std::max(0.0, combine(lo.data()) * (1 - 1e-13)), combine(hi.data()) * (1 + 1e-13)};
@@ -120,8 +121,8 @@ class SuperEllipsoidalIntersection final : public FieldNode {
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
-    std::vector<double> x(k), d(k);
-    std::vector<Vec3> g(k);
+    Scratch<double> x(k), d(k);
+    Scratch<Vec3> g(k);
     for (size_t i = 0; i < k; ++i) x[i] = std::max(0.0, c_[i]->eval(p, grad ? &g[i] : nullptr));
     const double f = power_sum(x.data(), static_cast<int>(k), n_, grad ? d.data() : nullptr);
     if (grad) {
@@ -131,22 +132,22 @@ class SuperEllipsoidalIntersection final : public FieldNode {
     return f;
   }
   Interval interval(const Box& b) const override {
-    std::vector<Interval> x;
+    Scratch<Interval> x(c_.size());
     return terms(b, x);
   }
   double lipschitz() const override { return global_L_; }
   double lipschitz(const Box& b) const override {
-    std::vector<Interval> x;
+    Scratch<Interval> x(c_.size());
     const Interval f = terms(b, x);
-    std::vector<double> Lb;
+    Scratch<double> Lb(c_.size());
     double sum = 0;
     for (size_t i = 0; i < c_.size(); ++i) {
-      Lb.push_back(c_[i]->lipschitz(b));
-      sum += chain(power_sum_partial_bound(x[i], f, n_), Lb.back());
+      Lb[i] = c_[i]->lipschitz(b);
+      sum += chain(power_sum_partial_bound(x[i], f, n_), Lb[i]);
     }
     double L = sum * (1 + 1e-13);
     if (n_ >= 1)
-      L = std::min(L, power_sum(Lb.data(), static_cast<int>(Lb.size()), n_, nullptr) * (1 + 1e-13));
+      L = std::min(L, power_sum(Lb.data(), static_cast<int>(c_.size()), n_, nullptr) * (1 + 1e-13));
     return std::isnan(L) ? global_L_ : std::min(global_L_, L);
   }
   Box region(double level, Side side) const override {
@@ -162,9 +163,9 @@ class SuperEllipsoidalIntersection final : public FieldNode {
   }
 
  private:
-  Interval terms(const Box& b, std::vector<Interval>& x) const {
-    for (const auto& c : c_) x.push_back(c->interval(b));
-    return power_sum(x.data(), static_cast<int>(x.size()), n_);
+  Interval terms(const Box& b, Scratch<Interval>& x) const {
+    for (size_t i = 0; i < c_.size(); ++i) x[i] = c_[i]->interval(b);
+    return power_sum(x.data(), static_cast<int>(c_.size()), n_);
   }
 
   std::vector<NodePtr> c_;

@@ -7,6 +7,7 @@
 #include "distances.h"
 #include "gauge.h"
 #include "one_sided.h"
+#include "scratch.h"
 
 namespace softtrace {
 
@@ -93,7 +94,7 @@ class GeneralizedDistance final : public FieldNode {
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = n_.size();
-    std::vector<double> u(k), du(k), dfdu(k);
+    Scratch<double> u(k), du(k), dfdu(k);
     for (size_t i = 0; i < k; ++i) u[i] = t_[i].value(dot(p, n_[i]), &du[i]);
     const double f = power_sum(u.data(), static_cast<int>(k), e_, grad ? dfdu.data() : nullptr);
     if (grad) {
@@ -103,12 +104,12 @@ class GeneralizedDistance final : public FieldNode {
     return f;
   }
   Interval interval(const Box& b) const override {
-    std::vector<Interval> s, u;
+    Scratch<Interval> s(n_.size()), u(n_.size());
     return terms(b, s, u);
   }
   double lipschitz() const override { return global_L_; }
   double lipschitz(const Box& b) const override {
-    std::vector<Interval> s, u;
+    Scratch<Interval> s(n_.size()), u(n_.size());
     const Interval f = terms(b, s, u);
     double sum = 0, sum2 = 0;
     for (size_t i = 0; i < n_.size(); ++i) {
@@ -131,12 +132,12 @@ class GeneralizedDistance final : public FieldNode {
   }
 
  private:
-  Interval terms(const Box& b, std::vector<Interval>& s, std::vector<Interval>& u) const {
+  Interval terms(const Box& b, Scratch<Interval>& s, Scratch<Interval>& u) const {
     for (size_t i = 0; i < n_.size(); ++i) {
-      s.push_back(dot_range(b, n_[i]));
-      u.push_back(t_[i].range(s.back()));
+      s[i] = dot_range(b, n_[i]);
+      u[i] = t_[i].range(s[i]);
     }
-    return power_sum(u.data(), static_cast<int>(u.size()), e_);
+    return power_sum(u.data(), static_cast<int>(n_.size()), e_);
   }
   // The box of {X : X·n_m ∈ below_m(c), m = i, j, l}; unbounded for a near-singular triple.
   Box solve(double c, size_t i, size_t j, size_t l) const {

@@ -292,6 +292,27 @@ TEST(PolarPrism, UnitLevelFollowsTheProfile) {
   EXPECT_GE(star->lipschitz(), 1 / (13 * 0.65));
 }
 
+TEST(PolarPrism, GlobalSlopeIsTheLargestCrossSectionGradient) {
+  // On z = 0, f = h and ∇f = ∇h, which depends on φ only: the bound derived in the class comment
+  // must cover the largest |∇h| over a fine φ grid and, being exact, match it.
+  for (const char* profile : {"cosine", "triangle"})
+    for (const auto& [k, A] : {std::pair{5, 0.3}, std::pair{2, 0.6}, std::pair{1, 0.9}}) {
+      const NodePtr f =
+          build_from_json(std::string(R"({"type":"polar_prism","radius":2,"lobes":)") +
+                          std::to_string(k) + R"(,"amplitude":)" + std::to_string(A) +
+                          R"(,"profile":")" + profile + R"(","half_height":100,"n":2})");
+      double g_max = 0;
+      for (int i = 0; i < 200000; ++i) {
+        const double phi = 2 * M_PI * (i + 0.5) / 200000;
+        g_max = std::max(g_max, length(f->gradient({std::cos(phi), std::sin(phi), 0})));
+      }
+      EXPECT_GE(f->lipschitz(), g_max) << profile << " k=" << k;
+      // The star's largest slope is at its corners, which the grid approaches only to ~1e-4.
+      const double tolerance = std::string(profile) == "cosine" ? 1e-6 : 1e-3;
+      EXPECT_LE(f->lipschitz(), g_max * (1 + tolerance)) << profile << " k=" << k;
+    }
+}
+
 TEST(SuperEllipsoidal, UnionBelowMinIntersectionAboveMax) {  // [RC-1]
   const char* kids = R"([{"type":"lp_metric","radii":[1,0.5,0.5],"n":2},
                          {"type":"torus","major_radius":0.5,"radii":[0.2,0.3]},
@@ -320,6 +341,33 @@ TEST(SuperEllipsoidal, UnionBelowMinIntersectionAboveMax) {  // [RC-1]
     }
   }
   EXPECT_GT(zero_guarded, 100);
+}
+
+TEST(DistanceBounds, FiniteOverBoxesAwayFromSingularPlanes) {  // MATH.md §8, exponents < 1
+  const std::pair<const char*, Box> cases[] = {
+      {R"({"type":"superquadric","radii":[0.8,1,0.9],"n1":0.6,"n2":2.5,"t":[1,1.3,0.8,1,2,1]})",
+       Box({0.2, 0.3, 0.1}, {0.4, 0.5, 0.3})},
+      {R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1],[1,1,1]],"a":1,
+          "n":0.7})",
+       Box({-0.5, -0.4, -0.6}, {-0.3, -0.2, -0.4})},
+      {R"({"type":"superelliptic_cylinder","radii":[0.6,0.6,0.5],"n":0.8,"half_length":0.3})",
+       Box({0.1, 0.1, 0.5}, {0.3, 0.2, 0.7})},
+      {R"({"type":"torus","major_radius":0.7,"radii":[0.4,0.4],"n":0.7})",
+       Box({1.0, 0.1, 0.2}, {1.2, 0.3, 0.4})},
+      {R"({"type":"super_ellipsoidal_intersection","n":0.8,"children":[
+          {"type":"lp_metric","radii":[1,0.6,0.8],"n":2},
+          {"type":"polar_prism","radius":0.8,"lobes":4,"amplitude":0.2,"profile":"cosine",
+           "half_height":1}]})",
+       Box({0.3, 0.3, 0.3}, {0.5, 0.5, 0.5})},
+  };
+  for (const auto& [json, box] : cases) {
+    const NodePtr f = build_from_json(json);
+    EXPECT_FALSE(std::isfinite(f->lipschitz())) << json;
+    const double L = f->lipschitz(box);
+    EXPECT_TRUE(std::isfinite(L)) << json;
+    // ...and not absurdly loose: within 10x of the gradient at the box's centre.
+    EXPECT_LT(L, 10 * length(f->gradient(box.center()))) << json;
+  }
 }
 
 void expect_error(const std::string& json, const std::string& where, const std::string& what) {
