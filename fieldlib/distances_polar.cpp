@@ -96,16 +96,21 @@ double profile(Profile kind, double theta, double* dg) {
 // (h^n + |z/c|^n)^(1/n), h = ρ/R(φ)   — MATH.md §10.1's substitutes for [000] Fig. 13's rose bar
 // and star contour; ray-linear about the origin.
 // Bounds: in polar coordinates ∇h = e_ρ/R - (R'(φ)/R²) e_φ (∂h/∂φ / ρ, ρ cancels), so
-// |∇h| <= sqrt(1/Rmin² + (R'max/Rmin²)²) with Rmin = r0 (1 - A) and R'max = r0 A k |g'|max;
-// h is continuous and piecewise smooth (the star's kinks), so that bounds its slope. ∇h ⟂ z, so
-// the outer gauge composes as for the superquadric. Over a box whose (x, y) rectangle misses the
-// axis, the φ range comes from the corners (the span is below π), which gives R's range.
+// |∇h|² = (R² + R'²)/R⁴; h is continuous and piecewise smooth (the star's kinks), so the largest
+// |∇h| over the R range a box reaches bounds its slope there. ∇h ⟂ z, so the outer gauge
+// composes as for the superquadric (gauge_lipschitz / partial bounds).
+// - star: |R'| = r0 A k (2/π) everywhere, so |∇h|² = 1/R² + R'²/R⁴ is largest at the smallest R.
+// - rose: with q = R/r0 = 1 + A cos θ, R'² = r0² k² (A² - (q-1)²), and with s = 1/q
+//   r0² |∇h|² = P(s) = (1-k²) s² + 2k² s³ + k² (A²-1) s⁴, a quartic maximised over the s range at
+//   its ends or where P'(s)/(2s) = (1-k²) + 3k² s + 2k² (A²-1) s² vanishes.
+// Over a box whose (x, y) rectangle misses the axis, the φ range comes from the corners (the
+// span is below π), which gives R's range; elsewhere R ∈ [r0 (1-A), r0 (1+A)].
 class PolarPrism final : public FieldNode {
  public:
   PolarPrism(double r0, int k, double A, Profile kind, double c, double n)
       : r0_(r0), k_(k), A_(A), kind_(kind), c_(c), n_(n) {
     dR_max_ = r0_ * A_ * k_ * (kind_ == Profile::Cosine ? 1.0 : 2 / M_PI);
-    const double wm[2] = {h_slope(r0_ * (1 - A_)), 1 / c_};
+    const double wm[2] = {h_slope({r0_ * (1 - A_), r0_ * (1 + A_)}), 1 / c_};
     global_L_ = gauge_lipschitz(wm, 2, n_);
   }
 
@@ -137,7 +142,7 @@ class PolarPrism final : public FieldNode {
   double lipschitz(const Box& b) const override {
     Interval u[2];
     const Interval f = terms(b, u);
-    const double g1 = power_sum_partial_bound(u[0], f, n_) * h_slope(radius_range(b).lo);
+    const double g1 = power_sum_partial_bound(u[0], f, n_) * h_slope(radius_range(b));
     const double g2 = power_sum_partial_bound(u[1], f, n_) / c_;
     const double L = std::sqrt(g1 * g1 + g2 * g2) * (1 + 1e-13);
     return std::isnan(L) ? global_L_ : std::min(global_L_, L);
@@ -151,8 +156,31 @@ class PolarPrism final : public FieldNode {
   }
 
  private:
-  double h_slope(double R_lo) const {
-    return std::sqrt(1 / (R_lo * R_lo) + std::pow(dR_max_ / (R_lo * R_lo), 2)) * (1 + 1e-13);
+  // The largest |∇h| for R ∈ R_range (see the class comment).
+  double h_slope(Interval R_range) const {
+    const double R_lo = R_range.lo;
+    if (kind_ == Profile::Triangle || A_ == 0)
+      return std::sqrt(1 / (R_lo * R_lo) + std::pow(dR_max_ / (R_lo * R_lo), 2)) * (1 + 1e-13);
+    const double k2 = double(k_) * k_, c4 = k2 * (A_ * A_ - 1);
+    const double s_lo = r0_ / R_range.hi, s_hi = r0_ / R_lo;
+    double best = 0;
+    auto consider = [&](double s) {
+      if (!(s >= s_lo && s <= s_hi)) return;
+      const double s2 = s * s;
+      const double P = (1 - k2) * s2 + 2 * k2 * s2 * s + c4 * s2 * s2;
+      const double M = std::abs(1 - k2) * s2 + 2 * k2 * s2 * s + std::abs(c4) * s2 * s2;
+      best = std::max(best, P + 1e-12 * M);  // M bounds the terms, so covers their rounding
+    };
+    consider(s_lo);
+    consider(s_hi);
+    // Roots of 2 c4 s² + 3 k² s + (1 - k²) = 0 (c4 < 0 since A < 1).
+    const double disc = 9 * k2 * k2 - 8 * c4 * (1 - k2);
+    if (disc >= 0) {
+      const double r = std::sqrt(disc);
+      consider((-3 * k2 + r) / (4 * c4));
+      consider((-3 * k2 - r) / (4 * c4));
+    }
+    return std::sqrt(best) / r0_ * (1 + 1e-12);
   }
   // R(φ) over the box: [Rmin, Rmax] unless the rectangle misses the axis.
   Interval radius_range(const Box& b) const {
