@@ -1,8 +1,12 @@
-// LP metric and superquadric (MATH.md §2.5, §2.6).
+// LP metric, superquadric and super-elliptic cylinder, with the optional six side lengths
+// (MATH.md §2.5, §2.6, §2.9, §2.10).
 #include <cmath>
+#include <limits>
 
+#include "distance_params.h"
 #include "distances.h"
 #include "gauge.h"
+#include "one_sided.h"
 
 namespace softtrace {
 
@@ -61,25 +65,28 @@ class LpMetric final : public FieldNode {
   double n_, global_L_;
 };
 
-// (( |x/a1|^n1 + |y/a2|^n1 )^(n2/n1) + |z/a3|^n2)^(1/n2)   — 000 Eq. 3 (n1 on both x and y, R2)
-class Superquadric final : public FieldNode {
+// m(h(x,y), ζ_L(z)) with h = (u_x^n1 + u_y^n1)^(1/n1), m = (h^n2 + u_z^n2)^(1/n2) and the
+// one-sided terms u of one_sided.h. L = 0: the superquadric, 000 Eq. 3 / 002 Eq. 15 (n1 on both x
+// and y, R2); n1 = n2, L >= 0: the super-elliptic cylinder, 002 Eqs. 17-18. MATH.md §2.6,
+// §2.9-2.10. Bounds: the gradient is (∂m/∂h·∂h/∂u_x·u_x', ∂m/∂h·∂h/∂u_y·u_y', ∂m/∂u_z·u_z'), ∇h ⟂
+// z, so the nested gauge_lipschitz with the largest slopes 1/(a·min t) is global; over a box each
+// partial is bounded by power_sum_partial_bound and each slope by the signs the box reaches.
+class SphericalProduct final : public FieldNode {
  public:
-  Superquadric(const Vec3& radii, double n1, double n2) : a_(radii), n1_(n1), n2_(n2) {
-    const double wh[2] = {1 / a_.x, 1 / a_.y};
+  SphericalProduct(const OneSidedTerm (&t)[3], double n1, double n2)
+      : t_{t[0], t[1], t[2]}, n1_(n1), n2_(n2) {
+    const double wh[2] = {t_[0].slope(), t_[1].slope()};
     const double Lh = gauge_lipschitz(wh, 2, n1_);
-    const double wm[2] = {Lh, 1 / a_.z};
+    const double wm[2] = {Lh, t_[2].slope()};
     global_L_ = std::isfinite(Lh) ? gauge_lipschitz(wm, 2, n2_) : Lh;
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
-    const double uh[2] = {std::abs(p.x / a_.x), std::abs(p.y / a_.y)};
-    double dh[2], dm[2];
-    const double h = power_sum(uh, 2, n1_, grad ? dh : nullptr);
-    const double um[2] = {h, std::abs(p.z / a_.z)};
+    double dx, dy, dz, dh[2], dm[2];
+    const double uh[2] = {t_[0].value(p.x, &dx), t_[1].value(p.y, &dy)};
+    const double um[2] = {power_sum(uh, 2, n1_, grad ? dh : nullptr), t_[2].value(p.z, &dz)};
     const double f = power_sum(um, 2, n2_, grad ? dm : nullptr);
-    if (grad)
-      *grad = {dm[0] * dh[0] * sgn(p.x) / a_.x, dm[0] * dh[1] * sgn(p.y) / a_.y,
-               dm[1] * sgn(p.z) / a_.z};
+    if (grad) *grad = {dm[0] * dh[0] * dx, dm[0] * dh[1] * dy, dm[1] * dz};
     return f;
   }
   Interval interval(const Box& b) const override {
@@ -90,35 +97,46 @@ class Superquadric final : public FieldNode {
   double lipschitz(const Box& b) const override {
     Interval uh[2], um[2];
     const Interval f = terms(b, uh, um);
-    const double bx = power_sum_partial_bound(uh[0], um[0], n1_) / a_.x;
-    const double by = power_sum_partial_bound(uh[1], um[0], n1_) / a_.y;
-    const double Lh = std::sqrt(bx * bx + by * by);
-    const double gh = power_sum_partial_bound(um[0], f, n2_) * Lh;
-    const double gz = power_sum_partial_bound(um[1], f, n2_) / a_.z;
+    const double bx = chain(power_sum_partial_bound(uh[0], um[0], n1_), t_[0].slope(b.axis(0)));
+    const double by = chain(power_sum_partial_bound(uh[1], um[0], n1_), t_[1].slope(b.axis(1)));
+    const double gh = chain(power_sum_partial_bound(um[0], f, n2_), std::sqrt(bx * bx + by * by));
+    const double gz = chain(power_sum_partial_bound(um[1], f, n2_), t_[2].slope(b.axis(2)));
     const double L = std::sqrt(gh * gh + gz * gz) * (1 + 1e-13);
-    return std::isnan(L) ? std::numeric_limits<double>::infinity() : std::min(global_L_, L);
+    return std::isnan(L) ? global_L_ : std::min(global_L_, L);
   }
+  // [DF-5]: a power sum is at least its largest term, so f <= c needs every u <= c.
   Box region(double level, Side side) const override {
-    return side == Side::Below ? scaled_box(a_, level) : Box::unbounded();
+    if (side == Side::Above) return Box::unbounded();
+    if (level < 0) return Box();
+    Box b;
+    for (int i = 0; i < 3; ++i) {
+      const Interval s = t_[i].below(level);
+      b.lo[i] = s.lo;
+      b.hi[i] = s.hi;
+    }
+    return b;
   }
 
  private:
   Interval terms(const Box& b, Interval* uh, Interval* um) const {
-    uh[0] = abs(b.axis(0)) / Interval(a_.x);
-    uh[1] = abs(b.axis(1)) / Interval(a_.y);
+    uh[0] = t_[0].range(b.axis(0));
+    uh[1] = t_[1].range(b.axis(1));
     um[0] = power_sum(uh, 2, n1_);
-    um[1] = abs(b.axis(2)) / Interval(a_.z);
+    um[1] = t_[2].range(b.axis(2));
     return power_sum(um, 2, n2_);
   }
-  Vec3 a_;
+  OneSidedTerm t_[3];
   double n1_, n2_, global_L_;
 };
 
-Vec3 positive_radii(const Params& p, const std::string& key) {
-  const Vec3 r = p.vec3(key);
-  for (int i = 0; i < 3; ++i)
-    p.check(r[i] > 0, key + "/" + std::to_string(i), "expected a radius > 0");
-  return r;
+// Terms for radii a1..a3 and side lengths t1..t6 (t_{2i-1} on +axis i, t_{2i} on -axis i).
+NodePtr spherical_product(const Params& p, double n1, double n2, double half_length) {
+  const Vec3 a = positive_radii(p, "radii");
+  const std::vector<double> t = side_lengths(p, "t", 6);
+  OneSidedTerm terms[3];
+  for (int i = 0; i < 3; ++i) terms[i] = {a[i] * t[2 * i], a[i] * t[2 * i + 1], 0.0};
+  terms[2].dead = half_length;
+  return std::make_unique<SphericalProduct>(terms, n1, n2);
 }
 
 }  // namespace
@@ -128,8 +146,15 @@ NodePtr create_lp_metric(const Params& p, const BuildContext&) {
 }
 
 NodePtr create_superquadric(const Params& p, const BuildContext&) {
-  return std::make_unique<Superquadric>(positive_radii(p, "radii"), p.positive("n1"),
-                                        p.positive("n2"));
+  const double n1 = p.positive("n1"), n2 = p.positive("n2");
+  return spherical_product(p, n1, n2, 0.0);
+}
+
+NodePtr create_superelliptic_cylinder(const Params& p, const BuildContext&) {
+  const double n = p.positive("n");
+  const double L = p.number("half_length");
+  p.check(L >= 0, "half_length", "expected a half-length L >= 0 (MATH.md §2.9)");
+  return spherical_product(p, n, n, L);
 }
 
 }  // namespace softtrace

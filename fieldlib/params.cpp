@@ -41,9 +41,12 @@ void Params::fail(const std::string& key, const std::string& what) const {
   throw SceneError(where(key) + ": " + what);
 }
 
-bool Params::has(const std::string& key) const {
-  return j_->contains(key);
+void Params::fail_at(const std::string& key, const std::string& index_path,
+                     const std::string& what) const {
+  throw SceneError(where(key) + "/" + index_path + ": " + what);
 }
+
+bool Params::has(const std::string& key) const { return j_->contains(key); }
 
 const nlohmann::json& Params::at(const std::string& key) const {
   auto it = j_->find(key);
@@ -105,10 +108,10 @@ std::vector<double> Params::numbers(const std::string& key) const {
   if (!v.is_array() || v.empty()) fail(key, "expected a non-empty array of numbers");
   std::vector<double> out;
   for (size_t i = 0; i < v.size(); ++i) {
-    const std::string sub = key + "/" + std::to_string(i);
-    if (!v[i].is_number()) fail(sub, "expected a number, got " + describe(v[i]));
+    const std::string sub = std::to_string(i);
+    if (!v[i].is_number()) fail_at(key, sub, "expected a number, got " + describe(v[i]));
     const double d = v[i].get<double>();
-    if (!std::isfinite(d)) fail(sub, "expected a finite number, got " + describe(v[i]));
+    if (!std::isfinite(d)) fail_at(key, sub, "expected a finite number, got " + describe(v[i]));
     out.push_back(d);
   }
   return out;
@@ -131,6 +134,26 @@ Vec3 Params::vec3(const std::string& key) const {
 }
 Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
   return has(key) ? vec3(key) : fallback;
+}
+
+std::vector<Vec3> Params::vec3s(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_array() || v.empty()) fail(key, "expected a non-empty array of [x, y, z]");
+  std::vector<Vec3> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string sub = std::to_string(i);
+    if (!v[i].is_array() || v[i].size() != 3)
+      fail_at(key, sub, "expected [x, y, z], got " + describe(v[i]));
+    Vec3 e;
+    for (int c = 0; c < 3; ++c) {
+      const json& x = v[i][c];
+      if (!x.is_number() || !std::isfinite(x.get<double>()))
+        fail_at(key, sub + "/" + std::to_string(c), "expected a finite number, got " + describe(x));
+      e[c] = x.get<double>();
+    }
+    out.push_back(e);
+  }
+  return out;
 }
 
 Params Params::object(const std::string& key) const {

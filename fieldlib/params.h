@@ -42,6 +42,7 @@ class Params {
   std::string string(const std::string& key, const std::string& fallback) const;
   Vec3 vec3(const std::string& key) const;
   Vec3 vec3(const std::string& key, const Vec3& fallback) const;
+  std::vector<Vec3> vec3s(const std::string& key) const;  // a non-empty array of [x, y, z]
   std::vector<double> numbers(const std::string& key) const;  // a non-empty array of numbers
   // A number or an array of `count` numbers (a number is repeated).
   std::vector<double> numbers_or_scalar(const std::string& key, size_t count) const;
@@ -57,6 +58,13 @@ class Params {
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
   void check(bool ok, const std::string& key, const std::string& what) const {
     if (!ok) fail(key, what);
+  }
+  // Errors about an element of the array `key`: `index_path` is "i" or "i/j" (array indices,
+  // not escaped, so the pointer reads /key/i/j).
+  [[noreturn]] void fail_at(const std::string& key, const std::string& index_path,
+                            const std::string& what) const;
+  void check_at(bool ok, const std::string& key, size_t index, const std::string& what) const {
+    if (!ok) fail_at(key, std::to_string(index), what);
   }
   // Reports the first key that no one read.
   void finish() const;

@@ -13,10 +13,29 @@ namespace softtrace {
 const std::vector<NodeKind>& node_kinds() {
   static const std::vector<NodeKind> kinds = {
       // Distance functions, MATH.md §2.
+      {"parallel_planes", "distance", "|p.n|/a; normal, a (000 Eq.2)", create_parallel_planes},
+      {"one_branch_plane", "distance", "max(p.n,0)/a; normal, a (002 s4.5)",
+       create_one_branch_plane},
       {"lp_metric", "distance", "(|x/a|^n+|y/b|^n+|z/c|^n)^(1/n); radii [a,b,c], n",
        create_lp_metric},
-      {"superquadric", "distance", "000 Eq.3; radii [a1,a2,a3], n1, n2", create_superquadric},
-      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)", create_segment},
+      {"superquadric", "distance",
+       "000 Eq.3; radii [a1,a2,a3], n1, n2, optional t [t1..t6] (002 Eq.15)", create_superquadric},
+      {"generalized_distance", "distance",
+       "000 Eq.4 / 002 Eq.16; normals, a, n, optional t_pos, t_neg", create_generalized_distance},
+      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)",
+       create_segment},
+      {"superelliptic_cylinder", "distance",
+       "002 Eq.17/18; radii [a1,a2,a3], n, half_length, optional t [t1..t6]",
+       create_superelliptic_cylinder},
+      {"torus", "distance", "((|rho-R|/a)^n+(|z|/b)^n)^(1/n); major_radius, radii [a,b], n",
+       create_torus},
+      {"polar_prism", "distance",
+       "(h^n+|z/c|^n)^(1/n), h = rho/R(phi); radius, lobes, amplitude, profile, half_height, n",
+       create_polar_prism},
+      {"super_ellipsoidal_union", "distance", "(sum x_i^-n)^(-1/n) of distances (000 Eq.6)",
+       create_super_ellipsoidal_union},
+      {"super_ellipsoidal_intersection", "distance", "(sum x_i^n)^(1/n) of distances (000 Eq.6)",
+       create_super_ellipsoidal_intersection},
       // Soft objects, MATH.md §4.
       {"soft_object", "object", "P(d): distance, potential (default blanc s=0)",
        create_soft_object},
@@ -56,8 +75,8 @@ PotentialPtr build_potential(const Params& p) {
       p.finish();
       return P;
     }
-  p.fail("type",
-         "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) + ")");
+  p.fail("type", "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) +
+                     ")");
 }
 
 NodePtr build_field(const Params& p, const BuildContext& ctx) {
@@ -66,8 +85,8 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   for (const auto& k : node_kinds())
     if (type == k.name) kind = &k;
   if (!kind)
-    p.fail("type",
-           "unknown node type '" + type + "' (expected one of: " + names_of(node_kinds()) + ")");
+    p.fail("type", "unknown node type '" + type + "' (expected one of: " +
+                       names_of(node_kinds()) + ")");
   NodePtr node = kind->create(p, ctx);
 
   const Vec3 translate = p.vec3("translate", {});
