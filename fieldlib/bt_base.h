@@ -16,6 +16,9 @@
 //   1e-14·k·max_i r_i/m_i plus rounding of T, O(k·eps·(|x|/m + |h|)). `value_tolerance` is a
 //   bound on that error with a wide safety factor (1e-9 relative); interval enclosures are padded
 //   by it.
+// - Cost: the Illinois Regula Falsi took 7.05 iterations on average (max 18) over the 37 271 of
+//   60 000 random inputs (k = 2..6) that needed it; the rest are non-blending and return h_hi
+//   after one evaluation of T (tests/test_bt.cpp, RootResidualAndIterationCounts).
 #pragma once
 
 #include <vector>
