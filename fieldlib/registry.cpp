@@ -3,7 +3,9 @@
 #include <cmath>
 
 #include "blends.h"
+#include "blends_bt.h"
 #include "distances.h"
+#include "offset.h"
 #include "placement.h"
 #include "potentials.h"
 #include "soft_object.h"
@@ -41,6 +43,15 @@ const std::vector<NodeKind>& node_kinds() {
        create_soft_object},
       // Blends, MATH.md §5-§7.
       {"soft_blend", "blend", "sum of the children (000 Eq.12)", create_soft_blend},
+      {"offset", "blend", "s*(child - c): a distance function as a zero-surface function (003)",
+       create_offset},
+      {"bt_union", "blend", "BT_k union, zero convention (003 Eqs.2-5)", create_bt_union},
+      {"bt_intersection", "blend", "-BT_k(-f_1..-f_k), zero convention (003 3.3)",
+       create_bt_intersection},
+      {"bt_difference", "blend", "-BT_k(-f_1,f_2..f_k), zero convention (003 3.3)",
+       create_bt_difference},
+      {"displacement_union", "blend", "BD_k = BT_k with all m = 1 (003 2.2)",
+       create_displacement_union},
   };
   return kinds;
 }

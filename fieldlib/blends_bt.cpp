@@ -1,0 +1,270 @@
+#include "blends_bt.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "bt_base.h"
+
+namespace softtrace {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTiny = std::numeric_limits<double>::denorm_min();
+
+// Per-call scratch arrays without a heap allocation for the usual small k.
+template <class T>
+class Scratch {
+ public:
+  explicit Scratch(int n)
+      : data_(n <= kLocal ? local_ : (heap_ = std::make_unique<T[]>(n)).get()) {}
+  T& operator[](int i) { return data_[i]; }
+  T* data() { return data_; }
+
+ private:
+  static constexpr int kLocal = 16;
+  T local_[kLocal];
+  std::unique_ptr<T[]> heap_;
+  T* data_;
+};
+
+Interval signed_interval(int sigma, Interval a) {
+  return sigma > 0 ? a : -a;
+}
+
+// R = τ·BT_k(σ_1 f_1, ..., σ_k f_k) — 003 Eqs. 2–5 and §3.3, MATH.md §7.1–§7.4 (§7.6 with bulge)
+class BtBlend final : public FieldNode {
+ public:
+  BtBlend(std::vector<NodePtr> children, BtOperator op, int tau, std::vector<int> sigma,
+          double omega)
+      : c_(std::move(children)),
+        op_(std::move(op)),
+        tau_(tau),
+        sigma_(std::move(sigma)),
+        omega_(omega) {
+    for (int i = 0; i < op_.k(); ++i)  // r_i(2 + ω) rounded as P_i is, so P_i <= r_max_[i]
+      r_max_.push_back(bulge() ? op_.r()[i] * (2 + omega_) : op_.r()[i]);
+  }
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const int k = op_.k();
+    const bool need_g = grad || bulge();
+    Scratch<double> x(k), dx(k);
+    Scratch<Vec3> g(k);
+    for (int i = 0; i < k; ++i) {
+      x[i] = sigma_[i] * c_[i]->eval(p, need_g ? &g[i] : nullptr);
+      if (need_g) g[i] = g[i] * sigma_[i];
+    }
+    double v;
+    if (bulge()) {
+      const BulgeParameters b =
+          bulge_parameters(g[0], g[1], op_.r().data(), op_.m().data(), omega_);
+      v = op_.eval(x.data(), b.P, b.M, grad ? dx.data() : nullptr);
+    } else {
+      v = op_(x.data(), grad ? dx.data() : nullptr);
+    }
+    if (grad) {
+      Vec3 s;
+      for (int i = 0; i < k; ++i) s += g[i] * (dx[i] * tau_);
+      *grad = s;
+    }
+    return tau_ * v;
+  }
+
+  Interval interval(const Box& b) const override {
+    const int k = op_.k();
+    Scratch<double> lo(k), hi(k);
+    for (int i = 0; i < k; ++i) {
+      const Interval X = signed_interval(sigma_[i], c_[i]->interval(b));
+      lo[i] = X.lo;
+      hi[i] = X.hi;
+    }
+    const Interval bt =
+        bulge() ? bulge_enclosure(lo.data(), hi.data()) : monotone_enclosure(lo.data(), hi.data());
+    return tau_ > 0 ? bt : -bt;
+  }
+
+  double lipschitz() const override {
+    if (bulge()) return kInf;
+    double L = 0;
+    for (int i = 0; i < op_.k(); ++i) L = std::max(L, iv::up(c_[i]->lipschitz() / op_.m()[i]));
+    return L;
+  }
+
+  double lipschitz(const Box& b) const override {
+    if (bulge()) return kInf;
+    const int k = op_.k();
+    Scratch<Interval> X(k);
+    for (int i = 0; i < k; ++i) X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
+    double L = 0;
+    for (int i = 0; i < k; ++i) {
+      double others = kInf;  // an upper bound of min_{j≠i} x_j/m_j over the box
+      for (int j = 0; j < k; ++j)
+        if (j != i) others = std::min(others, iv::up(X[j].hi / op_.m()[j]));
+      const double margin = iv::down(X[i].lo - iv::up(op_.m()[i] * others));
+      if (margin > op_.r()[i]) continue;  // ∂_iBT = 0 over the whole box
+      L = std::max(L, iv::up(c_[i]->lipschitz(b) / op_.m()[i]));
+    }
+    return L;
+  }
+
+  Box region(double level, Side side) const override {
+    // R <= c  ⇔  BT <= c (τ = 1) or BT >= -c (τ = -1); R >= c likewise with the sides swapped.
+    const bool bt_below = (side == Side::Below) == (tau_ > 0);
+    const double c = tau_ > 0 ? level : -level;
+    return bt_below ? region_below(c) : region_above(c);
+  }
+
+ private:
+  bool bulge() const { return omega_ > 0; }
+
+  // A box containing {σ_i f_i <= t} (below) or {σ_i f_i >= t} (!below).
+  Box child_region(int i, double t, bool below) const {
+    const bool child_below = below == (sigma_[i] > 0);
+    return c_[i]->region(sigma_[i] > 0 ? t : -t, child_below ? Side::Below : Side::Above);
+  }
+  // {BT <= c} ⊂ ∪_i {x_i <= r_i + m_i c}; with bulge elimination only for c <= 0.
+  Box region_below(double c) const {
+    if (bulge() && c > 0) return Box::unbounded();
+    Box out;
+    for (int i = 0; i < op_.k(); ++i)
+      out = out.united(child_region(i, iv::up(r_max_[i] + iv::up(op_.m()[i] * c)), true));
+    return out;
+  }
+  // {BT >= c} ⊂ ∩_i {x_i >= m_i c}; with bulge elimination only for c >= 0.
+  Box region_above(double c) const {
+    if (bulge() && c < 0) return Box::unbounded();
+    Box out = Box::unbounded();
+    for (int i = 0; i < op_.k(); ++i)
+      out = out.intersected(child_region(i, iv::down(op_.m()[i] * c), false));
+    return out;
+  }
+
+  Interval monotone_enclosure(const double* lo, const double* hi) const {
+    const double* r = op_.r().data();
+    const double* m = op_.m().data();
+    const double vlo = op_(lo, nullptr), vhi = op_(hi, nullptr);
+    return iv::out(vlo - 2 * op_.value_tolerance(lo, vlo, r, m),
+                   vhi + 2 * op_.value_tolerance(hi, vhi, r, m));
+  }
+
+  // min_i (x_i - P_i)/M_i <= BT <= min_i x_i/M_i with P_i <= r_max, M_i ∈ [m_i, ∞).
+  Interval bulge_enclosure(const double* lo, const double* hi) const {
+    double L = kInf, U = kInf;
+    for (int i = 0; i < op_.k(); ++i) {
+      const double m = op_.m()[i];
+      const double n = iv::down(lo[i] - r_max_[i]);  // lower end of x_i - P_i
+      const double tn = 1e-9 * (std::abs(lo[i]) + r_max_[i]);
+      L = std::min(L, n > tn ? kTiny : iv::down((n - tn) / m));
+      const double th = 1e-9 * (std::abs(hi[i]) + r_max_[i]);
+      U = std::min(U, hi[i] < -th ? -kTiny : iv::up((hi[i] + th) / m));
+    }
+    if (std::isnan(L) || std::isnan(U)) return Interval::entire();
+    return {L, U};
+  }
+
+  std::vector<NodePtr> c_;
+  BtOperator op_;
+  int tau_;
+  std::vector<int> sigma_;
+  double omega_;  // 0: no bulge elimination
+  std::vector<double> r_max_;
+};
+
+enum class BtKind { Union, Intersection, Difference, Displacement };
+
+const char* kind_name(BtKind kind) {
+  switch (kind) {
+    case BtKind::Union:
+      return "bt_union";
+    case BtKind::Intersection:
+      return "bt_intersection";
+    case BtKind::Difference:
+      return "bt_difference";
+    case BtKind::Displacement:
+      return "displacement_union";
+  }
+  return "";
+}
+
+NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
+  const std::string name = kind_name(kind);
+  p.check(ctx.convention == Convention::Zero, "type",
+          name +
+              " is defined in the zero convention only (inside f <= 0, MATH.md §7.4); set the "
+              "object's \"convention\" to \"zero\"");
+  std::vector<NodePtr> children = build_children(p, "children", ctx, 2);
+  const size_t k = children.size();
+
+  std::vector<double> m(k, 1.0);
+  if (kind != BtKind::Displacement && p.has("m")) m = p.numbers_or_scalar("m", k);
+  for (double mi : m) p.check(mi > 0, "m", "expected every m_i > 0 (003 Eq. 2)");
+
+  const std::string base = p.string("base");
+  BtOperator op;
+  double conic_p = 0, r1 = 0, r2 = 0;
+  if (base == "conic") {
+    p.check(k == 2, "children",
+            "the conic base blends exactly 2 children (MATH.md §7.2); use \"hyperellipsoid\" "
+            "for more");
+    r1 = p.positive("r1");
+    r2 = p.positive("r2");
+    conic_p = p.number("p");
+    p.check(conic_p < r1 * r2, "p",
+            "expected p < r1*r2 (MATH.md §6.1: p = r1*r2 degenerates to the chord)");
+    op = BtOperator::conic(r1, r2, conic_p, m);
+  } else if (base == "hyperellipsoid") {
+    std::vector<double> r = p.numbers_or_scalar("r", k), pe = p.numbers_or_scalar("p", k);
+    for (double ri : r) p.check(ri > 0, "r", "expected every r_i > 0 (MATH.md §7.3)");
+    for (double pi : pe)
+      p.check(pi > 1, "p", "expected every p_i > 1 (MATH.md §7.3: T is C^1, its root unique)");
+    op = BtOperator::hyperellipsoid(std::move(r), std::move(pe), m);
+  } else {
+    p.fail("base", "expected \"conic\" or \"hyperellipsoid\", got '" + base + "'");
+  }
+
+  double omega = 0;
+  if (p.has("bulge_elimination")) {
+    const Params be = p.object("bulge_elimination");
+    omega = be.positive("omega");
+    be.finish();
+    p.check(k == 2, "bulge_elimination",
+            "bulge elimination takes exactly 2 children (003 §5, MATH.md §7.6)");
+    if (op.is_conic())
+      p.check(conic_p < omega * omega * r1 * r2, "p",
+              "with bulge elimination the ranges shrink to r_i*omega, so a conic base needs "
+              "p < omega^2*r1*r2 (MATH.md §6.1, §7.6)");
+  }
+
+  int tau = 1;
+  std::vector<int> sigma(k, 1);
+  if (kind == BtKind::Intersection) {
+    tau = -1;
+    std::fill(sigma.begin(), sigma.end(), -1);
+  } else if (kind == BtKind::Difference) {
+    tau = -1;
+    sigma[0] = -1;
+  }
+  return std::make_unique<BtBlend>(std::move(children), std::move(op), tau, std::move(sigma),
+                                   omega);
+}
+
+}  // namespace
+
+NodePtr create_bt_union(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Union);
+}
+NodePtr create_bt_intersection(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Intersection);
+}
+NodePtr create_bt_difference(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Difference);
+}
+NodePtr create_displacement_union(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Displacement);
+}
+
+}  // namespace softtrace

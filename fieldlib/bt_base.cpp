@@ -1,0 +1,216 @@
+#include "bt_base.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace softtrace {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ∂BT/∂x = e_j/m_j for the arg-min j of x_i/m_i: the gradient of min where BT = h_hi.
+void argmin_gradient(const double* x, int k, const double* m, double* dx) {
+  int j = 0;
+  for (int i = 1; i < k; ++i)
+    if (x[i] / m[i] < x[j] / m[j]) j = i;
+  for (int i = 0; i < k; ++i) dx[i] = i == j ? 1 / m[i] : 0;
+}
+
+}  // namespace
+
+double hoffmann_conic(double u1, double u2, double r1, double r2, double p) {
+  const double t = r2 * u1 + r1 * u2 - r1 * r2;
+  return t * t + 2 * (p - r1 * r2) * u1 * u2;
+}
+
+bool conic_region_ii(const double x[2], double r1, double r2, const double m[2]) {
+  return m[1] * x[0] - m[0] * (x[1] - r2) > 0 && m[1] * (x[0] - r1) - m[0] * x[1] < 0;
+}
+
+double bt2_conic(const double x[2], double r1, double r2, double p, const double m[2],
+                 double dx[2]) {
+  const double h1 = std::min(x[0] / m[0], x[1] / m[1]);
+  if (!conic_region_ii(x, r1, r2, m)) {  // also every infinite argument
+    if (dx) argmin_gradient(x, 2, m, dx);
+    return h1;
+  }
+  const double x1 = x[0], x2 = x[1], m1 = m[0], m2 = m[1];
+  const double a = r2 * r2 * m1 * m1 + r1 * r1 * m2 * m2 + 2 * p * m1 * m2;  // R8
+  const double b =
+      2 * ((r2 - x2) * r1 * r1 * m2 + (r1 - x1) * r2 * r2 * m1 - (x1 * m2 + x2 * m1) * p);
+  const double c = hoffmann_conic(x1, x2, r1, r2, p);
+  const double sq = std::sqrt(std::max(b * b - 4 * a * c, 0.0));
+  // The "+" root (R9) without cancellation (§6.3.2); a = 0 forces b > 0 in region II.
+  double h = b > 0 ? 2 * c / (-b - sq) : (-b + sq) / (2 * a);
+  const double h2 = (r1 * x2 + r2 * x1 - r1 * r2) / (r1 * m2 + r2 * m1);  // the chord
+  if (!std::isfinite(h)) h = h1;  // only a = 0 with b <= 0, impossible in exact arithmetic
+  h = std::min(std::max(h, h2), h1);
+  if (dx) {
+    const double u1 = x1 - m1 * h, u2 = x2 - m2 * h;
+    const double g1 = 2 * r2 * r2 * (u1 - r1) + 2 * p * u2,
+                 g2 = 2 * r1 * r1 * (u2 - r2) + 2 * p * u1;
+    const double den = m1 * g1 + m2 * g2;  // -T'(h) < 0 at the simple root
+    if (den < 0) {
+      dx[0] = std::max(0.0, g1 / den);
+      dx[1] = std::max(0.0, g2 / den);
+    } else {
+      argmin_gradient(x, 2, m, dx);
+    }
+  }
+  return h;
+}
+
+ConicParameterDerivatives bt2_conic_parameter_derivatives(const double x[2], double r1, double r2,
+                                                          double p, const double m[2]) {
+  double dx[2];
+  const double h = bt2_conic(x, r1, r2, p, m, dx);
+  ConicParameterDerivatives d;
+  d.m1 = -h * dx[0];  // from BT(x; m) and the translation identity, everywhere
+  d.m2 = -h * dx[1];
+  if (!conic_region_ii(x, r1, r2, m)) return d;
+  const double u1 = x[0] - m[0] * h, u2 = x[1] - m[1] * h;
+  const double g1 = 2 * r2 * r2 * (u1 - r1) + 2 * p * u2, g2 = 2 * r1 * r1 * (u2 - r2) + 2 * p * u1;
+  const double den = m[0] * g1 + m[1] * g2;
+  if (!(den < 0)) return d;
+  d.r1 = (2 * r1 * u2 * u2 + 2 * r2 * r2 * r1 - 2 * r2 * r2 * u1 - 4 * r1 * r2 * u2) / den;
+  d.r2 = (2 * r2 * u1 * u1 + 2 * r1 * r1 * r2 - 4 * r1 * r2 * u1 - 2 * r1 * r1 * u2) / den;
+  d.p = 2 * u1 * u2 / den;
+  return d;
+}
+
+double hyper_T(const double* x, int k, const double* r, const double* p, const double* m,
+               double h) {
+  double s = 0;
+  for (int i = 0; i < k; ++i) {
+    const double t = (r[i] - x[i] + m[i] * h) / r[i];
+    if (t > 0) s += p[i] == 2 ? t * t : std::pow(t, p[i]);
+  }
+  return s - 1;
+}
+
+double bt_lower(const double* x, int k, const double* r, const double* m) {
+  double h = kInf;
+  for (int i = 0; i < k; ++i) h = std::min(h, (x[i] - r[i]) / m[i]);
+  return h;
+}
+
+double bt_upper(const double* x, int k, const double* m) {
+  double h = kInf;
+  for (int i = 0; i < k; ++i) h = std::min(h, x[i] / m[i]);
+  return h;
+}
+
+double bt_hyper(const double* x, int k, const double* r, const double* p, const double* m,
+                double* dx, int* iterations) {
+  if (iterations) *iterations = 0;
+  const double h_hi = bt_upper(x, k, m);
+  if (!std::isfinite(h_hi)) {  // some x_i = -inf, or every x_i = +inf
+    if (dx) {
+      if (h_hi < 0)
+        argmin_gradient(x, k, m, dx);
+      else
+        std::fill(dx, dx + k, 0.0);
+    }
+    return h_hi;
+  }
+  double h = h_hi, T_hi = hyper_T(x, k, r, p, m, h_hi);
+  if (T_hi > 0) {  // T(h_hi) <= 0 only where the arg-min term alone is active (non-blending)
+    double lo = bt_lower(x, k, r, m), hi = h_hi;
+    double T_lo = hyper_T(x, k, r, p, m, lo);  // -1 up to rounding
+    int side = 0, it = 0;
+    while (it < 200) {
+      ++it;
+      h = std::min(std::max((lo * T_hi - hi * T_lo) / (T_hi - T_lo), lo), hi);
+      const double T = hyper_T(x, k, r, p, m, h);
+      if (std::abs(T) <= 1e-14 || hi - lo <= 1e-14 * std::max(1.0, std::abs(h))) break;
+      if (T > 0) {  // keep the sign bracket; halve the stale end's T on a repeat (Illinois)
+        hi = h;
+        T_hi = T;
+        if (side == +1) T_lo *= 0.5;
+        side = +1;
+      } else {
+        lo = h;
+        T_lo = T;
+        if (side == -1) T_hi *= 0.5;
+        side = -1;
+      }
+    }
+    if (iterations) *iterations = it;
+  }
+  if (dx) {
+    // §7.5: ∂_i BT = (p_i/r_i) q_i^(p_i-1) / Σ_j (p_j m_j/r_j) q_j^(p_j-1).
+    double den = 0;
+    for (int i = 0; i < k; ++i) {
+      const double q = std::max(0.0, (r[i] - x[i] + m[i] * h) / r[i]);
+      dx[i] = p[i] / r[i] * (p[i] == 2 ? q : std::pow(q, p[i] - 1));
+      den += m[i] * dx[i];
+    }
+    if (den > 0 && std::isfinite(den))
+      for (int i = 0; i < k; ++i) dx[i] /= den;
+    else
+      argmin_gradient(x, k, m, dx);
+  }
+  return h;
+}
+
+BtOperator BtOperator::conic(double r1, double r2, double p, std::vector<double> m) {
+  BtOperator op;
+  op.conic_ = true;
+  op.r_ = {r1, r2};
+  op.p_ = {p};
+  op.m_ = std::move(m);
+  return op;
+}
+
+BtOperator BtOperator::hyperellipsoid(std::vector<double> r, std::vector<double> p,
+                                      std::vector<double> m) {
+  BtOperator op;
+  op.r_ = std::move(r);
+  op.p_ = std::move(p);
+  op.m_ = std::move(m);
+  return op;
+}
+
+double BtOperator::eval(const double* x, const double* r, const double* m, double* dx) const {
+  if (conic_) return bt2_conic(x, r[0], r[1], p_[0], m, dx);
+  return bt_hyper(x, k(), r, p_.data(), m, dx, nullptr);
+}
+
+double BtOperator::value_tolerance(const double* x, double value, const double* r,
+                                   const double* m) const {
+  if (!std::isfinite(value)) return 0;
+  double scale = std::abs(value);
+  for (int i = 0; i < k(); ++i)
+    if (std::isfinite(x[i])) scale = std::max(scale, (std::abs(x[i]) + r[i]) / m[i]);
+  return 1e-9 * scale + std::numeric_limits<double>::denorm_min();
+}
+
+void bulge_weights(double m1, double m2, double G, double cos_theta, double M[2]) {
+  const double c = std::max(cos_theta, 0.0);
+  if (m1 > m2 * G) {
+    M[0] = m1;
+    M[1] = c > 0 ? m2 + (m1 / G - m2) * c : m2;
+  } else {
+    M[0] = c > 0 ? m1 + (m2 * G - m1) * c : m1;
+    M[1] = m2;
+  }
+}
+
+BulgeParameters bulge_parameters(const Vec3& grad_g1, const Vec3& grad_g2, const double r[2],
+                                 const double m[2], double omega) {
+  BulgeParameters b;
+  const double n1 = length(grad_g1), n2 = length(grad_g2);
+  double G = 1;
+  if (n1 > 0 && n2 > 0 && std::isfinite(n1) && std::isfinite(n2) && n1 / n2 > 0 &&
+      std::isfinite(n1 / n2)) {
+    b.cos_theta = std::min(1.0, std::max(-1.0, dot(grad_g1, grad_g2) / (n1 * n2)));
+    G = n1 / n2;
+  }
+  for (int i = 0; i < 2; ++i) b.P[i] = r[i] * (1 - b.cos_theta + omega);
+  bulge_weights(m[0], m[1], G, b.cos_theta, b.M);
+  return b;
+}
+
+}  // namespace softtrace

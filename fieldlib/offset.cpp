@@ -1,0 +1,52 @@
+#include "offset.h"
+
+#include <cmath>
+
+namespace softtrace {
+
+namespace {
+
+// s·(f - c)   — zero-surface function from a distance function, 003 §2.1, SCENE.md "offset"
+class Offset final : public FieldNode {
+ public:
+  Offset(NodePtr child, double s, double c) : child_(std::move(child)), s_(s), c_(c) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const double v = child_->eval(p, grad);
+    if (grad) *grad = *grad * s_;
+    return s_ * (v - c_);
+  }
+  Interval interval(const Box& b) const override {
+    return Interval(s_) * (child_->interval(b) - Interval(c_));
+  }
+  double lipschitz() const override { return iv::up(std::abs(s_) * child_->lipschitz()); }
+  double lipschitz(const Box& b) const override {
+    return iv::up(std::abs(s_) * child_->lipschitz(b));
+  }
+  Box region(double level, Side side) const override {
+    // The child's side flips with the sign of s; its level c + level/s is rounded away from
+    // the side enclosed (up for Below, down for Above) so no point is lost to rounding.
+    const Side child_side = (s_ > 0) == (side == Side::Below) ? Side::Below : Side::Above;
+    const double t = child_side == Side::Below ? iv::up(c_ + iv::up(level / s_))
+                                               : iv::down(c_ + iv::down(level / s_));
+    return child_->region(t, child_side);
+  }
+
+ private:
+  NodePtr child_;
+  double s_, c_;
+};
+
+}  // namespace
+
+NodePtr create_offset(const Params& p, const BuildContext& ctx) {
+  std::vector<NodePtr> children = build_children(p, "children", ctx, 1);
+  p.check(children.size() == 1, "children",
+          "expected exactly 1 child, got " + std::to_string(children.size()));
+  const double s = p.number("scale", 1.0);
+  p.check(s != 0, "scale", "expected scale != 0 (s = 0 gives a constant field)");
+  const double c = p.number("level", 1.0);
+  return std::make_unique<Offset>(std::move(children[0]), s, c);
+}
+
+}  // namespace softtrace

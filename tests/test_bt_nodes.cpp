@@ -1,0 +1,391 @@
+// The BT_k nodes and offset (blends_bt.h, offset.h): convention and parameter checks with
+// located errors, the duals and BD_k against the scalar operator, per-box Lipschitz tightening,
+// and bulge elimination ([BE-1]..[BE-5], value continuity, the frozen-parameter gradient,
+// interval and region soundness).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "bt_base.h"
+#include "params.h"
+#include "sweep.h"
+
+namespace softtrace::test {
+namespace {
+
+using Rng = std::mt19937_64;
+double uni(Rng& g, double a, double b) {
+  return std::uniform_real_distribution<double>(a, b)(g);
+}
+Vec3 point_in(Rng& g, const Box& b) {
+  return {uni(g, b.lo.x, b.hi.x), uni(g, b.lo.y, b.hi.y), uni(g, b.lo.z, b.hi.z)};
+}
+
+constexpr Convention kZero = Convention::Zero;
+const char* const kBall1 =
+    R"({"type":"offset","translate":[-0.3,0,0],"children":[{"type":"lp_metric","radii":[0.5,0.5,0.5],"n":2}]})";
+const char* const kBall2 =
+    R"({"type":"offset","translate":[0.3,0.1,0],"children":[{"type":"lp_metric","radii":[0.6,0.4,0.5],"n":3}]})";
+const char* const kRod =
+    R"({"type":"offset","children":[{"type":"segment","p0":[0,-1,0],"p1":[0,1,0.2],"radius":0.25}]})";
+
+std::string blend(const std::string& type, const std::string& params,
+                  const std::vector<std::string>& children) {
+  std::string s = R"({"type":")" + type + "\"," + params + R"(,"children":[)";
+  for (size_t i = 0; i < children.size(); ++i) s += (i ? "," : "") + children[i];
+  return s + "]}";
+}
+
+// The error message of building `json`, or "" when it builds.
+std::string build_error(const std::string& json, Convention conv = kZero) {
+  try {
+    build_from_json(json, conv);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(BtNodes, OnlyTheZeroConvention) {
+  for (const char* type : {"bt_union", "bt_intersection", "bt_difference", "displacement_union"}) {
+    const std::string inner =
+        blend(type, R"("base":"conic","r1":0.2,"r2":0.2,"p":0)", {kBall1, kRod});
+    const std::string json = R"({"type":"offset","children":[)" + inner + "]}";
+    EXPECT_EQ(build_error(json), "") << type;
+    for (Convention c : {Convention::Soft, Convention::Constructive}) {
+      const std::string e = build_error(json, c);
+      EXPECT_NE(e.find("/children/0/type"), std::string::npos) << e;
+      EXPECT_NE(e.find("zero convention"), std::string::npos) << e;
+    }
+  }
+}
+
+TEST(BtNodes, ParameterRangesAreCheckedWithTheirLocation) {
+  struct Bad {
+    std::string json, where;
+  };
+  const std::string c2 = R"("base":"conic","r1":0.2,"r2":0.3)";
+  const Bad bad[] = {
+      {blend("bt_union", c2 + R"(,"p":0.06)", {kBall1, kRod}), "/p"},  // p = r1 r2
+      {blend("bt_union", R"("base":"conic","r1":0,"r2":0.3,"p":0)", {kBall1, kRod}), "/r1"},
+      {blend("bt_union", c2 + R"(,"p":0)", {kBall1, kRod, kBall2}), "/children"},
+      {blend("bt_union", c2 + R"(,"p":0,"m":[1,0])", {kBall1, kRod}), "/m"},
+      {blend("bt_union", c2 + R"(,"p":0,"m":[1,1,1])", {kBall1, kRod}), "/m"},
+      {blend("bt_union", R"("base":"cone","r1":0.2,"r2":0.3,"p":0)", {kBall1, kRod}), "/base"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,0.3],"p":[2,1])", {kBall1, kRod}),
+       "/p"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,-0.3],"p":2)", {kBall1, kRod}), "/r"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,0.3,0.1],"p":2)", {kBall1, kRod}),
+       "/r"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2)", {kBall1}), "/children"},
+      {blend("bt_union",
+             R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"omega":0.1})",
+             {kBall1, kRod, kBall2}),
+       "/bulge_elimination"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"omega":0})",
+             {kBall1, kRod}),
+       "/bulge_elimination/omega"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"w":1})",
+             {kBall1, kRod}),
+       "/bulge_elimination/omega"},
+      {blend("bt_union", c2 + R"(,"p":0.01,"bulge_elimination":{"omega":0.1})", {kBall1, kRod}),
+       "/p"},  // p >= omega² r1 r2
+      {blend("displacement_union", c2 + R"(,"p":0,"m":[1,2])", {kBall1, kRod}), "/m"},
+      {blend("bt_difference", c2 + R"(,"p":0,"k":2)", {kBall1, kRod}), "/k"},
+      {blend("offset", R"("scale":0)", {kBall1}), "/scale"},
+      {blend("offset", R"("level":0)", {kBall1, kRod}), "/children"},
+  };
+  for (const Bad& b : bad) {
+    const std::string e = build_error(b.json);
+    EXPECT_NE(e.find("<test>: " + b.where + ":"), std::string::npos)
+        << "expected an error at " << b.where << " for " << b.json << "\ngot: " << e;
+  }
+  EXPECT_EQ(build_error(blend("bt_union", c2 + R"(,"p":0.0005,"bulge_elimination":{"omega":0.1})",
+                              {kBall1, kRod})),
+            "");
+}
+
+// The nodes are τ·BT(σ_i f_i) of §7.4 on their children's values.
+TEST(BtNodes, DualsAndDisplacementMatchTheScalarOperator) {
+  const NodePtr f1 = build_from_json(kBall1, kZero), f2 = build_from_json(kRod, kZero),
+                f3 = build_from_json(kBall2, kZero);
+  const std::string conic = R"("base":"conic","r1":0.3,"r2":0.2,"p":-0.02,"m":[1.5,0.7])";
+  const std::string hyper =
+      R"("base":"hyperellipsoid","r":[0.3,0.2,0.25],"p":[2,3,1.7],"m":[1.5,0.7,1])";
+  const NodePtr u2 = build_from_json(blend("bt_union", conic, {kBall1, kRod}), kZero);
+  const NodePtr i2 = build_from_json(blend("bt_intersection", conic, {kBall1, kRod}), kZero);
+  const NodePtr d2 = build_from_json(blend("bt_difference", conic, {kBall1, kRod}), kZero);
+  const NodePtr i3 =
+      build_from_json(blend("bt_intersection", hyper, {kBall1, kRod, kBall2}), kZero);
+  const NodePtr d3 = build_from_json(blend("bt_difference", hyper, {kBall1, kRod, kBall2}), kZero);
+  const std::string unit = R"("base":"hyperellipsoid","r":[0.3,0.2,0.25],"p":[2,3,1.7])";
+  const NodePtr bd =
+      build_from_json(blend("displacement_union", unit, {kBall1, kRod, kBall2}), kZero);
+  const NodePtr bt1 =
+      build_from_json(blend("bt_union", unit + R"(,"m":[1,1,1])", {kBall1, kRod, kBall2}), kZero);
+  const double m2[2] = {1.5, 0.7}, r3[3] = {0.3, 0.2, 0.25}, p3[3] = {2, 3, 1.7},
+               m3[3] = {1.5, 0.7, 1}, one[3] = {1, 1, 1};
+  Rng g(31);
+  int blending = 0;
+  for (int n = 0; n < 5000; ++n) {
+    const Vec3 X = point_in(g, Box({-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}));
+    const double a = f1->value(X), b = f2->value(X), c = f3->value(X);
+    const double xu[2] = {a, b}, xi[2] = {-a, -b}, xd[2] = {-a, b};
+    const double vu = bt2_conic(xu, 0.3, 0.2, -0.02, m2, nullptr);
+    if (vu != std::min(a / 1.5, b / 0.7)) ++blending;
+    EXPECT_EQ(u2->value(X), vu);
+    EXPECT_EQ(i2->value(X), -bt2_conic(xi, 0.3, 0.2, -0.02, m2, nullptr));
+    EXPECT_EQ(d2->value(X), -bt2_conic(xd, 0.3, 0.2, -0.02, m2, nullptr));
+    const double yi[3] = {-a, -b, -c}, yd[3] = {-a, b, c}, yu[3] = {a, b, c};
+    EXPECT_EQ(i3->value(X), -bt_hyper(yi, 3, r3, p3, m3, nullptr, nullptr));
+    EXPECT_EQ(d3->value(X), -bt_hyper(yd, 3, r3, p3, m3, nullptr, nullptr));
+    EXPECT_EQ(bd->value(X), bt_hyper(yu, 3, r3, p3, one, nullptr, nullptr));
+    EXPECT_EQ(bd->value(X), bt1->value(X));
+  }
+  EXPECT_GT(blending, 100);
+}
+
+TEST(BtNodes, BoxLipschitzDropsChildrenThatCannotBeActive) {
+  // Two balls far apart with slopes 2 and 4, m = 1: globally max(2, 4) = 4; near the first ball
+  // the second one's term is 0 over the whole box, so the bound there is the first's alone.
+  const char* a =
+      R"({"type":"offset","children":[{"type":"lp_metric","radii":[0.5,0.5,0.5],"n":2}]})";
+  const char* b =
+      R"({"type":"offset","translate":[3,0,0],"children":[{"type":"lp_metric","radii":[0.25,0.25,0.25],"n":2}]})";
+  for (const char* base : {R"("base":"conic","r1":0.3,"r2":0.3,"p":0)",
+                           R"("base":"hyperellipsoid","r":0.3,"p":2.5)"}) {
+    const NodePtr u = build_from_json(blend("bt_union", base, {a, b}), kZero);
+    EXPECT_DOUBLE_EQ(u->lipschitz(), 4);
+    const Box near_a({-0.6, -0.6, -0.6}, {0.6, 0.6, 0.6});
+    EXPECT_LE(u->lipschitz(near_a), 2 * (1 + 1e-12));
+    const Box between({1, -0.2, -0.2}, {2, 0.2, 0.2});  // both terms may be active
+    EXPECT_DOUBLE_EQ(u->lipschitz(between), 4);
+  }
+}
+
+TEST(BtNodes, IntervalIsTheMonotoneImage) {
+  const NodePtr u = build_from_json(
+      blend("bt_union", R"("base":"hyperellipsoid","r":[0.3,0.2],"p":[2,3],"m":[1,2])",
+            {kBall1, kRod}),
+      kZero);
+  const NodePtr f1 = build_from_json(kBall1, kZero), f2 = build_from_json(kRod, kZero);
+  const double r[2] = {0.3, 0.2}, p[2] = {2, 3}, m[2] = {1, 2};
+  Rng g(32);
+  for (int n = 0; n < 200; ++n) {
+    const Vec3 c = point_in(g, Box({-1, -1, -1}, {1, 1, 1}));
+    const Box b = Box::around(c, uni(g, 1e-4, 0.2));
+    const Interval A = f1->interval(b), B = f2->interval(b), I = u->interval(b);
+    const double lo[2] = {A.lo, B.lo}, hi[2] = {A.hi, B.hi};
+    const double vlo = bt_hyper(lo, 2, r, p, m, nullptr, nullptr);
+    const double vhi = bt_hyper(hi, 2, r, p, m, nullptr, nullptr);
+    EXPECT_LE(I.lo, vlo);
+    EXPECT_GE(I.hi, vhi);
+    EXPECT_NEAR(I.lo, vlo, 1e-8);  // only the documented padding
+    EXPECT_NEAR(I.hi, vhi, 1e-8);
+  }
+}
+
+TEST(Offset, ValueGradientAndRegion) {
+  const NodePtr d = build_from_json(kRod, Convention::Soft);
+  const NodePtr o = build_from_json(
+      R"({"type":"offset","scale":-2,"level":0.5,"children":[)" + std::string(kRod) + "]}", kZero);
+  Rng g(33);
+  for (int n = 0; n < 1000; ++n) {
+    const Vec3 X = point_in(g, Box({-1, -1, -1}, {1, 1, 1}));
+    Vec3 gd, go;
+    const double vd = d->eval(X, &gd), vo = o->eval(X, &go);
+    EXPECT_DOUBLE_EQ(vo, -2 * (vd - 0.5));
+    EXPECT_DOUBLE_EQ(go.x, -2 * gd.x);
+    EXPECT_DOUBLE_EQ(go.z, -2 * gd.z);
+  }
+  EXPECT_DOUBLE_EQ(o->lipschitz(), 2 * d->lipschitz());
+  // -2(d - 0.5) >= 0 ⇔ d <= 0.5: the child's Below region; the other side is unbounded.
+  const Box r = o->region(0, Side::Above), rd = d->region(0.5, Side::Below);
+  EXPECT_TRUE(r.bounded());
+  EXPECT_LE(r.lo.x, rd.lo.x);
+  EXPECT_GE(r.hi.y, rd.hi.y);
+  EXPECT_FALSE(o->region(0, Side::Below).bounded());
+}
+
+// ---- Bulge elimination (MATH.md §7.6)
+
+TEST(BulgeElimination, PositionFunctionProperties) {  // [BE-1]..[BE-5]
+  Rng g(34);
+  for (int n = 0; n < 20000; ++n) {
+    const double m1 = uni(g, 0.1, 3), m2 = uni(g, 0.1, 3), G = uni(g, 0.05, 20);
+    double M[2];
+    bulge_weights(m1, m2, G, 1.0, M);
+    ASSERT_NEAR(M[0], G * M[1], 1e-12 * (1 + M[0]));  // [BE-1]
+    bulge_weights(m1, m2, G, uni(g, -1, 0), M);
+    ASSERT_EQ(M[0], m1);  // [BE-2]
+    ASSERT_EQ(M[1], m2);
+    const double c = uni(g, 0, 1);
+    bulge_weights(m1, m2, G, c, M);
+    ASSERT_GE(M[0], m1);  // [BE-3]
+    ASSERT_GE(M[1], m2);
+    double A[2], B[2];  // [BE-4]: across m1 = m2 G
+    bulge_weights(m1, m2, m1 / m2 * (1 + 1e-12), c, A);
+    bulge_weights(m1, m2, m1 / m2 * (1 - 1e-12), c, B);
+    ASSERT_NEAR(A[0], B[0], 1e-9);
+    ASSERT_NEAR(A[1], B[1], 1e-9);
+    // [BE-5] and the range of P_i, including antiparallel and vanishing gradients.
+    const Vec3 g1{uni(g, -1, 1), uni(g, -1, 1), uni(g, -1, 1)};
+    const Vec3 g2 =
+        n % 3 == 0 ? g1 * -uni(g, 0.1, 3) : (n % 3 == 1 ? Vec3{} : Vec3{uni(g, -1, 1), 0.3, 0});
+    const double r[2] = {uni(g, 0.01, 2), uni(g, 0.01, 2)}, m[2] = {m1, m2}, w = uni(g, 1e-3, 0.2);
+    const BulgeParameters b = bulge_parameters(g1, g2, r, m, w);
+    for (int i = 0; i < 2; ++i) {
+      ASSERT_GT(b.P[i], 0);
+      ASSERT_GE(b.P[i], r[i] * w * (1 - 1e-12));
+      ASSERT_LE(b.P[i], r[i] * (2 + w));
+      ASSERT_TRUE(std::isfinite(b.M[i]) && b.M[i] >= m[i]);
+    }
+  }
+}
+
+// 003 Fig. 9(a): crossing cylinders (along z and along x), offset to zero-surface functions.
+const char* const kCylZ =
+    R"({"type":"offset","children":[{"type":"lp_metric","radii":[0.4,0.4,100],"n":2}]})";
+const char* const kCylX =
+    R"({"type":"offset","children":[{"type":"lp_metric","radii":[100,0.3,0.3],"n":2}]})";
+const std::string kBulge = R"(,"bulge_elimination":{"omega":0.1})";
+const std::string kBulgeBases[] = {
+    R"("base":"conic","r1":0.3,"r2":0.2,"p":0,"m":[1,0.5])" + kBulge,
+    R"("base":"hyperellipsoid","r":[0.3,0.2],"p":[2,3],"m":[0.7,1.2])" + kBulge,
+};
+
+// The field is continuous away from the cylinders' axes (where ∇f_i, hence cosθ, jumps): along
+// random segments in y >= 0.05, refining the step tenfold shrinks the largest jump accordingly.
+TEST(BulgeElimination, ValueContinuity) {
+  Rng g(35);
+  for (const std::string& base : kBulgeBases)
+    for (const char* type : {"bt_union", "bt_intersection", "bt_difference"}) {
+      const NodePtr n = build_from_json(blend(type, base, {kCylZ, kCylX}), kZero);
+      for (int s = 0; s < 10; ++s) {
+        const Box dom({-1, 0.05, -1}, {1, 1, 1});
+        const Vec3 a = point_in(g, dom), b = point_in(g, dom);
+        double jump[2] = {0, 0};
+        for (int level = 0; level < 2; ++level) {
+          const int steps = level == 0 ? 1000 : 10000;
+          double prev = n->value(a);
+          for (int i = 1; i <= steps; ++i) {
+            const double v = n->value(a + (b - a) * (double(i) / steps));
+            jump[level] = std::max(jump[level], std::abs(v - prev));
+            prev = v;
+          }
+        }
+        const double step = length(b - a) / 1000;
+        ASSERT_LT(jump[0], 20 * step) << type << " " << base;
+        ASSERT_LT(jump[1], 0.2 * jump[0] + 1e-12) << type << " " << base;
+      }
+    }
+}
+
+// MATH.md's implementation choice: the gradient is the paper's partial gradient, i.e. the
+// gradient of BT(f(X); P(X0), M(X0)) with the position functions frozen at X0.
+TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
+  const NodePtr f1 = build_from_json(kCylZ, kZero), f2 = build_from_json(kCylX, kZero);
+  const NodePtr n = build_from_json(blend("bt_union", kBulgeBases[0], {kCylZ, kCylX}), kZero);
+  const double r[2] = {0.3, 0.2}, m[2] = {1, 0.5};
+  Rng g(36);
+  int blending = 0;
+  for (int s = 0; s < 3000; ++s) {
+    const Vec3 X0 = point_in(g, Box({-0.8, 0.05, -0.8}, {0.8, 0.8, 0.8}));
+    Vec3 g1, g2;
+    const double x0[2] = {f1->eval(X0, &g1), f2->eval(X0, &g2)};
+    const BulgeParameters b = bulge_parameters(g1, g2, r, m, 0.1);
+    auto frozen = [&](const Vec3& X) {
+      const double x[2] = {f1->value(X), f2->value(X)};
+      return bt2_conic(x, b.P[0], b.P[1], 0, b.M, nullptr);
+    };
+    ASSERT_EQ(n->value(X0), frozen(X0));
+    if (conic_region_ii(x0, b.P[0], b.P[1], b.M)) ++blending;
+    const Vec3 grad = n->gradient(X0);
+    const double h = 1e-6;
+    for (int i = 0; i < 3; ++i) {
+      Vec3 a = X0, c = X0;
+      a[i] += h;
+      c[i] -= h;
+      const double fd = (frozen(a) - frozen(c)) / (2 * h);
+      Vec3 a2 = X0, c2 = X0;  // skip the kink of min (the quotients disagree there)
+      a2[i] += 2 * h;
+      c2[i] -= 2 * h;
+      if (std::abs(fd - (frozen(a2) - frozen(c2)) / (4 * h)) > 1e-5) continue;
+      ASSERT_NEAR(grad[i], fd, 1e-5 * (1 + std::abs(fd)));
+    }
+  }
+  EXPECT_GT(blending, 100);
+}
+
+// The exact gradient needs the children's Hessians (MATH.md §7.6), so the shading normal is the
+// partial gradient. Near the zero surface of the crossing cylinders it stays within a few degrees
+// of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
+TEST(BulgeElimination, PartialGradientIsCloseToTheNormalNearTheSurface) {
+  for (const std::string& base : kBulgeBases) {
+    const NodePtr n = build_from_json(blend("bt_union", base, {kCylZ, kCylX}), kZero);
+    Rng g(38);
+    double worst = 0, sum = 0;
+    int count = 0;
+    for (int s = 0; s < 200000 && count < 1000; ++s) {
+      const Vec3 X = point_in(g, Box({-0.8, -0.8, -0.8}, {0.8, 0.8, 0.8}));
+      if (std::abs(n->value(X)) > 0.01) continue;
+      Vec3 fd;
+      for (int i = 0; i < 3; ++i) {
+        Vec3 a = X, c = X;
+        a[i] += 1e-6;
+        c[i] -= 1e-6;
+        fd[i] = (n->value(a) - n->value(c)) / 2e-6;
+      }
+      const Vec3 grad = n->gradient(X);
+      const double cosine = dot(grad, fd) / (length(grad) * length(fd));
+      const double degrees = std::acos(std::min(1.0, cosine)) * 180 / M_PI;
+      worst = std::max(worst, degrees);
+      sum += degrees;
+      ++count;
+    }
+    EXPECT_EQ(count, 1000);
+    EXPECT_LT(sum / count, 1.0) << base;
+    EXPECT_LT(worst, 10.0) << base;
+  }
+}
+
+TEST(BulgeElimination, BoundsAreSound) {
+  Rng g(37);
+  const Box dom({-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2});
+  for (const std::string& base : kBulgeBases)
+    for (const char* type : {"bt_union", "bt_intersection", "bt_difference"}) {
+      const NodePtr n = build_from_json(blend(type, base, {kCylZ, kCylX}), kZero);
+      EXPECT_EQ(n->lipschitz(), std::numeric_limits<double>::infinity());
+      int excluded = 0;
+      for (int k = 0; k < 300; ++k) {
+        const Box b = Box::around(point_in(g, dom), std::exp(uni(g, -6, -1.5)));
+        const Interval I = n->interval(b);
+        if (I.lo > 0 || I.hi < 0) ++excluded;
+        for (int j = 0; j < 30; ++j) {
+          const double v = n->value(point_in(g, b));
+          ASSERT_TRUE(I.contains(v))
+              << type << ": " << v << " outside [" << I.lo << ", " << I.hi << "]";
+        }
+      }
+      EXPECT_GT(excluded, 50) << type << ": the enclosure must let the renderer skip space";
+      const Box r = n->region(0, Side::Below);
+      ASSERT_TRUE(r.bounded() || std::string(type) == "bt_difference");
+      if (r.bounded()) {
+        int inside = 0;
+        for (int k = 0; k < 20000; ++k) {
+          const Vec3 X = point_in(g, Box(r.lo - r.extent() * 0.5, r.hi + r.extent() * 0.5));
+          if (n->value(X) > 0) continue;
+          ++inside;
+          ASSERT_TRUE(r.contains(X)) << type;
+        }
+        EXPECT_GT(inside, 0);
+      }
+      EXPECT_FALSE(n->region(0.1, Side::Below).bounded())
+          << "documented: no finite bound above level 0 with M_i unbounded";
+    }
+}
+
+}  // namespace
+}  // namespace softtrace::test
