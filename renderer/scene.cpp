@@ -135,6 +135,9 @@ SceneObject load_object(const Params& p, size_t index) {
       return Vec3{raw[k][0].get<double>(), raw[k][1].get<double>(), raw[k][2].get<double>()};
     };
     const Vec3 lo = corner(0), hi = corner(1);
+    for (int i = 0; i < 3; ++i)
+      p.check(lo[i] < hi[i], "bounds", "expected each minimum below its maximum");
+    o.bounds = Box(lo, hi);
   } else {
     o.bounds = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
     if (!o.bounds.bounded())

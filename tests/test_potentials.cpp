@@ -51,7 +51,9 @@ TEST_P(Blanc, MonotoneAndLipschitz) {  // [PB-4], [PB-5], and P = 0.5 only at d 
   for (int i = 1; i <= 20000; ++i) {
     const double d = i / 20000.0, v = P(*p, d);
     ASSERT_LE(v, prev + 1e-15) << "at d = " << d;
-    if (std::abs(d - 0.5) > 1e-3) ASSERT_NE(v, 0.5) << "at d = " << d;
+    if (std::abs(d - 0.5) > 1e-3) {
+      ASSERT_NE(v, 0.5) << "at d = " << d;
+    }
     max_slope = std::max(max_slope, std::abs(dP(*p, d)));
     // analytic derivative agrees with the values
     if (d > 1e-3 && d < 1 - 1e-3 && std::abs(d - 0.5) > 1e-3) {

@@ -75,7 +75,9 @@ TEST_P(TracerVsReference, NeverSkipsASurface) {
     }
     if (m.hit) {
       ASSERT_TRUE(tr.inside(ray.o + ray.d * m.t)) << "ray " << i << ": reported hit is outside";
-      if (std::isfinite(ref)) ASSERT_GE(m.t, ref - ds - 1e-9 * R) << "hit before the reference's sample";
+      if (std::isfinite(ref)) {
+        ASSERT_GE(m.t, ref - ds - 1e-9 * R) << "hit before the reference's sample";
+      }
     }
   }
   EXPECT_GT(hits, 40);
