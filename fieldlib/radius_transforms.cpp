@@ -106,12 +106,13 @@ class ProfileN final : public RadiusProfile {
     double s = 0;
     if (linear(d, w)) s = 1 / w.lo;
     if (quadratic(d, w2hi)) {
+      const Lows wq = quadratic_w(d, w);
       if (w.lo == w.hi) {  // N_n' is linear in d: its maximum is at an end of the clipped [d]
         const double A = 2 * (1 / w.lo - 1 / w2lo) / w2lo;
         const double a = std::max(d.lo, 0.5 * (1 - w2lo)), b = std::min(d.hi, 0.5);
         s = std::max({s, 1 / w.lo + 2 * A * (a - 0.5), 1 / w.lo + 2 * A * (b - 0.5)});
       } else {
-        s = std::max({s, 1 / w.lo, 2 / w2lo - 1 / w.hi});
+        s = std::max({s, 1 / wq.w1, 2 / wq.w2 - 1 / w.hi});
       }
     }
     return s * kPad;
@@ -122,9 +123,9 @@ class ProfileN final : public RadiusProfile {
       s = std::min((std::min(d.hi, 0.5 * (1 + w.hi)) - 0.5) / (w.lo * w.lo), 0.5 / w.lo);
     const double w2hi = w2(w.hi);
     if (quadratic(d, w2hi)) {
-      const double e = std::min(0.5 - d.lo, 0.5 * w2hi);
-      double q = std::min(e, w2hi / 8) / (w.lo * w.lo);
-      if (rule_ == W2Rule::Equal) q += std::min(e / (w.lo * w.lo), 0.5 / w.lo);
+      const double e = std::min(0.5 - d.lo, 0.5 * w2hi), w1lo = quadratic_w(d, w).w1;
+      double q = std::min(e, w2hi / 8) / (w1lo * w1lo);
+      if (rule_ == W2Rule::Equal) q += std::min(e / (w1lo * w1lo), 0.5 / w1lo);
       s = std::max(s, q);
     }
     return s * kPad;
@@ -134,7 +135,7 @@ class ProfileN final : public RadiusProfile {
     double s = 0;
     if (linear(d, w))
       s = 2 * std::min((std::min(d.hi, 0.5 * (1 + w.hi)) - 0.5) / (w.lo * w.lo), 0.5 / w.lo);
-    if (quadratic(d, w2(w.hi))) s = std::max(s, 1 / (w.lo * w.lo));
+    if (quadratic(d, w2(w.hi))) s = std::max(s, 1 / std::pow(quadratic_w(d, w).w1, 2));
     return s * kPad;
   }
   double outer_end(double w) const override { return 0.5 * (1 + w); }
@@ -161,6 +162,23 @@ class ProfileN final : public RadiusProfile {
         return 1;
     }
     return 0;
+  }
+  // The smallest w1 and w2 at which the quadratic branch is reached from [d]: it needs
+  // d >= 0.5(1 - w2), i.e. w2 >= 1 - 2 d.hi (T and all partials are 0 below it).
+  struct Lows {
+    double w1, w2;
+  };
+  Lows quadratic_w(Interval d, Interval w) const {
+    const double w2lo = std::max(w2(w.lo), 1 - 2 * d.hi);
+    switch (rule_) {
+      case W2Rule::Fixed:
+        return {w.lo, w2lo};
+      case W2Rule::Double:
+        return {std::max(w.lo, 0.5 * w2lo), w2lo};
+      case W2Rule::Equal:
+        return {std::max(w.lo, w2lo), w2lo};
+    }
+    return {w.lo, w2lo};
   }
   static bool linear(Interval d, Interval w) { return d.hi >= 0.5 && d.lo < 0.5 * (1 + w.hi); }
   static bool quadratic(Interval d, double w2hi) { return d.lo < 0.5 && d.hi >= 0.5 * (1 - w2hi); }
