@@ -34,6 +34,20 @@ NodePtr create_ricci_difference(const Params& p, const BuildContext& ctx);    //
 NodePtr create_scale_union(const Params& p, const BuildContext& ctx);  // 000 Eq. 8, §6.3
 NodePtr create_scale_intersection(const Params& p, const BuildContext& ctx);
 
+// The scale operators on two numbers (MATH.md §6.3): BSA2 (bsa) or BSS2, and ∂h/∂x_i into dh.
+// Parameters are not validated here (the node's creator does): r_i > 0, p < r1 r2, BSS2 r_i < 1.
+class ScaleOperator {
+ public:
+  ScaleOperator(double r1, double r2, double p, bool bsa);
+  double operator()(double x1, double x2, double dh[2]) const;
+  bool region3(double x1, double x2) const;
+
+ private:
+  double r1_, r2_, p_;
+  int s_;  // +1: y = x/h - 1 (BSA2); -1: y = 1 - x/h (BSS2)
+  double a_, b1_, b2_;
+};
+
 // The constructive-geometry complement 1/f is evaluated as 1/max(f, kCgFloor) (f <= 0 has no
 // complement; CG fields are >= 0 and reach 0 only on a skeleton).
 constexpr double kCgFloor = 1e-12;

@@ -22,63 +22,72 @@
 
 namespace softtrace {
 
+ScaleOperator::ScaleOperator(double r1, double r2, double p, bool bsa)
+    : r1_(r1), r2_(r2), p_(p), s_(bsa ? 1 : -1) {
+  a_ = (1 + 2 * s_ * r2_) * r1_ * r1_ + (1 + s_ * r1_) * (1 + s_ * r1_) * r2_ * r2_ + 2 * p_;
+  b1_ = -2 * ((1 + s_ * r1_) * r2_ * r2_ + p_);
+  b2_ = -2 * ((1 + s_ * r2_) * r1_ * r1_ + p_);
+}
+
+bool ScaleOperator::region3(double x1, double x2) const {
+  if (!(x1 > 0 && x2 > 0)) return false;
+  if (s_ > 0) return x1 / (1 + r1_) < x2 && x2 < (1 + r2_) * x1;
+  return (1 - r1_) * x2 < x1 && (1 - r2_) * x1 < x2;
+}
+
+double ScaleOperator::operator()(double x1, double x2, double dh[2]) const {
+  const bool first = s_ > 0 ? x1 <= x2 : x1 >= x2;  // which argument min/max picks
+  const double sharp = first ? x1 : x2;
+  if (dh) {
+    dh[0] = first ? 1 : 0;
+    dh[1] = first ? 0 : 1;
+  }
+  if (!region3(x1, x2)) return sharp;
+  const double b = b1_ * x1 + b2_ * x2;
+  const double c = r1_ * r1_ * x2 * x2 + r2_ * r2_ * x1 * x1 + 2 * p_ * x1 * x2;
+  const double q = std::sqrt(std::max(b * b - 4 * a_ * c, 0.0));
+  // The "+" root for BSA2 and the "-" root for BSS2, each in its cancellation-free form (A6).
+  double h;
+  if (s_ > 0)
+    h = b > 0 ? 2 * c / (-b - q) : (-b + q) / (2 * a_);
+  else
+    h = b < 0 ? 2 * c / (-b + q) : (-b - q) / (2 * a_);
+  if (!std::isfinite(h)) return sharp;
+  if (dh) {  // implicit function theorem on G(h; x) = a h^2 + b h + c
+    const double Gh = 2 * a_ * h + b;
+    const double G1 = h * b1_ + 2 * r2_ * r2_ * x1 + 2 * p_ * x2;
+    const double G2 = h * b2_ + 2 * r1_ * r1_ * x2 + 2 * p_ * x1;
+    const double d1 = -G1 / Gh, d2 = -G2 / Gh;
+    if (std::isfinite(d1) && std::isfinite(d2)) {
+      dh[0] = d1;
+      dh[1] = d2;
+    }
+  }
+  return h;
+}
+
 namespace {
 
-// BSA2 (sigma = 1) or BSS2 (sigma = -1)   — 000 §II.C.3, MATH.md §6.3.2, §6.3.3
+// BSA2 or BSS2 of two children   — 000 §II.C.3, MATH.md §6.3.2, §6.3.3
 class Scale final : public FieldNode {
  public:
-  Scale(NodePtr f1, NodePtr f2, double r1, double r2, double p, int sigma)
-      : f1_(std::move(f1)), f2_(std::move(f2)), r1_(r1), r2_(r2), p_(p), s_(sigma) {
-    a_ = (1 + 2 * s_ * r2_) * r1_ * r1_ + (1 + s_ * r1_) * (1 + s_ * r1_) * r2_ * r2_ + 2 * p_;
-    b1_ = -2 * ((1 + s_ * r1_) * r2_ * r2_ + p_);
-    b2_ = -2 * ((1 + s_ * r2_) * r1_ * r1_ + p_);
-    kappa_ = s_ > 0 ? (r1_ + r2_) / (r1_ * r2_ + r1_ + r2_) : (r1_ + r2_ - r1_ * r2_) / (r1_ + r2_);
-    gain_ = s_ > 0 ? 1.0 : 1 / (1 - std::max(r1_, r2_));
-  }
-
-  // The operator on two numbers, with ∂h/∂x_i when dh is non-null.
-  double apply(double x1, double x2, double dh[2]) const {
-    const bool first = s_ > 0 ? x1 <= x2 : x1 >= x2;  // which argument min/max picks
-    const double sharp = first ? x1 : x2;
-    if (dh) {
-      dh[0] = first ? 1 : 0;
-      dh[1] = first ? 0 : 1;
-    }
-    if (!region3(x1, x2)) return sharp;
-    const double b = b1_ * x1 + b2_ * x2;
-    const double c = r1_ * r1_ * x2 * x2 + r2_ * r2_ * x1 * x1 + 2 * p_ * x1 * x2;
-    const double q = std::sqrt(std::max(b * b - 4 * a_ * c, 0.0));
-    // The "+" root for BSA2 and the "-" root for BSS2, each in its cancellation-free form (A6).
-    double h;
-    if (s_ > 0)
-      h = b > 0 ? 2 * c / (-b - q) : (-b + q) / (2 * a_);
-    else
-      h = b < 0 ? 2 * c / (-b + q) : (-b - q) / (2 * a_);
-    if (!std::isfinite(h)) return sharp;
-    if (dh) {
-      const double Gh = 2 * a_ * h + b;
-      const double G1 = h * b1_ + 2 * r2_ * r2_ * x1 + 2 * p_ * x2;
-      const double G2 = h * b2_ + 2 * r1_ * r1_ * x2 + 2 * p_ * x1;
-      const double d1 = -G1 / Gh, d2 = -G2 / Gh;
-      if (std::isfinite(d1) && std::isfinite(d2)) {
-        dh[0] = d1;
-        dh[1] = d2;
-      }
-    }
-    return h;
+  Scale(NodePtr f1, NodePtr f2, double r1, double r2, double p, bool bsa)
+      : f1_(std::move(f1)), f2_(std::move(f2)), op_(r1, r2, p, bsa), bsa_(bsa) {
+    kappa_ = bsa ? (r1 + r2) / (r1 * r2 + r1 + r2) : (r1 + r2 - r1 * r2) / (r1 + r2);
+    gain_ = bsa ? 1.0 : 1 / (1 - std::max(r1, r2));
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
     Vec3 g1, g2;
     const double x1 = f1_->eval(p, grad ? &g1 : nullptr), x2 = f2_->eval(p, grad ? &g2 : nullptr);
     double dh[2];
-    const double h = apply(x1, x2, grad ? dh : nullptr);
+    const double h = op_(x1, x2, grad ? dh : nullptr);
     if (grad) *grad = g1 * dh[0] + g2 * dh[1];
     return h;
   }
   Interval interval(const Box& b) const override {
     const Interval i1 = f1_->interval(b), i2 = f2_->interval(b);
-    const double lo = apply(i1.lo, i2.lo, nullptr), hi = apply(i1.hi, i2.hi, nullptr);
+    const double lo = op_(i1.lo, i2.lo, nullptr), hi = op_(i1.hi, i2.hi, nullptr);
     return iv::out(lo - 1e-13 * std::abs(lo), hi + 1e-13 * std::abs(hi));
   }
   double lipschitz() const override {
@@ -90,24 +99,18 @@ class Scale final : public FieldNode {
   Box region(double level, Side side) const override {
     // BSA2: {B >= l} needs both x_i >= l; {B <= c} needs some x_i <= c/κ_A (c > 0).
     // BSS2: {B <= c} needs both x_i <= c; {B >= l} needs some x_i >= l κ_S (l > 0).
-    const bool both = (s_ > 0) == (side == Side::Above);
+    const bool both = bsa_ == (side == Side::Above);
     double l = level;
-    if (!both && level > 0) l = s_ > 0 ? level / kappa_ : level * kappa_;
+    if (!both && level > 0) l = bsa_ ? level / kappa_ : level * kappa_;
     const Box a = f1_->region(l, side), c = f2_->region(l, side);
     return both ? a.intersected(c) : a.united(c);
   }
 
  private:
-  bool region3(double x1, double x2) const {
-    if (!(x1 > 0 && x2 > 0)) return false;
-    if (s_ > 0) return x1 / (1 + r1_) < x2 && x2 < (1 + r2_) * x1;
-    return (1 - r1_) * x2 < x1 && (1 - r2_) * x1 < x2;
-  }
-
   NodePtr f1_, f2_;
-  double r1_, r2_, p_;
-  int s_;
-  double a_, b1_, b2_, kappa_, gain_;
+  ScaleOperator op_;
+  bool bsa_;
+  double kappa_, gain_;
 };
 
 NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
@@ -123,7 +126,7 @@ NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
   }
   std::vector<NodePtr> c = build_children(p, "children", ctx);
   p.check(c.size() == 2, "children", "expected exactly 2 children");
-  return std::make_unique<Scale>(std::move(c[0]), std::move(c[1]), r1, r2, pp, bsa ? 1 : -1);
+  return std::make_unique<Scale>(std::move(c[0]), std::move(c[1]), r1, r2, pp, bsa);
 }
 
 }  // namespace
