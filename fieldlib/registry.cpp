@@ -18,7 +18,7 @@ const std::vector<NodeKind>& node_kinds() {
       {"superquadric", "distance", "000 Eq.3; radii [a1,a2,a3], n1, n2", create_superquadric},
       {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)", create_segment},
       // Soft objects, MATH.md §4.
-      {"soft_object", "object", "P(d): distance, potential (default blanc s=0)",
+      {"soft_object", "object", "P(T(d)): distance, potential (default blanc s=0), radii",
        create_soft_object},
       // Blends, MATH.md §5-§7.
       {"soft_blend", "blend", "sum of the children (000 Eq.12)", create_soft_blend},
