@@ -375,6 +375,29 @@ TEST(SurfaceDefined, BoxLipschitzNearTheSkeleton) {
   EXPECT_LE(modulated("T_an", kFa)->interval(outside).hi, 1e-300);
 }
 
+TEST(SurfaceDefined, BoxBoundsStayUsefulAtTheSurface) {
+  // Boxes of 5 % of the object's size across the surface d = 0.5: [d]/[f] alone lets [w] reach
+  // w_min (bounds of 1e7 for T_sn); the octant refinement of soft_object.cpp keeps them within
+  // a small factor of the sampled slopes.
+  for (const auto& [type, f] : {std::pair<const char*, const char*>{"T_sn", kFs}, {"T_an", kFa}}) {
+    const auto n = modulated(type, f);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(-1.5, 1.5), v(-1, 1);
+    int boxes = 0;
+    for (int i = 0; i < 3000 && boxes < 30; ++i) {
+      const Box b = Box::around({u(rng), u(rng), u(rng)}, 0.05);
+      const Interval I = n->interval(b);
+      if (!(I.lo <= 0.5 && I.hi >= 0.5)) continue;
+      ++boxes;
+      double m = 0;
+      for (int k = 0; k < 300; ++k)
+        m = std::max(m, length(n->gradient(b.center() + Vec3{v(rng), v(rng), v(rng)} * 0.05)));
+      EXPECT_LE(n->lipschitz(b), 100 * m) << type;
+    }
+    EXPECT_GE(boxes, 10);
+  }
+}
+
 TEST(SurfaceDefined, SupportBoxes) {  // [TA-2]
   const Box b = modulated("T_an", kFa)->region(1e-300, Side::Above);
   EXPECT_NEAR(b.hi.x, 1.1, 1e-9);  // f_a = 0.5 box: half the modulation radii
