@@ -124,7 +124,9 @@ class ProfileN final : public RadiusProfile {
     const double w2hi = w2(w.hi);
     if (quadratic(d, w2hi)) {
       const double e = std::min(0.5 - d.lo, 0.5 * w2hi), w1lo = quadratic_w(d, w).w1;
-      double q = std::min(e, w2hi / 8) / (w1lo * w1lo);
+      // e(1 - 2e/w2) <= min(e, w2/8) and w2 <= 2 w1 for every rule: <= min(e/w1^2, 1/(4 w1)).
+      double q = std::min({e, w2hi / 8}) / (w1lo * w1lo);
+      q = std::min(q, 0.25 / w1lo);
       if (rule_ == W2Rule::Equal) q += std::min(e / (w1lo * w1lo), 0.5 / w1lo);
       s = std::max(s, q);
     }

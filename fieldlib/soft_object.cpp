@@ -96,14 +96,7 @@ class TransformedSoftObject final : public FieldNode {
     return v;
   }
 
-  Interval interval(const Box& b) const override {
-    const Bounds B = bounds(b);
-    const Interval I = P_->interval(B.T);
-    if (!decorrelated(B, b)) return I;
-    Interval h(kInf, -kInf);
-    for (const Box& s : octants(b)) h = hull(h, P_->interval(bounds(s).T));
-    return {std::max(I.lo, h.lo), std::min(I.hi, h.hi)};
-  }
+  Interval interval(const Box& b) const override { return refined_interval(b, kRefine); }
 
   double lipschitz() const override {
     if (src_ != WSource::Constant) return kInf;
@@ -111,14 +104,7 @@ class TransformedSoftObject final : public FieldNode {
     return mul(P_->lipschitz(), mul(s, d_->lipschitz()));
   }
 
-  double lipschitz(const Box& b) const override {
-    const Bounds B = bounds(b);
-    const double L = lipschitz(b, B);
-    if (!decorrelated(B, b)) return L;
-    double m = 0;
-    for (const Box& s : octants(b)) m = std::max(m, lipschitz(s, bounds(s)));
-    return std::min(L, m);
-  }
+  double lipschitz(const Box& b) const override { return refined_lipschitz(b, kRefine); }
 
   Box region(double level, Side side) const override {
     if (side != Side::Above || level <= 0) return Box::unbounded();
@@ -140,10 +126,28 @@ class TransformedSoftObject final : public FieldNode {
   };
 
   // [d]/[f] loses the correlation of d and f (their ratio is constant along rays from a common
-  // centre), so [w] can reach the clamp although w stays well above it in the box; one level of
-  // octants restores most of it (measured for T_sn on boxes of 5 % of the object's size at its
-  // surface: bounds of 1e7 drop to ~1e2 against sampled slopes of ~10). Both are sound; the
-  // smaller is kept.
+  // centre), so [w] can reach the clamp although w stays well above it in the box; up to two
+  // levels of octants, only where [w] is that wide, restore most of it (measured for T_sn on
+  // boxes of 5 % of the object's size at its surface: bounds of 1e7 drop to ~1e2 against sampled
+  // slopes of ~10). Every level is sound; the smaller bound is kept.
+  static constexpr int kRefine = 2;  // octant levels: at most 8 + 64 sub-boxes
+
+  Interval refined_interval(const Box& b, int levels) const {
+    const Bounds B = bounds(b);
+    const Interval I = P_->interval(B.T);
+    if (levels == 0 || !decorrelated(B, b)) return I;
+    Interval h(kInf, -kInf);
+    for (const Box& s : octants(b)) h = hull(h, refined_interval(s, levels - 1));
+    return {std::max(I.lo, h.lo), std::min(I.hi, h.hi)};
+  }
+  double refined_lipschitz(const Box& b, int levels) const {
+    const Bounds B = bounds(b);
+    const double L = lipschitz(b, B);
+    if (levels == 0 || !decorrelated(B, b)) return L;
+    double m = 0;
+    for (const Box& s : octants(b)) m = std::max(m, refined_lipschitz(s, levels - 1));
+    return std::min(L, m);
+  }
   bool decorrelated(const Bounds& B, const Box& b) const {
     return src_ != WSource::Constant && b.bounded() && B.w.lo < 0.25 * B.w.hi && B.T.lo < B.T.hi;
   }
