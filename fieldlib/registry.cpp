@@ -39,7 +39,7 @@ const std::vector<NodeKind>& node_kinds() {
       {"super_ellipsoidal_intersection", "distance", "(sum x_i^n)^(1/n) of distances (000 Eq.6)",
        create_super_ellipsoidal_intersection},
       // Soft objects, MATH.md §4.
-      {"soft_object", "object", "P(d): distance, potential (default blanc s=0)",
+      {"soft_object", "object", "P(T(d)): distance, potential (default blanc s=0), radii",
        create_soft_object},
       // Blends, MATH.md §5-§7.
       {"soft_blend", "blend", "sum of the children (000 Eq.12)", create_soft_blend},
@@ -52,6 +52,24 @@ const std::vector<NodeKind>& node_kinds() {
        create_bt_difference},
       {"displacement_union", "blend", "BD_k = BT_k with all m = 1 (003 2.2)",
        create_displacement_union},
+      {"perlin_union", "blend", "1 - prod(1 - f_i) (002 Eq.4)", create_perlin_union},
+      {"perlin_intersection", "blend", "prod f_i (002 Eq.5)", create_perlin_intersection},
+      {"perlin_difference", "blend", "f_1 prod_{i>=2}(1 - f_i) (002 Eq.6)",
+       create_perlin_difference},
+      {"ricci_union", "blend", "Ricci union in the object's convention; n", create_ricci_union},
+      {"ricci_intersection", "blend", "Ricci intersection in the object's convention; n",
+       create_ricci_intersection},
+      {"ricci_difference", "blend", "Ricci difference (first child minus the others); n",
+       create_ricci_difference},
+      {"min", "blend", "sharp minimum of the children", create_min},
+      {"max", "blend", "sharp maximum of the children", create_max},
+      {"scale_union", "blend", "scale method union (BSA2 / BSS2 on soft fields); r1, r2, p",
+       create_scale_union},
+      {"scale_intersection", "blend",
+       "scale method intersection (BSS2 / BSA2 on soft fields); r1, r2, p",
+       create_scale_intersection},
+      {"complement", "blend", "1-f (soft), -f (zero), 1/f (constructive); one child",
+       create_complement},
   };
   return kinds;
 }
@@ -86,8 +104,8 @@ PotentialPtr build_potential(const Params& p) {
       p.finish();
       return P;
     }
-  p.fail("type", "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) +
-                     ")");
+  p.fail("type",
+         "unknown potential '" + type + "' (expected one of: " + names_of(kPotentials) + ")");
 }
 
 NodePtr build_field(const Params& p, const BuildContext& ctx) {
@@ -96,8 +114,8 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   for (const auto& k : node_kinds())
     if (type == k.name) kind = &k;
   if (!kind)
-    p.fail("type", "unknown node type '" + type + "' (expected one of: " +
-                       names_of(node_kinds()) + ")");
+    p.fail("type",
+           "unknown node type '" + type + "' (expected one of: " + names_of(node_kinds()) + ")");
   NodePtr node = kind->create(p, ctx);
 
   const Vec3 translate = p.vec3("translate", {});

@@ -1,12 +1,26 @@
 #include "soft_object.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "potentials.h"
+#include "radius_transforms.h"
 
 namespace softtrace {
 
 namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// w1 = d/f - 1 is capped here where f -> 0 away from the skeleton; T_n/T_l are then ~0.5 on the
+// outer branch, the limit w1 -> infinity.
+constexpr double kWMax = 1e6;
+
+// a·b with 0·inf = 0: a flat factor makes the product flat.
+double mul(double a, double b) {
+  return a == 0 || b == 0 ? 0 : a * b;
+}
 
 // P ∘ d   — 000 Eq. 9, 002 Eq. 1
 class SoftObject final : public FieldNode {
@@ -22,9 +36,9 @@ class SoftObject final : public FieldNode {
     return v;
   }
   Interval interval(const Box& b) const override { return P_->interval(d_->interval(b)); }
-  double lipschitz() const override { return chain(P_->lipschitz(), d_->lipschitz()); }
+  double lipschitz() const override { return mul(P_->lipschitz(), d_->lipschitz()); }
   double lipschitz(const Box& b) const override {
-    return chain(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));
+    return mul(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));
   }
   Box region(double level, Side side) const override {
     if (side == Side::Above && level > 0) return d_->region(1, Side::Below);
@@ -32,19 +46,255 @@ class SoftObject final : public FieldNode {
   }
 
  private:
-  // A potential that is flat over the box makes the composite flat, whatever d does.
-  static double chain(double LP, double Ld) { return LP == 0 ? 0 : LP * Ld; }
-
   NodePtr d_;
   PotentialPtr P_;
 };
+
+// Where w comes from: a constant, w1 = d/f - 1 (T_an, T_al, contour; 002 Eq. 11, 000 Eq. 15) or
+// w2 = 1 - d/f (T_sn, T_sr; 002 Eq. 12).
+enum class WSource { Constant, Outer, Inner };
+
+// P ∘ T ∘ d   — 000 Eqs. 13–15, 002 Eqs. 10–14, MATH.md §4.2–§4.9
+class TransformedSoftObject final : public FieldNode {
+ public:
+  TransformedSoftObject(NodePtr d, PotentialPtr P, std::unique_ptr<RadiusProfile> T, double w)
+      : d_(std::move(d)), P_(std::move(P)), T_(std::move(T)), src_(WSource::Constant), w_(w) {}
+  TransformedSoftObject(NodePtr d, PotentialPtr P, std::unique_ptr<RadiusProfile> T, WSource src,
+                        NodePtr f, double f_scale, double w_min)
+      : d_(std::move(d)),
+        P_(std::move(P)),
+        T_(std::move(T)),
+        src_(src),
+        f_(std::move(f)),
+        scale_(f_scale),
+        w_min_(w_min) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    Vec3 gd, gf;
+    const double d = d_->eval(p, grad ? &gd : nullptr);
+    if (d <= 0) {  // the skeleton: T = 0 (§4.9), P'(0) = 0
+      if (grad) *grad = {};
+      return P_->eval(0, nullptr);
+    }
+    double w = w_, wd = 0, wf = 0;
+    if (src_ != WSource::Constant) {
+      const double f = scale_ * f_->eval(p, grad ? &gf : nullptr);
+      w = parameter(d, f, &wd, &wf);
+      gf = gf * scale_;
+    }
+    double Td, Tw, dP;
+    const double T = T_->eval(d, w, &Td, &Tw);
+    const double v = P_->eval(T, grad ? &dP : nullptr);
+    if (grad) {
+      if (dP == 0) {
+        *grad = {};
+      } else {
+        const Vec3 gT = gd * (Td + Tw * wd) + gf * (Tw * wf);
+        *grad = gT * dP;
+      }
+    }
+    return v;
+  }
+
+  Interval interval(const Box& b) const override { return refined_interval(b, kRefine); }
+
+  double lipschitz() const override {
+    if (src_ != WSource::Constant) return kInf;
+    const double s = T_->slope_d({0, kInf}, Interval(w_));
+    return mul(P_->lipschitz(), mul(s, d_->lipschitz()));
+  }
+
+  double lipschitz(const Box& b) const override { return refined_lipschitz(b, kRefine); }
+
+  Box region(double level, Side side) const override {
+    if (side != Side::Above || level <= 0) return Box::unbounded();
+    switch (src_) {
+      case WSource::Constant:
+        return d_->region(T_->outer_end(w_), Side::Below);
+      case WSource::Outer:
+        return f_->region(0.5 / scale_, Side::Below)
+            .united(d_->region(0.5 * (1 + w_min_), Side::Below));
+      case WSource::Inner:
+        return d_->region(1, Side::Below);
+    }
+    return Box::unbounded();
+  }
+
+ private:
+  struct Bounds {
+    Interval d, f, r, w, T;  // r = d/f, unclamped
+  };
+
+  // [d]/[f] loses the correlation of d and f (their ratio is constant along rays from a common
+  // centre), so [w] can reach the clamp although w stays well above it in the box; up to two
+  // levels of octants, only where [w] is that wide, restore most of it (measured for T_sn on
+  // boxes of 5 % of the object's size at its surface: bounds of 1e7 drop to ~1e2 against sampled
+  // slopes of ~10). Every level is sound; the smaller bound is kept.
+  static constexpr int kRefine = 2;  // octant levels: at most 8 + 64 sub-boxes
+
+  Interval refined_interval(const Box& b, int levels) const {
+    const Bounds B = bounds(b);
+    const Interval I = P_->interval(B.T);
+    if (levels == 0 || !decorrelated(B, b)) return I;
+    Interval h(kInf, -kInf);
+    for (const Box& s : octants(b)) h = hull(h, refined_interval(s, levels - 1));
+    return {std::max(I.lo, h.lo), std::min(I.hi, h.hi)};
+  }
+  double refined_lipschitz(const Box& b, int levels) const {
+    const Bounds B = bounds(b);
+    const double L = lipschitz(b, B);
+    if (levels == 0 || !decorrelated(B, b)) return L;
+    double m = 0;
+    for (const Box& s : octants(b)) m = std::max(m, refined_lipschitz(s, levels - 1));
+    return std::min(L, m);
+  }
+  bool decorrelated(const Bounds& B, const Box& b) const {
+    return src_ != WSource::Constant && b.bounded() && B.w.lo < 0.25 * B.w.hi && B.T.lo < B.T.hi;
+  }
+  static std::vector<Box> octants(const Box& b) {
+    std::vector<Box> out(8);
+    const Vec3 c = b.center();
+    for (int k = 0; k < 8; ++k)
+      for (int i = 0; i < 3; ++i) {
+        const bool hi = (k >> i) & 1;
+        out[k].lo[i] = hi ? c[i] : b.lo[i];
+        out[k].hi[i] = hi ? b.hi[i] : c[i];
+      }
+    return out;
+  }
+
+  double lipschitz(const Box& b, const Bounds& B) const {
+    if (B.T.hi <= 0) return 0;  // T = 0: P(0) over the whole box
+    const double LP = P_->lipschitz(B.T);
+    if (LP == 0) return 0;
+    const double Ld = d_->lipschitz(b);
+    const double dterm = mul(T_->slope_d(B.d, B.w), Ld);
+    if (src_ == WSource::Constant) return std::min(lipschitz(), mul(LP, dterm));
+    const double sw = T_->slope_w(B.d, B.w);
+    double wterm = 0;
+    if (sw > 0) {
+      const double Lf = scale_ * f_->lipschitz(b);
+      const double G1 = B.f.lo > 0 ? Ld / B.f.lo + B.d.hi * Lf / (B.f.lo * B.f.lo) : kInf;
+      const double G2 = B.r.hi * (Ld + B.r.hi * Lf);
+      wterm = std::min(mul(sw, G1), mul(T_->slope_w_per_d(B.d, B.w), G2));
+    }
+    return mul(LP, (dterm + wterm) * (1 + 1e-12));
+  }
+
+  // w from d > 0 and f, clamped to [w_min, w_max] (§4.9), with ∂w/∂d and ∂w/∂f.
+  double parameter(double d, double f, double* wd, double* wf) const {
+    *wd = *wf = 0;
+    const double hi = src_ == WSource::Outer ? kWMax : 1;
+    if (f <= 0) return src_ == WSource::Outer ? kWMax : w_min_;  // condition (c) violated
+    const double sign = src_ == WSource::Outer ? 1 : -1;
+    const double w = src_ == WSource::Outer ? d / f - 1 : 1 - d / f;
+    if (w <= w_min_) return w_min_;
+    if (w >= hi) return hi;
+    *wd = sign / f;
+    *wf = -sign * d / (f * f);
+    return w;
+  }
+
+  Bounds bounds(const Box& b) const {
+    Bounds B;
+    const Interval d = d_->interval(b);
+    B.d = {std::max(0.0, d.lo), std::max(0.0, d.hi)};
+    if (src_ == WSource::Constant) {
+      B.w = Interval(w_);
+      B.T = T_->image(B.d, B.w);
+      return B;
+    }
+    const Interval f = f_->interval(b);
+    B.f = {iv::down(scale_ * f.lo), iv::up(scale_ * f.hi)};
+    if (B.f.lo > 0) {
+      B.r = B.d / B.f;
+    } else {  // f can reach 0 (or below, where w is capped): no upper bound on d/f
+      B.r = {B.f.hi > 0 ? iv::down(B.d.lo / B.f.hi) : kInf, kInf};
+    }
+    const auto clamp = [&](double w, double hi) { return std::min(std::max(w, w_min_), hi); };
+    if (src_ == WSource::Outer) {
+      B.w = {clamp(iv::down(B.r.lo - 1), kWMax), clamp(iv::up(B.r.hi - 1), kWMax)};
+      // [TA-1] with the clamp: T = 1 where d >= 0.5(1+w_min) and f >= 0.5.
+      if (B.d.lo > 0.5 * (1 + w_min_) * (1 + 1e-12) && B.f.lo > 0.5 * (1 + 1e-12)) {
+        B.T = Interval(1);
+        return B;
+      }
+    } else {
+      B.w = {clamp(iv::down(1 - B.r.hi), 1), clamp(iv::up(1 - B.r.lo), 1)};
+      // [TS-1] with the clamp: T = 0 where d < 0.5(1-w_min) and f < 0.5.
+      if (B.d.hi < 0.5 * (1 - w_min_) * (1 - 1e-12) && B.f.hi < 0.5 * (1 - 1e-12)) {
+        B.T = Interval(0);
+        return B;
+      }
+    }
+    B.T = T_->image(B.d, B.w);
+    return B;
+  }
+
+  NodePtr d_;
+  PotentialPtr P_;
+  std::unique_ptr<RadiusProfile> T_;
+  WSource src_;
+  double w_ = 1;
+  NodePtr f_;
+  double scale_ = 1, w_min_ = 1e-4;
+};
+
+NodePtr create_transformed(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
+  const std::string type = r.string("type");
+  if (type == "T_n") {
+    const double w1 = r.positive("w1"), w2 = r.positive("w2");
+    r.check(w2 <= 1, "w2", "expected 0 < w2 <= 1 (MATH.md §4.2)");
+    r.check(w2 <= 2 * w1, "w2", "expected w2 <= 2*w1, else T_n is not monotone (MATH.md §4.2)");
+    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P),
+                                                   make_profile_n(W2Rule::Fixed, w2), w1);
+  }
+  if (type == "T_l")
+    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), make_profile_l(),
+                                                   r.positive("w1"));
+  if (type == "T_r") {
+    const double w2 = r.positive("w2");
+    r.check(w2 <= 1, "w2", "expected 0 < w2 <= 1 (MATH.md §4.4)");
+    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), make_profile_r(),
+                                                   w2);
+  }
+  struct Modulated {
+    const char* name;
+    WSource src;
+    std::unique_ptr<RadiusProfile> (*profile)();
+    const char* key;
+    double scale;
+  };
+  static const Modulated kModulated[] = {
+      {"T_an", WSource::Outer, [] { return make_profile_n(W2Rule::Double); }, "modulation", 1},
+      {"T_al", WSource::Outer, make_profile_l, "modulation", 1},
+      {"T_sn", WSource::Inner, [] { return make_profile_n(W2Rule::Equal); }, "modulation", 1},
+      {"T_sr", WSource::Inner, make_profile_r, "modulation", 1},
+      // [000]'s contour surface fc = 1 is T_an with f_a = fc/2 (MATH.md §4.8, [VIR-2]).
+      {"contour", WSource::Outer, [] { return make_profile_n(W2Rule::Double); }, "contour", 0.5},
+  };
+  for (const auto& m : kModulated) {
+    if (type != m.name) continue;
+    const double w_min = r.positive("w_min", 1e-4);
+    r.check(w_min < 0.5, "w_min", "expected 0 < w_min < 0.5 (MATH.md §4.9)");
+    NodePtr f = build_field(r.object(m.key), ctx);
+    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), m.profile(), m.src,
+                                                   std::move(f), m.scale, w_min);
+  }
+  r.fail("type", "unknown radius transform '" + type +
+                     "' (expected one of: T_n, T_l, T_r, T_an, T_al, T_sn, T_sr, contour)");
+}
 
 }  // namespace
 
 NodePtr create_soft_object(const Params& p, const BuildContext& ctx) {
   NodePtr d = build_field(p.object("distance"), ctx);
   PotentialPtr P = p.has("potential") ? build_potential(p.object("potential")) : make_blanc(0);
-  return std::make_unique<SoftObject>(std::move(d), std::move(P));
+  if (!p.has("radii")) return std::make_unique<SoftObject>(std::move(d), std::move(P));
+  const Params r = p.object("radii");
+  NodePtr node = create_transformed(r, std::move(d), std::move(P), ctx);
+  r.finish();
+  return node;
 }
 
 }  // namespace softtrace

@@ -1,6 +1,21 @@
-// Soft objects f = P(d(X)) (MATH.md §4.1; 000 Eq. 9, 002 Eq. 1).
-// Bounds: interval P([d]) (P is monotone); Lipschitz |P'|([d]) · L_d by the chain rule, 0 where
-// d >= 1 over the whole box; support {d < 1} ⊂ d.region(1, Below).
+// Soft objects f = P(T(d(X))) (MATH.md §4; 000 Eq. 9, 002 Eq. 1), with the optional radius
+// transform under "radii" (radius_transforms.h holds the formulas and their bounds).
+// Bounds:
+// - interval: P is non-increasing and T(d; w) monotone (radius_transforms.h), so the image is
+//   P of T's image over [d] × [w]; for surface-defined radii [w] comes from [d]/[f] - 1 (T_a*,
+//   contour with f = fc/2) or 1 - [d]/[f] (T_s*), clamped to [w_min, w_max].
+// - Lipschitz over a box: |P'|([T]) · (sup|∂T/∂d| L_d + sup|dT/dw| sup|∇w|), where
+//   |∇w| = |f∇d - d∇f|/f^2 <= L_d/f.lo + d.hi L_f/f.lo^2, or, near the skeleton where f.lo -> 0,
+//   |∇w| <= r (L_d + r L_f)/d with r = sup d/f, paired with sup|dT/dw|/d. 0 where T is 0 or 1
+//   over the whole box (P∘T constant), e.g. T_a* with d >= 0.5(1+w_min) and f >= 0.5 ([TA-1]),
+//   T_s* with d < 0.5(1-w_min) and f < 0.5 ([TS-1]). [d]/[f] ignores that d and f are
+//   correlated, so where [w] comes out wide both bounds are refined over up to two levels of
+//   octants (each sub-box bound is sound; the smaller result is kept). Global: the chain rule with
+//   constant w; +inf for surface-defined radii (w has no global bound) and T_l with w1 > 1
+//   ([TL-3]).
+// - support: plain/T_n/T_l {d < 0.5(1+w1)}, T_r and T_s* {d < 1}, T_a* {f_a < 0.5} ∪
+//   {d < 0.5(1+w_min)} ([TA-2]; the second set only matters where the w_min clamp acts),
+//   contour {fc < 1} ∪ {d < 0.5(1+w_min)}.
 #pragma once
 
 #include "registry.h"

@@ -1,0 +1,246 @@
+// Perlin's set blends, sharp min/max and the complement (MATH.md §1, §5.2).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "blends.h"
+#include "node_util.h"
+
+namespace softtrace {
+
+namespace {
+
+// 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, MATH.md §5.2. Each is a product
+// of factors g_i = f_i or 1 - f_i, complemented for the union.
+class Perlin final : public FieldNode {
+ public:
+  enum Mode { Union, Intersection, Difference };
+  Perlin(std::vector<NodePtr> c, Mode m) : c_(std::move(c)), mode_(m) {
+    std::vector<Interval> G;
+    for (size_t i = 0; i < c_.size(); ++i) G.push_back(factor(i, global_range(*c_[i])));
+    std::vector<double> L;
+    for (const auto& c : c_) L.push_back(c->lipschitz());
+    global_L_ = slope(G, L);
+  }
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const size_t k = c_.size();
+    std::vector<double> g(k);
+    std::vector<Vec3> gg(k);
+    for (size_t i = 0; i < k; ++i) {
+      g[i] = c_[i]->eval(p, grad ? &gg[i] : nullptr);
+      if (complemented(i)) {
+        g[i] = 1 - g[i];
+        gg[i] = -gg[i];
+      }
+    }
+    // Prefix and suffix products give Π_{j≠i} g_j without dividing by a g_i that may be 0.
+    std::vector<double> pre(k + 1, 1.0), suf(k + 1, 1.0);
+    for (size_t i = 0; i < k; ++i) pre[i + 1] = pre[i] * g[i];
+    for (size_t i = k; i-- > 0;) suf[i] = suf[i + 1] * g[i];
+    const double sign = mode_ == Union ? -1 : 1;
+    if (grad) {
+      *grad = {};
+      for (size_t i = 0; i < k; ++i) *grad += gg[i] * (sign * pre[i] * suf[i + 1]);
+    }
+    return mode_ == Union ? 1 - pre[k] : pre[k];
+  }
+  Interval interval(const Box& b) const override {
+    Interval prod(1);
+    for (size_t i = 0; i < c_.size(); ++i) prod = prod * factor(i, c_[i]->interval(b));
+    return mode_ == Union ? Interval(1) - prod : prod;
+  }
+  double lipschitz() const override { return global_L_; }
+  double lipschitz(const Box& b) const override {
+    std::vector<Interval> G;
+    std::vector<double> L;
+    for (size_t i = 0; i < c_.size(); ++i) {
+      G.push_back(factor(i, c_[i]->interval(b)));
+      L.push_back(c_[i]->lipschitz(b));
+    }
+    return std::min(global_L_, slope(G, L));
+  }
+  // Soft children (f >= 0): B > 0 needs some f_i > 0 (union), every f_i > 0 (intersection), or
+  // f_1 > 0 (difference); the support boxes follow.
+  Box region(double level, Side side) const override {
+    if (side == Side::Below || level <= 0) return Box::unbounded();
+    const double tiny = std::numeric_limits<double>::min();
+    if (mode_ == Difference) return c_[0]->region(tiny, side);
+    Box b = mode_ == Union ? Box() : Box::unbounded();
+    for (const auto& c : c_) {
+      const Box r = c->region(tiny, side);
+      b = mode_ == Union ? b.united(r) : b.intersected(r);
+    }
+    return b;
+  }
+
+ private:
+  bool complemented(size_t i) const { return mode_ == Union || (mode_ == Difference && i > 0); }
+  Interval factor(size_t i, Interval f) const { return complemented(i) ? Interval(1) - f : f; }
+  // Σ_i L_i sup|Π_{j≠i} G_j| ([PE-3]).
+  static double slope(const std::vector<Interval>& G, const std::vector<double>& L) {
+    double s = 0;
+    for (size_t i = 0; i < G.size(); ++i) {
+      double m = 1;
+      for (size_t j = 0; j < G.size(); ++j)
+        if (j != i) m *= magnitude(G[j]);
+      s += m == 0 || L[i] == 0 ? 0 : m * L[i];
+    }
+    return s * (1 + 1e-12);
+  }
+
+  std::vector<NodePtr> c_;
+  Mode mode_;
+  double global_L_;
+};
+
+// min / max of the children (sharp union/intersection baselines, MATH.md §1)
+class MinMax final : public FieldNode {
+ public:
+  MinMax(std::vector<NodePtr> c, bool is_min) : c_(std::move(c)), min_(is_min) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    double best = 0;
+    Vec3 g;
+    for (size_t i = 0; i < c_.size(); ++i) {
+      const double v = c_[i]->eval(p, grad ? &g : nullptr);
+      if (i == 0 || (min_ ? v < best : v > best)) {
+        best = v;
+        if (grad) *grad = g;
+      }
+    }
+    return best;
+  }
+  Interval interval(const Box& b) const override {
+    Interval r = c_[0]->interval(b);
+    for (size_t i = 1; i < c_.size(); ++i)
+      r = min_ ? min(r, c_[i]->interval(b)) : max(r, c_[i]->interval(b));
+    return r;
+  }
+  // |min(a) - min(b)| <= max_i |a_i - b_i|; over a box only children that can be the extreme
+  // somewhere in it (their interval reaches the result's interval) count.
+  double lipschitz() const override {
+    double L = 0;
+    for (const auto& c : c_) L = std::max(L, c->lipschitz());
+    return L;
+  }
+  double lipschitz(const Box& b) const override {
+    std::vector<Interval> I;
+    for (const auto& c : c_) I.push_back(c->interval(b));
+    const Interval r = interval(b);
+    double L = 0;
+    for (size_t i = 0; i < c_.size(); ++i)
+      if (min_ ? I[i].lo <= r.hi : I[i].hi >= r.lo) L = std::max(L, c_[i]->lipschitz(b));
+    return L;
+  }
+  // min >= l iff every f_i >= l; min <= c iff some f_i <= c (and dually for max).
+  Box region(double level, Side side) const override {
+    const bool all = min_ == (side == Side::Above);
+    Box b = all ? Box::unbounded() : Box();
+    for (const auto& c : c_) {
+      const Box r = c->region(level, side);
+      b = all ? b.intersected(r) : b.united(r);
+    }
+    return b;
+  }
+
+ private:
+  std::vector<NodePtr> c_;
+  bool min_;
+};
+
+// The complement of MATH.md §1: soft 1 - f, zero -f, constructive 1/f (guarded)
+class Complement final : public FieldNode {
+ public:
+  Complement(NodePtr c, Convention conv) : c_(std::move(c)), conv_(conv) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const double f = c_->eval(p, grad);
+    switch (conv_) {
+      case Convention::Soft:
+        if (grad) *grad = -*grad;
+        return 1 - f;
+      case Convention::Zero:
+        if (grad) *grad = -*grad;
+        return -f;
+      case Convention::Constructive:
+        if (f <= kCgFloor) {
+          if (grad) *grad = {};
+          return 1 / kCgFloor;
+        }
+        if (grad) *grad = *grad * (-1 / (f * f));
+        return 1 / f;
+    }
+    return f;
+  }
+  Interval interval(const Box& b) const override {
+    const Interval f = c_->interval(b);
+    switch (conv_) {
+      case Convention::Soft:
+        return Interval(1) - f;
+      case Convention::Zero:
+        return -f;
+      case Convention::Constructive:
+        return {iv::down(1 / std::max(f.hi, kCgFloor)), iv::up(1 / std::max(f.lo, kCgFloor))};
+    }
+    return f;
+  }
+  double lipschitz() const override {
+    return conv_ == Convention::Constructive ? std::numeric_limits<double>::infinity()
+                                             : c_->lipschitz();
+  }
+  double lipschitz(const Box& b) const override {
+    if (conv_ != Convention::Constructive) return c_->lipschitz(b);
+    // |∇(1/f)| = |∇f|/f^2, and 0 where the guard holds.
+    const double lo = std::max(c_->interval(b).lo, kCgFloor);
+    const double L = c_->lipschitz(b);
+    return L == 0 ? 0 : L / (lo * lo) * (1 + 1e-12);
+  }
+  Box region(double level, Side side) const override {
+    const Side other = side == Side::Above ? Side::Below : Side::Above;
+    switch (conv_) {
+      case Convention::Soft:
+        return c_->region(1 - level, other);
+      case Convention::Zero:
+        return c_->region(-level, other);
+      case Convention::Constructive:
+        // 1/max(f, floor) >= l > 0 iff f <= 1/l (when 1/l >= floor); <= c iff f >= 1/c.
+        if (side == Side::Above) {
+          if (level <= 0) return Box::unbounded();
+          return 1 / level < kCgFloor ? Box() : c_->region(1 / level, other);
+        }
+        if (level <= 0) return Box();
+        return 1 / level <= kCgFloor ? Box::unbounded() : c_->region(1 / level, other);
+    }
+    return Box::unbounded();
+  }
+
+ private:
+  NodePtr c_;
+  Convention conv_;
+};
+
+}  // namespace
+
+NodePtr create_perlin_union(const Params& p, const BuildContext& ctx) {
+  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Union);
+}
+NodePtr create_perlin_intersection(const Params& p, const BuildContext& ctx) {
+  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Intersection);
+}
+NodePtr create_perlin_difference(const Params& p, const BuildContext& ctx) {
+  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Difference);
+}
+NodePtr create_min(const Params& p, const BuildContext& ctx) {
+  return std::make_unique<MinMax>(build_children(p, "children", ctx), true);
+}
+NodePtr create_max(const Params& p, const BuildContext& ctx) {
+  return std::make_unique<MinMax>(build_children(p, "children", ctx), false);
+}
+NodePtr create_complement(const Params& p, const BuildContext& ctx) {
+  std::vector<NodePtr> c = build_children(p, "children", ctx, 1);
+  p.check(c.size() == 1, "children", "expected exactly one child");
+  return std::make_unique<Complement>(std::move(c[0]), ctx.convention);
+}
+
+}  // namespace softtrace

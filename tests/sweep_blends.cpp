@@ -1,0 +1,85 @@
+// Sweep cases for the set blends (see sweep.h): soft objects in the soft convention; Ricci, scale,
+// min/max and complement also on distance functions in the constructive convention.
+#include <limits>
+
+#include "sweep.h"
+
+namespace softtrace::test {
+namespace {
+
+const Box kDom({-2, -2, -2}, {2, 2, 2});
+const double kNone = std::numeric_limits<double>::quiet_NaN();
+
+#define SOFT_A \
+  R"({"type":"soft_object","translate":[-0.4,0,0],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2}})"
+#define SOFT_B \
+  R"({"type":"soft_object","translate":[0.5,0.2,0],"distance":{"type":"superquadric","radii":[0.9,1.2,0.8],"n1":2,"n2":4}})"
+#define SOFT_C \
+  R"({"type":"soft_object","translate":[0,-0.3,0.4],"potential":{"type":"wyvill"},"distance":{"type":"lp_metric","radii":[0.7,0.7,1.3],"n":3}})"
+#define DIST_A R"({"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2})"
+#define DIST_B \
+  R"({"type":"superquadric","translate":[0.5,0.2,0.1],"radii":[0.9,1.2,0.8],"n1":2,"n2":4})"
+#define DIST_FAR R"({"type":"lp_metric","translate":[0.3,3,0],"radii":[1,1.5,1],"n":2})"
+
+const SweepCase kCases[] = {
+    {"perlin_union", R"({"type":"perlin_union","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}",
+     kDom},
+    {"perlin_intersection",
+     R"({"type":"perlin_intersection","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}", kDom},
+    {"perlin_difference",
+     R"({"type":"perlin_difference","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}", kDom},
+    {"ricci_soft_union_n2", R"({"type":"ricci_union","n":2,"children":[)" SOFT_A "," SOFT_B "]}",
+     kDom},
+    {"ricci_soft_union_n0_7",
+     R"({"type":"ricci_union","n":0.7,"children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}", kDom},
+    {"ricci_soft_intersection",
+     R"({"type":"ricci_intersection","n":4,"children":[)" SOFT_A "," SOFT_B "]}", kDom},
+    {"ricci_soft_difference",
+     R"({"type":"ricci_difference","n":3,"children":[)" SOFT_A "," SOFT_B "]}", kDom},
+    {"scale_soft_union",
+     R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1,"children":[)" SOFT_A "," SOFT_B "]}",
+     kDom},
+    {"scale_soft_intersection",
+     R"({"type":"scale_intersection","r1":0.5,"r2":0.9,"p":-0.3,"children":[)" SOFT_A "," SOFT_B
+     "]}",
+     kDom},
+    {"min_soft", R"({"type":"min","children":[)" SOFT_A "," SOFT_B "]}", kDom},
+    {"max_soft", R"({"type":"max","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}", kDom},
+    {"complement_soft", R"({"type":"complement","children":[)" SOFT_A "]}", kDom, Convention::Soft,
+     kNone},
+    {"ricci_cg_union", R"({"type":"ricci_union","n":4,"children":[)" DIST_A "," DIST_B "]}", kDom,
+     Convention::Constructive, 1.0, Side::Below},
+    {"ricci_cg_intersection",
+     R"({"type":"ricci_intersection","n":2.5,"children":[)" DIST_A "," DIST_B "]}", kDom,
+     Convention::Constructive, 1.0, Side::Below},
+    {"ricci_cg_difference",
+     R"({"type":"ricci_difference","n":6,"children":[)" DIST_A "," DIST_FAR "]}", kDom,
+     Convention::Constructive, 1.0, Side::Below},
+    {"scale_cg_union_ellipse",
+     R"({"type":"scale_union","r1":0.5,"r2":0.8,"p":0.2,"children":[)" DIST_A "," DIST_B "]}", kDom,
+     Convention::Constructive, 1.0, Side::Below},
+    {"scale_cg_union_hyperbola",
+     R"({"type":"scale_union","r1":0.7,"r2":0.4,"p":-1.5,"children":[)" DIST_A "," DIST_B "]}",
+     kDom, Convention::Constructive, 1.0, Side::Below},
+    {"scale_cg_intersection",
+     R"({"type":"scale_intersection","r1":0.5,"r2":0.3,"p":0.05,"children":[)" DIST_A "," DIST_B
+     "]}",
+     kDom, Convention::Constructive, 1.0, Side::Below},
+    {"scale_cg_intersection_neg_p",
+     R"({"type":"scale_intersection","r1":0.4,"r2":0.6,"p":-0.8,"children":[)" DIST_A "," DIST_B
+     "]}",
+     kDom, Convention::Constructive, 1.0, Side::Below},
+    {"complement_cg", R"({"type":"complement","children":[)" DIST_FAR "]}", kDom,
+     Convention::Constructive, 0.8, Side::Above},
+    {"min_zero", R"({"type":"min","children":[)" DIST_A "," DIST_B "]}", kDom, Convention::Zero,
+     1.0, Side::Below},
+    {"max_zero", R"({"type":"max","children":[)" DIST_A "," DIST_B "]}", kDom, Convention::Zero,
+     1.0, Side::Below},
+    {"complement_zero", R"({"type":"complement","children":[)" DIST_A "]}", kDom, Convention::Zero,
+     -1.0, Side::Above},
+};
+
+INSTANTIATE_TEST_SUITE_P(Blends, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+
+}  // namespace
+}  // namespace softtrace::test

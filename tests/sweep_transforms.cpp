@@ -1,0 +1,71 @@
+// Sweep cases for soft objects with radius transforms (see sweep.h): every transform, on
+// ray-linear distances, with modulation/contour surfaces about the same centre.
+#include "sweep.h"
+
+namespace softtrace::test {
+namespace {
+
+const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
+const Box kWide({-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5});
+
+#define SPHERE R"({"type":"lp_metric","radii":[1,0.8,1.2],"n":2})"
+#define BAR R"({"type":"superquadric","radii":[1,1,1.3],"n1":2,"n2":6})"
+
+const SweepCase kCases[] = {
+    {"T_n_wide",
+     R"({"type":"soft_object","distance":)" SPHERE R"(,"radii":{"type":"T_n","w1":1.6,"w2":0.7}})",
+     kWide},
+    {"T_n_narrow",
+     R"({"type":"soft_object","distance":)" BAR R"(,"radii":{"type":"T_n","w1":0.4,"w2":0.8}})",
+     kUnit},
+    {"T_n_wyvill",
+     R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":)" SPHERE
+     R"(,"radii":{"type":"T_n","w1":0.7,"w2":1}})",
+     kUnit},
+    {"T_l_k_above_1",
+     R"({"type":"soft_object","distance":)" SPHERE R"(,"radii":{"type":"T_l","w1":0.6}})", kUnit},
+    {"T_l_k_below_1",
+     R"({"type":"soft_object","distance":)" BAR R"(,"radii":{"type":"T_l","w1":2}})", kWide},
+    {"T_r", R"({"type":"soft_object","distance":)" SPHERE R"(,"radii":{"type":"T_r","w2":0.4}})",
+     kUnit},
+    {"T_an",
+     R"({"type":"soft_object","distance":)" SPHERE
+     R"(,"radii":{"type":"T_an","modulation":
+                 {"type":"superquadric","radii":[2.2,1.8,1.6],"n1":1,"n2":3}}})",
+     kWide},
+    {"T_an_thin",
+     R"({"type":"soft_object","distance":)" BAR
+     R"(,"radii":{"type":"T_an","modulation":
+                      {"type":"lp_metric","radii":[1.3,1.6,1.4],"n":1.5}}})",
+     kWide},
+    {"T_al",
+     R"({"type":"soft_object","distance":)" SPHERE
+     R"(,"radii":{"type":"T_al","modulation":
+                 {"type":"lp_metric","radii":[1.8,1.2,2.4],"n":3}}})",
+     kWide},
+    {"T_sn",
+     R"({"type":"soft_object","distance":)" BAR
+     R"(,"radii":{"type":"T_sn","modulation":
+                 {"type":"lp_metric","radii":[0.7,0.8,0.6],"n":3}}})",
+     kUnit},
+    {"T_sr",
+     R"({"type":"soft_object","distance":)" SPHERE
+     R"(,"radii":{"type":"T_sr","modulation":
+                 {"type":"superquadric","radii":[0.6,0.5,0.9],"n1":1.5,"n2":2}}})",
+     kUnit},
+    {"contour",
+     R"({"type":"soft_object","distance":)" SPHERE
+     R"(,"radii":{"type":"contour","contour":
+                    {"type":"lp_metric","radii":[1.4,1.1,2],"n":4}}})",
+     kWide},
+    {"contour_pinched_placed",
+     R"({"type":"soft_object","translate":[0.2,0,-0.1],"distance":)" BAR
+     R"(,"radii":{"type":"contour","w_min":0.01,"contour":
+         {"type":"superquadric","radii":[2,2,2.6],"n1":0.6,"n2":4}}})",
+     kWide},
+};
+
+INSTANTIATE_TEST_SUITE_P(Transforms, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+
+}  // namespace
+}  // namespace softtrace::test
