@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.h"
 #include "frame.h"
 
@@ -37,12 +39,17 @@ int run_bench(const BenchArgs& a) {
     const double evals = static_cast<double>(stats.steps) / std::max(1.0, rays);
     const char* mode = a.lipschitz == LipschitzMode::Local ? "local" : "global";
     if (a.json) {
-      std::printf(
-          "{\"scene\": \"%s\", \"width\": %d, \"height\": %d, \"spp\": %d, \"lipschitz\": "
-          "\"%s\", \"frames\": %d, \"best_s\": %.6f, \"median_s\": %.6f, "
-          "\"mrays_per_s\": %.4f, \"evaluations_per_ray\": %.3f}\n",
-          a.scene.c_str(), scene.image.width, scene.image.height, scene.image.spp, mode, a.repeat,
-          best, median, rays / best * 1e-6, evals);
+      const nlohmann::json out = {{"scene", a.scene},
+                                  {"width", scene.image.width},
+                                  {"height", scene.image.height},
+                                  {"spp", scene.image.spp},
+                                  {"lipschitz", mode},
+                                  {"frames", a.repeat},
+                                  {"best_s", best},
+                                  {"median_s", median},
+                                  {"mrays_per_s", rays / best * 1e-6},
+                                  {"evaluations_per_ray", evals}};
+      std::printf("%s\n", out.dump().c_str());
     } else {
       std::printf("%s: %dx%d, %d spp, lipschitz %s, %d frames\n", a.scene.c_str(),
                   scene.image.width, scene.image.height, scene.image.spp, mode, a.repeat);

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <random>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_util.h"
 
 namespace softtrace::test {
@@ -177,6 +179,25 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
   EXPECT_GT(hits, 96 * 72 / 5) << "the object should cover a good part of the frame";
   EXPECT_EQ(nonfinite, 0);
   EXPECT_TRUE(fs::exists(dir + "/t2.png"));
+}
+
+TEST(Bench, JsonReportsThroughput) {
+  const RunResult r = run_softtrace(std::string("bench ") + source_path(kDefaultScene) +
+                                    " --width 32 --height 24 --repeat 2 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("width"), 32);
+  EXPECT_EQ(j.at("frames"), 2);
+  EXPECT_GT(j.at("mrays_per_s").get<double>(), 0);
+  EXPECT_GT(j.at("evaluations_per_ray").get<double>(), 1);
+  EXPECT_LE(j.at("best_s").get<double>(), j.at("median_s").get<double>());
+}
+
+TEST(Nodes, ListsEveryRegisteredKind) {
+  const RunResult r = run_softtrace("nodes");
+  ASSERT_EQ(r.status, 0);
+  for (const char* kind : {"lp_metric", "soft_object", "soft_blend", "bt_union", "scale_union"})
+    EXPECT_NE(r.out.find(kind), std::string::npos) << kind;
 }
 
 }  // namespace
