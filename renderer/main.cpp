@@ -47,14 +47,21 @@ int main(int argc, char** argv) {
       "diff", "Compare two images as OpenImageIO's idiff does; exit 0 pass, 1 fail, 2 bad input");
   diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
   diff->add_option("b", d.b, "Second image")->required();
-  diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)");
+  diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)")
+      ->check(CLI::NonNegativeNumber);
   diff->add_option("--failpercent", d.failpercent,
-                   "Allow this percentage of failing pixels (default 0)");
-  diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)");
+                   "Allow this percentage of failing pixels (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
+      ->check(CLI::NonNegativeNumber);
   diff->add_option("--warnpercent", d.warnpercent,
-                   "Allow this percentage of warning pixels (default 0)");
-  diff->add_option("--hardfail", d.hardfail, "Fail if any channel differs by more (default inf)");
-  diff->add_option("--out", d.out, "Write the absolute difference image here");
+                   "Allow this percentage of warning pixels (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--hardfail", d.hardfail,
+                   "Fail if a failing pixel differs by more than this (default inf)")
+      ->check(CLI::NonNegativeNumber);
+  diff->add_option("--out", d.out,
+                   "Write |A-B| here: .exr (float, all channels) or .png (8-bit RGB)");
 
   BenchArgs b;
   auto* bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
