@@ -2,6 +2,7 @@
 // process exit status: 0 success, 1 a diff over its thresholds, 2 bad usage or bad input.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,11 @@ struct EvalArgs {
 };
 int run_eval(const EvalArgs& a);
 
+// Thresholds are float, as idiff's, so a percentage such as 0.3 counts exactly as it does there.
 struct DiffArgs {
   std::string a, b, out;
-  double fail = 1e-6, failpercent = 0, warn = 1e-6, warnpercent = 0;
-  double hardfail = std::numeric_limits<double>::infinity();
+  float fail = 1e-6f, failpercent = 0, warn = 1e-6f, warnpercent = 0;
+  float hardfail = std::numeric_limits<float>::infinity();
 };
 int run_diff(const DiffArgs& a);
 

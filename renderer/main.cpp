@@ -1,5 +1,6 @@
 // softtrace: render, evaluate, compare and benchmark implicit soft-object scenes.
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <map>
 
 #include "commands.h"
@@ -43,18 +44,35 @@ int main(int argc, char** argv) {
   eval->add_option("--points", e.points, "File of 'x y z' lines (default: standard input)");
 
   DiffArgs d;
+  // CLI::NonNegativeNumber would print the largest double in its message.
+  const CLI::Validator threshold(
+      [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return end != text.c_str() && *end == '\0' && v >= 0
+                   ? std::string()
+                   : "'" + text + "' is not a number >= 0";
+      },
+      "T>=0");
   auto* diff = app.add_subcommand(
       "diff", "Compare two images as OpenImageIO's idiff does; exit 0 pass, 1 fail, 2 bad input");
   diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
   diff->add_option("b", d.b, "Second image")->required();
-  diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)");
+  diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)")
+      ->check(threshold);
   diff->add_option("--failpercent", d.failpercent,
-                   "Allow this percentage of failing pixels (default 0)");
-  diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)");
+                   "Allow this percentage of failing pixels (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
+      ->check(threshold);
   diff->add_option("--warnpercent", d.warnpercent,
-                   "Allow this percentage of warning pixels (default 0)");
-  diff->add_option("--hardfail", d.hardfail, "Fail if any channel differs by more (default inf)");
-  diff->add_option("--out", d.out, "Write the absolute difference image here");
+                   "Allow this percentage of warning pixels (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--hardfail", d.hardfail,
+                   "Fail if a failing pixel differs by more than this (default inf)")
+      ->check(threshold);
+  diff->add_option("--out", d.out,
+                   "Write |A-B| here: .exr (float, all channels) or .png (8-bit RGB)");
 
   BenchArgs b;
   auto* bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");

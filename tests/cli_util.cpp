@@ -32,12 +32,17 @@ std::string temp_dir(const std::string& name) {
 }
 
 RunResult run_softtrace(const std::string& args, const std::string& stdin_file) {
+  return run_command(std::string(SOFTTRACE_BIN) + " " + args, stdin_file);
+}
+
+RunResult run_command(const std::string& command, const std::string& stdin_file) {
   static int counter = 0;
   if (counter == 0) temp_dir("run");
   const std::string base = (fs::path(SOFTTRACE_TEST_TMP) / std::to_string(::getpid()) / "run" /
-                            std::to_string(counter++)).string();
-  const std::string cmd = std::string(SOFTTRACE_BIN) + " " + args + " >" + base + ".out 2>" +
-                          base + ".err" + (stdin_file.empty() ? "" : " <" + stdin_file);
+                            std::to_string(counter++))
+                               .string();
+  const std::string cmd = command + " >" + base + ".out 2>" + base + ".err" +
+                          (stdin_file.empty() ? "" : " <" + stdin_file);
   const int raw = std::system(cmd.c_str());
   RunResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
