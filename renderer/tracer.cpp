@@ -9,6 +9,11 @@ namespace softtrace {
 namespace {
 // A ray that needs more evaluations than this is given up as a miss; no test scene comes close.
 constexpr int kMaxSteps = 200000;
+// Sphere-tracing steps within one stretch before it is cut short at the current point: the
+// bound over a long stretch's box can be far looser than over a short one (e.g. a modulated
+// radius whose [d]/[f] decorrelates), and finishing the stretch with it would cost b-t divided by
+// a tiny step. Every step taken was certified, so stopping early skips nothing.
+constexpr int kStretchSteps = 16;
 }  // namespace
 
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
@@ -74,6 +79,9 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
   double gt = g(at(t));
   bool gt_known = true;
   if (gt >= 0) return {true, t};
+  // The latest point known to be outside: the left end for bisection. A stretch may end on a
+  // step shortened to min_step_ (not certified), so a new stretch can start inside the solid.
+  double prev = t;
 
   while (t < t1 && steps < kMaxSteps) {
     const double b = std::min(t + h, t1);
@@ -94,8 +102,9 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
       if (!gt_known) {
         ++steps;
         gt = g(at(t));
-        if (gt >= 0) return {true, t};
+        if (gt >= 0) return {true, bisect(ray, prev, t, steps)};
       }
+      prev = t;
       ++steps;
       const double gb = g(at(b));
       if (gb >= 0) return {true, bisect(ray, t, b, steps)};
@@ -107,15 +116,15 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
     // Sphere tracing inside the stretch: from a point with g < 0, g stays negative for at least
     // -g/L along any path inside the box, so a step of that length cannot cross the surface.
     int stretch_steps = 0;
-    double prev = t;
     while (steps < kMaxSteps) {
       if (!gt_known) {
         ++steps;
         gt = g(at(t));
         gt_known = true;
       }
-      if (gt >= 0) return {true, t == prev ? t : bisect(ray, prev, t, steps)};
-      ++stretch_steps;
+      if (gt >= 0) return {true, bisect(ray, prev, t, steps)};
+      if (++stretch_steps > kStretchSteps)
+        break;  // a loose bound: re-bound a shorter stretch from t
       const double step = L > 0 ? std::max(-gt / L, min_step_) : b - t;
       prev = t;
       if (t + step >= b) {
@@ -128,7 +137,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
       gt_known = false;
     }
     // Many steps mean a loose bound: shorter stretches give tighter box bounds.
-    h = stretch_steps > 16 ? std::max(0.5 * h, min_step_) : h;
+    h = stretch_steps > kStretchSteps ? std::max(0.5 * h, min_step_) : h;
   }
   return {};
 }
