@@ -1,0 +1,301 @@
+// The claims of [003]'s figures, checked numerically on the scene files themselves
+// (scenes/fig003_*.json): each test loads a scene with load_scene and evaluates its objects'
+// fields; where a claim is about a primitive inside a blend, the primitive is built from the
+// same scene file's JSON. Pixels are the regression tests' business; these are the geometry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "bt_base.h"
+#include "params.h"
+#include "scene.h"
+
+namespace softtrace {
+namespace {
+
+using json = nlohmann::json;
+using Rng = std::mt19937_64;
+
+std::string scene_path(const std::string& name) {
+  return std::string(SOFTTRACE_SOURCE_DIR) + "/scenes/" + name + ".json";
+}
+
+// The scene's JSON (comments allowed), to reach the primitives inside an object's blend.
+json scene_json(const std::string& name) {
+  std::ifstream in(scene_path(name));
+  std::stringstream s;
+  s << in.rdbuf();
+  return json::parse(s.str(), nullptr, true, true);
+}
+
+NodePtr build_zero(const json& j) {
+  BuildContext ctx;
+  ctx.convention = Convention::Zero;
+  return build_field(Params(j, "", std::make_shared<const std::string>("<test>")), ctx);
+}
+
+const SceneObject& object(const Scene& s, const std::string& name) {
+  for (const SceneObject& o : s.objects)
+    if (o.name == name) return o;
+  throw std::runtime_error("no object " + name);
+}
+
+const json& object_json(const json& scene, const std::string& name) {
+  for (const json& o : scene["objects"])
+    if (o["name"] == name) return o;
+  throw std::runtime_error("no object " + name);
+}
+
+// An object's field evaluated in the frame of its root node (whose `translate` places it).
+struct Local {
+  const SceneObject* obj;
+  Vec3 t;
+  double operator()(const Vec3& p) const { return obj->field->value(p + t); }
+};
+Local local(const Scene& s, const json& sj, const std::string& name) {
+  const json& f = object_json(sj, name)["field"];
+  Vec3 t;
+  if (f.contains("translate")) t = {f["translate"][0], f["translate"][1], f["translate"][2]};
+  return {&object(s, name), t};
+}
+
+double uni(Rng& g, double a, double b) {
+  return std::uniform_real_distribution<double>(a, b)(g);
+}
+Vec3 random_dir(Rng& g) {
+  for (;;) {
+    const Vec3 v{uni(g, -1, 1), uni(g, -1, 1), uni(g, -1, 1)};
+    if (length(v) > 0.1 && length(v) <= 1) return normalize(v);
+  }
+}
+
+// A point where f crosses `level` on the segment a→b (f(a) < level < f(b)), by bisection.
+template <class F>
+Vec3 crossing(const F& f, Vec3 a, Vec3 b, double level = 0) {
+  for (int i = 0; i < 200 && length(b - a) > 1e-13; ++i) {
+    const Vec3 m = (a + b) * 0.5;
+    (f(m) < level ? a : b) = m;
+  }
+  return (a + b) * 0.5;
+}
+
+// Fig. 2(a): the intersection of three slab pairs cuts each edge back by r(1 - 2^(-1/p)):
+// on the edge x1 = x2 = 0 of -BT3(-f) only the two faces' terms are active and
+// 2((r + h)/r)^p = 1. Near a face centre the blend is inactive and the field is f_i itself.
+TEST(Fig003, Fig2aEdgesCutBackByTheCurvature) {
+  const Scene s = load_scene(scene_path("fig003_2a_box_curvatures"));
+  const json sj = scene_json("fig003_2a_box_curvatures");
+  const double r = 1.2, a = 2.5;
+  double previous = INFINITY;
+  for (const auto& [name, p] : {std::pair{"p_1.2", 1.2}, {"p_2", 2.0}, {"p_6", 6.0}}) {
+    const Local f = local(s, sj, name);
+    const double edge = f({a, a, 0});
+    EXPECT_NEAR(edge, r * (1 - std::pow(2.0, -1 / p)), 1e-9) << name;
+    EXPECT_LT(edge, previous) << name << ": a larger p gives a sharper edge";
+    previous = edge;
+    for (double d : {-0.4, -0.1, 0.2, 0.5}) {
+      EXPECT_NEAR(f({a + d, 0.3, -0.2}), d, 1e-12) << name;
+      EXPECT_NEAR(f({0.1, -0.2, -a - d}), d, 1e-12) << name;
+    }
+  }
+}
+
+// Fig. 2(b): on the post's surface (f1 = 0) the fillet reaches exactly distance r2 from the bar
+// (field < 0 for f2 < r2, = 0 beyond); on the bar's surface it reaches f1 = r1. Outside region
+// II the union is min(f1, f2); everywhere it is <= min(f1, f2) ([BT-3]).
+TEST(Fig003, Fig2bFilletReachesTheOtherPrimitivesRange) {
+  const Scene s = load_scene(scene_path("fig003_2b_cylinder_ranges"));
+  const json sj = scene_json("fig003_2b_cylinder_ranges");
+  Rng g(2);
+  for (const char* name : {"r_0.25_0.25", "r_1_1", "r_0.25_1.5"}) {
+    const json& fj = object_json(sj, name)["field"];
+    const double r[2] = {fj["r1"], fj["r2"]}, m[2] = {1, 1};
+    const NodePtr prim[2] = {build_zero(fj["children"][0]), build_zero(fj["children"][1])};
+    const Local f = local(s, sj, name);
+    int near_fillet[2] = {0, 0}, beyond[2] = {0, 0};
+    for (int i = 0; i < 400; ++i) {
+      // A point on primitive j's surface: from its spine outwards to where f_j = 0.
+      const int j = i % 2;
+      const Vec3 d = random_dir(g);
+      const Vec3 c = j == 0 ? Vec3{0, 0, uni(g, -2.5, 3.5)}
+                            : Vec3{0.8192 * uni(g, -2.8, 2.8), -0.5736 * uni(g, -2.8, 2.8), 0.5};
+      const Vec3 dir =
+          j == 0 ? normalize(Vec3{d.x, d.y, 0})
+                 : normalize(d - Vec3{0.8192, -0.5736, 0} * dot(d, Vec3{0.8192, -0.5736, 0}));
+      const auto fj_at = [&](const Vec3& p) { return prim[j]->value(p); };
+      if (fj_at(c) >= 0 || fj_at(c + dir * 3) <= 0) continue;
+      const Vec3 p = crossing(fj_at, c, c + dir * 3);
+      const double other = prim[1 - j]->value(p);
+      if (other <= 0) continue;  // inside the other primitive: not on the union's surface
+      const double v = f(p), reach = r[1 - j];
+      if (other < reach - 1e-3) {
+        EXPECT_LT(v, 0) << name << " on f" << j + 1 << " at distance " << other;
+        ++near_fillet[j];
+      } else if (other > reach + 1e-3) {
+        EXPECT_NEAR(v, 0, 1e-9) << name << " on f" << j + 1 << " at distance " << other;
+        ++beyond[j];
+      }
+    }
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_GT(near_fillet[j], 3) << name;
+      EXPECT_GT(beyond[j], 3) << name;
+    }
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 p{uni(g, -4, 4), uni(g, -4, 4), uni(g, -3, 4)};
+      const double x[2] = {prim[0]->value(p), prim[1]->value(p)};
+      const double v = f(p), lo = std::min(x[0], x[1]);
+      EXPECT_LE(v, lo + 1e-12) << name;
+      if (!conic_region_ii(x, r[0], r[1], m)) {
+        EXPECT_NEAR(v, lo, 1e-12) << name;
+      }
+    }
+  }
+}
+
+// Fig. 6: the level surface BT2 = h is the base surface translated by h(m1, m2) = (h, 2h): on it
+// (f1 - h, f2 - 2h) lies on the base curve (BT2 of it is 0), and away from the blend the post is
+// the capsule dilated by h (f1 = h) and the bar the one dilated by 2h (f2 = 2h).
+TEST(Fig003, Fig6LevelSurfacesAreTheBaseTranslatedByHm) {
+  const Scene s = load_scene(scene_path("fig003_6_level_surfaces"));
+  const json sj = scene_json("fig003_6_level_surfaces");
+  Rng g(6);
+  for (const auto& [name, h] :
+       {std::pair{"h_0", 0.0}, {"h_0.25", 0.25}, {"h_0.5", 0.5}, {"h_0.75", 0.75}}) {
+    EXPECT_EQ(object(s, name).iso, h);
+    const json& fj = object_json(sj, name)["field"];
+    const NodePtr f1 = build_zero(fj["children"][0]), f2 = build_zero(fj["children"][1]);
+    const double r = 0.5, m[2] = {1, 2};
+    const Local f = local(s, sj, name);
+    int post = 0, bar = 0, blend = 0;
+    for (int i = 0; i < 600; ++i) {
+      const Vec3 c{0, 0, uni(g, -0.5, 1.2)};
+      const Vec3 p = crossing(f, c, c + random_dir(g) * 9, h);
+      const double x1 = f1->value(p), x2 = f2->value(p);
+      const double shifted[2] = {x1 - m[0] * h, x2 - m[1] * h};
+      EXPECT_NEAR(bt2_conic(shifted, r, r, 0, m, nullptr), 0, 1e-9) << name;
+      if (x2 - m[1] * h > r + 1e-6) {
+        EXPECT_NEAR(x1, m[0] * h, 1e-9) << name;
+        ++post;
+      } else if (x1 - m[0] * h > r + 1e-6) {
+        EXPECT_NEAR(x2, m[1] * h, 1e-9) << name;
+        ++bar;
+      } else {
+        ++blend;
+      }
+    }
+    EXPECT_GT(post, 20) << name;
+    EXPECT_GT(bar, 20) << name;
+    EXPECT_GT(blend, 5) << name;
+  }
+}
+
+// Fig. 7: the box -BT3(-f1, -f2, -f3) has the same zero set for every m2 ([BT-1]); in the union
+// with the super-ellipsoid only the front-face (f2) fillet shrinks as m2 goes 1.2 -> 0.3, while
+// the top-face (f3) fillet and the surface away from the super-ellipsoid stay.
+TEST(Fig003, Fig7OnlyTheFrontFaceFilletShrinksWithM2) {
+  const Scene s = load_scene(scene_path("fig003_7_subsequent_m2"));
+  const json sj = scene_json("fig003_7_subsequent_m2");
+  const char* names[] = {"m2_1.2", "m2_0.9", "m2_0.6", "m2_0.3"};
+  Rng g(7);
+
+  NodePtr boxes[4];
+  for (int i = 0; i < 4; ++i)
+    boxes[i] = build_zero(object_json(sj, names[i])["field"]["children"][0]);
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 p{uni(g, -3.5, 3.5), uni(g, -3, 3), uni(g, -2.5, 2.5)};
+    const double v0 = boxes[0]->value(p);
+    if (std::abs(v0) < 1e-9) continue;
+    ++checked;
+    for (int k = 1; k < 4; ++k)
+      ASSERT_EQ(boxes[k]->value(p) < 0, v0 < 0)
+          << names[k] << " at " << p.x << " " << p.y << " " << p.z;
+  }
+  EXPECT_GT(checked, 19000);
+
+  Local f[4];
+  for (int k = 0; k < 4; ++k) f[k] = local(s, sj, names[k]);
+  // Grid counts of inside points: in front of the front face left of the super-ellipsoid
+  // (centre (2.5, -2, 0.3)), and above the top face behind it.
+  const auto count = [&](const Local& fk, Vec3 lo, Vec3 hi) {
+    int n = 0;
+    for (int a = 0; a < 24; ++a)
+      for (int b = 0; b < 24; ++b)
+        for (int c = 0; c < 24; ++c) {
+          const Vec3 p{lo.x + (hi.x - lo.x) * (a + 0.5) / 24, lo.y + (hi.y - lo.y) * (b + 0.5) / 24,
+                       lo.z + (hi.z - lo.z) * (c + 0.5) / 24};
+          n += fk(p) <= 0;
+        }
+    return n;
+  };
+  int front_prev = 1 << 30, top0 = -1;
+  for (int k = 0; k < 4; ++k) {
+    const int front = count(f[k], {-0.5, -2.9, -1.0}, {1.3, -2.0, 1.4});
+    const int top = count(f[k], {0.5, -0.6, 1.5}, {3.0, 0.3, 2.2});
+    EXPECT_LT(front, front_prev) << names[k];
+    front_prev = front;
+    if (k == 0) {
+      EXPECT_GT(top, 0);
+      top0 = top;
+    }
+    EXPECT_EQ(top, top0) << names[k];
+  }
+  // Surface points of the m2 = 1.2 object farther than 3.3 from the super-ellipsoid's centre
+  // (where its field exceeds the union's range) lie on the other three objects' surfaces.
+  int far = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 c{uni(g, -1, 1), uni(g, -1, 1), uni(g, -0.5, 0.5)};
+    const Vec3 p = crossing(f[0], c, c + random_dir(g) * 6);
+    if (length(p - Vec3{2.5, -2, 0.3}) < 3.3) continue;
+    ++far;
+    for (int k = 1; k < 4; ++k) EXPECT_NEAR(f[k](p), 0, 1e-9) << names[k];
+  }
+  EXPECT_GT(far, 100);
+}
+
+// Fig. 8: with all m = 1 the difference's blend between the pocket bottom f6 and the plate
+// bottom f12 (0.4 apart, ranges 0.8) cuts through the floor; with m6 = m12 = 0.2 the floor is
+// solid. b1 and b2 keep their zero sets, and the surface away from the pocket is the same.
+TEST(Fig003, Fig8LoweringM6AndM12RemovesTheUnwantedBlend) {
+  const Scene s = load_scene(scene_path("fig003_8_unwanted_blend"));
+  const json sj = scene_json("fig003_8_unwanted_blend");
+  const Local before = local(s, sj, "all_m_1"), after = local(s, sj, "m6_m12_0.2");
+  for (double z : {-1.1, -1.0, -0.9})
+    for (double x : {-0.6, 0.0, 0.6}) {
+      EXPECT_GT(before({x, 0.3, z}), 0)
+          << "the unwanted blend opens the floor at " << x << " " << z;
+      EXPECT_LT(after({x, 0.3, z}), 0) << "the floor is solid at " << x << " " << z;
+    }
+
+  Rng g(8);
+  for (int c = 0; c < 2; ++c) {  // b2 (the plate), b1 (the pocket block)
+    const NodePtr b_before = build_zero(object_json(sj, "all_m_1")["field"]["children"][c]);
+    const NodePtr b_after = build_zero(object_json(sj, "m6_m12_0.2")["field"]["children"][c]);
+    for (int i = 0; i < 5000; ++i) {
+      const Vec3 p{uni(g, -5, 5), uni(g, -4, 4), uni(g, -2, 3.5)};
+      const double v = b_before->value(p);
+      if (std::abs(v) > 1e-9) {
+        ASSERT_EQ(b_after->value(p) < 0, v < 0) << "child " << c;
+      }
+    }
+  }
+  int far = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 c{uni(g, -3.5, 3.5), uni(g, -2.6, 2.6), uni(g, -0.9, 0.9)};
+    if (std::abs(c.x) < 2.2 && std::abs(c.y) < 2.8) continue;  // start in the rim's material
+    if (after(c) >= 0) continue;
+    const Vec3 p = crossing(after, c, c + random_dir(g) * 8);
+    if (std::abs(p.x) < 2.2 && std::abs(p.y) < 2.8 && p.z < 0) continue;  // the pocket's floor
+    ++far;
+    EXPECT_NEAR(before(p), 0, 1e-9) << p.x << " " << p.y << " " << p.z;
+  }
+  EXPECT_GT(far, 100);
+}
+
+}  // namespace
+}  // namespace softtrace
