@@ -19,6 +19,7 @@ struct RayContext {
   double t = std::numeric_limits<double>::infinity();  // tfar, then the closest hit so far
   int steps = 0;
   int object = -1;
+  bool on_box_face = false;
 };
 
 struct GeometryData {
@@ -48,6 +49,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!m.hit || m.t >= ctx->t) return;
   ctx->t = m.t;
   ctx->object = data->object;
+  ctx->on_box_face = m.on_box_face;
   rh->ray.tfar = static_cast<float>(m.t);
   rh->hit.geomID = args->geomID;
   rh->hit.primID = args->primID;
@@ -134,6 +136,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar) const
     h.hit = true;
     h.t = ctx.t;
     h.object = ctx.object;
+    h.on_box_face = ctx.on_box_face;
   }
   return h;
 }

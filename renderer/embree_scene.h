@@ -14,6 +14,7 @@ struct TraceHit {
   bool hit = false;
   double t = std::numeric_limits<double>::infinity();
   int object = -1;  // index into Scene::objects
+  bool on_box_face = false;  // see MarchResult
   int steps = 0;    // field and interval evaluations spent on the ray
 };
 

@@ -10,7 +10,7 @@ Shaded shade(const Scene& scene, const EmbreeScene& rt, const Ray& ray, const Tr
   const ObjectTracer& tracer = rt.tracer(hit.object);
   const SceneObject& obj = tracer.object();
   const Vec3 p = ray.o + ray.d * hit.t;
-  Vec3 n = tracer.normal(p);
+  Vec3 n = hit.on_box_face ? tracer.box_face_normal(p) : tracer.normal(p);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
 

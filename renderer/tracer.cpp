@@ -53,6 +53,22 @@ Vec3 ObjectTracer::normal(const Vec3& p) const {
   return len > 0 && std::isfinite(len) ? grad / len : Vec3{};
 }
 
+Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
+  const Box& b = object_->bounds;
+  Vec3 n{-1, 0, 0};
+  double best = std::abs(p.x - b.lo.x);
+  for (int i = 0; i < 3; ++i)
+    for (int side = 0; side < 2; ++side) {
+      const double dist = std::abs(p[i] - (side ? b.hi[i] : b.lo[i]));
+      if (dist < best) {
+        best = dist;
+        n = {};
+        n[i] = side ? 1 : -1;
+      }
+    }
+  return n;
+}
+
 double ObjectTracer::bisect(const Ray& ray, double a, double b, int& steps) const {
   // Invariant: g(a) < 0 <= g(b). Stop far below a pixel's footprint.
   for (int i = 0; i < 60 && b - a > 1e-3 * min_step_; ++i) {
@@ -78,7 +94,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
   ++steps;
   double gt = g(at(t));
   bool gt_known = true;
-  if (gt >= 0) return {true, t};
+  if (gt >= 0) return {true, t, t > tnear};
   // The latest point known to be outside: the left end for bisection. A stretch may end on a
   // step shortened to min_step_ (not certified), so a new stretch can start inside the solid.
   double prev = t;

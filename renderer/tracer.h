@@ -21,6 +21,9 @@ struct Ray {
 struct MarchResult {
   bool hit = false;
   double t = 0;
+  // The ray entered the object's box already inside the solid: the box cuts the solid, and the
+  // surface seen is the box face, not a level set of the field.
+  bool on_box_face = false;
 };
 
 class ObjectTracer {
@@ -34,6 +37,8 @@ class ObjectTracer {
   const SceneObject& object() const { return *object_; }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
   Vec3 normal(const Vec3& p) const;
+  // The outward normal of the object box's face nearest to p (for hits on_box_face).
+  Vec3 box_face_normal(const Vec3& p) const;
   // Whether p is inside the solid.
   bool inside(const Vec3& p) const { return g(p) >= 0; }
 

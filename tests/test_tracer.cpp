@@ -89,6 +89,31 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerVsReference,
                                           testing::Values(LipschitzMode::Local,
                                                           LipschitzMode::Global)));
 
+// A solid cut by its object's bounds shows the cut as a flat face: the hit is flagged so
+// shading uses the face's normal (the gradient there belongs to the uncut field, and a shadow
+// ray leaving along it would start inside the solid).
+TEST(BoxCut, HitsOnTheCutFaceAreFlaggedWithTheFaceNormal) {
+  const Scene scene = parse_scene(
+      R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"bounds":[[-5,-5,-5],[5,5,0]],
+          "field":{"type":"soft_object","distance":{"type":"lp_metric","radii":[8,8,8],"n":2}}}]})",
+      "<test>");
+  const ObjectTracer tr(scene.objects[0], LipschitzMode::Local);
+  int steps = 0;
+  // Straight down onto the cut at z = 0, inside the ball's d <= 0.5 (radius 4).
+  const MarchResult cut = tr.first_hit({{1, 1, 10}, {0, 0, -1}}, 0, 100, steps);
+  ASSERT_TRUE(cut.hit);
+  EXPECT_TRUE(cut.on_box_face);
+  EXPECT_NEAR(cut.t, 10, 1e-9);
+  const Vec3 n = tr.box_face_normal({1, 1, 0});
+  EXPECT_EQ(n.z, 1);
+  EXPECT_EQ(n.x, 0);
+  // From the side, below the cut: the ball's own surface, not a face.
+  const MarchResult side = tr.first_hit({{-20, 0, -1}, {1, 0, 0}}, 0, 100, steps);
+  ASSERT_TRUE(side.hit);
+  EXPECT_FALSE(side.on_box_face);
+  EXPECT_NEAR(side.t, 20 - std::sqrt(16 - 1), 1e-6);
+}
+
 TEST(ClipToBox, SlabsAndParallelRays) {
   const Box b({-1, -1, -1}, {1, 2, 3});
   double t0 = 0, t1 = 100;
