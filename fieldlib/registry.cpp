@@ -116,7 +116,11 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   if (!kind)
     p.fail("type",
            "unknown node type '" + type + "' (expected one of: " + names_of(node_kinds()) + ")");
-  NodePtr node = kind->create(p, ctx);
+  if (ctx.depth >= kMaxFieldDepth)
+    p.fail("", "field nodes nested deeper than " + std::to_string(kMaxFieldDepth) + " levels");
+  BuildContext inner = ctx;
+  ++inner.depth;
+  NodePtr node = kind->create(p, inner);
 
   const Vec3 translate = p.vec3("translate", {});
   Mat3 rotation;
@@ -140,6 +144,9 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
   std::vector<Params> items = p.objects(key);
   if (items.size() < min_count)
     p.fail(key, "expected at least " + std::to_string(min_count) + " children, got " +
+                    std::to_string(items.size()));
+  if (items.size() > kMaxChildren)
+    p.fail(key, "expected at most " + std::to_string(kMaxChildren) + " children, got " +
                     std::to_string(items.size()));
   std::vector<NodePtr> out;
   out.reserve(items.size());

@@ -5,12 +5,20 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
+
+#include "json_nesting.h"
 
 namespace softtrace {
 
 namespace {
 
 using json = nlohmann::json;
+
+// Every light and object costs work at every shaded point or ray; beyond these a scene is
+// hostile rather than ambitious.
+constexpr size_t kMaxLights = 1000;
+constexpr size_t kMaxObjects = 10000;
 
 // nlohmann reports a byte offset; users want line and column.
 std::string line_col(const std::string& text, size_t byte) {
@@ -186,6 +194,7 @@ class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
 };
 
 Scene parse_scene(const std::string& text, const std::string& name) {
+  check_json_nesting(text, name);
   json doc;
   LocatingParser parser(doc, text);
   json::sax_parse(text, &parser, nlohmann::detail::input_format_t::json, true,
@@ -201,17 +210,23 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   if (root.has("image")) s.image = load_image(root.object("image"));
   s.background = load_color(root, "background", s.background);
   if (root.has("lights")) {
-    for (const Params& l : root.objects("lights")) s.lights.push_back(load_light(l));
+    const std::vector<Params> lights = root.objects("lights");
+    if (lights.size() > kMaxLights)
+      root.fail("lights", "expected at most " + std::to_string(kMaxLights) + " lights");
+    for (const Params& l : lights) s.lights.push_back(load_light(l));
   } else {
     s.lights = default_lights(s.camera);
   }
   const std::vector<Params> objects = root.objects("objects");
   if (objects.empty()) root.fail("objects", "expected at least one object");
-  for (size_t i = 0; i < objects.size(); ++i) s.objects.push_back(load_object(objects[i], i));
-  for (size_t i = 0; i < s.objects.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (s.objects[i].name == s.objects[j].name)
-        objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
+  if (objects.size() > kMaxObjects)
+    root.fail("objects", "expected at most " + std::to_string(kMaxObjects) + " objects");
+  std::unordered_set<std::string> names;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    s.objects.push_back(load_object(objects[i], i));
+    if (!names.insert(s.objects[i].name).second)
+      objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
+  }
   root.finish();
   return s;
 }
