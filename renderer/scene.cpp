@@ -43,6 +43,8 @@ Camera load_camera(const Params& p) {
   p.check(c.fov > 0 && c.fov < 180, "fov", "expected a vertical field of view in (0, 180) degrees");
   const Vec3 view = c.target - c.eye;
   p.check(length(view) > 0, "target", "expected a target different from the eye");
+  p.check(std::isfinite(length(view)), "target",
+          "expected a target at a finite distance from the eye");
   p.check(length(c.up) > 0, "up", "expected a non-zero up vector");
   p.check(length(cross(normalize(view), normalize(c.up))) > 1e-9, "up",
           "expected an up vector not parallel to the viewing direction");
@@ -178,7 +180,9 @@ class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
     const size_t at = what.find("at line ");
     if (at != std::string::npos &&
         std::sscanf(what.c_str() + at, "at line %u, column %u", &line, &column) == 2) {
-      where = std::to_string(line) + ":" + std::to_string(column);
+      // Column 0: the offending character is the newline that ended the previous line.
+      where = column > 0 ? std::to_string(line) + ":" + std::to_string(column)
+                         : line_col(text_, position > 0 ? position - 1 : 0);
       message = what.substr(what.find(": ", at) + 2);
     } else {  // a number token: no escapes, so its length locates its start
       where = line_col(text_, position >= token.size() ? position - token.size() : 0);
