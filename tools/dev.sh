@@ -50,10 +50,14 @@ fuzz() {
   mkdir -p build-fuzz/corpus
   "$BUILD_DIR/softtrace" nodes | awk '{ printf "\"\\\"%s\\\"\"\n", $1 }' >build-fuzz/scene.dict
   cat tests/fuzz_scene.dict >>build-fuzz/scene.dict
-  ASAN_OPTIONS=detect_leaks=0 build-fuzz/tests/fuzz_scene -max_total_time="${FUZZ_SECONDS:-60}" \
+  if ! ASAN_OPTIONS=detect_leaks=0 build-fuzz/tests/fuzz_scene -max_total_time="${FUZZ_SECONDS:-60}" \
     -max_len=16384 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -dict=build-fuzz/scene.dict \
-    -artifact_prefix=build-fuzz/ build-fuzz/corpus scenes tests/bad_scenes 2>&1 | tail -15
-  test "${PIPESTATUS[0]}" -eq 0
+    -artifact_prefix=build-fuzz/ build-fuzz/corpus scenes tests/bad_scenes >build-fuzz/fuzz.log 2>&1; then
+    tail -n 60 build-fuzz/fuzz.log
+    echo "fuzz_scene failed: the input is in build-fuzz/ (crash-*, timeout-*, oom-*)" >&2
+    return 1
+  fi
+  grep -E '^(Done|stat::)' build-fuzz/fuzz.log
 }
 
 case "${1:-}" in
