@@ -328,7 +328,9 @@ TEST(NumericRobustness, RandomScenesGiveNoNaNInEvalIntervalsPixelsOrAovs) {
       for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(film.normal[i * 3 + k])) << text;
       ASSERT_TRUE(std::isfinite(film.steps[i])) << text;
       ASSERT_FALSE(std::isnan(film.depth[i])) << text;
-      if (film.rgba[i * 4 + 3] > 0) ASSERT_TRUE(std::isfinite(film.depth[i])) << text;
+      if (film.rgba[i * 4 + 3] > 0) {
+        ASSERT_TRUE(std::isfinite(film.depth[i])) << text;
+      }
     }
   }
   EXPECT_EQ(loaded, kScenes);
