@@ -1,6 +1,7 @@
 // Super-ellipsoidal (CG Ricci) union and intersection of distance functions: positively
 // homogeneous of degree 1, so ray-linear children give a ray-linear result (002 §4.5 closure,
 // MATH.md §2.1, §5.3). [002] builds modulation and contour surfaces this way.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -116,6 +117,8 @@ class SuperEllipsoidalIntersection final : public FieldNode {
     if (n_ < 1) return;
     std::vector<double> L;
     for (const auto& c : c_) L.push_back(c->lipschitz());
+    // A child without a bound leaves none (the power sum would give inf/inf = NaN).
+    if (std::any_of(L.begin(), L.end(), [](double l) { return std::isinf(l); })) return;
     global_L_ = power_sum(L.data(), static_cast<int>(L.size()), n_, nullptr) * (1 + 1e-13);
   }
 

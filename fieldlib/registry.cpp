@@ -24,8 +24,7 @@ const std::vector<NodeKind>& node_kinds() {
        "000 Eq.3; radii [a1,a2,a3], n1, n2, optional t [t1..t6] (002 Eq.15)", create_superquadric},
       {"generalized_distance", "distance",
        "000 Eq.4 / 002 Eq.16; normals, a, n, optional t_pos, t_neg", create_generalized_distance},
-      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)",
-       create_segment},
+      {"segment", "distance", "distance to the segment p0-p1 / radius (000 Eq.5)", create_segment},
       {"superelliptic_cylinder", "distance",
        "002 Eq.17/18; radii [a1,a2,a3], n, half_length, optional t [t1..t6]",
        create_superelliptic_cylinder},
@@ -116,7 +115,11 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   if (!kind)
     p.fail("type",
            "unknown node type '" + type + "' (expected one of: " + names_of(node_kinds()) + ")");
-  NodePtr node = kind->create(p, ctx);
+  if (ctx.depth >= kMaxFieldDepth)
+    p.fail("", "field nodes nested deeper than " + std::to_string(kMaxFieldDepth) + " levels");
+  BuildContext inner = ctx;
+  ++inner.depth;
+  NodePtr node = kind->create(p, inner);
 
   const Vec3 translate = p.vec3("translate", {});
   Mat3 rotation;
@@ -140,6 +143,9 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
   std::vector<Params> items = p.objects(key);
   if (items.size() < min_count)
     p.fail(key, "expected at least " + std::to_string(min_count) + " children, got " +
+                    std::to_string(items.size()));
+  if (items.size() > kMaxChildren)
+    p.fail(key, "expected at most " + std::to_string(kMaxChildren) + " children, got " +
                     std::to_string(items.size()));
   std::vector<NodePtr> out;
   out.reserve(items.size());

@@ -14,8 +14,14 @@ namespace softtrace {
 // MATH.md §1: the object's convention decides the complement and which side is inside.
 enum class Convention { Soft, Zero, Constructive };
 
+// Limits that keep hostile scenes from exhausting the stack (evaluation recurses through the
+// tree, also on TBB worker threads with small stacks) or making every evaluation absurdly slow.
+constexpr int kMaxFieldDepth = 256;
+constexpr size_t kMaxChildren = 10000;
+
 struct BuildContext {
   Convention convention = Convention::Soft;
+  int depth = 0;  // nodes above the one being built
 };
 
 struct NodeKind {

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "film.h"
@@ -22,21 +24,38 @@ void report_error(const std::string& message) {
 namespace {
 
 std::atomic<bool> g_cancel{false};
-std::atomic<bool> g_writing{false};
+std::atomic<int> g_signal{0};
 
-// SIGINT/SIGTERM: stop rendering; while an image is being written, drop its temporary file and
-// leave at once, so neither a partial image nor a clobbered existing file remains.
+// What a signal does depends on the phase. Rendering: stop the frame (g_cancel) and write
+// nothing. Writing temporary files: remove them and exit at once. Committing (renaming the
+// finished files over the outputs): nothing, so that all outputs are replaced or none is.
+// The handler may run on any thread (TBB workers do not block signals); the compare-exchange
+// decides between it and the main thread who owns the Writing -> next transition.
+enum Phase : int { kRendering, kWriting, kCommitting, kAborting };
+std::atomic<int> g_phase{kRendering};
+static_assert(std::atomic<int>::is_always_lock_free, "used from a signal handler");
+
 extern "C" void on_signal(int sig) {
+  int none = 0;
+  g_signal.compare_exchange_strong(none, sig);
   g_cancel = true;
-  if (g_writing) {
+  int writing = kWriting;
+  if (g_phase.compare_exchange_strong(writing, kAborting)) {
     abandon_pending_writes();
     _exit(128 + sig);
   }
 }
 
+int interrupted_status() {
+  return 128 + g_signal.load();
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& a) {
+  // From the start: a signal during loading cancels the frame before its first pixel.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   try {
     Scene scene = load_scene(a.scene);
     if (a.width) scene.image.width = a.width;
@@ -58,9 +77,6 @@ int run_render(const RenderArgs& a) {
       threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       a.threads);
 
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-
     const auto start = std::chrono::steady_clock::now();
     const EmbreeScene rt(scene, a.lipschitz);
     Film film(scene.image.width, scene.image.height);
@@ -73,12 +89,21 @@ int run_render(const RenderArgs& a) {
     progress.finish();
     if (!complete) {
       report_error("interrupted; no image written");
-      return 130;
+      return interrupted_status();
     }
-    g_writing = true;
-    for (const auto& o : outputs) write_image(o, film, aovs);
-    g_writing = false;
-    if (g_cancel) return 130;
+    g_phase = kWriting;
+    if (g_cancel) {  // the signal came after the last pixel but before the phase changed
+      report_error("interrupted; no image written");
+      return interrupted_status();
+    }
+    std::vector<std::string> temps;
+    for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, aovs));
+    int writing = kWriting;
+    if (!g_phase.compare_exchange_strong(writing, kCommitting))
+      for (;;) ::pause();  // the handler is removing the temporary files and exiting
+    for (size_t i = 0; i < outputs.size(); ++i) commit_image(temps[i], outputs[i]);
+    forget_pending_writes();
+    // A signal from here on is too late to matter: every output is complete.
 
     if (!a.quiet) {
       const double secs =
@@ -91,6 +116,8 @@ int run_render(const RenderArgs& a) {
     }
     return 0;
   } catch (const std::exception& e) {
+    abandon_pending_writes();  // a failed write leaves no temporary file behind
+    forget_pending_writes();
     report_error(e.what());
     return 2;
   }

@@ -30,10 +30,11 @@ float srgb_encode(float v) {
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
 }
 
-// The temporary file of the write in progress, for abandon_pending_writes(); a fixed buffer
-// because a signal handler may read it.
-char g_pending[4096];
-std::atomic<bool> g_has_pending{false};
+// Temporary files of writes not yet renamed into place, for abandon_pending_writes(): fixed
+// buffers and an atomic count, because a signal handler (on any thread) reads them.
+constexpr int kMaxPending = 64;
+char g_pending[kMaxPending][4096];
+std::atomic<int> g_pending_count{0};
 
 }  // namespace
 
@@ -76,7 +77,7 @@ void check_output_path(const std::string& path) {
   if (fs::is_directory(path, ec)) throw std::invalid_argument(path + ": is a folder");
 }
 
-void write_image(const std::string& path, const Film& film, const AovSelection& aovs) {
+std::string write_image_temp(const std::string& path, const Film& film, const AovSelection& aovs) {
   using namespace OIIO;
   const bool png = extension_of(path) == ".png";
   const size_t npix = size_t(film.width) * film.height;
@@ -111,15 +112,17 @@ void write_image(const std::string& path, const Film& film, const AovSelection& 
   const fs::path target(path);
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::string tmp = (dir / ("." + target.filename().string() + ".XXXXXX")).string();
+  const int slot = g_pending_count.load();
+  if (slot >= kMaxPending || tmp.size() >= sizeof g_pending[0])
+    throw std::runtime_error(path + ": too many outputs or too long a path");
   const int fd = ::mkstemp(tmp.data());
   if (fd < 0) throw std::runtime_error(path + ": cannot create a file in '" + dir.string() + "'");
   ::close(fd);
-  std::snprintf(g_pending, sizeof g_pending, "%s", tmp.c_str());
-  g_has_pending = true;
+  std::snprintf(g_pending[slot], sizeof g_pending[slot], "%s", tmp.c_str());
+  g_pending_count.store(slot + 1);  // published only once the name is complete
 
   const auto fail = [&](const std::string& why) {
     std::remove(tmp.c_str());
-    g_has_pending = false;
     throw std::runtime_error(path + ": " + why);
   };
   auto out = ImageOutput::create(png ? "png" : "openexr");
@@ -127,18 +130,39 @@ void write_image(const std::string& path, const Film& film, const AovSelection& 
   if (!out->open(tmp, spec)) fail(out->geterror());
   if (!out->write_image(TypeDesc::FLOAT, pixels.data())) fail(out->geterror());
   if (!out->close()) fail(out->geterror());
+  return tmp;
+}
+
+void commit_image(const std::string& tmp, const std::string& path) {
   // mkstemp makes the file private; give it the usual permissions of a new file.
   const mode_t mask = ::umask(0);
   ::umask(mask);
-  fs::permissions(tmp, static_cast<fs::perms>(0666 & ~mask));
   std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) fail("cannot replace the file: " + ec.message());
-  g_has_pending = false;
+  fs::permissions(tmp, static_cast<fs::perms>(0666 & ~mask), ec);
+  if (!ec) fs::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot replace the file: " + ec.message());
+  }
+}
+
+void write_image(const std::string& path, const Film& film, const AovSelection& aovs) {
+  try {
+    commit_image(write_image_temp(path, film, aovs), path);
+  } catch (...) {
+    forget_pending_writes();
+    throw;
+  }
+  forget_pending_writes();
+}
+
+void forget_pending_writes() {
+  g_pending_count.store(0);
 }
 
 void abandon_pending_writes() {
-  if (g_has_pending) ::unlink(g_pending);
+  const int n = std::min(g_pending_count.load(), kMaxPending);
+  for (int i = 0; i < n; ++i) ::unlink(g_pending[i]);  // renamed ones are gone already: ENOENT
 }
 
 }  // namespace softtrace

@@ -40,7 +40,13 @@ bool is_exr_path(const std::string& path);
 // complete, so an existing file is never half-overwritten. Throws std::runtime_error.
 void write_image(const std::string& path, const Film& film, const AovSelection& aovs);
 
-// Removes temporary files of writes in progress; safe to call from a signal handler.
+// The two halves of write_image, for writing several outputs all-or-nothing: write every
+// temporary file (each registered as pending), then commit them all, then forget them.
+std::string write_image_temp(const std::string& path, const Film& film, const AovSelection& aovs);
+void commit_image(const std::string& tmp, const std::string& path);
+void forget_pending_writes();
+
+// Removes the temporary files of pending writes; safe to call from a signal handler.
 void abandon_pending_writes();
 
 }  // namespace softtrace

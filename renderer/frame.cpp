@@ -36,6 +36,8 @@ bool render_frame(const Scene& scene, const EmbreeScene& rt, const RenderOptions
         if (opt.cancel && *opt.cancel) return;
         long long& steps_acc = steps_total.local();
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+          // Per row, not per tile: a costly scene must still stop soon after SIGINT.
+          if (opt.cancel && *opt.cancel) return;
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
             const size_t i = size_t(y) * W + x;
             Vec3 sum{0, 0, 0};

@@ -5,12 +5,20 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
+
+#include "json_nesting.h"
 
 namespace softtrace {
 
 namespace {
 
 using json = nlohmann::json;
+
+// Every light and object costs work at every shaded point or ray; beyond these a scene is
+// hostile rather than ambitious.
+constexpr size_t kMaxLights = 1000;
+constexpr size_t kMaxObjects = 10000;
 
 // nlohmann reports a byte offset; users want line and column.
 std::string line_col(const std::string& text, size_t byte) {
@@ -35,6 +43,8 @@ Camera load_camera(const Params& p) {
   p.check(c.fov > 0 && c.fov < 180, "fov", "expected a vertical field of view in (0, 180) degrees");
   const Vec3 view = c.target - c.eye;
   p.check(length(view) > 0, "target", "expected a target different from the eye");
+  p.check(std::isfinite(length(view)), "target",
+          "expected a target at a finite distance from the eye");
   p.check(length(c.up) > 0, "up", "expected a non-zero up vector");
   p.check(length(cross(normalize(view), normalize(c.up))) > 1e-9, "up",
           "expected an up vector not parallel to the viewing direction");
@@ -170,7 +180,9 @@ class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
     const size_t at = what.find("at line ");
     if (at != std::string::npos &&
         std::sscanf(what.c_str() + at, "at line %u, column %u", &line, &column) == 2) {
-      where = std::to_string(line) + ":" + std::to_string(column);
+      // Column 0: the offending character is the newline that ended the previous line.
+      where = column > 0 ? std::to_string(line) + ":" + std::to_string(column)
+                         : line_col(text_, position > 0 ? position - 1 : 0);
       message = what.substr(what.find(": ", at) + 2);
     } else {  // a number token: no escapes, so its length locates its start
       where = line_col(text_, position >= token.size() ? position - token.size() : 0);
@@ -186,6 +198,7 @@ class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
 };
 
 Scene parse_scene(const std::string& text, const std::string& name) {
+  check_json_nesting(text, name);
   json doc;
   LocatingParser parser(doc, text);
   json::sax_parse(text, &parser, nlohmann::detail::input_format_t::json, true,
@@ -201,17 +214,23 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   if (root.has("image")) s.image = load_image(root.object("image"));
   s.background = load_color(root, "background", s.background);
   if (root.has("lights")) {
-    for (const Params& l : root.objects("lights")) s.lights.push_back(load_light(l));
+    const std::vector<Params> lights = root.objects("lights");
+    if (lights.size() > kMaxLights)
+      root.fail("lights", "expected at most " + std::to_string(kMaxLights) + " lights");
+    for (const Params& l : lights) s.lights.push_back(load_light(l));
   } else {
     s.lights = default_lights(s.camera);
   }
   const std::vector<Params> objects = root.objects("objects");
   if (objects.empty()) root.fail("objects", "expected at least one object");
-  for (size_t i = 0; i < objects.size(); ++i) s.objects.push_back(load_object(objects[i], i));
-  for (size_t i = 0; i < s.objects.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (s.objects[i].name == s.objects[j].name)
-        objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
+  if (objects.size() > kMaxObjects)
+    root.fail("objects", "expected at most " + std::to_string(kMaxObjects) + " objects");
+  std::unordered_set<std::string> names;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    s.objects.push_back(load_object(objects[i], i));
+    if (!names.insert(s.objects[i].name).second)
+      objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
+  }
   root.finish();
   return s;
 }

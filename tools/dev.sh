@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # softtrace's set-up on Debian 12, idempotent:
 #   tools/dev.sh demo   install what is missing, build, render the default scene to out/
-#   tools/dev.sh test   install what is missing, build, run the whole test suite (CTest)
+#   tools/dev.sh test   install what is missing, build, run the whole test suite (CTest), then
+#                       the same tests built with AddressSanitizer+UBSan (build-asan/) and the
+#                       scene-loader fuzzer for FUZZ_SECONDS (default 60; build-fuzz/)
 #   tools/dev.sh build  install what is missing and build
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(g++ cmake ninja-build pkg-config libembree-dev libopenimageio-dev libopenexr-dev
-  libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools)
+  libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools
+  clang-14 libclang-rt-14-dev)
 BUILD_DIR=${BUILD_DIR:-build}
 
 install_missing() {
@@ -28,6 +31,35 @@ build() {
   cmake --build "$BUILD_DIR" -j "$(nproc)"
 }
 
+# The unit and CLI tests again, built with -fsanitize=address,undefined (no recovery: a report
+# fails its test). Leak checking is off: the image and threading libraries keep singletons.
+sanitize() {
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTTRACE_SANITIZE=ON >/dev/null
+  cmake --build build-asan -j "$(nproc)"
+  ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-asan -j "$(nproc)" --output-on-failure
+}
+
+# libFuzzer on the scene loader and field evaluation (tests/fuzz_scene.cpp), seeded from scenes/
+# and tests/bad_scenes/, with the node type names as a dictionary. A crash leaves its input in
+# build-fuzz/crash-*; make it a tests/bad_scenes/ file (or fix the loader) before going on.
+fuzz() {
+  CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSOFTTRACE_SANITIZE=ON -DSOFTTRACE_FUZZ=ON >/dev/null
+  cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene
+  mkdir -p build-fuzz/corpus
+  "$BUILD_DIR/softtrace" nodes | awk '{ printf "\"\\\"%s\\\"\"\n", $1 }' >build-fuzz/scene.dict
+  cat tests/fuzz_scene.dict >>build-fuzz/scene.dict
+  if ! ASAN_OPTIONS=detect_leaks=0 build-fuzz/tests/fuzz_scene -max_total_time="${FUZZ_SECONDS:-60}" \
+    -max_len=16384 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -dict=build-fuzz/scene.dict \
+    -artifact_prefix=build-fuzz/ build-fuzz/corpus scenes tests/bad_scenes >build-fuzz/fuzz.log 2>&1; then
+    tail -n 60 build-fuzz/fuzz.log
+    echo "fuzz_scene failed: the input is in build-fuzz/ (crash-*, timeout-*, oom-*)" >&2
+    return 1
+  fi
+  grep -E '^(Done|stat::)' build-fuzz/fuzz.log
+}
+
 case "${1:-}" in
   demo)
     install_missing
@@ -40,6 +72,8 @@ case "${1:-}" in
     install_missing
     build
     ctest --test-dir "$BUILD_DIR" -j "$(nproc)" --output-on-failure
+    sanitize
+    fuzz
     ;;
   build)
     install_missing
