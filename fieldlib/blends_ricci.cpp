@@ -25,10 +25,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 enum class Arg { Same, SoftComplement, CgComplement };
 
-double mul(double a, double b) {
-  return a == 0 || b == 0 ? 0 : a * b;
-}
-
 // (Σ g_i^q)^(1/q)   — 000 Eq. 6, 002 Eqs. 7–8
 class Ricci final : public FieldNode {
  public:
@@ -36,7 +32,7 @@ class Ricci final : public FieldNode {
       : c_(std::move(c)), args_(std::move(args)), positive_(positive), n_(n) {
     std::vector<double> cL;
     for (size_t i = 0; i < c_.size(); ++i)
-      cL.push_back(mul(arg_slope(i, global_range(*c_[i])), c_[i]->lipschitz()));
+      cL.push_back(flat_product(arg_slope(i, global_range(*c_[i])), c_[i]->lipschitz()));
     global_L_ = combine(cL);
   }
 
@@ -66,7 +62,7 @@ class Ricci final : public FieldNode {
     for (size_t i = 0; i < k; ++i) {
       const Interval f = c_[i]->interval(b);
       G[i] = arg_range(i, f);
-      cL[i] = mul(arg_slope(i, f), c_[i]->lipschitz(b));
+      cL[i] = flat_product(arg_slope(i, f), c_[i]->lipschitz(b));
     }
     const Interval B = range(G);
     double s = 0;
@@ -77,7 +73,7 @@ class Ricci final : public FieldNode {
       } else {
         a = G[i].lo > 0 ? std::min(1.0, std::pow(B.hi / G[i].lo, n_ + 1) * (1 + 1e-13)) : 1;
       }
-      s += mul(a, cL[i]);
+      s += flat_product(a, cL[i]);
     }
     return std::min({global_L_, combine(cL), s * (1 + 1e-12)});
   }

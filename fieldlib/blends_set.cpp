@@ -83,8 +83,8 @@ class Perlin final : public FieldNode {
     for (size_t i = 0; i < G.size(); ++i) {
       double m = 1;  // a zero factor wins over an infinite one (inf * 0 would be NaN)
       for (size_t j = 0; j < G.size() && m != 0; ++j)
-        if (j != i) m = magnitude(G[j]) == 0 ? 0 : m * magnitude(G[j]);
-      s += m == 0 || L[i] == 0 ? 0 : m * L[i];
+        if (j != i) m = flat_product(m, magnitude(G[j]));
+      s += flat_product(m, L[i]);
     }
     return s * (1 + 1e-12);
   }

@@ -6,15 +6,12 @@
 #include "distance_params.h"
 #include "distances.h"
 #include "gauge.h"
+#include "node_util.h"
 #include "one_sided.h"
 
 namespace softtrace {
 
 namespace {
-
-double sgn(double v) {
-  return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
-}
 
 Box scaled_box(const Vec3& half, double c) {
   if (c < 0) return Box();

@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "node_util.h"
 #include "potentials.h"
 #include "radius_transforms.h"
 
@@ -16,11 +17,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // w1 = d/f - 1 is capped here where f -> 0 away from the skeleton; T_n/T_l are then ~0.5 on the
 // outer branch, the limit w1 -> infinity.
 constexpr double kWMax = 1e6;
-
-// a·b with 0·inf = 0: a flat factor makes the product flat.
-double mul(double a, double b) {
-  return a == 0 || b == 0 ? 0 : a * b;
-}
 
 // P ∘ d   — 000 Eq. 9, 002 Eq. 1
 class SoftObject final : public FieldNode {
@@ -36,9 +32,9 @@ class SoftObject final : public FieldNode {
     return v;
   }
   Interval interval(const Box& b) const override { return P_->interval(d_->interval(b)); }
-  double lipschitz() const override { return mul(P_->lipschitz(), d_->lipschitz()); }
+  double lipschitz() const override { return flat_product(P_->lipschitz(), d_->lipschitz()); }
   double lipschitz(const Box& b) const override {
-    return mul(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));
+    return flat_product(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));
   }
   Box region(double level, Side side) const override {
     if (side == Side::Above && level > 0) return d_->region(1, Side::Below);
@@ -110,7 +106,7 @@ class TransformedSoftObject final : public FieldNode {
   double lipschitz() const override {
     if (src_ != WSource::Constant) return kInf;
     const double s = T_->slope_d({0, kInf}, Interval(w_));
-    return mul(P_->lipschitz(), mul(s, d_->lipschitz()));
+    return flat_product(P_->lipschitz(), flat_product(s, d_->lipschitz()));
   }
 
   double lipschitz(const Box& b) const override {
@@ -183,17 +179,17 @@ class TransformedSoftObject final : public FieldNode {
     const double LP = P_->lipschitz(B.T);
     if (LP == 0) return 0;
     const double Ld = d_->lipschitz(b);
-    const double dterm = mul(T_->slope_d(B.d, B.w), Ld);
-    if (src_ == WSource::Constant) return std::min(lipschitz(), mul(LP, dterm));
+    const double dterm = flat_product(T_->slope_d(B.d, B.w), Ld);
+    if (src_ == WSource::Constant) return std::min(lipschitz(), flat_product(LP, dterm));
     const double sw = T_->slope_w(B.d, B.w);
     double wterm = 0;
     if (sw > 0) {
       const double Lf = scale_ * f_->lipschitz(b);
       const double G1 = B.f.lo > 0 ? Ld / B.f.lo + B.d.hi * Lf / (B.f.lo * B.f.lo) : kInf;
       const double G2 = B.r.hi * (Ld + B.r.hi * Lf);
-      wterm = std::min(mul(sw, G1), mul(T_->slope_w_per_d(B.d, B.w), G2));
+      wterm = std::min(flat_product(sw, G1), flat_product(T_->slope_w_per_d(B.d, B.w), G2));
     }
-    return mul(LP, (dterm + wterm) * (1 + 1e-12));
+    return flat_product(LP, (dterm + wterm) * (1 + 1e-12));
   }
 
   // w from d > 0 and f, clamped to [w_min, w_max] (§4.9), with ∂w/∂d and ∂w/∂f.
