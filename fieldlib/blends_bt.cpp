@@ -7,6 +7,8 @@
 #include <string>
 
 #include "bt_base.h"
+#include "node_util.h"
+#include "scratch.h"
 
 namespace softtrace {
 
@@ -14,22 +16,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTiny = std::numeric_limits<double>::denorm_min();
-
-// Per-call scratch arrays without a heap allocation for the usual small k.
-template <class T>
-class Scratch {
- public:
-  explicit Scratch(int n)
-      : data_(n <= kLocal ? local_ : (heap_ = std::make_unique<T[]>(n)).get()) {}
-  T& operator[](int i) { return data_[i]; }
-  T* data() { return data_; }
-
- private:
-  static constexpr int kLocal = 16;
-  T local_[kLocal];
-  std::unique_ptr<T[]> heap_;
-  T* data_;
-};
 
 Interval signed_interval(int sigma, Interval a) {
   return sigma > 0 ? a : -a;
@@ -82,8 +68,8 @@ class BtBlend final : public FieldNode {
       lo[i] = X.lo;
       hi[i] = X.hi;
     }
-    const Interval bt =
-        bulge() ? bulge_enclosure(lo.data(), hi.data()) : monotone_enclosure(lo.data(), hi.data());
+    const Interval bt = bulge() ? bulge_enclosure(lo.data(), hi.data(), bulge_bounds(b))
+                                : monotone_enclosure(lo.data(), hi.data());
     return tau_ > 0 ? bt : -bt;
   }
 
@@ -95,7 +81,7 @@ class BtBlend final : public FieldNode {
   }
 
   double lipschitz(const Box& b) const override {
-    if (bulge()) return kInf;
+    if (bulge()) return bulge_lipschitz(b);
     const int k = op_.k();
     Scratch<Interval> X(k);
     for (int i = 0; i < k; ++i) X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
@@ -151,19 +137,63 @@ class BtBlend final : public FieldNode {
                    vhi + 2 * op_.value_tolerance(hi, vhi, r, m));
   }
 
-  // min_i (x_i - P_i)/M_i <= BT <= min_i x_i/M_i with P_i <= r_max, M_i ∈ [m_i, ∞).
-  Interval bulge_enclosure(const double* lo, const double* hi) const {
+  // The position functions' ranges and slopes over the box, from the operands' gradient
+  // floors and Hessian bounds (bt_base.h, bulge_box).
+  BulgeBox bulge_bounds(const Box& b) const {
+    BulgeOperand g[2];
+    bool known = true;
+    for (int i = 0; i < 2; ++i) {
+      g[i].grad_lo = c_[i]->gradient_floor(b);
+      g[i].grad_hi = c_[i]->lipschitz(b);
+      g[i].hessian = c_[i]->hessian_bound(b);
+      known = known && g[i].grad_lo > 0 && std::isfinite(g[i].hessian);
+    }
+    if (known)  // the centre anchors cosθ's range; without slope bounds it is [-1, 1] anyway
+      for (int i = 0; i < 2; ++i) {
+        c_[i]->eval(b.center(), &g[i].centre_gradient);
+        g[i].centre_gradient = g[i].centre_gradient * sigma_[i];
+      }
+    return bulge_box(g, 0.5 * b.diagonal(), op_.r().data(), op_.m().data(), omega_);
+  }
+
+  // min_i (x_i - P_i)/M_i <= BT <= min_i x_i/M_i with P_i <= P_hi and M_i ∈ [m_i, M_hi]; where
+  // M_hi is unbounded only the sign of a quotient is kept.
+  Interval bulge_enclosure(const double* lo, const double* hi, const BulgeBox& B) const {
     double L = kInf, U = kInf;
     for (int i = 0; i < op_.k(); ++i) {
-      const double m = op_.m()[i];
-      const double n = iv::down(lo[i] - r_max_[i]);  // lower end of x_i - P_i
-      const double tn = 1e-9 * (std::abs(lo[i]) + r_max_[i]);
-      L = std::min(L, n > tn ? kTiny : iv::down((n - tn) / m));
-      const double th = 1e-9 * (std::abs(hi[i]) + r_max_[i]);
-      U = std::min(U, hi[i] < -th ? -kTiny : iv::up((hi[i] + th) / m));
+      const double m = op_.m()[i], M = B.M_hi[i];
+      const double n = iv::down(lo[i] - B.P_hi[i]);  // lower end of x_i - P_i
+      const double tn = 1e-9 * (std::abs(lo[i]) + B.P_hi[i]);
+      if (n > tn)
+        L = std::min(L, std::isfinite(M) ? iv::down((n - tn) / M) : kTiny);
+      else
+        L = std::min(L, iv::down((n - tn) / m));
+      const double th = 1e-9 * (std::abs(hi[i]) + B.P_hi[i]);
+      if (hi[i] < -th)
+        U = std::min(U, std::isfinite(M) ? iv::up((hi[i] + th) / M) : -kTiny);
+      else
+        U = std::min(U, iv::up((hi[i] + th) / m));
     }
     if (std::isnan(L) || std::isnan(U)) return Interval::entire();
     return {L, U};
+  }
+
+  // |∇BT| <= max_i L_i/m_i + max_i (r_i/m_i)|∇cosθ| + |BT| max_i |∇M_i|/m_i (blends_bt.h).
+  double bulge_lipschitz(const Box& b) const {
+    if (op_.is_conic()) return kInf;  // its p does not scale with the ranges (blends_bt.h)
+    double lo[2], hi[2], slope = 0, range = 0, weight = 0;
+    for (int i = 0; i < 2; ++i) {
+      const Interval X = signed_interval(sigma_[i], c_[i]->interval(b));
+      lo[i] = X.lo;
+      hi[i] = X.hi;
+      const double m = op_.m()[i];
+      slope = std::max(slope, iv::up(c_[i]->lipschitz(b) / m));
+      range = std::max(range, iv::up(op_.r()[i] / m));
+    }
+    const BulgeBox B = bulge_bounds(b);
+    for (int i = 0; i < 2; ++i) weight = std::max(weight, iv::up(B.dM[i] / op_.m()[i]));
+    const double h = magnitude(bulge_enclosure(lo, hi, B));
+    return iv::up(slope + iv::up(flat_product(range, B.dcos)) + iv::up(flat_product(h, weight)));
   }
 
   std::vector<NodePtr> c_;
@@ -171,7 +201,7 @@ class BtBlend final : public FieldNode {
   int tau_;
   std::vector<int> sigma_;
   double omega_;  // 0: no bulge elimination
-  std::vector<double> r_max_;
+  std::vector<double> r_max_;  // r_i(2 + ω): the largest P_i, for region()
 };
 
 enum class BtKind { Union, Intersection, Difference, Displacement };

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "interval.h"
+#include "node_util.h"
+
 namespace softtrace {
 
 namespace {
@@ -211,6 +214,57 @@ BulgeParameters bulge_parameters(const Vec3& grad_g1, const Vec3& grad_g2, const
   for (int i = 0; i < 2; ++i) b.P[i] = r[i] * (1 - b.cos_theta + omega);
   bulge_weights(m[0], m[1], G, b.cos_theta, b.M);
   return b;
+}
+
+BulgeBox bulge_box(const BulgeOperand g[2], double radius, const double r[2], const double m[2],
+                   double omega) {
+  BulgeBox B;
+  // |∇n_i| <= |H_i|/|∇g_i| for the unit normal n_i; |∇|∇g_i|| <= |H_i|, and 0 when the bounds
+  // pin |∇g_i| to a constant over the box.
+  double dn[2], dnorm[2];
+  for (int i = 0; i < 2; ++i) {
+    dn[i] = g[i].grad_lo > 0 ? iv::up(g[i].hessian / g[i].grad_lo) : kInf;
+    dnorm[i] = g[i].grad_lo == g[i].grad_hi ? 0 : g[i].hessian;
+  }
+  B.dcos = iv::up(dn[0] + dn[1]);  // ∇(n_1·n_2) = J_{n_1}^T n_2 + J_{n_2}^T n_1
+  if (std::isfinite(B.dcos)) {
+    const BulgeParameters c = bulge_parameters(g[0].centre_gradient, g[1].centre_gradient, r, m,
+                                               omega);
+    const double spread = iv::up(B.dcos * radius) + 1e-15;  // + the rounding of cosθ
+    B.cos_lo = std::max(-1.0, c.cos_theta - spread);
+    B.cos_hi = std::min(1.0, c.cos_theta + spread);
+  }
+  // G = |∇g_1|/|∇g_2| ∈ [G_lo, G_hi], |∇G| <= |∇|∇g_1||/|∇g_2| + |∇g_1| |∇|∇g_2||/|∇g_2|^2.
+  const double G_lo = g[1].grad_hi > 0 ? iv::down(g[0].grad_lo / g[1].grad_hi) : 0;
+  const double G_hi = g[1].grad_lo > 0 ? iv::up(g[0].grad_hi / g[1].grad_lo) : kInf;
+  const double dG = g[1].grad_lo > 0 ? iv::up(flat_product(dnorm[0], 1 / g[1].grad_lo) +
+                                              flat_product(g[0].grad_hi * dnorm[1],
+                                                           1 / (g[1].grad_lo * g[1].grad_lo)))
+                                     : kInf;
+  for (int i = 0; i < 2; ++i) {
+    B.P_lo[i] = iv::down(r[i] * iv::down(1 - B.cos_hi + omega));
+    B.P_hi[i] = iv::up(r[i] * iv::up(1 - B.cos_lo + omega));
+  }
+  // M_1 = m_1 + (m_2 G - m_1)[cosθ]_+ where m_1 <= m_2 G, else m_1 (M_2 likewise with m_1/G):
+  // both pieces agree on m_1 = m_2 G ([BE-4]), so each bound covers both.
+  const double c = std::max(0.0, B.cos_hi);
+  if (c == 0) {  // [cosθ]_+ = 0 on the whole box: M = m
+    for (int i = 0; i < 2; ++i) {
+      B.M_hi[i] = m[i];
+      B.dM[i] = 0;
+    }
+    return B;
+  }
+  const double rise[2] = {std::max(0.0, iv::up(m[1] * G_hi - m[0])),
+                          G_lo > 0 ? std::max(0.0, iv::up(m[0] / G_lo - m[1])) : kInf};
+  // |∇(m_1/G)| = m_1|∇G|/G^2
+  const double dG_over[2] = {flat_product(m[1], dG),
+                             G_lo > 0 ? flat_product(m[0] / (G_lo * G_lo), dG) : kInf};
+  for (int i = 0; i < 2; ++i) {
+    B.M_hi[i] = iv::up(m[i] + flat_product(rise[i], c));
+    B.dM[i] = iv::up(flat_product(rise[i], B.dcos) + flat_product(c, dG_over[i]));
+  }
+  return B;
 }
 
 }  // namespace softtrace

@@ -92,4 +92,20 @@ BulgeParameters bulge_parameters(const Vec3& grad_g1, const Vec3& grad_g2, const
 // M_1, M_2 of §7.6 for a given G and cosθ.
 void bulge_weights(double m1, double m2, double G, double cos_theta, double M[2]);
 
+// What bounding P_i and M_i over a box needs from each union operand g_i = σ_i f_i (node.h):
+// ∇g_i at the box centre, bounds grad_lo <= |∇g_i| <= grad_hi and the Hessian bound.
+struct BulgeOperand {
+  Vec3 centre_gradient;
+  double grad_lo = 0, grad_hi = 0, hessian = 0;
+};
+// Over a box of half-diagonal `radius` (derivation in blends_bt.h): cosθ's range and a bound on
+// |∇cosθ|, the ranges of P_i and the upper ends of M_i, and bounds on |∇M_i|. Unknown slopes
+// give dcos = dM = +inf, cosθ ∈ [-1, 1] and M_hi = +inf where G is unbounded.
+struct BulgeBox {
+  double cos_lo = -1, cos_hi = 1, dcos = 0;
+  double P_lo[2] = {0, 0}, P_hi[2] = {0, 0}, M_hi[2] = {0, 0}, dM[2] = {0, 0};
+};
+BulgeBox bulge_box(const BulgeOperand g[2], double radius, const double r[2], const double m[2],
+                   double omega);
+
 }  // namespace softtrace

@@ -1,5 +1,6 @@
 // LP metric, superquadric and super-elliptic cylinder, with the optional six side lengths
 // (MATH.md §2.5, §2.6, §2.9, §2.10).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -52,6 +53,33 @@ class LpMetric final : public FieldNode {
   }
   Box region(double level, Side side) const override {
     return side == Side::Below ? scaled_box(a_, level) : Box::unbounded();
+  }
+  // For n = 2, f = |Ax| with A = diag(1/a): ∇f = A v with v = Ax/f a unit vector, so
+  // |∇f|^2 = Σ w_i/a_i^2 / Σ w_i with w_i = (x_i/a_i)^2 — a linear-fractional function of w,
+  // smallest at a corner of w's box — and Hf = A(I - vv^T)A/f, of norm <= max(1/a_i^2)/f.
+  double gradient_floor(const Box& b) const override {
+    if (n_ != 2) return 0;
+    Interval w[3];
+    terms(b, w);
+    for (Interval& wi : w) wi = sqr(wi);
+    if (w[0].lo + w[1].lo + w[2].lo <= 0) return 0;  // the box may hold the centre
+    double g2 = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner) {
+      double num = 0, den = 0;
+      for (int i = 0; i < 3; ++i) {
+        const double wi = (corner >> i) & 1 ? w[i].hi : w[i].lo;
+        num += wi / (a_[i] * a_[i]);
+        den += wi;
+      }
+      g2 = std::min(g2, num / den);
+    }
+    return std::sqrt(g2) * (1 - 1e-12);
+  }
+  double hessian_bound(const Box& b) const override {
+    const double f = n_ == 2 ? interval(b).lo : 0;
+    if (!(f > 0)) return std::numeric_limits<double>::infinity();
+    const double amin = std::min({a_.x, a_.y, a_.z});
+    return iv::up(1 / iv::down(amin * amin * f));
   }
 
  private:

@@ -1,6 +1,7 @@
 // Skeletal line segment r(X)/I_r (MATH.md §2.8).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "distances.h"
 
@@ -28,6 +29,15 @@ class Segment final : public FieldNode {
     return iv::out(std::max(0.0, c - h) / r_, (c + h) / r_);
   }
   double lipschitz() const override { return 1 / r_; }
+  // Off the segment |∇f| = 1/r, and the Euclidean distance e has Hessian norm 1/e (its level
+  // sets are cylinders and spheres of radius e, joined C^1), so |Hf| <= 1/(r·e_min).
+  double gradient_floor(const Box& b) const override {
+    return distance_lower(b) > 0 ? iv::down(1 / r_) : 0;
+  }
+  double hessian_bound(const Box& b) const override {
+    const double e = distance_lower(b);
+    return e > 0 ? iv::up(1 / iv::down(r_ * e)) : std::numeric_limits<double>::infinity();
+  }
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();
@@ -39,6 +49,10 @@ class Segment final : public FieldNode {
   }
 
  private:
+  double distance_lower(const Box& b) const {
+    const double c = length(b.center() - closest(b.center())), h = 0.5 * b.diagonal();
+    return iv::down(c - iv::up(h * (1 + 1e-12)));
+  }
   Vec3 closest(const Vec3& p) const {
     const double t = len2_ > 0 ? std::clamp(dot(p - a_, ab_) / len2_, 0.0, 1.0) : 0.0;
     return a_ + ab_ * t;

@@ -3,6 +3,7 @@
 // every method is const and thread-safe.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -35,6 +36,15 @@ class FieldNode {
   // Box::unbounded() when no finite box is known. For soft fields, region(l, Above) with
   // l > 0 is the support box.
   virtual Box region(double level, Side side) const { return Box::unbounded(); }
+
+  // For blends whose parameters follow the children's normals (bulge elimination, MATH.md
+  // §7.6): a lower bound on |∇f| over the box, and an upper bound on the Hessian's operator
+  // norm there, i.e. a Lipschitz bound on ∇f, finite only where f is C^1 with no kink in the
+  // box. The defaults claim nothing.
+  virtual double gradient_floor(const Box& b) const { return 0; }
+  virtual double hessian_bound(const Box& b) const {
+    return std::numeric_limits<double>::infinity();
+  }
 
   double value(const Vec3& p) const { return eval(p, nullptr); }
   Vec3 gradient(const Vec3& p) const {

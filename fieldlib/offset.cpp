@@ -1,5 +1,6 @@
 #include "offset.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace softtrace {
@@ -22,6 +23,12 @@ class Offset final : public FieldNode {
   double lipschitz() const override { return iv::up(std::abs(s_) * child_->lipschitz()); }
   double lipschitz(const Box& b) const override {
     return iv::up(std::abs(s_) * child_->lipschitz(b));
+  }
+  double gradient_floor(const Box& b) const override {
+    return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
+  }
+  double hessian_bound(const Box& b) const override {
+    return iv::up(std::abs(s_) * child_->hessian_bound(b));
   }
   Box region(double level, Side side) const override {
     // The child's side flips with the sign of s; its level c + level/s is rounded away from

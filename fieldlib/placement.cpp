@@ -26,6 +26,11 @@ class Placed final : public FieldNode {
   Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
   double lipschitz() const override { return child_->lipschitz(); }
   double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
+  // A rigid motion keeps gradient lengths and Hessian norms.
+  double gradient_floor(const Box& b) const override {
+    return child_->gradient_floor(to_local(b));
+  }
+  double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }
   Box region(double level, Side side) const override {
     const Box local = child_->region(level, side);
     return local.bounded() ? transform_box(local, R_, t_) : local;

@@ -102,6 +102,30 @@ TEST_P(NodeSweep, BoxBoundsEncloseSamples) {
   }
 }
 
+// gradient_floor and hessian_bound (node.h) over random boxes: |∇f| never below the floor, and
+// ∇f never changing faster than the Hessian bound between two points of the box.
+TEST_P(NodeSweep, CurvatureBoundsHoldOnSamples) {
+  const SweepCase& c = GetParam();
+  const NodePtr n = build_from_json(c.json, c.convention);
+  std::mt19937_64 rng(5);
+  int claims = 0;
+  for (int i = 0; i < kBoxes; ++i) {
+    const Box b = random_box(rng, c.domain);
+    const double floor = n->gradient_floor(b), H = n->hessian_bound(b);
+    ASSERT_GE(floor, 0) << c.name;
+    ASSERT_FALSE(std::isnan(H)) << c.name;
+    if (floor == 0 && !std::isfinite(H)) continue;
+    ++claims;
+    for (int j = 0; j < 30; ++j) {
+      const Vec3 p = uniform_in(rng, b), q = uniform_in(rng, b);
+      const Vec3 gp = n->gradient(p), gq = n->gradient(q);
+      ASSERT_GE(length(gp), floor * (1 - 1e-9)) << c.name;
+      ASSERT_LE(length(gp - gq), H * length(p - q) * (1 + 1e-9) + 1e-12) << c.name;
+    }
+  }
+  RecordProperty("boxes_with_claims", claims);
+}
+
 TEST_P(NodeSweep, RegionContainsItsLevelSet) {
   const SweepCase& c = GetParam();
   if (std::isnan(c.region_level)) GTEST_SKIP() << "no finite region for this field";

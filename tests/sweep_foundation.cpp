@@ -10,6 +10,10 @@ const Box kFig12({-40, -40, -30}, {40, 40, 30});
 const SweepCase kCases[] = {
     {"lp_metric_n2", R"({"type":"lp_metric","radii":[1,2,0.5],"n":2})", kUnit, Convention::Soft,
      1.0, Side::Below},
+    {"lp_metric_n2_cylinder_placed",
+     R"({"type":"lp_metric","radii":[0.4,0.3,100],"n":2,"translate":[0.1,0.2,0],
+         "rotate":{"axis":[1,1,0],"deg":60}})",
+     kUnit, Convention::Soft, 1.0, Side::Below},
     {"lp_metric_n1", R"({"type":"lp_metric","radii":[1,2,0.5],"n":1})", kUnit, Convention::Soft,
      1.0, Side::Below},
     {"lp_metric_n1_5", R"({"type":"lp_metric","radii":[1,0.7,1.3],"n":1.5})", kUnit,

@@ -36,6 +36,14 @@ const MaskCase kCases[] = {
      R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"field":{"type":"soft_blend","children":[
         {"type":"soft_object","distance":{"type":"superquadric","radii":[10,10,14],"n1":0.6,"n2":3}},
         {"type":"soft_object","distance":{"type":"segment","p0":[-12,0,6],"p1":[12,4,6],"radius":5}}]}}]})"},
+    // [003] Fig. 9's bulge-eliminated crossing (m1 = 0.3), seen low over the hub: its box
+    // Lipschitz bound comes from the spokes' Hessian bounds; globally it has none.
+    {"wheel_hub_bulge",
+     R"({"camera":{"eye":[1.2,-1.6,0.45],"target":[0,0,0.05],"fov":50},"objects":[{"convention":"zero",
+        "bounds":[[-2.2,-2.2,-0.7],[2.2,2.2,0.7]],"field":{"type":"bt_union","base":"hyperellipsoid",
+        "r":[0.8,0.8],"p":[2,2],"m":[0.3,1],"bulge_elimination":{"omega":0.05},"children":[
+        {"type":"offset","children":[{"type":"segment","p0":[-1.85,0,0],"p1":[1.85,0,0],"radius":0.16}]},
+        {"type":"offset","children":[{"type":"segment","p0":[0,-1.85,0],"p1":[0,1.85,0],"radius":0.16}]}]}}]})"},
 };
 
 class HitMask : public testing::TestWithParam<std::tuple<int, LipschitzMode>> {};
