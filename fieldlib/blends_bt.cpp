@@ -86,14 +86,9 @@ class BtBlend final : public FieldNode {
     Scratch<Interval> X(k);
     for (int i = 0; i < k; ++i) X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
     double L = 0;
-    for (int i = 0; i < k; ++i) {
-      double others = kInf;  // an upper bound of min_{j≠i} x_j/m_j over the box
-      for (int j = 0; j < k; ++j)
-        if (j != i) others = std::min(others, iv::up(X[j].hi / op_.m()[j]));
-      const double margin = iv::down(X[i].lo - iv::up(op_.m()[i] * others));
-      if (margin > op_.r()[i]) continue;  // ∂_iBT = 0 over the whole box
-      L = std::max(L, iv::up(c_[i]->lipschitz(b) / op_.m()[i]));
-    }
+    for (int i = 0; i < k; ++i)
+      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
+        L = std::max(L, iv::up(c_[i]->lipschitz(b) / op_.m()[i]));
     return L;
   }
 
@@ -156,9 +151,28 @@ class BtBlend final : public FieldNode {
     return bulge_box(g, 0.5 * b.diagonal(), op_.r().data(), op_.m().data(), omega_);
   }
 
-  // min_i (x_i - P_i)/M_i <= BT <= min_i x_i/M_i with P_i <= P_hi and M_i ∈ [m_i, M_hi]; where
-  // M_hi is unbounded only the sign of a quotient is kept.
+  // Where the base is homogeneous in its ranges, BT is non-decreasing in x, non-increasing in
+  // the ranges' factor c and monotone in each M_i with the sign of -BT, a sign M cannot change
+  // ([BT-1]): its extremes over the box are at corners. Otherwise (or with M unbounded) the
+  // bracket min_i (x_i - P_i)/M_i <= BT <= min_i x_i/M_i, of which M_hi = inf keeps the sign only.
   Interval bulge_enclosure(const double* lo, const double* hi, const BulgeBox& B) const {
+    const bool corners = homogeneous() && std::isfinite(B.M_hi[0]) && std::isfinite(B.M_hi[1]);
+    const Interval v = corners ? bulge_corners(lo, hi, B) : bulge_bracket(lo, hi, B);
+    if (std::isnan(v.lo) || std::isnan(v.hi)) return Interval::entire();
+    return v;
+  }
+
+  Interval bulge_corners(const double* lo, const double* hi, const BulgeBox& B) const {
+    const double* m = op_.m().data();
+    const auto padded = [&](const double* x, const double* P, const double* M, double side) {
+      const double v = op_.eval(x, P, M, nullptr);
+      return v + side * 2 * op_.value_tolerance(x, v, P, M);
+    };
+    return iv::out(std::min(padded(lo, B.P_hi, m, -1), padded(lo, B.P_hi, B.M_hi, -1)),
+                   std::max(padded(hi, B.P_lo, m, 1), padded(hi, B.P_lo, B.M_hi, 1)));
+  }
+
+  Interval bulge_bracket(const double* lo, const double* hi, const BulgeBox& B) const {
     double L = kInf, U = kInf;
     for (int i = 0; i < op_.k(); ++i) {
       const double m = op_.m()[i], M = B.M_hi[i];
@@ -174,26 +188,50 @@ class BtBlend final : public FieldNode {
       else
         U = std::min(U, iv::up((hi[i] + th) / m));
     }
-    if (std::isnan(L) || std::isnan(U)) return Interval::entire();
     return {L, U};
   }
 
-  // |∇BT| <= max_i L_i/m_i + max_i (r_i/m_i)|∇cosθ| + |BT| max_i |∇M_i|/m_i (blends_bt.h).
+  // The base scales with its ranges: BT(x; c·r) = c·BT(x/c; r) (blends_bt.h).
+  bool homogeneous() const { return !op_.is_conic() || op_.conic_p() == 0; }
+
+  // |∇BT| <= max_i L_i/m_i + max_i (r_i/m_i)|∇cosθ| + |BT| max_i |∇M_i|/m_i (blends_bt.h), the
+  // first two maxima over the children that can be active in the box.
   double bulge_lipschitz(const Box& b) const {
-    if (op_.is_conic()) return kInf;  // its p does not scale with the ranges (blends_bt.h)
-    double lo[2], hi[2], slope = 0, range = 0, weight = 0;
+    if (!homogeneous()) return kInf;
+    Interval X[2];
+    double lo[2], hi[2];
     for (int i = 0; i < 2; ++i) {
-      const Interval X = signed_interval(sigma_[i], c_[i]->interval(b));
-      lo[i] = X.lo;
-      hi[i] = X.hi;
+      X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
+      lo[i] = X[i].lo;
+      hi[i] = X[i].hi;
+    }
+    const BulgeBox B = bulge_bounds(b);
+    double slope = 0, range = 0, weight = 0;
+    int active = 0;
+    for (int i = 0; i < 2; ++i) {
       const double m = op_.m()[i];
+      weight = std::max(weight, iv::up(B.dM[i] / m));
+      if (!can_be_active(i, X, B.P_hi, B.M_hi)) continue;
+      ++active;
       slope = std::max(slope, iv::up(c_[i]->lipschitz(b) / m));
       range = std::max(range, iv::up(op_.r()[i] / m));
     }
-    const BulgeBox B = bulge_bounds(b);
-    for (int i = 0; i < 2; ++i) weight = std::max(weight, iv::up(B.dM[i] / op_.m()[i]));
+    if (active < 2) range = 0;  // one term: BT = x_j/M_j does not depend on the ranges
     const double h = magnitude(bulge_enclosure(lo, hi, B));
     return iv::up(slope + iv::up(flat_product(range, B.dcos)) + iv::up(flat_product(h, weight)));
+  }
+
+  // Whether ∂_iBT can be non-zero in the box: it is zero wherever x_i - M_i·min_{j≠i} x_j/M_j >=
+  // P_i (the hyper-ellipsoid term i is 0 since h <= min_j x_j/M_j; for the conic, x is outside
+  // region II with another arg-min), checked with interval ends, P_i <= P_hi, M_i ∈ [m_i, M_hi].
+  bool can_be_active(int i, const Interval* X, const double* P_hi, const double* M_hi) const {
+    const double* m = op_.m().data();
+    double others = kInf;  // an upper bound of min_{j≠i} x_j/M_j over the box
+    for (int j = 0; j < op_.k(); ++j)
+      if (j != i)
+        others = std::min(others, iv::up(X[j].hi / (X[j].hi >= 0 ? m[j] : M_hi[j])));
+    const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
+    return !(iv::down(X[i].lo - reach) > P_hi[i]);
   }
 
   std::vector<NodePtr> c_;

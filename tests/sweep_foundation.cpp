@@ -11,7 +11,7 @@ const SweepCase kCases[] = {
     {"lp_metric_n2", R"({"type":"lp_metric","radii":[1,2,0.5],"n":2})", kUnit, Convention::Soft,
      1.0, Side::Below},
     {"lp_metric_n2_cylinder_placed",
-     R"({"type":"lp_metric","radii":[0.4,0.3,100],"n":2,"translate":[0.1,0.2,0],
+     R"({"type":"lp_metric","radii":[0.4,0.3,3],"n":2,"translate":[0.1,0.2,0],
          "rotate":{"axis":[1,1,0],"deg":60}})",
      kUnit, Convention::Soft, 1.0, Side::Below},
     {"lp_metric_n1", R"({"type":"lp_metric","radii":[1,2,0.5],"n":1})", kUnit, Convention::Soft,

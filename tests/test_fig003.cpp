@@ -297,5 +297,79 @@ TEST(Fig003, Fig8LoweringM6AndM12RemovesTheUnwantedBlend) {
   EXPECT_GT(far, 100);
 }
 
+// Fig. 9: the wheel S(BT2(BT2(f1, f2), f3), 0) with bulge elimination in the inner blend.
+// Spokes f_i = e_i/rho - 1 (rho = 0.16, f1 along x, f2 along y), rim f3, inner r = 0.8, p = 2,
+// omega = 0.05; outer r = 1, m = 1. Claims:
+// - the bulge is gone: on top of the crossing both normals agree (cosθ = 1), the ranges shrink to
+//   r·omega and the top rises by rho·r·omega(1 - 2^(-1/2)) instead of rho·r(1 - 2^(-1/2));
+//   between the spokes (cosθ = 0) the fillet stays, with ranges r(1 + omega);
+// - the joint of the crossing spokes is the same for m1 = 1 and 0.3 ([BT-1]);
+// - only the corners of spoke f1 with the rim change: on the rim's inner edge the outer fillet
+//   reaches out to f1 = M1 = m1 (there cosθ = 0), i.e. |y| = rho(1 + m1), while spoke f2's corners
+//   reach |x| = rho(1 + 1) on both wheels.
+TEST(Fig003, Fig9BulgeGoneJointKeptOnlySpokeF1CornersChange) {
+  const Scene s = load_scene(scene_path("fig003_9_wheel"));
+  const json sj = scene_json("fig003_9_wheel");
+  const double rho = 0.16, r = 0.8, omega = 0.05, rim_inner = 1.75;
+  const double rise = 1 - 1 / std::sqrt(2.0);  // 2((P - x)/P)^2 = 1 at x1 = x2 = x
+  const Local wheel[2] = {local(s, sj, "m1_1"), local(s, sj, "m1_0.3")};
+  const double m1[2] = {1, 0.3};
+
+  for (int w = 0; w < 2; ++w) {
+    const json& inner_json = object_json(sj, w == 0 ? "m1_1" : "m1_0.3")["field"]["children"][0];
+    json plain_json = inner_json;
+    plain_json.erase("bulge_elimination");
+    const NodePtr inner = build_zero(inner_json), plain = build_zero(plain_json);
+    const auto top = [](const NodePtr& n) {
+      return crossing([&](const Vec3& p) { return n->value(p); }, Vec3{0, 0, 0}, Vec3{0, 0, 1});
+    };
+    EXPECT_NEAR(top(inner).z, rho * (1 + r * omega * rise), 1e-9) << "bulge eliminated";
+    EXPECT_NEAR(top(plain).z, rho * (1 + r * rise), 1e-9) << "the bulge of the plain blend";
+    const Vec3 diagonal = crossing([&](const Vec3& p) { return inner->value(p); }, Vec3{0, 0, 0},
+                                   Vec3{1, 1, 0});
+    EXPECT_NEAR(diagonal.x, rho * (1 + r * (1 + omega) * rise), 1e-9) << "the side fillet stays";
+  }
+
+  // The joint: around the hub, away from the rim's range, the two wheels agree in sign.
+  int inside = 0, checked = 0;
+  for (int a = 0; a < 60; ++a)
+    for (int b = 0; b < 60; ++b)
+      for (int c = 0; c < 20; ++c) {
+        const Vec3 p{-1.2 + 2.4 * (a + 0.5) / 60, -1.2 + 2.4 * (b + 0.5) / 60,
+                     -0.4 + 0.8 * (c + 0.5) / 20};
+        const double v0 = wheel[0](p);
+        if (std::abs(v0) < 1e-9) continue;
+        ++checked;
+        inside += v0 < 0;
+        ASSERT_EQ(wheel[1](p) < 0, v0 < 0) << p.x << " " << p.y << " " << p.z;
+      }
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(checked, 70000);
+
+  // The corners on the rim's inner edge (z = 0), 0.01 either side of where the fillet ends.
+  const auto on_rim = [&](double along, bool x_spoke) {
+    const double across = std::sqrt(rim_inner * rim_inner - along * along);
+    return x_spoke ? Vec3{across, along, 0} : Vec3{along, across, 0};
+  };
+  for (int w = 0; w < 2; ++w)
+    for (double side : {-1.0, 1.0}) {
+      const double reach1 = rho * (1 + m1[w]), reach2 = rho * 2;
+      EXPECT_LT(wheel[w](on_rim(side * (reach1 - 0.01), true)), -1e-4) << "m1 = " << m1[w];
+      EXPECT_NEAR(wheel[w](on_rim(side * (reach1 + 0.01), true)), 0, 1e-9) << "m1 = " << m1[w];
+      EXPECT_LT(wheel[w](on_rim(side * (reach2 - 0.01), false)), -1e-4) << "m1 = " << m1[w];
+      EXPECT_NEAR(wheel[w](on_rim(side * (reach2 + 0.01), false)), 0, 1e-9) << "m1 = " << m1[w];
+    }
+  // Spoke f2's corner region has the same field on both wheels; spoke f1's does not.
+  Rng g(9);
+  double f1_corner_gap = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const double along = uni(g, -0.6, 0.6), across = uni(g, 1.3, 1.8), z = uni(g, -0.45, 0.45);
+    ASSERT_NEAR(wheel[0]({along, across, z}), wheel[1]({along, across, z}), 1e-9);
+    f1_corner_gap = std::max(f1_corner_gap,
+                             std::abs(wheel[0]({across, along, z}) - wheel[1]({across, along, z})));
+  }
+  EXPECT_GT(f1_corner_gap, 0.1);
+}
+
 }  // namespace
 }  // namespace softtrace
