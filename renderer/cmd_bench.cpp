@@ -1,6 +1,4 @@
 // `softtrace bench`: primary-ray throughput of a scene, shading included, without output.
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -8,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cmd_common.h"
 #include "commands.h"
 #include "frame.h"
 
@@ -16,12 +15,8 @@ namespace softtrace {
 int run_bench(const BenchArgs& a) {
   try {
     Scene scene = load_scene(a.scene);
-    if (a.width) scene.image.width = a.width;
-    if (a.height) scene.image.height = a.height;
-    std::unique_ptr<tbb::global_control> threads;
-    if (a.threads)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      a.threads);
+    apply_image_size(scene, a.scene, a.width, a.height);
+    const auto threads = limit_threads(a.threads);
     const EmbreeScene rt(scene, a.lipschitz);
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;

@@ -1,4 +1,3 @@
-#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cmd_common.h"
 #include "commands.h"
 #include "film.h"
 #include "frame.h"
@@ -58,11 +58,8 @@ int run_render(const RenderArgs& a) {
   std::signal(SIGTERM, on_signal);
   try {
     Scene scene = load_scene(a.scene);
-    if (a.width) scene.image.width = a.width;
-    if (a.height) scene.image.height = a.height;
+    apply_image_size(scene, a.scene, a.width, a.height);
     if (a.spp) scene.image.spp = a.spp;
-    if (static_cast<long long>(scene.image.width) * scene.image.height > (1LL << 26))
-      throw SceneError(a.scene + ": /image: more than 2^26 pixels requested");
 
     const AovSelection aovs = parse_aovs(a.aovs);
     std::vector<std::string> outputs = a.outputs;
@@ -72,10 +69,7 @@ int run_render(const RenderArgs& a) {
         std::none_of(outputs.begin(), outputs.end(), is_exr_path))
       throw std::invalid_argument("--aov needs an .exr output");
 
-    std::unique_ptr<tbb::global_control> threads;
-    if (a.threads)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      a.threads);
+    const auto threads = limit_threads(a.threads);
 
     const auto start = std::chrono::steady_clock::now();
     const EmbreeScene rt(scene, a.lipschitz);

@@ -234,6 +234,20 @@ TEST(Bench, JsonReportsThroughput) {
   EXPECT_LE(j.at("best_s").get<double>(), j.at("median_s").get<double>());
 }
 
+// Both commands that build a film refuse frames above 2^26 pixels before allocating it.
+TEST(Cli, RenderAndBenchRefuseHugeFrames) {
+  const std::string dir = temp_dir("huge");
+  for (const std::string cmd : {"render", "bench"}) {
+    const std::string out = cmd == "render" ? " -o " + dir + "/x.exr" : "";
+    const RunResult r = run_softtrace(cmd + " " + source_path(kDefaultScene) +
+                                      " --width 16384 --height 8192" + out);
+    EXPECT_EQ(r.status, 2) << cmd;
+    EXPECT_NE(r.err.find(": /image: more than 2^26 pixels requested"), std::string::npos)
+        << cmd << ": " << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/x.exr"));
+}
+
 TEST(Nodes, ListsEveryRegisteredKind) {
   const RunResult r = run_softtrace("nodes");
   ASSERT_EQ(r.status, 0);
