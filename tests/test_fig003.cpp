@@ -297,6 +297,29 @@ TEST(Fig003, Fig8LoweringM6AndM12RemovesTheUnwantedBlend) {
   EXPECT_GT(far, 100);
 }
 
+// Fig. 9(a): on top of the crossing (x1 = x2 = x, cosθ = 1) the plain blend's surface is at
+// 2((r - x)/r)^2 = 1, a bulge of rho·r(1 - 2^(-1/2)) above the cylinders; with bulge
+// elimination the ranges are r·omega there and the bulge nearly vanishes, while between the
+// cylinders (cosθ = 0) the fillet keeps ranges r(1 + omega).
+TEST(Fig003, Fig9aBulgeEliminationFlattensTheCrossing) {
+  const Scene s = load_scene(scene_path("fig003_9a_crossing_cylinders"));
+  const json sj = scene_json("fig003_9a_crossing_cylinders");
+  const double rho = 0.5, r = 0.8, omega = 0.05, rise = 1 - 1 / std::sqrt(2.0);
+  const Local plain = local(s, sj, "plain"), eliminated = local(s, sj, "bulge_eliminated");
+  EXPECT_NEAR(crossing(plain, Vec3{0, 0, 0}, Vec3{0, 0, 2}).z, rho * (1 + r * rise), 1e-9);
+  EXPECT_NEAR(crossing(eliminated, Vec3{0, 0, 0}, Vec3{0, 0, 2}).z,
+              rho * (1 + r * omega * rise), 1e-9);
+  EXPECT_NEAR(crossing(plain, Vec3{0, 0, 0}, Vec3{2, 2, 0}).x, rho * (1 + r * rise), 1e-9);
+  EXPECT_NEAR(crossing(eliminated, Vec3{0, 0, 0}, Vec3{2, 2, 0}).x,
+              rho * (1 + r * (1 + omega) * rise), 1e-9);
+  // Away from the crossing both are the capsules themselves: min(f1, f2).
+  for (double x : {1.0, 1.5, -1.8})
+    for (double d : {-0.2, 0.1, 0.4}) {
+      EXPECT_NEAR(plain({x, 0, rho + d}), d / rho, 1e-9);
+      EXPECT_NEAR(eliminated({0, x, rho + d}), d / rho, 1e-9);
+    }
+}
+
 // Fig. 9: the wheel S(BT2(BT2(f1, f2), f3), 0) with bulge elimination in the inner blend.
 // Spokes f_i = e_i/rho - 1 (rho = 0.16, f1 along x, f2 along y), rim f3, inner r = 0.8, p = 2,
 // omega = 0.05; outer r = 1, m = 1. Claims:
