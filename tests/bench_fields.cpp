@@ -31,6 +31,16 @@ const Model kModels[] = {
             {"type":"offset","scale":8,"children":[{"type":"parallel_planes","normal":[1,0,0],"a":8}]},
             {"type":"offset","scale":8,"children":[{"type":"parallel_planes","normal":[0,1,0],"a":8}]},
             {"type":"offset","scale":8,"children":[{"type":"parallel_planes","normal":[0,0,1],"a":8}]}]}})"},
+    // [003] Fig. 9's wheel (scenes/fig003_9_wheel.json, m1 = 0.3) scaled by 6: bulge elimination,
+    // whose box bounds come from the spokes' Hessian bounds.
+    {"bt_bulge_wheel",
+     R"({"convention":"zero","bounds":[[-16.5,-16.5,-4.2],[16.5,16.5,4.2]],"field":{"type":"bt_union","base":"hyperellipsoid","r":[1,1],"p":[2,2],
+          "children":[
+            {"type":"bt_union","base":"hyperellipsoid","r":[0.8,0.8],"p":[2,2],"m":[0.3,1],"bulge_elimination":{"omega":0.05},
+             "children":[
+               {"type":"offset","children":[{"type":"segment","p0":[-11.1,0,0],"p1":[11.1,0,0],"radius":0.96}]},
+               {"type":"offset","children":[{"type":"segment","p0":[0,-11.1,0],"p1":[0,11.1,0],"radius":0.96}]}]},
+            {"type":"offset","children":[{"type":"torus","major_radius":12,"radii":[1.5,1.5]}]}]}})"},
 };
 
 Scene load(const Model& m) {
