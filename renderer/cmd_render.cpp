@@ -1,3 +1,4 @@
+#include <pthread.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cmd_common.h"
@@ -29,21 +31,34 @@ std::atomic<int> g_signal{0};
 // What a signal does depends on the phase. Rendering: stop the frame (g_cancel) and write
 // nothing. Writing temporary files: remove them and exit at once. Committing (renaming the
 // finished files over the outputs): nothing, so that all outputs are replaced or none is.
-// The handler may run on any thread (TBB workers do not block signals); the compare-exchange
-// decides between it and the main thread who owns the Writing -> next transition.
+// The compare-exchange decides between the watcher and the main thread who owns the
+// Writing -> next transition.
 enum Phase : int { kRendering, kWriting, kCommitting, kAborting };
 std::atomic<int> g_phase{kRendering};
-static_assert(std::atomic<int>::is_always_lock_free, "used from a signal handler");
 
-extern "C" void on_signal(int sig) {
+void on_signal(int sig) {
   int none = 0;
   g_signal.compare_exchange_strong(none, sig);
   g_cancel = true;
   int writing = kWriting;
-  if (g_phase.compare_exchange_strong(writing, kAborting)) {
-    abandon_pending_writes();
-    _exit(128 + sig);
-  }
+  if (g_phase.compare_exchange_strong(writing, kAborting))
+    abandon_pending_writes_and_exit(128 + sig);
+}
+
+// SIGINT and SIGTERM go to a watcher thread (sigwait) instead of a handler: it may then take the
+// lock under which temporary files are created (film.cpp), so a signal arriving while one is
+// being created cannot leave it behind. Blocked before any other thread starts, so every thread
+// inherits the mask and the watcher is the only one that receives them.
+void watch_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  std::thread([set] {
+    int sig;
+    while (sigwait(&set, &sig) == 0) on_signal(sig);
+  }).detach();
 }
 
 int interrupted_status() {
@@ -54,8 +69,7 @@ int interrupted_status() {
 
 int run_render(const RenderArgs& a) {
   // From the start: a signal during loading cancels the frame before its first pixel.
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  watch_signals();
   try {
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height);
@@ -94,7 +108,7 @@ int run_render(const RenderArgs& a) {
     for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, aovs));
     int writing = kWriting;
     if (!g_phase.compare_exchange_strong(writing, kCommitting))
-      for (;;) ::pause();  // the handler is removing the temporary files and exiting
+      for (;;) ::pause();  // the watcher is removing the temporary files and exiting
     for (size_t i = 0; i < outputs.size(); ++i) commit_image(temps[i], outputs[i]);
     forget_pending_writes();
     // A signal from here on is too late to matter: every output is complete.

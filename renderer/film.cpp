@@ -5,12 +5,13 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
+#include <vector>
 
 namespace softtrace {
 
@@ -30,11 +31,11 @@ float srgb_encode(float v) {
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
 }
 
-// Temporary files of writes not yet renamed into place, for abandon_pending_writes(): fixed
-// buffers and an atomic count, because a signal handler (on any thread) reads them.
-constexpr int kMaxPending = 64;
-char g_pending[kMaxPending][4096];
-std::atomic<int> g_pending_count{0};
+// Temporary files of writes not yet renamed into place. The lock is held from creating a file to
+// recording its name, so whoever abandons the writes (the signal watcher, cmd_render.cpp) sees
+// every file that exists.
+std::mutex g_pending_mutex;
+std::vector<std::string> g_pending;
 
 }  // namespace
 
@@ -112,14 +113,14 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ao
   const fs::path target(path);
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::string tmp = (dir / ("." + target.filename().string() + ".XXXXXX")).string();
-  const int slot = g_pending_count.load();
-  if (slot >= kMaxPending || tmp.size() >= sizeof g_pending[0])
-    throw std::runtime_error(path + ": too many outputs or too long a path");
-  const int fd = ::mkstemp(tmp.data());
-  if (fd < 0) throw std::runtime_error(path + ": cannot create a file in '" + dir.string() + "'");
-  ::close(fd);
-  std::snprintf(g_pending[slot], sizeof g_pending[slot], "%s", tmp.c_str());
-  g_pending_count.store(slot + 1);  // published only once the name is complete
+  {
+    const std::lock_guard<std::mutex> lock(g_pending_mutex);
+    const int fd = ::mkstemp(tmp.data());
+    if (fd < 0)
+      throw std::runtime_error(path + ": cannot create a file in '" + dir.string() + "'");
+    ::close(fd);
+    g_pending.push_back(tmp);
+  }
 
   const auto fail = [&](const std::string& why) {
     std::remove(tmp.c_str());
@@ -157,12 +158,19 @@ void write_image(const std::string& path, const Film& film, const AovSelection& 
 }
 
 void forget_pending_writes() {
-  g_pending_count.store(0);
+  const std::lock_guard<std::mutex> lock(g_pending_mutex);
+  g_pending.clear();
 }
 
 void abandon_pending_writes() {
-  const int n = std::min(g_pending_count.load(), kMaxPending);
-  for (int i = 0; i < n; ++i) ::unlink(g_pending[i]);  // renamed ones are gone already: ENOENT
+  const std::lock_guard<std::mutex> lock(g_pending_mutex);
+  for (const auto& t : g_pending) ::unlink(t.c_str());  // renamed ones are gone: ENOENT
+}
+
+void abandon_pending_writes_and_exit(int status) {
+  g_pending_mutex.lock();  // held to the end: no temporary file can be created after these
+  for (const auto& t : g_pending) ::unlink(t.c_str());
+  _exit(status);
 }
 
 }  // namespace softtrace

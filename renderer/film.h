@@ -46,7 +46,10 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ao
 void commit_image(const std::string& tmp, const std::string& path);
 void forget_pending_writes();
 
-// Removes the temporary files of pending writes; safe to call from a signal handler.
+// Removes the temporary files of pending writes.
 void abandon_pending_writes();
+// The same, then _exit(status), with no temporary file created in between (the signal watcher's
+// way out while writing, cmd_render.cpp).
+[[noreturn]] void abandon_pending_writes_and_exit(int status);
 
 }  // namespace softtrace

@@ -50,15 +50,17 @@ std::vector<std::string> temp_files(const std::string& dir) {
   return out;
 }
 
-// Whether the process has installed a handler for `sig` (Linux: the SigCgt mask in
-// /proc/PID/status), i.e. it is past start-up and a signal can no longer kill it outright.
+// Whether the process takes `sig` itself: its main thread blocks it for the signal watcher
+// (SigBlk) or has a handler for it (SigCgt), in /proc/PID/status (Linux). Either way it is past
+// start-up, and the signal can no longer kill it outright.
 bool catches(pid_t pid, int sig) {
   std::ifstream status("/proc/" + std::to_string(pid) + "/status");
   std::string line;
+  bool taken = false;
   while (std::getline(status, line))
-    if (line.rfind("SigCgt:", 0) == 0)
-      return (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1)) & 1;
-  return false;
+    if (line.rfind("SigBlk:", 0) == 0 || line.rfind("SigCgt:", 0) == 0)
+      taken = taken || ((std::stoull(line.substr(7), nullptr, 16) >> (sig - 1)) & 1);
+  return taken;
 }
 
 // Waits (up to a minute) until `pid` catches `sig`; false if it exited or never did.
