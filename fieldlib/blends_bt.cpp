@@ -68,7 +68,8 @@ class BtBlend final : public FieldNode {
       lo[i] = X.lo;
       hi[i] = X.hi;
     }
-    const Interval bt = bulge() ? bulge_enclosure(lo.data(), hi.data(), bulge_bounds(b))
+    BulgeOperand g[2];
+    const Interval bt = bulge() ? bulge_enclosure(lo.data(), hi.data(), bulge_bounds(b, g))
                                 : monotone_enclosure(lo.data(), hi.data());
     return tau_ > 0 ? bt : -bt;
   }
@@ -133,9 +134,8 @@ class BtBlend final : public FieldNode {
   }
 
   // The position functions' ranges and slopes over the box, from the operands' gradient
-  // floors and Hessian bounds (bt_base.h, bulge_box).
-  BulgeBox bulge_bounds(const Box& b) const {
-    BulgeOperand g[2];
+  // floors and Hessian bounds (bt_base.h, bulge_box); `g` receives the operands' bounds.
+  BulgeBox bulge_bounds(const Box& b, BulgeOperand g[2]) const {
     bool known = true;
     for (int i = 0; i < 2; ++i) {
       g[i].grad_lo = c_[i]->gradient_floor(b);
@@ -205,7 +205,8 @@ class BtBlend final : public FieldNode {
       lo[i] = X[i].lo;
       hi[i] = X[i].hi;
     }
-    const BulgeBox B = bulge_bounds(b);
+    BulgeOperand g[2];  // their grad_hi are the children's box Lipschitz bounds
+    const BulgeBox B = bulge_bounds(b, g);
     double slope = 0, range = 0, weight = 0;
     int active = 0;
     for (int i = 0; i < 2; ++i) {
@@ -213,7 +214,7 @@ class BtBlend final : public FieldNode {
       weight = std::max(weight, iv::up(B.dM[i] / m));
       if (!can_be_active(i, X, B.P_hi, B.M_hi)) continue;
       ++active;
-      slope = std::max(slope, iv::up(c_[i]->lipschitz(b) / m));
+      slope = std::max(slope, iv::up(g[i].grad_hi / m));
       range = std::max(range, iv::up(op_.r()[i] / m));
     }
     if (active < 2) range = 0;  // one term: BT = x_j/M_j does not depend on the ranges
