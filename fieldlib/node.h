@@ -8,13 +8,11 @@
 #include <vector>
 
 #include "box.h"
+#include "convention.h"
 #include "interval.h"
 #include "vec.h"
 
 namespace softtrace {
-
-// Which side of a level set a region bound encloses.
-enum class Side { Above, Below };  // {f >= level} or {f <= level}
 
 class FieldNode {
  public:

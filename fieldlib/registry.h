@@ -11,9 +11,6 @@
 
 namespace softtrace {
 
-// MATH.md §1: the object's convention decides the complement and which side is inside.
-enum class Convention { Soft, Zero, Constructive };
-
 // Limits that keep hostile scenes from exhausting the stack (evaluation recurses through the
 // tree, also on TBB worker threads with small stacks) or making every evaluation absurdly slow.
 constexpr int kMaxFieldDepth = 256;
