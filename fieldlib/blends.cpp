@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "program.h"
+
 namespace softtrace {
 
 namespace {
@@ -42,6 +44,11 @@ class SoftBlend final : public FieldNode {
     Box b;
     for (const auto& c : c_) b = b.united(c->region(std::numeric_limits<double>::min(), side));
     return b;
+  }
+  int compile(ProgramBuilder& b, int reg) const override {
+    std::vector<const FieldNode*> kids;
+    for (const auto& c : c_) kids.push_back(c.get());
+    return b.nary(Op::Sum, kids, reg);
   }
 
  private:

@@ -5,6 +5,7 @@
 
 #include "blends.h"
 #include "node_util.h"
+#include "program.h"
 
 namespace softtrace {
 
@@ -142,6 +143,11 @@ class MinMax final : public FieldNode {
       b = all ? b.intersected(r) : b.united(r);
     }
     return b;
+  }
+  int compile(ProgramBuilder& b, int reg) const override {
+    std::vector<const FieldNode*> kids;
+    for (const auto& c : c_) kids.push_back(c.get());
+    return b.nary(min_ ? Op::Min : Op::Max, kids, reg);
   }
 
  private:

@@ -1,5 +1,7 @@
 #include "node.h"
 
+#include "program.h"
+
 namespace softtrace {
 
 Interval FieldNode::interval(const Box& b) const {
@@ -7,6 +9,10 @@ Interval FieldNode::interval(const Box& b) const {
   if (!std::isfinite(L) || !b.bounded()) return Interval::entire();
   const double v = value(b.center()), r = L * 0.5 * b.diagonal();
   return iv::out(v - r, v + r);
+}
+
+int FieldNode::compile(ProgramBuilder& b, int reg) const {
+  return b.oracle(*this, reg);
 }
 
 }  // namespace softtrace

@@ -14,6 +14,8 @@
 
 namespace softtrace {
 
+class ProgramBuilder;
+
 class FieldNode {
  public:
   virtual ~FieldNode() = default;
@@ -43,6 +45,11 @@ class FieldNode {
   virtual double hessian_bound(const Box& b) const {
     return std::numeric_limits<double>::infinity();
   }
+
+  // Emits this node's subtree into a flat program (program.h), reading point register `reg`;
+  // returns the slot of its value. The default is one oracle instruction that calls this node's
+  // methods above; nodes with instructions of their own override it.
+  virtual int compile(ProgramBuilder& b, int reg) const;
 
   double value(const Vec3& p) const { return eval(p, nullptr); }
   Vec3 gradient(const Vec3& p) const {

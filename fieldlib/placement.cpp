@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "program.h"
+
 namespace softtrace {
 
 namespace {
@@ -16,7 +18,7 @@ Mat3 transpose(const Mat3& m) {
 class Placed final : public FieldNode {
  public:
   Placed(NodePtr child, const Mat3& R, const Vec3& t)
-      : child_(std::move(child)), R_(R), Rt_(transpose(R)), t_(t) {}
+      : child_(std::move(child)), R_(R), Rt_(transpose(R)), t_(t), rotated_(!is_identity(R)) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const double v = child_->eval(Rt_ * (p - t_), grad);
@@ -31,6 +33,17 @@ class Placed final : public FieldNode {
     return child_->gradient_floor(to_local(b));
   }
   double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }
+  // A pure translation is three subtractions; a rotation one matrix.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{rotated_ ? Op::Place : Op::Translate};
+    i.in = reg;
+    i.out = b.new_reg();
+    i.a = rotated_ ? b.consts({t_.x, t_.y, t_.z, Rt_.r[0].x, Rt_.r[0].y, Rt_.r[0].z, Rt_.r[1].x,
+                               Rt_.r[1].y, Rt_.r[1].z, Rt_.r[2].x, Rt_.r[2].y, Rt_.r[2].z})
+                   : b.consts({t_.x, t_.y, t_.z});
+    b.emit(i);
+    return b.compile(*child_, i.out);
+  }
   Box region(double level, Side side) const override {
     const Box local = child_->region(level, side);
     return local.bounded() ? transform_box(local, R_, t_) : local;
@@ -41,9 +54,18 @@ class Placed final : public FieldNode {
     return b.bounded() ? transform_box(b, Rt_, Rt_ * (-t_)) : Box::unbounded();
   }
 
+  static bool is_identity(const Mat3& m) {
+    const Mat3 I;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (m.r[i][j] != I.r[i][j]) return false;
+    return true;
+  }
+
   NodePtr child_;
   Mat3 R_, Rt_;
   Vec3 t_;
+  bool rotated_;
 };
 
 }  // namespace

@@ -10,38 +10,64 @@ Interval Potential::interval(Interval d) const {
           std::min(1.0, iv::up(eval(std::max(0.0, d.lo), nullptr)))};
 }
 
+double blanc(double d, double s, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double u = d * d;
+  double P, dPdu;
+  if (d <= 0.5) {
+    if (s == 0) {  // the first branch is 0/0 at d = 0; its closed form for s = 0 is 1 - 2d^2
+      P = 1 - 2 * u;
+      dPdu = -2;
+    } else {
+      const double N = 9 * u * u, D = s + (4.5 - 4 * s) * u;  // D >= min(s, 1.125) > 0
+      P = 1 - N / D;
+      dPdu = -(18 * u * D - N * (4.5 - 4 * s)) / (D * D);
+    }
+  } else {
+    const double N = (1 - u) * (1 - u), D = 0.75 - s + (1.5 + 4 * s) * u;  // D >= 1.125
+    P = N / D;
+    dPdu = (-2 * (1 - u) * D - N * (1.5 + 4 * s)) / (D * D);
+  }
+  if (dP) *dP = dPdu * 2 * d;
+  return P;
+}
+
+double wyvill(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double u = d * d;
+  if (dP) *dP = d * (-24.0 / 9 * u * u + 68.0 / 9 * u - 44.0 / 9);
+  return 1 + u * (-22.0 / 9 + u * (17.0 / 9 - 4.0 / 9 * u));
+}
+
+double murakami(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double v = 1 - d * d;
+  if (dP) *dP = -4 * d * v;
+  return v * v;
+}
+
 namespace {
 
 // Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), MATH.md §3.2
 class Blanc final : public Potential {
  public:
   explicit Blanc(double s) : s_(s) {}
-  double eval(double d, double* dP) const override {
-    d = std::max(d, 0.0);
-    if (d >= 1) {
-      if (dP) *dP = 0;
-      return 0;
-    }
-    const double u = d * d;
-    double P, dPdu;
-    if (d <= 0.5) {
-      if (s_ == 0) {  // the first branch is 0/0 at d = 0; its closed form for s = 0 is 1 - 2d^2
-        P = 1 - 2 * u;
-        dPdu = -2;
-      } else {
-        const double N = 9 * u * u, D = s_ + (4.5 - 4 * s_) * u;  // D >= min(s, 1.125) > 0
-        P = 1 - N / D;
-        dPdu = -(18 * u * D - N * (4.5 - 4 * s_)) / (D * D);
-      }
-    } else {
-      const double N = (1 - u) * (1 - u), D = 0.75 - s_ + (1.5 + 4 * s_) * u;  // D >= 1.125
-      P = N / D;
-      dPdu = (-2 * (1 - u) * D - N * (1.5 + 4 * s_)) / (D * D);
-    }
-    if (dP) *dP = dPdu * 2 * d;
-    return P;
-  }
+  double eval(double d, double* dP) const override { return blanc(d, s_, dP); }
   double lipschitz() const override { return (2 + 16.0 / 9.0 * s_) * (1 + 1e-12); }  // [PB-5]
+  Op op() const override { return Op::Blanc; }
+  double parameter() const override { return s_; }
 
  private:
   double s_;
@@ -50,16 +76,7 @@ class Blanc final : public Potential {
 // 1 - 4/9 d^6 + 17/9 d^4 - 22/9 d^2   — Wyvill et al., MATH.md §3.3
 class Wyvill final : public Potential {
  public:
-  double eval(double d, double* dP) const override {
-    d = std::max(d, 0.0);
-    if (d >= 1) {
-      if (dP) *dP = 0;
-      return 0;
-    }
-    const double u = d * d;
-    if (dP) *dP = d * (-24.0 / 9 * u * u + 68.0 / 9 * u - 44.0 / 9);
-    return 1 + u * (-22.0 / 9 + u * (17.0 / 9 - 4.0 / 9 * u));
-  }
+  double eval(double d, double* dP) const override { return wyvill(d, dP); }
   // |P'| peaks where P'' = -(120u^2 - 204u + 44)/9 = 0, u = d^2 in [0,1].
   double lipschitz() const override {
     const double u = (204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240;
@@ -67,23 +84,16 @@ class Wyvill final : public Potential {
     eval(std::sqrt(u), &dP);
     return std::abs(dP) * (1 + 1e-12);
   }
+  Op op() const override { return Op::Wyvill; }
 };
 
 // (1 - d^2)^2, POV-Ray's blob density   — MATH.md §3.3; its 0.5 level is d = 0.5412
 class Murakami final : public Potential {
  public:
-  double eval(double d, double* dP) const override {
-    d = std::max(d, 0.0);
-    if (d >= 1) {
-      if (dP) *dP = 0;
-      return 0;
-    }
-    const double v = 1 - d * d;
-    if (dP) *dP = -4 * d * v;
-    return v * v;
-  }
+  double eval(double d, double* dP) const override { return murakami(d, dP); }
   // |P'| = 4d(1-d^2) peaks at d = 1/sqrt(3) with 8/(3 sqrt 3).
   double lipschitz() const override { return 8 / (3 * std::sqrt(3.0)) * (1 + 1e-12); }
+  Op op() const override { return Op::Murakami; }
 };
 
 }  // namespace

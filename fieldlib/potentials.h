@@ -8,8 +8,15 @@
 
 #include "interval.h"
 #include "params.h"
+#include "program.h"
 
 namespace softtrace {
+
+// The kernels, shared by the model classes below and the program evaluators (eval_*.cpp):
+// P(max(d, 0)) with P' into *dP when dP is non-null.
+double blanc(double d, double s, double* dP);  // 002 Eq. 2 (signs of R1), MATH.md §3.2
+double wyvill(double d, double* dP);           // Wyvill et al.'s sextic, MATH.md §3.3
+double murakami(double d, double* dP);         // (1 - d^2)^2, MATH.md §3.3
 
 class Potential {
  public:
@@ -17,6 +24,9 @@ class Potential {
   // P(max(d,0)) (MATH.md §3.1 implementation rule), and P' into *dP when dP is non-null.
   virtual double eval(double d, double* dP) const = 0;
   virtual double lipschitz() const = 0;  // max over d of |P'(d)|
+  // The program instruction that computes this potential, and its constant (Blanc's s).
+  virtual Op op() const = 0;
+  virtual double parameter() const { return 0; }
 
   Interval interval(Interval d) const;
   double lipschitz(Interval d) const { return d.lo >= 1 ? 0.0 : lipschitz(); }

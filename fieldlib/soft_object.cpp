@@ -7,6 +7,7 @@
 
 #include "node_util.h"
 #include "potentials.h"
+#include "program.h"
 #include "radius_transforms.h"
 
 namespace softtrace {
@@ -39,6 +40,14 @@ class SoftObject final : public FieldNode {
   Box region(double level, Side side) const override {
     if (side == Side::Above && level > 0) return d_->region(1, Side::Below);
     return Box::unbounded();
+  }
+  // The distance's code, then one potential instruction.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{P_->op()};
+    i.in = b.compile(*d_, reg);
+    i.out = b.new_slot();
+    if (P_->op() == Op::Blanc) i.a = b.consts({P_->parameter()});
+    return b.emit(i);
   }
 
  private:

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "eval.h"
 #include "scene.h"
 
 namespace softtrace {
@@ -18,6 +19,9 @@ int run_eval(const EvalArgs& a) {
         if (o.name == a.object) obj = &o;
       if (!obj) throw SceneError(a.scene + ": no object named '" + a.object + "'");
     }
+    // The library's evaluators on the object's compiled program, pruned to each point.
+    const Program program = compile(*obj->field);
+    Workspace ws;
     std::ifstream file;
     if (!a.points.empty()) {
       file.open(a.points);
@@ -37,7 +41,7 @@ int run_eval(const EvalArgs& a) {
         throw SceneError(source + ":" + std::to_string(n) +
                          ": expected three finite numbers 'x y z'");
       Vec3 g;
-      const double v = obj->field->eval({x, y, z}, &g);
+      const double v = evaluate(program, {x, y, z}, &g, ws);
       std::printf("%.17g %.17g %.17g %.17g\n", v, g.x, g.y, g.z);
     }
     return 0;

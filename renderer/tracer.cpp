@@ -14,6 +14,13 @@ constexpr int kMaxSteps = 200000;
 // radius whose [d]/[f] decorrelates), and finishing the stretch with it would cost b-t divided by
 // a tiny step. Every step taken was certified, so stopping early skips nothing.
 constexpr int kStretchSteps = 16;
+// One workspace per thread, shared by every object's tracer: evaluations do not allocate once it
+// has grown to the largest program.
+Workspace& workspace(const Program& p) {
+  thread_local Workspace ws;
+  ws.fit(p);
+  return ws;
+}
 }  // namespace
 
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
@@ -32,23 +39,28 @@ bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
 }
 
 ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
-    : object_(&object), mode_(mode) {
+    : object_(&object), program_(compile(*object.field)), mode_(mode) {
   global_L_ = object.field->lipschitz();
   min_step_ = 1e-5 * object.bounds.diagonal();
 }
 
-Interval ObjectTracer::g(const Box& b) const {
-  const Interval f = object_->field->interval(b);
-  return object_->inside_sign > 0 ? Interval(f.lo - object_->iso, f.hi - object_->iso)
-                                  : Interval(object_->iso - f.hi, object_->iso - f.lo);
+double ObjectTracer::eval(const Vec3& p, Vec3* grad) const {
+  return evaluate(program_, p, grad, workspace(program_));
 }
 
-double ObjectTracer::lipschitz(const Box& b) const {
-  return mode_ == LipschitzMode::Global ? global_L_ : object_->field->lipschitz(b);
+double ObjectTracer::g(const Vec3& p) const {
+  return object_->inside_sign * (eval(p, nullptr) - object_->iso);
+}
+
+double ObjectTracer::g_view(const Vec3& p) const {
+  Workspace& ws = workspace(program_);
+  return object_->inside_sign * (value(ws.view, p, ws) - object_->iso);
 }
 
 Vec3 ObjectTracer::normal(const Vec3& p) const {
-  const Vec3 grad = object_->field->gradient(p) * -object_->inside_sign;
+  Vec3 grad;
+  eval(p, &grad);
+  grad = grad * -object_->inside_sign;
   const double len = length(grad);
   return len > 0 && std::isfinite(len) ? grad / len : Vec3{};
 }
@@ -71,10 +83,14 @@ Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
 
 double ObjectTracer::bisect(const Ray& ray, double a, double b, int& steps) const {
   // Invariant: g(a) < 0 <= g(b). Stop far below a pixel's footprint.
+  Box box;
+  box.extend(ray.o + ray.d * a);
+  box.extend(ray.o + ray.d * b);
+  prune(program_, box, workspace(program_));
   for (int i = 0; i < 60 && b - a > 1e-3 * min_step_; ++i) {
     const double m = 0.5 * (a + b);
     ++steps;
-    (g(ray.o + ray.d * m) >= 0 ? b : a) = m;
+    (g_view(ray.o + ray.d * m) >= 0 ? b : a) = m;
   }
   return b;
 }
@@ -103,13 +119,18 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
     const double b = std::min(t + h, t1);
     const Box box = stretch_box(t, b);
     ++steps;
-    if (g(box).hi < 0) {  // the solid cannot be reached anywhere in this stretch
+    // One pass: the interval, the slope bound and the program pruned to the stretch's box, which
+    // the points of this stretch evaluate below.
+    const BoxBounds bb = bounds(program_, box, workspace(program_));
+    const Interval f = bb.value;
+    const double ghi = object_->inside_sign > 0 ? f.hi - object_->iso : object_->iso - f.lo;
+    if (ghi < 0) {  // the solid cannot be reached anywhere in this stretch
       t = b;
       gt_known = false;
       h *= 2;
       continue;
     }
-    const double L = lipschitz(box);
+    const double L = mode_ == LipschitzMode::Global ? global_L_ : bb.lipschitz;
     if (!std::isfinite(L)) {
       if (b - t > min_step_) {  // no slope bound here: decide on shorter stretches
         h = 0.5 * (b - t);
@@ -117,12 +138,12 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
       }
       if (!gt_known) {
         ++steps;
-        gt = g(at(t));
+        gt = g_view(at(t));
         if (gt >= 0) return {true, bisect(ray, prev, t, steps)};
       }
       prev = t;
       ++steps;
-      const double gb = g(at(b));
+      const double gb = g_view(at(b));
       if (gb >= 0) return {true, bisect(ray, t, b, steps)};
       t = b;
       gt = gb;
@@ -135,7 +156,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
     while (steps < kMaxSteps) {
       if (!gt_known) {
         ++steps;
-        gt = g(at(t));
+        gt = g_view(at(t));
         gt_known = true;
       }
       if (gt >= 0) return {true, bisect(ray, prev, t, steps)};

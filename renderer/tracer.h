@@ -1,13 +1,16 @@
 // Finding the first point of an object's solid along a ray: interval-guided sphere tracing.
 // Pure fieldlib maths, no Embree: the Embree adapter only calls in here.
 //
-// The ray is cut into stretches. A stretch whose value interval (over the box around it) shows
-// the solid cannot be reached is skipped whole. Otherwise the tracer steps by |f - iso| / L with L
+// The object's field is compiled once to a flat program (fieldlib/program.h). The ray is cut
+// into stretches; one bounds pass over the box around a stretch gives its value interval, its
+// Lipschitz bound and the program pruned to that box, which every point of the stretch then
+// evaluates. A stretch whose interval shows the solid cannot be reached is skipped whole. Otherwise the tracer steps by |f - iso| / L with L
 // the Lipschitz bound over that stretch's box, which can never step over the surface; where no
 // finite bound exists the stretch is halved until it is short enough to decide by sign. A sign
 // change is then refined by bisection.
 #pragma once
 
+#include "eval.h"
 #include "scene.h"
 
 namespace softtrace {
@@ -41,16 +44,19 @@ class ObjectTracer {
   Vec3 box_face_normal(const Vec3& p) const;
   // Whether p is inside the solid.
   bool inside(const Vec3& p) const { return g(p) >= 0; }
+  // f(p) and ∇f(p), evaluated on the program pruned to p.
+  double eval(const Vec3& p, Vec3* grad) const;
+
+  const Program& program() const { return program_; }
 
  private:
-  double g(const Vec3& p) const {
-    return object_->inside_sign * (object_->field->value(p) - object_->iso);
-  }
-  Interval g(const Box& b) const;
-  double lipschitz(const Box& b) const;
+  // g = inside_sign (f - iso): the solid is g >= 0.
+  double g(const Vec3& p) const;           // anywhere (prunes to p first)
+  double g_view(const Vec3& p) const;      // inside the box of the last bounds/prune pass
   double bisect(const Ray& ray, double a, double b, int& steps) const;
 
   const SceneObject* object_;
+  Program program_;
   LipschitzMode mode_;
   double global_L_;
   double min_step_;  // shortest step and stretch: 1e-5 of the object's box diagonal

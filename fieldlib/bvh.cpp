@@ -1,0 +1,96 @@
+#include "bvh.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace softtrace {
+
+namespace {
+constexpr int32_t kLeafSize = 4;
+constexpr int kMaxDepth = 64;
+
+bool overlaps(const Box& a, const Box& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+}  // namespace
+
+void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
+  nodes_.clear();
+  items_.clear();
+  item_boxes_.clear();
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (!boxes[i].empty()) {
+      items_.push_back(ids[i]);
+      item_boxes_.push_back(boxes[i]);
+    }
+  if (items_.empty()) return;
+  std::vector<Box> scratch;
+  build(0, static_cast<int32_t>(items_.size()), scratch);
+}
+
+int32_t BoxBvh::build(int32_t first, int32_t count, std::vector<Box>& scratch) {
+  const int32_t index = static_cast<int32_t>(nodes_.size());
+  nodes_.push_back({});
+  Box box, centres;
+  for (int32_t i = first; i < first + count; ++i) {
+    box = box.united(item_boxes_[i]);
+    centres.extend(item_boxes_[i].center());
+  }
+  nodes_[index].box = box;
+  // Depth is bounded by the median split (log2 n), far below kMaxDepth for any allowed scene.
+  if (count <= kLeafSize) {
+    nodes_[index].first = first;
+    nodes_[index].count = count;
+    return index;
+  }
+  const Vec3 e = centres.extent();
+  const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+  const int32_t half = count / 2;
+  // Sort the range by centre along the axis, carrying ids and boxes together.
+  std::vector<int32_t> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int32_t a, int32_t b) {
+    const double ca = item_boxes_[first + a].center()[axis],
+                 cb = item_boxes_[first + b].center()[axis];
+    return ca < cb || (ca == cb && items_[first + a] < items_[first + b]);
+  });
+  std::vector<int32_t> ids(count);
+  scratch.resize(count);
+  for (int32_t i = 0; i < count; ++i) {
+    ids[i] = items_[first + order[i]];
+    scratch[i] = item_boxes_[first + order[i]];
+  }
+  std::copy(ids.begin(), ids.end(), items_.begin() + first);
+  std::copy(scratch.begin(), scratch.begin() + count, item_boxes_.begin() + first);
+  const int32_t left = build(first, half, scratch);
+  const int32_t right = build(first + half, count - half, scratch);
+  nodes_[index].count = 0;
+  nodes_[index].left = left;
+  nodes_[index].right = right;
+  return index;
+}
+
+int BoxBvh::query(const Box& q, int32_t* out, int count) const {
+  if (nodes_.empty()) return count;
+  const int start = count;
+  int32_t stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!overlaps(n.box, q)) continue;
+    if (n.count > 0) {
+      for (int32_t i = n.first; i < n.first + n.count; ++i)
+        if (overlaps(item_boxes_[i], q)) out[count++] = items_[i];
+      continue;
+    }
+    stack[top++] = n.left;
+    stack[top++] = n.right;
+  }
+  // Children are combined in their scene order, so results do not depend on the tree's shape.
+  std::sort(out + start, out + count);
+  return count;
+}
+
+}  // namespace softtrace

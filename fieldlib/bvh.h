@@ -1,0 +1,38 @@
+// A bounding-volume hierarchy over axis-aligned boxes, for pruning: which of many children's
+// support boxes overlap a query box, in O(log n + k). Built once per blend at compile time
+// (median split on the longest axis of the centroids, a few boxes per leaf); queried from many
+// threads at once (const, no allocation: the caller owns the output buffer).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "box.h"
+
+namespace softtrace {
+
+class BoxBvh {
+ public:
+  // `boxes[i]` is item `ids[i]`'s box; empty boxes are never reported.
+  void build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids);
+  bool empty() const { return nodes_.empty(); }
+
+  // Appends to out[count..] the ids of the items whose boxes overlap `q` (closed boxes), in
+  // increasing id order among themselves; returns the new count. `out` must have room for every
+  // item.
+  int query(const Box& q, int32_t* out, int count) const;
+
+ private:
+  struct Node {
+    Box box;
+    int32_t first, count;  // leaf: items_[first, first+count); inner: count = 0, children
+    int32_t left, right;
+  };
+  int32_t build(int32_t first, int32_t count, std::vector<Box>& centre_boxes);
+
+  std::vector<Node> nodes_;
+  std::vector<int32_t> items_;  // ids
+  std::vector<Box> item_boxes_;
+};
+
+}  // namespace softtrace

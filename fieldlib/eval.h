@@ -1,0 +1,92 @@
+// The evaluators of compiled programs (program.h), one per numeric domain, each in its own file:
+// - eval_values.cpp:   f at a batch of points (structure of arrays; one instruction at a time over
+//                      the batch, so the kernels vectorise);
+// - eval_gradient.cpp: f and ∇f at one point (hits and normals only);
+// - eval_bounds.cpp:   one walk over a box giving the value interval and the Lipschitz bound, and
+//                      the program pruned to what can matter inside the box.
+// None allocates once its Workspace has been fitted to the program: a thread keeps one Workspace
+// and reuses it for every evaluation.
+#pragma once
+
+#include <vector>
+
+#include "program.h"
+
+namespace softtrace {
+
+// The largest batch the values evaluator takes in one call.
+constexpr int kBatch = 16;
+
+// What an evaluator walks: a whole program or a pruned view of one.
+struct Code {
+  const Program* base;
+  const Instr* code;
+  int size;
+  const int32_t* args;
+  int result;
+
+  Code(const Program& p)  // NOLINT: a program is its own whole code
+      : base(&p), code(p.code.data()), size(int(p.code.size())), args(p.args.data()),
+        result(p.result) {}
+  Code(const ProgramView& v)  // NOLINT: so is a pruned view
+      : base(v.base), code(v.code.data()), size(int(v.code.size())), args(v.args.data()),
+        result(v.result) {}
+};
+
+// Scratch memory of one thread's evaluations.
+class Workspace {
+ public:
+  // Grows the buffers to what `p` needs (allocating only when it needs more than before).
+  void fit(const Program& p);
+
+  // values
+  std::vector<double> slots;  // slot s, lane l at [s * kBatch + l]
+  std::vector<double> regs;   // register r, axis i, lane l at [(r * 3 + i) * kBatch + l]
+  // gradient
+  struct Dual {
+    double v;
+    Vec3 g;
+  };
+  struct Frame {
+    Vec3 p;
+    Mat3 J;  // ∂(local point)/∂(world point)
+    bool identity;  // J = I: gradients pass unchanged (no 0·inf where a gradient is infinite)
+  };
+  std::vector<Dual> duals;
+  std::vector<Frame> frames;
+  // bounds
+  std::vector<Interval> ivals;
+  std::vector<double> lips;
+  std::vector<Box> boxes;
+  std::vector<int32_t> kept;  // pruning's stack of chosen children
+  std::vector<int32_t> marks;  // where each kept child's code starts in the view
+  ProgramView view;            // the last pruned program (bounds, prune)
+};
+
+// f at points (x[i], y[i], z[i]), i < n <= kBatch, into f[i].
+void values(Code c, const double* x, const double* y, const double* z, int n, double* f,
+            Workspace& ws);
+double value(Code c, const Vec3& p, Workspace& ws);
+
+// f(p) and ∇f(p) into *grad (any element of the Clarke subdifferential at kinks).
+double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws);
+
+struct BoxBounds {
+  Interval value;    // contains f over the box
+  double lipschitz;  // >= |∇f| over the box (+inf where no bound exists)
+};
+
+// One walk over the box: bounds, and in ws.view the program pruned to the box (children of sums
+// whose supports miss the box, and min/max children that cannot be the extreme in it, dropped).
+// The view is valid only for points inside the box.
+BoxBounds bounds(const Program& p, const Box& b, Workspace& ws);
+
+// Only the pruning of `bounds`, by support boxes (no min/max pruning, no bound computed): the
+// cheap way to a short program for one point or a small region. Result in ws.view.
+void prune(const Program& p, const Box& b, Workspace& ws);
+
+// f(p) (and ∇f(p) when grad is non-null) anywhere: on the program pruned to p where that pays.
+// Overwrites ws.view.
+double evaluate(const Program& p, const Vec3& point, Vec3* grad, Workspace& ws);
+
+}  // namespace softtrace

@@ -1,0 +1,268 @@
+// One walk over a box: the value interval and Lipschitz bound of every instruction, and the
+// program pruned to the box (libfive's intervalAndPush).
+//
+// Rounding. Instead of rounding every interval operation outward (nextafter), each instruction's
+// result is widened once, by a bound on the rounding error of the few operations that made it:
+// - translation: fl(x - t) is monotone in x, so [fl(lo - t), fl(hi - t)] holds every computed
+//   local point; one ulp more (<= 2^-52 |v|, plus 1e-300 for subnormals) holds the exact ones;
+// - rotation: centre and half extent through R and |R|, padded by 1e-12 of the magnitudes (the
+//   few products and sums err by far less);
+// - potentials are monotone and computed with O(1) operations on values of order 1: the ends'
+//   values ± 2^-50 (about 4 ulps of 1) hold every computed value in between;
+// - a sum of k terms errs by at most (k-1)·2^-53·Σ|terms| (recursive summation); widened by
+//   k·2^-52·Σ|bounds| + 1e-300, the last also covering terms dropped as 0 that are subnormal.
+// Oracles and their children keep the model nodes' own outward-rounded bounds.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "eval.h"
+#include "node.h"
+#include "node_util.h"
+#include "potentials.h"
+
+namespace softtrace {
+
+namespace {
+
+constexpr double kTiny = 1e-300;
+constexpr double kEps = 0x1p-52;
+
+double widen_down(double v, double rel) {
+  return v - (std::abs(v) * rel + kTiny);
+}
+double widen_up(double v, double rel) {
+  return v + (std::abs(v) * rel + kTiny);
+}
+
+Box translate_box(const Box& b, const double* t) {
+  Box o;
+  for (int i = 0; i < 3; ++i) {
+    o.lo[i] = widen_down(b.lo[i] - t[i], kEps);
+    o.hi[i] = widen_up(b.hi[i] - t[i], kEps);
+  }
+  return o;
+}
+
+// The box around Rt (b - t): centre through Rt, half extent through |Rt|.
+Box place_box(const Box& b, const double* t) {
+  if (!b.bounded()) return Box::unbounded();
+  const double* M = t + 3;
+  const Vec3 c = b.center() - Vec3{t[0], t[1], t[2]}, h = b.extent() * 0.5;
+  Box o;
+  for (int i = 0; i < 3; ++i) {
+    const double ci = M[3 * i] * c.x + M[3 * i + 1] * c.y + M[3 * i + 2] * c.z;
+    const double hi = std::abs(M[3 * i]) * h.x + std::abs(M[3 * i + 1]) * h.y +
+                      std::abs(M[3 * i + 2]) * h.z;
+    const double pad = 1e-12 * (std::abs(ci) + hi) + kTiny;
+    o.lo[i] = ci - hi - pad;
+    o.hi[i] = ci + hi + pad;
+  }
+  return o;
+}
+
+// P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
+template <class P>
+void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* out, double* L) {
+  const double lo = pot(d.hi), hi = pot(std::max(0.0, d.lo));
+  *out = {std::max(0.0, lo - 0x1p-50), std::min(1.0, hi + 0x1p-50)};
+  *L = flat_product(d.lo >= 1 ? 0.0 : max_slope, Ld);
+}
+
+double blanc_slope(double s) {
+  return (2 + 16.0 / 9.0 * s) * (1 + 1e-12);  // [PB-5]
+}
+
+class Walker {
+ public:
+  Walker(const Program& p, Workspace& ws, bool with_bounds)
+      : p_(p), ws_(ws), bounds_(with_bounds), K_(p.consts.data()) {}
+
+  // Walks code[begin, end) of the base program, appending what is kept to ws.view.
+  void walk(int begin, int end) {
+    for (int k = begin; k < end;) {
+      const Instr& in = p_.code[k];
+      if (in.op == Op::Group) {
+        k = group(p_.groups[in.a]);
+        continue;
+      }
+      step(in);
+      ws_.view.code.push_back(in);
+      ++k;
+    }
+  }
+
+ private:
+  void step(const Instr& in) {
+    Box* B = ws_.boxes.data();
+    Interval* I = ws_.ivals.data();
+    double* L = ws_.lips.data();
+    switch (in.op) {
+      case Op::Translate:
+        B[in.out] = translate_box(B[in.in], K_ + in.a);
+        break;
+      case Op::Place:
+        B[in.out] = place_box(B[in.in], K_ + in.a);
+        break;
+      case Op::Oracle:
+        if (bounds_) {
+          I[in.out] = in.node->interval(B[in.in]);
+          L[in.out] = in.node->lipschitz(B[in.in]);
+        }
+        break;
+      case Op::Blanc:
+        if (bounds_) {
+          const double s = K_[in.a];
+          potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_slope(s),
+                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
+        }
+        break;
+      case Op::Wyvill:
+        if (bounds_) {
+          static const double slope = [] {
+            const double u = (204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240;
+            double dP;
+            wyvill(std::sqrt(u), &dP);
+            return std::abs(dP) * (1 + 1e-12);
+          }();
+          potential_bounds([](double d) { return wyvill(d, nullptr); }, slope, I[in.in], L[in.in],
+                           &I[in.out], &L[in.out]);
+        }
+        break;
+      case Op::Murakami:
+        if (bounds_)
+          potential_bounds([](double d) { return murakami(d, nullptr); },
+                           8 / (3 * std::sqrt(3.0)) * (1 + 1e-12), I[in.in], L[in.in],
+                           &I[in.out], &L[in.out]);
+        break;
+      case Op::Group:
+      case Op::Sum:
+      case Op::Min:
+      case Op::Max:
+        break;  // handled by group()
+    }
+  }
+
+  // Chooses, walks and combines the children of a group; returns the index after it.
+  int group(const Group& g) {
+    const Instr& combine = p_.code[g.op_index];
+    int32_t* kept = ws_.kept.data();
+    const int first = top_;
+    if (combine.op == Op::Sum && !g.bvh.empty()) {
+      // The children that are never dropped, merged in order with those whose support meets the
+      // box (both lists ascend).
+      const int mid = g.bvh.query(ws_.boxes[g.reg], kept, first);
+      const int n_bvh = mid - first;
+      top_ = mid;
+      for (int32_t a : g.always) kept[top_++] = a;
+      std::inplace_merge(kept + first, kept + first + n_bvh, kept + top_);
+    } else {
+      for (size_t i = 0; i < g.children.size(); ++i) kept[top_++] = static_cast<int32_t>(i);
+    }
+    const int last = top_;
+    int32_t* marks = ws_.marks.data();
+    for (int j = first; j < last; ++j) {
+      const Group::Child& c = g.children[kept[j]];
+      marks[j] = static_cast<int32_t>(ws_.view.code.size());
+      walk(c.begin, c.end);
+    }
+    if (bounds_ && combine.op != Op::Sum) drop_inactive(g, combine.op == Op::Min, first, last);
+    const int n = top_ - first;
+
+    Instr out = combine;
+    out.a = static_cast<int32_t>(ws_.view.args.size());
+    out.n = n;
+    for (int j = first; j < first + n; ++j) ws_.view.args.push_back(g.children[kept[j]].slot);
+    ws_.view.code.push_back(out);
+    if (bounds_) combine_bounds(out, g, first, n);
+    top_ = first;
+    return g.op_index + 1;
+  }
+
+  // min/max: a child whose interval lies wholly beyond the extreme's is never the extreme in the
+  // box; its code is removed from the view (the kept children's code moves down).
+  void drop_inactive(const Group& g, bool is_min, int first, int last) {
+    const Interval* I = ws_.ivals.data();
+    int32_t* kept = ws_.kept.data();
+    int32_t* marks = ws_.marks.data();
+    double bound = is_min ? std::numeric_limits<double>::infinity()
+                          : -std::numeric_limits<double>::infinity();
+    for (int j = first; j < last; ++j) {
+      const Interval& a = I[g.children[kept[j]].slot];
+      bound = is_min ? std::min(bound, a.hi) : std::max(bound, a.lo);
+    }
+    auto& code = ws_.view.code;
+    int w = first;
+    size_t write = marks[first];
+    for (int j = first; j < last; ++j) {
+      const Interval& a = I[g.children[kept[j]].slot];
+      // NaN bounds count as active: nothing is known of them.
+      if (is_min ? a.lo > bound : a.hi < bound) continue;
+      const size_t from = marks[j], to = j + 1 < last ? marks[j + 1] : code.size();
+      std::copy(code.begin() + from, code.begin() + to, code.begin() + write);
+      write += to - from;
+      kept[w++] = kept[j];
+    }
+    code.resize(write);
+    top_ = w;
+  }
+
+  void combine_bounds(const Instr& out, const Group& g, int first, int n) {
+    Interval* I = ws_.ivals.data();
+    double* L = ws_.lips.data();
+    const int32_t* kept = ws_.kept.data();
+    if (out.op == Op::Sum) {
+      double lo = 0, hi = 0, mag = 0, Ls = 0;
+      for (int j = first; j < first + n; ++j) {
+        const int s = g.children[kept[j]].slot;
+        lo += I[s].lo;
+        hi += I[s].hi;
+        mag += std::max(std::abs(I[s].lo), std::abs(I[s].hi));
+        Ls += L[s];
+      }
+      const double pad = n * kEps * mag + kTiny;
+      I[out.out] = std::isnan(lo) || std::isnan(hi) ? Interval::entire()
+                                                    : Interval(lo - pad, hi + pad);
+      L[out.out] = Ls;
+      return;
+    }
+    const bool is_min = out.op == Op::Min;
+    Interval r = I[g.children[kept[first]].slot];
+    double Lm = 0;
+    for (int j = first; j < first + n; ++j) {
+      const int s = g.children[kept[j]].slot;
+      r = is_min ? min(r, I[s]) : max(r, I[s]);
+      Lm = std::max(Lm, L[s]);
+    }
+    I[out.out] = r;
+    L[out.out] = Lm;
+  }
+
+  const Program& p_;
+  Workspace& ws_;
+  const bool bounds_;
+  const double* K_;
+  int top_ = 0;
+};
+
+void run(const Program& p, const Box& b, Workspace& ws, bool with_bounds) {
+  ws.view.base = &p;
+  ws.view.code.clear();
+  ws.view.args.clear();
+  ws.boxes[0] = b;
+  Walker(p, ws, with_bounds).walk(0, static_cast<int>(p.code.size()));
+  ws.view.result = p.result;
+}
+
+}  // namespace
+
+BoxBounds bounds(const Program& p, const Box& b, Workspace& ws) {
+  run(p, b, ws, true);
+  return {ws.ivals[p.result], ws.lips[p.result]};
+}
+
+void prune(const Program& p, const Box& b, Workspace& ws) {
+  run(p, b, ws, false);
+}
+
+}  // namespace softtrace

@@ -1,0 +1,102 @@
+// f and ∇f at one point, forward mode: every slot carries its value and its gradient with respect
+// to the world point, and every point register carries its Jacobian with respect to the world
+// point, so an oracle's local gradient g becomes Jᵀg.
+#include "eval.h"
+#include "node.h"
+#include "potentials.h"
+
+namespace softtrace {
+
+namespace {
+Mat3 times(const Mat3& A, const Mat3& B) {
+  Mat3 C;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) C.r[i][j] = A.r[i][0] * B.r[0][j] + A.r[i][1] * B.r[1][j] + A.r[i][2] * B.r[2][j];
+  return C;
+}
+
+// A potential's value and slope applied to the distance's dual number (P' = 0 gives a zero
+// gradient even where ∇d is infinite).
+Workspace::Dual chain(double v, double dP, const Workspace::Dual& d) {
+  return {v, dP == 0 ? Vec3{} : d.g * dP};
+}
+}  // namespace
+
+double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
+  Workspace::Dual* S = ws.duals.data();
+  Workspace::Frame* R = ws.frames.data();
+  const double* K = c.base->consts.data();
+  R[0] = {p, Mat3{}, true};
+
+  for (int k = 0; k < c.size; ++k) {
+    const Instr& in = c.code[k];
+    switch (in.op) {
+      case Op::Translate: {
+        const double* t = K + in.a;
+        const Workspace::Frame& f = R[in.in];
+        R[in.out] = {{f.p.x - t[0], f.p.y - t[1], f.p.z - t[2]}, f.J, f.identity};
+        break;
+      }
+      case Op::Place: {
+        const double* t = K + in.a;
+        Mat3 Rt;
+        for (int i = 0; i < 3; ++i) Rt.r[i] = {t[3 + 3 * i], t[4 + 3 * i], t[5 + 3 * i]};
+        const Workspace::Frame& f = R[in.in];
+        R[in.out] = {Rt * (f.p - Vec3{t[0], t[1], t[2]}), f.identity ? Rt : times(Rt, f.J), false};
+        break;
+      }
+      case Op::Oracle: {
+        const Workspace::Frame& f = R[in.in];
+        Vec3 g;
+        const double v = in.node->eval(f.p, &g);
+        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        break;
+      }
+      case Op::Blanc: {
+        double dP;
+        const double v = blanc(S[in.in].v, K[in.a], &dP);
+        S[in.out] = chain(v, dP, S[in.in]);
+        break;
+      }
+      case Op::Wyvill: {
+        double dP;
+        const double v = wyvill(S[in.in].v, &dP);
+        S[in.out] = chain(v, dP, S[in.in]);
+        break;
+      }
+      case Op::Murakami: {
+        double dP;
+        const double v = murakami(S[in.in].v, &dP);
+        S[in.out] = chain(v, dP, S[in.in]);
+        break;
+      }
+      case Op::Group:
+        break;
+      case Op::Sum: {
+        Workspace::Dual s{0, {}};
+        for (int j = 0; j < in.n; ++j) {
+          const Workspace::Dual& a = S[c.args[in.a + j]];
+          s.v += a.v;
+          s.g += a.g;
+        }
+        S[in.out] = s;
+        break;
+      }
+      case Op::Min:
+      case Op::Max: {
+        const bool is_min = in.op == Op::Min;
+        Workspace::Dual best = S[c.args[in.a]];
+        for (int j = 1; j < in.n; ++j) {
+          const Workspace::Dual& a = S[c.args[in.a + j]];
+          if (is_min ? a.v < best.v : a.v > best.v) best = a;
+        }
+        S[in.out] = best;
+        break;
+      }
+    }
+  }
+  if (grad) *grad = S[c.result].g;
+  return S[c.result].v;
+}
+
+}  // namespace softtrace

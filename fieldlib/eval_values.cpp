@@ -1,0 +1,103 @@
+// Values at a batch of points: each instruction runs over every lane before the next, so the
+// kernels are loops over contiguous doubles that the compiler can vectorise, and an oracle pays
+// its virtual call per lane only for its own subtree.
+#include <algorithm>
+
+#include "eval.h"
+#include "node.h"
+#include "potentials.h"
+
+namespace softtrace {
+
+void values(Code c, const double* x, const double* y, const double* z, int n, double* f,
+            Workspace& ws) {
+  double* S = ws.slots.data();
+  double* R = ws.regs.data();
+  const double* K = c.base->consts.data();
+  const auto reg = [&](int r, int axis) { return R + (r * 3 + axis) * kBatch; };
+  std::copy(x, x + n, reg(0, 0));
+  std::copy(y, y + n, reg(0, 1));
+  std::copy(z, z + n, reg(0, 2));
+
+  for (int k = 0; k < c.size; ++k) {
+    const Instr& in = c.code[k];
+    double* out = S + in.out * kBatch;
+    switch (in.op) {
+      case Op::Translate: {
+        const double* t = K + in.a;
+        for (int i = 0; i < 3; ++i) {
+          const double* src = reg(in.in, i);
+          double* dst = reg(in.out, i);
+          for (int l = 0; l < n; ++l) dst[l] = src[l] - t[i];
+        }
+        break;
+      }
+      case Op::Place: {
+        const double* t = K + in.a;
+        const double* M = t + 3;
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        double *qx = reg(in.out, 0), *qy = reg(in.out, 1), *qz = reg(in.out, 2);
+        for (int l = 0; l < n; ++l) {
+          const double u = px[l] - t[0], v = py[l] - t[1], w = pz[l] - t[2];
+          qx[l] = M[0] * u + M[1] * v + M[2] * w;
+          qy[l] = M[3] * u + M[4] * v + M[5] * w;
+          qz[l] = M[6] * u + M[7] * v + M[8] * w;
+        }
+        break;
+      }
+      case Op::Oracle: {
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        for (int l = 0; l < n; ++l) out[l] = in.node->eval({px[l], py[l], pz[l]}, nullptr);
+        break;
+      }
+      case Op::Blanc: {
+        const double* d = S + in.in * kBatch;
+        const double s = K[in.a];
+        for (int l = 0; l < n; ++l) out[l] = blanc(d[l], s, nullptr);
+        break;
+      }
+      case Op::Wyvill: {
+        const double* d = S + in.in * kBatch;
+        for (int l = 0; l < n; ++l) out[l] = wyvill(d[l], nullptr);
+        break;
+      }
+      case Op::Murakami: {
+        const double* d = S + in.in * kBatch;
+        for (int l = 0; l < n; ++l) out[l] = murakami(d[l], nullptr);
+        break;
+      }
+      case Op::Group:
+        break;
+      case Op::Sum: {
+        std::fill(out, out + n, 0.0);
+        for (int j = 0; j < in.n; ++j) {
+          const double* a = S + c.args[in.a + j] * kBatch;
+          for (int l = 0; l < n; ++l) out[l] += a[l];
+        }
+        break;
+      }
+      case Op::Min:
+      case Op::Max: {
+        // The first extreme in child order wins ties, as the model's min/max does.
+        const bool is_min = in.op == Op::Min;
+        const double* a0 = S + c.args[in.a] * kBatch;
+        std::copy(a0, a0 + n, out);
+        for (int j = 1; j < in.n; ++j) {
+          const double* a = S + c.args[in.a + j] * kBatch;
+          for (int l = 0; l < n; ++l)
+            if (is_min ? a[l] < out[l] : a[l] > out[l]) out[l] = a[l];
+        }
+        break;
+      }
+    }
+  }
+  std::copy(S + c.result * kBatch, S + c.result * kBatch + n, f);
+}
+
+double value(Code c, const Vec3& p, Workspace& ws) {
+  double f;
+  values(c, &p.x, &p.y, &p.z, 1, &f, ws);
+  return f;
+}
+
+}  // namespace softtrace

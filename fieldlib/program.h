@@ -1,0 +1,121 @@
+// A field compiled to a flat program (the libfive/fidget design): the node tree the scene builds
+// is the *model*; `compile` turns it once into a post-order array of instructions over a file of
+// value slots and point registers, which the evaluators (eval.h) walk without a virtual call per
+// node. Kinds without an instruction of their own are *oracles*: one instruction that calls the
+// model node's own kernels for its whole subtree (the root-defined blends, whose bounds are
+// derived next to their code, stay so by design).
+//
+// Layout rules the evaluators rely on:
+// - Point register 0 is the evaluation point; placement writes a new register, so a subtree reads
+//   the register its parent hands it.
+// - Each child subtree of an n-ary instruction is a contiguous range of instructions, announced by
+//   a `Group` instruction before the first child. Pruning is choosing ranges: the bounds pass skips
+//   the ranges of children that cannot matter in a box and emits the rest (eval_bounds.cpp).
+// - Constants live in one pool (`consts`); n-ary instructions read their argument slots from
+//   `args`.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "box.h"
+#include "bvh.h"
+
+namespace softtrace {
+
+class FieldNode;
+
+// The one list of instructions; each evaluator has one case per entry.
+#define SOFTTRACE_OPS(X)                                                             \
+  X(Translate) /* reg out = reg in - c[0..2]                                      */ \
+  X(Place)     /* reg out = Rt (reg in - t), c = t[3], Rt[9] row-major            */ \
+  X(Oracle)    /* slot out = node(reg in): a model node evaluates its subtree     */ \
+  X(Blanc)     /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2                */ \
+  X(Wyvill)    /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)            */ \
+  X(Murakami)  /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density          */ \
+  X(Group)     /* announces the children of the n-ary instruction groups[a]       */ \
+  X(Sum)       /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12          */ \
+  X(Min)       /* slot out = min of args[a..a+n)                                  */ \
+  X(Max)       /* slot out = max of args[a..a+n)                                  */
+
+enum class Op : uint8_t {
+#define SOFTTRACE_OP_ENUM(name) name,
+  SOFTTRACE_OPS(SOFTTRACE_OP_ENUM)
+#undef SOFTTRACE_OP_ENUM
+};
+
+const char* op_name(Op op);
+
+struct Instr {
+  Op op;
+  int32_t out = 0;  // value slot, or point register for Translate/Place
+  int32_t in = 0;   // point register (Translate, Place, Oracle) or value slot (potentials)
+  int32_t a = 0;    // offset into consts (Translate, Place, Blanc), args (Sum/Min/Max) or groups
+  int32_t n = 0;    // argument count (Sum/Min/Max)
+  const FieldNode* node = nullptr;  // Oracle
+};
+
+// The children of one n-ary instruction: where each child's instructions are and which slot holds
+// its result, plus what lets the bounds pass prune them.
+struct Group {
+  int32_t op_index = 0;  // the Sum/Min/Max instruction that combines the children
+  int32_t reg = 0;       // the point register the children read
+  struct Child {
+    int32_t begin, end;  // instruction range [begin, end)
+    int32_t slot;        // the child's result
+  };
+  std::vector<Child> children;
+  // Sum only: children whose value is exactly 0 outside their support box (soft fields) may be
+  // dropped where the box misses it. `prunable[i]` says whether child i is one; the BVH indexes
+  // their supports (in the frame of `reg`).
+  std::vector<uint8_t> prunable;
+  std::vector<int32_t> always;  // children that are never dropped, in order
+  BoxBvh bvh;                   // over the prunable children's support boxes
+};
+
+struct Program {
+  std::vector<Instr> code;
+  std::vector<double> consts;
+  std::vector<int32_t> args;
+  std::vector<Group> groups;
+  int32_t slots = 0, regs = 1;
+  int32_t result = 0;     // the slot holding f
+  int32_t children = 0;   // Σ children over the groups (the pruning stack's depth)
+  bool has_pruning = false;  // some sum can drop children: pruning pays even for one point
+};
+
+// A program valid inside one box: the instructions the bounds pass kept, with their own argument
+// lists. Its constants, groups and oracle nodes are the base program's.
+struct ProgramView {
+  const Program* base = nullptr;
+  std::vector<Instr> code;
+  std::vector<int32_t> args;
+  int32_t result = 0;
+};
+
+// Builds a program from a model node; FieldNode::compile calls back into it.
+class ProgramBuilder {
+ public:
+  // Emits the subtree of `node` reading point register `reg`; returns its result slot.
+  int compile(const FieldNode& node, int reg);
+
+  int new_slot() { return prog_.slots++; }
+  int new_reg() { return prog_.regs++; }
+  int consts(std::initializer_list<double> c);
+  int emit(const Instr& i);
+
+  // An oracle instruction: `node` evaluates its own subtree at register `reg`.
+  int oracle(const FieldNode& node, int reg);
+  // Emits `children` as a group combined by `op` (Sum, Min, Max); for Sum, children whose value
+  // is exactly 0 outside their support are made prunable.
+  int nary(Op op, const std::vector<const FieldNode*>& children, int reg);
+
+  Program finish(int result);
+
+ private:
+  Program prog_;
+};
+
+Program compile(const FieldNode& root);
+
+}  // namespace softtrace

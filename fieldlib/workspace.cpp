@@ -1,0 +1,29 @@
+#include "eval.h"
+
+#include <algorithm>
+
+namespace softtrace {
+
+namespace {
+template <class T>
+void grow(std::vector<T>& v, size_t n) {
+  if (v.size() < n) v.resize(n);
+}
+}  // namespace
+
+void Workspace::fit(const Program& p) {
+  const size_t slots_n = std::max<int32_t>(p.slots, 1), regs_n = p.regs;
+  grow(slots, slots_n * kBatch);
+  grow(regs, regs_n * 3 * kBatch);
+  grow(duals, slots_n);
+  grow(frames, regs_n);
+  grow(ivals, slots_n);
+  grow(lips, slots_n);
+  grow(boxes, regs_n);
+  grow(kept, size_t(p.children) + 1);
+  grow(marks, size_t(p.children) + 1);
+  if (view.code.capacity() < p.code.size()) view.code.reserve(p.code.size());
+  if (view.args.capacity() < p.args.size()) view.args.reserve(p.args.size());
+}
+
+}  // namespace softtrace
