@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
+
+#include "scratch.h"
 
 namespace softtrace {
 
@@ -30,14 +31,15 @@ double power_sum(const double* u, int k, double n, double* dfdu) {
   }
   double s = 0;
   for (int i = 0; i < k; ++i) s += pow_fast(u[i] / m, n);
-  const double f = m * std::pow(s, 1 / n);
+  // n = 2 (spheres, ellipsoids: most blobs) takes the correctly rounded square root.
+  const double f = m * (n == 2 ? std::sqrt(s) : std::pow(s, 1 / n));
   if (dfdu)
     for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? pow_fast(u[i] / f, n - 1) : 0.0;
   return f;
 }
 
 Interval power_sum(const Interval* u, int k, double n) {
-  std::vector<double> lo(k), hi(k);
+  Scratch<double> lo(k), hi(k);
   for (int i = 0; i < k; ++i) {
     lo[i] = std::max(0.0, u[i].lo);
     hi[i] = std::max(0.0, u[i].hi);
