@@ -124,6 +124,7 @@ TEST_P(NodeSweep, CurvatureBoundsHoldOnSamples) {
     }
   }
   RecordProperty("boxes_with_claims", claims);
+  if (claims == 0) GTEST_SKIP() << "the node claims no gradient floor and no Hessian bound";
 }
 
 TEST_P(NodeSweep, RegionContainsItsLevelSet) {

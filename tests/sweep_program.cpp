@@ -1,0 +1,91 @@
+// The all-kinds sweep for the compiled program's evaluators (fieldlib/eval.h): each one against
+// the model it was compiled from, and the fused box pass's bounds and pruned program against
+// samples.
+#include <cmath>
+#include <random>
+
+#include "eval.h"
+#include "sweep.h"
+
+namespace softtrace::test {
+
+namespace {
+
+Vec3 uniform_in(std::mt19937_64& rng, const Box& b) {
+  std::uniform_real_distribution<double> u(0, 1);
+  return {b.lo.x + u(rng) * (b.hi.x - b.lo.x), b.lo.y + u(rng) * (b.hi.y - b.lo.y),
+          b.lo.z + u(rng) * (b.hi.z - b.lo.z)};
+}
+
+Box random_box(std::mt19937_64& rng, const Box& domain) {
+  const double scale = std::exp(std::uniform_real_distribution<double>(-5, -1)(rng));
+  const Vec3 c = uniform_in(rng, domain), e = domain.extent() * (0.5 * scale);
+  return {c - e, c + e};
+}
+
+// Equal, or within 1e-12 relative (the gradient through nested rotations is summed in another
+// order), or both NaN.
+bool near(double a, double b) {
+  if (a == b || (std::isnan(a) && std::isnan(b))) return true;
+  return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
+}
+
+}  // namespace
+
+TEST_P(NodeSweep, ProgramValuesAndGradientsMatchTheModel) {
+  const SweepCase& c = GetParam();
+  const NodePtr n = build_from_json(c.json, c.convention);
+  const Program prog = compile(*n);
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(6);
+  for (int i = 0; i < 200; ++i) {
+    double x[kBatch], y[kBatch], z[kBatch], f[kBatch];
+    for (int l = 0; l < kBatch; ++l) {
+      const Vec3 p = uniform_in(rng, c.domain);
+      x[l] = p.x, y[l] = p.y, z[l] = p.z;
+    }
+    values(prog, x, y, z, kBatch, f, ws);
+    for (int l = 0; l < kBatch; ++l) {
+      const Vec3 p{x[l], y[l], z[l]};
+      Vec3 gm, gp, ge;
+      const double vm = n->eval(p, &gm);
+      ASSERT_EQ(f[l], vm) << c.name << ": batch lane " << l;
+      ASSERT_EQ(gradient(prog, p, &gp, ws), vm) << c.name;
+      ASSERT_TRUE(near(gp.x, gm.x) && near(gp.y, gm.y) && near(gp.z, gm.z))
+          << c.name << ": (" << gp.x << ", " << gp.y << ", " << gp.z << ") vs model (" << gm.x
+          << ", " << gm.y << ", " << gm.z << ")";
+      ASSERT_EQ(evaluate(prog, p, &ge, ws), vm) << c.name << ": pruned to the point";
+      ASSERT_TRUE(near(ge.x, gm.x) && near(ge.y, gm.y) && near(ge.z, gm.z)) << c.name;
+    }
+  }
+}
+
+TEST_P(NodeSweep, ProgramBoxPassEnclosesSamplesAndPrunesExactly) {
+  const SweepCase& c = GetParam();
+  const NodePtr n = build_from_json(c.json, c.convention);
+  const Program prog = compile(*n);
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 200; ++i) {
+    const Box b = random_box(rng, c.domain);
+    const BoxBounds bb = bounds(prog, b, ws);
+    ASSERT_FALSE(std::isnan(bb.lipschitz) || std::isnan(bb.value.lo) || std::isnan(bb.value.hi))
+        << c.name;
+    ASSERT_LE(ws.view.code.size(), prog.code.size());
+    const ProgramView view = ws.view;  // the next calls overwrite ws.view
+    for (int j = 0; j < 20; ++j) {
+      const Vec3 p = uniform_in(rng, b), q = uniform_in(rng, b);
+      const double v = n->value(p);
+      ASSERT_EQ(value(view, p, ws), v) << c.name << ": the pruned program differs inside its box";
+      ASSERT_TRUE(bb.value.contains(v))
+          << c.name << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
+      ASSERT_LE(length(n->gradient(p)), bb.lipschitz * (1 + 1e-9) + 1e-12) << c.name;
+      ASSERT_LE(std::abs(v - n->value(q)), bb.lipschitz * length(p - q) * (1 + 1e-9) + 1e-12)
+          << c.name;
+    }
+  }
+}
+
+}  // namespace softtrace::test
