@@ -7,8 +7,10 @@
 #include "distance_params.h"
 #include "distances.h"
 #include "gauge.h"
+#include "lp_metric.h"
 #include "node_util.h"
 #include "one_sided.h"
+#include "program.h"
 
 namespace softtrace {
 
@@ -27,29 +29,26 @@ class LpMetric final : public FieldNode {
     global_L_ = gauge_lipschitz(w, 3, n_);
   }
 
-  double eval(const Vec3& p, Vec3* grad) const override {
-    const double u[3] = {std::abs(p.x / a_.x), std::abs(p.y / a_.y), std::abs(p.z / a_.z)};
-    double du[3];
-    const double f = power_sum(u, 3, n_, grad ? du : nullptr);
-    if (grad) *grad = {du[0] * sgn(p.x) / a_.x, du[1] * sgn(p.y) / a_.y, du[2] * sgn(p.z) / a_.z};
-    return f;
-  }
+  double eval(const Vec3& p, Vec3* grad) const override { return lp_metric(params(), p, grad); }
   Interval interval(const Box& b) const override {
-    Interval u[3];
-    terms(b, u);
-    return power_sum(u, 3, n_);
+    Interval f;
+    lp_metric_bounds(params(), b, &f, nullptr);
+    return f;
   }
   double lipschitz() const override { return global_L_; }
   double lipschitz(const Box& b) const override {
-    Interval u[3];
-    terms(b, u);
-    const Interval f = power_sum(u, 3, n_);
-    double s = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double g = power_sum_partial_bound(u[i], f, n_) / a_[i];
-      s += g * g;
-    }
-    return std::min(global_L_, std::sqrt(s) * (1 + 1e-13));
+    Interval f;
+    double L;
+    lp_metric_bounds(params(), b, &f, &L);
+    return L;
+  }
+  // One instruction with the parameters inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::LpMetric};
+    i.in = reg;
+    i.out = b.new_slot();
+    i.a = b.consts({a_.x, a_.y, a_.z, n_, global_L_});
+    return b.emit(i);
   }
   Box region(double level, Side side) const override {
     return side == Side::Below ? scaled_box(a_, level) : Box::unbounded();
@@ -86,6 +85,8 @@ class LpMetric final : public FieldNode {
   void terms(const Box& b, Interval* u) const {
     for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(a_[i]);
   }
+  LpMetricParams params() const { return {a_, n_, global_L_}; }
+
   Vec3 a_;
   double n_, global_L_;
 };

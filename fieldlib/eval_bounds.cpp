@@ -19,6 +19,7 @@
 #include "eval.h"
 #include "node.h"
 #include "node_util.h"
+#include "lp_metric.h"
 #include "potentials.h"
 
 namespace softtrace {
@@ -108,6 +109,12 @@ class Walker {
         if (bounds_) {
           I[in.out] = in.node->interval(B[in.in]);
           L[in.out] = in.node->lipschitz(B[in.in]);
+        }
+        break;
+      case Op::LpMetric:
+        if (bounds_) {
+          const double* k = K_ + in.a;
+          lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, B[in.in], &I[in.out], &L[in.out]);
         }
         break;
       case Op::Blanc:

@@ -3,6 +3,7 @@
 // point, so an oracle's local gradient g becomes Jᵀg.
 #include "eval.h"
 #include "node.h"
+#include "lp_metric.h"
 #include "potentials.h"
 
 namespace softtrace {
@@ -49,6 +50,14 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         const Workspace::Frame& f = R[in.in];
         Vec3 g;
         const double v = in.node->eval(f.p, &g);
+        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        break;
+      }
+      case Op::LpMetric: {
+        const double* k = K + in.a;
+        const Workspace::Frame& f = R[in.in];
+        Vec3 g;
+        const double v = lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, f.p, &g);
         S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
         break;
       }

@@ -5,6 +5,7 @@
 
 #include "eval.h"
 #include "node.h"
+#include "lp_metric.h"
 #include "potentials.h"
 
 namespace softtrace {
@@ -48,6 +49,13 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
       case Op::Oracle: {
         const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
         for (int l = 0; l < n; ++l) out[l] = in.node->eval({px[l], py[l], pz[l]}, nullptr);
+        break;
+      }
+      case Op::LpMetric: {
+        const double* k = K + in.a;
+        const LpMetricParams m{{k[0], k[1], k[2]}, k[3], k[4]};
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        for (int l = 0; l < n; ++l) out[l] = lp_metric(m, {px[l], py[l], pz[l]}, nullptr);
         break;
       }
       case Op::Blanc: {

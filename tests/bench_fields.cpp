@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "eval.h"
 #include "tracer.h"
 
 namespace softtrace {
@@ -59,7 +60,8 @@ std::vector<Vec3> points_in(const Box& b, int n) {
   return pts;
 }
 
-void BM_ValueAndGradient(benchmark::State& state, const Model* m) {
+// The model tree's own methods: the baseline the compiled program is measured against.
+void BM_ModelValueAndGradient(benchmark::State& state, const Model* m) {
   const Scene s = load(*m);
   const auto pts = points_in(s.objects[0].bounds, 4096);
   size_t i = 0;
@@ -71,7 +73,7 @@ void BM_ValueAndGradient(benchmark::State& state, const Model* m) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void BM_IntervalAndLipschitz(benchmark::State& state, const Model* m) {
+void BM_ModelIntervalAndLipschitz(benchmark::State& state, const Model* m) {
   const Scene s = load(*m);
   const auto pts = points_in(s.objects[0].bounds, 4096);
   const double r = 0.02 * s.objects[0].bounds.diagonal();
@@ -82,6 +84,92 @@ void BM_IntervalAndLipschitz(benchmark::State& state, const Model* m) {
     benchmark::DoNotOptimize(s.objects[0].field->lipschitz(b));
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+// One point's value on the compiled program, pruned to the point where that pays (evaluate()).
+void BM_PointValue(benchmark::State& state, const Model* m) {
+  const Scene s = load(*m);
+  const Program prog = compile(*s.objects[0].field);
+  Workspace ws;
+  ws.fit(prog);
+  const auto pts = points_in(s.objects[0].bounds, 4096);
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(evaluate(prog, pts[i++ & 4095], nullptr, ws));
+  state.SetItemsProcessed(state.iterations());
+}
+
+// Eight points as one batch (structure of arrays) against eight single-point calls: the same
+// points, items = points.
+void BM_Batch8(benchmark::State& state, const Model* m, bool batched) {
+  const Scene s = load(*m);
+  const Program prog = compile(*s.objects[0].field);
+  Workspace ws;
+  ws.fit(prog);
+  const auto pts = points_in(s.objects[0].bounds, 4096);
+  double x[4096], y[4096], z[4096], f[8];
+  for (int i = 0; i < 4096; ++i) x[i] = pts[i].x, y[i] = pts[i].y, z[i] = pts[i].z;
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = (i += 8) & 4095;
+    if (batched) {
+      values(prog, x + k, y + k, z + k, 8, f, ws);
+    } else {
+      for (int l = 0; l < 8; ++l) f[l] = value(prog, pts[k + l], ws);
+    }
+    benchmark::DoNotOptimize(f);
+  }
+  state.SetItemsProcessed(8 * state.iterations());
+}
+
+// The fused box pass: interval, Lipschitz bound and pruned program in one walk.
+void BM_BoxPass(benchmark::State& state, const Model* m) {
+  const Scene s = load(*m);
+  const Program prog = compile(*s.objects[0].field);
+  Workspace ws;
+  ws.fit(prog);
+  const auto pts = points_in(s.objects[0].bounds, 4096);
+  const double r = 0.02 * s.objects[0].bounds.diagonal();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(bounds(prog, Box::around(pts[i++ & 4095], r), ws));
+  state.SetItemsProcessed(state.iterations());
+}
+
+// N murakami blobs (tools/blob_scene.py's model: centres in [-20, 20]^3, radius 6 (1000/N)^(1/3)):
+// pruning a box the size of one blob's support costs O(log N + k).
+std::string blobs_object(int n) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-20, 20);
+  const double r = 6 * std::cbrt(1000.0 / n);
+  std::string s = R"({"field":{"type":"soft_blend","children":[)";
+  for (int i = 0; i < n; ++i) {
+    const double x = u(rng), y = u(rng), z = u(rng);
+    s += (i ? "," : "") + std::string(R"({"type":"soft_object","potential":{"type":"murakami"},)") +
+         R"("distance":{"type":"lp_metric","radii":[)" + std::to_string(r) + "," +
+         std::to_string(r) + "," + std::to_string(r) + R"(],"n":2},"translate":[)" +
+         std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) + "]}";
+  }
+  return s + "]}}";
+}
+
+void BM_BlobBoxPass(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const std::string object = blobs_object(n);
+  const Model m{"blobs", object.c_str()};
+  const Scene s = load(m);
+  const Program prog = compile(*s.objects[0].field);
+  Workspace ws;
+  ws.fit(prog);
+  const double r = 6 * std::cbrt(1000.0 / n);
+  const auto pts = points_in(Box({-20, -20, -20}, {20, 20, 20}), 4096);
+  size_t i = 0;
+  long long kept = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(bounds(prog, Box::around(pts[i++ & 4095], r), ws));
+    kept += ws.view.code.back().n;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["children"] = benchmark::Counter(static_cast<double>(kept) /
+                                                  std::max<int64_t>(1, state.iterations()));
 }
 
 void BM_FirstHit(benchmark::State& state, const Model* m, LipschitzMode mode) {
@@ -104,10 +192,18 @@ void BM_FirstHit(benchmark::State& state, const Model* m, LipschitzMode mode) {
 }
 
 void register_all() {
+  benchmark::RegisterBenchmark("blob_box_pass", BM_BlobBoxPass)->Arg(100)->Arg(1000)->Arg(10000);
   for (const Model& m : kModels) {
-    benchmark::RegisterBenchmark((std::string("eval/") + m.name).c_str(), BM_ValueAndGradient, &m);
-    benchmark::RegisterBenchmark((std::string("interval/") + m.name).c_str(),
-                                 BM_IntervalAndLipschitz, &m);
+    benchmark::RegisterBenchmark((std::string("model_eval/") + m.name).c_str(),
+                                 BM_ModelValueAndGradient, &m);
+    benchmark::RegisterBenchmark((std::string("model_interval_lipschitz/") + m.name).c_str(),
+                                 BM_ModelIntervalAndLipschitz, &m);
+    benchmark::RegisterBenchmark((std::string("point_value/") + m.name).c_str(), BM_PointValue,
+                                 &m);
+    benchmark::RegisterBenchmark((std::string("batch8/") + m.name).c_str(), BM_Batch8, &m, true);
+    benchmark::RegisterBenchmark((std::string("single_x8/") + m.name).c_str(), BM_Batch8, &m,
+                                 false);
+    benchmark::RegisterBenchmark((std::string("box_pass/") + m.name).c_str(), BM_BoxPass, &m);
     benchmark::RegisterBenchmark((std::string("first_hit_local/") + m.name).c_str(), BM_FirstHit,
                                  &m, LipschitzMode::Local);
     benchmark::RegisterBenchmark((std::string("first_hit_global/") + m.name).c_str(), BM_FirstHit,

@@ -78,7 +78,7 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
     const Instr& sum = ws.view.code.back();
     ASSERT_EQ(sum.op, Op::Sum);
     EXPECT_EQ(sum.n, expected);
-    EXPECT_EQ(count_ops(ws.view.code, Op::Oracle), expected);
+    EXPECT_EQ(count_ops(ws.view.code, Op::LpMetric), expected);
     nonempty += expected > 0;
     const ProgramView view = ws.view;
     for (int j = 0; j < 10; ++j) {
@@ -101,7 +101,7 @@ TEST(Program, MinDropsChildrenThatCannotBeTheMinimum) {
   bounds(prog, Box::around({0, 0, 0}, 1), ws);
   EXPECT_EQ(ws.view.code.back().op, Op::Min);
   EXPECT_EQ(ws.view.code.back().n, 1);
-  EXPECT_EQ(count_ops(ws.view.code, Op::Oracle), 1);
+  EXPECT_EQ(count_ops(ws.view.code, Op::LpMetric), 1);
   EXPECT_EQ(value(ws.view, {0.5, 0, 0}, ws), 0.5);
   bounds(prog, Box::around({50, 0, 0}, 1), ws);  // both can be the minimum here
   EXPECT_EQ(ws.view.code.back().n, 2);

@@ -1,0 +1,47 @@
+// The LP metric (|x/a|^n + |y/b|^n + |z/c|^n)^(1/n) (000 Eq. 2, MATH.md §2.5) as kernels shared
+// by the model node (distances_gauge.cpp) and the program's LpMetric instruction, so both compute
+// the same bits. Bounds over a box: f is non-decreasing in every |x_i/a_i|, so its interval is
+// f at the ends of the terms' intervals; |∂f/∂x_i| = (u_i/f)^(n-1)/a_i is bounded by
+// power_sum_partial_bound, and the global bound (gauge_lipschitz) caps the result.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "box.h"
+#include "gauge.h"
+#include "node_util.h"
+
+namespace softtrace {
+
+struct LpMetricParams {
+  Vec3 a;
+  double n, global_L;
+};
+
+inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
+  const Vec3& a = m.a;
+  const double u[3] = {std::abs(p.x / a.x), std::abs(p.y / a.y), std::abs(p.z / a.z)};
+  double du[3];
+  const double f = power_sum(u, 3, m.n, grad ? du : nullptr);
+  if (grad) *grad = {du[0] * sgn(p.x) / a.x, du[1] * sgn(p.y) / a.y, du[2] * sgn(p.z) / a.z};
+  return f;
+}
+
+// The value interval and the Lipschitz bound over `b` in one pass.
+inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* value,
+                             double* lipschitz) {
+  Interval u[3];
+  for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(m.a[i]);
+  const Interval f = power_sum(u, 3, m.n);
+  *value = f;
+  if (!lipschitz) return;
+  double s = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double g = power_sum_partial_bound(u[i], f, m.n) / m.a[i];
+    s += g * g;
+  }
+  *lipschitz = std::min(m.global_L, std::sqrt(s) * (1 + 1e-13));
+}
+
+}  // namespace softtrace
