@@ -1,6 +1,6 @@
 // Closed interval arithmetic over doubles, as libfive's interval evaluator uses it: every result
-// contains the exact image of its arguments. Each operation rounds outward by one ulp so the
-// enclosure stays sound under floating-point rounding (pow/exp/log are faithfully rounded by
+// contains the exact image of its arguments. Each operation rounds outward by at least one ulp so
+// the enclosure stays sound under floating-point rounding (pow/exp/log are faithfully rounded by
 // glibc).
 #pragma once
 
@@ -25,11 +25,19 @@ struct Interval {
 };
 
 namespace iv {
+// One ulp or more below / above v, without a libm call: for finite normal v, ulp(v) <= 2^-52 |v|
+// and v ∓ 2^-52 |v| is exact or rounds away from v past its neighbour (v ∓ ulp(v) is a double);
+// 2^-1074 (the smallest subnormal) covers v = 0 and subnormals. Infinities and NaN take
+// nextafter's answer (the rare path: -inf and +inf stay, +inf goes down to the largest double).
 inline double down(double v) {
-  return std::nextafter(v, -std::numeric_limits<double>::infinity());
+  if (!(std::abs(v) <= std::numeric_limits<double>::max()))
+    return std::nextafter(v, -std::numeric_limits<double>::infinity());
+  return v - (std::abs(v) * 0x1p-52 + 0x1p-1074);
 }
 inline double up(double v) {
-  return std::nextafter(v, std::numeric_limits<double>::infinity());
+  if (!(std::abs(v) <= std::numeric_limits<double>::max()))
+    return std::nextafter(v, std::numeric_limits<double>::infinity());
+  return v + (std::abs(v) * 0x1p-52 + 0x1p-1074);
 }
 inline Interval out(double l, double h) {
   // NaN from inf-inf or 0*inf means "no information".
