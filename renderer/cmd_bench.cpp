@@ -17,7 +17,7 @@ int run_bench(const BenchArgs& a) {
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height);
     const auto threads = limit_threads(a.threads);
-    const EmbreeScene rt(scene, a.lipschitz);
+    const TracedScene rt(scene, a.lipschitz);
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     std::vector<double> secs;

@@ -86,7 +86,7 @@ int run_render(const RenderArgs& a) {
     const auto threads = limit_threads(a.threads);
 
     const auto start = std::chrono::steady_clock::now();
-    const EmbreeScene rt(scene, a.lipschitz);
+    const TracedScene rt(scene, a.lipschitz);
     Film film(scene.image.width, scene.image.height);
     Progress progress("rendering", long(film.width) * film.height, !a.quiet && ::isatty(2));
     RenderOptions opt;

@@ -75,16 +75,14 @@ struct EmbreeScene::Impl {
   std::vector<GeometryData> data;
 };
 
-EmbreeScene::EmbreeScene(const Scene& scene, LipschitzMode mode) : impl_(std::make_unique<Impl>()) {
-  tracers_.reserve(scene.objects.size());
-  for (const auto& o : scene.objects) tracers_.emplace_back(o, mode);
-  impl_->data.reserve(scene.objects.size());  // the callbacks hold pointers into it
+EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<Impl>()) {
+  impl_->data.reserve(tracers.size());  // the callbacks hold pointers into it
 
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
   impl_->scene = rtcNewScene(impl_->device);
-  for (size_t i = 0; i < tracers_.size(); ++i) {
-    impl_->data.push_back({&tracers_[i], static_cast<int>(i)});
+  for (int i = 0; i < tracers.size(); ++i) {
+    impl_->data.push_back({&tracers[i], i});
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, &impl_->data.back());

@@ -1,5 +1,5 @@
 // The only code that sees Embree: one user geometry per scene object, whose bounds callback
-// returns the object's box and whose intersect/occluded callbacks call the ObjectTracer
+// returns the object's box and whose intersect/occluded callbacks call the object's tracer
 // (Mitsuba's thin adapter; the objects never see Embree).
 #pragma once
 
@@ -20,8 +20,8 @@ struct TraceHit {
 
 class EmbreeScene {
  public:
-  // The scene must outlive this object.
-  EmbreeScene(const Scene& scene, LipschitzMode mode);
+  // The tracers must outlive this object.
+  explicit EmbreeScene(const SceneTracers& tracers);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -31,12 +31,10 @@ class EmbreeScene {
   // Whether anything lies along the ray in [tnear, tfar]; thread-safe.
   bool occluded(const Ray& ray, double tnear, double tfar, int& steps) const;
 
-  const ObjectTracer& tracer(int object) const { return tracers_[object]; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::vector<ObjectTracer> tracers_;
 };
 
 }  // namespace softtrace

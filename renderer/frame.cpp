@@ -24,7 +24,7 @@ void sample_offset(int s, double& dx, double& dy) {
 
 }  // namespace
 
-bool render_frame(const Scene& scene, const EmbreeScene& rt, const RenderOptions& opt, Film& film,
+bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats) {
   const int W = film.width, H = film.height, spp = scene.image.spp;
   const PinholeCamera camera(scene.camera, W, H);
@@ -46,10 +46,10 @@ bool render_frame(const Scene& scene, const EmbreeScene& rt, const RenderOptions
               double dx, dy;
               sample_offset(s, dx, dy);
               const Ray ray = camera.generate(x + dx, y + dy);
-              const TraceHit hit = rt.intersect(ray, 0, std::numeric_limits<double>::infinity());
+              const TraceHit hit = rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
               int steps = hit.steps;
               if (hit.hit) {
-                const Shaded sh = shade(scene, rt, ray, hit, steps);
+                const Shaded sh = shade(scene, rt.tracers, rt.embree, ray, hit, steps);
                 sum += sh.color;
                 ++covered;
                 if (s == 0) {

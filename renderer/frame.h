@@ -15,13 +15,20 @@ struct RenderOptions {
   const std::atomic<bool>* cancel = nullptr;  // stops the frame early when set
 };
 
+// What a frame is traced with: every object's tracer and the Embree scene over them.
+struct TracedScene {
+  TracedScene(const Scene& scene, LipschitzMode mode) : tracers(scene, mode), embree(tracers) {}
+  SceneTracers tracers;
+  EmbreeScene embree;
+};
+
 struct FrameStats {
   long long primary_rays = 0;
   long long steps = 0;  // all field/interval evaluations, shadow rays included
 };
 
 // Renders scene.image.{width,height,spp}; returns false if cancelled.
-bool render_frame(const Scene& scene, const EmbreeScene& rt, const RenderOptions& opt, Film& film,
+bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats);
 
 }  // namespace softtrace

@@ -5,9 +5,9 @@
 
 namespace softtrace {
 
-Shaded shade(const Scene& scene, const EmbreeScene& rt, const Ray& ray, const TraceHit& hit,
-             int& steps) {
-  const ObjectTracer& tracer = rt.tracer(hit.object);
+Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt,
+             const Ray& ray, const TraceHit& hit, int& steps) {
+  const ObjectTracer& tracer = tracers[hit.object];
   const SceneObject& obj = tracer.object();
   const Vec3 p = ray.o + ray.d * hit.t;
   Vec3 n = hit.on_box_face ? tracer.box_face_normal(p) : tracer.normal(p);

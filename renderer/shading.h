@@ -2,6 +2,7 @@
 #pragma once
 
 #include "embree_scene.h"
+#include "tracer.h"
 
 namespace softtrace {
 
@@ -10,7 +11,8 @@ struct Shaded {
   Vec3 normal;  // unit, facing the viewer
 };
 
-Shaded shade(const Scene& scene, const EmbreeScene& rt, const Ray& ray, const TraceHit& hit,
-             int& steps);
+// The normal comes from the hit object's tracer; shadow rays go through `rt`.
+Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt,
+             const Ray& ray, const TraceHit& hit, int& steps);
 
 }  // namespace softtrace

@@ -23,6 +23,11 @@ Workspace& workspace(const Program& p) {
 }
 }  // namespace
 
+SceneTracers::SceneTracers(const Scene& scene, LipschitzMode mode) {
+  tracers_.reserve(scene.objects.size());
+  for (const auto& o : scene.objects) tracers_.emplace_back(o, mode);
+}
+
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
   for (int i = 0; i < 3; ++i) {
     if (ray.d[i] == 0) {

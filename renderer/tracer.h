@@ -62,6 +62,18 @@ class ObjectTracer {
   double min_step_;  // shortest step and stretch: 1e-5 of the object's box diagonal
 };
 
+// Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading
+// (shading.h) both use them and neither owns them, so shading never goes through Embree.
+class SceneTracers {
+ public:
+  SceneTracers(const Scene& scene, LipschitzMode mode);
+  const ObjectTracer& operator[](int object) const { return tracers_[object]; }
+  int size() const { return static_cast<int>(tracers_.size()); }
+
+ private:
+  std::vector<ObjectTracer> tracers_;
+};
+
 // [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1);
 

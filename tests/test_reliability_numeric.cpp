@@ -320,7 +320,7 @@ TEST(NumericRobustness, RandomScenesGiveNoNaNInEvalIntervalsPixelsOrAovs) {
       ASSERT_FALSE(std::isnan(o.field->lipschitz(box))) << text;
     }
 
-    const EmbreeScene rt(scene, LipschitzMode::Local);
+    const TracedScene rt(scene, LipschitzMode::Local);
     Film film(scene.image.width, scene.image.height);
     ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, film, nullptr, nullptr));
     for (size_t i = 0; i < size_t(film.width) * film.height; ++i) {
