@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <unordered_set>
 
-#include "json_nesting.h"
+#include "json_text.h"
 
 namespace softtrace {
 
@@ -19,20 +18,6 @@ using json = nlohmann::json;
 // hostile rather than ambitious.
 constexpr size_t kMaxLights = 1000;
 constexpr size_t kMaxObjects = 10000;
-
-// nlohmann reports a byte offset; users want line and column.
-std::string line_col(const std::string& text, size_t byte) {
-  size_t line = 1, col = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
 
 Camera load_camera(const Params& p) {
   Camera c;
@@ -166,45 +151,8 @@ Box Scene::bounds() const {
   return b;
 }
 
-// nlohmann's DOM builder, keeping where a syntax error or an out-of-range number is: its own
-// exception for "1e400" carries no position.
-class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
- public:
-  LocatingParser(json& root, const std::string& text)
-      : json_sax_dom_parser(root, false), text_(text) {}
-
-  bool parse_error(std::size_t position, const std::string& token,
-                   const nlohmann::detail::exception& ex) {
-    const std::string what = ex.what();
-    unsigned line = 0, column = 0;
-    const size_t at = what.find("at line ");
-    if (at != std::string::npos &&
-        std::sscanf(what.c_str() + at, "at line %u, column %u", &line, &column) == 2) {
-      // Column 0: the offending character is the newline that ended the previous line.
-      where = column > 0 ? std::to_string(line) + ":" + std::to_string(column)
-                         : line_col(text_, position > 0 ? position - 1 : 0);
-      message = what.substr(what.find(": ", at) + 2);
-    } else {  // a number token: no escapes, so its length locates its start
-      where = line_col(text_, position >= token.size() ? position - token.size() : 0);
-      message = ex.id == 406 ? "number out of range: " + token : what;
-    }
-    return false;
-  }
-
-  std::string where, message;  // empty where: no error
-
- private:
-  const std::string& text_;
-};
-
 Scene parse_scene(const std::string& text, const std::string& name) {
-  check_json_nesting(text, name);
-  json doc;
-  LocatingParser parser(doc, text);
-  json::sax_parse(text, &parser, nlohmann::detail::input_format_t::json, true,
-                  /*ignore_comments=*/true);
-  if (!parser.where.empty())
-    throw SceneError(name + ":" + parser.where + ": invalid JSON: " + parser.message);
+  const json doc = parse_json_text(text, name);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
 
