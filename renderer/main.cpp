@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <map>
 
+#include "cli_spelling.h"
 #include "commands.h"
 
 using namespace softtrace;
@@ -97,7 +98,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& ex) {
     return app.exit(ex);
   } catch (const CLI::ParseError& ex) {
-    report_error(ex.what() + std::string(" (see softtrace --help)"));
+    const std::string unknown = unknown_word(app, argc, argv);
+    report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
     return 2;
   }
   if (*render) return run_render(r);

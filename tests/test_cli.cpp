@@ -81,6 +81,37 @@ TEST(Usage, HelpAndBadOptions) {
             2);
 }
 
+// A misspelled subcommand or option is named, with the nearest known one (edit distance <= 2,
+// swaps of neighbours counting 1), on one line with exit 2.
+TEST(Usage, MisspellingsAreNamedWithTheNearestKnownWord) {
+  const std::string scene = " " + source_path(kDefaultScene);
+  const std::pair<std::string, std::string> cases[] = {
+      {"rendr" + scene, "softtrace: unknown command 'rendr' (did you mean 'render'?)\n"},
+      {"rneder" + scene, "softtrace: unknown command 'rneder' (did you mean 'render'?)\n"},
+      {"evl" + scene, "softtrace: unknown command 'evl' (did you mean 'eval'?)\n"},
+      {"paint" + scene, "softtrace: unknown command 'paint' (see softtrace --help)\n"},
+      {"render" + scene + " --widht 8",
+       "softtrace: unknown option '--widht' (did you mean '--width'?)\n"},
+      {"render" + scene + " --wdith=8",
+       "softtrace: unknown option '--wdith' (did you mean '--width'?)\n"},
+      {"bench" + scene + " --repet 2",
+       "softtrace: unknown option '--repet' (did you mean '--repeat'?)\n"},
+      {"render" + scene + " -x", "softtrace: unknown option '-x' (see softtrace render --help)\n"},
+      {"eval" + scene + " --width 8",
+       "softtrace: unknown option '--width' (see softtrace eval --help)\n"},
+      {"--hepl", "softtrace: unknown option '--hepl' (did you mean '--help'?)\n"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const RunResult r = run_softtrace(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.err, expected) << args;
+  }
+  // Known words keep CLI11's own message.
+  const RunResult range = run_softtrace("render" + scene + " --width 0");
+  EXPECT_EQ(range.err,
+            "softtrace: --width: Value 0 not in range 1 to 16384 (see softtrace --help)\n");
+}
+
 // The Fig. 12(b) field written out independently of fieldlib (MATH.md §3.2, 000 Eqs. 19-20).
 double blanc0(double d) {
   if (d >= 1) return 0;
