@@ -213,6 +213,38 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
   EXPECT_TRUE(fs::exists(dir + "/t2.png"));
 }
 
+// Directions scaled by 1e308 or 1e-300 are the same directions: the picture is the same bits
+// (a light direction of 1e308 once overflowed its length and left the lit side black).
+TEST(Render, HugeOrTinyDirectionsGiveTheSamePicture) {
+  const std::string dir = temp_dir("scaled_directions");
+  const std::string scene = read_file(source_path(kDefaultScene));
+  const auto variant = [&](const std::string& name, const std::string& from,
+                           const std::string& to) {
+    const size_t at = scene.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    std::ofstream(dir + "/" + name + ".json") << std::string(scene).replace(at, from.size(), to);
+    return dir + "/" + name + ".json";
+  };
+  const std::string light = "\"direction\": [1.0, 0.35, -1.0]", up = "\"up\": [0, 0, 1]";
+  const std::string scenes[] = {
+      source_path(kDefaultScene),
+      variant("light_huge", light, "\"direction\": [1e308, 0.35e308, -1e308]"),
+      variant("light_tiny", light, "\"direction\": [1e-300, 0.35e-300, -1e-300]"),
+      variant("up_huge", up, "\"up\": [0, 0, 1.7e308]"),
+      variant("up_tiny", up, "\"up\": [0, 0, 4e-320]"),
+  };
+  for (size_t i = 0; i < std::size(scenes); ++i) {
+    const RunResult r =
+        run_softtrace("render " + scenes[i] + " --width 64 --height 48 --spp 1 --quiet -o " + dir +
+                      "/" + std::to_string(i) + ".exr");
+    ASSERT_EQ(r.status, 0) << scenes[i] << ": " << r.err;
+    if (i == 0) continue;
+    const RunResult d =
+        run_softtrace("diff --fail 0 " + dir + "/0.exr " + dir + "/" + std::to_string(i) + ".exr");
+    EXPECT_EQ(d.status, 0) << scenes[i] << ":\n" << d.out;
+  }
+}
+
 // `eval` on every scene prints exactly (%.17g round trip) what the library computes for the
 // scene's first object; the library's values are checked against the formulas by the node sweep,
 // the property tests and the figure tests.

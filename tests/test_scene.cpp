@@ -2,6 +2,8 @@
 // a scene around them (the bad-scene corpus covers the command line).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "json_location.h"
 #include "json_nesting.h"
 #include "scene.h"
@@ -74,6 +76,50 @@ TEST(SceneLoading, DuplicateNamesAndUnknownLights) {
     EXPECT_NE(std::string(e.what()).find("s.json: /lights/0/type: unknown light type 'spot'"),
               std::string::npos);
   }
+}
+
+// Vectors are normalised by their largest component first: no length overflows or underflows.
+TEST(SceneLoading, HugeAndTinyVectorsKeepTheirDirection) {
+  const Scene s = parse_scene(R"({"camera":{"eye":[10,0,0],"target":[0,0,0],"up":[0,1e308,1e308]},
+      "lights":[{"type":"directional","direction":[-1.5e308,0,1e308]},
+                {"type":"directional","direction":[0,-5e-324,0]}],
+      "objects":[{"field":)" + std::string(kBall) +
+                                  "}]}",
+                              "s.json");
+  EXPECT_NEAR(s.camera.up.y, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(s.camera.up.z, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(s.lights[0].direction.x, -1.5 / std::sqrt(3.25), 1e-15);
+  EXPECT_NEAR(s.lights[0].direction.z, 1 / std::sqrt(3.25), 1e-15);
+  EXPECT_EQ(s.lights[1].direction.y, -1);
+  // Without lights, the key light comes from the camera and up: finite for a huge up too.
+  const Scene d = parse_scene(R"({"camera":{"eye":[10,0,0],"target":[0,0,0],"up":[0,0,1e308]},
+      "objects":[{"field":)" + std::string(kBall) +
+                                  "}]}",
+                              "s.json");
+  EXPECT_NEAR(length(d.lights[0].direction), 1, 1e-15);
+}
+
+TEST(SceneLoading, DistancesWhoseSquaresOverflowAreRefused) {
+  const auto error = [](const std::string& camera, const std::string& lights) {
+    try {
+      parse_scene(R"({"camera":)" + camera + R"(,"lights":)" + lights + R"(,"objects":[{"field":)" +
+                      kBall + "}]}",
+                  "s.json");
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string camera = R"({"eye":[10,0,0],"target":[0,0,0]})",
+                    lights = R"([{"type":"ambient"}])";
+  EXPECT_EQ(error(R"({"eye":[0,0,0],"target":[1e200,0,0]})", lights),
+            "s.json: /camera/target: expected a target between 1e-150 and 1e150 from the eye");
+  EXPECT_EQ(error(R"({"eye":[0,0,0],"target":[1e-200,0,0]})", lights),
+            "s.json: /camera/target: expected a target between 1e-150 and 1e150 from the eye");
+  EXPECT_EQ(error(camera, R"([{"type":"ambient"},{"type":"point","position":[0,-1e200,0]}])"),
+            "s.json: /lights/1/position: expected a point light within 1e150 of the objects (one "
+            "farther away is a directional light)");
+  EXPECT_EQ(error(camera, R"([{"type":"point","position":[0,-1e149,0]}])"), "no error");
 }
 
 TEST(SceneText, LineBreaksAreLfCrLfOrALoneCr) {
