@@ -88,7 +88,8 @@ int run_render(const RenderArgs& a) {
     const auto start = std::chrono::steady_clock::now();
     const EmbreeScene rt(scene, a.lipschitz);
     Film film(scene.image.width, scene.image.height);
-    Progress progress("rendering", long(film.width) * film.height, !a.quiet && ::isatty(2));
+    Progress progress("rendering", long(film.width) * film.height,
+                      !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;

@@ -35,7 +35,9 @@ int main(int argc, char** argv) {
       ->add_option("--lipschitz", r.lipschitz,
                    "Sphere-tracing bound: local (per stretch) or global")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
-  render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+  auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+  render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
+      ->excludes(render_quiet);
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -88,6 +90,9 @@ int main(int argc, char** argv) {
   bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   bench->add_flag("--json", b.json, "Print the results as JSON");
+  auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
+  bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
+      ->excludes(bench_quiet);
 
   auto* nodes = app.add_subcommand("nodes", "List the scene node types");
 

@@ -7,8 +7,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <regex>
 
 #include "cli_util.h"
+#include "progress.h"
 #include "scene.h"
 
 namespace softtrace::test {
@@ -295,6 +297,34 @@ TEST(Bench, JsonReportsThroughput) {
   EXPECT_GT(j.at("mrays_per_s").get<double>(), 0);
   EXPECT_GT(j.at("evaluations_per_ray").get<double>(), 1);
   EXPECT_LE(j.at("best_s").get<double>(), j.at("median_s").get<double>());
+}
+
+// The progress bar (on a terminal, or forced with --progress) shows the primary-ray rate, the
+// time elapsed and the time left; --quiet or a non-terminal stderr shows none.
+TEST(Progress, RenderAndBenchShowRateElapsedAndTimeLeft) {
+  const std::string dir = temp_dir("progress");
+  const std::string scene = " " + source_path(kDefaultScene) + " --width 32 --height 24";
+  const std::regex first(R"(\w+ \[ {40}\]   0%       \? Mrays/s \(\d+\.\ds\|\?\) *)");
+  const std::regex last(R"(\w+ \[={40}\] 100% +\d+\.\d\d Mrays/s \(\d+\.\ds\|0\.0s\) *)");
+  for (const std::string& cmd :
+       {"render" + scene + " --spp 2 -o " + dir + "/x.exr", "bench" + scene + " --repeat 2"}) {
+    const RunResult r = run_softtrace(cmd + " --progress");
+    ASSERT_EQ(r.status, 0) << cmd << ": " << r.err;
+    ASSERT_EQ(r.err.rfind('\r', 0), 0u) << cmd << ": " << r.err;
+    const std::string bar = r.err.substr(1, r.err.find('\n') - 1);
+    const std::string label = cmd.substr(0, 5) == "bench" ? "bench " : "rendering ";
+    EXPECT_EQ(bar.rfind(label, 0), 0u) << bar;
+    EXPECT_TRUE(std::regex_match(bar.substr(0, bar.find('\r')), first)) << bar;
+    EXPECT_TRUE(std::regex_match(bar.substr(bar.rfind('\r') + 1), last)) << bar;
+
+    const RunResult plain = run_softtrace(cmd);
+    EXPECT_EQ(plain.err.find('['), std::string::npos) << "no bar off a terminal: " << plain.err;
+    EXPECT_EQ(run_softtrace(cmd + " --progress --quiet").status, 2);
+  }
+  EXPECT_EQ(Progress::duration(0.44), "0.4s");
+  EXPECT_EQ(Progress::duration(59.94), "59.9s");
+  EXPECT_EQ(Progress::duration(187.2), "3m07s");
+  EXPECT_EQ(Progress::duration(7500), "2h05m");
 }
 
 // Both commands that build a film refuse frames above 2^26 pixels before allocating it.
