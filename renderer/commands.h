@@ -19,6 +19,8 @@ struct RenderArgs {
   LipschitzMode lipschitz = LipschitzMode::Local;
 };
 int run_render(const RenderArgs& a);
+// What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.
+void on_render_interrupt(int sig);
 
 struct EvalArgs {
   std::string scene, object, points;

@@ -5,10 +5,12 @@
 
 #include "cli_spelling.h"
 #include "commands.h"
+#include "signals.h"
 
 using namespace softtrace;
 
 int main(int argc, char** argv) {
+  block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   CLI::App app{
       "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
       "Scene format and node list: README.md and SCENE.md."};
@@ -107,6 +109,9 @@ int main(int argc, char** argv) {
     report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
     return 2;
   }
+  // The watcher runs before any command starts to work: a signal that came while the libraries
+  // were loading is taken now.
+  watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
   if (*render) return run_render(r);
   if (*eval) return run_eval(e);
   if (*diff) return run_diff(d);
