@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <cstring>
 
-int main(int argc, char** argv) {
+int main(int, char** argv) {
   sigset_t set;
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
