@@ -60,6 +60,7 @@ std::string unknown_word(const CLI::App& app, int argc, const char* const* argv)
       // "--name=value"; "-ovalue" and bundled flags "-qv": the first letter names the option.
       const std::string name = arg[1] == '-' ? arg.substr(0, arg.find('=')) : arg.substr(0, 2);
       if (current->get_option_no_throw(name)) continue;
+      const std::string word = arg.substr(0, arg.find('='));  // "-width": a long name, one dash
       std::vector<std::string> names;
       for (const CLI::Option* o : current->get_options()) {
         for (const auto& l : o->get_lnames()) names.push_back("--" + l);
@@ -67,7 +68,7 @@ std::string unknown_word(const CLI::App& app, int argc, const char* const* argv)
       }
       const std::string help =
           current == &app ? "softtrace --help" : "softtrace " + current->get_name() + " --help";
-      return unknown("option", name, names, "see " + help);
+      return unknown("option", word, names, "see " + help);
     }
     if (current != &app) continue;  // a value or a positional argument
     const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });

@@ -99,6 +99,8 @@ TEST(Usage, MisspellingsAreNamedWithTheNearestKnownWord) {
       {"bench" + scene + " --repet 2",
        "softtrace: unknown option '--repet' (did you mean '--repeat'?)\n"},
       {"render" + scene + " -x", "softtrace: unknown option '-x' (see softtrace render --help)\n"},
+      {"render" + scene + " -width 8",
+       "softtrace: unknown option '-width' (did you mean '--width'?)\n"},
       {"eval" + scene + " --width 8",
        "softtrace: unknown option '--width' (see softtrace eval --help)\n"},
       {"--hepl", "softtrace: unknown option '--hepl' (did you mean '--help'?)\n"},
