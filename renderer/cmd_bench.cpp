@@ -1,9 +1,10 @@
 // `softtrace bench`: primary-ray throughput of a scene, shading included, without output.
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "cmd_common.h"
@@ -22,12 +23,16 @@ int run_bench(const BenchArgs& a) {
     opt.lipschitz = a.lipschitz;
     std::vector<double> secs;
     FrameStats stats;
+    // One bar for all frames; drawing it costs a few microseconds ten times a second.
+    Progress progress("bench", long(a.repeat) * scene.image.width * scene.image.height,
+                      !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
     for (int i = 0; i < a.repeat; ++i) {
       Film film(scene.image.width, scene.image.height);
       const auto t0 = std::chrono::steady_clock::now();
-      render_frame(scene, rt, opt, film, nullptr, &stats);
+      render_frame(scene, rt, opt, film, &progress, &stats);
       secs.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
+    progress.finish();
     std::sort(secs.begin(), secs.end());
     const double best = secs.front(), median = secs[secs.size() / 2];
     const double rays = static_cast<double>(stats.primary_rays);

@@ -1,4 +1,3 @@
-#include <pthread.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,7 +8,6 @@
 #include <filesystem>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cmd_common.h"
@@ -28,38 +26,30 @@ namespace {
 std::atomic<bool> g_cancel{false};
 std::atomic<int> g_signal{0};
 
-// What a signal does depends on the phase. Rendering: stop the frame (g_cancel) and write
-// nothing. Writing temporary files: remove them and exit at once. Committing (renaming the
-// finished files over the outputs): nothing, so that all outputs are replaced or none is.
-// The compare-exchange decides between the watcher and the main thread who owns the
-// Writing -> next transition.
-enum Phase : int { kRendering, kWriting, kCommitting, kAborting };
-std::atomic<int> g_phase{kRendering};
+// What a signal does depends on the phase. Loading (until the frame starts): nothing exists
+// yet, so exit at once, even in the middle of a long load. Rendering: stop the frame (g_cancel)
+// and write nothing. Writing temporary files: remove them and exit at once. Committing (renaming
+// the finished files over the outputs): nothing, so that all outputs are replaced or none is.
+// The compare-exchanges decide between the watcher and the main thread who owns a transition.
+enum Phase : int { kLoading, kRendering, kWriting, kCommitting, kAborting };
+std::atomic<int> g_phase{kLoading};
 
-void on_signal(int sig) {
+}  // namespace
+
+void on_render_interrupt(int sig) {
   int none = 0;
   g_signal.compare_exchange_strong(none, sig);
   g_cancel = true;
-  int writing = kWriting;
-  if (g_phase.compare_exchange_strong(writing, kAborting))
+  int phase = kLoading;
+  if (g_phase.compare_exchange_strong(phase, kAborting)) {
+    report_error("interrupted; no image written");
     abandon_pending_writes_and_exit(128 + sig);
+  }
+  phase = kWriting;
+  if (g_phase.compare_exchange_strong(phase, kAborting)) abandon_pending_writes_and_exit(128 + sig);
 }
 
-// SIGINT and SIGTERM go to a watcher thread (sigwait) instead of a handler: it may then take the
-// lock under which temporary files are created (film.cpp), so a signal arriving while one is
-// being created cannot leave it behind. Blocked before any other thread starts, so every thread
-// inherits the mask and the watcher is the only one that receives them.
-void watch_signals() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  std::thread([set] {
-    int sig;
-    while (sigwait(&set, &sig) == 0) on_signal(sig);
-  }).detach();
-}
+namespace {
 
 int interrupted_status() {
   return 128 + g_signal.load();
@@ -68,8 +58,7 @@ int interrupted_status() {
 }  // namespace
 
 int run_render(const RenderArgs& a) {
-  // From the start: a signal during loading cancels the frame before its first pixel.
-  watch_signals();
+  // main() has started the signal watcher with on_render_interrupt.
   try {
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height);
@@ -87,8 +76,12 @@ int run_render(const RenderArgs& a) {
 
     const auto start = std::chrono::steady_clock::now();
     const TracedScene rt(scene, a.lipschitz);
+    int loading = kLoading;
+    if (!g_phase.compare_exchange_strong(loading, kRendering))
+      for (;;) ::pause();  // the watcher is exiting
     Film film(scene.image.width, scene.image.height);
-    Progress progress("rendering", long(film.width) * film.height, !a.quiet && ::isatty(2));
+    Progress progress("rendering", long(film.width) * film.height,
+                      !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;

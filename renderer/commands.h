@@ -15,10 +15,12 @@ struct RenderArgs {
   std::vector<std::string> outputs;
   int width = 0, height = 0, spp = 0, threads = 0;  // 0: the scene's value / all cores
   std::string aovs;
-  bool quiet = false;
+  bool quiet = false, progress = false;  // progress: the bar even when stderr is no terminal
   LipschitzMode lipschitz = LipschitzMode::Local;
 };
 int run_render(const RenderArgs& a);
+// What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.
+void on_render_interrupt(int sig);
 
 struct EvalArgs {
   std::string scene, object, points;
@@ -36,7 +38,7 @@ int run_diff(const DiffArgs& a);
 struct BenchArgs {
   std::string scene;
   int width = 0, height = 0, threads = 0, repeat = 3;
-  bool json = false;
+  bool json = false, quiet = false, progress = false;
   LipschitzMode lipschitz = LipschitzMode::Local;
 };
 int run_bench(const BenchArgs& a);

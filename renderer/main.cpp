@@ -3,11 +3,14 @@
 #include <cstdlib>
 #include <map>
 
+#include "cli_spelling.h"
 #include "commands.h"
+#include "signals.h"
 
 using namespace softtrace;
 
 int main(int argc, char** argv) {
+  block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   CLI::App app{
       "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
       "Scene format and node list: README.md and SCENE.md."};
@@ -34,7 +37,9 @@ int main(int argc, char** argv) {
       ->add_option("--lipschitz", r.lipschitz,
                    "Sphere-tracing bound: local (per stretch) or global")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
-  render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+  auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+  render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
+      ->excludes(render_quiet);
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -87,6 +92,9 @@ int main(int argc, char** argv) {
   bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   bench->add_flag("--json", b.json, "Print the results as JSON");
+  auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
+  bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
+      ->excludes(bench_quiet);
 
   auto* nodes = app.add_subcommand("nodes", "List the scene node types");
 
@@ -97,9 +105,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& ex) {
     return app.exit(ex);
   } catch (const CLI::ParseError& ex) {
-    report_error(ex.what() + std::string(" (see softtrace --help)"));
+    const std::string unknown = unknown_word(app, argc, argv);
+    report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
     return 2;
   }
+  // The watcher runs before any command starts to work: a signal that came while the libraries
+  // were loading is taken now.
+  watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
   if (*render) return run_render(r);
   if (*eval) return run_eval(e);
   if (*diff) return run_diff(d);

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <unordered_set>
 
-#include "json_nesting.h"
+#include "json_text.h"
 
 namespace softtrace {
 
@@ -20,33 +19,39 @@ using json = nlohmann::json;
 constexpr size_t kMaxLights = 1000;
 constexpr size_t kMaxObjects = 10000;
 
-// nlohmann reports a byte offset; users want line and column.
-std::string line_col(const std::string& text, size_t byte) {
-  size_t line = 1, col = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
+// Lengths and directions of vectors from the scene without overflow or underflow: a component
+// of 1e308 squares to inf, one of 1e-200 to 0. Scaling by the largest component first keeps
+// |v| and v / |v| exact to rounding for every finite v.
+double largest_component(const Vec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }
+double scaled_length(const Vec3& v) {
+  const double m = largest_component(v);
+  return m > 0 ? m * length(v / m) : 0;
+}
+Vec3 unit(const Vec3& v) {  // v non-zero and finite
+  return normalize(v / largest_component(v));
+}
+
+// Distances the renderer squares (camera to target, point light to objects) stay within this,
+// and above its inverse, so that their squares are normal doubles.
+constexpr double kMaxDistance = 1e150;
 
 Camera load_camera(const Params& p) {
   Camera c;
   c.eye = p.vec3("eye");
   c.target = p.vec3("target");
-  c.up = p.vec3("up", c.up);
+  const Vec3 up = p.vec3("up", c.up);
   c.fov = p.number("fov", c.fov);
   p.check(c.fov > 0 && c.fov < 180, "fov", "expected a vertical field of view in (0, 180) degrees");
   const Vec3 view = c.target - c.eye;
-  p.check(length(view) > 0, "target", "expected a target different from the eye");
-  p.check(std::isfinite(length(view)), "target",
-          "expected a target at a finite distance from the eye");
-  p.check(length(c.up) > 0, "up", "expected a non-zero up vector");
-  p.check(length(cross(normalize(view), normalize(c.up))) > 1e-9, "up",
+  p.check(largest_component(view) > 0, "target", "expected a target different from the eye");
+  const double distance = scaled_length(view);
+  p.check(distance >= 1 / kMaxDistance && distance <= kMaxDistance, "target",
+          "expected a target between 1e-150 and 1e150 from the eye");
+  p.check(largest_component(up) > 0, "up", "expected a non-zero up vector");
+  c.up = unit(up);  // the camera's and the default light's cross products cannot overflow
+  p.check(length(cross(unit(view), c.up)) > 1e-9, "up",
           "expected an up vector not parallel to the viewing direction");
   p.finish();
   return c;
@@ -77,8 +82,8 @@ Light load_light(const Params& p) {
   if (type == "directional") {
     l.type = Light::Type::Directional;
     l.direction = p.vec3("direction");
-    p.check(length(l.direction) > 0, "direction", "expected a non-zero direction");
-    l.direction = normalize(l.direction);
+    p.check(largest_component(l.direction) > 0, "direction", "expected a non-zero direction");
+    l.direction = unit(l.direction);
     l.shadows = p.boolean("shadows", true);
   } else if (type == "point") {
     l.type = Light::Type::Point;
@@ -95,11 +100,9 @@ Light load_light(const Params& p) {
 
 // With no "lights" the scene gets a key light from over the camera's shoulder and some ambient.
 std::vector<Light> default_lights(const Camera& c) {
+  const Vec3 forward = unit(c.target - c.eye), right = unit(cross(forward, c.up));
   Light key;
-  key.direction =
-      normalize((c.target - c.eye) +
-                normalize(cross(c.target - c.eye, c.up)) * -0.5 * length(c.target - c.eye) -
-                c.up * 0.5 * length(c.target - c.eye));
+  key.direction = unit(forward - right * 0.5 - c.up * 0.5);
   Light ambient;
   ambient.type = Light::Type::Ambient;
   ambient.intensity = 0.15;
@@ -158,6 +161,22 @@ SceneObject load_object(const Params& p, size_t index) {
   return o;
 }
 
+// Shading divides by the distance from a shaded point to each point light: it must not overflow
+// anywhere in the objects' boxes (distance is convex, so checking the corners suffices).
+void check_point_light_distances(const Scene& s, const std::vector<Params>& lights) {
+  const Box box = s.bounds();
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (s.lights[i].type != Light::Type::Point) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 c{corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                   corner & 4 ? box.hi.z : box.lo.z};
+      lights[i].check(scaled_length(c - s.lights[i].position) <= kMaxDistance, "position",
+                      "expected a point light within 1e150 of the objects (one farther away "
+                      "is a directional light)");
+    }
+  }
+}
+
 }  // namespace
 
 Box Scene::bounds() const {
@@ -166,45 +185,8 @@ Box Scene::bounds() const {
   return b;
 }
 
-// nlohmann's DOM builder, keeping where a syntax error or an out-of-range number is: its own
-// exception for "1e400" carries no position.
-class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
- public:
-  LocatingParser(json& root, const std::string& text)
-      : json_sax_dom_parser(root, false), text_(text) {}
-
-  bool parse_error(std::size_t position, const std::string& token,
-                   const nlohmann::detail::exception& ex) {
-    const std::string what = ex.what();
-    unsigned line = 0, column = 0;
-    const size_t at = what.find("at line ");
-    if (at != std::string::npos &&
-        std::sscanf(what.c_str() + at, "at line %u, column %u", &line, &column) == 2) {
-      // Column 0: the offending character is the newline that ended the previous line.
-      where = column > 0 ? std::to_string(line) + ":" + std::to_string(column)
-                         : line_col(text_, position > 0 ? position - 1 : 0);
-      message = what.substr(what.find(": ", at) + 2);
-    } else {  // a number token: no escapes, so its length locates its start
-      where = line_col(text_, position >= token.size() ? position - token.size() : 0);
-      message = ex.id == 406 ? "number out of range: " + token : what;
-    }
-    return false;
-  }
-
-  std::string where, message;  // empty where: no error
-
- private:
-  const std::string& text_;
-};
-
 Scene parse_scene(const std::string& text, const std::string& name) {
-  check_json_nesting(text, name);
-  json doc;
-  LocatingParser parser(doc, text);
-  json::sax_parse(text, &parser, nlohmann::detail::input_format_t::json, true,
-                  /*ignore_comments=*/true);
-  if (!parser.where.empty())
-    throw SceneError(name + ":" + parser.where + ": invalid JSON: " + parser.message);
+  const json doc = parse_json_text(text, name);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
 
@@ -213,8 +195,9 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   s.camera = load_camera(root.object("camera"));
   if (root.has("image")) s.image = load_image(root.object("image"));
   s.background = load_color(root, "background", s.background);
+  std::vector<Params> lights;
   if (root.has("lights")) {
-    const std::vector<Params> lights = root.objects("lights");
+    lights = root.objects("lights");
     if (lights.size() > kMaxLights)
       root.fail("lights", "expected at most " + std::to_string(kMaxLights) + " lights");
     for (const Params& l : lights) s.lights.push_back(load_light(l));
@@ -231,6 +214,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     if (!names.insert(s.objects[i].name).second)
       objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
   }
+  check_point_light_distances(s, lights);
   root.finish();
   return s;
 }

@@ -1,17 +1,17 @@
 // The command line as users meet it: bad scenes, output safety, eval, AOVs, determinism.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
-
 #include <nlohmann/json.hpp>
+#include <random>
+#include <regex>
 
 #include "cli_util.h"
 #include "eval.h"
+#include "progress.h"
 #include "scene.h"
 
 namespace softtrace::test {
@@ -28,14 +28,15 @@ TEST(BadScenes, OneLocatedLineExitTwoNoOutput) {
   for (const auto& entry : fs::directory_iterator(source_path("tests/bad_scenes"))) {
     const std::string path = entry.path().string(), text = read_file(path);
     ASSERT_EQ(text.rfind("// expect: ", 0), 0u) << path << " has no '// expect:' first line";
-    const std::string expect = text.substr(11, text.find('\n') - 11);
+    // Some files have CR LF or CR-only line endings: the first line ends at either.
+    const std::string expect = text.substr(11, text.find_first_of("\r\n") - 11);
     const std::string dir = temp_dir("bad_scene");
     const RunResult r = run_softtrace("render " + path + " -o " + dir + "/out.exr");
     EXPECT_EQ(r.status, 2) << path;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << path << ": " << r.err;
     EXPECT_EQ(r.err.rfind("softtrace: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(expect), std::string::npos) << path << "\n  expected: " << expect
-                                                     << "\n  got: " << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos)
+        << path << "\n  expected: " << expect << "\n  got: " << r.err;
     EXPECT_TRUE(fs::is_empty(dir)) << path << " left a file behind";
     ++count;
   }
@@ -46,8 +47,9 @@ TEST(Output, UnwritableOrMissingFolderIsReportedBeforeRendering) {
   const RunResult r = run_softtrace(std::string("render ") + source_path(kDefaultScene) +
                                     " -o /nonexistent-folder/x.exr --quiet");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("/nonexistent-folder/x.exr: the folder '/nonexistent-folder' does not exist"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("/nonexistent-folder/x.exr: the folder '/nonexistent-folder' does not exist"),
+      std::string::npos)
       << r.err;
   const RunResult bad_ext = run_softtrace(std::string("render ") + source_path(kDefaultScene) +
                                           " -o " + temp_dir("ext") + "/x.tiff --quiet");
@@ -74,12 +76,45 @@ TEST(Usage, HelpAndBadOptions) {
   EXPECT_EQ(run_softtrace("render --help").status, 0);
   EXPECT_EQ(run_softtrace("").status, 2);
   EXPECT_EQ(run_softtrace("render").status, 2);
-  EXPECT_EQ(run_softtrace(std::string("render ") + source_path(kDefaultScene) + " --width 0").status,
-            2);
+  EXPECT_EQ(
+      run_softtrace(std::string("render ") + source_path(kDefaultScene) + " --width 0").status, 2);
   EXPECT_EQ(run_softtrace(std::string("render ") + source_path(kDefaultScene) +
                           " --aov depth,bogus -o " + temp_dir("aov") + "/x.exr")
                 .status,
             2);
+}
+
+// A misspelled subcommand or option is named, with the nearest known one (edit distance <= 2,
+// swaps of neighbours counting 1), on one line with exit 2.
+TEST(Usage, MisspellingsAreNamedWithTheNearestKnownWord) {
+  const std::string scene = " " + source_path(kDefaultScene);
+  const std::pair<std::string, std::string> cases[] = {
+      {"rendr" + scene, "softtrace: unknown command 'rendr' (did you mean 'render'?)\n"},
+      {"rneder" + scene, "softtrace: unknown command 'rneder' (did you mean 'render'?)\n"},
+      {"evl" + scene, "softtrace: unknown command 'evl' (did you mean 'eval'?)\n"},
+      {"paint" + scene, "softtrace: unknown command 'paint' (see softtrace --help)\n"},
+      {"render" + scene + " --widht 8",
+       "softtrace: unknown option '--widht' (did you mean '--width'?)\n"},
+      {"render" + scene + " --wdith=8",
+       "softtrace: unknown option '--wdith' (did you mean '--width'?)\n"},
+      {"bench" + scene + " --repet 2",
+       "softtrace: unknown option '--repet' (did you mean '--repeat'?)\n"},
+      {"render" + scene + " -x", "softtrace: unknown option '-x' (see softtrace render --help)\n"},
+      {"render" + scene + " -width 8",
+       "softtrace: unknown option '-width' (did you mean '--width'?)\n"},
+      {"eval" + scene + " --width 8",
+       "softtrace: unknown option '--width' (see softtrace eval --help)\n"},
+      {"--hepl", "softtrace: unknown option '--hepl' (did you mean '--help'?)\n"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const RunResult r = run_softtrace(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.err, expected) << args;
+  }
+  // Known words keep CLI11's own message.
+  const RunResult range = run_softtrace("render" + scene + " --width 0");
+  EXPECT_EQ(range.err,
+            "softtrace: --width: Value 0 not in range 1 to 16384 (see softtrace --help)\n");
 }
 
 // The Fig. 12(b) field written out independently of fieldlib (MATH.md §3.2, 000 Eqs. 19-20).
@@ -122,10 +157,9 @@ TEST(Eval, MatchesTheFormulas) {
     // The text round trip loses nothing: %.17g.
     ASSERT_NEAR(v, fig12b(p[0], p[1], p[2]), 1e-12);
     const double h = 1e-6;
-    const double fd[3] = {
-        (fig12b(p[0] + h, p[1], p[2]) - fig12b(p[0] - h, p[1], p[2])) / (2 * h),
-        (fig12b(p[0], p[1] + h, p[2]) - fig12b(p[0], p[1] - h, p[2])) / (2 * h),
-        (fig12b(p[0], p[1], p[2] + h) - fig12b(p[0], p[1], p[2] - h)) / (2 * h)};
+    const double fd[3] = {(fig12b(p[0] + h, p[1], p[2]) - fig12b(p[0] - h, p[1], p[2])) / (2 * h),
+                          (fig12b(p[0], p[1] + h, p[2]) - fig12b(p[0], p[1] - h, p[2])) / (2 * h),
+                          (fig12b(p[0], p[1], p[2] + h) - fig12b(p[0], p[1], p[2] - h)) / (2 * h)};
     EXPECT_NEAR(gx, fd[0], 1e-5);
     EXPECT_NEAR(gy, fd[1], 1e-5);
     EXPECT_NEAR(gz, fd[2], 1e-5);
@@ -152,7 +186,8 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
                            " --width 96 --height 72 --spp 2 --quiet --aov depth,normal,steps";
   ASSERT_EQ(run_softtrace(base + " --threads 1 -o " + dir + "/t1.exr").status, 0);
   ASSERT_EQ(run_softtrace(base + " --threads 2 -o " + dir + "/t2.exr").status, 0);
-  ASSERT_EQ(run_softtrace(base + " --threads 2 -o " + dir + "/t2b.exr -o " + dir + "/t2.png").status, 0);
+  ASSERT_EQ(
+      run_softtrace(base + " --threads 2 -o " + dir + "/t2b.exr -o " + dir + "/t2.png").status, 0);
 
   const OIIO::ImageBuf a = read_image(dir + "/t1.exr"), b = read_image(dir + "/t2.exr"),
                        c = read_image(dir + "/t2b.exr");
@@ -181,6 +216,38 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
   EXPECT_GT(hits, 96 * 72 / 5) << "the object should cover a good part of the frame";
   EXPECT_EQ(nonfinite, 0);
   EXPECT_TRUE(fs::exists(dir + "/t2.png"));
+}
+
+// Directions scaled by 1e308 or 1e-300 are the same directions: the picture is the same bits
+// (a light direction of 1e308 once overflowed its length and left the lit side black).
+TEST(Render, HugeOrTinyDirectionsGiveTheSamePicture) {
+  const std::string dir = temp_dir("scaled_directions");
+  const std::string scene = read_file(source_path(kDefaultScene));
+  const auto variant = [&](const std::string& name, const std::string& from,
+                           const std::string& to) {
+    const size_t at = scene.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    std::ofstream(dir + "/" + name + ".json") << std::string(scene).replace(at, from.size(), to);
+    return dir + "/" + name + ".json";
+  };
+  const std::string light = "\"direction\": [1.0, 0.35, -1.0]", up = "\"up\": [0, 0, 1]";
+  const std::string scenes[] = {
+      source_path(kDefaultScene),
+      variant("light_huge", light, "\"direction\": [1e308, 0.35e308, -1e308]"),
+      variant("light_tiny", light, "\"direction\": [1e-300, 0.35e-300, -1e-300]"),
+      variant("up_huge", up, "\"up\": [0, 0, 1.7e308]"),
+      variant("up_tiny", up, "\"up\": [0, 0, 4e-320]"),
+  };
+  for (size_t i = 0; i < std::size(scenes); ++i) {
+    const RunResult r =
+        run_softtrace("render " + scenes[i] + " --width 64 --height 48 --spp 1 --quiet -o " + dir +
+                      "/" + std::to_string(i) + ".exr");
+    ASSERT_EQ(r.status, 0) << scenes[i] << ": " << r.err;
+    if (i == 0) continue;
+    const RunResult d =
+        run_softtrace("diff --fail 0 " + dir + "/0.exr " + dir + "/" + std::to_string(i) + ".exr");
+    EXPECT_EQ(d.status, 0) << scenes[i] << ":\n" << d.out;
+  }
 }
 
 // `eval` on every scene prints exactly (%.17g round trip) what the library computes for the
@@ -243,6 +310,34 @@ TEST(Bench, JsonReportsThroughput) {
   EXPECT_GT(j.at("mrays_per_s").get<double>(), 0);
   EXPECT_GT(j.at("evaluations_per_ray").get<double>(), 1);
   EXPECT_LE(j.at("best_s").get<double>(), j.at("median_s").get<double>());
+}
+
+// The progress bar (on a terminal, or forced with --progress) shows the primary-ray rate, the
+// time elapsed and the time left; --quiet or a non-terminal stderr shows none.
+TEST(Progress, RenderAndBenchShowRateElapsedAndTimeLeft) {
+  const std::string dir = temp_dir("progress");
+  const std::string scene = " " + source_path(kDefaultScene) + " --width 32 --height 24";
+  const std::regex first(R"(\w+ \[ {40}\]   0%       \? Mrays/s \(\d+\.\ds\|\?\) *)");
+  const std::regex last(R"(\w+ \[={40}\] 100% +\d+\.\d\d Mrays/s \(\d+\.\ds\|0\.0s\) *)");
+  for (const std::string& cmd :
+       {"render" + scene + " --spp 2 -o " + dir + "/x.exr", "bench" + scene + " --repeat 2"}) {
+    const RunResult r = run_softtrace(cmd + " --progress");
+    ASSERT_EQ(r.status, 0) << cmd << ": " << r.err;
+    ASSERT_EQ(r.err.rfind('\r', 0), 0u) << cmd << ": " << r.err;
+    const std::string bar = r.err.substr(1, r.err.find('\n') - 1);
+    const std::string label = cmd.substr(0, 5) == "bench" ? "bench " : "rendering ";
+    EXPECT_EQ(bar.rfind(label, 0), 0u) << bar;
+    EXPECT_TRUE(std::regex_match(bar.substr(0, bar.find('\r')), first)) << bar;
+    EXPECT_TRUE(std::regex_match(bar.substr(bar.rfind('\r') + 1), last)) << bar;
+
+    const RunResult plain = run_softtrace(cmd);
+    EXPECT_EQ(plain.err.find('['), std::string::npos) << "no bar off a terminal: " << plain.err;
+    EXPECT_EQ(run_softtrace(cmd + " --progress --quiet").status, 2);
+  }
+  EXPECT_EQ(Progress::duration(0.44), "0.4s");
+  EXPECT_EQ(Progress::duration(59.94), "59.9s");
+  EXPECT_EQ(Progress::duration(187.2), "3m07s");
+  EXPECT_EQ(Progress::duration(7500), "2h05m");
 }
 
 // Both commands that build a film refuse frames above 2^26 pixels before allocating it.

@@ -1,9 +1,11 @@
-// SIGINT/SIGTERM against a real `softtrace render` process: during rendering and while the
-// image files are being written. Either way the existing output files keep their old contents,
-// no temporary file (.NAME.XXXXXX) is left behind, and the exit status is 128 + the signal.
+// SIGINT/SIGTERM against a real `softtrace render` process: while its libraries load, while it
+// loads a scene, during rendering and while the image files are being written. Every time the
+// existing output files keep their old contents, no temporary file (.NAME.XXXXXX) is left
+// behind, and the exit status is 128 + the signal.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,6 +24,7 @@ using Clock = std::chrono::steady_clock;
 
 // Starts softtrace with `args`, stderr to `err_file`; returns the child's pid.
 pid_t spawn(const std::vector<std::string>& args, const std::string& err_file) {
+  fs::remove(err_file);  // no stale text from an earlier run for the caller to wait on
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int fd = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -50,58 +53,124 @@ std::vector<std::string> temp_files(const std::string& dir) {
   return out;
 }
 
-// Whether the process takes `sig` itself: its main thread blocks it for the signal watcher
-// (SigBlk) or has a handler for it (SigCgt), in /proc/PID/status (Linux). Either way it is past
-// start-up, and the signal can no longer kill it outright.
-bool catches(pid_t pid, int sig) {
-  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-  std::string line;
-  bool taken = false;
-  while (std::getline(status, line))
-    if (line.rfind("SigBlk:", 0) == 0 || line.rfind("SigCgt:", 0) == 0)
-      taken = taken || ((std::stoull(line.substr(7), nullptr, 16) >> (sig - 1)) & 1);
-  return taken;
+// Whether `pid` has a thread named `name` (/proc/PID/task/*/comm, Linux).
+bool has_thread(pid_t pid, const std::string& name) {
+  std::error_code ec;
+  for (fs::directory_iterator t("/proc/" + std::to_string(pid) + "/task", ec), end; !ec && t != end;
+       t.increment(ec))
+    if (read_file((t->path() / "comm").string()) == name + "\n") return true;
+  return false;
 }
 
-// Waits (up to a minute) until `pid` catches `sig`; false if it exited or never did.
-bool wait_until_catching(pid_t pid, int sig) {
+// Polls (up to a minute) until `ready` holds; false if it never did.
+template <class Ready>
+bool wait_until(Ready ready) {
   const auto deadline = Clock::now() + std::chrono::seconds(60);
   while (Clock::now() < deadline) {
-    if (catches(pid, sig)) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (ready()) return true;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   return false;
+}
+
+// Whether `pid` runs the renderer proper: `softtrace` has exec'd softtrace-core, which is then
+// loading its shared libraries (a few tenths of a second) or past that.
+bool runs_core(pid_t pid) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+  return !ec && fs::equivalent(exe, SOFTTRACE_CORE_BIN, ec);
 }
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-class SignalDuringRender : public testing::TestWithParam<int> {};
+class Signal : public testing::TestWithParam<int> {};
 
-// The default scene at 1024x1024 with 4 samples takes far longer than half a second here.
-TEST_P(SignalDuringRender, LeavesTheOldFileAndNoTemporaryFile) {
+INSTANTIATE_TEST_SUITE_P(Signals, Signal, testing::Values(SIGINT, SIGTERM),
+                         [](const testing::TestParamInfo<int>& i) {
+                           return std::string(i.param == SIGINT ? "SIGINT" : "SIGTERM");
+                         });
+
+// A signal as soon as the renderer proper has been exec'd: its libraries are loading, long before
+// its main() runs. The launcher's mask holds the signal for the watcher (it once killed the
+// process without a word).
+TEST_P(Signal, WhileTheLibrariesLoadExitsWithNothingWritten) {
+  const int sig = GetParam();
+  const std::string dir = temp_dir("signal_start_" + std::to_string(sig));
+  const std::string err = dir + "/../stderr_start_" + std::to_string(sig);
+  const pid_t pid = spawn(
+      {"render", source_path("scenes/fig12b_soft_blend.json"), "-o", dir + "/image.exr", "--quiet"},
+      err);
+  ASSERT_TRUE(wait_until([&] { return runs_core(pid); }));
+  ASSERT_EQ(::kill(pid, sig), 0);
+  EXPECT_EQ(wait_status(pid), 128 + sig);
+  EXPECT_TRUE(fs::is_empty(dir));
+  EXPECT_EQ(read_file(err), "softtrace: interrupted; no image written\n");
+}
+
+// A scene of 100,000 children takes most of a second to read before it is refused: a signal
+// once the watcher thread runs lands while the scene loads, and stops it there (it once let the
+// load go on to its error, exit 2, or killed the process through a thread that a library had
+// started before main() blocked the signal).
+TEST_P(Signal, WhileASceneLoadsExitsAtOnce) {
+  const int sig = GetParam();
+  const std::string dir = temp_dir("signal_load_" + std::to_string(sig));
+  const std::string scene = dir + "/../wide_" + std::to_string(sig) + ".json";
+  {
+    std::ofstream f(scene);
+    f << R"({"camera":{"eye":[40,-55,32],"target":[0,0,0]},"objects":[{"field":)"
+      << R"({"type":"soft_blend","children":[)";
+    for (int i = 0; i < 100000; ++i)
+      f << (i ? "," : "")
+        << R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1,1,1],"n":2}})";
+    f << "]}}]}";
+  }
+  const std::string err = dir + "/../stderr_load_" + std::to_string(sig);
+  const pid_t pid = spawn({"render", scene, "-o", dir + "/image.exr", "--quiet"}, err);
+  ASSERT_TRUE(wait_until([&] { return has_thread(pid, "signal-watcher"); }));
+  ASSERT_EQ(::kill(pid, sig), 0);
+  EXPECT_EQ(wait_status(pid), 128 + sig);
+  EXPECT_TRUE(fs::is_empty(dir));
+  EXPECT_EQ(read_file(err), "softtrace: interrupted; no image written\n");
+}
+
+// Other commands stop at once too, with the status and one line: here `eval` waiting to open
+// a FIFO that nobody writes.
+TEST_P(Signal, StopsEval) {
+  const int sig = GetParam();
+  const std::string dir = temp_dir("signal_eval_" + std::to_string(sig));
+  ASSERT_EQ(::mkfifo((dir + "/points").c_str(), 0600), 0);
+  const pid_t pid =
+      spawn({"eval", source_path("scenes/fig12b_soft_blend.json"), "--points", dir + "/points"},
+            dir + "/stderr");
+  ASSERT_TRUE(wait_until([&] { return has_thread(pid, "signal-watcher"); }));
+  ASSERT_EQ(::kill(pid, sig), 0);
+  EXPECT_EQ(wait_status(pid), 128 + sig);
+  EXPECT_EQ(read_file(dir + "/stderr"), "softtrace: interrupted\n");
+}
+
+// The default scene at 1024x1024 with 4 samples takes far longer than half a second here. The
+// progress bar's first line (forced off a terminal) says the frame has begun.
+TEST_P(Signal, DuringRenderLeavesTheOldFileAndNoTemporaryFile) {
   const int sig = GetParam();
   const std::string dir = temp_dir("signal_render_" + std::to_string(sig));
-  const std::string out = dir + "/image.exr";
+  const std::string out = dir + "/image.exr", err = dir + "/../stderr_" + std::to_string(sig);
   write_text(out, "old image");
   const pid_t pid = spawn({"render", source_path("scenes/fig12b_soft_blend.json"), "-o", out,
-                           "--width", "1024", "--height", "1024", "--spp", "4", "--quiet"},
-                          dir + "/../stderr_" + std::to_string(sig));
-  ASSERT_TRUE(wait_until_catching(pid, sig));
+                           "--width", "1024", "--height", "1024", "--spp", "4", "--progress"},
+                          err);
+  ASSERT_TRUE(wait_until([&] { return read_file(err).rfind("\rrendering [", 0) == 0; }));
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // well into the frame
   ASSERT_EQ(::kill(pid, sig), 0);
   EXPECT_EQ(wait_status(pid), 128 + sig);
   EXPECT_EQ(read_file(out), "old image");
   EXPECT_TRUE(temp_files(dir).empty()) << temp_files(dir)[0];
-  EXPECT_EQ(read_file(dir + "/../stderr_" + std::to_string(sig)),
-            "softtrace: interrupted; no image written\n");
+  const std::string text = read_file(err);
+  const std::string last = "\nsofttrace: interrupted; no image written\n";
+  EXPECT_TRUE(text.size() > last.size() && text.substr(text.size() - last.size()) == last) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << "the bar's line, then the message";
 }
-
-INSTANTIATE_TEST_SUITE_P(Signals, SignalDuringRender, testing::Values(SIGINT, SIGTERM),
-                         [](const testing::TestParamInfo<int>& i) {
-                           return std::string(i.param == SIGINT ? "SIGINT" : "SIGTERM");
-                         });
 
 // A camera looking away from the object renders a large frame in a moment; writing its two EXRs
 // with every AOV then takes a good fraction of a second. The signal is sent as soon as the

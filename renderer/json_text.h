@@ -1,0 +1,15 @@
+// Scene text to a JSON document (JSON with // and /* */ comments), refusing with one located
+// error what the document could not represent faithfully.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace softtrace {
+
+// Throws SceneError "name:LINE:COL: ..." for nesting deeper than kMaxJsonNesting, a syntax error,
+// a number beyond the double range, and a key repeated in one object (also when spelled with
+// escapes, "f\u006fv" after "fov"): nlohmann would silently keep the last value.
+nlohmann::json parse_json_text(const std::string& text, const std::string& name);
+
+}  // namespace softtrace

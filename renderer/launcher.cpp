@@ -1,0 +1,34 @@
+// `softtrace`: blocks SIGINT and SIGTERM, then runs the renderer proper, `softtrace-core` in the
+// same folder, with the same arguments. The renderer links some 260 shared libraries (OpenImageIO
+// and its codecs, Embree, TBB) that take a few tenths of a second to load before its main() can
+// block anything; a signal then would kill it without a word. A signal mask survives exec, so a
+// signal in that time waits for the renderer's watcher thread (signals.h). Plain libc and linked
+// statically where the build allows: this program's own start-up is the only unguarded moment.
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+
+int main(int, char** argv) {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  sigprocmask(SIG_BLOCK, &set, nullptr);
+
+  char path[PATH_MAX];
+  const ssize_t n = ::readlink("/proc/self/exe", path, sizeof path);
+  char* slash = n > 0 && n < static_cast<ssize_t>(sizeof path) ? std::strrchr(path, '/') : nullptr;
+  static const char kCore[] = "softtrace-core";
+  if (!slash || (slash - path) + 1 + sizeof kCore > sizeof path) {
+    std::fprintf(stderr, "softtrace: cannot find the folder of this program\n");
+    return 2;
+  }
+  std::memcpy(slash + 1, kCore, sizeof kCore);
+  ::execv(path, argv);
+  std::fprintf(stderr, "softtrace: cannot run %s: %s\n", path, std::strerror(errno));
+  return 2;
+}
