@@ -39,7 +39,9 @@ ImageFile read_png(const std::string& path) {
   img.channels = colour ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
   if (p.image.format & PNG_FORMAT_FLAG_ALPHA) img.channels.push_back("A");
   img.pixels.resize(bytes.size());
-  for (size_t i = 0; i < bytes.size(); ++i) img.pixels[i] = bytes[i] / 255.0f;
+  // Times the float reciprocal, as OpenImageIO converts, so idiff and diff see the same values.
+  constexpr float kScale = 1.0f / 255.0f;
+  for (size_t i = 0; i < bytes.size(); ++i) img.pixels[i] = bytes[i] * kScale;
   return img;
 }
 
