@@ -276,6 +276,7 @@ TEST(Diff, DifferenceImageIsWrittenWholeAsExrOrPng) {
   // As idiff: -o writes A - B, -abs |A - B|, -scale multiplies.
   const std::string args = "diff " + dir + "/a.exr " + dir + "/b.exr ";
   EXPECT_EQ(run_softtrace(args + "-o " + dir + "/signed.exr -scale 2").status, 2);
+  ASSERT_TRUE(fs::exists(dir + "/signed.exr"));
   const Image signed_d = read(dir + "/signed.exr");
   EXPECT_EQ(signed_d.at(1, 2, 0), -1.0f);
   EXPECT_EQ(signed_d.at(4, 1, 4), -7.0f);
@@ -283,6 +284,7 @@ TEST(Diff, DifferenceImageIsWrittenWholeAsExrOrPng) {
   fs::remove(dir + "/signed.exr");
   EXPECT_EQ(run_softtrace(args + "--abs --out " + dir + "/d.exr").status, 2);
   EXPECT_EQ(run_softtrace(args + "-abs -o " + dir + "/d.png").status, 2);
+  ASSERT_TRUE(fs::exists(dir + "/d.exr") && fs::exists(dir + "/d.png"));
   const Image d = read(dir + "/d.exr");
   ASSERT_EQ(d.channels, a.channels);
   for (int y = 0; y < 4; ++y)
