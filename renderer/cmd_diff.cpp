@@ -113,23 +113,26 @@ void write_difference(const ImageFile& d, const std::string& path) {
     if (is_exr_path(path)) {
       write_exr(tmp, d);
     } else {  // 8-bit: R,G,B where there are, else the first channel as grey
-      ImageFile rgb = d;
       const int r = d.channel("R"), g = d.channel("G"), b = d.channel("B");
       const std::vector<int> keep =
           r >= 0 && g >= 0 && b >= 0 ? std::vector<int>{r, g, b} : std::vector<int>{0};
-      rgb.channels.clear();
-      for (int c : keep) rgb.channels.push_back(keep.size() == 1 ? "Y" : d.channels[c]);
-      rgb.pixels.clear();
+      ImageFile png = d;
+      png.channels = keep.size() == 3 ? std::vector<std::string>{"R", "G", "B"}
+                                      : std::vector<std::string>{"Y"};
+      png.pixels.clear();
       for (size_t i = 0; i < size_t(d.width) * d.height; ++i)
-        for (int c : keep) rgb.pixels.push_back(d.pixels[i * d.channels.size() + c]);
-      write_png(tmp, rgb, false);
+        for (int c : keep) png.pixels.push_back(d.pixels[i * d.channels.size() + c]);
+      write_png(tmp, png, false);
     }
-    commit_temp(tmp, target, path);
   } catch (const std::exception& e) {
     abandon_pending_writes();
-    throw std::runtime_error(std::string(e.what()).rfind(path, 0) == 0
-                                 ? e.what()
-                                 : path + ": cannot write the difference image: " + e.what());
+    throw std::runtime_error(path + ": cannot write the difference image: " + e.what());
+  }
+  try {
+    commit_temp(tmp, target, path);
+  } catch (...) {
+    abandon_pending_writes();
+    throw;
   }
   forget_pending_writes();
 }

@@ -37,8 +37,8 @@ struct ExrExtras {
   std::map<std::string, int> ints;
 };
 
-// Writes `image` (its windows, channels and string attributes) as a zip-compressed EXR to an
-// open file descriptor's path `path`. Throws std::runtime_error.
+// Writes `image` (its windows, channels and string attributes) to `path` as a zip-compressed
+// EXR. Throws std::runtime_error.
 void write_exr(const std::string& path, const ImageFile& image, const ExrExtras& extras = {});
 
 // Writes the data window as an 8-bit PNG: channels R,G,B(,A) or Y(,A), values in [0,1] already
