@@ -1,50 +1,33 @@
-// `softtrace diff`: OpenImageIO's comparison (ImageBufAlgo::compare) with the verdict and report
-// of OIIO 2.4's idiff (src/idiff/idiff.cpp), mapped onto softtrace's exit codes: idiff's 0 (pass)
-// and 1 (warning) are our 0, its 2 (failure) our 1, its errors our 2. Deliberate differences:
-// images of different sizes always fail (idiff pads the smaller with black and may pass), images
-// with different channel sets are bad input (idiff compares channels by index), and WARNING is
-// printed whenever more than --warnpercent % of pixels exceed --warn (idiff 2.4 only reaches its
-// warning branch when some pixel also fails).
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
+// `softtrace diff`: OpenImageIO 2.4's idiff without OpenImageIO: the same options (single- or
+// double-dash), report lines, verdict and exit codes (0 pass, 1 warning, 2 failure, 4 a file
+// that cannot be read or written). Deliberate differences: images of different sizes always fail
+// (idiff pads the smaller with black and may pass); channels are matched by name and only those
+// both images have are compared, with a note (idiff compares by index, a missing channel as 0);
+// the report is printed on a pass too; bad usage exits 2 (idiff: 1, its warning code, which
+// would let a mistyped command pass a script that accepts warnings).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <stdexcept>
 
 #include "commands.h"
 #include "film.h"
+#include "image_compare.h"
+#include "image_file.h"
 
 namespace softtrace {
 
 namespace {
 
-namespace fs = std::filesystem;
-using OIIO::ImageBuf;
+enum DiffStatus { kPass = 0, kWarn = 1, kFail = 2, kFileError = 4 };
+
+const char* const kDiffExtensions[] = {".exr", ".png", nullptr};
 
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
   while (!s.empty() && s.back() == ' ') s.pop_back();
   return s;
-}
-
-bool read(ImageBuf& buf, const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    report_error(path + ": no such file");
-    return false;
-  }
-  buf.reset(path);
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    report_error(path + ": cannot read the image: " + one_line(buf.geterror()));
-    return false;
-  }
-  return true;
 }
 
 std::string joined(const std::vector<std::string>& names) {
@@ -53,20 +36,13 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-// Brings B's channels into A's order when both have the same set (EXR files may store them in
-// another order); returns false when the sets differ.
-bool match_channels(const ImageBuf& A, ImageBuf& B) {
-  const auto &na = A.spec().channelnames, &nb = B.spec().channelnames;
-  if (na == nb) return true;
-  if (na.size() != nb.size()) return false;
-  std::vector<int> order;
-  for (const auto& name : na) {
-    const auto it = std::find(nb.begin(), nb.end(), name);
-    if (it == nb.end()) return false;
-    order.push_back(int(it - nb.begin()));
-  }
-  B = OIIO::ImageBufAlgo::channels(B, int(order.size()), order, {}, na);
-  return !B.has_error();
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (size_t comma; (comma = list.find(',', start)) != std::string::npos; start = comma + 1)
+    out.push_back(list.substr(start, comma - start));
+  out.push_back(list.substr(start));
+  return out;
 }
 
 // Shortest text that reads back as the same float, as idiff prints pixel values and thresholds.
@@ -78,140 +54,168 @@ std::string shortest(float v) {
   return std::string(buf, r.ptr);
 }
 
-std::string pixel_values(const ImageBuf& img, int x, int y) {
+// The channels to compare: those named by --channels, or A's channels that B has too.
+ChannelPairs pair_channels(const ImageFile& A, const ImageFile& B, const std::string& only) {
+  ChannelPairs p;
+  const std::vector<std::string> wanted = only.empty() ? A.channels : split(only);
+  for (const auto& name : wanted) {
+    const int ia = A.channel(name), ib = B.channel(name);
+    if (!only.empty() && (ia < 0 || ib < 0))
+      throw std::invalid_argument("--channels: '" + name + "' is not in both images (" +
+                                  joined(A.channels) + " vs " + joined(B.channels) + ")");
+    if (ia >= 0 && ib >= 0) {
+      p.a.push_back(ia);
+      p.b.push_back(ib);
+    }
+  }
+  return p;
+}
+
+std::string pixel_values(const ImageFile& img, const std::vector<int>& channels, int x, int y) {
   std::string s;
-  for (int c = 0; c < img.nchannels(); ++c)
-    s += (c ? ", " : "") + shortest(img.getchannel(x, y, 0, c));
+  x -= img.x0;
+  y -= img.y0;
+  const bool inside = x >= 0 && y >= 0 && x < img.width && y < img.height;
+  for (size_t c = 0; c < channels.size(); ++c)
+    s += (c ? ", " : "") + shortest(inside ? img.at(x, y, channels[c]) : 0.0f);
   return s;
 }
 
-void print_report(const OIIO::ImageBufAlgo::CompareResults& cr, const ImageBuf& A,
-                  const ImageBuf& B, long npels, const DiffArgs& a) {
+void print_report(const CompareResults& cr, const ImageFile& A, const ImageFile& B,
+                  const ChannelPairs& pairs, long long npels, const DiffArgs& a) {
   std::printf("  Mean error = %g\n  RMS error = %g\n  Peak SNR = %g\n  Max error  = %g",
               cr.meanerror, cr.rms_error, cr.PSNR, cr.maxerror);
-  if (cr.maxerror != 0) {
-    const auto& names = A.spec().channelnames;
-    const std::string channel = cr.maxc >= 0 && cr.maxc < int(names.size())
-                                    ? names[cr.maxc]
-                                    : "channel " + std::to_string(cr.maxc);
-    std::printf(" @ (%d, %d, %s)  values are %s vs %s", cr.maxx, cr.maxy, channel.c_str(),
-                pixel_values(A, cr.maxx, cr.maxy).c_str(),
-                pixel_values(B, cr.maxx, cr.maxy).c_str());
-  }
-  std::printf("\n  %llu pixels (%.3g%%) over %s\n  %llu pixels (%.3g%%) over %s\n",
-              (unsigned long long)cr.nwarn, 100.0 * cr.nwarn / npels, shortest(a.warn).c_str(),
-              (unsigned long long)cr.nfail, 100.0 * cr.nfail / npels, shortest(a.fail).c_str());
+  if (cr.maxerror != 0)
+    std::printf(" @ (%d, %d, %s)  values are %s vs %s", cr.maxx, cr.maxy,
+                A.channels[pairs.a[cr.maxc]].c_str(),
+                pixel_values(A, pairs.a, cr.maxx, cr.maxy).c_str(),
+                pixel_values(B, pairs.b, cr.maxx, cr.maxy).c_str());
+  std::printf("\n  %lld pixels (%.3g%%) over %s\n  %lld pixels (%.3g%%) over %s\n", cr.nwarn,
+              100.0 * cr.nwarn / npels, shortest(a.warn).c_str(), cr.nfail,
+              100.0 * cr.nfail / npels, shortest(a.fail).c_str());
 }
 
-// |A - B| per channel over both images' area (black outside either); 0 where compare() calls the
-// values equal, which includes inf against inf (a background depth) and NaN against NaN. A PNG
-// holds R,G,B (or the first channel as grey) in 8 bits; an EXR all channels as float.
-ImageBuf difference_image(const ImageBuf& A, const ImageBuf& B, bool png) {
-  using namespace OIIO;
-  const ROI roi = roi_union(A.roi(), B.roi());
-  const size_t n = roi.npixels() * size_t(roi.nchannels());
-  std::vector<float> pa(n), pb(n);
-  A.get_pixels(roi, TypeDesc::FLOAT, pa.data());
-  B.get_pixels(roi, TypeDesc::FLOAT, pb.data());
-  for (size_t i = 0; i < n; ++i) {
-    const float x = pa[i], y = pb[i];
-    const bool same =
-        x == y || (std::isinf(x) && std::isinf(y)) || (std::isnan(x) && std::isnan(y));
-    pa[i] = same ? 0.0f : std::abs(x - y);
-  }
-  ImageSpec spec(roi, TypeDesc::FLOAT);
-  spec.channelnames = A.spec().channelnames;
-  ImageBuf D(spec);
-  D.set_pixels(roi, TypeDesc::FLOAT, pa.data());
-  if (!png) return D;
-  const ImageSpec& s = D.spec();
-  const int r = s.channelindex("R"), g = s.channelindex("G"), b = s.channelindex("B");
-  if (r >= 0 && g >= 0 && b >= 0) return ImageBufAlgo::channels(D, 3, {r, g, b});
-  return ImageBufAlgo::channels(D, 1, {0});
+// idiff 2.4's verdict: up to -allowfailures failing pixels pass whatever else is true; beyond
+// that, too many failing pixels or one beyond -hardfail fail, and too many warning pixels or one
+// beyond -hardwarn warn. Percentages are float, as there.
+DiffStatus verdict(const CompareResults& cr, long long npels, const DiffArgs& a) {
+  if (cr.nfail <= a.allowfailures) return kPass;
+  if (cr.nfail > a.failpercent / 100.0 * npels || cr.maxerror > a.hardfail) return kFail;
+  if (cr.nwarn > a.warnpercent / 100.0 * npels || cr.maxerror > a.hardwarn) return kWarn;
+  return kPass;
 }
 
-// Writes to a temporary file beside `path` and renames it over `path` only when complete.
-void write_atomically(const ImageBuf& D, const std::string& path, bool png) {
-  const fs::path target(path);
-  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::string tmp = (dir / ("." + target.filename().string() + ".XXXXXX")).string();
-  const int fd = ::mkstemp(tmp.data());
-  if (fd < 0) throw std::runtime_error(path + ": cannot create a file in '" + dir.string() + "'");
-  ::close(fd);
-  ImageBuf out = D;
-  if (!png) out.specmod().attribute("compression", "zip");
-  const auto format = png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
-  if (!out.write(tmp, format, png ? "png" : "openexr")) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path +
-                             ": cannot write the difference image: " + one_line(out.geterror()));
+void write_difference(const ImageFile& d, const std::string& path) {
+  const std::string target = resolve_output_target(path);
+  remove_stale_temporaries(target, process_start_time());
+  const std::string tmp = create_pending_temp(target, path);
+  try {
+    if (is_exr_path(path)) {
+      write_exr(tmp, d);
+    } else {  // 8-bit: R,G,B where there are, else the first channel as grey
+      const int r = d.channel("R"), g = d.channel("G"), b = d.channel("B");
+      const std::vector<int> keep =
+          r >= 0 && g >= 0 && b >= 0 ? std::vector<int>{r, g, b} : std::vector<int>{0};
+      ImageFile png = d;
+      png.channels = keep.size() == 3 ? std::vector<std::string>{"R", "G", "B"}
+                                      : std::vector<std::string>{"Y"};
+      png.pixels.clear();
+      for (size_t i = 0; i < size_t(d.width) * d.height; ++i)
+        for (int c : keep) png.pixels.push_back(d.pixels[i * d.channels.size() + c]);
+      write_png(tmp, png, false);
+    }
+  } catch (const std::exception& e) {
+    abandon_pending_writes();
+    throw std::runtime_error(path + ": cannot write the difference image: " + e.what());
   }
-  // mkstemp makes the file private; give it the usual permissions of a new file.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  std::error_code ec;
-  fs::permissions(tmp, static_cast<fs::perms>(0666 & ~mask), ec);
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot replace the file: " + ec.message());
+  try {
+    commit_temp(tmp, target, path);
+  } catch (...) {
+    abandon_pending_writes();
+    throw;
   }
+  forget_pending_writes();
 }
 
 }  // namespace
 
+std::vector<std::string> idiff_style_arguments(const std::vector<std::string>& args) {
+  static const char* const kLong[] = {
+      "fail",  "failpercent", "failrelative", "hardfail", "allowfailures",
+      "warn",  "warnpercent", "warnrelative", "hardwarn", "abs",
+      "scale", "od",          nullptr};
+  std::vector<std::string> out;
+  for (const auto& arg : args) {
+    bool idiff_long = false;
+    for (auto name = kLong; *name && !idiff_long; ++name)
+      idiff_long = arg == std::string("-") + *name;
+    out.push_back(idiff_long ? "-" + arg : arg);
+  }
+  return out;
+}
+
 int run_diff(const DiffArgs& a) {
-  using namespace OIIO;
   if (!a.out.empty()) {
     try {
-      check_output_path(a.out);
+      check_output_path(a.out, kDiffExtensions);
     } catch (const std::exception& e) {
       report_error(e.what());
-      return 2;
+      return output_extension(a.out) == ".exr" || output_extension(a.out) == ".png" ? kFileError
+                                                                                    : kFail;
     }
   }
-  ImageBuf A, B;
-  if (!read(A, a.a) || !read(B, a.b)) return 2;
-  if (!match_channels(A, B)) {
-    report_error(a.a + " and " + a.b + " have different channels (" +
-                 joined(A.spec().channelnames) + " vs " + joined(B.spec().channelnames) + ")");
-    return 2;
+  ImageFile A, B;
+  try {
+    A = read_image(a.a);
+    B = read_image(a.b);
+  } catch (const std::exception& e) {
+    report_error(one_line(e.what()));
+    return kFileError;
+  }
+  ChannelPairs pairs;
+  try {
+    pairs = pair_channels(A, B, a.channels);
+  } catch (const std::exception& e) {
+    report_error(e.what());
+    return kFail;
+  }
+  if (pairs.a.empty()) {
+    report_error(a.a + " and " + a.b + " have no channel in common (" + joined(A.channels) +
+                 " vs " + joined(B.channels) + ")");
+    return kFail;
   }
 
-  std::printf("Comparing \"%s\" and \"%s\"\n", a.a.c_str(), a.b.c_str());
-  const auto cr = ImageBufAlgo::compare(A, B, a.fail, a.warn, 0.0f, 0.0f);
-  // cr.error is also set when any pixel fails (OIIO 2.4), so look at the images' own errors.
-  if (A.has_error() || B.has_error()) {
-    report_error("cannot compare the images: " + one_line(A.geterror() + B.geterror()));
-    return 2;
-  }
+  if (!a.quiet) std::printf("Comparing \"%s\" and \"%s\"\n", a.a.c_str(), a.b.c_str());
+  std::vector<std::string> compared;
+  for (int c : pairs.a) compared.push_back(A.channels[c]);
+  if (!a.quiet && (compared != A.channels || compared != B.channels))
+    std::printf("  note: comparing channels %s (%s has %s, %s has %s)\n", joined(compared).c_str(),
+                a.a.c_str(), joined(A.channels).c_str(), a.b.c_str(), joined(B.channels).c_str());
+
+  const CompareResults cr =
+      compare_images(A, B, pairs, {a.fail, a.warn, a.failrelative, a.warnrelative});
   // idiff counts percentages against the first image's pixels.
-  const long npels = std::max(1L, long(A.spec().width) * A.spec().height * A.spec().depth);
-  print_report(cr, A, B, npels, a);
-
-  if (!a.out.empty()) {
-    const bool png = !is_exr_path(a.out);
-    try {
-      write_atomically(difference_image(A, B, png), a.out, png);
-    } catch (const std::exception& e) {
-      report_error(e.what());
-      return 2;
-    }
+  const long long npels = std::max(1LL, (long long)A.width * A.height);
+  const bool same_size = A.width == B.width && A.height == B.height && A.x0 == B.x0 && A.y0 == B.y0;
+  const DiffStatus status = same_size ? verdict(cr, npels, a) : kFail;
+  if (!a.quiet) {
+    print_report(cr, A, B, pairs, npels, a);
+    if (!same_size)
+      std::printf("  sizes differ: %dx%d vs %dx%d\n", A.width, A.height, B.width, B.height);
+    std::printf("%s\n", status == kFail ? "FAILURE" : (status == kWarn ? "WARNING" : "PASS"));
+  } else if (status == kFail) {
+    std::fprintf(stderr, "FAILURE\n");
   }
 
-  const bool same_size = A.spec().width == B.spec().width && A.spec().height == B.spec().height &&
-                         A.spec().depth == B.spec().depth;
-  // idiff 2.4: no failing pixel passes (before the hard threshold is looked at); otherwise too
-  // many failing pixels or one beyond the hard threshold fail. Percentages are float, as there.
-  const bool fail =
-      !same_size ||
-      (cr.nfail > 0 && (cr.nfail > a.failpercent / 100.0 * npels || cr.maxerror > a.hardfail));
-  const bool warn = cr.nwarn > a.warnpercent / 100.0 * npels;
-  if (!same_size)
-    std::printf("  sizes differ: %dx%d vs %dx%d\n", A.spec().width, A.spec().height, B.spec().width,
-                B.spec().height);
-  std::printf("%s\n", fail ? "FAILURE" : (warn ? "WARNING" : "PASS"));
-  return fail ? 1 : 0;
+  if (!a.out.empty() && (cr.maxerror != 0 || !a.out_only_if_different)) {
+    try {
+      write_difference(difference_image(A, B, pairs, a.abs, a.scale), a.out);
+    } catch (const std::exception& e) {
+      report_error(one_line(e.what()));
+      return kFileError;
+    }
+  }
+  return status;
 }
 
 }  // namespace softtrace

@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "film.h"
 #include "frame.h"
+#include "frame_metadata.h"
 
 namespace softtrace {
 
@@ -64,10 +65,15 @@ int run_render(const RenderArgs& a) {
     apply_image_size(scene, a.scene, a.width, a.height);
     if (a.spp) scene.image.spp = a.spp;
 
-    const AovSelection aovs = parse_aovs(a.aovs);
+    OutputOptions out_opt;
+    out_opt.aovs = parse_aovs(a.aovs);
+    out_opt.flatten = a.flatten;
+    out_opt.half = a.half;
+    out_opt.png_alpha = a.png_alpha;
+    const AovSelection& aovs = out_opt.aovs;
     std::vector<std::string> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(std::filesystem::path(a.scene).stem().string() + ".exr");
-    for (const auto& o : outputs) check_output_path(o);  // fail before the work, not after
+    for (const auto& o : outputs) check_image_output_path(o);  // fail before the work, not after
     if ((aovs.depth || aovs.normal || aovs.steps) &&
         std::none_of(outputs.begin(), outputs.end(), is_exr_path))
       throw std::invalid_argument("--aov needs an .exr output");
@@ -80,6 +86,7 @@ int run_render(const RenderArgs& a) {
     if (!g_phase.compare_exchange_strong(loading, kRendering))
       for (;;) ::pause();  // the watcher is exiting
     Film film(scene.image.width, scene.image.height);
+    FrameInfo info = frame_info(scene, film.full_width, film.full_height);
     Progress progress("rendering", long(film.width) * film.height,
                       !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
     RenderOptions opt;
@@ -97,8 +104,10 @@ int run_render(const RenderArgs& a) {
       report_error("interrupted; no image written");
       return interrupted_status();
     }
+    info.render_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<std::string> temps;
-    for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, aovs));
+    for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, out_opt, info));
     int writing = kWriting;
     if (!g_phase.compare_exchange_strong(writing, kCommitting))
       for (;;) ::pause();  // the watcher is removing the temporary files and exiting

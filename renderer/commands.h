@@ -1,5 +1,6 @@
 // The subcommands of the `softtrace` command line (SCENE.md "Command line"). Each returns the
-// process exit status: 0 success, 1 a diff over its thresholds, 2 bad usage or bad input.
+// process exit status: 0 success, 2 bad usage or bad input; `diff` has idiff's codes (0 pass,
+// 1 warning, 2 failure, 4 a file it cannot read or write).
 #pragma once
 
 #include <limits>
@@ -16,6 +17,7 @@ struct RenderArgs {
   int width = 0, height = 0, spp = 0, threads = 0;  // 0: the scene's value / all cores
   std::string aovs;
   bool quiet = false, progress = false;  // progress: the bar even when stderr is no terminal
+  bool flatten = false, half = false, png_alpha = false;  // OutputOptions (film.h)
   LipschitzMode lipschitz = LipschitzMode::Local;
 };
 int run_render(const RenderArgs& a);
@@ -29,11 +31,19 @@ int run_eval(const EvalArgs& a);
 
 // Thresholds are float, as idiff's, so a percentage such as 0.3 counts exactly as it does there.
 struct DiffArgs {
-  std::string a, b, out;
-  float fail = 1e-6f, failpercent = 0, warn = 1e-6f, warnpercent = 0;
+  std::string a, b, out, channels;  // channels: "R,G,B" compares only those (default: shared)
+  float fail = 1e-6f, failpercent = 0, failrelative = 0, warn = 1e-6f, warnpercent = 0,
+        warnrelative = 0, scale = 1;
   float hardfail = std::numeric_limits<float>::infinity();
+  float hardwarn = std::numeric_limits<float>::infinity();
+  long long allowfailures = 0;
+  bool quiet = false, abs = false, out_only_if_different = false;
 };
 int run_diff(const DiffArgs& a);
+
+// idiff's single-dash options (-fail, -failpercent, -o, -abs, ...) as the double-dash ones the
+// command line parser knows; other arguments unchanged. For `softtrace diff` only.
+std::vector<std::string> idiff_style_arguments(const std::vector<std::string>& args);
 
 struct BenchArgs {
   std::string scene;

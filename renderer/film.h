@@ -1,8 +1,13 @@
-// The rendered pixels and their output. Only this file's implementation includes OpenImageIO.
+// The rendered pixels and how they become image files (EXR through OpenEXR, PNG through libpng;
+// no OpenImageIO).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
+
+#include "output_file.h"
+#include "vec.h"
 
 namespace softtrace {
 
@@ -10,15 +15,21 @@ struct AovSelection {
   bool depth = false, normal = false, steps = false;
 };
 
+// A data window of width x height pixels at (x0, y0) inside a display window of
+// full_width x full_height (the whole frame; a crop or tile renders part of it).
 struct Film {
+  int full_width = 0, full_height = 0;
+  int x0 = 0, y0 = 0;
   int width = 0, height = 0;
-  std::vector<float> rgba;    // linear RGB composited over the background; A = object coverage
+  std::vector<float> rgba;    // premultiplied: RGB = coverage-weighted object colour, A = coverage
   std::vector<float> depth;   // ray distance of the pixel-centre ray, +inf for background
   std::vector<float> normal;  // unit normal (x,y,z) at that hit, 0 for background
   std::vector<float> steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
 
   Film(int w, int h)
-      : width(w),
+      : full_width(w),
+        full_height(h),
+        width(w),
         height(h),
         rgba(size_t(w) * h * 4),
         depth(size_t(w) * h),
@@ -26,30 +37,36 @@ struct Film {
         steps(size_t(w) * h) {}
 };
 
+struct OutputOptions {
+  AovSelection aovs;
+  bool flatten = false;    // RGB over the scene's background, A = 1 (default: premultiplied)
+  bool half = false;       // EXR R,G,B,A and N.* as half float (Z and steps stay float)
+  bool png_alpha = false;  // PNG as RGBA with straight alpha (default: RGB over the background)
+};
+
+// What an EXR header records about the frame (frame_metadata.h fills it).
+struct FrameInfo {
+  std::string scene_name, scene_hash;
+  int spp = 1;
+  double render_seconds = 0;
+  std::array<float, 16> world_to_camera{}, world_to_ndc{};  // row-vector M44f
+  Vec3 background{0, 0, 0};
+};
+
 // Parses "depth,normal,steps" (any subset); throws std::invalid_argument naming a bad entry.
 AovSelection parse_aovs(const std::string& list);
 
-// Checks, before any rendering, that `path` can be written: a known extension (.exr, .png), an
-// existing folder we may write to. Throws std::invalid_argument with the reason.
-void check_output_path(const std::string& path);
+// check_output_path (output_file.h) for images: .exr or .png.
+void check_image_output_path(const std::string& path);
 bool is_exr_path(const std::string& path);
 
-// Writes the film: EXR with R,G,B,A (+ Z, N.X,N.Y,N.Z, steps as selected), or 8-bit sRGB PNG
-// (RGB only: AOVs go to EXR outputs).
-// The image goes to a temporary file in the target folder that is renamed over `path` only when
-// complete, so an existing file is never half-overwritten. Throws std::runtime_error.
-void write_image(const std::string& path, const Film& film, const AovSelection& aovs);
-
-// The two halves of write_image, for writing several outputs all-or-nothing: write every
-// temporary file (each registered as pending), then commit them all, then forget them.
-std::string write_image_temp(const std::string& path, const Film& film, const AovSelection& aovs);
+// Writes the film to a pending temporary file beside `path`'s target (stale temporary files of
+// that target are removed first) and returns the temporary file's path; commit_image renames it
+// over the target. EXR: R,G,B,A (+ Z, N.X,N.Y,N.Z, steps as selected) with the standard and
+// softtrace header attributes (README "Usage"). PNG: 8-bit sRGB, RGB over the background or,
+// with png_alpha, RGBA. Throws std::runtime_error.
+std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
+                             const FrameInfo& info);
 void commit_image(const std::string& tmp, const std::string& path);
-void forget_pending_writes();
-
-// Removes the temporary files of pending writes.
-void abandon_pending_writes();
-// The same, then _exit(status), with no temporary file created in between (the signal watcher's
-// way out while writing, cmd_render.cpp).
-[[noreturn]] void abandon_pending_writes_and_exit(int status);
 
 }  // namespace softtrace

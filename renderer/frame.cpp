@@ -57,9 +57,8 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
                   for (int k = 0; k < 3; ++k)
                     film.normal[i * 3 + k] = static_cast<float>(sh.normal[k]);
                 }
-              } else {
-                sum += scene.background;
-                if (s == 0) film.depth[i] = std::numeric_limits<float>::infinity();
+              } else if (s == 0) {  // the background adds nothing: film.rgba is premultiplied
+                film.depth[i] = std::numeric_limits<float>::infinity();
               }
               if (s == 0) film.steps[i] = static_cast<float>(steps);
               steps_acc += steps;

@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "cli_spelling.h"
 #include "commands.h"
@@ -40,6 +42,12 @@ int main(int argc, char** argv) {
   auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
   render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
       ->excludes(render_quiet);
+  render->add_flag("--flatten", r.flatten,
+                   "EXR: RGB over the scene's background with A = 1 (default: premultiplied RGBA "
+                   "over transparency)");
+  render->add_flag("--half", r.half, "EXR: half-float R,G,B,A and normals (Z, steps stay float)");
+  render->add_flag("--png-alpha", r.png_alpha,
+                   "PNG: RGBA with straight alpha (default: RGB over the background)");
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -60,7 +68,9 @@ int main(int argc, char** argv) {
       },
       "T>=0");
   auto* diff = app.add_subcommand(
-      "diff", "Compare two images as OpenImageIO's idiff does; exit 0 pass, 1 fail, 2 bad input");
+      "diff",
+      "Compare two images as OpenImageIO's idiff does (its single-dash options work too); exit 0 "
+      "pass, 1 warning, 2 failure, 4 a file it cannot read or write");
   diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
   diff->add_option("b", d.b, "Second image")->required();
   diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)")
@@ -68,16 +78,36 @@ int main(int argc, char** argv) {
   diff->add_option("--failpercent", d.failpercent,
                    "Allow this percentage of failing pixels (default 0)")
       ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--failrelative", d.failrelative,
+                   "...and by more than this fraction of the mean magnitude (default 0)")
+      ->check(threshold);
+  diff->add_option("--hardfail", d.hardfail,
+                   "Fail if a pixel differs by more than this (default inf)")
+      ->check(threshold);
+  diff->add_option("--allowfailures", d.allowfailures,
+                   "Pass with up to this many failing pixels (default 0)")
+      ->check(CLI::NonNegativeNumber);
   diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
       ->check(threshold);
   diff->add_option("--warnpercent", d.warnpercent,
                    "Allow this percentage of warning pixels (default 0)")
       ->check(CLI::Range(0.0, 100.0));
-  diff->add_option("--hardfail", d.hardfail,
-                   "Fail if a failing pixel differs by more than this (default inf)")
+  diff->add_option("--warnrelative", d.warnrelative,
+                   "...and by more than this fraction of the mean magnitude (default 0)")
       ->check(threshold);
-  diff->add_option("--out", d.out,
-                   "Write |A-B| here: .exr (float, all channels) or .png (8-bit RGB)");
+  diff->add_option("--hardwarn", d.hardwarn,
+                   "Warn if a pixel differs by more than this (default inf)")
+      ->check(threshold);
+  diff->add_option("-o,--out", d.out,
+                   "Write the difference A-B here: .exr (float) or .png (8-bit RGB)");
+  diff->add_flag("--abs", d.abs, "The difference image holds |A-B|");
+  diff->add_option("--scale", d.scale, "Multiply the difference image by this (default 1)");
+  diff->add_flag("--od", d.out_only_if_different, "Write the difference image only if nonzero");
+  diff->add_option("--channels", d.channels,
+                   "Compare only these channels, e.g. R,G,B (default: those both images have)");
+  diff->add_flag("-q,--quiet", d.quiet, "No report; FAILURE on stderr");
+  // idiff's -v (its report is always printed here) and -a (all subimages: our files have one).
+  diff->add_flag("-v,-a", "Accepted for idiff scripts; no effect");
 
   BenchArgs b;
   auto* bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
@@ -98,8 +128,13 @@ int main(int argc, char** argv) {
 
   auto* nodes = app.add_subcommand("nodes", "List the scene node types");
 
+  // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
+  std::vector<std::string> args(argv, argv + argc);
+  if (argc > 1 && args[1] == "diff") args = idiff_style_arguments(args);
+  std::vector<char*> arg_pointers;
+  for (auto& arg : args) arg_pointers.push_back(arg.data());
   try {
-    app.parse(argc, argv);
+    app.parse(int(arg_pointers.size()), arg_pointers.data());
   } catch (const CLI::CallForHelp& ex) {
     return app.exit(ex);
   } catch (const CLI::CallForAllHelp& ex) {

@@ -1,5 +1,6 @@
 // `softtrace diff`: it fails perturbed images, reports bad input, writes difference images
-// safely, and agrees with OpenImageIO's own idiff on verdicts and counts.
+// safely, and agrees with OpenImageIO's own idiff (its options, verdicts, counts, exit codes:
+// 0 pass, 1 warning, 2 failure, 4 a file it cannot read or write).
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
@@ -114,7 +115,7 @@ TEST(Diff, PerturbedImageFailsIdenticalPasses) {
   EXPECT_NE(same.out.find("  0 pixels (0%) over 1e-06"), std::string::npos) << same.out;
 
   const RunResult strict = run_softtrace("diff " + dir + "/a.exr " + dir + "/b.exr --fail 0.02");
-  EXPECT_EQ(strict.status, 1) << strict.out << strict.err;
+  EXPECT_EQ(strict.status, 2) << strict.out << strict.err;
   const Report r = report(strict.out);
   EXPECT_EQ(r.verdict, "FAILURE");
   EXPECT_EQ(r.fail_line, "  1 pixels (0.13%) over 0.02");
@@ -124,9 +125,11 @@ TEST(Diff, PerturbedImageFailsIdenticalPasses) {
   EXPECT_EQ(run_softtrace("diff " + dir + "/a.exr " + dir + "/b.exr --fail 0.06").status, 0);
   // One failing pixel of 768 is 0.13 %: allowed by 0.2 %, not by 0.1 % or a hard limit.
   const std::string b_args = "diff " + dir + "/a.exr " + dir + "/b.exr --fail 0.02 ";
-  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.2").status, 0);
-  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.1").status, 1);
-  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.2 --hardfail 0.04").status, 1);
+  // (allowed failing pixels over the warning threshold make a warning, exit 1)
+  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.2").status, 1);
+  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.2 --warnpercent 0.2").status, 0);
+  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.1").status, 2);
+  EXPECT_EQ(run_softtrace(b_args + "--failpercent 0.2 --hardfail 0.04").status, 2);
 }
 
 // The committed reference with the regression test's thresholds: 1 % of pixels changed by 0.01
@@ -144,36 +147,44 @@ TEST(Diff, PerturbedReferenceAtRegressionThresholds) {
     std::shuffle(order.begin(), order.end(), rng);
     for (int i = 0; i < int(fraction * order.size()); ++i) b.px[order[i] * b.nc() + 0] += by;
     write(b, dir + "/b.exr", TypeDesc::FLOAT);
-    return run_softtrace("diff " + ref + " " + dir + "/b.exr --fail 0.005 --failpercent 0.5")
+    return run_softtrace("diff " + ref + " " + dir +
+                         "/b.exr --fail 0.005 --failpercent 0.5 --warnpercent 100")
         .status;
   };
-  EXPECT_EQ(perturbed(0.01, 0.01f), 1);
+  EXPECT_EQ(perturbed(0.01, 0.01f), 2);
   EXPECT_EQ(perturbed(0.003, 0.01f), 0);
   EXPECT_EQ(perturbed(0.5, 0.004f), 0);
 }
 
-TEST(Diff, BadInputIsOneLineAndExitTwo) {
+// Exit 4 for a file that cannot be read or written, 2 for bad usage (idiff: 1, its warning).
+TEST(Diff, BadInputIsOneLineAndExitFourOrTwo) {
   const std::string dir = temp_dir("diff_bad");
   const Image rgba = test_image(8, 8, {"R", "G", "B", "A"}, 2);
   write(rgba, dir + "/rgba.exr", TypeDesc::HALF);
-  write(test_image(8, 8, {"R", "G", "B"}, 2), dir + "/rgb.exr", TypeDesc::HALF);
+  write(test_image(8, 8, {"Y"}, 2), dir + "/grey.exr", TypeDesc::HALF);
   std::ofstream(dir + "/text.exr") << "not an image\n";
-  const auto expect_bad = [&](const std::string& args, const std::string& message) {
+  std::ofstream(dir + "/truncated.exr") << read_file(dir + "/rgba.exr").substr(0, 400);
+  const auto expect_bad = [&](const std::string& args, int status, const std::string& message) {
     const RunResult r = run_softtrace("diff " + args);
-    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.status, status) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_EQ(r.err.rfind("softtrace: ", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
   };
-  expect_bad(dir + "/rgba.exr " + dir + "/missing.exr", "missing.exr: no such file");
-  expect_bad(dir + "/missing.exr " + dir + "/rgba.exr", "missing.exr: no such file");
-  expect_bad(dir + "/rgba.exr " + dir + "/text.exr", "text.exr: cannot read the image");
-  expect_bad(dir + "/rgba.exr " + dir + "/rgb.exr", "different channels (R,G,B,A vs R,G,B)");
-  expect_bad(dir + "/rgba.exr " + dir + "/rgba.exr --out " + dir + "/d.tiff",
-             "unsupported output format '.tiff'");
-  expect_bad(dir + "/rgba.exr " + dir + "/rgba.exr --out " + dir + "/no/d.exr", "does not exist");
-  expect_bad(dir + "/rgba.exr " + dir + "/rgba.exr --failpercent 101", "failpercent");
-  expect_bad(dir + "/rgba.exr " + dir + "/rgba.exr --fail -1", "fail");
+  const std::string same = dir + "/rgba.exr " + dir + "/rgba.exr ";
+  expect_bad(dir + "/rgba.exr " + dir + "/missing.exr", 4, "missing.exr: no such file");
+  expect_bad(dir + "/missing.exr " + dir + "/rgba.exr", 4, "missing.exr: no such file");
+  expect_bad(dir + "/rgba.exr " + dir + "/text.exr", 4, "text.exr: cannot read the image");
+  expect_bad(dir + "/rgba.exr " + dir + "/truncated.exr", 4, "truncated.exr: cannot read");
+  expect_bad(same + "--out " + dir + "/no/d.exr", 4, "does not exist");
+  expect_bad(dir + "/rgba.exr " + dir + "/grey.exr", 2, "no channel in common (R,G,B,A vs Y)");
+  expect_bad(same + "--channels R,Z", 2, "'Z' is not in both images");
+  expect_bad(same + "--out " + dir + "/d.tiff", 2, "unsupported output format '.tiff'");
+  expect_bad(same + "--failpercent 101", 2, "failpercent");
+  expect_bad(same + "--fail -1", 2, "fail");
+  expect_bad(same + "-bogus", 2, "bogus");
+  expect_bad(dir + "/rgba.exr", 2, "b is required");
+  expect_bad(same + "-p", 2, "-p");  // idiff's perceptual comparison is not offered
 }
 
 TEST(Diff, SizesDifferFailChannelOrderDoesNot) {
@@ -192,13 +203,53 @@ TEST(Diff, SizesDifferFailChannelOrderDoesNot) {
   write(bgr, dir + "/bgr.exr", TypeDesc::FLOAT);
 
   const RunResult r = run_softtrace("diff " + dir + "/a.exr " + dir + "/wide.exr --fail 1");
-  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("sizes differ: 16x12 vs 20x12"), std::string::npos) << r.out;
   EXPECT_EQ(report(r.out).verdict, "FAILURE");
   // Same channels in another order are matched by name.
   const RunResult same = run_softtrace("diff " + dir + "/a.exr " + dir + "/bgr.exr");
   EXPECT_EQ(same.status, 0) << same.out << same.err;
   EXPECT_NE(same.out.find("  Max error  = 0\n"), std::string::npos) << same.out;
+}
+
+// A PNG against an EXR, or an image with extra AOV channels: the channels both have are
+// compared, and a note says which.
+TEST(Diff, SharedChannelsAreComparedWithANote) {
+  const std::string dir = temp_dir("diff_shared");
+  write(test_image(10, 6, {"R", "G", "B"}, 8), dir + "/p.png", TypeDesc::UINT8);
+  Image rgba(10, 6, {"R", "G", "B", "A"});
+  const Image p = read(dir + "/p.png");
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 10; ++x) {
+      for (int c = 0; c < 3; ++c) rgba.at(x, y, c) = p.at(x, y, c);
+      rgba.at(x, y, 3) = 0.5f;
+    }
+  write(rgba, dir + "/rgba.exr", TypeDesc::FLOAT);
+  const RunResult png = run_softtrace("diff " + dir + "/rgba.exr " + dir + "/p.png");
+  EXPECT_EQ(png.status, 0) << png.out << png.err;
+  EXPECT_NE(png.out.find("  note: comparing channels R,G,B ("), std::string::npos) << png.out;
+  EXPECT_NE(png.out.find("has R,G,B,A"), std::string::npos) << png.out;
+
+  Image aov(10, 6, {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"});
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 10; ++x)
+      for (int c = 0; c < aov.nc(); ++c) aov.at(x, y, c) = c < 4 ? rgba.at(x, y, c) : 7.0f;
+  write(aov, dir + "/aov.exr", TypeDesc::FLOAT);
+  const RunResult extra = run_softtrace("diff " + dir + "/aov.exr " + dir + "/rgba.exr");
+  EXPECT_EQ(extra.status, 0) << extra.out << extra.err;
+  EXPECT_NE(extra.out.find("  note: comparing channels R,G,B,A ("), std::string::npos) << extra.out;
+  aov.at(3, 2, 1) += 0.25f;
+  write(aov, dir + "/aov.exr", TypeDesc::FLOAT);
+  const RunResult changed = run_softtrace("diff " + dir + "/aov.exr " + dir + "/rgba.exr");
+  EXPECT_EQ(changed.status, 2) << changed.out;
+  EXPECT_NE(changed.out.find("@ (3, 2, G)  values are"), std::string::npos) << changed.out;
+  // Only the channels asked for; -q: no report, FAILURE on stderr as idiff.
+  EXPECT_EQ(run_softtrace("diff --channels R,B " + dir + "/aov.exr " + dir + "/rgba.exr").status,
+            0);
+  const RunResult quiet = run_softtrace("diff -q " + dir + "/aov.exr " + dir + "/rgba.exr");
+  EXPECT_EQ(quiet.status, 2);
+  EXPECT_EQ(quiet.out, "");
+  EXPECT_EQ(quiet.err, "FAILURE\n");
 }
 
 TEST(Diff, DifferenceImageIsWrittenWholeAsExrOrPng) {
@@ -219,12 +270,21 @@ TEST(Diff, DifferenceImageIsWrittenWholeAsExrOrPng) {
   // A failed run leaves an existing output alone.
   EXPECT_EQ(
       run_softtrace("diff " + dir + "/a.exr " + dir + "/none.exr --out " + dir + "/d.exr").status,
-      2);
+      4);
   EXPECT_EQ(read_file(dir + "/d.exr"), "old");
 
-  const std::string args = "diff " + dir + "/a.exr " + dir + "/b.exr --out ";
-  EXPECT_EQ(run_softtrace(args + dir + "/d.exr").status, 1);
-  EXPECT_EQ(run_softtrace(args + dir + "/d.png").status, 1);
+  // As idiff: -o writes A - B, -abs |A - B|, -scale multiplies.
+  const std::string args = "diff " + dir + "/a.exr " + dir + "/b.exr ";
+  EXPECT_EQ(run_softtrace(args + "-o " + dir + "/signed.exr -scale 2").status, 2);
+  ASSERT_TRUE(fs::exists(dir + "/signed.exr"));
+  const Image signed_d = read(dir + "/signed.exr");
+  EXPECT_EQ(signed_d.at(1, 2, 0), -1.0f);
+  EXPECT_EQ(signed_d.at(4, 1, 4), -7.0f);
+  EXPECT_EQ(signed_d.at(0, 0, 4), 0.0f);  // inf against inf
+  fs::remove(dir + "/signed.exr");
+  EXPECT_EQ(run_softtrace(args + "--abs --out " + dir + "/d.exr").status, 2);
+  EXPECT_EQ(run_softtrace(args + "-abs -o " + dir + "/d.png").status, 2);
+  ASSERT_TRUE(fs::exists(dir + "/d.exr") && fs::exists(dir + "/d.png"));
   const Image d = read(dir + "/d.exr");
   ASSERT_EQ(d.channels, a.channels);
   for (int y = 0; y < 4; ++y)
@@ -243,15 +303,11 @@ TEST(Diff, DifferenceImageIsWrittenWholeAsExrOrPng) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 4);
 }
 
-// `softtrace diff` against `idiff -v` on the same files and options: the same verdict (idiff's
-// 0 pass and 1 warning are our 0, its 2 failure our 1) and the same report lines.
+// `softtrace diff` against `idiff -v` on the same files and the same (single-dash) options: the
+// same exit status and the same report lines.
 struct Case {
   std::string what, a, b, options;
 };
-
-int expected_status(int idiff_status) {
-  return idiff_status <= 1 ? 0 : idiff_status == 2 ? 1 : 2;
-}
 
 TEST(Diff, AgreesWithIdiff) {
   const std::string idiff = IDIFF_BIN;
@@ -291,6 +347,14 @@ TEST(Diff, AgreesWithIdiff) {
   cases.push_back({"exr warnings only", ab, "", "-warn 0.01 -fail 0.1"});
   cases.push_back({"exr warnings and failures", ab, "",
                    "-warn 0.01 -warnpercent 1 -fail 0.03 -failpercent 50"});
+  cases.push_back({"exr allowed failures, just enough", ab, "",
+                   "-fail 0.03 -allowfailures " + std::to_string(n03)});
+  cases.push_back({"exr allowed failures, one short", ab, "",
+                   "-fail 0.03 -allowfailures " + std::to_string(n03 - 1)});
+  cases.push_back({"exr hardwarn", ab, "", "-failpercent 50 -warnpercent 50 -hardwarn 0.05"});
+  cases.push_back({"exr relative thresholds", ab, "",
+                   "-fail 0.01 -failrelative 0.2 -warn 0.001 -warnrelative 0.05 -failpercent 1"});
+  cases.push_back({"exr difference image", ab, "", "-fail 0.03 -o " + path("d_theirs.exr")});
 
   // The same image stored as half: rounding differences only.
   write(a, path("a_half.exr"), TypeDesc::HALF);
@@ -345,18 +409,17 @@ TEST(Diff, AgreesWithIdiff) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what + ": " + c.options);
     const std::string files = c.a + (c.b.empty() ? "" : " " + c.b);
-    std::string ours_options = c.options;  // idiff's -fail is our --fail
-    for (size_t i = 0; (i = ours_options.find(" -", i)) != std::string::npos; i += 2)
-      ours_options.insert(i + 1, "-");
-    if (ours_options.rfind("-", 0) == 0) ours_options.insert(0, "-");
+    std::string ours_options = c.options;  // the same options, with our difference image
+    if (const size_t o = ours_options.find("d_theirs"); o != std::string::npos)
+      ours_options.replace(o, 8, "d_ours");
     const RunResult theirs = run_command(idiff + " -v " + c.options + " " + files);
-    const RunResult ours = run_softtrace("diff " + files + " " + ours_options);
+    const RunResult ours = run_softtrace("diff -v " + ours_options + " " + files);
     ASSERT_LE(theirs.status, 2) << theirs.out << theirs.err;
     const Report rt = report(theirs.out), ro = report(ours.out);
     const bool sizes_differ = ours.out.find("sizes differ") != std::string::npos;
-    EXPECT_EQ(ours.status, expected_status(theirs.status)) << "idiff:\n"
-                                                           << theirs.out << "softtrace:\n"
-                                                           << ours.out << ours.err;
+    EXPECT_EQ(ours.status, sizes_differ ? 2 : theirs.status) << "idiff:\n"
+                                                             << theirs.out << "softtrace:\n"
+                                                             << ours.out << ours.err;
     EXPECT_EQ(ro.max_line, rt.max_line);
     EXPECT_EQ(ro.warn_line, rt.warn_line);
     EXPECT_EQ(ro.fail_line, rt.fail_line);
@@ -368,6 +431,11 @@ TEST(Diff, AgreesWithIdiff) {
       EXPECT_NE(ro.verdict, "FAILURE");
     }
   }
+  // Both wrote the same signed difference image.
+  const Image dt = read(path("d_theirs.exr")), dours = read(path("d_ours.exr"));
+  EXPECT_EQ(dours.channels, dt.channels);
+  EXPECT_EQ(dours.px, dt.px);
+
   // Our own count of the 0.03 case matches what both print.
   const RunResult r = run_softtrace("diff " + ab + " --fail 0.03");
   EXPECT_NE(r.out.find("  " + std::to_string(n03) + " pixels ("), std::string::npos) << r.out;
@@ -381,7 +449,7 @@ TEST(Diff, AgreesWithIdiff) {
   write(padded, path("padded.exr"), TypeDesc::FLOAT);
   const std::string ap = path("a.exr") + " " + path("padded.exr");
   EXPECT_EQ(run_command(idiff + " " + ap).status, 0);
-  EXPECT_EQ(run_softtrace("diff " + ap).status, 1);
+  EXPECT_EQ(run_softtrace("diff " + ap).status, 2);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(g++ cmake ninja-build pkg-config libembree-dev libopenimageio-dev libopenexr-dev
-  libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools
+  libpng-dev libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools
   clang-14 libclang-rt-14-dev)
 BUILD_DIR=${BUILD_DIR:-build}
 
