@@ -159,41 +159,41 @@ long allocations() {
 void run(const Program& p, const Inputs& in, Workspace& ws, Counts* c, double* sink) {
   double f[kLanes];
   long at = allocations();
-  const auto take = [&](long* into) {
+  const auto take = [&](long Counts::*evaluator) {
     const long now = allocations();
-    if (c) *into += now - at;
-    at = allocations();
+    if (c) c->*evaluator += now - at;
+    at = now;
   };
   for (int i = 0; i < kPoints; i += kLanes) {
     values(p, &in.x[i], &in.y[i], &in.z[i], kLanes, f, ws);
     *sink += f[0];
   }
-  take(c ? &c->values : nullptr);
+  take(&Counts::values);
   for (const Vec3& q : in.points) {
     Vec3 g;
     *sink += gradient(p, q, &g, ws) + g.x;
   }
-  take(c ? &c->gradient : nullptr);
+  take(&Counts::gradient);
   for (const Box& b : in.boxes) {
     const BoxBounds r = bounds(p, b, ws);
     *sink += r.value.lo + r.lipschitz;
-    take(c ? &c->bounds : nullptr);
+    take(&Counts::bounds);
     // The tracer's use of the view: points of the box evaluated on the program pruned to it.
     const Vec3 mid = b.center();
     const double xs[2] = {b.lo.x, mid.x}, ys[2] = {b.lo.y, mid.y}, zs[2] = {b.lo.z, mid.z};
     values(ws.view, xs, ys, zs, 2, f, ws);
     Vec3 g;
     *sink += f[1] + gradient(ws.view, mid, &g, ws);
-    take(c ? &c->view_values : nullptr);
+    take(&Counts::view_values);
     prune(p, b, ws);
     *sink += static_cast<double>(ws.view.code.size());
-    take(c ? &c->prune : nullptr);
+    take(&Counts::prune);
   }
   for (const Vec3& q : in.points) {
     Vec3 g;
     *sink += evaluate(p, q, nullptr, ws) + evaluate(p, q, &g, ws);
   }
-  take(c ? &c->evaluate : nullptr);
+  take(&Counts::evaluate);
 }
 
 void expect_no_allocation(const FieldNode& field, const Box& domain) {
