@@ -16,6 +16,7 @@
 #include "blends.h"
 #include "gauge.h"
 #include "node_util.h"
+#include "scratch.h"
 
 namespace softtrace {
 
@@ -33,13 +34,13 @@ class Ricci final : public FieldNode {
     std::vector<double> cL;
     for (size_t i = 0; i < c_.size(); ++i)
       cL.push_back(flat_product(arg_slope(i, global_range(*c_[i])), c_[i]->lipschitz()));
-    global_L_ = combine(cL);
+    global_L_ = combine(cL.data(), static_cast<int>(cL.size()));
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
-    std::vector<double> g(k), dg(k), dB(k);
-    std::vector<Vec3> gf(k);
+    Scratch<double> g(k), dg(k), dB(k);
+    Scratch<Vec3> gf(k);
     for (size_t i = 0; i < k; ++i) g[i] = arg(i, c_[i]->eval(p, grad ? &gf[i] : nullptr), &dg[i]);
     const double B = mean(g.data(), grad ? dB.data() : nullptr);
     if (grad) {
@@ -50,21 +51,22 @@ class Ricci final : public FieldNode {
     return B;
   }
   Interval interval(const Box& b) const override {
-    std::vector<Interval> G;
-    for (size_t i = 0; i < c_.size(); ++i) G.push_back(arg_range(i, c_[i]->interval(b)));
-    return range(G);
+    const size_t k = c_.size();
+    Scratch<Interval> G(k);
+    for (size_t i = 0; i < k; ++i) G[i] = arg_range(i, c_[i]->interval(b));
+    return range(G.data());
   }
   double lipschitz() const override { return global_L_; }
   double lipschitz(const Box& b) const override {
     const size_t k = c_.size();
-    std::vector<Interval> G(k);
-    std::vector<double> cL(k);
+    Scratch<Interval> G(k);
+    Scratch<double> cL(k);
     for (size_t i = 0; i < k; ++i) {
       const Interval f = c_[i]->interval(b);
       G[i] = arg_range(i, f);
       cL[i] = flat_product(arg_slope(i, f), c_[i]->lipschitz(b));
     }
-    const Interval B = range(G);
+    const Interval B = range(G.data());
     double s = 0;
     for (size_t i = 0; i < k; ++i) {
       double a;
@@ -75,7 +77,7 @@ class Ricci final : public FieldNode {
       }
       s += flat_product(a, cL[i]);
     }
-    return std::min({global_L_, combine(cL), s * (1 + 1e-12)});
+    return std::min({global_L_, combine(cL.data(), static_cast<int>(k)), s * (1 + 1e-12)});
   }
   Box region(double level, Side side) const override {
     const double k = static_cast<double>(c_.size());
@@ -152,8 +154,8 @@ class Ricci final : public FieldNode {
   double mean(const double* g, double* dB) const {
     const int k = static_cast<int>(c_.size());
     if (positive_) {
-      std::vector<double> u(g, g + k);
-      for (double& v : u) v = std::max(v, 0.0);
+      Scratch<double> u(k);
+      for (int i = 0; i < k; ++i) u[i] = std::max(g[i], 0.0);
       return power_sum(u.data(), k, n_, dB);
     }
     double m = kInf;
@@ -169,10 +171,11 @@ class Ricci final : public FieldNode {
       for (int i = 0; i < k; ++i) dB[i] = std::pow(B / g[i], n_ + 1);
     return B;
   }
-  Interval range(const std::vector<Interval>& G) const {
-    const int k = static_cast<int>(G.size());
-    if (positive_) return power_sum(G.data(), k, n_);
-    std::vector<double> lo(k), hi(k);
+  // G holds one interval per child.
+  Interval range(const Interval* G) const {
+    const int k = static_cast<int>(c_.size());
+    if (positive_) return power_sum(G, k, n_);
+    Scratch<double> lo(k), hi(k);
     for (int i = 0; i < k; ++i) {
       lo[i] = G[i].lo;
       hi[i] = G[i].hi;
@@ -181,14 +184,14 @@ class Ricci final : public FieldNode {
             mean(hi.data(), nullptr) * (1 + 1e-13)};
   }
   // The derivative-free bound from c_i L_i (header comment).
-  double combine(const std::vector<double>& cL) const {
-    for (double v : cL)
-      if (!std::isfinite(v)) return kInf;
+  double combine(const double* cL, int k) const {
+    for (int i = 0; i < k; ++i)
+      if (!std::isfinite(cL[i])) return kInf;
     if (positive_) {
       if (n_ < 1) return kInf;
-      return power_sum(cL.data(), static_cast<int>(cL.size()), n_, nullptr) * (1 + 1e-12);
+      return power_sum(cL, k, n_, nullptr) * (1 + 1e-12);
     }
-    return *std::max_element(cL.begin(), cL.end());
+    return *std::max_element(cL, cL + k);
   }
 
   std::vector<NodePtr> c_;

@@ -6,6 +6,7 @@
 #include "blends.h"
 #include "node_util.h"
 #include "program.h"
+#include "scratch.h"
 
 namespace softtrace {
 
@@ -21,13 +22,13 @@ class Perlin final : public FieldNode {
     for (size_t i = 0; i < c_.size(); ++i) G.push_back(factor(i, global_range(*c_[i])));
     std::vector<double> L;
     for (const auto& c : c_) L.push_back(c->lipschitz());
-    global_L_ = slope(G, L);
+    global_L_ = slope(G.data(), L.data(), G.size());
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
-    std::vector<double> g(k);
-    std::vector<Vec3> gg(k);
+    Scratch<double> g(k);
+    Scratch<Vec3> gg(k);
     for (size_t i = 0; i < k; ++i) {
       g[i] = c_[i]->eval(p, grad ? &gg[i] : nullptr);
       if (complemented(i)) {
@@ -36,7 +37,8 @@ class Perlin final : public FieldNode {
       }
     }
     // Prefix and suffix products give Π_{j≠i} g_j without dividing by a g_i that may be 0.
-    std::vector<double> pre(k + 1, 1.0), suf(k + 1, 1.0);
+    Scratch<double, 17> pre(k + 1), suf(k + 1);  // 16 children on the stack, as g
+    pre[0] = suf[k] = 1.0;
     for (size_t i = 0; i < k; ++i) pre[i + 1] = pre[i] * g[i];
     for (size_t i = k; i-- > 0;) suf[i] = suf[i + 1] * g[i];
     const double sign = mode_ == Union ? -1 : 1;
@@ -53,13 +55,14 @@ class Perlin final : public FieldNode {
   }
   double lipschitz() const override { return global_L_; }
   double lipschitz(const Box& b) const override {
-    std::vector<Interval> G;
-    std::vector<double> L;
-    for (size_t i = 0; i < c_.size(); ++i) {
-      G.push_back(factor(i, c_[i]->interval(b)));
-      L.push_back(c_[i]->lipschitz(b));
+    const size_t k = c_.size();
+    Scratch<Interval> G(k);
+    Scratch<double> L(k);
+    for (size_t i = 0; i < k; ++i) {
+      G[i] = factor(i, c_[i]->interval(b));
+      L[i] = c_[i]->lipschitz(b);
     }
-    return std::min(global_L_, slope(G, L));
+    return std::min(global_L_, slope(G.data(), L.data(), k));
   }
   // Soft children (f >= 0): B > 0 needs some f_i > 0 (union), every f_i > 0 (intersection), or
   // f_1 > 0 (difference); the support boxes follow.
@@ -79,11 +82,11 @@ class Perlin final : public FieldNode {
   bool complemented(size_t i) const { return mode_ == Union || (mode_ == Difference && i > 0); }
   Interval factor(size_t i, Interval f) const { return complemented(i) ? Interval(1) - f : f; }
   // Σ_i L_i sup|Π_{j≠i} G_j| ([PE-3]).
-  static double slope(const std::vector<Interval>& G, const std::vector<double>& L) {
+  static double slope(const Interval* G, const double* L, size_t k) {
     double s = 0;
-    for (size_t i = 0; i < G.size(); ++i) {
+    for (size_t i = 0; i < k; ++i) {
       double m = 1;  // a zero factor wins over an infinite one (inf * 0 would be NaN)
-      for (size_t j = 0; j < G.size() && m != 0; ++j)
+      for (size_t j = 0; j < k && m != 0; ++j)
         if (j != i) m = flat_product(m, magnitude(G[j]));
       s += flat_product(m, L[i]);
     }
@@ -126,8 +129,8 @@ class MinMax final : public FieldNode {
     return L;
   }
   double lipschitz(const Box& b) const override {
-    std::vector<Interval> I;
-    for (const auto& c : c_) I.push_back(c->interval(b));
+    Scratch<Interval> I(c_.size());
+    for (size_t i = 0; i < c_.size(); ++i) I[i] = c_[i]->interval(b);
     const Interval r = interval(b);
     double L = 0;
     for (size_t i = 0; i < c_.size(); ++i)

@@ -1,9 +1,9 @@
 #include "soft_object.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 #include "node_util.h"
 #include "potentials.h"
@@ -171,8 +171,8 @@ class TransformedSoftObject final : public FieldNode {
   bool decorrelated(const Bounds& B, const Box& b) const {
     return src_ != WSource::Constant && b.bounded() && B.w.lo < 0.25 * B.w.hi && B.T.lo < B.T.hi;
   }
-  static std::vector<Box> octants(const Box& b) {
-    std::vector<Box> out(8);
+  static std::array<Box, 8> octants(const Box& b) {
+    std::array<Box, 8> out;
     const Vec3 c = b.center();
     for (int k = 0; k < 8; ++k)
       for (int i = 0; i < 3; ++i) {

@@ -2,12 +2,17 @@
 // kinds): gradient vs central differences, Lipschitz bounds vs sampled gradients and difference
 // quotients (global and over random boxes), interval enclosures vs sampled values, and region
 // boxes vs sampled points. A family adds its cases with
-//   INSTANTIATE_TEST_SUITE_P(Family, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+//   SOFTTRACE_SWEEP_FAMILY(Family, kCases);
+// which instantiates the sweep on them and lists them in sweep_cases(), for the tests that put
+// every kind through something else (test_no_alloc.cpp). Such an executable compiles the family
+// files with SOFTTRACE_SWEEP_LIST_ONLY defined: it gets the list without the sweep's tests.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "registry.h"
 
@@ -36,5 +41,32 @@ class NodeSweep : public testing::TestWithParam<SweepCase> {};
 
 // Builds a node from JSON text; the text is parsed with comments allowed.
 NodePtr build_from_json(const std::string& json, Convention convention = Convention::Soft);
+
+struct ListedCase {
+  std::string family;
+  const SweepCase* c;
+};
+
+// Every family's cases in this executable (filled during static initialisation).
+inline std::vector<ListedCase>& sweep_cases() {
+  static std::vector<ListedCase> cases;
+  return cases;
+}
+
+inline bool list_sweep_cases(const char* family, const SweepCase* first, const SweepCase* last) {
+  for (; first != last; ++first) sweep_cases().push_back({family, first});
+  return true;
+}
+
+#define SOFTTRACE_SWEEP_LIST(family, cases)     \
+  [[maybe_unused]] const bool family##_listed = \
+      ::softtrace::test::list_sweep_cases(#family, std::begin(cases), std::end(cases))
+#ifdef SOFTTRACE_SWEEP_LIST_ONLY
+#define SOFTTRACE_SWEEP_FAMILY(family, cases) SOFTTRACE_SWEEP_LIST(family, cases)
+#else
+#define SOFTTRACE_SWEEP_FAMILY(family, cases)                                           \
+  INSTANTIATE_TEST_SUITE_P(family, NodeSweep, testing::ValuesIn(cases), SweepCaseName); \
+  SOFTTRACE_SWEEP_LIST(family, cases)
+#endif
 
 }  // namespace softtrace::test

@@ -79,7 +79,7 @@ const SweepCase kCases[] = {
      -1.0, Side::Above},
 };
 
-INSTANTIATE_TEST_SUITE_P(Blends, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+SOFTTRACE_SWEEP_FAMILY(Blends, kCases);
 
 }  // namespace
 }  // namespace softtrace::test
