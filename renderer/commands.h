@@ -17,8 +17,17 @@ struct RenderArgs {
   std::string aovs;
   bool quiet = false;
   LipschitzMode lipschitz = LipschitzMode::Local;
+  std::string crop, pixel_bounds, tile;  // at most one: the part of the frame to render
+  int frame = -1;                        // -1: the scene's camera, no animation frame
 };
 int run_render(const RenderArgs& a);
+
+struct MergeArgs {
+  std::vector<std::string> tiles;
+  std::string output;
+  bool quiet = false;
+};
+int run_merge(const MergeArgs& a);
 
 struct EvalArgs {
   std::string scene, object, points;

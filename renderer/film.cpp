@@ -108,7 +108,15 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ao
   spec.channelnames = names;
   spec.alpha_channel = png ? -1 : 3;
   spec.z_channel = (!png && aovs.depth) ? 4 : -1;
-  if (!png) spec.attribute("compression", "zip");
+  if (!png) {
+    spec.attribute("compression", "zip");
+    spec.x = film.x0;
+    spec.y = film.y0;
+    spec.full_x = spec.full_y = 0;
+    spec.full_width = film.full_width;
+    spec.full_height = film.full_height;
+    for (const auto& [name, value] : film.attributes) spec.attribute(name, value);
+  }
 
   const fs::path target(path);
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
@@ -116,8 +124,7 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ao
   {
     const std::lock_guard<std::mutex> lock(g_pending_mutex);
     const int fd = ::mkstemp(tmp.data());
-    if (fd < 0)
-      throw std::runtime_error(path + ": cannot create a file in '" + dir.string() + "'");
+    if (fd < 0) throw std::runtime_error(path + ": cannot create a file in '" + dir.string() + "'");
     ::close(fd);
     g_pending.push_back(tmp);
   }

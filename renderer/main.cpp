@@ -35,6 +35,18 @@ int main(int argc, char** argv) {
                    "Sphere-tracing bound: local (per stretch) or global")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+  auto* crop = render->add_option("--crop", r.crop,
+                                  "Render fractions X0,X1,Y0,Y1 of the image (pbrt's cropwindow)");
+  auto* bounds = render->add_option("--pixel-bounds", r.pixel_bounds,
+                                    "Render pixels [X0,X1) x [Y0,Y1), given as X0,X1,Y0,Y1");
+  auto* tile = render->add_option("--tile", r.tile,
+                                  "Render tile I of N (I/N, 0 <= I < N) of a balanced split");
+  crop->excludes(bounds, tile);
+  bounds->excludes(tile);
+  render
+      ->add_option("--frame", r.frame,
+                   "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
+      ->check(CLI::Range(0, 999999));
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -88,6 +100,13 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   bench->add_flag("--json", b.json, "Print the results as JSON");
 
+  MergeArgs m;
+  auto* merge = app.add_subcommand(
+      "merge", "Put tiles (render --tile/--crop EXRs of one frame) together into one image");
+  merge->add_option("tiles", m.tiles, "Tile images (.exr)")->required();
+  merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
+  merge->add_flag("-q,--quiet", m.quiet, "No summary line");
+
   auto* nodes = app.add_subcommand("nodes", "List the scene node types");
 
   try {
@@ -104,6 +123,7 @@ int main(int argc, char** argv) {
   if (*eval) return run_eval(e);
   if (*diff) return run_diff(d);
   if (*bench) return run_bench(b);
+  if (*merge) return run_merge(m);
   if (*nodes) return run_nodes();
   return 2;
 }
