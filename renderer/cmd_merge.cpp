@@ -171,16 +171,16 @@ int run_merge(const MergeArgs& a) {
     for (size_t i = 0; i < tiles.size(); ++i) {
       const ImageFile& t = tiles[i];
       const std::string& p = a.tiles[i];
-      if (hash_of(i) != hash_of(0))
-        throw std::runtime_error(
-            p + " and " + p0 + " are from different scenes or render settings (" + kHash + " " +
-            hash_of(i) + " vs " + hash_of(0) + "; '" + attribute(i, "softtrace/render") + "' vs '" +
-            attribute(0, "softtrace/render") + "')");
       if (t.full_width != first.full_width || t.full_height != first.full_height)
         throw std::runtime_error(p + " is a tile of a " + std::to_string(t.full_width) + "x" +
                                  std::to_string(t.full_height) + " image, " + p0 + " of a " +
                                  std::to_string(first.full_width) + "x" +
                                  std::to_string(first.full_height) + " one");
+      if (hash_of(i) != hash_of(0))
+        throw std::runtime_error(
+            p + " and " + p0 + " are from different scenes or render settings (" + kHash + " " +
+            hash_of(i) + " vs " + hash_of(0) + "; '" + attribute(i, "softtrace/render") + "' vs '" +
+            attribute(0, "softtrace/render") + "')");
       if (t.channels != first.channels)
         throw std::runtime_error(p + " and " + p0 + " have different channels");
       const Rect r{t.x0, t.x0 + t.width, t.y0, t.y0 + t.height};
