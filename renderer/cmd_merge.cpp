@@ -166,6 +166,7 @@ int run_merge(const MergeArgs& a) {
       const auto it = tiles[i].attributes.find(name);
       return it == tiles[i].attributes.end() ? std::string() : it->second;
     };
+    hash_of(0);  // not from softtrace render: say so before anything else
     const Channels channels = channels_of(first.channels, p0);
     std::vector<Rect> rects;
     for (size_t i = 0; i < tiles.size(); ++i) {
