@@ -1,11 +1,15 @@
 // softtrace merge: tiles of one frame (render --tile/--crop/--pixel-bounds outputs) put back
 // together. Every pixel of the frame must come from exactly one tile, and all tiles from the
 // same scene and settings, so the result has the bits of a single-process render.
+#include <pthread.h>
+
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "commands.h"
@@ -144,9 +148,25 @@ void paste(const ImageFile& tile, const Channels& c, Film& film) {
     }
 }
 
+// SIGINT/SIGTERM go to a watcher thread that removes the temporary output file, if any, and
+// exits: the lock film.cpp creates temporary files under keeps one from escaping it. A signal
+// after the rename changes nothing: the output is complete.
+void exit_cleanly_on_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  std::thread([set] {
+    int sig;
+    if (sigwait(&set, &sig) == 0) abandon_pending_writes_and_exit(128 + sig);
+  }).detach();
+}
+
 }  // namespace
 
 int run_merge(const MergeArgs& a) {
+  exit_cleanly_on_signals();
   try {
     check_output_path(a.output);
     std::vector<ImageFile> tiles;

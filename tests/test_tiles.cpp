@@ -214,6 +214,22 @@ TEST(Frames, FrameNumberGoesIntoTheNameAndTheCamera) {
   EXPECT_EQ(def.status, 0) << def.err;
   EXPECT_TRUE(fs::exists(dir + "/turntable.0002.exr"));
 
+  // A list of cameras: a frame with the scene's own camera is the render without --frame.
+  const std::string listed = dir + "/listed.json";
+  std::string text = read_file(source_path(kScene));
+  const std::string turntable =
+      R"("frames": 3, "turntable": { "axis": [0, 0, 1], "degrees": 360 })";
+  ASSERT_NE(text.find(turntable), std::string::npos);
+  text.replace(text.find(turntable), turntable.size(),
+               R"("cameras": [ { "eye": [0, -90, 0], "target": [0, 0, 0] },
+                               { "eye": [62, -82, 56], "target": [0, 0, -2], "fov": 24 } ])");
+  std::ofstream(listed) << text;
+  ASSERT_EQ(run_softtrace("render " + listed + " -q --frame 1 -o " + dir + "/l1.exr").status, 0);
+  ASSERT_EQ(run_softtrace("render " + listed + " -q -o " + dir + "/l.exr").status, 0);
+  expect_same_bits(dir + "/l.exr", dir + "/l1.exr");
+  ASSERT_EQ(run_softtrace("render " + listed + " -q --frame 0 -o " + dir + "/l0.exr").status, 0);
+  EXPECT_NE(read_image(dir + "/l0.exr").pixels, read_image(dir + "/l.exr").pixels);
+
   const auto refused = [&](const std::string& args, const std::string& expect) {
     const RunResult r = run_softtrace("render " + args + " -o " + dir + "/bad.exr");
     EXPECT_EQ(r.status, 2) << args;
