@@ -19,10 +19,19 @@ struct RenderArgs {
   bool quiet = false, progress = false;  // progress: the bar even when stderr is no terminal
   bool flatten = false, half = false, png_alpha = false;  // OutputOptions (film.h)
   LipschitzMode lipschitz = LipschitzMode::Local;
+  std::string crop, pixel_bounds, tile;  // at most one: the part of the frame to render
+  int frame = -1;                        // -1: the scene's camera, no animation frame
 };
 int run_render(const RenderArgs& a);
 // What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.
 void on_render_interrupt(int sig);
+
+struct MergeArgs {
+  std::vector<std::string> tiles;
+  std::string output;
+  bool quiet = false;
+};
+int run_merge(const MergeArgs& a);
 
 struct EvalArgs {
   std::string scene, object, points;

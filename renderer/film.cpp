@@ -55,6 +55,7 @@ ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo&
   img.attributes["software"] = "softtrace " SOFTTRACE_VERSION;
   img.attributes["softtrace/scene"] = info.scene_name;
   img.attributes["softtrace/sceneHash"] = info.scene_hash;
+  for (const auto& [name, value] : film.attributes) img.attributes[name] = value;
   extras.matrices["worldToCamera"] = info.world_to_camera;
   extras.matrices["worldToNDC"] = info.world_to_ndc;
   extras.floats["renderTimeSeconds"] = float(info.render_seconds);

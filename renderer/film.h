@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct Film {
   std::vector<float> depth;   // ray distance of the pixel-centre ray, +inf for background
   std::vector<float> normal;  // unit normal (x,y,z) at that hit, 0 for background
   std::vector<float> steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
+  std::map<std::string, std::string> attributes;  // more string attributes for EXR headers
 
   Film(int w, int h)
       : full_width(w),

@@ -1,9 +1,10 @@
 #include "frame.h"
 
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "camera.h"
@@ -27,47 +28,54 @@ void sample_offset(int s, double& dx, double& dy) {
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats) {
   const int W = film.width, H = film.height, spp = scene.image.spp;
-  const PinholeCamera camera(scene.camera, W, H);
+  const PinholeCamera camera(scene.camera, film.full_width, film.full_height);
+  const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
   tbb::combinable<long long> steps_total([] { return 0LL; });
 
+  // One tile per task: a tile is a few hundred pixels at most, so a cancel is noticed soon
+  // whatever the image's width.
   tbb::parallel_for(
-      tbb::blocked_range2d<int>(0, H, kTile, 0, W, kTile),
-      [&](const tbb::blocked_range2d<int>& tile) {
-        if (opt.cancel && *opt.cancel) return;
+      tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+      [&](const tbb::blocked_range<int>& tiles) {
         long long& steps_acc = steps_total.local();
-        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-          // Per row, not per tile: a costly scene must still stop soon after SIGINT.
+        for (int t = tiles.begin(); t < tiles.end(); ++t) {
           if (opt.cancel && *opt.cancel) return;
-          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const size_t i = size_t(y) * W + x;
-            Vec3 sum{0, 0, 0};
-            int covered = 0;
-            for (int s = 0; s < spp; ++s) {
-              double dx, dy;
-              sample_offset(s, dx, dy);
-              const Ray ray = camera.generate(x + dx, y + dy);
-              const TraceHit hit = rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
-              int steps = hit.steps;
-              if (hit.hit) {
-                const Shaded sh = shade(scene, rt.tracers, rt.embree, ray, hit, steps);
-                sum += sh.color;
-                ++covered;
-                if (s == 0) {
-                  film.depth[i] = static_cast<float>(hit.t);
-                  for (int k = 0; k < 3; ++k)
-                    film.normal[i * 3 + k] = static_cast<float>(sh.normal[k]);
+          const int tx = t % tiles_x * kTile, ty = t / tiles_x * kTile;
+          const int tw = std::min(kTile, W - tx), th = std::min(kTile, H - ty);
+          for (int y = ty; y < ty + th; ++y) {
+            for (int x = tx; x < tx + tw; ++x) {
+              const size_t i = size_t(y) * W + x;
+              // The ray comes from the pixel's place in the full frame.
+              const double fx = film.x0 + x, fy = film.y0 + y;
+              Vec3 sum{0, 0, 0};
+              int covered = 0;
+              for (int s = 0; s < spp; ++s) {
+                double dx, dy;
+                sample_offset(s, dx, dy);
+                const Ray ray = camera.generate(fx + dx, fy + dy);
+                const TraceHit hit = rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
+                int steps = hit.steps;
+                if (hit.hit) {
+                  const Shaded sh = shade(scene, rt.tracers, rt.embree, ray, hit, steps);
+                  sum += sh.color;
+                  ++covered;
+                  if (s == 0) {
+                    film.depth[i] = static_cast<float>(hit.t);
+                    for (int k = 0; k < 3; ++k)
+                      film.normal[i * 3 + k] = static_cast<float>(sh.normal[k]);
+                  }
+                } else if (s == 0) {  // the background adds nothing: film.rgba is premultiplied
+                  film.depth[i] = std::numeric_limits<float>::infinity();
                 }
-              } else if (s == 0) {  // the background adds nothing: film.rgba is premultiplied
-                film.depth[i] = std::numeric_limits<float>::infinity();
+                if (s == 0) film.steps[i] = static_cast<float>(steps);
+                steps_acc += steps;
               }
-              if (s == 0) film.steps[i] = static_cast<float>(steps);
-              steps_acc += steps;
+              for (int k = 0; k < 3; ++k) film.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
+              film.rgba[i * 4 + 3] = static_cast<float>(covered) / spp;
             }
-            for (int k = 0; k < 3; ++k) film.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
-            film.rgba[i * 4 + 3] = static_cast<float>(covered) / spp;
           }
+          if (progress) progress->advance(long(tw) * th);
         }
-        if (progress) progress->advance(tile.rows().size() * tile.cols().size());
       },
       tbb::simple_partitioner());
 

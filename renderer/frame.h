@@ -1,5 +1,6 @@
 // Pixel -> tile -> frame: the frame is a TBB parallel loop over tiles. Every pixel depends only
-// on its own rays, so the result is the same bits for any thread count.
+// on its own rays and its place in the full frame, so the result is the same bits for any thread
+// count, and a crop of the frame has the same bits as those pixels of the whole frame.
 #pragma once
 
 #include <atomic>
@@ -12,7 +13,7 @@ namespace softtrace {
 
 struct RenderOptions {
   LipschitzMode lipschitz = LipschitzMode::Local;
-  const std::atomic<bool>* cancel = nullptr;  // stops the frame early when set
+  const std::atomic<bool>* cancel = nullptr;  // stops the frame early when set (checked per tile)
 };
 
 // What a frame is traced with: every object's tracer and the Embree scene over them.
@@ -27,7 +28,8 @@ struct FrameStats {
   long long steps = 0;  // all field/interval evaluations, shadow rays included
 };
 
-// Renders scene.image.{width,height,spp}; returns false if cancelled.
+// Renders the film's data window of its full_width x full_height frame at scene.image.spp;
+// returns false if cancelled.
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats);
 

@@ -48,6 +48,18 @@ int main(int argc, char** argv) {
   render->add_flag("--half", r.half, "EXR: half-float R,G,B,A and normals (Z, steps stay float)");
   render->add_flag("--png-alpha", r.png_alpha,
                    "PNG: RGBA with straight alpha (default: RGB over the background)");
+  auto* crop = render->add_option("--crop", r.crop,
+                                  "Render fractions X0,X1,Y0,Y1 of the image (pbrt's cropwindow)");
+  auto* bounds = render->add_option("--pixel-bounds", r.pixel_bounds,
+                                    "Render pixels [X0,X1) x [Y0,Y1), given as X0,X1,Y0,Y1");
+  auto* tile = render->add_option("--tile", r.tile,
+                                  "Render tile I of N (I/N, 0 <= I < N) of a balanced split");
+  crop->excludes(bounds, tile);
+  bounds->excludes(tile);
+  render
+      ->add_option("--frame", r.frame,
+                   "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
+      ->check(CLI::Range(0, 999999));
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -126,6 +138,13 @@ int main(int argc, char** argv) {
   bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
       ->excludes(bench_quiet);
 
+  MergeArgs m;
+  auto* merge = app.add_subcommand(
+      "merge", "Put tiles (render --tile/--crop EXRs of one frame) together into one image");
+  merge->add_option("tiles", m.tiles, "Tile images (.exr)")->required();
+  merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
+  merge->add_flag("-q,--quiet", m.quiet, "No summary line");
+
   auto* nodes = app.add_subcommand("nodes", "List the scene node types");
 
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
@@ -151,6 +170,7 @@ int main(int argc, char** argv) {
   if (*eval) return run_eval(e);
   if (*diff) return run_diff(d);
   if (*bench) return run_bench(b);
+  if (*merge) return run_merge(m);
   if (*nodes) return run_nodes();
   return 2;
 }

@@ -57,6 +57,35 @@ Camera load_camera(const Params& p) {
   return c;
 }
 
+Animation load_animation(const Params& p) {
+  constexpr int kMaxFrames = 1000000;
+  Animation a;
+  const bool list = p.has("cameras"), turntable = p.has("turntable");
+  if (list == turntable) p.fail("", "expected either 'cameras' (a list) or 'turntable'");
+  if (list) {
+    const std::vector<Params> cameras = p.objects("cameras");
+    p.check(!cameras.empty(), "cameras", "expected at least one camera");
+    if (cameras.size() > size_t(kMaxFrames))
+      p.fail("cameras", "expected at most " + std::to_string(kMaxFrames) + " cameras");
+    for (const Params& c : cameras) a.cameras.push_back(load_camera(c));
+    a.frames = static_cast<int>(a.cameras.size());
+    if (p.has("frames"))
+      p.check(p.integer("frames", 1, kMaxFrames) == a.frames, "frames",
+              "expected the number of cameras (" + std::to_string(a.frames) + ")");
+  } else {
+    a.frames = p.integer("frames", 1, kMaxFrames);
+    const Params t = p.object("turntable");
+    a.axis = t.vec3("axis", a.axis);
+    t.check(length(a.axis) > 0 && std::isfinite(length(a.axis)), "axis",
+            "expected a non-zero, finite axis");
+    a.degrees = t.number("degrees", a.degrees);
+    t.check(std::isfinite(a.degrees), "degrees", "expected a finite angle");
+    t.finish();
+  }
+  p.finish();
+  return a;
+}
+
 ImageSettings load_image(const Params& p) {
   ImageSettings s;
   s.width = p.integer("width", 1, 16384, s.width);
@@ -192,7 +221,9 @@ Scene parse_scene(const std::string& text, const std::string& name) {
 
   Scene s;
   s.path = name;
+  s.file_hash = fnv1a(text);
   s.camera = load_camera(root.object("camera"));
+  if (root.has("animation")) s.animation = load_animation(root.object("animation"));
   if (root.has("image")) s.image = load_image(root.object("image"));
   s.background = load_color(root, "background", s.background);
   std::vector<Params> lights;
@@ -203,6 +234,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     for (const Params& l : lights) s.lights.push_back(load_light(l));
   } else {
     s.lights = default_lights(s.camera);
+    s.default_lights = true;
   }
   const std::vector<Params> objects = root.objects("objects");
   if (objects.empty()) root.fail("objects", "expected at least one object");
@@ -217,6 +249,29 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   check_point_light_distances(s, lights);
   root.finish();
   return s;
+}
+
+void set_frame(Scene& scene, int frame) {
+  const Animation& a = scene.animation;
+  if (a.frames == 0) throw SceneError(scene.path + ": the scene has no /animation");
+  if (frame < 0 || frame >= a.frames)
+    throw SceneError(scene.path + ": /animation: there is no frame " + std::to_string(frame) +
+                     " (frames 0 to " + std::to_string(a.frames - 1) + ")");
+  if (!a.cameras.empty()) {
+    scene.camera = a.cameras[frame];
+  } else {
+    // Rotations keep the angle between the view and `up`, so every frame's camera is valid.
+    const Mat3 r = Mat3::rotation(a.axis, a.degrees * frame / a.frames);
+    Camera& c = scene.camera;
+    c.eye = c.target + r * (c.eye - c.target);
+    c.up = r * c.up;
+  }
+  if (scene.default_lights) scene.lights = default_lights(scene.camera);
+}
+
+uint64_t fnv1a(const std::string& bytes, uint64_t hash) {
+  for (const unsigned char b : bytes) hash = (hash ^ b) * 0x100000001b3ULL;
+  return hash;
 }
 
 Scene load_scene(const std::string& path) {
