@@ -202,7 +202,7 @@ enum class Op { Union, Intersection, Difference };
 NodePtr create_ricci(const Params& p, const BuildContext& ctx, Op op) {
   if (ctx.convention == Convention::Zero)
     p.fail("type", "ricci_* applies to soft or constructive objects (MATH.md §5.3, §5.4)");
-  const double n = p.positive("n");
+  const double n = p.number("n");
   std::vector<NodePtr> c = build_children(p, "children", ctx);
   const bool soft = ctx.convention == Convention::Soft;
   std::vector<Arg> args(c.size(), Arg::Same);

@@ -88,7 +88,10 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   bench->add_flag("--json", b.json, "Print the results as JSON");
 
-  auto* nodes = app.add_subcommand("nodes", "List the scene node types");
+  bool dict = false;
+  auto* nodes = app.add_subcommand(
+      "nodes", "List the node types, potentials and radius transforms with their parameters");
+  nodes->add_flag("--dict", dict, "Print a libFuzzer dictionary of their names instead");
 
   try {
     app.parse(argc, argv);
@@ -104,6 +107,6 @@ int main(int argc, char** argv) {
   if (*eval) return run_eval(e);
   if (*diff) return run_diff(d);
   if (*bench) return run_bench(b);
-  if (*nodes) return run_nodes();
+  if (*nodes) return run_nodes(dict);
   return 2;
 }
