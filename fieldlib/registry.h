@@ -28,6 +28,9 @@ struct BuildContext {
   Family slot = Family::Any;
   // The kind being built (set for its `create`): its slots' families come from the table.
   const KindInfo* kind = nullptr;
+  // The skeleton structure of the soft object's distance (modulation_check.h), while its radius
+  // transform is built; empty when unknown.
+  std::string skeleton;
   // Where warnings about an accepted scene go (one line each, located); stderr when null.
   void (*warn)(const std::string& line) = nullptr;
 };

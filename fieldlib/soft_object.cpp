@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "modulation_check.h"
 #include "node_util.h"
 #include "potentials.h"
 #include "radius_transforms.h"
@@ -257,9 +258,13 @@ NodePtr create_modulated(const Params& r, NodePtr d, PotentialPtr P, const Build
                          std::unique_ptr<RadiusProfile> profile, WSource src, const char* key,
                          double scale) {
   const double w_min = r.number("w_min", 1e-4);
+  check_same_skeleton(r, key, ctx);
   NodePtr f = build_node(r, key, ctx);
-  return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), std::move(profile),
-                                                 src, std::move(f), scale, w_min);
+  const FieldNode &dn = *d, &fn = *f;
+  NodePtr node = std::make_unique<TransformedSoftObject>(
+      std::move(d), std::move(P), std::move(profile), src, std::move(f), scale, w_min);
+  check_modulation_side(r, key, *node, dn, fn, scale, src == WSource::Outer, ctx);
+  return node;
 }
 
 }  // namespace
@@ -304,7 +309,9 @@ NodePtr create_soft_object(const Params& p, const BuildContext& ctx) {
   NodePtr d = build_node(p, "distance", ctx);
   PotentialPtr P = p.has("potential") ? build_potential(p.object("potential")) : make_blanc(0);
   if (!p.has("radii")) return std::make_unique<SoftObject>(std::move(d), std::move(P));
-  return build_radius_transform(p.object("radii"), std::move(d), std::move(P), ctx);
+  BuildContext inner = ctx;
+  inner.skeleton = skeleton_of(p.raw().at("distance"));
+  return build_radius_transform(p.object("radii"), std::move(d), std::move(P), inner);
 }
 
 }  // namespace softtrace
