@@ -263,7 +263,8 @@ std::vector<KindInfo> make_kinds() {
       node("offset", Z,
            {children(D, 1, 1), Spec("scale", T::Number).optional("1").noted("s != 0"),
             Spec("level", T::Number).optional("1")},
-           "s*(child - c): a distance function as a zero-surface function (003)", create_offset),
+           "s*(child - c): a distance function as a zero-surface function (003 §2.1)",
+           create_offset),
       node("bt_union", Z, bt_params(true), "BT_k union (003 Eqs. 2-5)", create_bt_union),
       node("bt_intersection", Z, bt_params(true), "-BT_k(-f_1, ..., -f_k) (003 §3.3)",
            create_bt_intersection),
@@ -397,7 +398,7 @@ std::string type_text(const ParamSpec& p) {
       std::string s, c = p.choices;
       for (size_t at = 0; at <= c.size();) {
         const size_t bar = std::min(c.find('|', at), c.size());
-        s += (s.empty() ? "\"" : " | \"") + c.substr(at, bar - at) + "\"";
+        s += (s.empty() ? "\"" : " or \"") + c.substr(at, bar - at) + "\"";
         at = bar + 1;
       }
       return s;

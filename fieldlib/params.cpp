@@ -1,6 +1,7 @@
 #include "params.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -39,8 +40,12 @@ std::string unknown_key_message(const std::string& key, const std::vector<std::s
   // Keys longer than 64 characters are no one's typo; skip the quadratic table for them.
   if (key.size() <= 64)
     for (const auto& k : known) {
-      const size_t d = edit_distance(key, k);
-      if (k != key && d < best_d && d < k.size()) best = k, best_d = d;
+      // Case differences cost nothing; a key as short as the edits needed is no near miss.
+      std::string a = key, b = k;
+      for (auto& c : a) c = char(std::tolower(static_cast<unsigned char>(c)));
+      for (auto& c : b) c = char(std::tolower(static_cast<unsigned char>(c)));
+      const size_t d = edit_distance(a, b);
+      if (k != key && d < best_d && d < std::max(a.size(), b.size())) best = k, best_d = d;
     }
   std::string m = "unknown key '" + key + "'";
   if (!best.empty()) m += " (did you mean '" + best + "'?)";

@@ -13,6 +13,11 @@ NodePtr build_from_json(const std::string& text, Convention convention) {
   return build_field(Params(j, "", std::make_shared<const std::string>("<test>")), ctx);
 }
 
+std::vector<const SweepCase*>& sweep_cases() {
+  static std::vector<const SweepCase*> cases;
+  return cases;
+}
+
 namespace {
 
 constexpr int kPoints = 4000;

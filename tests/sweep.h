@@ -2,12 +2,15 @@
 // kinds): gradient vs central differences, Lipschitz bounds vs sampled gradients and difference
 // quotients (global and over random boxes), interval enclosures vs sampled values, and region
 // boxes vs sampled points. A family adds its cases with
-//   INSTANTIATE_TEST_SUITE_P(Family, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+//   SOFTTRACE_SWEEP(Family, kCases);
+// which also records them for the test that every kind of kinds.h has a case (test_kinds.cpp).
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "registry.h"
 
@@ -33,6 +36,17 @@ inline std::string SweepCaseName(const testing::TestParamInfo<SweepCase>& info) 
 }
 
 class NodeSweep : public testing::TestWithParam<SweepCase> {};
+
+// Every case of every family, as registered by SOFTTRACE_SWEEP.
+std::vector<const SweepCase*>& sweep_cases();
+inline int register_sweep_cases(const SweepCase* begin, const SweepCase* end) {
+  for (const SweepCase* c = begin; c != end; ++c) sweep_cases().push_back(c);
+  return 0;
+}
+#define SOFTTRACE_SWEEP(Family, cases)                                                  \
+  INSTANTIATE_TEST_SUITE_P(Family, NodeSweep, testing::ValuesIn(cases), SweepCaseName); \
+  [[maybe_unused]] const int Family##_registered =                                      \
+      register_sweep_cases(std::begin(cases), std::end(cases))
 
 // Builds a node from JSON text; the text is parsed with comments allowed.
 NodePtr build_from_json(const std::string& json, Convention convention = Convention::Soft);

@@ -81,7 +81,7 @@ const SweepCase kCases[] = {
      Convention::Zero, 0.0, Side::Above},
 };
 
-INSTANTIATE_TEST_SUITE_P(Blends, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+SOFTTRACE_SWEEP(Blends, kCases);
 
 }  // namespace
 }  // namespace softtrace::test

@@ -80,7 +80,7 @@ const SweepCase kCases[] = {
 #undef BAR
 #undef ROD
 
-INSTANTIATE_TEST_SUITE_P(BT, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+SOFTTRACE_SWEEP(BT, kCases);
 
 }  // namespace
 }  // namespace softtrace::test

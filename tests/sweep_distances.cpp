@@ -148,7 +148,7 @@ const SweepCase kCases[] = {
 
 #undef BELOW
 
-INSTANTIATE_TEST_SUITE_P(Distances, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+SOFTTRACE_SWEEP(Distances, kCases);
 
 }  // namespace
 }  // namespace softtrace::test

@@ -57,7 +57,7 @@ const SweepCase kCases[] = {
      kFig12},
 };
 
-INSTANTIATE_TEST_SUITE_P(Foundation, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+SOFTTRACE_SWEEP(Foundation, kCases);
 
 }  // namespace
 }  // namespace softtrace::test

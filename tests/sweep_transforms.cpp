@@ -65,7 +65,7 @@ const SweepCase kCases[] = {
      kWide},
 };
 
-INSTANTIATE_TEST_SUITE_P(Transforms, NodeSweep, testing::ValuesIn(kCases), SweepCaseName);
+SOFTTRACE_SWEEP(Transforms, kCases);
 
 }  // namespace
 }  // namespace softtrace::test
