@@ -235,8 +235,7 @@ NodePtr create_polar_prism(const Params& p, const BuildContext&) {
   const double A = p.number("amplitude");  // 0 <= A < 1 (the table): R(φ) > 0
   const std::string name = p.string("profile");
   const Profile kind = name == "cosine" ? Profile::Cosine : Profile::Triangle;
-  return std::make_unique<PolarPrism>(r0, k, A, kind, p.number("half_height"),
-                                      p.number("n", 20));
+  return std::make_unique<PolarPrism>(r0, k, A, kind, p.number("half_height"), p.number("n", 20));
 }
 
 }  // namespace softtrace
