@@ -265,40 +265,37 @@ NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
           name +
               " is defined in the zero convention only (inside f <= 0, MATH.md §7.4); set the "
               "object's \"convention\" to \"zero\"");
-  std::vector<NodePtr> children = build_children(p, "children", ctx, 2);
+  std::vector<NodePtr> children = build_children(p, "children", ctx);
   const size_t k = children.size();
 
   std::vector<double> m(k, 1.0);
   if (kind != BtKind::Displacement && p.has("m")) m = p.numbers_or_scalar("m", k);
-  for (double mi : m) p.check(mi > 0, "m", "expected every m_i > 0 (003 Eq. 2)");
 
-  const std::string base = p.string("base");
+  const std::string base = p.string("base");  // "conic" or "hyperellipsoid" (the table)
   BtOperator op;
   double conic_p = 0, r1 = 0, r2 = 0;
   if (base == "conic") {
     p.check(k == 2, "children",
             "the conic base blends exactly 2 children (MATH.md §7.2); use \"hyperellipsoid\" "
             "for more");
-    r1 = p.positive("r1");
+    r1 = p.positive("r1");  // required with the conic base: the table cannot say so
     r2 = p.positive("r2");
     conic_p = p.number("p");
     p.check(conic_p < r1 * r2, "p",
             "expected p < r1*r2 (MATH.md §6.1: p = r1*r2 degenerates to the chord)");
     op = BtOperator::conic(r1, r2, conic_p, m);
-  } else if (base == "hyperellipsoid") {
+  } else {
     std::vector<double> r = p.numbers_or_scalar("r", k), pe = p.numbers_or_scalar("p", k);
-    for (double ri : r) p.check(ri > 0, "r", "expected every r_i > 0 (MATH.md §7.3)");
     for (double pi : pe)
       p.check(pi > 1, "p", "expected every p_i > 1 (MATH.md §7.3: T is C^1, its root unique)");
     op = BtOperator::hyperellipsoid(std::move(r), std::move(pe), m);
-  } else {
-    p.fail("base", "expected \"conic\" or \"hyperellipsoid\", got '" + base + "'");
   }
 
   double omega = 0;
   if (p.has("bulge_elimination")) {
     const Params be = p.object("bulge_elimination");
     omega = be.positive("omega");
+    be.check(omega <= kMaxMagnitude, "omega", "expected a number of magnitude at most 1e150");
     be.finish();
     p.check(k == 2, "bulge_elimination",
             "bulge elimination takes exactly 2 children (003 §5, MATH.md §7.6)");

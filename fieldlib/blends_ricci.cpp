@@ -200,32 +200,32 @@ class Ricci final : public FieldNode {
   double n_, global_L_;
 };
 
-enum class Op { Union, Intersection, Difference };
+enum class SetOp { Union, Intersection, Difference };
 
-NodePtr create_ricci(const Params& p, const BuildContext& ctx, Op op) {
+NodePtr create_ricci(const Params& p, const BuildContext& ctx, SetOp op) {
   if (ctx.convention == Convention::Zero)
     p.fail("type", "ricci_* applies to soft or constructive objects (MATH.md §5.3, §5.4)");
-  const double n = p.positive("n");
+  const double n = p.number("n");
   std::vector<NodePtr> c = build_children(p, "children", ctx);
   const bool soft = ctx.convention == Convention::Soft;
   std::vector<Arg> args(c.size(), Arg::Same);
-  if (op == Op::Difference)
+  if (op == SetOp::Difference)
     std::fill(args.begin() + 1, args.end(), soft ? Arg::SoftComplement : Arg::CgComplement);
   // Soft union and constructive intersection/difference are the q = n means.
-  const bool positive = soft ? op == Op::Union : op != Op::Union;
+  const bool positive = soft ? op == SetOp::Union : op != SetOp::Union;
   return std::make_unique<Ricci>(std::move(c), std::move(args), positive, n);
 }
 
 }  // namespace
 
 NodePtr create_ricci_union(const Params& p, const BuildContext& ctx) {
-  return create_ricci(p, ctx, Op::Union);
+  return create_ricci(p, ctx, SetOp::Union);
 }
 NodePtr create_ricci_intersection(const Params& p, const BuildContext& ctx) {
-  return create_ricci(p, ctx, Op::Intersection);
+  return create_ricci(p, ctx, SetOp::Intersection);
 }
 NodePtr create_ricci_difference(const Params& p, const BuildContext& ctx) {
-  return create_ricci(p, ctx, Op::Difference);
+  return create_ricci(p, ctx, SetOp::Difference);
 }
 
 }  // namespace softtrace

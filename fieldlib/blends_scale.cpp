@@ -116,7 +116,7 @@ class Scale final : public FieldNode {
 NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
   if (ctx.convention == Convention::Zero)
     p.fail("type", "scale_* applies to soft or constructive objects (MATH.md §6.3)");
-  const double r1 = p.positive("r1"), r2 = p.positive("r2"), pp = p.number("p");
+  const double r1 = p.number("r1"), r2 = p.number("r2"), pp = p.number("p");
   p.check(pp < r1 * r2, "p", "expected p < r1*r2 (MATH.md §6.1)");
   // Constructive: union BSA2, intersection BSS2; soft fields swap the roles ([CONV-2], §6.3.4).
   const bool bsa = (ctx.convention == Convention::Constructive) == union_op;
@@ -125,7 +125,6 @@ NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
     p.check(r2 < 1, "r2", "expected 0 < r2 < 1 for BSS2 (MATH.md §6.3.3, R24)");
   }
   std::vector<NodePtr> c = build_children(p, "children", ctx);
-  p.check(c.size() == 2, "children", "expected exactly 2 children");
   return std::make_unique<Scale>(std::move(c[0]), std::move(c[1]), r1, r2, pp, bsa);
 }
 

@@ -247,8 +247,7 @@ NodePtr create_max(const Params& p, const BuildContext& ctx) {
   return std::make_unique<MinMax>(build_children(p, "children", ctx), false);
 }
 NodePtr create_complement(const Params& p, const BuildContext& ctx) {
-  std::vector<NodePtr> c = build_children(p, "children", ctx, 1);
-  p.check(c.size() == 1, "children", "expected exactly one child");
+  std::vector<NodePtr> c = build_children(p, "children", ctx);
   return std::make_unique<Complement>(std::move(c[0]), ctx.convention);
 }
 

@@ -178,12 +178,12 @@ class SuperEllipsoidalIntersection final : public FieldNode {
 }  // namespace
 
 NodePtr create_super_ellipsoidal_union(const Params& p, const BuildContext& ctx) {
-  const double n = p.positive("n");
+  const double n = p.number("n");
   return std::make_unique<SuperEllipsoidalUnion>(build_children(p, "children", ctx), n);
 }
 
 NodePtr create_super_ellipsoidal_intersection(const Params& p, const BuildContext& ctx) {
-  const double n = p.positive("n");
+  const double n = p.number("n");
   return std::make_unique<SuperEllipsoidalIntersection>(build_children(p, "children", ctx), n);
 }
 

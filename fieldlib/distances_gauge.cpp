@@ -157,7 +157,7 @@ class SphericalProduct final : public FieldNode {
 
 // Terms for radii a1..a3 and side lengths t1..t6 (t_{2i-1} on +axis i, t_{2i} on -axis i).
 NodePtr spherical_product(const Params& p, double n1, double n2, double half_length) {
-  const Vec3 a = positive_radii(p, "radii");
+  const Vec3 a = p.vec3("radii");
   const std::vector<double> t = side_lengths(p, "t", 6);
   OneSidedTerm terms[3];
   for (int i = 0; i < 3; ++i) terms[i] = {a[i] * t[2 * i], a[i] * t[2 * i + 1], 0.0};
@@ -168,19 +168,17 @@ NodePtr spherical_product(const Params& p, double n1, double n2, double half_len
 }  // namespace
 
 NodePtr create_lp_metric(const Params& p, const BuildContext&) {
-  return std::make_unique<LpMetric>(positive_radii(p, "radii"), p.positive("n"));
+  return std::make_unique<LpMetric>(p.vec3("radii"), p.number("n"));
 }
 
 NodePtr create_superquadric(const Params& p, const BuildContext&) {
-  const double n1 = p.positive("n1"), n2 = p.positive("n2");
+  const double n1 = p.number("n1"), n2 = p.number("n2");
   return spherical_product(p, n1, n2, 0.0);
 }
 
 NodePtr create_superelliptic_cylinder(const Params& p, const BuildContext&) {
-  const double n = p.positive("n");
-  const double L = p.number("half_length");
-  p.check(L >= 0, "half_length", "expected a half-length L >= 0 (MATH.md §2.9)");
-  return spherical_product(p, n, n, L);
+  const double n = p.number("n");
+  return spherical_product(p, n, n, p.number("half_length"));
 }
 
 }  // namespace softtrace

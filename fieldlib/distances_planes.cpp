@@ -165,11 +165,11 @@ class GeneralizedDistance final : public FieldNode {
 }  // namespace
 
 NodePtr create_parallel_planes(const Params& p, const BuildContext&) {
-  return std::make_unique<ParallelPlanes>(unit_normal(p, "normal"), p.positive("a"));
+  return std::make_unique<ParallelPlanes>(unit_normal(p, "normal"), p.number("a"));
 }
 
 NodePtr create_one_branch_plane(const Params& p, const BuildContext&) {
-  return std::make_unique<OneBranchPlane>(unit_normal(p, "normal"), p.positive("a"));
+  return std::make_unique<OneBranchPlane>(unit_normal(p, "normal"), p.number("a"));
 }
 
 NodePtr create_generalized_distance(const Params& p, const BuildContext&) {
@@ -181,14 +181,7 @@ NodePtr create_generalized_distance(const Params& p, const BuildContext&) {
     normals[i] = normals[i] / l;
   }
   const std::vector<double> a = p.numbers_or_scalar("a", k);
-  const bool a_list = p.raw().at("a").is_array();
-  for (size_t i = 0; i < k; ++i) {
-    if (a_list)
-      p.check_at(a[i] > 0, "a", i, "expected a distance a > 0");
-    else
-      p.check(a[i] > 0, "a", "expected a distance a > 0");
-  }
-  const double n = p.positive("n");
+  const double n = p.number("n");
   const std::vector<double> tp = side_lengths(p, "t_pos", k), tn = side_lengths(p, "t_neg", k);
   std::vector<OneSidedTerm> terms;
   for (size_t i = 0; i < k; ++i) terms.push_back({a[i] * tp[i], a[i] * tn[i], 0.0});

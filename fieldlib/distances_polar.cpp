@@ -225,25 +225,17 @@ class PolarPrism final : public FieldNode {
 }  // namespace
 
 NodePtr create_torus(const Params& p, const BuildContext&) {
-  const double R = p.number("major_radius");
-  p.check(R >= 0, "major_radius", "expected a major radius R >= 0");
-  const std::vector<double> r = p.numbers("radii");
-  p.check(r.size() == 2, "radii", "expected [a, b]: the tube's radial and axial radii");
-  for (int i = 0; i < 2; ++i) p.check_at(r[i] > 0, "radii", i, "expected a radius > 0");
-  return std::make_unique<Torus>(R, r[0], r[1], p.positive("n", 2));
+  const std::vector<double> r = p.numbers("radii");  // [a, b]
+  return std::make_unique<Torus>(p.number("major_radius"), r[0], r[1], p.number("n", 2));
 }
 
 NodePtr create_polar_prism(const Params& p, const BuildContext&) {
-  const double r0 = p.positive("radius");
+  const double r0 = p.number("radius");
   const int k = p.integer("lobes", 1, 1000);
-  const double A = p.number("amplitude");
-  p.check(A >= 0 && A < 1, "amplitude", "expected 0 <= A < 1 so that R(φ) > 0");
+  const double A = p.number("amplitude");  // 0 <= A < 1 (the table): R(φ) > 0
   const std::string name = p.string("profile");
-  p.check(name == "cosine" || name == "triangle", "profile",
-          "expected \"cosine\" (rose) or \"triangle\" (star), got \"" + name + "\"");
   const Profile kind = name == "cosine" ? Profile::Cosine : Profile::Triangle;
-  return std::make_unique<PolarPrism>(r0, k, A, kind, p.positive("half_height"),
-                                      p.positive("n", 20));
+  return std::make_unique<PolarPrism>(r0, k, A, kind, p.number("half_height"), p.number("n", 20));
 }
 
 }  // namespace softtrace

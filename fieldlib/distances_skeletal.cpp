@@ -64,7 +64,7 @@ class Segment final : public FieldNode {
 }  // namespace
 
 NodePtr create_segment(const Params& p, const BuildContext&) {
-  return std::make_unique<Segment>(p.vec3("p0"), p.vec3("p1"), p.positive("radius"));
+  return std::make_unique<Segment>(p.vec3("p0"), p.vec3("p1"), p.number("radius"));
 }
 
 }  // namespace softtrace

@@ -47,9 +47,7 @@ class Offset final : public FieldNode {
 }  // namespace
 
 NodePtr create_offset(const Params& p, const BuildContext& ctx) {
-  std::vector<NodePtr> children = build_children(p, "children", ctx, 1);
-  p.check(children.size() == 1, "children",
-          "expected exactly 1 child, got " + std::to_string(children.size()));
+  std::vector<NodePtr> children = build_children(p, "children", ctx);
   const double s = p.number("scale", 1.0);
   p.check(s != 0, "scale", "expected scale != 0 (s = 0 gives a constant field)");
   const double c = p.number("level", 1.0);

@@ -1,5 +1,7 @@
 #include "params.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -11,7 +13,44 @@ std::string describe(const nlohmann::json& v) {
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }
+
+// Optimal string alignment distance (Damerau-Levenshtein without repeated edits of a substring).
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
 }  // namespace
+
+std::string json_excerpt(const nlohmann::json& v) {
+  return describe(v);
+}
+
+std::string unknown_key_message(const std::string& key, const std::vector<std::string>& known) {
+  std::string best;
+  size_t best_d = 3;
+  // Keys longer than 64 characters are no one's typo; skip the quadratic table for them.
+  if (key.size() <= 64)
+    for (const auto& k : known) {
+      // Case differences cost nothing; a key as short as the edits needed is no near miss.
+      std::string a = key, b = k;
+      for (auto& c : a) c = char(std::tolower(static_cast<unsigned char>(c)));
+      for (auto& c : b) c = char(std::tolower(static_cast<unsigned char>(c)));
+      const size_t d = edit_distance(a, b);
+      if (k != key && d < best_d && d < std::max(a.size(), b.size())) best = k, best_d = d;
+    }
+  std::string m = "unknown key '" + key + "'";
+  if (!best.empty()) m += " (did you mean '" + best + "'?)";
+  return m;
+}
 
 std::string json_pointer_escape(const std::string& key) {
   std::string out;
@@ -46,9 +85,13 @@ void Params::fail_at(const std::string& key, const std::string& index_path,
   throw SceneError(where(key) + "/" + index_path + ": " + what);
 }
 
-bool Params::has(const std::string& key) const { return j_->contains(key); }
+bool Params::has(const std::string& key) const {
+  wanted_.insert(key);
+  return j_->contains(key);
+}
 
 const nlohmann::json& Params::at(const std::string& key) const {
+  wanted_.insert(key);
   auto it = j_->find(key);
   if (it == j_->end()) fail(key, "missing required parameter '" + key + "'");
   used_.insert(key);
@@ -171,9 +214,10 @@ std::vector<Params> Params::objects(const std::string& key) const {
 }
 
 void Params::finish() const {
+  const std::vector<std::string> known(wanted_.begin(), wanted_.end());
   for (auto it = j_->begin(); it != j_->end(); ++it)
     if (!used_.count(it.key()))
-      fail(json_pointer_escape(it.key()), "unknown parameter '" + it.key() + "'");
+      fail(json_pointer_escape(it.key()), unknown_key_message(it.key(), known));
 }
 
 }  // namespace softtrace

@@ -42,7 +42,7 @@ class Params {
   std::string string(const std::string& key, const std::string& fallback) const;
   Vec3 vec3(const std::string& key) const;
   Vec3 vec3(const std::string& key, const Vec3& fallback) const;
-  std::vector<Vec3> vec3s(const std::string& key) const;  // a non-empty array of [x, y, z]
+  std::vector<Vec3> vec3s(const std::string& key) const;      // a non-empty array of [x, y, z]
   std::vector<double> numbers(const std::string& key) const;  // a non-empty array of numbers
   // A number or an array of `count` numbers (a number is repeated).
   std::vector<double> numbers_or_scalar(const std::string& key, size_t count) const;
@@ -66,7 +66,7 @@ class Params {
   void check_at(bool ok, const std::string& key, size_t index, const std::string& what) const {
     if (!ok) fail_at(key, std::to_string(index), what);
   }
-  // Reports the first key that no one read.
+  // Reports the first key that no one read, naming the nearest key that was asked for.
   void finish() const;
 
   std::string where(const std::string& key) const;  // "file: /pointer/key"
@@ -78,8 +78,14 @@ class Params {
   std::string pointer_;
   std::shared_ptr<const std::string> file_;
   mutable std::set<std::string> used_;
+  mutable std::set<std::string> wanted_;  // every key asked for, present or not
 };
 
 std::string json_pointer_escape(const std::string& key);
+// A JSON value shortened for an error message.
+std::string json_excerpt(const nlohmann::json& v);
+// "unknown key 'raduis' (did you mean 'radius'?)": the suggestion is the nearest of `known`
+// within two edits (insertions, deletions, substitutions, swaps of neighbours), if any.
+std::string unknown_key_message(const std::string& key, const std::vector<std::string>& known);
 
 }  // namespace softtrace

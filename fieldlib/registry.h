@@ -1,13 +1,17 @@
 // The one place that turns scene type names into field nodes, potentials and radius transforms
-// (pbrt's "parse → describe → create"): each kind's `create` reads its own parameters from a
-// Params; placement (`translate`, `rotate`) and unknown-key checks happen here for every node.
+// (pbrt's "parse → describe → create"): the kind comes from the table in kinds.h, its parameters
+// are checked against the table (unknown keys with a near miss first, then presence, types and
+// ranges), the slot's family is checked, and only then does the kind's `create` read them.
+// Placement (`translate`, `rotate`) is read here for every node.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "kinds.h"
 #include "node.h"
 #include "params.h"
+#include "potentials.h"
 
 namespace softtrace {
 
@@ -19,21 +23,37 @@ constexpr size_t kMaxChildren = 10000;
 struct BuildContext {
   Convention convention = Convention::Soft;
   int depth = 0;  // nodes above the one being built
+  // The family the slot being filled takes: an object's field takes its convention's
+  // (Family::ConventionField); a node built on its own anything.
+  Family slot = Family::Any;
+  // The kind being built (set for its `create`): its slots' families come from the table.
+  const KindInfo* kind = nullptr;
+  // The skeleton structure of the soft object's distance (modulation_check.h), while its radius
+  // transform is built; empty when unknown.
+  std::string skeleton;
+  // Where warnings about an accepted scene go (one line each, located); stderr when null.
+  void (*warn)(const std::string& line) = nullptr;
 };
 
-struct NodeKind {
-  const char* name;
-  const char* family;   // "distance", "blend", "object"
-  const char* summary;  // one line for --help and the README's node list
-  NodePtr (*create)(const Params&, const BuildContext&);
-};
-
-const std::vector<NodeKind>& node_kinds();
-
-// Builds the node described by `p` (which must have "type"), wrapped in its placement.
+// Builds the node described by `p` (which must have "type") for the slot ctx.slot, wrapped in its
+// placement.
 NodePtr build_field(const Params& p, const BuildContext& ctx);
-// Builds every element of the array `key`; at least `min_count` of them.
+// Builds the node-valued parameter `key` of the kind being built (ctx.kind), for its slot family.
+NodePtr build_node(const Params& p, const std::string& key, const BuildContext& ctx);
+// Builds every element of the node-array parameter `key` of ctx.kind (count checked by the table).
 std::vector<NodePtr> build_children(const Params& p, const std::string& key,
-                                    const BuildContext& ctx, size_t min_count = 2);
+                                    const BuildContext& ctx);
+// The potential named by p["type"].
+PotentialPtr build_potential(const Params& p);
+// The transformed soft object P(T(d)) for the radius transform described by `r`.
+NodePtr build_radius_transform(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx);
+
+// Checks `p` against `kind`'s parameters: unknown keys (with the nearest known name), then
+// missing required ones, then each present one's type and range. `placement` allows translate
+// and rotate.
+void check_params(const KindInfo& kind, const Params& p, bool placement);
+
+// Reports a warning line through ctx.warn (or on stderr).
+void warn(const BuildContext& ctx, const std::string& line);
 
 }  // namespace softtrace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "modulation_check.h"
 #include "node_util.h"
 #include "potentials.h"
 #include "program.h"
@@ -261,61 +262,65 @@ class TransformedSoftObject final : public FieldNode {
   Box support_;  // region(0+, Above): the field is 0 outside
 };
 
-NodePtr create_transformed(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
-  const std::string type = r.string("type");
-  if (type == "T_n") {
-    const double w1 = r.positive("w1"), w2 = r.positive("w2");
-    r.check(w2 <= 1, "w2", "expected 0 < w2 <= 1 (MATH.md §4.2)");
-    r.check(w2 <= 2 * w1, "w2", "expected w2 <= 2*w1, else T_n is not monotone (MATH.md §4.2)");
-    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P),
-                                                   make_profile_n(W2Rule::Fixed, w2), w1);
-  }
-  if (type == "T_l")
-    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), make_profile_l(),
-                                                   r.positive("w1"));
-  if (type == "T_r") {
-    const double w2 = r.positive("w2");
-    r.check(w2 <= 1, "w2", "expected 0 < w2 <= 1 (MATH.md §4.4)");
-    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), make_profile_r(),
-                                                   w2);
-  }
-  struct Modulated {
-    const char* name;
-    WSource src;
-    std::unique_ptr<RadiusProfile> (*profile)();
-    const char* key;
-    double scale;
-  };
-  static const Modulated kModulated[] = {
-      {"T_an", WSource::Outer, [] { return make_profile_n(W2Rule::Double); }, "modulation", 1},
-      {"T_al", WSource::Outer, make_profile_l, "modulation", 1},
-      {"T_sn", WSource::Inner, [] { return make_profile_n(W2Rule::Equal); }, "modulation", 1},
-      {"T_sr", WSource::Inner, make_profile_r, "modulation", 1},
-      // [000]'s contour surface fc = 1 is T_an with f_a = fc/2 (MATH.md §4.8, [VIR-2]).
-      {"contour", WSource::Outer, [] { return make_profile_n(W2Rule::Double); }, "contour", 0.5},
-  };
-  for (const auto& m : kModulated) {
-    if (type != m.name) continue;
-    const double w_min = r.positive("w_min", 1e-4);
-    r.check(w_min < 0.5, "w_min", "expected 0 < w_min < 0.5 (MATH.md §4.9)");
-    NodePtr f = build_field(r.object(m.key), ctx);
-    return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), m.profile(), m.src,
-                                                   std::move(f), m.scale, w_min);
-  }
-  r.fail("type", "unknown radius transform '" + type +
-                     "' (expected one of: T_n, T_l, T_r, T_an, T_al, T_sn, T_sr, contour)");
+// T_a*, T_s* and contour: w from the modulation (or contour) node `key` (MATH.md §4.5-§4.8).
+NodePtr create_modulated(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx,
+                         std::unique_ptr<RadiusProfile> profile, WSource src, const char* key,
+                         double scale) {
+  const double w_min = r.number("w_min", 1e-4);
+  check_same_skeleton(r, key, ctx);
+  NodePtr f = build_node(r, key, ctx);
+  const FieldNode &dn = *d, &fn = *f;
+  NodePtr node = std::make_unique<TransformedSoftObject>(
+      std::move(d), std::move(P), std::move(profile), src, std::move(f), scale, w_min);
+  check_modulation_side(r, key, *node, dn, fn, scale, src == WSource::Outer, ctx);
+  return node;
 }
 
 }  // namespace
 
+NodePtr create_T_n(const Params& r, NodePtr d, PotentialPtr P, const BuildContext&) {
+  const double w1 = r.number("w1"), w2 = r.number("w2");
+  r.check(w2 <= 2 * w1, "w2", "expected w2 <= 2*w1, else T_n is not monotone (MATH.md §4.2)");
+  return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P),
+                                                 make_profile_n(W2Rule::Fixed, w2), w1);
+}
+NodePtr create_T_l(const Params& r, NodePtr d, PotentialPtr P, const BuildContext&) {
+  return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), make_profile_l(),
+                                                 r.number("w1"));
+}
+NodePtr create_T_r(const Params& r, NodePtr d, PotentialPtr P, const BuildContext&) {
+  return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P), make_profile_r(),
+                                                 r.number("w2"));
+}
+NodePtr create_T_an(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
+  return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_n(W2Rule::Double),
+                          WSource::Outer, "modulation", 1);
+}
+NodePtr create_T_al(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
+  return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_l(), WSource::Outer,
+                          "modulation", 1);
+}
+NodePtr create_T_sn(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
+  return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_n(W2Rule::Equal),
+                          WSource::Inner, "modulation", 1);
+}
+NodePtr create_T_sr(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
+  return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_r(), WSource::Inner,
+                          "modulation", 1);
+}
+// [000]'s contour surface fc = 1 is T_an with f_a = fc/2 (MATH.md §4.8, [VIR-2]).
+NodePtr create_contour(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
+  return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_n(W2Rule::Double),
+                          WSource::Outer, "contour", 0.5);
+}
+
 NodePtr create_soft_object(const Params& p, const BuildContext& ctx) {
-  NodePtr d = build_field(p.object("distance"), ctx);
+  NodePtr d = build_node(p, "distance", ctx);
   PotentialPtr P = p.has("potential") ? build_potential(p.object("potential")) : make_blanc(0);
   if (!p.has("radii")) return std::make_unique<SoftObject>(std::move(d), std::move(P));
-  const Params r = p.object("radii");
-  NodePtr node = create_transformed(r, std::move(d), std::move(P), ctx);
-  r.finish();
-  return node;
+  BuildContext inner = ctx;
+  inner.skeleton = skeleton_of(p.raw().at("distance"));
+  return build_radius_transform(p.object("radii"), std::move(d), std::move(P), inner);
 }
 
 }  // namespace softtrace

@@ -24,4 +24,18 @@ namespace softtrace {
 
 NodePtr create_soft_object(const Params& p, const BuildContext& ctx);
 
+// Radius transforms (the "radii" of a soft object): P(T(d)) for the transform described by `r`.
+NodePtr create_T_n(const Params& r, NodePtr d, PotentialPtr P,
+                   const BuildContext& ctx);  // 002 Eq. 10
+NodePtr create_T_l(const Params& r, NodePtr d, PotentialPtr P,
+                   const BuildContext& ctx);  // 002 Eq. 13
+NodePtr create_T_r(const Params& r, NodePtr d, PotentialPtr P,
+                   const BuildContext& ctx);  // 002 Eq. 14
+NodePtr create_T_an(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx);  // Eq. 11
+NodePtr create_T_al(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx);  // Eq. 11
+NodePtr create_T_sn(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx);  // Eq. 12
+NodePtr create_T_sr(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx);  // Eq. 12
+NodePtr create_contour(const Params& r, NodePtr d, PotentialPtr P,
+                       const BuildContext& ctx);  // 000 Eqs. 14-15
+
 }  // namespace softtrace

@@ -63,9 +63,4 @@ int run_bench(const BenchArgs& a) {
   }
 }
 
-int run_nodes() {
-  for (const auto& k : node_kinds()) std::printf("%-32s %-9s %s\n", k.name, k.family, k.summary);
-  return 0;
-}
-
 }  // namespace softtrace

@@ -62,7 +62,9 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& a);
 
-int run_nodes();
+// `softtrace nodes`: every node, potential and radius transform with its parameters (kinds.h);
+// with `dict`, the libFuzzer dictionary of their names instead.
+int run_nodes(bool dict);
 
 // "softtrace: <message>" on stderr, one line.
 void report_error(const std::string& message);

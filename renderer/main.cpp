@@ -145,7 +145,10 @@ int main(int argc, char** argv) {
   merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
   merge->add_flag("-q,--quiet", m.quiet, "No summary line");
 
-  auto* nodes = app.add_subcommand("nodes", "List the scene node types");
+  bool dict = false;
+  auto* nodes = app.add_subcommand(
+      "nodes", "List the node types, potentials and radius transforms with their parameters");
+  nodes->add_flag("--dict", dict, "Print a libFuzzer dictionary of their names instead");
 
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
@@ -171,6 +174,6 @@ int main(int argc, char** argv) {
   if (*diff) return run_diff(d);
   if (*bench) return run_bench(b);
   if (*merge) return run_merge(m);
-  if (*nodes) return run_nodes();
+  if (*nodes) return run_nodes(dict);
   return 2;
 }

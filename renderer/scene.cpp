@@ -162,6 +162,7 @@ SceneObject load_object(const Params& p, size_t index) {
   o.inside_sign = o.convention == Convention::Soft ? 1 : -1;
 
   BuildContext ctx;
+  ctx.slot = Family::ConventionField;  // the field must be of the object's convention
   ctx.convention = o.convention;
   o.field = build_field(p.object("field"), ctx);
 

@@ -19,6 +19,7 @@ const double kNone = std::numeric_limits<double>::quiet_NaN();
 #define DIST_A R"({"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2})"
 #define DIST_B \
   R"({"type":"superquadric","translate":[0.5,0.2,0.1],"radii":[0.9,1.2,0.8],"n1":2,"n2":4})"
+#define ZERO(d) R"({"type":"offset","children":[)" d "]}"
 #define DIST_FAR R"({"type":"lp_metric","translate":[0.3,3,0],"radii":[1,1.5,1],"n":2})"
 
 const SweepCase kCases[] = {
@@ -71,12 +72,13 @@ const SweepCase kCases[] = {
      kDom, Convention::Constructive, 1.0, Side::Below},
     {"complement_cg", R"({"type":"complement","children":[)" DIST_FAR "]}", kDom,
      Convention::Constructive, 0.8, Side::Above},
-    {"min_zero", R"({"type":"min","children":[)" DIST_A "," DIST_B "]}", kDom, Convention::Zero,
-     1.0, Side::Below},
-    {"max_zero", R"({"type":"max","children":[)" DIST_A "," DIST_B "]}", kDom, Convention::Zero,
-     1.0, Side::Below},
-    {"complement_zero", R"({"type":"complement","children":[)" DIST_A "]}", kDom, Convention::Zero,
-     -1.0, Side::Above},
+    // Zero-convention blends take zero-surface functions: offsets d - 1 of the distances.
+    {"min_zero", R"({"type":"min","children":[)" ZERO(DIST_A) "," ZERO(DIST_B) "]}", kDom,
+     Convention::Zero, 0.0, Side::Below},
+    {"max_zero", R"({"type":"max","children":[)" ZERO(DIST_A) "," ZERO(DIST_B) "]}", kDom,
+     Convention::Zero, 0.0, Side::Below},
+    {"complement_zero", R"({"type":"complement","children":[)" ZERO(DIST_A) "]}", kDom,
+     Convention::Zero, 0.0, Side::Above},
 };
 
 SOFTTRACE_SWEEP_FAMILY(Blends, kCases);

@@ -36,7 +36,7 @@ const SweepCase kCases[] = {
     {"T_an_thin",
      R"({"type":"soft_object","distance":)" BAR
      R"(,"radii":{"type":"T_an","modulation":
-                      {"type":"lp_metric","radii":[1.3,1.6,1.4],"n":1.5}}})",
+                      {"type":"lp_metric","radii":[1.8,2.2,2],"n":1.5}}})",
      kWide},
     {"T_al",
      R"({"type":"soft_object","distance":)" SPHERE

@@ -339,12 +339,13 @@ TEST(Scale, ConventionDecidesTheOperator) {  // [CONV-2], §6.3.4
 TEST(Complement, EachConvention) {
   const auto a = build_from_json(kA);
   const auto s = build_from_json(comp(kA));
-  const auto z = build_from_json(comp(kA), Convention::Zero);
+  const auto z = build_from_json(comp(R"({"type":"offset","children":[)" + kDa + "]}"),
+                                 Convention::Zero);  // the zero convention takes d - 1
   const auto c = build_from_json(comp(kDa), Convention::Constructive);
   const auto d = cg(kDa);
   for_random_points(500, 2, [&](const Vec3& p) {
     ASSERT_DOUBLE_EQ(s->value(p), 1 - a->value(p));
-    ASSERT_DOUBLE_EQ(z->value(p), -a->value(p));
+    ASSERT_DOUBLE_EQ(z->value(p), -(d->value(p) - 1));
     ASSERT_DOUBLE_EQ(c->value(p), 1 / d->value(p));
   });
   EXPECT_EQ(c->value({0, 0, 0}), 1 / kCgFloor) << "1/f is guarded at f = 0";

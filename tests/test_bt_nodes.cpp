@@ -29,8 +29,9 @@ const char* const kBall1 =
     R"({"type":"offset","translate":[-0.3,0,0],"children":[{"type":"lp_metric","radii":[0.5,0.5,0.5],"n":2}]})";
 const char* const kBall2 =
     R"({"type":"offset","translate":[0.3,0.1,0],"children":[{"type":"lp_metric","radii":[0.6,0.4,0.5],"n":3}]})";
-const char* const kRod =
-    R"({"type":"offset","children":[{"type":"segment","p0":[0,-1,0],"p1":[0,1,0.2],"radius":0.25}]})";
+#define ROD R"({"type":"segment","p0":[0,-1,0],"p1":[0,1,0.2],"radius":0.25})"
+const char* const kRodDistance = ROD;
+const char* const kRod = R"({"type":"offset","children":[)" ROD "]}";
 
 std::string blend(const std::string& type, const std::string& params,
                   const std::vector<std::string>& children) {
@@ -53,11 +54,10 @@ TEST(BtNodes, OnlyTheZeroConvention) {
   for (const char* type : {"bt_union", "bt_intersection", "bt_difference", "displacement_union"}) {
     const std::string inner =
         blend(type, R"("base":"conic","r1":0.2,"r2":0.2,"p":0)", {kBall1, kRod});
-    const std::string json = R"({"type":"offset","children":[)" + inner + "]}";
-    EXPECT_EQ(build_error(json), "") << type;
+    EXPECT_EQ(build_error(inner), "") << type;
     for (Convention c : {Convention::Soft, Convention::Constructive}) {
-      const std::string e = build_error(json, c);
-      EXPECT_NE(e.find("/children/0/type"), std::string::npos) << e;
+      const std::string e = build_error(inner, c);
+      EXPECT_NE(e.find("<test>: /type:"), std::string::npos) << e;
       EXPECT_NE(e.find("zero convention"), std::string::npos) << e;
     }
   }
@@ -72,12 +72,13 @@ TEST(BtNodes, ParameterRangesAreCheckedWithTheirLocation) {
       {blend("bt_union", c2 + R"(,"p":0.06)", {kBall1, kRod}), "/p"},  // p = r1 r2
       {blend("bt_union", R"("base":"conic","r1":0,"r2":0.3,"p":0)", {kBall1, kRod}), "/r1"},
       {blend("bt_union", c2 + R"(,"p":0)", {kBall1, kRod, kBall2}), "/children"},
-      {blend("bt_union", c2 + R"(,"p":0,"m":[1,0])", {kBall1, kRod}), "/m"},
+      {blend("bt_union", c2 + R"(,"p":0,"m":[1,0])", {kBall1, kRod}), "/m/1"},
       {blend("bt_union", c2 + R"(,"p":0,"m":[1,1,1])", {kBall1, kRod}), "/m"},
       {blend("bt_union", R"("base":"cone","r1":0.2,"r2":0.3,"p":0)", {kBall1, kRod}), "/base"},
       {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,0.3],"p":[2,1])", {kBall1, kRod}),
        "/p"},
-      {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,-0.3],"p":2)", {kBall1, kRod}), "/r"},
+      {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,-0.3],"p":2)", {kBall1, kRod}),
+       "/r/1"},
       {blend("bt_union", R"("base":"hyperellipsoid","r":[0.2,0.3,0.1],"p":2)", {kBall1, kRod}),
        "/r"},
       {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2)", {kBall1}), "/children"},
@@ -95,7 +96,7 @@ TEST(BtNodes, ParameterRangesAreCheckedWithTheirLocation) {
        "/p"},  // p >= omega² r1 r2
       {blend("displacement_union", c2 + R"(,"p":0,"m":[1,2])", {kBall1, kRod}), "/m"},
       {blend("bt_difference", c2 + R"(,"p":0,"k":2)", {kBall1, kRod}), "/k"},
-      {blend("offset", R"("scale":0)", {kBall1}), "/scale"},
+      {blend("offset", R"("scale":0)", {kRodDistance}), "/scale"},
       {blend("offset", R"("level":0)", {kBall1, kRod}), "/children"},
   };
   for (const Bad& b : bad) {
@@ -189,9 +190,10 @@ TEST(BtNodes, IntervalIsTheMonotoneImage) {
 }
 
 TEST(Offset, ValueGradientAndRegion) {
-  const NodePtr d = build_from_json(kRod, Convention::Soft);
+  const NodePtr d = build_from_json(kRodDistance, Convention::Soft);
   const NodePtr o = build_from_json(
-      R"({"type":"offset","scale":-2,"level":0.5,"children":[)" + std::string(kRod) + "]}", kZero);
+      R"({"type":"offset","scale":-2,"level":0.5,"children":[)" + std::string(kRodDistance) + "]}",
+      kZero);
   Rng g(33);
   for (int n = 0; n < 1000; ++n) {
     const Vec3 X = point_in(g, Box({-1, -1, -1}, {1, 1, 1}));

@@ -389,9 +389,9 @@ TEST(DistanceParameters, RangesAreValidated) {
   expect_error(R"({"type":"parallel_planes","normal":[0,0,0],"a":1})", "/normal", "non-zero");
   expect_error(R"({"type":"one_branch_plane","normal":[0,0,1],"a":0})", "/a", "> 0");
   expect_error(R"({"type":"superquadric","radii":[1,1,1],"n1":1,"n2":2,"t":[1,1,1,1,1]})", "/t",
-               "6 side lengths");
+               "6 numbers");
   expect_error(R"({"type":"superquadric","radii":[1,1,1],"n1":1,"n2":2,"t":[1,1,1,1,0,1]})", "/t/4",
-               "t > 0");
+               "side length > 0");
   expect_error(R"({"type":"generalized_distance","normals":[[1,0,0],[0,0,0]],"a":1,"n":2})",
                "/normals/1", "non-zero");
   expect_error(R"({"type":"generalized_distance","normals":[[1,0,0],[0,1]],"a":1,"n":2})",
@@ -409,11 +409,11 @@ TEST(DistanceParameters, RangesAreValidated) {
   expect_error(R"({"type":"superelliptic_cylinder","radii":[1,0,1],"n":2,"half_length":1})",
                "/radii/1", "radius > 0");
   expect_error(R"({"type":"torus","major_radius":-1,"radii":[1,1]})", "/major_radius", "R >= 0");
-  expect_error(R"({"type":"torus","major_radius":1,"radii":[1,1,1]})", "/radii", "[a, b]");
+  expect_error(R"({"type":"torus","major_radius":1,"radii":[1,1,1]})", "/radii", "2 numbers");
   expect_error(R"({"type":"torus","major_radius":1,"radii":[1,1],"n":0})", "/n", "> 0");
   const std::string prism =
       R"({"type":"polar_prism","radius":1,"half_height":1,"profile":"cosine",)";
-  expect_error(prism + R"("lobes":3,"amplitude":1})", "/amplitude", "0 <= A < 1");
+  expect_error(prism + R"("lobes":3,"amplitude":1})", "/amplitude", "A in [0, 1)");
   expect_error(prism + R"("lobes":0,"amplitude":0.3})", "/lobes", "integer in [1,");
   expect_error(prism + R"("lobes":2.5,"amplitude":0.3})", "/lobes", "integer");
   expect_error(

@@ -94,7 +94,8 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
 TEST(Program, MinDropsChildrenThatCannotBeTheMinimum) {
   const NodePtr n = build_from_json(
       R"({"type":"min","children":[{"type":"lp_metric","radii":[1,1,1],"n":2},
-          {"type":"lp_metric","radii":[1,1,1],"n":2,"translate":[100,0,0]}]})");
+          {"type":"lp_metric","radii":[1,1,1],"n":2,"translate":[100,0,0]}]})",
+      Convention::Constructive);
   const Program prog = compile(*n);
   Workspace ws;
   ws.fit(prog);

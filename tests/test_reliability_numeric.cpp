@@ -115,7 +115,22 @@ json potential(Rng& r) {
   }
 }
 
-json radius_transform(Rng& r, const Gen& g) {
+// The distance `d` with every length multiplied by k: its value divided by k (every distance kind
+// is homogeneous in its lengths), so the same skeleton on the required side (002 §4.1 (c)).
+json scaled(json d, double k) {
+  for (const char* key : {"radii", "radius", "a", "half_height"}) {
+    if (!d.contains(key)) continue;
+    if (d[key].is_array())
+      for (auto& x : d[key]) x = x.get<double>() * k;
+    else
+      d[key] = d[key].get<double>() * k;
+  }
+  if (d.contains("children"))
+    for (auto& c : d["children"]) c = scaled(c, k);
+  return d;
+}
+
+json radius_transform(Rng& r, const json& d) {
   switch (integer(r, 0, 6)) {
     case 0: {
       const double w2 = uniform(r, 0.05, 1), w1 = uniform(r, w2 / 2, 3);
@@ -125,12 +140,12 @@ json radius_transform(Rng& r, const Gen& g) {
       return {{"type", "T_l"}, {"w1", pick(r, {0.3, 1.0, 2.5})}};
     case 2:
       return {{"type", "T_r"}, {"w2", uniform(r, 0.05, 1)}};
-    case 3:
-      return {{"type", pick(r, {"T_an", "T_al"})}, {"modulation", g.distance(r, 0)}};
-    case 4:
-      return {{"type", pick(r, {"T_sn", "T_sr"})}, {"modulation", g.distance(r, 0)}};
-    case 5:
-      return {{"type", "contour"}, {"contour", g.distance(r, 0)}};
+    case 3:  // f_a = d/k <= d
+      return {{"type", pick(r, {"T_an", "T_al"})}, {"modulation", scaled(d, uniform(r, 1, 3))}};
+    case 4:  // f_s = d/k >= d
+      return {{"type", pick(r, {"T_sn", "T_sr"})}, {"modulation", scaled(d, uniform(r, 0.3, 1))}};
+    case 5:  // fc = d/k <= 2d
+      return {{"type", "contour"}, {"contour", scaled(d, uniform(r, 0.5, 1.5))}};
     default:
       return nullptr;
   }
@@ -213,7 +228,7 @@ const Gen& generators() {
     k["soft_object"] = {{S}, [](Rng& r, const Gen& g, Convention, int d) {
                           json j{{"distance", g.distance(r, d)}};
                           if (integer(r, 0, 1)) j["potential"] = potential(r);
-                          json t = radius_transform(r, g);
+                          json t = radius_transform(r, j["distance"]);
                           if (!t.is_null()) j["radii"] = t;
                           return j;
                         }};
@@ -270,14 +285,18 @@ json random_scene(Rng& r) {
              {"field", generators().node(r, conv, integer(r, 1, 3))}}}}};
 }
 
+std::vector<std::string> node_kind_names() {
+  std::vector<std::string> names;
+  for (const auto& k : kinds())
+    if (k.group == KindGroup::Node) names.push_back(k.name);
+  return names;
+}
+
 TEST(NumericRobustness, EveryKindHasAGenerator) {
-  for (const auto& k : node_kinds())
-    EXPECT_TRUE(generators().kinds.count(k.name)) << "no generator for node type " << k.name;
-  for (const auto& [name, kind] : generators().kinds) {
-    bool registered = false;
-    for (const auto& k : node_kinds()) registered |= name == k.name;
-    EXPECT_TRUE(registered) << "generator for an unknown node type " << name;
-  }
+  for (const auto& name : node_kind_names())
+    EXPECT_TRUE(generators().kinds.count(name)) << "no generator for node type " << name;
+  for (const auto& [name, kind] : generators().kinds)
+    EXPECT_TRUE(find_kind(name, KindGroup::Node)) << "generator for an unknown node type " << name;
 }
 
 void expect_no_nan(const FieldNode& f, const Vec3& p, const std::string& scene) {
@@ -334,8 +353,49 @@ TEST(NumericRobustness, RandomScenesGiveNoNaNInEvalIntervalsPixelsOrAovs) {
     }
   }
   EXPECT_EQ(loaded, kScenes);
-  for (const auto& k : node_kinds())
-    EXPECT_TRUE(generators().used.count(k.name)) << k.name << " was never generated";
+  for (const auto& name : node_kind_names())
+    EXPECT_TRUE(generators().used.count(name)) << name << " was never generated";
+}
+
+// Huge finite numbers at the documented bounds (docs/scene-format.md "Numbers"): accepted scenes
+// with rotations of 1e308 degrees, coordinates of 1e150 and radii of 1e-150 or 1e150 evaluate
+// without NaN in values, gradients, intervals and Lipschitz bounds.
+TEST(NumericRobustness, HugeFiniteParametersGiveNoNaN) {
+  const std::string ball = R"({"type":"lp_metric","radii":[2,2,2],"n":2})";
+  const std::string fields[] = {
+      R"({"type":"soft_object","rotate":{"axis":[1,2,3],"deg":1e308},"distance":)" + ball + "}",
+      R"({"type":"soft_object","rotate":{"axis":[0,0,1e150],"deg":-1e308},"distance":)" + ball +
+          "}",
+      R"({"type":"soft_object","distance":{"type":"segment","p0":[0,0,-1e150],"p1":[0,0,1e150],"radius":1}})",
+      R"({"type":"soft_object","distance":{"type":"segment","p0":[-1e150,-1e150,-1e150],"p1":[1e150,1e150,1e150],"radius":1e150}})",
+      R"({"type":"soft_object","distance":{"type":"segment","p0":[0,0,0],"p1":[0,0,1],"radius":1e-150}})",
+      R"({"type":"soft_object","translate":[1e150,-1e150,1e150],"distance":)" + ball + "}",
+      R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1e150,1e-150,1],"n":1e150}})",
+  };
+  for (const std::string& field : fields) {
+    const std::string text =
+        R"({"camera":{"eye":[10,0,0],"target":[0,0,0]},"objects":[{"bounds":[[-4,-4,-4],[4,4,4]],"field":)" +
+        field + "}]}";
+    Scene scene;
+    try {
+      scene = parse_scene(text, "<huge>");
+    } catch (const SceneError& e) {
+      ADD_FAILURE() << "refused a scene within the bounds: " << e.what();
+      continue;
+    }
+    const FieldNode& f = *scene.objects[0].field;
+    for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0.3, -0.2, 1.5}, Vec3{1e150, 0, 0},
+                          Vec3{-1e150, 1e150, 1e150}}) {
+      expect_no_nan(f, p, field);
+      if (HasFatalFailure()) return;
+    }
+    for (const Box& box : {Box({-4, -4, -4}, {4, 4, 4}), Box::around({0, 0, 0}, 1e-9),
+                           Box::around({1e150, 0, 0}, 1e149)}) {
+      const Interval i = f.interval(box);
+      EXPECT_FALSE(std::isnan(i.lo) || std::isnan(i.hi)) << field;
+      EXPECT_FALSE(std::isnan(f.lipschitz(box))) << field;
+    }
+  }
 }
 
 }  // namespace

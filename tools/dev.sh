@@ -41,14 +41,15 @@ sanitize() {
 }
 
 # libFuzzer on the scene loader and field evaluation (tests/fuzz_scene.cpp), seeded from scenes/
-# and tests/bad_scenes/, with the node type names as a dictionary. A crash leaves its input in
+# and tests/bad_scenes/, with a dictionary of every kind and parameter name (`softtrace nodes
+# --dict`, from the one list of kinds) plus tests/fuzz_scene.dict. A crash leaves its input in
 # build-fuzz/crash-*; make it a tests/bad_scenes/ file (or fix the loader) before going on.
 fuzz() {
   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSOFTTRACE_SANITIZE=ON -DSOFTTRACE_FUZZ=ON >/dev/null
   cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene
   mkdir -p build-fuzz/corpus
-  "$BUILD_DIR/softtrace" nodes | awk '{ printf "\"\\\"%s\\\"\"\n", $1 }' >build-fuzz/scene.dict
+  "$BUILD_DIR/softtrace" nodes --dict >build-fuzz/scene.dict
   cat tests/fuzz_scene.dict >>build-fuzz/scene.dict
   if ! ASAN_OPTIONS=detect_leaks=0 build-fuzz/tests/fuzz_scene -max_total_time="${FUZZ_SECONDS:-60}" \
     -max_len=16384 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -dict=build-fuzz/scene.dict \
