@@ -3,12 +3,13 @@
 #include <limits>
 
 #include "program.h"
+#include "registry.h"
 
 namespace softtrace {
 
 namespace {
 
-// Σ f_i   — soft blend B_SUk, 000 Eq. 12, 002 Eq. 3, MATH.md §5.1
+// Σ f_i   — soft blend B_SUk, 000 Eq. 12, 002 Eq. 3, docs/math.md §5.1
 class SoftBlend final : public FieldNode {
  public:
   explicit SoftBlend(std::vector<NodePtr> children) : c_(std::move(children)) {}

@@ -1,4 +1,4 @@
-// Blends (MATH.md §5, §6.3) and the complement. Children are built in the object's convention.
+// Blends (docs/math.md §5, §6.3) and the complement. Children are built in the object's convention.
 // Bounds, derived per operator (each .cpp repeats the argument next to the code):
 // - soft_blend Σ f_i: interval Σ [f_i]; Lipschitz Σ L_i (triangle inequality); support ∪ supports.
 // - perlin_*: products of g_i = f_i or 1 - f_i; interval arithmetic on the product (sound for any
@@ -14,7 +14,8 @@
 // - complement: 1 - f, -f, or 1/max(f, 1e-12) (constructive, guarded at f <= 0).
 #pragma once
 
-#include "registry.h"
+#include "build_context.h"
+#include "node.h"
 
 namespace softtrace {
 
@@ -25,16 +26,16 @@ NodePtr create_perlin_intersection(const Params& p, const BuildContext& ctx);  /
 NodePtr create_perlin_difference(const Params& p, const BuildContext& ctx);    // 002 Eq. 6
 NodePtr create_min(const Params& p, const BuildContext& ctx);
 NodePtr create_max(const Params& p, const BuildContext& ctx);
-NodePtr create_complement(const Params& p, const BuildContext& ctx);  // MATH.md §1
+NodePtr create_complement(const Params& p, const BuildContext& ctx);  // docs/math.md §1
 
 NodePtr create_ricci_union(const Params& p, const BuildContext& ctx);  // 000 Eq. 6, 002 Eq. 7
 NodePtr create_ricci_intersection(const Params& p, const BuildContext& ctx);  // 002 Eq. 8
-NodePtr create_ricci_difference(const Params& p, const BuildContext& ctx);    // MATH.md A5, R21
+NodePtr create_ricci_difference(const Params& p, const BuildContext& ctx);  // docs/math.md A5, R21
 
 NodePtr create_scale_union(const Params& p, const BuildContext& ctx);  // 000 Eq. 8, §6.3
 NodePtr create_scale_intersection(const Params& p, const BuildContext& ctx);
 
-// The scale operators on two numbers (MATH.md §6.3): BSA2 (bsa) or BSS2, and ∂h/∂x_i into dh.
+// The scale operators on two numbers (docs/math.md §6.3): BSA2 (bsa) or BSS2, and ∂h/∂x_i into dh.
 // Parameters are not validated here (the node's creator does): r_i > 0, p < r1 r2, BSS2 r_i < 1.
 class ScaleOperator {
  public:

@@ -8,6 +8,7 @@
 
 #include "bt_base.h"
 #include "node_util.h"
+#include "registry.h"
 #include "scratch.h"
 
 namespace softtrace {
@@ -21,7 +22,8 @@ Interval signed_interval(int sigma, Interval a) {
   return sigma > 0 ? a : -a;
 }
 
-// R = τ·BT_k(σ_1 f_1, ..., σ_k f_k) — 003 Eqs. 2–5 and §3.3, MATH.md §7.1–§7.4 (§7.6 with bulge)
+// R = τ·BT_k(σ_1 f_1, ..., σ_k f_k) — 003 Eqs. 2–5 and §3.3, docs/math.md §7.1–§7.4 (§7.6 with
+// bulge)
 class BtBlend final : public FieldNode {
  public:
   BtBlend(std::vector<NodePtr> children, BtOperator op, int tau, std::vector<int> sigma,
@@ -229,8 +231,7 @@ class BtBlend final : public FieldNode {
     const double* m = op_.m().data();
     double others = kInf;  // an upper bound of min_{j≠i} x_j/M_j over the box
     for (int j = 0; j < op_.k(); ++j)
-      if (j != i)
-        others = std::min(others, iv::up(X[j].hi / (X[j].hi >= 0 ? m[j] : M_hi[j])));
+      if (j != i) others = std::min(others, iv::up(X[j].hi / (X[j].hi >= 0 ? m[j] : M_hi[j])));
     const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
     return !(iv::down(X[i].lo - reach) > P_hi[i]);
   }
@@ -239,7 +240,7 @@ class BtBlend final : public FieldNode {
   BtOperator op_;
   int tau_;
   std::vector<int> sigma_;
-  double omega_;  // 0: no bulge elimination
+  double omega_;               // 0: no bulge elimination
   std::vector<double> r_max_;  // r_i(2 + ω): the largest P_i, for region()
 };
 
@@ -263,7 +264,7 @@ NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
   const std::string name = kind_name(kind);
   p.check(ctx.convention == Convention::Zero, "type",
           name +
-              " is defined in the zero convention only (inside f <= 0, MATH.md §7.4); set the "
+              " is defined in the zero convention only (inside f <= 0, docs/math.md §7.4); set the "
               "object's \"convention\" to \"zero\"");
   std::vector<NodePtr> children = build_children(p, "children", ctx);
   const size_t k = children.size();
@@ -276,18 +277,18 @@ NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
   double conic_p = 0, r1 = 0, r2 = 0;
   if (base == "conic") {
     p.check(k == 2, "children",
-            "the conic base blends exactly 2 children (MATH.md §7.2); use \"hyperellipsoid\" "
+            "the conic base blends exactly 2 children (docs/math.md §7.2); use \"hyperellipsoid\" "
             "for more");
     r1 = p.positive("r1");  // required with the conic base: the table cannot say so
     r2 = p.positive("r2");
     conic_p = p.number("p");
     p.check(conic_p < r1 * r2, "p",
-            "expected p < r1*r2 (MATH.md §6.1: p = r1*r2 degenerates to the chord)");
+            "expected p < r1*r2 (docs/math.md §6.1: p = r1*r2 degenerates to the chord)");
     op = BtOperator::conic(r1, r2, conic_p, m);
   } else {
     std::vector<double> r = p.numbers_or_scalar("r", k), pe = p.numbers_or_scalar("p", k);
     for (double pi : pe)
-      p.check(pi > 1, "p", "expected every p_i > 1 (MATH.md §7.3: T is C^1, its root unique)");
+      p.check(pi > 1, "p", "expected every p_i > 1 (docs/math.md §7.3: T is C^1, its root unique)");
     op = BtOperator::hyperellipsoid(std::move(r), std::move(pe), m);
   }
 
@@ -298,11 +299,11 @@ NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
     be.check(omega <= kMaxMagnitude, "omega", "expected a number of magnitude at most 1e150");
     be.finish();
     p.check(k == 2, "bulge_elimination",
-            "bulge elimination takes exactly 2 children (003 §5, MATH.md §7.6)");
+            "bulge elimination takes exactly 2 children (003 §5, docs/math.md §7.6)");
     if (op.is_conic())
       p.check(conic_p < omega * omega * r1 * r2, "p",
               "with bulge elimination the ranges shrink to r_i*omega, so a conic base needs "
-              "p < omega^2*r1*r2 (MATH.md §6.1, §7.6)");
+              "p < omega^2*r1*r2 (docs/math.md §6.1, §7.6)");
   }
 
   int tau = 1;

@@ -1,11 +1,11 @@
-// The BT_k blends of 003 (MATH.md §6.2, §7), zero convention only (inside f <= 0): the union
+// The BT_k blends of 003 (docs/math.md §6.2, §7), zero convention only (inside f <= 0): the union
 // BT_k(f_1..f_k), its duals (§7.4) intersection -BT_k(-f_1..-f_k) and difference
 // -BT_k(-f_1, f_2..f_k), and the displacement union BD_k (all m_i = 1). Every node computes
 // R = τ·BT(x) with x_i = σ_i f_i (τ, σ_i = ±1 per the duals). The scalar maths is in bt_base.h.
 //
 // Gradient (§7.5): ∇R = τ Σ_i ∂_iBT(x) σ_i ∇f_i, the partials from the implicit function theorem.
 //
-// Lipschitz, derived (MATH.md §8 "BT composition"): by [BT-5] and [BT-2] the weights
+// Lipschitz, derived (docs/math.md §8 "BT composition"): by [BT-5] and [BT-2] the weights
 // w_i = m_i ∂_iBT are >= 0 and sum to 1, so
 //   |∇R| <= Σ_i ∂_iBT |∇f_i| <= Σ_i w_i (L_i/m_i) <= max_i L_i/m_i,
 // a convex combination of the L_i/m_i. R is continuous and C^1 off the measure-zero kinks of min
@@ -29,12 +29,12 @@
 // difference's {R <= c} in f_1.region(m_1 c, Below) ∩_{j>1} f_j.region(-m_j c, Above). Levels
 // are rounded outward.
 //
-// Bulge elimination (003 §5, MATH.md §7.6; k = 2, `bulge_elimination: {omega}`): r_i and m_i
+// Bulge elimination (003 §5, docs/math.md §7.6; k = 2, `bulge_elimination: {omega}`): r_i and m_i
 // become P_i(X) = r_i(1 - cosθ + ω) ∈ [r_i ω, r_i(2 + ω)] and M_i(X) >= m_i ([BE-3]), computed
 // from the union operands' gradients g_i = σ_i ∇f_i (so a dual uses the angle between the
 // gradients its union sees). A conic base then needs p < ω² r1 r2 so that p < P_1 P_2 at
 // every X (checked at load time).
-// - Gradient: MATH.md's implementation choice, the paper's partial gradient Σ ∂_iBT σ_i ∇f_i
+// - Gradient: docs/math.md's implementation choice, the paper's partial gradient Σ ∂_iBT σ_i ∇f_i
 //   with P and M frozen at X. The exact gradient adds ∂_rBT ∇P + ∂_mBT ∇M, which needs the
 //   children's Hessians (through cosθ and G = |∇f_1|/|∇f_2|); nodes do not provide them.
 // - Lipschitz over a box B, derived; +inf globally, and wherever a child gives no gradient floor
@@ -70,7 +70,8 @@
 //   Box::unbounded().
 #pragma once
 
-#include "registry.h"
+#include "build_context.h"
+#include "node.h"
 
 namespace softtrace {
 

@@ -1,4 +1,4 @@
-// Ricci's super-ellipsoidal operators (MATH.md §5.3 constructive, §5.4 soft). Every one is a
+// Ricci's super-ellipsoidal operators (docs/math.md §5.3 constructive, §5.4 soft). Every one is a
 // power mean B = (Σ g_i^q)^(1/q) with q = n or q = -n of arguments g_i = f_i, 1 - f_i (soft
 // complement) or 1/f_i (constructive complement):
 //   soft:         union q = n; intersection q = -n; difference q = -n with g = (f1, 1-f2, ...)
@@ -16,6 +16,7 @@
 #include "blends.h"
 #include "gauge.h"
 #include "node_util.h"
+#include "registry.h"
 #include "scratch.h"
 
 namespace softtrace {
@@ -150,7 +151,8 @@ class Ricci final : public FieldNode {
     return Box::unbounded();
   }
 
-  // B(g) and ∂B/∂g_i; negative arguments count as 0 (q = n) or make B = 0 (q = -n, MATH.md §5.4).
+  // B(g) and ∂B/∂g_i; negative arguments count as 0 (q = n) or make B = 0 (q = -n, docs/math.md
+  // §5.4).
   double mean(const double* g, double* dB) const {
     const int k = static_cast<int>(c_.size());
     if (positive_) {
@@ -204,7 +206,7 @@ enum class SetOp { Union, Intersection, Difference };
 
 NodePtr create_ricci(const Params& p, const BuildContext& ctx, SetOp op) {
   if (ctx.convention == Convention::Zero)
-    p.fail("type", "ricci_* applies to soft or constructive objects (MATH.md §5.3, §5.4)");
+    p.fail("type", "ricci_* applies to soft or constructive objects (docs/math.md §5.3, §5.4)");
   const double n = p.number("n");
   std::vector<NodePtr> c = build_children(p, "children", ctx);
   const bool soft = ctx.convention == Convention::Soft;

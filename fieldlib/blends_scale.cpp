@@ -1,4 +1,4 @@
-// The scale method BSA2 / BSS2 (MATH.md §6.3; 000 §II.C.3, Eq. 8): h solving
+// The scale method BSA2 / BSS2 (docs/math.md §6.3; 000 §II.C.3, Eq. 8): h solving
 // G(h) = h^2 B_H(σ(x/h - 1)) = a h^2 + b h + c = 0 on region III, min/max elsewhere; σ = +1 for
 // BSA2 (y = x/h - 1), σ = -1 for BSS2 (y = 1 - x/h).
 // Bounds, derived:
@@ -19,6 +19,7 @@
 #include <cmath>
 
 #include "blends.h"
+#include "registry.h"
 
 namespace softtrace {
 
@@ -68,7 +69,7 @@ double ScaleOperator::operator()(double x1, double x2, double dh[2]) const {
 
 namespace {
 
-// BSA2 or BSS2 of two children   — 000 §II.C.3, MATH.md §6.3.2, §6.3.3
+// BSA2 or BSS2 of two children   — 000 §II.C.3, docs/math.md §6.3.2, §6.3.3
 class Scale final : public FieldNode {
  public:
   Scale(NodePtr f1, NodePtr f2, double r1, double r2, double p, bool bsa)
@@ -115,14 +116,14 @@ class Scale final : public FieldNode {
 
 NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
   if (ctx.convention == Convention::Zero)
-    p.fail("type", "scale_* applies to soft or constructive objects (MATH.md §6.3)");
+    p.fail("type", "scale_* applies to soft or constructive objects (docs/math.md §6.3)");
   const double r1 = p.number("r1"), r2 = p.number("r2"), pp = p.number("p");
-  p.check(pp < r1 * r2, "p", "expected p < r1*r2 (MATH.md §6.1)");
+  p.check(pp < r1 * r2, "p", "expected p < r1*r2 (docs/math.md §6.1)");
   // Constructive: union BSA2, intersection BSS2; soft fields swap the roles ([CONV-2], §6.3.4).
   const bool bsa = (ctx.convention == Convention::Constructive) == union_op;
   if (!bsa) {
-    p.check(r1 < 1, "r1", "expected 0 < r1 < 1 for BSS2 (MATH.md §6.3.3, R24)");
-    p.check(r2 < 1, "r2", "expected 0 < r2 < 1 for BSS2 (MATH.md §6.3.3, R24)");
+    p.check(r1 < 1, "r1", "expected 0 < r1 < 1 for BSS2 (docs/math.md §6.3.3, R24)");
+    p.check(r2 < 1, "r2", "expected 0 < r2 < 1 for BSS2 (docs/math.md §6.3.3, R24)");
   }
   std::vector<NodePtr> c = build_children(p, "children", ctx);
   return std::make_unique<Scale>(std::move(c[0]), std::move(c[1]), r1, r2, pp, bsa);

@@ -1,4 +1,4 @@
-// Perlin's set blends, sharp min/max and the complement (MATH.md §1, §5.2).
+// Perlin's set blends, sharp min/max and the complement (docs/math.md §1, §5.2).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -6,14 +6,15 @@
 #include "blends.h"
 #include "node_util.h"
 #include "program.h"
+#include "registry.h"
 #include "scratch.h"
 
 namespace softtrace {
 
 namespace {
 
-// 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, MATH.md §5.2. Each is a product
-// of factors g_i = f_i or 1 - f_i, complemented for the union.
+// 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, docs/math.md §5.2. Each is a
+// product of factors g_i = f_i or 1 - f_i, complemented for the union.
 class Perlin final : public FieldNode {
  public:
   enum Mode { Union, Intersection, Difference };
@@ -98,7 +99,7 @@ class Perlin final : public FieldNode {
   double global_L_;
 };
 
-// min / max of the children (sharp union/intersection baselines, MATH.md §1)
+// min / max of the children (sharp union/intersection baselines, docs/math.md §1)
 class MinMax final : public FieldNode {
  public:
   MinMax(std::vector<NodePtr> c, bool is_min) : c_(std::move(c)), min_(is_min) {}
@@ -158,7 +159,7 @@ class MinMax final : public FieldNode {
   bool min_;
 };
 
-// The complement of MATH.md §1: soft 1 - f, zero -f, constructive 1/f (guarded)
+// The complement of docs/math.md §1: soft 1 - f, zero -f, constructive 1/f (guarded)
 class Complement final : public FieldNode {
  public:
   Complement(NodePtr c, Convention conv) : c_(std::move(c)), conv_(conv) {}

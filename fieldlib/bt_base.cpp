@@ -228,8 +228,8 @@ BulgeBox bulge_box(const BulgeOperand g[2], double radius, const double r[2], co
   }
   B.dcos = iv::up(dn[0] + dn[1]);  // ∇(n_1·n_2) = J_{n_1}^T n_2 + J_{n_2}^T n_1
   if (std::isfinite(B.dcos)) {
-    const BulgeParameters c = bulge_parameters(g[0].centre_gradient, g[1].centre_gradient, r, m,
-                                               omega);
+    const BulgeParameters c =
+        bulge_parameters(g[0].centre_gradient, g[1].centre_gradient, r, m, omega);
     const double spread = iv::up(B.dcos * radius) + 1e-15;  // + the rounding of cosθ
     B.cos_lo = std::max(-1.0, c.cos_theta - spread);
     B.cos_hi = std::min(1.0, c.cos_theta + spread);
@@ -237,10 +237,11 @@ BulgeBox bulge_box(const BulgeOperand g[2], double radius, const double r[2], co
   // G = |∇g_1|/|∇g_2| ∈ [G_lo, G_hi], |∇G| <= |∇|∇g_1||/|∇g_2| + |∇g_1| |∇|∇g_2||/|∇g_2|^2.
   const double G_lo = g[1].grad_hi > 0 ? iv::down(g[0].grad_lo / g[1].grad_hi) : 0;
   const double G_hi = g[1].grad_lo > 0 ? iv::up(g[0].grad_hi / g[1].grad_lo) : kInf;
-  const double dG = g[1].grad_lo > 0 ? iv::up(flat_product(dnorm[0], 1 / g[1].grad_lo) +
-                                              flat_product(g[0].grad_hi * dnorm[1],
-                                                           1 / (g[1].grad_lo * g[1].grad_lo)))
-                                     : kInf;
+  const double dG =
+      g[1].grad_lo > 0
+          ? iv::up(flat_product(dnorm[0], 1 / g[1].grad_lo) +
+                   flat_product(g[0].grad_hi * dnorm[1], 1 / (g[1].grad_lo * g[1].grad_lo)))
+          : kInf;
   for (int i = 0; i < 2; ++i) {
     B.P_lo[i] = iv::down(r[i] * iv::down(1 - B.cos_hi + omega));
     B.P_hi[i] = iv::up(r[i] * iv::up(1 - B.cos_lo + omega));

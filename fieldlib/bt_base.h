@@ -1,9 +1,9 @@
-// The scalar maths of the generalized blend BT_k of 003 (MATH.md §6.1, §6.2, §7), zero
+// The scalar maths of the generalized blend BT_k of 003 (docs/math.md §6.1, §6.2, §7), zero
 // convention: BT_k(x) = h_p with HT_k(x_1 - m_1 h_p, ..., x_k - m_k h_p) = 0, the union base HT_k
 // being Hoffmann's conic H_2 (§7.2) or the hyper-ellipsoid (§7.3). Nodes (blends_bt.cpp) and tests
 // share these functions.
 //
-// Facts the nodes' bounds rest on (MATH.md §7.1, §8; tested in tests/test_bt.cpp):
+// Facts the nodes' bounds rest on (docs/math.md §7.1, §8; tested in tests/test_bt.cpp):
 // - [BT-5] ∂BT/∂x_i >= 0 and [BT-2] Σ m_i ∂BT/∂x_i = 1.
 // - h_lo(x) = min_i (x_i - r_i)/m_i <= BT(x) <= h_hi(x) = min_i x_i/m_i ([BT-3], §7.3 bracket;
 //   for the conic, u = x - m·BT lies in Q = [0,r1]x[0,r2] in region II and BT = h_hi outside).
@@ -27,17 +27,17 @@
 
 namespace softtrace {
 
-// Hoffmann's conic B_H(u) (000 Eq. 7, 003 H_2, MATH.md §6.1); r1, r2 > 0, p < r1 r2.
+// Hoffmann's conic B_H(u) (000 Eq. 7, 003 H_2, docs/math.md §6.1); r1, r2 > 0, p < r1 r2.
 double hoffmann_conic(double u1, double u2, double r1, double r2, double p);
 
-// BT_2 on the conic base (003 Eq. 4 with the corrected a of R8, MATH.md §7.2): the "+" root in
+// BT_2 on the conic base (003 Eq. 4 with the corrected a of R8, docs/math.md §7.2): the "+" root in
 // (h2, h1] in region II, min(x1/m1, x2/m2) outside. dx (nullable) gets ∂BT/∂x_i by the implicit
 // function theorem (§7.5); e_j/m_j for the arg-min j outside region II.
 double bt2_conic(const double x[2], double r1, double r2, double p, const double m[2],
                  double dx[2]);
 bool conic_region_ii(const double x[2], double r1, double r2, const double m[2]);
 
-// ∂BT_2/∂(r1, r2, p, m1, m2) at x (MATH.md §7.5, [GR-3]); zero for r and p outside region II.
+// ∂BT_2/∂(r1, r2, p, m1, m2) at x (docs/math.md §7.5, [GR-3]); zero for r and p outside region II.
 struct ConicParameterDerivatives {
   double r1 = 0, r2 = 0, p = 0, m1 = 0, m2 = 0;
 };
@@ -46,13 +46,13 @@ ConicParameterDerivatives bt2_conic_parameter_derivatives(const double x[2], dou
 
 // T(h) = Σ [(r_i - x_i + m_i h)/r_i]_+^(p_i) - 1 of the hyper-ellipsoidal base (003 Eq. 5, R10).
 double hyper_T(const double* x, int k, const double* r, const double* p, const double* m, double h);
-// BT_k on the hyper-ellipsoidal base (MATH.md §7.3): Illinois Regula Falsi on (h_lo, h_hi];
+// BT_k on the hyper-ellipsoidal base (docs/math.md §7.3): Illinois Regula Falsi on (h_lo, h_hi];
 // returns h_hi when T(h_hi) <= 0. dx (nullable) gets the IFT partials; iterations (nullable) the
 // number of Regula Falsi steps taken (0 when h_hi is returned directly).
 double bt_hyper(const double* x, int k, const double* r, const double* p, const double* m,
                 double* dx, int* iterations);
 
-// h_lo and h_hi of MATH.md §7.3 (any base): the bracket of BT.
+// h_lo and h_hi of docs/math.md §7.3 (any base): the bracket of BT.
 double bt_lower(const double* x, int k, const double* r, const double* m);
 double bt_upper(const double* x, int k, const double* m);
 
@@ -81,7 +81,7 @@ class BtOperator {
   std::vector<double> r_, p_, m_;  // conic: p_ = {p}
 };
 
-// Bulge elimination (003 §5, MATH.md §7.6) for k = 2 with union operands g_1, g_2:
+// Bulge elimination (003 §5, docs/math.md §7.6) for k = 2 with union operands g_1, g_2:
 // cosθ = ∇g1·∇g2/(|∇g1||∇g2|) (0 when a gradient vanishes: the ranges stay at r_i(1 + ω) and
 // M_i = m_i), G = |∇g1|/|∇g2|, P_i = r_i(1 - cosθ + ω), M_i per the cases of §7.6.
 struct BulgeParameters {

@@ -5,7 +5,7 @@
 
 namespace softtrace {
 
-// MATH.md §1: the object's convention decides the complement and which side is inside.
+// docs/math.md §1: the object's convention decides the complement and which side is inside.
 enum class Convention { Soft, Zero, Constructive };
 
 // Which side of a level set a region bound encloses.

@@ -1,4 +1,5 @@
-// Parameter readers shared by the distance-function creators (validation of MATH.md §2's ranges).
+// Parameter readers shared by the distance-function creators (validation of docs/math.md §2's
+// ranges).
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
-// Distance functions (MATH.md §2): ray-linear about a centre or skeleton, value 1 on the node's
-// surface. Bounds, as derived in MATH.md §8 and gauge.h:
+// Distance functions (docs/math.md §2): ray-linear about a centre or skeleton, value 1 on the
+// node's surface. Bounds, as derived in docs/math.md §8 and gauge.h:
 // - interval: each is non-decreasing in the |coordinate|/radius terms, so the image of a box is
 //   the function at the terms' lower and upper ends (segment: distance ± half-diagonal/radius).
 // - Lipschitz, global: the l_q -> l_2 operator norm of the gauge's weights (gauge_lipschitz);
@@ -14,7 +14,8 @@
 // Each family file states the derivation of its own bounds above its classes.
 #pragma once
 
-#include "registry.h"
+#include "build_context.h"
+#include "node.h"
 
 namespace softtrace {
 
@@ -26,8 +27,9 @@ NodePtr create_generalized_distance(const Params& p,
                                     const BuildContext& ctx);      // 000 Eq. 4, 002 Eq. 16, §2.7
 NodePtr create_segment(const Params& p, const BuildContext& ctx);  // 000 Eq. 5, §2.8
 NodePtr create_superelliptic_cylinder(const Params& p,
-                                      const BuildContext& ctx);        // 002 Eqs. 17-18, §2.9
-NodePtr create_torus(const Params& p, const BuildContext& ctx);        // circle skeleton (SCENE.md)
+                                      const BuildContext& ctx);  // 002 Eqs. 17-18, §2.9
+NodePtr create_torus(const Params& p,
+                     const BuildContext& ctx);  // circle skeleton (docs/scene-format.md)
 NodePtr create_polar_prism(const Params& p, const BuildContext& ctx);  // §10.1 rose / star
 NodePtr create_super_ellipsoidal_union(const Params& p,
                                        const BuildContext& ctx);  // 000 Eq. 6, §5.3, 002 §4.5

@@ -1,6 +1,6 @@
 // Super-ellipsoidal (CG Ricci) union and intersection of distance functions: positively
 // homogeneous of degree 1, so ray-linear children give a ray-linear result (002 §4.5 closure,
-// MATH.md §2.1, §5.3). [002] builds modulation and contour surfaces this way.
+// docs/math.md §2.1, §5.3). [002] builds modulation and contour surfaces this way.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,13 +8,14 @@
 #include "distances.h"
 #include "gauge.h"
 #include "one_sided.h"
+#include "registry.h"
 #include "scratch.h"
 
 namespace softtrace {
 
 namespace {
 
-// (Σ x_i^-n)^(-1/n), 0 when some x_i <= 0 (the limit)   — 000 Eq. 6 B_RU^cg, MATH.md §5.3.
+// (Σ x_i^-n)^(-1/n), 0 when some x_i <= 0 (the limit)   — 000 Eq. 6 B_RU^cg, docs/math.md §5.3.
 // Partials v_i = (U/x_i)^(n+1) = w_i^(1+1/n) with w_i = (U/x_i)^n, Σ w_i = 1, so Σ v_i <= 1 and
 // |∇U| <= Σ v_i L_i <= max_i L_i; over a box v_i <= min(1, (U_hi/x_i,lo)^(n+1)). U is
 // non-decreasing in every x_i: the interval is U at the children's lower and upper ends.
@@ -103,7 +104,7 @@ class SuperEllipsoidalUnion final : public FieldNode {
   double n_;
 };
 
-// (Σ x_i^n)^(1/n) with x_i clamped at 0   — 000 Eq. 6 B_RI^cg, MATH.md §5.3.
+// (Σ x_i^n)^(1/n) with x_i clamped at 0   — 000 Eq. 6 B_RI^cg, docs/math.md §5.3.
 // Partials (x_i/I)^(n-1) = w_i^((n-1)/n) with Σ w_i = 1 have l_q norm 1 (1/n + 1/q = 1) for
 // n >= 1, so |∇I| <= (Σ L_i^n)^(1/n) by Hölder; no global bound for n < 1. Over a box the
 // partials come from power_sum_partial_bound. Monotone, so the interval is the power sum of the

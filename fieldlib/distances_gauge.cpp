@@ -1,5 +1,5 @@
 // LP metric, superquadric and super-elliptic cylinder, with the optional six side lengths
-// (MATH.md §2.5, §2.6, §2.9, §2.10).
+// (docs/math.md §2.5, §2.6, §2.9, §2.10).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -93,7 +93,7 @@ class LpMetric final : public FieldNode {
 
 // m(h(x,y), ζ_L(z)) with h = (u_x^n1 + u_y^n1)^(1/n1), m = (h^n2 + u_z^n2)^(1/n2) and the
 // one-sided terms u of one_sided.h. L = 0: the superquadric, 000 Eq. 3 / 002 Eq. 15 (n1 on both x
-// and y, R2); n1 = n2, L >= 0: the super-elliptic cylinder, 002 Eqs. 17-18. MATH.md §2.6,
+// and y, R2); n1 = n2, L >= 0: the super-elliptic cylinder, 002 Eqs. 17-18. docs/math.md §2.6,
 // §2.9-2.10. Bounds: the gradient is (∂m/∂h·∂h/∂u_x·u_x', ∂m/∂h·∂h/∂u_y·u_y', ∂m/∂u_z·u_z'), ∇h ⟂
 // z, so the nested gauge_lipschitz with the largest slopes 1/(a·min t) is global; over a box each
 // partial is bounded by power_sum_partial_bound and each slope by the signs the box reaches.

@@ -1,5 +1,5 @@
 // Parallel planes, one-branch plane and the (modulated) generalized distance function
-// (MATH.md §2.3, §2.4, §2.7, §2.10). Normals are normalised, so a is the distance to a plane.
+// (docs/math.md §2.3, §2.4, §2.7, §2.10). Normals are normalised, so a is the distance to a plane.
 #include <cmath>
 #include <limits>
 
@@ -18,7 +18,7 @@ Interval dot_range(const Box& b, const Vec3& n) {
   return Interval(n.x) * b.axis(0) + Interval(n.y) * b.axis(1) + Interval(n.z) * b.axis(2);
 }
 
-// |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, MATH.md §2.3. Slope exactly 1/a.
+// |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3. Slope exactly 1/a.
 class ParallelPlanes final : public FieldNode {
  public:
   ParallelPlanes(const Vec3& n, double a) : n_(n), a_(a) {}
@@ -37,7 +37,7 @@ class ParallelPlanes final : public FieldNode {
   double a_;
 };
 
-// [X·n]_+/a   — 002 §4.5 f_o (R4), MATH.md §2.4. Slope 1/a, 0 over boxes inside X·n <= 0.
+// [X·n]_+/a   — 002 §4.5 f_o (R4), docs/math.md §2.4. Slope 1/a, 0 over boxes inside X·n <= 0.
 class OneBranchPlane final : public FieldNode {
  public:
   OneBranchPlane(const Vec3& n, double a) : n_(n), a_(a) {}
@@ -59,7 +59,7 @@ class OneBranchPlane final : public FieldNode {
 };
 
 // (Σ_i u_i^n)^(1/n), u_i = [X·n_i]_+/(t_{2i-1} a_i) + [-X·n_i]_+/(t_{2i} a_i)
-//   — 000 Eq. 4, 002 Eq. 16 with AMBIGUITY A2 (R3); MATH.md §2.7, §2.10.
+//   — 000 Eq. 4, 002 Eq. 16 with AMBIGUITY A2 (R3); docs/math.md §2.7, §2.10.
 // Bounds. ∇f = N^T v with N the unit normals as rows and v_i = ∂f/∂u_i · u_i'. For n >= 1 the
 // partials have l_q norm 1 (1/n + 1/q = 1) and |u_i'| <= r_i = 1/(a_i min t), so
 //   |∇f| <= Σ ∂_i r_i <= ||r||_n                                      (Hölder), and

@@ -1,5 +1,5 @@
 // Distances in cylindrical coordinates (ρ, φ, z) about the z axis: the torus (circle skeleton)
-// and the polar prism whose cross-section radius R(φ) is MATH.md §10.1's rose or star.
+// and the polar prism whose cross-section radius R(φ) is docs/math.md §10.1's rose or star.
 #include <cmath>
 #include <limits>
 
@@ -23,9 +23,9 @@ Vec3 rho_gradient(const Vec3& p, double rho) {
   return rho > 0 ? Vec3{p.x / rho, p.y / rho, 0} : Vec3{};
 }
 
-// ((|ρ - R|/a)^n + (|z|/b)^n)^(1/n)   — SCENE.md torus: the LP gauge of §2.5 in the (ρ, z) plane,
-// ray-linear about the nearest point of the circle skeleton (MATH.md §2.1).
-// Bounds: |∇ρ| = 1 and ∇ρ ⟂ z, so ∇f has orthogonal parts ∂_1/a and ∂_2/b: the 2-D gauge's
+// ((|ρ - R|/a)^n + (|z|/b)^n)^(1/n)   — docs/scene-format.md torus: the LP gauge of §2.5 in the (ρ,
+// z) plane, ray-linear about the nearest point of the circle skeleton (docs/math.md §2.1). Bounds:
+// |∇ρ| = 1 and ∇ρ ⟂ z, so ∇f has orthogonal parts ∂_1/a and ∂_2/b: the 2-D gauge's
 // gauge_lipschitz(1/a, 1/b) globally, partial bounds from (ρ, z) intervals over a box.
 class Torus final : public FieldNode {
  public:
@@ -90,12 +90,12 @@ double profile(Profile kind, double theta, double* dg) {
   return 1 - 2 * std::abs(w) / M_PI;
 }
 
-// (h^n + |z/c|^n)^(1/n), h = ρ/R(φ)   — MATH.md §10.1's substitutes for [000] Fig. 13's rose bar
-// and star contour; ray-linear about the origin.
-// Bounds: in polar coordinates ∇h = e_ρ/R - (R'(φ)/R²) e_φ (∂h/∂φ / ρ, ρ cancels), so
-// |∇h|² = (R² + R'²)/R⁴; h is continuous and piecewise smooth (the star's kinks), so the largest
-// |∇h| over the R range a box reaches bounds its slope there. ∇h ⟂ z, so the outer gauge
-// composes as for the superquadric (gauge_lipschitz / partial bounds).
+// (h^n + |z/c|^n)^(1/n), h = ρ/R(φ)   — docs/math.md §10.1's substitutes for [000] Fig. 13's rose
+// bar and star contour; ray-linear about the origin. Bounds: in polar coordinates ∇h = e_ρ/R -
+// (R'(φ)/R²) e_φ (∂h/∂φ / ρ, ρ cancels), so |∇h|² = (R² + R'²)/R⁴; h is continuous and piecewise
+// smooth (the star's kinks), so the largest |∇h| over the R range a box reaches bounds its slope
+// there. ∇h ⟂ z, so the outer gauge composes as for the superquadric (gauge_lipschitz / partial
+// bounds).
 // - star: |R'| = r0 A k (2/π) everywhere, so |∇h|² = 1/R² + R'²/R⁴ is largest at the smallest R.
 // - rose: with q = R/r0 = 1 + A cos θ, R'² = r0² k² (A² - (q-1)²), and with s = 1/q
 //   r0² |∇h|² = P(s) = (1-k²) s² + 2k² s³ + k² (A²-1) s⁴, a quartic maximised over the s range at

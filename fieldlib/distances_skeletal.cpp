@@ -1,4 +1,4 @@
-// Skeletal line segment r(X)/I_r (MATH.md §2.8).
+// Skeletal line segment r(X)/I_r (docs/math.md §2.8).
 #include <algorithm>
 #include <cmath>
 #include <limits>

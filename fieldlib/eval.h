@@ -26,10 +26,16 @@ struct Code {
   int result;
 
   Code(const Program& p)  // NOLINT: a program is its own whole code
-      : base(&p), code(p.code.data()), size(int(p.code.size())), args(p.args.data()),
+      : base(&p),
+        code(p.code.data()),
+        size(int(p.code.size())),
+        args(p.args.data()),
         result(p.result) {}
   Code(const ProgramView& v)  // NOLINT: so is a pruned view
-      : base(v.base), code(v.code.data()), size(int(v.code.size())), args(v.args.data()),
+      : base(v.base),
+        code(v.code.data()),
+        size(int(v.code.size())),
+        args(v.args.data()),
         result(v.result) {}
 };
 
@@ -49,7 +55,7 @@ class Workspace {
   };
   struct Frame {
     Vec3 p;
-    Mat3 J;  // ∂(local point)/∂(world point)
+    Mat3 J;         // ∂(local point)/∂(world point)
     bool identity;  // J = I: gradients pass unchanged (no 0·inf where a gradient is infinite)
   };
   std::vector<Dual> duals;
@@ -58,7 +64,7 @@ class Workspace {
   std::vector<Interval> ivals;
   std::vector<double> lips;
   std::vector<Box> boxes;
-  std::vector<int32_t> kept;  // pruning's stack of chosen children
+  std::vector<int32_t> kept;   // pruning's stack of chosen children
   std::vector<int32_t> marks;  // where each kept child's code starts in the view
   ProgramView view;            // the last pruned program (bounds, prune)
 };

@@ -17,9 +17,9 @@
 #include <limits>
 
 #include "eval.h"
+#include "lp_metric.h"
 #include "node.h"
 #include "node_util.h"
-#include "lp_metric.h"
 #include "potentials.h"
 
 namespace softtrace {
@@ -53,8 +53,8 @@ Box place_box(const Box& b, const double* t) {
   Box o;
   for (int i = 0; i < 3; ++i) {
     const double ci = M[3 * i] * c.x + M[3 * i + 1] * c.y + M[3 * i + 2] * c.z;
-    const double hi = std::abs(M[3 * i]) * h.x + std::abs(M[3 * i + 1]) * h.y +
-                      std::abs(M[3 * i + 2]) * h.z;
+    const double hi =
+        std::abs(M[3 * i]) * h.x + std::abs(M[3 * i + 1]) * h.y + std::abs(M[3 * i + 2]) * h.z;
     const double pad = 1e-12 * (std::abs(ci) + hi) + kTiny;
     o.lo[i] = ci - hi - pad;
     o.hi[i] = ci + hi + pad;
@@ -120,8 +120,8 @@ class Walker {
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
-          potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_slope(s),
-                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
+          potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_slope(s), I[in.in],
+                           L[in.in], &I[in.out], &L[in.out]);
         }
         break;
       case Op::Wyvill:
@@ -139,8 +139,8 @@ class Walker {
       case Op::Murakami:
         if (bounds_)
           potential_bounds([](double d) { return murakami(d, nullptr); },
-                           8 / (3 * std::sqrt(3.0)) * (1 + 1e-12), I[in.in], L[in.in],
-                           &I[in.out], &L[in.out]);
+                           8 / (3 * std::sqrt(3.0)) * (1 + 1e-12), I[in.in], L[in.in], &I[in.out],
+                           &L[in.out]);
         break;
       case Op::Group:
       case Op::Sum:
@@ -192,8 +192,8 @@ class Walker {
     const Interval* I = ws_.ivals.data();
     int32_t* kept = ws_.kept.data();
     int32_t* marks = ws_.marks.data();
-    double bound = is_min ? std::numeric_limits<double>::infinity()
-                          : -std::numeric_limits<double>::infinity();
+    double bound =
+        is_min ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
     for (int j = first; j < last; ++j) {
       const Interval& a = I[g.children[kept[j]].slot];
       bound = is_min ? std::min(bound, a.hi) : std::max(bound, a.lo);
@@ -228,8 +228,8 @@ class Walker {
         Ls += L[s];
       }
       const double pad = n * kEps * mag + kTiny;
-      I[out.out] = std::isnan(lo) || std::isnan(hi) ? Interval::entire()
-                                                    : Interval(lo - pad, hi + pad);
+      I[out.out] =
+          std::isnan(lo) || std::isnan(hi) ? Interval::entire() : Interval(lo - pad, hi + pad);
       L[out.out] = Ls;
       return;
     }

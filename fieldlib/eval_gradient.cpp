@@ -2,8 +2,8 @@
 // to the world point, and every point register carries its Jacobian with respect to the world
 // point, so an oracle's local gradient g becomes Jᵀg.
 #include "eval.h"
-#include "node.h"
 #include "lp_metric.h"
+#include "node.h"
 #include "potentials.h"
 
 namespace softtrace {
@@ -12,7 +12,8 @@ namespace {
 Mat3 times(const Mat3& A, const Mat3& B) {
   Mat3 C;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) C.r[i][j] = A.r[i][0] * B.r[0][j] + A.r[i][1] * B.r[1][j] + A.r[i][2] * B.r[2][j];
+    for (int j = 0; j < 3; ++j)
+      C.r[i][j] = A.r[i][0] * B.r[0][j] + A.r[i][1] * B.r[1][j] + A.r[i][2] * B.r[2][j];
   return C;
 }
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 
 #include "eval.h"
-#include "node.h"
 #include "lp_metric.h"
+#include "node.h"
 #include "potentials.h"
 
 namespace softtrace {

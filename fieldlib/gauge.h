@@ -1,5 +1,5 @@
 // Weighted power sums (Σ u_i^n)^(1/n), u_i >= 0: the building block of every LP-type distance
-// function (MATH.md §2.5–§2.10), with the derivative and bound facts of MATH.md §8.
+// function (docs/math.md §2.5–§2.10), with the derivative and bound facts of docs/math.md §8.
 #pragma once
 
 #include "interval.h"
@@ -20,7 +20,8 @@ double power_sum_partial_bound(Interval ui, Interval f_range, double n);
 
 // The global Lipschitz constant of g(v) = (Σ |w_i v_i|^n)^(1/n) over R^k (Euclidean): the
 // l_q -> l_2 norm of diag(w) with 1/n + 1/q = 1, i.e. max_i w_i for n >= 2 and
-// ||w||_r with r = 2n/(2-n) for 1 <= n < 2 (Hölder, attained). Infinite for n < 1 (MATH.md §8).
+// ||w||_r with r = 2n/(2-n) for 1 <= n < 2 (Hölder, attained). Infinite for n < 1 (docs/math.md
+// §8).
 double gauge_lipschitz(const double* w, int k, double n);
 
 }  // namespace softtrace

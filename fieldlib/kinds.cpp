@@ -153,7 +153,7 @@ std::vector<KindInfo> make_kinds() {
   const Spec modulation =
       Spec("modulation", T::Node).takes(D, 1, 1).noted("same skeleton structure as the distance");
   return {
-      // Distance functions, MATH.md §2.
+      // Distance functions, docs/math.md §2.
       node("parallel_planes", D, {normal, plane_a},
            "|p.n|/a: two parallel planes (000 Eq. 2, 002 f_p)", create_parallel_planes, "plane"),
       node("one_branch_plane", D, {normal, plane_a},
@@ -202,8 +202,8 @@ std::vector<KindInfo> make_kinds() {
                 .called("a radius")
                 .noted("[a, b]: radial and axial"),
             exponent("n").optional("2")},
-           "((|rho - R|/a)^n + (|z|/b)^n)^(1/n): a circle skeleton (MATH.md §2.9)", create_torus,
-           "circle"),
+           "((|rho - R|/a)^n + (|z|/b)^n)^(1/n): a circle skeleton (docs/math.md §2.9)",
+           create_torus, "circle"),
       node("polar_prism", D,
            {Spec("radius", T::Number).above(0).called("a radius r0"),
             Spec("lobes", T::Integer).at_least(1).at_most(1000),
@@ -211,7 +211,7 @@ std::vector<KindInfo> make_kinds() {
             Spec("profile", T::Choice).one_of("cosine|triangle"),
             Spec("half_height", T::Number).above(0).called("a half-height c"),
             exponent("n").optional("20")},
-           "(h^n + |z/c|^n)^(1/n), h = rho/R(phi): rose or star prism (MATH.md §10.1)",
+           "(h^n + |z/c|^n)^(1/n), h = rho/R(phi): rose or star prism (docs/math.md §10.1)",
            create_polar_prism, "point"),
       node("super_ellipsoidal_union", D, {exponent("n"), children(D, 2)},
            "(Σ x_i^-n)^(-1/n) of distance functions (000 Eq. 6, 002 §4.5)",
@@ -219,13 +219,13 @@ std::vector<KindInfo> make_kinds() {
       node("super_ellipsoidal_intersection", D, {exponent("n"), children(D, 2)},
            "(Σ x_i^n)^(1/n) of distance functions (000 Eq. 6, 002 §4.5)",
            create_super_ellipsoidal_intersection),
-      // Soft objects, MATH.md §4.
+      // Soft objects, docs/math.md §4.
       node("soft_object", S,
            {Spec("distance", T::Node).takes(D, 1, 1),
             Spec("potential", T::Potential).optional("blanc, s = 0"),
             Spec("radii", T::RadiusTransform).optional("none: P(d)")},
            "P(T(d)): a soft object (000 Eq. 9, 002 Eq. 1)", create_soft_object),
-      // Blends, MATH.md §5-§7.
+      // Blends, docs/math.md §5-§7.
       node("soft_blend", S, {children(S, 2)}, "Σ f_i (000 Eq. 12, 002 Eq. 3)", create_soft_blend),
       node("perlin_union", S, {children(S, 2)}, "1 - Π(1 - f_i) (002 Eq. 4)", create_perlin_union),
       node("perlin_intersection", S, {children(S, 2)}, "Π f_i (002 Eq. 5)",
@@ -239,7 +239,7 @@ std::vector<KindInfo> make_kinds() {
            "Ricci intersection, soft or constructive convention (000 Eq. 6, 002 Eq. 8)",
            create_ricci_intersection),
       node("ricci_difference", kConv, {exponent("n"), children(kConv, 2)},
-           "Ricci difference: the first child minus the others (MATH.md §5.3, §5.4)",
+           "Ricci difference: the first child minus the others (docs/math.md §5.3, §5.4)",
            create_ricci_difference),
       node("min", kConv, {children(kConv, 2)}, "sharp minimum of the children", create_min),
       node("max", kConv, {children(kConv, 2)}, "sharp maximum of the children", create_max),
@@ -248,7 +248,7 @@ std::vector<KindInfo> make_kinds() {
             Spec("r2", T::Number).above(0).called("a range"),
             Spec("p", T::Number).noted("p < r1*r2; BSS2 (soft union) needs r1, r2 < 1"),
             children(kConv, 2, 2)},
-           "scale method union: BSA2 constructive, BSS2 soft (000 Eq. 8, MATH.md §6.3)",
+           "scale method union: BSA2 constructive, BSS2 soft (000 Eq. 8, docs/math.md §6.3)",
            create_scale_union),
       node("scale_intersection", kConv,
            {Spec("r1", T::Number).above(0).called("a range"),
@@ -256,10 +256,10 @@ std::vector<KindInfo> make_kinds() {
             Spec("p", T::Number)
                 .noted("p < r1*r2; BSS2 (constructive intersection) needs r1, r2 < 1"),
             children(kConv, 2, 2)},
-           "scale method intersection: BSS2 constructive, BSA2 soft (000 Eq. 8, MATH.md §6.3)",
+           "scale method intersection: BSS2 constructive, BSA2 soft (000 Eq. 8, docs/math.md §6.3)",
            create_scale_intersection),
       node("complement", kConv, {children(kConv, 1, 1)},
-           "1 - f (soft), -f (zero), 1/f (constructive) (MATH.md §1)", create_complement),
+           "1 - f (soft), -f (zero), 1/f (constructive) (docs/math.md §1)", create_complement),
       node("offset", Z,
            {children(D, 1, 1), Spec("scale", T::Number).optional("1").noted("s != 0"),
             Spec("level", T::Number).optional("1")},
@@ -272,15 +272,15 @@ std::vector<KindInfo> make_kinds() {
            create_bt_difference),
       node("displacement_union", Z, bt_params(false), "BD_k: BT_k with all m = 1 (003 §2.2)",
            create_displacement_union),
-      // Potentials, MATH.md §3.
+      // Potentials, docs/math.md §3.
       potential("blanc", {Spec("s", T::Number).optional("0").at_least(0).called("a softness s")},
                 "Blanc's potential with softness s (000 Eq. 11, 002 Eq. 2)", create_blanc),
-      potential("wyvill", {}, "Wyvill's sixth-degree soft-object polynomial (MATH.md §3.3)",
+      potential("wyvill", {}, "Wyvill's sixth-degree soft-object polynomial (docs/math.md §3.3)",
                 create_wyvill),
       potential("murakami", {},
-                "(1 - d^2)^2, POV-Ray's blob; 0.5 level at d = 0.5412 (MATH.md §3.3)",
+                "(1 - d^2)^2, POV-Ray's blob; 0.5 level at d = 0.5412 (docs/math.md §3.3)",
                 create_murakami),
-      // Radius transforms, MATH.md §4.2-§4.8.
+      // Radius transforms, docs/math.md §4.2-§4.8.
       transform("T_n",
                 {Spec("w1", T::Number).above(0).called("an outer radius factor w1"),
                  Spec("w2", T::Number)

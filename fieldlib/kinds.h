@@ -27,7 +27,7 @@ using RadiusCreate = std::unique_ptr<FieldNode> (*)(const Params&, std::unique_p
 
 // What a value is. Node-valued parameters (slots) declare the family they take.
 enum class Family {
-  Distance,         // ray-linear distance function, 1 on its surface (MATH.md §2)
+  Distance,         // ray-linear distance function, 1 on its surface (docs/math.md §2)
   SoftField,        // soft convention: [0, 1], inside f >= 0.5
   ZeroSurface,      // zero convention: inside f <= 0
   Constructive,     // constructive convention: inside f <= 1 (a distance function is one)

@@ -1,7 +1,7 @@
-// The LP metric (|x/a|^n + |y/b|^n + |z/c|^n)^(1/n) (000 Eq. 2, MATH.md §2.5) as kernels shared
-// by the model node (distances_gauge.cpp) and the program's LpMetric instruction, so both compute
-// the same bits. Bounds over a box: f is non-decreasing in every |x_i/a_i|, so its interval is
-// f at the ends of the terms' intervals; |∂f/∂x_i| = (u_i/f)^(n-1)/a_i is bounded by
+// The LP metric (|x/a|^n + |y/b|^n + |z/c|^n)^(1/n) (000 Eq. 2, docs/math.md §2.5) as kernels
+// shared by the model node (distances_gauge.cpp) and the program's LpMetric instruction, so both
+// compute the same bits. Bounds over a box: f is non-decreasing in every |x_i/a_i|, so its interval
+// is f at the ends of the terms' intervals; |∂f/∂x_i| = (u_i/f)^(n-1)/a_i is bounded by
 // power_sum_partial_bound, and the global bound (gauge_lipschitz) caps the result.
 #pragma once
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "registry.h"
+
 namespace softtrace {
 
 namespace {

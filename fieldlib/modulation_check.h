@@ -7,7 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "registry.h"
+#include "build_context.h"
+#include "node.h"
 
 namespace softtrace {
 

@@ -1,4 +1,4 @@
-// The one interface every field node answers (MATH.md §8 for the bounds it promises).
+// The one interface every field node answers (docs/math.md §8 for the bounds it promises).
 // Models are built once from a scene and then only evaluated, from many threads at once:
 // every method is const and thread-safe.
 #pragma once
@@ -37,7 +37,7 @@ class FieldNode {
   // l > 0 is the support box.
   virtual Box region(double level, Side side) const { return Box::unbounded(); }
 
-  // For blends whose parameters follow the children's normals (bulge elimination, MATH.md
+  // For blends whose parameters follow the children's normals (bulge elimination, docs/math.md
   // §7.6): a lower bound on |∇f| over the box, and an upper bound on the Hessian's operator
   // norm there, i.e. a Lipschitz bound on ∇f, finite only where f is C^1 with no kink in the
   // box. The defaults claim nothing.

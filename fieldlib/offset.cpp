@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "registry.h"
+
 namespace softtrace {
 
 namespace {
 
-// s·(f - c)   — zero-surface function from a distance function, 003 §2.1, SCENE.md "offset"
+// s·(f - c)   — zero-surface function from a distance function, 003 §2.1, docs/scene-format.md
+// "offset"
 class Offset final : public FieldNode {
  public:
   Offset(NodePtr child, double s, double c) : child_(std::move(child)), s_(s), c_(c) {}

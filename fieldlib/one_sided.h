@@ -1,4 +1,5 @@
-// One coordinate term of the modulated gauges (MATH.md §2.9, §2.10): for a linear coordinate s,
+// One coordinate term of the modulated gauges (docs/math.md §2.9, §2.10): for a linear coordinate
+// s,
 //   u(s) = [s - L]_+ / r_pos + [-s - L]_+ / r_neg,
 // i.e. the one-branch planes [±s]_+/(t·a) of 002 Eqs. 15, 16, 18 with r_pos = t_{2i-1}·a and
 // r_neg = t_{2i}·a, and the dead zone ζ_L of 002 Eq. 17 (L = 0 elsewhere). Only one half is ever

@@ -29,9 +29,7 @@ class Placed final : public FieldNode {
   double lipschitz() const override { return child_->lipschitz(); }
   double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
   // A rigid motion keeps gradient lengths and Hessian norms.
-  double gradient_floor(const Box& b) const override {
-    return child_->gradient_floor(to_local(b));
-  }
+  double gradient_floor(const Box& b) const override { return child_->gradient_floor(to_local(b)); }
   double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }
   // A pure translation is three subtractions; a rotation one matrix.
   int compile(ProgramBuilder& b, int reg) const override {

@@ -1,5 +1,5 @@
-// Placement of any node (SCENE.md "Placement"): p_local = R^T (p - translate). A rigid motion
-// keeps gradient norms, so Lipschitz bounds pass through unchanged.
+// Placement of any node (docs/scene-format.md "Placement"): p_local = R^T (p - translate). A rigid
+// motion keeps gradient norms, so Lipschitz bounds pass through unchanged.
 #pragma once
 
 #include "node.h"

@@ -60,7 +60,7 @@ double murakami(double d, double* dP) {
 
 namespace {
 
-// Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), MATH.md §3.2
+// Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), docs/math.md §3.2
 class Blanc final : public Potential {
  public:
   explicit Blanc(double s) : s_(s) {}
@@ -73,7 +73,7 @@ class Blanc final : public Potential {
   double s_;
 };
 
-// 1 - 4/9 d^6 + 17/9 d^4 - 22/9 d^2   — Wyvill et al., MATH.md §3.3
+// 1 - 4/9 d^6 + 17/9 d^4 - 22/9 d^2   — Wyvill et al., docs/math.md §3.3
 class Wyvill final : public Potential {
  public:
   double eval(double d, double* dP) const override { return wyvill(d, dP); }
@@ -87,7 +87,7 @@ class Wyvill final : public Potential {
   Op op() const override { return Op::Wyvill; }
 };
 
-// (1 - d^2)^2, POV-Ray's blob density   — MATH.md §3.3; its 0.5 level is d = 0.5412
+// (1 - d^2)^2, POV-Ray's blob density   — docs/math.md §3.3; its 0.5 level is d = 0.5412
 class Murakami final : public Potential {
  public:
   double eval(double d, double* dP) const override { return murakami(d, dP); }
@@ -99,7 +99,7 @@ class Murakami final : public Potential {
 }  // namespace
 
 std::unique_ptr<Potential> create_blanc(const Params& p) {
-  const double s = p.number("s", 0.0);  // >= 0 (the table; MATH.md §3.2)
+  const double s = p.number("s", 0.0);  // >= 0 (the table; docs/math.md §3.2)
   return make_blanc(s);
 }
 PotentialPtr make_blanc(double s) {

@@ -89,7 +89,7 @@ Interval RadiusProfile::image(Interval d, Interval w) const {
 
 namespace {
 
-// T_n(d; w1 = w, w2 = rule(w))   — 000 Eq. 13, 002 Eq. 10, MATH.md §4.2, §4.5, §4.6
+// T_n(d; w1 = w, w2 = rule(w))   — 000 Eq. 13, 002 Eq. 10, docs/math.md §4.2, §4.5, §4.6
 class ProfileN final : public RadiusProfile {
  public:
   ProfileN(W2Rule rule, double w2) : rule_(rule), w2_(w2) {}
@@ -189,7 +189,7 @@ class ProfileN final : public RadiusProfile {
   double w2_;
 };
 
-// T_l(d; w1 = w)   — 002 Eq. 13, MATH.md §4.3, §4.5
+// T_l(d; w1 = w)   — 002 Eq. 13, docs/math.md §4.3, §4.5
 class ProfileL final : public RadiusProfile {
  public:
   double eval(double d, double w, double* Td, double* Tw) const override {
@@ -220,7 +220,7 @@ class ProfileL final : public RadiusProfile {
   double outer_end(double w) const override { return 0.5 * (1 + w); }
 };
 
-// T_r(d; w2 = w)   — 002 Eq. 14, MATH.md §4.4, §4.6
+// T_r(d; w2 = w)   — 002 Eq. 14, docs/math.md §4.4, §4.6
 class ProfileR final : public RadiusProfile {
  public:
   double eval(double d, double w, double* Td, double* Tw) const override {

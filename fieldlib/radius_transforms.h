@@ -1,4 +1,4 @@
-// Radius transforms T of a distance d (MATH.md §4.2–§4.9): the formulas with their partials,
+// Radius transforms T of a distance d (docs/math.md §4.2–§4.9): the formulas with their partials,
 // and "profiles" T(d; w) with one free parameter w that the soft-object node composes as
 // P ∘ T ∘ d, with w constant (T_n, T_l, T_r) or w = w(d, f) from a modulation surface f
 // (T_an, T_al, T_sn, T_sr, contour).

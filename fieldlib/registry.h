@@ -8,9 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "kinds.h"
+#include "build_context.h"
 #include "node.h"
-#include "params.h"
 #include "potentials.h"
 
 namespace softtrace {
@@ -19,21 +18,6 @@ namespace softtrace {
 // tree, also on TBB worker threads with small stacks) or making every evaluation absurdly slow.
 constexpr int kMaxFieldDepth = 256;
 constexpr size_t kMaxChildren = 10000;
-
-struct BuildContext {
-  Convention convention = Convention::Soft;
-  int depth = 0;  // nodes above the one being built
-  // The family the slot being filled takes: an object's field takes its convention's
-  // (Family::ConventionField); a node built on its own anything.
-  Family slot = Family::Any;
-  // The kind being built (set for its `create`): its slots' families come from the table.
-  const KindInfo* kind = nullptr;
-  // The skeleton structure of the soft object's distance (modulation_check.h), while its radius
-  // transform is built; empty when unknown.
-  std::string skeleton;
-  // Where warnings about an accepted scene go (one line each, located); stderr when null.
-  void (*warn)(const std::string& line) = nullptr;
-};
 
 // Builds the node described by `p` (which must have "type") for the slot ctx.slot, wrapped in its
 // placement.

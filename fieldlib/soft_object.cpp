@@ -10,6 +10,7 @@
 #include "potentials.h"
 #include "program.h"
 #include "radius_transforms.h"
+#include "registry.h"
 
 namespace softtrace {
 
@@ -60,7 +61,7 @@ class SoftObject final : public FieldNode {
 // w2 = 1 - d/f (T_sn, T_sr; 002 Eq. 12).
 enum class WSource { Constant, Outer, Inner };
 
-// P ∘ T ∘ d   — 000 Eqs. 13–15, 002 Eqs. 10–14, MATH.md §4.2–§4.9
+// P ∘ T ∘ d   — 000 Eqs. 13–15, 002 Eqs. 10–14, docs/math.md §4.2–§4.9
 class TransformedSoftObject final : public FieldNode {
  public:
   TransformedSoftObject(NodePtr d, PotentialPtr P, std::unique_ptr<RadiusProfile> T, double w)
@@ -262,7 +263,7 @@ class TransformedSoftObject final : public FieldNode {
   Box support_;  // region(0+, Above): the field is 0 outside
 };
 
-// T_a*, T_s* and contour: w from the modulation (or contour) node `key` (MATH.md §4.5-§4.8).
+// T_a*, T_s* and contour: w from the modulation (or contour) node `key` (docs/math.md §4.5-§4.8).
 NodePtr create_modulated(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx,
                          std::unique_ptr<RadiusProfile> profile, WSource src, const char* key,
                          double scale) {
@@ -280,7 +281,7 @@ NodePtr create_modulated(const Params& r, NodePtr d, PotentialPtr P, const Build
 
 NodePtr create_T_n(const Params& r, NodePtr d, PotentialPtr P, const BuildContext&) {
   const double w1 = r.number("w1"), w2 = r.number("w2");
-  r.check(w2 <= 2 * w1, "w2", "expected w2 <= 2*w1, else T_n is not monotone (MATH.md §4.2)");
+  r.check(w2 <= 2 * w1, "w2", "expected w2 <= 2*w1, else T_n is not monotone (docs/math.md §4.2)");
   return std::make_unique<TransformedSoftObject>(std::move(d), std::move(P),
                                                  make_profile_n(W2Rule::Fixed, w2), w1);
 }
@@ -308,7 +309,7 @@ NodePtr create_T_sr(const Params& r, NodePtr d, PotentialPtr P, const BuildConte
   return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_r(), WSource::Inner,
                           "modulation", 1);
 }
-// [000]'s contour surface fc = 1 is T_an with f_a = fc/2 (MATH.md §4.8, [VIR-2]).
+// [000]'s contour surface fc = 1 is T_an with f_a = fc/2 (docs/math.md §4.8, [VIR-2]).
 NodePtr create_contour(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx) {
   return create_modulated(r, std::move(d), std::move(P), ctx, make_profile_n(W2Rule::Double),
                           WSource::Outer, "contour", 0.5);

@@ -1,4 +1,4 @@
-// Soft objects f = P(T(d(X))) (MATH.md §4; 000 Eq. 9, 002 Eq. 1), with the optional radius
+// Soft objects f = P(T(d(X))) (docs/math.md §4; 000 Eq. 9, 002 Eq. 1), with the optional radius
 // transform under "radii" (radius_transforms.h holds the formulas and their bounds).
 // Bounds:
 // - interval: P is non-increasing and T(d; w) monotone (radius_transforms.h), so the image is
@@ -18,7 +18,9 @@
 //   contour {fc < 1} ∪ {d < 0.5(1+w_min)}.
 #pragma once
 
-#include "registry.h"
+#include "build_context.h"
+#include "node.h"
+#include "potentials.h"
 
 namespace softtrace {
 

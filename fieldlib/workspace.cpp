@@ -1,6 +1,6 @@
-#include "eval.h"
-
 #include <algorithm>
+
+#include "eval.h"
 
 namespace softtrace {
 

@@ -1,4 +1,4 @@
-// Pinhole camera from eye/target/up and a vertical field of view (SCENE.md "camera").
+// Pinhole camera from eye/target/up and a vertical field of view (docs/scene-format.md "camera").
 #pragma once
 
 #include <cmath>

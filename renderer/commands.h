@@ -1,4 +1,4 @@
-// The subcommands of the `softtrace` command line (SCENE.md "Command line"). Each returns the
+// The subcommands of the `softtrace` command line (docs/scene-format.md "Command line"). Each returns the
 // process exit status: 0 success, 2 bad usage or bad input; `diff` has idiff's codes (0 pass,
 // 1 warning, 2 failure, 4 a file it cannot read or write).
 #pragma once

@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   CLI::App app{
       "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
-      "Scene format and node list: README.md and SCENE.md."};
+      "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command line: docs/cli.md."};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
   const std::map<std::string, LipschitzMode> modes = {{"local", LipschitzMode::Local},

@@ -1,4 +1,4 @@
-// A loaded scene (SCENE.md): camera, image settings, lights and objects whose fields are built
+// A loaded scene (docs/scene-format.md): camera, image settings, lights and objects whose fields are built
 // by fieldlib's registry. Loading validates everything; rendering never sees bad input.
 #pragma once
 

@@ -4,10 +4,10 @@
 // The object's field is compiled once to a flat program (fieldlib/program.h). The ray is cut
 // into stretches; one bounds pass over the box around a stretch gives its value interval, its
 // Lipschitz bound and the program pruned to that box, which every point of the stretch then
-// evaluates. A stretch whose interval shows the solid cannot be reached is skipped whole. Otherwise the tracer steps by |f - iso| / L with L
-// the Lipschitz bound over that stretch's box, which can never step over the surface; where no
-// finite bound exists the stretch is halved until it is short enough to decide by sign. A sign
-// change is then refined by bisection.
+// evaluates. A stretch whose interval shows the solid cannot be reached is skipped whole. Otherwise
+// the tracer steps by |f - iso| / L with L the Lipschitz bound over that stretch's box, which can
+// never step over the surface; where no finite bound exists the stretch is halved until it is short
+// enough to decide by sign. A sign change is then refined by bisection.
 #pragma once
 
 #include "eval.h"
@@ -51,8 +51,8 @@ class ObjectTracer {
 
  private:
   // g = inside_sign (f - iso): the solid is g >= 0.
-  double g(const Vec3& p) const;           // anywhere (prunes to p first)
-  double g_view(const Vec3& p) const;      // inside the box of the last bounds/prune pass
+  double g(const Vec3& p) const;       // anywhere (prunes to p first)
+  double g_view(const Vec3& p) const;  // inside the box of the last bounds/prune pass
   double bisect(const Ray& ray, double a, double b, int& steps) const;
 
   const SceneObject* object_;

@@ -1,4 +1,4 @@
-// Sweep cases for the distance functions of MATH.md §2 (see sweep.h).
+// Sweep cases for the distance functions of docs/math.md §2 (see sweep.h).
 #include <limits>
 
 #include "sweep.h"
@@ -91,7 +91,7 @@ const SweepCase kCases[] = {
     {"torus_placed", R"({"type":"torus","major_radius":0.6,"radii":[0.3,0.2],"n":8,
                          "translate":[0.1,0.1,0],"rotate":{"axis":[0,1,0],"deg":60}})",
      kUnit, BELOW(1.0)},
-    // Polar prisms: MATH.md §10.1's rose bar and star contour, and a small one.
+    // Polar prisms: docs/math.md §10.1's rose bar and star contour, and a small one.
     {"polar_prism_rose", R"({"type":"polar_prism","radius":8,"lobes":5,"amplitude":0.3,
                              "profile":"cosine","half_height":24})",
      kFig13, BELOW(1.0)},

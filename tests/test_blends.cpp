@@ -1,4 +1,4 @@
-// Blend properties of MATH.md §5 and §6.3: [PE-1..3], [RC-1..3], A5, [RS-1..3], [SC-1..4], the
+// Blend properties of docs/math.md §5 and §6.3: [PE-1..3], [RC-1..3], A5, [RS-1..3], [SC-1..4], the
 // complement, min/max, and parameter validation.
 #include <gtest/gtest.h>
 
@@ -212,7 +212,7 @@ TEST(Ricci, ZeroConventionIsRejected) {
   }
 }
 
-// B_H(y) of MATH.md §6.1.
+// B_H(y) of docs/math.md §6.1.
 double hoffmann(double y1, double y2, double r1, double r2, double p) {
   return r2 * r2 * y1 * y1 + r1 * r1 * y2 * y2 + r1 * r1 * r2 * r2 - 2 * r2 * r2 * r1 * y1 -
          2 * r1 * r1 * r2 * y2 + 2 * p * y1 * y2;

@@ -212,7 +212,7 @@ TEST(Offset, ValueGradientAndRegion) {
   EXPECT_FALSE(o->region(0, Side::Below).bounded());
 }
 
-// ---- Bulge elimination (MATH.md §7.6)
+// ---- Bulge elimination (docs/math.md §7.6)
 
 TEST(BulgeElimination, PositionFunctionProperties) {  // [BE-1]..[BE-5]
   Rng g(34);
@@ -287,7 +287,7 @@ TEST(BulgeElimination, ValueContinuity) {
     }
 }
 
-// MATH.md's implementation choice: the gradient is the paper's partial gradient, i.e. the
+// docs/math.md's implementation choice: the gradient is the paper's partial gradient, i.e. the
 // gradient of BT(f(X); P(X0), M(X0)) with the position functions frozen at X0.
 TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
   const NodePtr f1 = build_from_json(kCylZ, kZero), f2 = build_from_json(kCylX, kZero);
@@ -323,7 +323,7 @@ TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
   EXPECT_GT(blending, 100);
 }
 
-// The exact gradient needs the children's Hessians (MATH.md §7.6), so the shading normal is the
+// The exact gradient needs the children's Hessians (docs/math.md §7.6), so the shading normal is the
 // partial gradient. Near the zero surface of the crossing cylinders it stays within a few degrees
 // of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
 TEST(BulgeElimination, PartialGradientIsCloseToTheNormalNearTheSurface) {

@@ -117,7 +117,7 @@ TEST(Usage, MisspellingsAreNamedWithTheNearestKnownWord) {
             "softtrace: --width: Value 0 not in range 1 to 16384 (see softtrace --help)\n");
 }
 
-// The Fig. 12(b) field written out independently of fieldlib (MATH.md §3.2, 000 Eqs. 19-20).
+// The Fig. 12(b) field written out independently of fieldlib (docs/math.md §3.2, 000 Eqs. 19-20).
 double blanc0(double d) {
   if (d >= 1) return 0;
   if (d <= 0.5) return 1 - 2 * d * d;

@@ -1,4 +1,4 @@
-// Distance-function properties of MATH.md §2: ray-linearity [RL-1]..[RL-3], the modulation
+// Distance-function properties of docs/math.md §2: ray-linearity [RL-1]..[RL-3], the modulation
 // surfaces' side lengths [DF-1]..[DF-5], [DF-7], the segment [DF-6], and parameter validation.
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ Vec3 random_point(std::mt19937_64& rng, double r) {
   return {u(rng), u(rng), u(rng)};
 }
 
-// Nodes ray-linear about the origin (MATH.md §2.1 [RL-1] list, plus the polar prisms and the
+// Nodes ray-linear about the origin (docs/math.md §2.1 [RL-1] list, plus the polar prisms and the
 // super-ellipsoidal blends of ray-linear children, §2.1 "Closure").
 const char* const kRayLinear[] = {
     R"({"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7})",
@@ -347,7 +347,7 @@ TEST(SuperEllipsoidal, UnionBelowMinIntersectionAboveMax) {  // [RC-1]
   EXPECT_GT(zero_guarded, 100);
 }
 
-TEST(DistanceBounds, FiniteOverBoxesAwayFromSingularPlanes) {  // MATH.md §8, exponents < 1
+TEST(DistanceBounds, FiniteOverBoxesAwayFromSingularPlanes) {  // docs/math.md §8, exponents < 1
   const std::pair<const char*, Box> cases[] = {
       {R"({"type":"superquadric","radii":[0.8,1,0.9],"n1":0.6,"n2":2.5,"t":[1,1.3,0.8,1,2,1]})",
        Box({0.2, 0.3, 0.1}, {0.4, 0.5, 0.3})},

@@ -2,8 +2,8 @@
 // (scenes/fig000_*.json): each scene is loaded with load_scene, and its blend's terms (the bar's
 // P(T(d1)), d1, the contour fc, the cube's d2) are built from the same file's JSON, so a scene
 // edit that breaks a figure's point fails here.
-//   Fig. 12: [VIR-1], [VIR-3] (MATH.md §4.8) and the surface away from the blend unchanged.
-//   Fig. 14: [SC-3] (MATH.md §6.3.3) on the soft fields, added material in the transition band
+//   Fig. 12: [VIR-1], [VIR-3] (docs/math.md §4.8) and the surface away from the blend unchanged.
+//   Fig. 14: [SC-3] (docs/math.md §6.3.3) on the soft fields, added material in the transition band
 //            f_i >= 0.5(1 - r_i) (§6.3.4) and, with a contour, inside fc < 1.
 //   Fig. 13: the star contour bounds the added material; fc < 2 d1 holds.
 //   Fig. 7:  T_n with w1 = 0.5 halves the large cylinder's outer zone to 0.5 <= d <= 0.75.
@@ -113,7 +113,7 @@ TEST_P(Fig12, BlendingRegionIsInsideTheContour) {
   }
   EXPECT_GT(checked, 10000);
   EXPECT_GT(changed, 100) << "the contour's region should differ from d1 < 1";
-  EXPECT_GT(min_w1, 0) << "the contour must enclose the bar (fc < 2 d1, MATH.md §4.8)";
+  EXPECT_GT(min_w1, 0) << "the contour must enclose the bar (fc < 2 d1, docs/math.md §4.8)";
 }
 
 // [VIR-3]: every added-material point (sum >= 0.5, both terms < 0.5) has fc < 1 and d2 < 1.

@@ -1,7 +1,7 @@
 // The claims of [002] Figs. 6, 8 and 9, checked numerically on the committed scene files
 // (scenes/fig002_*.json), so a scene that stops showing what its figure is about fails here.
 // The distance and modulation functions are re-evaluated independently of fieldlib from the
-// paper's formulas; Blanc's potential with s = 0 (MATH.md §3.2) is the scenes' potential.
+// paper's formulas; Blanc's potential with s = 0 (docs/math.md §3.2) is the scenes' potential.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,7 +23,7 @@ const SceneObject& object(const Scene& s, const std::string& name) {
   throw std::runtime_error("no object " + name + " in " + s.path);
 }
 
-// Blanc's potential, s = 0 (MATH.md §3.2), and its inverse on [0, 1] by bisection.
+// Blanc's potential, s = 0 (docs/math.md §3.2), and its inverse on [0, 1] by bisection.
 double blanc(double d) {
   if (d >= 1) return 0;
   if (d <= 0.5) return 1 - 2 * d * d;

@@ -1,4 +1,4 @@
-// Potential properties of MATH.md §3 ([PB-1]..[PB-6]) for several s, and Wyvill/quartic facts.
+// Potential properties of docs/math.md §3 ([PB-1]..[PB-6]) for several s, and Wyvill/quartic facts.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,7 +26,7 @@ TEST_P(Blanc, StatedValues) {  // [PB-1], [PB-6] at the level
   EXPECT_NEAR(P(*p, std::nextafter(0.5, 1.0)), 0.5, 1e-12);  // both branches meet
   EXPECT_EQ(P(*p, 1), 0);
   EXPECT_EQ(P(*p, 1.7), 0);
-  EXPECT_EQ(P(*p, -0.3), 1) << "d is clamped at 0 (MATH.md §3.1)";
+  EXPECT_EQ(P(*p, -0.3), 1) << "d is clamped at 0 (docs/math.md §3.1)";
 }
 
 TEST_P(Blanc, FlatAtBothEnds) {  // [PB-2]

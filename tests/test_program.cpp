@@ -36,8 +36,8 @@ int count_ops(const std::vector<Instr>& code, Op op) {
 }  // namespace
 
 TEST(Program, PlacementCompilesToTranslationOrRotation) {
-  const NodePtr t = build_from_json(
-      R"({"type":"lp_metric","radii":[1,2,3],"n":2,"translate":[1,2,3]})");
+  const NodePtr t =
+      build_from_json(R"({"type":"lp_metric","radii":[1,2,3],"n":2,"translate":[1,2,3]})");
   const Program pt = compile(*t);
   EXPECT_EQ(count_ops(pt.code, Op::Translate), 1);
   EXPECT_EQ(count_ops(pt.code, Op::Place), 0);

@@ -1,4 +1,4 @@
-// Radius-transform properties of MATH.md §4 ([TN-*], [TL-*], [TR-1], [TA-*], [TS-*], [VIR-*]).
+// Radius-transform properties of docs/math.md §4 ([TN-*], [TL-*], [TR-1], [TA-*], [TS-*], [VIR-*]).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,7 +133,7 @@ TEST(TransformN, MaximumSlope) {  // [TN-8]
   }
 }
 
-// Partials of MATH.md §4.2–§4.4 against central differences in d, w1, w2.
+// Partials of docs/math.md §4.2–§4.4 against central differences in d, w1, w2.
 TEST(Transforms, PartialsMatchFiniteDifferences) {
   const double h = 1e-7;
   for (double d : {0.12, 0.3, 0.45, 0.55, 0.8, 0.95}) {
@@ -174,7 +174,7 @@ TEST(TransformL, ValuesAndMonotone) {  // [TL-1]
     }
   }
   for (double d = 0; d <= 1; d += 0.01) EXPECT_NEAR(transform_l(d, 1, nullptr), d, 1e-14);
-  EXPECT_NEAR(transform_l(0.25, 3, nullptr), 0.354, 5e-4);  // MATH.md §4.3's profile numbers
+  EXPECT_NEAR(transform_l(0.25, 3, nullptr), 0.354, 5e-4);  // docs/math.md §4.3's profile numbers
   EXPECT_NEAR(transform_l(0.25, 0.2, nullptr), 0.036, 5e-4);
 }
 
@@ -203,7 +203,7 @@ TEST(TransformR, ValuesAndMonotone) {  // [TR-1]
     }
   }
   for (double d = 0; d <= 1; d += 0.01) EXPECT_NEAR(transform_r(d, 1, nullptr), d, 1e-14);
-  EXPECT_NEAR(transform_r(0.75, 0.5, nullptr), 0.847, 5e-4);  // MATH.md §4.4's profile numbers
+  EXPECT_NEAR(transform_r(0.75, 0.5, nullptr), 0.847, 5e-4);  // docs/math.md §4.4's profile numbers
   EXPECT_NEAR(transform_r(0.75, 0.2, nullptr), 0.964, 5e-4);
 }
 

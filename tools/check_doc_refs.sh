@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Checks that every anchor of docs/math.md that the repository cites exists there with a definition:
-# - section numbers "§N.M": cited as "MATH.md §N.M" / "docs/math.md §N.M", or bare "§N.M" unless a
+# - section numbers "§N.M": cited as "docs/math.md §N.M", or bare "§N.M" unless a
 #   paper tag precedes it ("003 §3.4", "[002] §4.5" are the papers' own sections); each must be a
 #   heading "## N. ..." / "### N.M ..." of docs/math.md;
 # - property IDs "[PB-1]", "[BT2-3]": each must be defined by a list item that starts with it in
 #   bold, "* **[PB-1]** ...";
-# - register IDs A1..A6 and R1..R24 on lines that cite the maths (MATH.md, math.md, AMBIGUITY, §):
+# - register IDs A1..A6 and R1..R24 on lines that cite the maths (math.md, AMBIGUITY, §):
 #   each must be defined in bold, "**A4" / "**R14".
 # Usage: tools/check_doc_refs.sh [REPO_ROOT]   (exit 0: all found; 1: some missing; 2: usage)
 set -euo pipefail
@@ -39,7 +39,7 @@ refs=$(perl -ne '
   my $loc = "$ARGV:$.";
   # A bare "§" continuing a list ("[002] §4.1, §4.4.1") belongs to the same source as the one before.
   my $paper = 0;
-  while (/(MATH\.md|math\.md)?\s*§([0-9]+(?:\.[0-9]+)*)/g) {
+  while (/(math\.md)?\s*§([0-9]+(?:\.[0-9]+)*)/g) {
     my ($doc, $num, $start) = ($1, $2, $-[0]);
     my $before = substr($_, 0, $start);
     if ($doc) {
@@ -52,7 +52,7 @@ refs=$(perl -ne '
     print "$loc\tsection\t$num\n" unless $paper;
   }
   while (/\[([A-Z]+[0-9]*-[0-9]+)\]/g) { print "$loc\tproperty\t$1\n"; }
-  if (/MATH\.md|math\.md|AMBIGUITY|§/) {
+  if (/math\.md|AMBIGUITY|§/) {
     while (/\b(A[1-6]|R[0-9]{1,2})\b/g) { print "$loc\tregister\t$1\n"; }
   }
   close ARGV if eof;
