@@ -4,9 +4,9 @@
 # a fieldlib program compiled with pkg-config's flags, and, when the Python module was built,
 # `import softtrace` and examples/python/example.py from the prefix. Every value printed must be
 # the bits `softtrace eval` prints for the same field.
-#   test_install.sh BUILD_DIR SOURCE_DIR WORK_DIR
+#   test_install.sh BUILD_DIR SOURCE_DIR WORK_DIR [PYTHON]
 set -euo pipefail
-build=$1 src=$2 work=$3
+build=$1 src=$2 work=$3 python=${4:-python3}
 prefix=$work/prefix
 scene=$src/examples/consumer/two_blobs.json
 
@@ -50,7 +50,7 @@ got=$("$work/field_value_pc" $point)
 
 python_dir=$(find "$prefix" -name 'softtrace*.so' -printf '%h\n' | head -n1)
 if [ -n "$python_dir" ]; then
-  got=$(PYTHONPATH=$python_dir python3 "$src/examples/python/example.py" "$scene" $point)
+  got=$(PYTHONPATH=$python_dir "$python" "$src/examples/python/example.py" "$scene" $point)
   [ "$got" = "$expected" ] || fail "example.py printed $got, softtrace eval $expected"
 fi
 echo "test_install: ok ($expected at ($point); python: ${python_dir:-not built})"
