@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
       "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command line: docs/cli.md."};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
+  app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
+                       "Print the version and the commit it was built from");
   const std::map<std::string, LipschitzMode> modes = {{"local", LipschitzMode::Local},
                                                       {"global", LipschitzMode::Global}};
 
@@ -160,6 +162,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& ex) {
     return app.exit(ex);
   } catch (const CLI::CallForAllHelp& ex) {
+    return app.exit(ex);
+  } catch (const CLI::CallForVersion& ex) {
     return app.exit(ex);
   } catch (const CLI::ParseError& ex) {
     const std::string unknown = unknown_word(app, argc, argv);

@@ -1,0 +1,89 @@
+// The C++ builders (build.h) and batched evaluation (batch.h).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "batch.h"
+#include "build.h"
+#include "params.h"
+#include "registry.h"
+
+namespace softtrace {
+namespace {
+
+Spec two_blobs() {
+  return soft_blend({soft_object(lp_metric({30, 30, 12}, 20), wyvill()),
+                     translate(soft_object(lp_metric({10, 10, 10}, 2), murakami()), {25, 0, 0})});
+}
+
+TEST(Build, SameFieldAsTheSceneFormat) {
+  const auto j = nlohmann::json::parse(R"({"type": "soft_blend", "children": [
+    {"type": "soft_object", "distance": {"type": "lp_metric", "radii": [30, 30, 12], "n": 20},
+     "potential": {"type": "wyvill"}},
+    {"type": "soft_object", "distance": {"type": "lp_metric", "radii": [10, 10, 10], "n": 2},
+     "potential": {"type": "murakami"}, "translate": [25, 0, 0]}]})");
+  EXPECT_EQ(two_blobs().json(), j);
+  const NodePtr a = build(two_blobs());
+  BuildContext ctx;
+  const NodePtr b = build_field(Params(j, "", std::make_shared<const std::string>("t")), ctx);
+  for (const Vec3 p : {Vec3{0, 0, 0}, Vec3{20, 1, 2}, Vec3{-5, 3, 11}, Vec3{31, 2, 0}})
+    EXPECT_EQ(a->value(p), b->value(p));
+}
+
+TEST(Build, ErrorsAreTheLoadersLocatedOnes) {
+  try {
+    build(soft_blend({soft_object(lp_metric({1, 1, -1}, 2), wyvill()),
+                      soft_object(lp_metric({1, 1, 1}, 2), wyvill())}));
+    FAIL() << "a negative radius was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("<built field>: /children/0/distance/radii/2: ", 0), 0u)
+        << e.what();
+  }
+  EXPECT_THROW(build(kind("no_such_kind")), SceneError);
+  // A distance is not a soft object's field.
+  EXPECT_THROW(build(lp_metric({1, 1, 1}, 2)), SceneError);
+}
+
+TEST(Build, Placement) {
+  const Spec moved =
+      translate(translate(soft_object(lp_metric({1, 1, 1}, 2), wyvill()), {1, 0, 0}), {0, 2, 0});
+  EXPECT_EQ(moved.json()["translate"], nlohmann::json({1, 2, 0}));
+  EXPECT_THROW(rotate(moved, {0, 0, 1}, 90), std::invalid_argument);
+  const NodePtr turned = build(
+      translate(rotate(soft_object(lp_metric({4, 1, 1}, 2), wyvill()), {0, 0, 1}, 90), {0, 0, 5}));
+  EXPECT_NEAR(turned->value({0, 3, 5}),
+              build(soft_object(lp_metric({4, 1, 1}, 2), wyvill()))->value({3, 0, 0}), 1e-12);
+}
+
+TEST(Batch, MatchesEvaluateAtEveryPoint) {
+  std::vector<Spec> blobs;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-20, 20);
+  for (int i = 0; i < 200; ++i)
+    blobs.push_back(
+        translate(soft_object(lp_metric({4, 4, 4}, 2), murakami()), {u(rng), u(rng), u(rng)}));
+  const NodePtr f = build(soft_blend(blobs));
+  const Program p = compile(*f);
+  ASSERT_TRUE(p.has_pruning);
+  const size_t n = 5000;
+  std::vector<double> xyz(3 * n), v(n), vg(n), g(3 * n);
+  for (double& c : xyz) c = u(rng) * 1.2;
+  Workspace ws;
+  eval_points(p, xyz.data(), n, v.data(), nullptr, ws);
+  eval_points(p, xyz.data(), n, vg.data(), g.data(), ws);
+  int nonzero = 0;
+  for (size_t i = 0; i < n; ++i) {
+    Vec3 grad;
+    const double e = evaluate(p, {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, &grad, ws);
+    ASSERT_NEAR(v[i], e, 1e-12) << i;
+    ASSERT_NEAR(vg[i], e, 1e-12) << i;
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(g[3 * i + k], grad[k], 1e-12) << i;
+    nonzero += e > 0;
+  }
+  EXPECT_GT(nonzero, 100);  // the points meet the blobs
+  xyz[3 * 17 + 1] = std::nan("");
+  EXPECT_THROW(eval_points(p, xyz.data(), n, v.data(), nullptr, ws), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace softtrace

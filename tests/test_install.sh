@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# softtrace as a user gets it: `cmake --install` into an empty prefix, then the example consumer
+# project (examples/consumer) configured with find_package(softtrace) against that prefix only,
+# a fieldlib program compiled with pkg-config's flags, and, when the Python module was built,
+# `import softtrace` and examples/python/example.py from the prefix. Every value printed must be
+# the bits `softtrace eval` prints for the same field.
+#   test_install.sh BUILD_DIR SOURCE_DIR WORK_DIR [PYTHON]
+set -euo pipefail
+build=$1 src=$2 work=$3 python=${4:-python3}
+prefix=$work/prefix
+scene=$src/examples/consumer/two_blobs.json
+
+fail() {
+  echo "test_install: FAILED: $*" >&2
+  exit 1
+}
+rm -rf "$work"
+mkdir -p "$work"
+cmake --install "$build" --prefix "$prefix" >"$work/install.log"
+for f in bin/softtrace bin/softtrace-core include/softtrace/eval.h include/softtrace/build.h \
+  include/softtrace/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
+  lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc; do
+  [ -e "$prefix/$f" ] || fail "the install has no $f"
+done
+"$prefix/bin/softtrace" --version | grep -q '^softtrace [0-9.]* (commit ' ||
+  fail "softtrace --version: '$("$prefix/bin/softtrace" --version)'"
+
+# The value of softtrace eval (the first column) at the test point.
+point="20 1 2"
+expected=$(echo "$point" | "$prefix/bin/softtrace" eval "$scene" | cut -d' ' -f1)
+
+# Only the prefix: no build tree, no package registry.
+cmake -S "$src/examples/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >"$work/consumer.log"
+grep -q "softtrace_DIR:PATH=$prefix/" "$work/consumer/CMakeCache.txt" ||
+  fail "the consumer found softtrace outside the prefix: $(grep softtrace_DIR "$work/consumer/CMakeCache.txt")"
+cmake --build "$work/consumer" >>"$work/consumer.log"
+got=$("$work/consumer/field_value" $point)
+[ "$got" = "$expected" ] || fail "field_value printed $got, softtrace eval $expected"
+got=$("$work/consumer/scene_value" "$scene" $point)
+[ "$got" = "$expected" ] || fail "scene_value printed $got, softtrace eval $expected"
+
+# pkg-config: fieldlib alone, no CMake.
+export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
+flags=$(pkg-config --cflags --libs softtrace-fieldlib) || fail "pkg-config softtrace-fieldlib"
+# shellcheck disable=SC2086
+c++ -std=c++17 -O1 "$src/examples/consumer/field_value.cpp" -o "$work/field_value_pc" $flags
+got=$("$work/field_value_pc" $point)
+[ "$got" = "$expected" ] || fail "field_value (pkg-config) printed $got, softtrace eval $expected"
+
+python_dir=$(find "$prefix" -name 'softtrace*.so' -printf '%h\n' | head -n1)
+if [ -n "$python_dir" ]; then
+  got=$(PYTHONPATH=$python_dir "$python" "$src/examples/python/example.py" "$scene" $point)
+  [ "$got" = "$expected" ] || fail "example.py printed $got, softtrace eval $expected"
+fi
+echo "test_install: ok ($expected at ($point); python: ${python_dir:-not built})"
