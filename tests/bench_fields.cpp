@@ -168,23 +168,24 @@ void BM_BlobBoxPass(benchmark::State& state) {
     kept += ws.view.code.back().n;
   }
   state.SetItemsProcessed(state.iterations());
-  state.counters["children"] = benchmark::Counter(static_cast<double>(kept) /
-                                                  std::max<int64_t>(1, state.iterations()));
+  state.counters["children"] =
+      benchmark::Counter(static_cast<double>(kept) / std::max<int64_t>(1, state.iterations()));
 }
 
 void BM_FirstHit(benchmark::State& state, const Model* m, LipschitzMode mode) {
   const Scene s = load(*m);
   const ObjectTracer tr(s.objects[0], mode);
   const Box& b = s.objects[0].bounds;
-  const auto targets = points_in(Box(b.center() - b.extent() * 0.2, b.center() + b.extent() * 0.2), 1024);
+  const auto targets =
+      points_in(Box(b.center() - b.extent() * 0.2, b.center() + b.extent() * 0.2), 1024);
   const Vec3 eye{60, -80, 50};
   size_t i = 0;
   long long steps_total = 0;
   for (auto _ : state) {
-    int steps = 0;
+    TraceCounters work;
     const Vec3 t = targets[i++ & 1023];
-    benchmark::DoNotOptimize(tr.first_hit({eye, normalize(t - eye)}, 0, 1e9, steps));
-    steps_total += steps;
+    benchmark::DoNotOptimize(tr.first_hit({eye, normalize(t - eye)}, 0, 1e9, work));
+    steps_total += work.evaluations();
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["evals/ray"] = benchmark::Counter(static_cast<double>(steps_total) /
@@ -198,8 +199,7 @@ void register_all() {
                                  BM_ModelValueAndGradient, &m);
     benchmark::RegisterBenchmark((std::string("model_interval_lipschitz/") + m.name).c_str(),
                                  BM_ModelIntervalAndLipschitz, &m);
-    benchmark::RegisterBenchmark((std::string("point_value/") + m.name).c_str(), BM_PointValue,
-                                 &m);
+    benchmark::RegisterBenchmark((std::string("point_value/") + m.name).c_str(), BM_PointValue, &m);
     benchmark::RegisterBenchmark((std::string("batch8/") + m.name).c_str(), BM_Batch8, &m, true);
     benchmark::RegisterBenchmark((std::string("single_x8/") + m.name).c_str(), BM_Batch8, &m,
                                  false);
