@@ -338,6 +338,20 @@ TEST(Bench, JsonReportsThroughput) {
   EXPECT_NEAR(total / p.at("rays").get<double>(), j.at("evaluations_per_ray").get<double>(), 1e-6);
 }
 
+// Without --json: one line per frame with wall and CPU time, then the work per ray of each kind.
+TEST(Bench, TextReportsEveryFrameAndTheWorkPerRay) {
+  const RunResult r = run_softtrace(std::string("bench ") + source_path(kDefaultScene) +
+                                    " --width 16 --height 12 --repeat 2 --threads 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("16x12, 4 spp, 2 threads, lipschitz local, commit "), std::string::npos)
+      << r.out;
+  for (const char* re :
+       {R"(  frame 1: wall \d+\.\d{4} s, cpu \d+\.\d{4} s, )", R"(  frame 2: wall )",
+        R"(  primary rays: 768, \d+ enter a box; per such ray \d+\.\d\d point \+ )",
+        R"(  shadow rays: \d+, \d+ enter a box; )"})
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(re))) << re << "\n" << r.out;
+}
+
 // The progress bar (on a terminal, or forced with --progress) shows the primary-ray rate, the
 // time elapsed and the time left; --quiet or a non-terminal stderr shows none.
 TEST(Progress, RenderAndBenchShowRateElapsedAndTimeLeft) {

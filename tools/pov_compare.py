@@ -172,6 +172,9 @@ def main():
     ap.add_argument("--json", help="also write the results here")
     ap.add_argument("--plot", help="also plot the blob cases' time per ray here (PNG)")
     a = ap.parse_args()
+    exe = os.path.join(a.build, "softtrace")
+    if not os.access(exe, os.X_OK):
+        sys.exit("pov_compare: %s: no softtrace there (build first, or pass --build)" % exe)
     install_missing()
     os.makedirs(a.work, exist_ok=True)
     cases = a.cases.split(",")
