@@ -17,7 +17,7 @@ struct RayContext {
   Ray ray;
   double tnear = 0;
   double t = std::numeric_limits<double>::infinity();  // tfar, then the closest hit so far
-  int steps = 0;
+  TraceCounters work;
   int object = -1;
   bool on_box_face = false;
 };
@@ -45,7 +45,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
   // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
-  const MarchResult m = data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->steps);
+  const MarchResult m = data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
   if (!m.hit || m.t >= ctx->t) return;
   ctx->t = m.t;
   ctx->object = data->object;
@@ -64,7 +64,7 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->steps).hit) r->tfar = -INFINITY;
+  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
 }
 
 }  // namespace
@@ -129,7 +129,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar) const
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx.rtc, &rh);
   TraceHit h;
-  h.steps = ctx.steps;
+  h.work = ctx.work;
   if (ctx.object >= 0) {
     h.hit = true;
     h.t = ctx.t;
@@ -139,7 +139,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar) const
   return h;
 }
 
-bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, int& steps) const {
+bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const {
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
@@ -147,7 +147,10 @@ bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, int& steps
   ctx.t = tfar;
   RTCRay r = make_ray(ray, tnear, tfar);
   rtcOccluded1(impl_->scene, &ctx.rtc, &r);
-  steps += ctx.steps;
+  work.point_evals += ctx.work.point_evals;
+  work.box_evals += ctx.work.box_evals;
+  work.refine_iterations += ctx.work.refine_iterations;
+  work.entered_box = work.entered_box || ctx.work.entered_box;
   return r.tfar < 0;
 }
 

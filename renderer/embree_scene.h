@@ -13,9 +13,9 @@ namespace softtrace {
 struct TraceHit {
   bool hit = false;
   double t = std::numeric_limits<double>::infinity();
-  int object = -1;  // index into Scene::objects
+  int object = -1;           // index into Scene::objects
   bool on_box_face = false;  // see MarchResult
-  int steps = 0;    // field and interval evaluations spent on the ray
+  TraceCounters work;        // what the ray cost, over every object it met
 };
 
 class EmbreeScene {
@@ -28,9 +28,9 @@ class EmbreeScene {
 
   // Closest hit along the ray in [tnear, tfar]; thread-safe.
   TraceHit intersect(const Ray& ray, double tnear, double tfar) const;
-  // Whether anything lies along the ray in [tnear, tfar]; thread-safe.
-  bool occluded(const Ray& ray, double tnear, double tfar, int& steps) const;
-
+  // Whether anything lies along the ray in [tnear, tfar]; thread-safe. The ray's work is added to
+  // `work`.
+  bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
 
  private:
   struct Impl;

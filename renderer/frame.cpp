@@ -30,14 +30,17 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
   const int W = film.width, H = film.height, spp = scene.image.spp;
   const PinholeCamera camera(scene.camera, film.full_width, film.full_height);
   const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
-  tbb::combinable<long long> steps_total([] { return 0LL; });
+  struct Work {
+    RayWork primary, shadow;
+  };
+  tbb::combinable<Work> work_total;
 
   // One tile per task: a tile is a few hundred pixels at most, so a cancel is noticed soon
   // whatever the image's width.
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
       [&](const tbb::blocked_range<int>& tiles) {
-        long long& steps_acc = steps_total.local();
+        Work& work = work_total.local();
         for (int t = tiles.begin(); t < tiles.end(); ++t) {
           if (opt.cancel && *opt.cancel) return;
           const int tx = t % tiles_x * kTile, ty = t / tiles_x * kTile;
@@ -53,10 +56,12 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
                 double dx, dy;
                 sample_offset(s, dx, dy);
                 const Ray ray = camera.generate(fx + dx, fy + dy);
-                const TraceHit hit = rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
-                int steps = hit.steps;
+                const TraceHit hit =
+                    rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
+                work.primary.add(hit.work);
+                RayWork shadow;
                 if (hit.hit) {
-                  const Shaded sh = shade(scene, rt.tracers, rt.embree, ray, hit, steps);
+                  const Shaded sh = shade(scene, rt.tracers, rt.embree, ray, hit, shadow);
                   sum += sh.color;
                   ++covered;
                   if (s == 0) {
@@ -67,8 +72,9 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
                 } else if (s == 0) {  // the background adds nothing: film.rgba is premultiplied
                   film.depth[i] = std::numeric_limits<float>::infinity();
                 }
-                if (s == 0) film.steps[i] = static_cast<float>(steps);
-                steps_acc += steps;
+                if (s == 0)
+                  film.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
+                work.shadow += shadow;
               }
               for (int k = 0; k < 3; ++k) film.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
               film.rgba[i * 4 + 3] = static_cast<float>(covered) / spp;
@@ -80,8 +86,13 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
       tbb::simple_partitioner());
 
   if (stats) {
+    *stats = FrameStats{};
     stats->primary_rays = static_cast<long long>(W) * H * spp;
-    stats->steps = steps_total.combine([](long long a, long long b) { return a + b; });
+    work_total.combine_each([&](const Work& w) {
+      stats->primary += w.primary;
+      stats->shadow += w.shadow;
+    });
+    stats->steps = stats->primary.evaluations() + stats->shadow.evaluations();
   }
   return !(opt.cancel && *opt.cancel);
 }

@@ -26,6 +26,7 @@ struct TracedScene {
 struct FrameStats {
   long long primary_rays = 0;
   long long steps = 0;  // all field/interval evaluations, shadow rays included
+  RayWork primary, shadow;
 };
 
 // Renders the film's data window of its full_width x full_height frame at scene.image.spp;

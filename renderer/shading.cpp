@@ -5,8 +5,8 @@
 
 namespace softtrace {
 
-Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt,
-             const Ray& ray, const TraceHit& hit, int& steps) {
+Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
+             const TraceHit& hit, RayWork& shadow) {
   const ObjectTracer& tracer = tracers[hit.object];
   const SceneObject& obj = tracer.object();
   const Vec3 p = ray.o + ray.d * hit.t;
@@ -37,7 +37,12 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     }
     const double cosine = dot(n, to_light);
     if (cosine <= 0) continue;
-    if (l.shadows && rt.occluded({origin, to_light}, 0, distance, steps)) continue;
+    if (l.shadows) {
+      TraceCounters work;
+      const bool blocked = rt.occluded({origin, to_light}, 0, distance, work);
+      shadow.add(work);
+      if (blocked) continue;
+    }
     light += power * cosine;
   }
   return {{obj.color.x * light.x, obj.color.y * light.y, obj.color.z * light.z}, n};

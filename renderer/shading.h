@@ -11,8 +11,9 @@ struct Shaded {
   Vec3 normal;  // unit, facing the viewer
 };
 
-// The normal comes from the hit object's tracer; shadow rays go through `rt`.
-Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt,
-             const Ray& ray, const TraceHit& hit, int& steps);
+// The normal comes from the hit object's tracer; shadow rays go through `rt`, each one's work
+// added to `shadow`.
+Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
+             const TraceHit& hit, RayWork& shadow);
 
 }  // namespace softtrace

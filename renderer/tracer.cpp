@@ -86,23 +86,27 @@ Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
   return n;
 }
 
-double ObjectTracer::bisect(const Ray& ray, double a, double b, int& steps) const {
+double ObjectTracer::bisect(const Ray& ray, double a, double b, TraceCounters& work) const {
   // Invariant: g(a) < 0 <= g(b). Stop far below a pixel's footprint.
   Box box;
   box.extend(ray.o + ray.d * a);
   box.extend(ray.o + ray.d * b);
+  ++work.box_evals;
   prune(program_, box, workspace(program_));
   for (int i = 0; i < 60 && b - a > 1e-3 * min_step_; ++i) {
     const double m = 0.5 * (a + b);
-    ++steps;
+    ++work.point_evals;
+    ++work.refine_iterations;
     (g_view(ray.o + ray.d * m) >= 0 ? b : a) = m;
   }
   return b;
 }
 
-MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, int& steps) const {
+MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar,
+                                    TraceCounters& work) const {
   double t0 = tnear, t1 = tfar;
   if (!clip_to_box(ray, object_->bounds, t0, t1)) return {};
+  work.entered_box = true;
   const auto at = [&](double t) { return ray.o + ray.d * t; };
   const auto stretch_box = [&](double a, double b) {
     Box box;
@@ -112,7 +116,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
   };
 
   double t = t0, h = std::max((t1 - t0) / 8, min_step_);
-  ++steps;
+  ++work.point_evals;
   double gt = g(at(t));
   bool gt_known = true;
   if (gt >= 0) return {true, t, t > tnear};
@@ -120,10 +124,10 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
   // step shortened to min_step_ (not certified), so a new stretch can start inside the solid.
   double prev = t;
 
-  while (t < t1 && steps < kMaxSteps) {
+  while (t < t1 && work.evaluations() < kMaxSteps) {
     const double b = std::min(t + h, t1);
     const Box box = stretch_box(t, b);
-    ++steps;
+    ++work.box_evals;
     // One pass: the interval, the slope bound and the program pruned to the stretch's box, which
     // the points of this stretch evaluate below.
     const BoxBounds bb = bounds(program_, box, workspace(program_));
@@ -142,14 +146,14 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
         continue;
       }
       if (!gt_known) {
-        ++steps;
+        ++work.point_evals;
         gt = g_view(at(t));
-        if (gt >= 0) return {true, bisect(ray, prev, t, steps)};
+        if (gt >= 0) return {true, bisect(ray, prev, t, work)};
       }
       prev = t;
-      ++steps;
+      ++work.point_evals;
       const double gb = g_view(at(b));
-      if (gb >= 0) return {true, bisect(ray, t, b, steps)};
+      if (gb >= 0) return {true, bisect(ray, t, b, work)};
       t = b;
       gt = gb;
       gt_known = true;
@@ -158,13 +162,13 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, i
     // Sphere tracing inside the stretch: from a point with g < 0, g stays negative for at least
     // -g/L along any path inside the box, so a step of that length cannot cross the surface.
     int stretch_steps = 0;
-    while (steps < kMaxSteps) {
+    while (work.evaluations() < kMaxSteps) {
       if (!gt_known) {
-        ++steps;
+        ++work.point_evals;
         gt = g_view(at(t));
         gt_known = true;
       }
-      if (gt >= 0) return {true, bisect(ray, prev, t, steps)};
+      if (gt >= 0) return {true, bisect(ray, prev, t, work)};
       if (++stretch_steps > kStretchSteps)
         break;  // a loose bound: re-bound a shorter stretch from t
       const double step = L > 0 ? std::max(-gt / L, min_step_) : b - t;

@@ -21,6 +21,37 @@ struct Ray {
   Vec3 o, d;  // d has unit length, so t is a distance
 };
 
+// The work one ray costs one object or the whole scene, counted as it is done. `steps` (the AOV
+// and the ray limit) is their sum: point and box evaluations.
+struct TraceCounters {
+  int point_evals = 0;        // field values at a point (refinement's included)
+  int box_evals = 0;          // bounds or pruning passes over a box around a stretch of the ray
+  int refine_iterations = 0;  // bisection steps after a sign change (each one point evaluation)
+  bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
+  int evaluations() const { return point_evals + box_evals; }
+};
+
+// TraceCounters summed over many rays of one kind (primary or shadow), for `softtrace bench`.
+struct RayWork {
+  long long rays = 0, entered_box = 0, point_evals = 0, box_evals = 0, refine_iterations = 0;
+  void add(const TraceCounters& c) {
+    ++rays;
+    entered_box += c.entered_box;
+    point_evals += c.point_evals;
+    box_evals += c.box_evals;
+    refine_iterations += c.refine_iterations;
+  }
+  RayWork& operator+=(const RayWork& o) {
+    rays += o.rays;
+    entered_box += o.entered_box;
+    point_evals += o.point_evals;
+    box_evals += o.box_evals;
+    refine_iterations += o.refine_iterations;
+    return *this;
+  }
+  long long evaluations() const { return point_evals + box_evals; }
+};
+
 struct MarchResult {
   bool hit = false;
   double t = 0;
@@ -33,9 +64,9 @@ class ObjectTracer {
  public:
   ObjectTracer(const SceneObject& object, LipschitzMode mode);
 
-  // The first t in [tnear, tfar] where the ray is inside the solid, if any; `steps` counts field
-  // and interval evaluations.
-  MarchResult first_hit(const Ray& ray, double tnear, double tfar, int& steps) const;
+  // The first t in [tnear, tfar] where the ray is inside the solid, if any. The work is added to
+  // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
+  MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
 
   const SceneObject& object() const { return *object_; }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
@@ -53,7 +84,7 @@ class ObjectTracer {
   // g = inside_sign (f - iso): the solid is g >= 0.
   double g(const Vec3& p) const;       // anywhere (prunes to p first)
   double g_view(const Vec3& p) const;  // inside the box of the last bounds/prune pass
-  double bisect(const Ray& ray, double a, double b, int& steps) const;
+  double bisect(const Ray& ray, double a, double b, TraceCounters& work) const;
 
   const SceneObject* object_;
   Program program_;

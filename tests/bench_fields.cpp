@@ -182,10 +182,10 @@ void BM_FirstHit(benchmark::State& state, const Model* m, LipschitzMode mode) {
   size_t i = 0;
   long long steps_total = 0;
   for (auto _ : state) {
-    int steps = 0;
+    TraceCounters work;
     const Vec3 t = targets[i++ & 1023];
-    benchmark::DoNotOptimize(tr.first_hit({eye, normalize(t - eye)}, 0, 1e9, steps));
-    steps_total += steps;
+    benchmark::DoNotOptimize(tr.first_hit({eye, normalize(t - eye)}, 0, 1e9, work));
+    steps_total += work.evaluations();
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["evals/ray"] = benchmark::Counter(static_cast<double>(steps_total) /

@@ -302,14 +302,54 @@ TEST(Eval, EveryScenePrintsTheLibraryValues) {
 
 TEST(Bench, JsonReportsThroughput) {
   const RunResult r = run_softtrace(std::string("bench ") + source_path(kDefaultScene) +
-                                    " --width 32 --height 24 --repeat 2 --json");
+                                    " --width 32 --height 24 --repeat 2 --threads 1 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("schema"), 1);
+  EXPECT_FALSE(j.at("commit").get<std::string>().empty());
   EXPECT_EQ(j.at("width"), 32);
-  EXPECT_EQ(j.at("frames"), 2);
+  EXPECT_EQ(j.at("threads"), 1);
+  EXPECT_EQ(j.at("repeat"), 2);
+  ASSERT_EQ(j.at("frames").size(), 2u);
+  for (const auto& f : j.at("frames")) {
+    EXPECT_GT(f.at("wall_s").get<double>(), 0);
+    EXPECT_GT(f.at("cpu_s").get<double>(), 0);
+    EXPECT_GT(f.at("mrays_per_s").get<double>(), 0);
+  }
   EXPECT_GT(j.at("mrays_per_s").get<double>(), 0);
   EXPECT_GT(j.at("evaluations_per_ray").get<double>(), 1);
   EXPECT_LE(j.at("best_s").get<double>(), j.at("median_s").get<double>());
+
+  // The work per ray that enters a box adds up to the evaluations per primary ray.
+  const auto& p = j.at("primary");
+  const auto& s = j.at("shadow");
+  EXPECT_EQ(p.at("rays"), 32 * 24 * j.at("spp").get<int>());
+  EXPECT_GT(p.at("entered_box").get<long long>(), 0);
+  EXPECT_LE(p.at("entered_box").get<long long>(), p.at("rays").get<long long>());
+  EXPECT_GT(s.at("rays").get<long long>(), 0) << "the default scene's light casts shadows";
+  for (const auto* w : {&p, &s}) {
+    EXPECT_GE(w->at("point_evals").get<double>(), w->at("refine_iterations").get<double>());
+    EXPECT_GE(w->at("box_evals").get<double>(), 1);
+    EXPECT_NEAR(w->at("evaluations").get<double>(),
+                w->at("point_evals").get<double>() + w->at("box_evals").get<double>(), 1e-9);
+  }
+  const double total = p.at("evaluations").get<double>() * p.at("entered_box").get<double>() +
+                       s.at("evaluations").get<double>() * s.at("entered_box").get<double>();
+  EXPECT_NEAR(total / p.at("rays").get<double>(), j.at("evaluations_per_ray").get<double>(), 1e-6);
+}
+
+// Without --json: one line per frame with wall and CPU time, then the work per ray of each kind.
+TEST(Bench, TextReportsEveryFrameAndTheWorkPerRay) {
+  const RunResult r = run_softtrace(std::string("bench ") + source_path(kDefaultScene) +
+                                    " --width 16 --height 12 --repeat 2 --threads 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("16x12, 4 spp, 2 threads, lipschitz local, commit "), std::string::npos)
+      << r.out;
+  for (const char* re :
+       {R"(  frame 1: wall \d+\.\d{4} s, cpu \d+\.\d{4} s, )", R"(  frame 2: wall )",
+        R"(  primary rays: 768, \d+ enter a box; per such ray \d+\.\d\d point \+ )",
+        R"(  shadow rays: \d+, \d+ enter a box; )"})
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(re))) << re << "\n" << r.out;
 }
 
 // The progress bar (on a terminal, or forced with --progress) shows the primary-ray rate, the

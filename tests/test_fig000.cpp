@@ -170,9 +170,9 @@ TEST_P(Fig12, TracerFindsTheFirstHitCheaply) {
         break;
       }
     }
-    int steps = 0;
-    const MarchResult m = tr.first_hit(ray, 0, 1e9, steps);
-    total_steps += steps;
+    TraceCounters work;
+    const MarchResult m = tr.first_hit(ray, 0, 1e9, work);
+    total_steps += work.evaluations();
     ++rays;
     ASSERT_EQ(m.hit, std::isfinite(ref))
         << "ray to " << target.x << " " << target.y << " " << target.z;

@@ -47,8 +47,9 @@ TEST_P(TracerVsReference, NeverSkipsASurface) {
     // Rays from a sphere around the box towards random points inside it; every fourth one is
     // aimed at a surface point found by the reference and offset sideways so it grazes.
     const Vec3 dir0 = normalize({u(rng), u(rng), u(rng)});
-    const Vec3 target = b.center() + Vec3{u(rng) * b.extent().x, u(rng) * b.extent().y,
-                                          u(rng) * b.extent().z} * 0.4;
+    const Vec3 target =
+        b.center() +
+        Vec3{u(rng) * b.extent().x, u(rng) * b.extent().y, u(rng) * b.extent().z} * 0.4;
     Ray ray{target - dir0 * R, dir0};
     double t0 = 0, t1 = 2 * R;
     ASSERT_TRUE(clip_to_box(ray, b, t0, t1));
@@ -65,8 +66,8 @@ TEST_P(TracerVsReference, NeverSkipsASurface) {
       }
     }
     const double ds = (t1 - t0) / 20000;
-    int steps = 0;
-    const MarchResult m = tr.first_hit(ray, 0, 3 * R, steps);
+    TraceCounters work;
+    const MarchResult m = tr.first_hit(ray, 0, 3 * R, work);
     if (std::isfinite(ref)) {
       ++hits;
       ASSERT_TRUE(m.hit) << "ray " << i << " skipped a surface at t = " << ref;
@@ -98,9 +99,9 @@ TEST(BoxCut, HitsOnTheCutFaceAreFlaggedWithTheFaceNormal) {
           "field":{"type":"soft_object","distance":{"type":"lp_metric","radii":[8,8,8],"n":2}}}]})",
       "<test>");
   const ObjectTracer tr(scene.objects[0], LipschitzMode::Local);
-  int steps = 0;
+  TraceCounters work;
   // Straight down onto the cut at z = 0, inside the ball's d <= 0.5 (radius 4).
-  const MarchResult cut = tr.first_hit({{1, 1, 10}, {0, 0, -1}}, 0, 100, steps);
+  const MarchResult cut = tr.first_hit({{1, 1, 10}, {0, 0, -1}}, 0, 100, work);
   ASSERT_TRUE(cut.hit);
   EXPECT_TRUE(cut.on_box_face);
   EXPECT_NEAR(cut.t, 10, 1e-9);
@@ -108,7 +109,7 @@ TEST(BoxCut, HitsOnTheCutFaceAreFlaggedWithTheFaceNormal) {
   EXPECT_EQ(n.z, 1);
   EXPECT_EQ(n.x, 0);
   // From the side, below the cut: the ball's own surface, not a face.
-  const MarchResult side = tr.first_hit({{-20, 0, -1}, {1, 0, 0}}, 0, 100, steps);
+  const MarchResult side = tr.first_hit({{-20, 0, -1}, {1, 0, 0}}, 0, 100, work);
   ASSERT_TRUE(side.hit);
   EXPECT_FALSE(side.on_box_face);
   EXPECT_NEAR(side.t, 20 - std::sqrt(16 - 1), 1e-6);

@@ -8,12 +8,17 @@ this writes. Centres are uniform in a cube of side 40 around the origin, from a 
 radius shrinks as N^(-1/3) so that every N covers about the same part of the screen (the blobs'
 total volume stays the same).
 
-usage: tools/blob_scene.py N [--seed S] [--width W] [--height H] [-o scene.json]
+With --pov FILE it also writes the same picture as a POV-Ray scene (tools/pov_scene.py): the
+blob of the same spheres, strength 1, threshold 0.5, with the same camera, lights and size.
+
+usage: tools/blob_scene.py N [--seed S] [--width W] [--height H] [-o scene.json] [--pov scene.pov]
 """
 import argparse
 import json
 import random
 import sys
+
+import pov_scene
 
 
 def blobs(n, seed):
@@ -50,10 +55,15 @@ def main():
     ap.add_argument("--width", type=int, default=640)
     ap.add_argument("--height", type=int, default=480)
     ap.add_argument("-o", "--output", help="scene file (default: standard output)")
+    ap.add_argument("--pov", help="also write the POV-Ray version of the scene here")
     a = ap.parse_args()
     if not 2 <= a.n <= 10000:
         ap.error("N must be in [2, 10000] (a soft_blend takes at most 10,000 children)")
-    text = json.dumps(scene(a.n, a.seed, a.width, a.height), indent=1) + "\n"
+    sc = scene(a.n, a.seed, a.width, a.height)
+    text = json.dumps(sc, indent=1) + "\n"
+    if a.pov:
+        with open(a.pov, "w") as f:
+            f.write(pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc))
     if a.output:
         with open(a.output, "w") as f:
             f.write(text)

@@ -1,0 +1,240 @@
+#!/usr/bin/python3
+"""Renders the same pictures with softtrace and POV-Ray 3.7 and compares silhouettes and times.
+
+Cases: `blobN` (tools/blob_scene.py: N murakami spheres blended at iso 0.5, POV's `blob` of the
+same spheres with strength 1 and threshold 0.5) and `fig12b` (scenes/fig12b_soft_blend.json, POV's
+`isosurface` of the same blend). Both renderers get the same size, 1 sample per pixel and the same
+number of threads. Rounds are interleaved (every case once, then again) so that a load spike on a
+shared machine hits every case alike; the medians over --repeat rounds are reported.
+
+Per case it prints the silhouettes' IoU (alpha >= 0.5 in softtrace's PNG and POV's +UA PNG), each
+renderer's frame time (softtrace bench's wall time; POV's "Trace Time" statistic), each whole
+process's wall time, the ratios, and softtrace's evaluations per primary ray that enters a box.
+For fig12b it also renders POV at max_gradient 0.74 (a bound on |grad f| over the whole box:
+|P'| <= 2 times |grad d_bar| <= 0.22 plus |grad d_cube| <= 0.15) and counts the pixels whose
+coverage differs from the timed render: 0 means the timed max_gradient leaves no holes there.
+
+With --plot it draws the blob cases' time per primary ray against N, both renderers, with gnuplot.
+
+Uses Debian's python3 and installs povray, python3-pil and gnuplot-nox when missing.
+
+usage: tools/pov_compare.py [--cases blob10,blob100,blob1000,blob10000,fig12b]
+           [--width 160] [--height 120] [--threads 2] [--repeat 3] [--max-gradient 0.4]
+           [--build build] [--work DIR] [--json results.json] [--plot time_per_ray.png]
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+TOOLS = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(TOOLS)
+sys.path.insert(0, TOOLS)
+import blob_scene  # noqa: E402
+import pov_scene  # noqa: E402
+
+PACKAGES = ["povray", "python3-pil", "gnuplot-nox"]
+SAFE_MAX_GRADIENT = 0.74
+
+
+def install_missing():
+    missing = [p for p in PACKAGES if subprocess.run(
+        ["dpkg-query", "-W", "-f=${Status}", p], capture_output=True,
+        text=True).stdout.find("install ok installed") < 0]
+    if not missing:
+        return
+    sudo = [] if os.geteuid() == 0 else ["sudo"]
+    print("installing:", " ".join(missing), file=sys.stderr)
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    subprocess.run(sudo + ["apt-get", "update", "-qq"], check=True, env=env)
+    subprocess.run(sudo + ["apt-get", "install", "-y", "-qq", "--no-install-recommends"] + missing,
+                   check=True, env=env, stdout=subprocess.DEVNULL)
+
+
+def timed(cmd):
+    """Runs cmd; returns (wall seconds, user+system CPU seconds, stdout+stderr text)."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    out = p.stdout.read()
+    _, status, usage = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)
+    text = out.decode(errors="replace")
+    if p.returncode != 0:
+        sys.exit("pov_compare: %s failed (%d):\n%s" % (cmd[0], p.returncode, text[-2000:]))
+    return wall, usage.ru_utime + usage.ru_stime, text
+
+
+def read_json_scene(path):
+    """A scene file as JSON (softtrace's scene files may have // comment lines)."""
+    with open(path) as f:
+        return json.loads("".join(l for l in f if not l.lstrip().startswith("//")))
+
+
+def write_case(case, a, work):
+    """Writes work/CASE.json and work/CASE.pov (and the hole check's .pov for fig12b)."""
+    base = os.path.join(work, case)
+    if case.startswith("blob"):
+        sc = blob_scene.scene(int(case[4:]), 1, a.width, a.height)
+        pov = pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc)
+    elif case == "fig12b":
+        sc = read_json_scene(os.path.join(ROOT, "scenes", "fig12b_soft_blend.json"))
+        head = pov_scene.header(sc, a.width, a.height)
+        pov = head + pov_scene.isosurface_fig12b(sc, a.max_gradient, a.accuracy)
+        with open(base + "_safe.pov", "w") as f:
+            f.write(head + pov_scene.isosurface_fig12b(sc, SAFE_MAX_GRADIENT, a.accuracy))
+    else:
+        sys.exit("pov_compare: unknown case '%s' (blobN or fig12b)" % case)
+    sc["image"] = {"width": a.width, "height": a.height, "spp": 1}
+    with open(base + ".json", "w") as f:
+        json.dump(sc, f)
+    with open(base + ".pov", "w") as f:
+        f.write(pov)
+    return base
+
+
+def povray(a, pov, png):
+    wall, cpu, text = timed(["povray", "+I" + pov, "+O" + png, "+W%d" % a.width,
+                             "+H%d" % a.height, "+UA", "+WT%d" % a.threads, "-D", "-A",
+                             "+FN8", "-V", "+GS"])
+    m = re.search(r"Trace Time:.*\(([\d.]+) seconds\)", text)
+    if not m:
+        sys.exit("pov_compare: no Trace Time in POV-Ray's statistics:\n" + text[-2000:])
+    holes = re.search(r"maximum gradient found was ([\d.]+)", text)
+    return {"trace_s": float(m.group(1)), "process_s": wall, "process_cpu_s": cpu,
+            "gradient_found": float(holes.group(1)) if holes else None}
+
+
+def softtrace(a, scene, png):
+    exe = os.path.join(a.build, "softtrace")
+    common = ["--width", str(a.width), "--height", str(a.height), "--threads", str(a.threads)]
+    wall, cpu, _ = timed([exe, "render", scene, "-o", png, "--png-alpha", "--spp", "1",
+                          "--quiet"] + common)
+    _, _, text = timed([exe, "bench", scene, "--repeat", "1", "--json", "--quiet"] + common)
+    bench = json.loads(text)
+    return {"frame_s": bench["best_s"], "process_s": wall, "process_cpu_s": cpu,
+            "primary": bench["primary"], "shadow": bench["shadow"], "commit": bench["commit"]}
+
+
+def coverage(png):
+    from PIL import Image  # installed by install_missing
+    im = Image.open(png).convert("RGBA")
+    return [px >= 128 for px in im.getchannel("A").getdata()]
+
+
+def iou(m1, m2):
+    both = sum(1 for x, y in zip(m1, m2) if x and y)
+    either = sum(1 for x, y in zip(m1, m2) if x or y)
+    return both / either if either else 1.0
+
+
+def plot(results, png):
+    """Time per primary ray against the number of blobs, log-log, softtrace and POV-Ray."""
+    blobs = sorted((int(r["case"][4:]), r) for r in results if r["case"].startswith("blob"))
+    if not blobs:
+        return
+    data = "\n".join("%d %g %g" % (n, r["st_us_per_ray"], r["pov_us_per_ray"]) for n, r in blobs)
+    r0 = blobs[0][1]
+    script = "\n".join([
+        "set terminal pngcairo size 720,480 font ',11'" if subprocess.run(
+            ["gnuplot", "-e", "set terminal pngcairo"], capture_output=True).returncode == 0
+        else "set terminal png size 720,480",
+        "set output '%s'" % png,
+        "set logscale xy",
+        "set xlabel 'blobs N'",
+        "set ylabel 'microseconds per primary ray (frame time / pixels)'",
+        "set title 'N-blob scene, %dx%d, 1 spp, %d threads (median of %d)'" % (
+            r0["width"], r0["height"], r0["threads"], r0["repeat"]),
+        "set key top left",
+        "set grid",
+        "$d << EOD", data, "EOD",
+        "plot $d using 1:2 with linespoints lw 2 pt 7 title 'softtrace (bench frame time)', "
+        "$d using 1:3 with linespoints lw 2 pt 5 title 'POV-Ray 3.7 blob (Trace Time)'", ""])
+    subprocess.run(["gnuplot"], input=script.encode(), check=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--cases", default="blob10,blob100,blob1000,blob10000,fig12b")
+    ap.add_argument("--width", type=int, default=160)
+    ap.add_argument("--height", type=int, default=120)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--max-gradient", type=float, default=0.4,
+                    help="POV's max_gradient for fig12b (it reports 0.354 found at 640x480)")
+    ap.add_argument("--accuracy", type=float, default=0.001, help="POV's isosurface accuracy")
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--work", default="/tmp/pov_compare", help="scenes and images go here")
+    ap.add_argument("--json", help="also write the results here")
+    ap.add_argument("--plot", help="also plot the blob cases' time per ray here (PNG)")
+    a = ap.parse_args()
+    exe = os.path.join(a.build, "softtrace")
+    if not os.access(exe, os.X_OK):
+        sys.exit("pov_compare: %s: no softtrace there (build first, or pass --build)" % exe)
+    install_missing()
+    os.makedirs(a.work, exist_ok=True)
+    cases = a.cases.split(",")
+    bases = {c: write_case(c, a, a.work) for c in cases}
+    runs = {c: {"st": [], "pov": []} for c in cases}
+    for r in range(a.repeat):
+        for c in cases:
+            print("round %d/%d: %s" % (r + 1, a.repeat, c), file=sys.stderr)
+            runs[c]["st"].append(softtrace(a, bases[c] + ".json", bases[c] + "_st.png"))
+            runs[c]["pov"].append(povray(a, bases[c] + ".pov", bases[c] + "_pov.png"))
+
+    results = []
+    rays = a.width * a.height
+    print("%dx%d, 1 spp, %d threads, medians of %d interleaved rounds" % (
+        a.width, a.height, a.threads, a.repeat))
+    print("%-10s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
+        "case", "IoU", "st frame", "st proc", "pov trace", "pov proc", "trace/", "proc/",
+        "evals/", "us/ray"))
+    print("%-10s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
+        "", "", "s", "s", "s", "s", "st proc", "st proc", "entered", "st|pov"))
+    for c in cases:
+        st, pov = runs[c]["st"], runs[c]["pov"]
+        med = lambda rs, k: statistics.median(x[k] for x in rs)  # noqa: E731
+        res = {"case": c, "width": a.width, "height": a.height, "threads": a.threads,
+               "repeat": a.repeat, "commit": st[0]["commit"],
+               "iou": iou(coverage(bases[c] + "_st.png"), coverage(bases[c] + "_pov.png")),
+               "st_frame_s": med(st, "frame_s"), "st_process_s": med(st, "process_s"),
+               "st_process_cpu_s": med(st, "process_cpu_s"),
+               "pov_trace_s": med(pov, "trace_s"), "pov_process_s": med(pov, "process_s"),
+               "pov_process_cpu_s": med(pov, "process_cpu_s"),
+               "primary": st[0]["primary"], "shadow": st[0]["shadow"],
+               "pov_gradient_found": pov[0]["gradient_found"]}
+        res["st_us_per_ray"] = res["st_frame_s"] / rays * 1e6
+        res["pov_us_per_ray"] = res["pov_trace_s"] / rays * 1e6
+        if c == "fig12b":
+            povray(a, bases[c] + "_safe.pov", bases[c] + "_safe.png")
+            m1, m2 = coverage(bases[c] + "_pov.png"), coverage(bases[c] + "_safe.png")
+            res["pov_max_gradient"] = a.max_gradient
+            res["pov_pixels_differing_from_safe"] = sum(1 for x, y in zip(m1, m2) if x != y)
+        results.append(res)
+        print("%-10s %6.4f %9.4f %9.4f %9.4f %9.4f %8.2f %8.2f %8.1f %s" % (
+            c, res["iou"], res["st_frame_s"], res["st_process_s"], res["pov_trace_s"],
+            res["pov_process_s"], res["pov_trace_s"] / res["st_process_s"],
+            res["pov_process_s"] / res["st_process_s"], res["primary"]["evaluations"],
+            "%.2f|%.2f" % (res["st_us_per_ray"], res["pov_us_per_ray"])))
+        if c == "fig12b":
+            print("%-10s POV max_gradient %g: %d pixels differ from max_gradient %g%s" % (
+                "", a.max_gradient, res["pov_pixels_differing_from_safe"], SAFE_MAX_GRADIENT,
+                "" if res["pov_gradient_found"] is None else
+                " (POV warns: found %g)" % res["pov_gradient_found"]))
+    if a.plot:
+        plot(results, a.plot)
+    bad = [r["case"] for r in results if r["iou"] < 0.99]
+    if bad:
+        print("silhouettes differ (IoU < 0.99): " + ", ".join(bad))
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(results, f, indent=1)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,112 @@
+"""POV-Ray 3.7 versions of softtrace scenes, for tools/pov_compare.py and tools/blob_scene.py.
+
+softtrace is right-handed with z up; POV-Ray is left-handed with y up. Swapping y and z turns one
+into the other (a swap of two axes flips the handedness), so a softtrace point (x, y, z) is POV's
+<x, z, y> and the picture is the same, not mirrored. softtrace's `fov` is vertical; POV's `angle`
+is horizontal.
+
+Two kinds of object are written:
+- `blob`: a soft_blend of murakami soft objects over spheres (lp_metric, n = 2, equal radii) at
+  iso t is POV's blob of the same spheres with strength 1 and threshold t: both sum
+  (1 - (d/r)^2)^2 inside each sphere.
+- `isosurface`: the Fig. 12(b) blend (scenes/fig12b_soft_blend.json), written out in POV's
+  function syntax.
+"""
+import math
+
+
+def pov_vec(v):
+    """softtrace (x, y, z) as POV's <x, z, y>."""
+    return "<%.9g, %.9g, %.9g>" % (v[0], v[2], v[1])
+
+
+def header(scene, width, height):
+    """Camera, lights and background of a softtrace scene (a parsed JSON object)."""
+    cam = scene["camera"]
+    vfov = math.radians(cam.get("fov", 40.0))
+    hfov = math.degrees(2 * math.atan(math.tan(vfov / 2) * width / height))
+    bg = scene.get("background", [0, 0, 0])
+    out = ["#version 3.7;",
+           "global_settings { assumed_gamma 1.0 ambient_light rgb 1 }",
+           # Transparent where nothing is hit: with +UA the alpha is the coverage mask.
+           "background { rgbt <%g, %g, %g, 1> }" % tuple(bg),
+           "camera { perspective location %s look_at %s sky %s" % (
+               pov_vec(cam["eye"]), pov_vec(cam["target"]), pov_vec(cam.get("up", [0, 0, 1]))),
+           "  right x*%d/%d up y angle %.9g }" % (width, height, hfov)]
+    ambient = 0.0
+    for light in scene.get("lights", []):
+        kind = light.get("type")
+        power = [c * light.get("intensity", 1.0) for c in light.get("color", [1, 1, 1])]
+        if kind == "ambient":
+            ambient += light.get("intensity", 1.0)
+            continue
+        shadow = "" if light.get("shadows", False) else " shadowless"
+        if kind == "directional":
+            d = light["direction"]
+            far = [-1e5 * c for c in d]
+            out.append("light_source { %s rgb <%g, %g, %g> parallel point_at <0, 0, 0>%s }" % (
+                pov_vec(far), *power, shadow))
+        else:
+            out.append("light_source { %s rgb <%g, %g, %g>%s }" % (
+                pov_vec(light["position"]), *power, shadow))
+    out.append("#declare Ambient = %g;" % ambient)
+    return "\n".join(out) + "\n"
+
+
+def material(obj):
+    c = obj.get("material", {}).get("color", [0.8, 0.8, 0.8])
+    return ("  pigment { rgb <%g, %g, %g> } finish { ambient Ambient diffuse 1 specular 0 }"
+            % tuple(c))
+
+
+def blob(scene):
+    """The scene's first object as a POV blob; it must be a soft_blend of murakami spheres."""
+    obj = scene["objects"][0]
+    field = obj["field"]
+    if field["type"] != "soft_blend":
+        raise ValueError("a blob needs a soft_blend")
+    lines = ["blob { threshold %.9g" % obj.get("iso", 0.5)]
+    for child in field["children"]:
+        dist = child["distance"]
+        radii = dist["radii"]
+        if (child["potential"]["type"] != "murakami" or dist["type"] != "lp_metric" or
+                dist.get("n") != 2 or len(set(radii)) != 1):
+            raise ValueError("a blob's children must be murakami spheres")
+        lines.append("  sphere { %s, %.9g, 1 }" % (pov_vec(child.get("translate", [0, 0, 0])),
+                                                   radii[0]))
+    lines.append(material(obj))
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+# Blanc's potential with s = 0 (docs/math.md §3.2): 1 - 2d^2 up to 0.5, (1-d^2)^2 / (0.75 + 1.5 d^2)
+# up to 1, 0 beyond. POV's select(a, b, c) is b where a < 0, else c.
+FIG12B_FUNCTIONS = """\
+#declare Blanc = function(d) {
+  select(d - 0.5, 1 - 2*d*d, select(d - 1, pow(1 - d*d, 2) / (0.75 + 1.5*d*d), 0)) }
+// The bar: superquadric radii (8, 8, 24), n1 = 1, n2 = 20 (softtrace's z is POV's y).
+#declare Bar = function(x, y, z) {
+  pow(pow(abs(x/8) + abs(z/8), 20) + pow(abs(y/24), 20), 1/20) }
+// The cube: lp_metric radii (30, 30, 12), n = 20.
+#declare Cube = function(x, y, z) {
+  pow(pow(abs(x/30), 20) + pow(abs(z/30), 20) + pow(abs(y/12), 20), 1/20) }
+"""
+
+
+def isosurface_fig12b(scene, max_gradient, accuracy):
+    """scenes/fig12b_soft_blend.json's object: inside where Blanc(bar) + Blanc(cube) >= 0.5.
+
+    POV's isosurface is inside where the function is below the threshold, so the function is
+    0.5 - the blend and the threshold 0. The container is the blend's support box: the cube's
+    (+-30, +-30, +-12) and the bar's (+-8, +-8, +-24) radii.
+    """
+    obj = scene["objects"][0]
+    return FIG12B_FUNCTIONS + "\n".join([
+        "isosurface {",
+        "  function { 0.5 - Blanc(Bar(x, y, z)) - Blanc(Cube(x, y, z)) }",
+        "  threshold 0",
+        "  contained_by { box { %s, %s } }" % (pov_vec([-30, -30, -24]), pov_vec([30, 30, 24])),
+        "  max_gradient %.9g" % max_gradient,
+        "  accuracy %.9g" % accuracy,
+        material(obj),
+        "}"]) + "\n"
