@@ -27,9 +27,10 @@ install_missing() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# build [TARGET...]: everything, or only the named targets (the demo needs only `softtrace`).
 build() {
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$BUILD_DIR" -j "$(nproc)"
+  cmake --build "$BUILD_DIR" -j "$(nproc)" ${1:+--target "$@"}
 }
 
 # The unit and CLI tests again, built with -fsanitize=address,undefined (no recovery: a report
@@ -65,7 +66,7 @@ fuzz() {
 case "${1:-}" in
   demo)
     install_missing
-    build
+    build softtrace
     mkdir -p out
     "$BUILD_DIR/softtrace" render scenes/fig12b_soft_blend.json -o out/fig12b_soft_blend.exr \
       -o out/fig12b_soft_blend.png --aov depth,normal,steps
