@@ -6,11 +6,9 @@
 #include <string>
 #include <vector>
 
-namespace softtrace {
+#include "spelling.h"
 
-// Optimal-string-alignment distance: insertions, deletions, substitutions and swaps of two
-// neighbouring characters each cost 1 ("rendr" and "rednre" are 1 and 2 from "render").
-size_t edit_distance(const std::string& a, const std::string& b);
+namespace softtrace {
 
 // The name nearest to `word` within an edit distance of 2 and below its number of letters (the
 // first of equals), or "".
