@@ -2,6 +2,7 @@
 // kernels are loops over contiguous doubles that the compiler can vectorise, and an oracle pays
 // its virtual call per lane only for its own subtree.
 #include <algorithm>
+#include <cmath>
 
 #include "eval.h"
 #include "lp_metric.h"
@@ -55,7 +56,19 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         const double* k = K + in.a;
         const LpMetricParams m{{k[0], k[1], k[2]}, k[3], k[4]};
         const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
-        for (int l = 0; l < n; ++l) out[l] = lp_metric(m, {px[l], py[l], pz[l]}, nullptr);
+        if (m.n != 2) {
+          for (int l = 0; l < n; ++l) out[l] = lp_metric(m, {px[l], py[l], pz[l]}, nullptr);
+          break;
+        }
+        // lp_metric's n = 2 path as a branch-free loop over the lanes (it vectorises), then the
+        // kernel itself for the rare lanes outside its range.
+        for (int l = 0; l < n; ++l) {
+          const double x = px[l] / k[0], y = py[l] / k[1], z = pz[l] / k[2];
+          out[l] = x * x + y * y + z * z;
+        }
+        for (int l = 0; l < n; ++l)
+          out[l] = out[l] > 1e-280 && out[l] < 1e280 ? std::sqrt(out[l])
+                                                     : lp_metric(m, {px[l], py[l], pz[l]}, nullptr);
         break;
       }
       case Op::Blanc: {

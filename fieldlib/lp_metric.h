@@ -21,6 +21,17 @@ struct LpMetricParams {
 
 inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
   const Vec3& a = m.a;
+  if (m.n == 2) {
+    // Ellipsoids (most blobs): the plain root where the squares can neither overflow nor lose
+    // precision to subnormals; power_sum's scaling by the largest term only outside that range.
+    // ∂f/∂x_i = (x_i/a_i)/(a_i f), computed as power_sum's (u_i/f)·sgn(x_i)/a_i would be.
+    const double x = p.x / a.x, y = p.y / a.y, z = p.z / a.z, s = x * x + y * y + z * z;
+    if (s > 1e-280 && s < 1e280) {
+      const double f = std::sqrt(s);
+      if (grad) *grad = {x / f / a.x, y / f / a.y, z / f / a.z};
+      return f;
+    }
+  }
   const double u[3] = {std::abs(p.x / a.x), std::abs(p.y / a.y), std::abs(p.z / a.z)};
   double du[3];
   const double f = power_sum(u, 3, m.n, grad ? du : nullptr);

@@ -10,54 +10,6 @@ Interval Potential::interval(Interval d) const {
           std::min(1.0, iv::up(eval(std::max(0.0, d.lo), nullptr)))};
 }
 
-double blanc(double d, double s, double* dP) {
-  d = std::max(d, 0.0);
-  if (d >= 1) {
-    if (dP) *dP = 0;
-    return 0;
-  }
-  const double u = d * d;
-  double P, dPdu;
-  if (d <= 0.5) {
-    if (s == 0) {  // the first branch is 0/0 at d = 0; its closed form for s = 0 is 1 - 2d^2
-      P = 1 - 2 * u;
-      dPdu = -2;
-    } else {
-      const double N = 9 * u * u, D = s + (4.5 - 4 * s) * u;  // D >= min(s, 1.125) > 0
-      P = 1 - N / D;
-      dPdu = -(18 * u * D - N * (4.5 - 4 * s)) / (D * D);
-    }
-  } else {
-    const double N = (1 - u) * (1 - u), D = 0.75 - s + (1.5 + 4 * s) * u;  // D >= 1.125
-    P = N / D;
-    dPdu = (-2 * (1 - u) * D - N * (1.5 + 4 * s)) / (D * D);
-  }
-  if (dP) *dP = dPdu * 2 * d;
-  return P;
-}
-
-double wyvill(double d, double* dP) {
-  d = std::max(d, 0.0);
-  if (d >= 1) {
-    if (dP) *dP = 0;
-    return 0;
-  }
-  const double u = d * d;
-  if (dP) *dP = d * (-24.0 / 9 * u * u + 68.0 / 9 * u - 44.0 / 9);
-  return 1 + u * (-22.0 / 9 + u * (17.0 / 9 - 4.0 / 9 * u));
-}
-
-double murakami(double d, double* dP) {
-  d = std::max(d, 0.0);
-  if (d >= 1) {
-    if (dP) *dP = 0;
-    return 0;
-  }
-  const double v = 1 - d * d;
-  if (dP) *dP = -4 * d * v;
-  return v * v;
-}
-
 namespace {
 
 // Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), docs/math.md §3.2

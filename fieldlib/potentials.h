@@ -4,6 +4,8 @@
 // d >= 1.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "interval.h"
@@ -12,11 +14,60 @@
 
 namespace softtrace {
 
-// The kernels, shared by the model classes below and the program evaluators (eval_*.cpp):
-// P(max(d, 0)) with P' into *dP when dP is non-null.
-double blanc(double d, double s, double* dP);  // 002 Eq. 2 (signs of R1), docs/math.md §3.2
-double wyvill(double d, double* dP);           // Wyvill et al.'s sextic, docs/math.md §3.3
-double murakami(double d, double* dP);         // (1 - d^2)^2, docs/math.md §3.3
+// The kernels, shared by the model classes below and the program evaluators (eval_*.cpp), inline
+// so the evaluators' loops over a batch can vectorise them: P(max(d, 0)) with P' into *dP when
+// dP is non-null.
+
+// Blanc's potential, 002 Eq. 2 (signs of R1), docs/math.md §3.2
+inline double blanc(double d, double s, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double u = d * d;
+  double P, dPdu;
+  if (d <= 0.5) {
+    if (s == 0) {  // the first branch is 0/0 at d = 0; its closed form for s = 0 is 1 - 2d^2
+      P = 1 - 2 * u;
+      dPdu = -2;
+    } else {
+      const double N = 9 * u * u, D = s + (4.5 - 4 * s) * u;  // D >= min(s, 1.125) > 0
+      P = 1 - N / D;
+      dPdu = -(18 * u * D - N * (4.5 - 4 * s)) / (D * D);
+    }
+  } else {
+    const double N = (1 - u) * (1 - u), D = 0.75 - s + (1.5 + 4 * s) * u;  // D >= 1.125
+    P = N / D;
+    dPdu = (-2 * (1 - u) * D - N * (1.5 + 4 * s)) / (D * D);
+  }
+  if (dP) *dP = dPdu * 2 * d;
+  return P;
+}
+
+// Wyvill et al.'s sextic, docs/math.md §3.3
+inline double wyvill(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double u = d * d;
+  if (dP) *dP = d * (-24.0 / 9 * u * u + 68.0 / 9 * u - 44.0 / 9);
+  return 1 + u * (-22.0 / 9 + u * (17.0 / 9 - 4.0 / 9 * u));
+}
+
+// (1 - d^2)^2, docs/math.md §3.3
+inline double murakami(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double v = 1 - d * d;
+  if (dP) *dP = -4 * d * v;
+  return v * v;
+}
 
 class Potential {
  public:

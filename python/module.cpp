@@ -8,13 +8,16 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "batch.h"
 #include "build.h"
+#include "film.h"
 #include "frame.h"
+#include "frame_metadata.h"
 #include "json_text.h"
 #include "kinds.h"
 #include "scene.h"
@@ -92,7 +95,8 @@ std::unique_ptr<Field> field_of_json(const std::string& text, const std::string&
   return f;
 }
 
-py::array_t<float> render(const Scene& loaded, int width, int height, int spp) {
+py::array_t<float> render(const Scene& loaded, int width, int height, int spp,
+                          const std::vector<std::string>& outputs, bool flatten) {
   if (width < 0 || height < 0 || spp < 0 || width > 16384 || height > 16384 || spp > 4096)
     throw std::invalid_argument("width and height must be in [1, 16384] and spp in [1, 4096]");
   // The scene's camera and objects, at the size asked for.
@@ -103,10 +107,27 @@ py::array_t<float> render(const Scene& loaded, int width, int height, int spp) {
   if (spp) scene.image.spp = spp;
   const int w = scene.image.width, h = scene.image.height;
   Film film(w, h);
-  {
+  try {
+    for (const auto& o : outputs) check_image_output_path(o);  // before the work, as the CLI
     py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
     const TracedScene rt(scene, LipschitzMode::Local);
     render_frame(scene, rt, RenderOptions{}, film, nullptr, nullptr);
+    // The files as `softtrace render -o` writes them: all or nothing.
+    FrameInfo info = frame_info(scene, w, h);
+    info.render_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    OutputOptions opt;
+    opt.flatten = flatten;
+    std::vector<std::string> temps;
+    for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, opt, info));
+    for (size_t i = 0; i < outputs.size(); ++i) commit_image(temps[i], outputs[i]);
+    forget_pending_writes();
+  } catch (...) {
+    abandon_pending_writes();
+    forget_pending_writes();
+    scene.image = saved;
+    throw;
   }
   scene.image = saved;
   py::array_t<float> out(std::vector<size_t>{size_t(h), size_t(w), 4});
@@ -173,9 +194,12 @@ PYBIND11_MODULE(softtrace, m) {
           "(values (N,), gradients (N, 3)) at an (N, 3) array of points.");
 
   m.def("render", &render, py::arg("scene"), py::arg("width") = 0, py::arg("height") = 0,
-        py::arg("spp") = 0,
+        py::arg("spp") = 0, py::arg("outputs") = std::vector<std::string>{},
+        py::arg("flatten") = false,
         "Renders the scene's camera view: float32 (height, width, 4), premultiplied linear RGBA "
-        "(as the EXR output). 0 keeps the scene's own size and samples.");
+        "(as the EXR output). 0 keeps the scene's own size and samples. `outputs`: .exr/.png "
+        "files written as `softtrace render -o` writes them (all or nothing; `flatten` as "
+        "--flatten).");
   m.def("nodes", &nodes, "Every kind a scene may name, with its parameters.");
   m.attr("__version__") = SOFTTRACE_VERSION;
 }

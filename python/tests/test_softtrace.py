@@ -103,6 +103,23 @@ def test_render_matches_the_image_size():
         softtrace.render(scene, width=-3)
 
 
+def test_render_writes_the_files_the_cli_writes(tmp_path):
+    scene = softtrace.load_scene(TWO_BLOBS)
+    exr, png = str(tmp_path / "py.exr"), str(tmp_path / "py.png")
+    image = softtrace.render(scene, width=32, height=24, outputs=[exr, png])
+    assert image.shape == (24, 32, 4)
+    cli = str(tmp_path / "cli.exr")
+    subprocess.run([BIN, "render", TWO_BLOBS, "--width", "32", "--height", "24", "-o", cli,
+                    "--quiet"], check=True)
+    # Same pixels as the command line's render (exit 0: no pixel differs beyond 0).
+    diff = subprocess.run([BIN, "diff", exr, cli, "-fail", "0"], capture_output=True, text=True)
+    assert diff.returncode == 0, diff.stdout + diff.stderr
+    assert os.path.getsize(png) > 0
+    with pytest.raises(ValueError):  # a bad output is refused before rendering, nothing written
+        softtrace.render(scene, width=8, height=8, outputs=[str(tmp_path / "x.tif")])
+    assert not os.path.exists(tmp_path / "x.tif")
+
+
 def test_nodes_lists_every_kind():
     kinds = softtrace.nodes()
     names = {k["name"] for k in kinds}
