@@ -70,10 +70,6 @@ void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* 
   *L = flat_product(d.lo >= 1 ? 0.0 : max_slope, Ld);
 }
 
-double blanc_slope(double s) {
-  return (2 + 16.0 / 9.0 * s) * (1 + 1e-12);  // [PB-5]
-}
-
 class Walker {
  public:
   Walker(const Program& p, Workspace& ws, bool with_bounds)
@@ -120,27 +116,20 @@ class Walker {
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
-          potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_slope(s), I[in.in],
-                           L[in.in], &I[in.out], &L[in.out]);
+          potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_lipschitz(s),
+                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
         }
         break;
       case Op::Wyvill:
         if (bounds_) {
-          static const double slope = [] {
-            const double u = (204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240;
-            double dP;
-            wyvill(std::sqrt(u), &dP);
-            return std::abs(dP) * (1 + 1e-12);
-          }();
-          potential_bounds([](double d) { return wyvill(d, nullptr); }, slope, I[in.in], L[in.in],
-                           &I[in.out], &L[in.out]);
+          potential_bounds([](double d) { return wyvill(d, nullptr); }, wyvill_lipschitz(),
+                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
         }
         break;
       case Op::Murakami:
         if (bounds_)
-          potential_bounds([](double d) { return murakami(d, nullptr); },
-                           8 / (3 * std::sqrt(3.0)) * (1 + 1e-12), I[in.in], L[in.in], &I[in.out],
-                           &L[in.out]);
+          potential_bounds([](double d) { return murakami(d, nullptr); }, murakami_lipschitz(),
+                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
         break;
       case Op::Group:
       case Op::Sum:

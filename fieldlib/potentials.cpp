@@ -10,6 +10,26 @@ Interval Potential::interval(Interval d) const {
           std::min(1.0, iv::up(eval(std::max(0.0, d.lo), nullptr)))};
 }
 
+double blanc_lipschitz(double s) {
+  return (2 + 16.0 / 9.0 * s) * (1 + 1e-12);  // [PB-5]
+}
+
+// |P'| peaks where P'' = -(120u^2 - 204u + 44)/9 = 0, u = d^2 in [0,1].
+double wyvill_lipschitz() {
+  static const double L = [] {
+    const double u = (204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240;
+    double dP;
+    wyvill(std::sqrt(u), &dP);
+    return std::abs(dP) * (1 + 1e-12);
+  }();
+  return L;
+}
+
+// |P'| = 4d(1-d^2) peaks at d = 1/sqrt(3) with 8/(3 sqrt 3).
+double murakami_lipschitz() {
+  return 8 / (3 * std::sqrt(3.0)) * (1 + 1e-12);
+}
+
 namespace {
 
 // Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), docs/math.md §3.2
@@ -17,7 +37,7 @@ class Blanc final : public Potential {
  public:
   explicit Blanc(double s) : s_(s) {}
   double eval(double d, double* dP) const override { return blanc(d, s_, dP); }
-  double lipschitz() const override { return (2 + 16.0 / 9.0 * s_) * (1 + 1e-12); }  // [PB-5]
+  double lipschitz() const override { return blanc_lipschitz(s_); }
   Op op() const override { return Op::Blanc; }
   double parameter() const override { return s_; }
 
@@ -29,13 +49,7 @@ class Blanc final : public Potential {
 class Wyvill final : public Potential {
  public:
   double eval(double d, double* dP) const override { return wyvill(d, dP); }
-  // |P'| peaks where P'' = -(120u^2 - 204u + 44)/9 = 0, u = d^2 in [0,1].
-  double lipschitz() const override {
-    const double u = (204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240;
-    double dP;
-    eval(std::sqrt(u), &dP);
-    return std::abs(dP) * (1 + 1e-12);
-  }
+  double lipschitz() const override { return wyvill_lipschitz(); }
   Op op() const override { return Op::Wyvill; }
 };
 
@@ -43,8 +57,7 @@ class Wyvill final : public Potential {
 class Murakami final : public Potential {
  public:
   double eval(double d, double* dP) const override { return murakami(d, dP); }
-  // |P'| = 4d(1-d^2) peaks at d = 1/sqrt(3) with 8/(3 sqrt 3).
-  double lipschitz() const override { return 8 / (3 * std::sqrt(3.0)) * (1 + 1e-12); }
+  double lipschitz() const override { return murakami_lipschitz(); }
   Op op() const override { return Op::Murakami; }
 };
 

@@ -69,6 +69,11 @@ inline double murakami(double d, double* dP) {
   return v * v;
 }
 
+// max |P'| over d >= 0, each derived in potentials.cpp (rounded up by 1e-12 relative).
+double blanc_lipschitz(double s);  // [PB-5]
+double wyvill_lipschitz();
+double murakami_lipschitz();
+
 class Potential {
  public:
   virtual ~Potential() = default;
