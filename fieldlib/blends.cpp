@@ -47,9 +47,7 @@ class SoftBlend final : public FieldNode {
     return b;
   }
   int compile(ProgramBuilder& b, int reg) const override {
-    std::vector<const FieldNode*> kids;
-    for (const auto& c : c_) kids.push_back(c.get());
-    return b.nary(Op::Sum, kids, reg);
+    return b.nary(Op::Sum, c_, reg);
   }
 
  private:

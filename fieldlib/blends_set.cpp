@@ -149,9 +149,7 @@ class MinMax final : public FieldNode {
     return b;
   }
   int compile(ProgramBuilder& b, int reg) const override {
-    std::vector<const FieldNode*> kids;
-    for (const auto& c : c_) kids.push_back(c.get());
-    return b.nary(min_ ? Op::Min : Op::Max, kids, reg);
+    return b.nary(min_ ? Op::Min : Op::Max, c_, reg);
   }
 
  private:

@@ -41,7 +41,7 @@ int ProgramBuilder::oracle(const FieldNode& node, int reg) {
   return emit(i);
 }
 
-int ProgramBuilder::nary(Op op, const std::vector<const FieldNode*>& children, int reg) {
+int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg) {
   const int g = static_cast<int>(prog_.groups.size());
   prog_.groups.emplace_back();
   Instr head{Op::Group};

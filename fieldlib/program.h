@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "box.h"
@@ -109,7 +110,7 @@ class ProgramBuilder {
   int oracle(const FieldNode& node, int reg);
   // Emits `children` as a group combined by `op` (Sum, Min, Max); for Sum, children whose value
   // is exactly 0 outside their support are made prunable.
-  int nary(Op op, const std::vector<const FieldNode*>& children, int reg);
+  int nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg);
 
   Program finish(int result);
 
