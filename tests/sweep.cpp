@@ -10,18 +10,6 @@ namespace {
 constexpr int kPoints = 4000;
 constexpr int kBoxes = 300;
 
-Vec3 uniform_in(std::mt19937_64& rng, const Box& b) {
-  std::uniform_real_distribution<double> u(0, 1);
-  return {b.lo.x + u(rng) * (b.hi.x - b.lo.x), b.lo.y + u(rng) * (b.hi.y - b.lo.y),
-          b.lo.z + u(rng) * (b.hi.z - b.lo.z)};
-}
-
-Box random_box(std::mt19937_64& rng, const Box& domain) {
-  const double scale = std::exp(std::uniform_real_distribution<double>(-5, -1)(rng));
-  const Vec3 c = uniform_in(rng, domain), e = domain.extent() * (0.5 * scale);
-  return {c - e, c + e};
-}
-
 Vec3 central_difference(const FieldNode& n, const Vec3& p, double h) {
   Vec3 g;
   for (int i = 0; i < 3; ++i) {

@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iterator>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,19 @@ inline std::string SweepCaseName(const testing::TestParamInfo<SweepCase>& info) 
 }
 
 class NodeSweep : public testing::TestWithParam<SweepCase> {};
+
+// A uniform point in b, and a random box in `domain` of e^-5 to e^-1 of its size: where the
+// sweeps sample.
+inline Vec3 uniform_in(std::mt19937_64& rng, const Box& b) {
+  std::uniform_real_distribution<double> u(0, 1);
+  return {b.lo.x + u(rng) * (b.hi.x - b.lo.x), b.lo.y + u(rng) * (b.hi.y - b.lo.y),
+          b.lo.z + u(rng) * (b.hi.z - b.lo.z)};
+}
+inline Box random_box(std::mt19937_64& rng, const Box& domain) {
+  const double scale = std::exp(std::uniform_real_distribution<double>(-5, -1)(rng));
+  const Vec3 c = uniform_in(rng, domain), e = domain.extent() * (0.5 * scale);
+  return {c - e, c + e};
+}
 
 // Builds a node from JSON text; the text is parsed with comments allowed.
 NodePtr build_from_json(const std::string& json, Convention convention = Convention::Soft);

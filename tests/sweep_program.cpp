@@ -11,18 +11,6 @@ namespace softtrace::test {
 
 namespace {
 
-Vec3 uniform_in(std::mt19937_64& rng, const Box& b) {
-  std::uniform_real_distribution<double> u(0, 1);
-  return {b.lo.x + u(rng) * (b.hi.x - b.lo.x), b.lo.y + u(rng) * (b.hi.y - b.lo.y),
-          b.lo.z + u(rng) * (b.hi.z - b.lo.z)};
-}
-
-Box random_box(std::mt19937_64& rng, const Box& domain) {
-  const double scale = std::exp(std::uniform_real_distribution<double>(-5, -1)(rng));
-  const Vec3 c = uniform_in(rng, domain), e = domain.extent() * (0.5 * scale);
-  return {c - e, c + e};
-}
-
 // Equal, or within 1e-12 relative (the gradient through nested rotations is summed in another
 // order), or both NaN.
 bool near(double a, double b) {
