@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "json_types.h"
 #include "sweep.h"
 
 namespace softtrace::test {
@@ -19,16 +20,6 @@ std::string read_text(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// Every "type" value anywhere in `j`.
-void collect_types(const nlohmann::json& j, std::set<std::string>& out) {
-  if (j.is_object()) {
-    if (j.contains("type") && j.at("type").is_string()) out.insert(j.at("type").get<std::string>());
-    for (const auto& v : j) collect_types(v, out);
-  } else if (j.is_array()) {
-    for (const auto& v : j) collect_types(v, out);
-  }
 }
 
 TEST(Kinds, TableIsWellFormed) {

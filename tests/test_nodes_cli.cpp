@@ -10,20 +10,12 @@
 #include <sstream>
 
 #include "cli_util.h"
+#include "json_types.h"
 
 namespace softtrace::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-void collect_types(const nlohmann::json& j, std::set<std::string>& out) {
-  if (j.is_object()) {
-    if (j.contains("type") && j.at("type").is_string()) out.insert(j.at("type").get<std::string>());
-    for (const auto& v : j) collect_types(v, out);
-  } else if (j.is_array()) {
-    for (const auto& v : j) collect_types(v, out);
-  }
-}
 
 std::set<std::string> types_in_scenes() {
   std::set<std::string> types;
