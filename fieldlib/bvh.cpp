@@ -71,6 +71,49 @@ int32_t BoxBvh::build(int32_t first, int32_t count, std::vector<Box>& scratch) {
   return index;
 }
 
+namespace {
+// Whether the segment a + s (b - a), s in [0, 1], meets the box grown by pad (the slab test; the
+// slack on s covers the divisions' rounding, far below what pad adds).
+bool meets(const Box& box, const Vec3& a, const Vec3& b, double pad) {
+  double s0 = 0, s1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double lo = box.lo[i] - pad, hi = box.hi[i] + pad, e = b[i] - a[i];
+    if (e == 0) {
+      if (a[i] < lo || a[i] > hi) return false;
+      continue;
+    }
+    double u = (lo - a[i]) / e, v = (hi - a[i]) / e;
+    if (u > v) std::swap(u, v);
+    s0 = std::max(s0, u);
+    s1 = std::min(s1, v);
+  }
+  return s0 <= s1 + 1e-12;
+}
+}  // namespace
+
+int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
+                  int count) const {
+  if (nodes_.empty()) return count;
+  const int start = count;
+  int32_t stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!overlaps(n.box, q) || !meets(n.box, a, b, pad)) continue;
+    if (n.count > 0) {
+      for (int32_t i = n.first; i < n.first + n.count; ++i)
+        if (overlaps(item_boxes_[i], q) && meets(item_boxes_[i], a, b, pad))
+          out[count++] = items_[i];
+      continue;
+    }
+    stack[top++] = n.left;
+    stack[top++] = n.right;
+  }
+  std::sort(out + start, out + count);
+  return count;
+}
+
 int BoxBvh::query(const Box& q, int32_t* out, int count) const {
   if (nodes_.empty()) return count;
   const int start = count;

@@ -21,6 +21,10 @@ class BoxBvh {
   // increasing id order among themselves; returns the new count. `out` must have room for every
   // item.
   int query(const Box& q, int32_t* out, int count) const;
+  // The same for the items whose boxes, grown by `pad`, the segment [a, b] meets (and that
+  // overlap `q`, a box holding the segment): the children a stretch of a ray passes through, as
+  // POV-Ray's blob keeps the list of support entries and exits along its ray.
+  int query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out, int count) const;
 
  private:
   struct Node {

@@ -64,9 +64,11 @@ class Workspace {
   std::vector<Interval> ivals;
   std::vector<double> lips;
   std::vector<Box> boxes;
-  std::vector<int32_t> kept;   // pruning's stack of chosen children
-  std::vector<int32_t> marks;  // where each kept child's code starts in the view
-  ProgramView view;            // the last pruned program (bounds, prune)
+  std::vector<Vec3> segs;        // register r's segment ends at [2r], [2r + 1] (segment bounds)
+  std::vector<double> seg_pads;  // how far the computed points may stray from that segment
+  std::vector<int32_t> kept;     // pruning's stack of chosen children
+  std::vector<int32_t> marks;    // where each kept child's code starts in the view
+  ProgramView view;              // the last pruned program (bounds, prune)
 };
 
 // f at points (x[i], y[i], z[i]), i < n <= kBatch, into f[i].
@@ -77,6 +79,13 @@ double value(Code c, const Vec3& p, Workspace& ws);
 // f(p) and ∇f(p) into *grad (any element of the Clarke subdifferential at kinks).
 double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws);
 
+// A stretch of a ray: the points between a and b, or within `pad` of them (the caller's
+// rounding of the points it will evaluate).
+struct Segment {
+  Vec3 a, b;
+  double pad = 0;
+};
+
 struct BoxBounds {
   Interval value;    // contains f over the box
   double lipschitz;  // >= |∇f| over the box (+inf where no bound exists)
@@ -86,10 +95,15 @@ struct BoxBounds {
 // whose supports miss the box, and min/max children that cannot be the extreme in it, dropped).
 // The view is valid only for points inside the box.
 BoxBounds bounds(const Program& p, const Box& b, Workspace& ws);
+// The same for the points of a segment only (b its bounding box): the children whose supports the
+// segment misses are dropped too, and ellipsoidal distances (lp_metric, n = 2) take their range
+// along the segment, far tighter than over a long segment's box. Valid only on the segment.
+BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws);
 
 // Only the pruning of `bounds`, by support boxes (no min/max pruning, no bound computed): the
 // cheap way to a short program for one point or a small region. Result in ws.view.
 void prune(const Program& p, const Box& b, Workspace& ws);
+void prune(const Program& p, const Segment& s, Workspace& ws);
 
 // f(p) (and ∇f(p) when grad is non-null) anywhere: on the program pruned to p where that pays.
 // Overwrites ws.view.

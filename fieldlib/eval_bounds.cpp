@@ -62,6 +62,26 @@ Box place_box(const Box& b, const double* t) {
   return o;
 }
 
+double max_abs(const Vec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// How far a computed point may stray from the segment after a step with these magnitudes (each
+// step's rounding is a few ulps of its operands; 1e-12 is thousands).
+constexpr double kSegmentRounding = 1e-12;
+
+// The range of the ellipsoidal distance |p / a| along the segment [A, B] (grown by pad): its
+// square is a quadratic in the segment's parameter, least at its vertex or an end.
+Interval ellipsoid_range(const Vec3& a, const Vec3& A, const Vec3& B, double pad) {
+  const Vec3 q0{A.x / a.x, A.y / a.y, A.z / a.z};
+  const Vec3 qe{(B.x - A.x) / a.x, (B.y - A.y) / a.y, (B.z - A.z) / a.z};
+  const double ee = dot(qe, qe);
+  const double s = ee > 0 ? std::clamp(-dot(q0, qe) / ee, 0.0, 1.0) : 0.0;
+  const double near = length(q0 + qe * s), far = std::max(length(q0), length(q0 + qe));
+  const double grow = pad / std::min({a.x, a.y, a.z});
+  return {std::max(0.0, widen_down(near - grow, 1e-12)), widen_up(far + grow, 1e-12)};
+}
+
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
 template <class P>
 void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* out, double* L) {
@@ -72,8 +92,8 @@ void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* 
 
 class Walker {
  public:
-  Walker(const Program& p, Workspace& ws, bool with_bounds)
-      : p_(p), ws_(ws), bounds_(with_bounds), K_(p.consts.data()) {}
+  Walker(const Program& p, Workspace& ws, bool with_bounds, bool on_segment)
+      : p_(p), ws_(ws), bounds_(with_bounds), segment_(on_segment), K_(p.consts.data()) {}
 
   // Walks code[begin, end) of the base program, appending what is kept to ws.view.
   void walk(int begin, int end) {
@@ -97,9 +117,11 @@ class Walker {
     switch (in.op) {
       case Op::Translate:
         B[in.out] = translate_box(B[in.in], K_ + in.a);
+        if (segment_) place_segment(in, false);
         break;
       case Op::Place:
         B[in.out] = place_box(B[in.in], K_ + in.a);
+        if (segment_) place_segment(in, true);
         break;
       case Op::Oracle:
         if (bounds_) {
@@ -111,6 +133,11 @@ class Walker {
         if (bounds_) {
           const double* k = K_ + in.a;
           lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, B[in.in], &I[in.out], &L[in.out]);
+          if (segment_ && k[3] == 2) {
+            const Vec3* S = ws_.segs.data() + 2 * in.in;
+            const Interval r = ellipsoid_range({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in]);
+            I[in.out] = {std::max(I[in.out].lo, r.lo), std::min(I[in.out].hi, r.hi)};
+          }
         }
         break;
       case Op::Blanc:
@@ -139,6 +166,31 @@ class Walker {
     }
   }
 
+  // The segment of register in.out from that of in.in: the same affine map as the points.
+  void place_segment(const Instr& in, bool rotate) {
+    const double* t = K_ + in.a;
+    const Vec3 shift{t[0], t[1], t[2]};
+    const Vec3* S = ws_.segs.data() + 2 * in.in;
+    Vec3* O = ws_.segs.data() + 2 * in.out;
+    double pad = ws_.seg_pads[in.in] +
+                 kSegmentRounding * (max_abs(shift) + std::max(max_abs(S[0]), max_abs(S[1])));
+    for (int e = 0; e < 2; ++e) O[e] = S[e] - shift;
+    if (rotate) {
+      const double* M = t + 3;
+      double norm = 0;  // the largest row sum of |Rt|: how far it can move a point
+      for (int e = 0; e < 2; ++e) {
+        const Vec3 v = O[e];
+        for (int i = 0; i < 3; ++i)
+          O[e][i] = M[3 * i] * v.x + M[3 * i + 1] * v.y + M[3 * i + 2] * v.z;
+      }
+      for (int i = 0; i < 3; ++i)
+        norm = std::max(norm, std::abs(M[3 * i]) + std::abs(M[3 * i + 1]) + std::abs(M[3 * i + 2]));
+      pad = pad * norm * (1 + kSegmentRounding) +
+            kSegmentRounding * std::max(max_abs(O[0]), max_abs(O[1]));
+    }
+    ws_.seg_pads[in.out] = pad;
+  }
+
   // Chooses, walks and combines the children of a group; returns the index after it.
   int group(const Group& g) {
     const Instr& combine = p_.code[g.op_index];
@@ -147,7 +199,10 @@ class Walker {
     if (combine.op == Op::Sum && !g.bvh.empty()) {
       // The children that are never dropped, merged in order with those whose support meets the
       // box (both lists ascend).
-      const int mid = g.bvh.query(ws_.boxes[g.reg], kept, first);
+      const Vec3* S = ws_.segs.data() + 2 * g.reg;
+      const int mid =
+          segment_ ? g.bvh.query(ws_.boxes[g.reg], S[0], S[1], ws_.seg_pads[g.reg], kept, first)
+                   : g.bvh.query(ws_.boxes[g.reg], kept, first);
       const int n_bvh = mid - first;
       top_ = mid;
       for (int32_t a : g.always) kept[top_++] = a;
@@ -236,29 +291,52 @@ class Walker {
 
   const Program& p_;
   Workspace& ws_;
-  const bool bounds_;
+  const bool bounds_, segment_;
   const double* K_;
   int top_ = 0;
 };
 
-void run(const Program& p, const Box& b, Workspace& ws, bool with_bounds) {
+void run(const Program& p, const Box& b, const Segment* seg, Workspace& ws, bool with_bounds) {
   ws.view.base = &p;
   ws.view.code.clear();
   ws.view.args.clear();
   ws.boxes[0] = b;
-  Walker(p, ws, with_bounds).walk(0, static_cast<int>(p.code.size()));
+  if (seg) {
+    ws.segs[0] = seg->a;
+    ws.segs[1] = seg->b;
+    ws.seg_pads[0] = seg->pad;
+  }
+  Walker(p, ws, with_bounds, seg != nullptr).walk(0, static_cast<int>(p.code.size()));
   ws.view.result = p.result;
+}
+
+// The segment's box, grown by its pad.
+Box segment_box(const Segment& s) {
+  Box b;
+  b.extend(s.a);
+  b.extend(s.b);
+  const Vec3 pad{s.pad, s.pad, s.pad};
+  return {b.lo - pad, b.hi + pad};
 }
 
 }  // namespace
 
 BoxBounds bounds(const Program& p, const Box& b, Workspace& ws) {
-  run(p, b, ws, true);
+  run(p, b, nullptr, ws, true);
+  return {ws.ivals[p.result], ws.lips[p.result]};
+}
+
+BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws) {
+  run(p, segment_box(s), &s, ws, true);
   return {ws.ivals[p.result], ws.lips[p.result]};
 }
 
 void prune(const Program& p, const Box& b, Workspace& ws) {
-  run(p, b, ws, false);
+  run(p, b, nullptr, ws, false);
+}
+
+void prune(const Program& p, const Segment& s, Workspace& ws) {
+  run(p, segment_box(s), &s, ws, false);
 }
 
 }  // namespace softtrace

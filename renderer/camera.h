@@ -16,6 +16,9 @@ class PinholeCamera {
     right_ = normalize(cross(forward_, c.up));
     up_ = cross(right_, forward_);
     tan_half_ = std::tan(0.5 * c.fov * M_PI / 180.0);
+    // Half a pixel's height on the image plane at distance 1: the footprint's radius grows by
+    // that per unit of distance (off-axis pixels are a little smaller seen along their rays).
+    cone_ = tan_half_ / height;
   }
 
   // (px, py) in pixel units: x to the right, y down from the top-left corner.
@@ -23,13 +26,13 @@ class PinholeCamera {
     const double aspect = static_cast<double>(width_) / height_;
     const double sx = (2 * px / width_ - 1) * tan_half_ * aspect;
     const double sy = (1 - 2 * py / height_) * tan_half_;
-    return {eye_, normalize(forward_ + right_ * sx + up_ * sy)};
+    return {eye_, normalize(forward_ + right_ * sx + up_ * sy), 0, cone_};
   }
 
  private:
   Vec3 eye_, forward_, right_, up_;
   int width_, height_;
-  double tan_half_;
+  double tan_half_, cone_;
 };
 
 }  // namespace softtrace

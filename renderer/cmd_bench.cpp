@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmd_common.h"
+#include "commit.h"
 #include "commands.h"
 #include "frame.h"
 
@@ -38,6 +39,7 @@ nlohmann::json work_json(const RayWork& w) {
           {"point_evals", w.point_evals / n},
           {"box_evals", w.box_evals / n},
           {"refine_iterations", w.refine_iterations / n},
+          {"give_ups", w.give_ups},
           {"evaluations", w.evaluations() / n}};
 }
 
@@ -45,9 +47,9 @@ void print_work(const char* kind, const RayWork& w) {
   const double n = static_cast<double>(std::max(1LL, w.entered_box));
   std::printf(
       "  %s rays: %lld, %lld enter a box; per such ray %.2f point + %.2f box = %.2f evaluations, "
-      "%.2f refinement iterations\n",
+      "%.2f refinement iterations, %lld gave up\n",
       kind, w.rays, w.entered_box, w.point_evals / n, w.box_evals / n, w.evaluations() / n,
-      w.refine_iterations / n);
+      w.refine_iterations / n, w.give_ups);
 }
 
 }  // namespace

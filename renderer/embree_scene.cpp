@@ -64,7 +64,8 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
+  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Any).hit)
+    r->tfar = -INFINITY;
 }
 
 }  // namespace
@@ -150,6 +151,7 @@ bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCount
   work.point_evals += ctx.work.point_evals;
   work.box_evals += ctx.work.box_evals;
   work.refine_iterations += ctx.work.refine_iterations;
+  work.give_ups += ctx.work.give_ups;
   work.entered_box = work.entered_box || ctx.work.entered_box;
   return r.tfar < 0;
 }

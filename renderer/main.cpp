@@ -7,6 +7,7 @@
 
 #include "cli_spelling.h"
 #include "commands.h"
+#include "commit.h"
 #include "signals.h"
 
 using namespace softtrace;

@@ -17,6 +17,8 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // Leave the surface by a little more than the tracer's tolerance before casting shadow rays.
   const double offset = 1e-4 * obj.bounds.diagonal();
   const Vec3 origin = p + n * offset;
+  // Shadow rays keep the camera ray's footprint: they decide what this pixel shows.
+  const double cone0 = ray.cone0 + ray.cone * hit.t;
 
   Vec3 light{0, 0, 0};
   for (const Light& l : scene.lights) {
@@ -39,7 +41,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     if (cosine <= 0) continue;
     if (l.shadows) {
       TraceCounters work;
-      const bool blocked = rt.occluded({origin, to_light}, 0, distance, work);
+      const bool blocked = rt.occluded({origin, to_light, cone0, ray.cone}, 0, distance, work);
       shadow.add(work);
       if (blocked) continue;
     }

@@ -7,13 +7,21 @@
 namespace softtrace {
 
 namespace {
-// A ray that needs more evaluations than this is given up as a miss; no test scene comes close.
+// A ray that needs more evaluations than this gives up (reported as a hit); no test scene comes
+// close.
 constexpr int kMaxSteps = 200000;
-// Sphere-tracing steps within one stretch before it is cut short at the current point: the
-// bound over a long stretch's box can be far looser than over a short one (e.g. a modulated
-// radius whose [d]/[f] decorrelates), and finishing the stretch with it would cost b-t divided by
-// a tiny step. Every step taken was certified, so stopping early skips nothing.
-constexpr int kStretchSteps = 16;
+// Sphere-tracing steps within one segment before it is cut short at the current point: the bound
+// over a long segment's box can be far looser than over a short one (e.g. a modulated radius whose
+// [d]/[f] decorrelates). Every step taken was certified, so stopping early skips nothing.
+constexpr int kSegmentSteps = 8;
+// The tolerance of the march is this fraction of the footprint radius: a certified step shorter
+// than that ends the approach, and a probe one tolerance ahead decides.
+constexpr double kDecide = 0.5;
+// Interval halvings below the tolerance before a search gives up: a surface must pass within
+// 1/16 of a tolerance of the ray to end it there.
+constexpr double kFinest = 1.0 / 1024;
+// Root refinement stops when the bracket is this fraction of the footprint radius.
+constexpr double kRefine = 1e-3;
 // One workspace per thread, shared by every object's tracer: evaluations do not allocate once it
 // has grown to the largest program.
 Workspace& workspace(const Program& p) {
@@ -46,7 +54,10 @@ bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
 ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
     : object_(&object), program_(compile(*object.field)), mode_(mode) {
   global_L_ = object.field->lipschitz();
-  min_step_ = 1e-5 * object.bounds.diagonal();
+  default_footprint_ = 1e-5 * object.bounds.diagonal();
+  const Box& b = object.bounds;
+  scale_ = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
+                     std::abs(b.hi.y), std::abs(b.hi.z)});
 }
 
 double ObjectTracer::eval(const Vec3& p, Vec3* grad) const {
@@ -86,104 +97,184 @@ Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
   return n;
 }
 
-double ObjectTracer::bisect(const Ray& ray, double a, double b, TraceCounters& work) const {
-  // Invariant: g(a) < 0 <= g(b). Stop far below a pixel's footprint.
-  Box box;
-  box.extend(ray.o + ray.d * a);
-  box.extend(ray.o + ray.d * b);
+double ObjectTracer::footprint(const Ray& ray, double t) const {
+  const double f = ray.cone0 + ray.cone * std::abs(t);
+  // Points o + t d are only known to a few ulps of the coordinates' magnitude: a tolerance below
+  // that would be decided by rounding.
+  const double resolvable =
+      64 * std::numeric_limits<double>::epsilon() *
+      (scale_ + std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)}) + std::abs(t));
+  return std::max(f > 0 ? f : default_footprint_, resolvable);
+}
+
+Segment ObjectTracer::segment(const Ray& ray, double a, double b) const {
+  // The points o + t d the tracer evaluates are rounded to a few ulps of |o| + |t|.
+  const double pad = 1e-12 * (std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)}) +
+                              std::max(std::abs(a), std::abs(b)));
+  return {ray.o + ray.d * a, ray.o + ray.d * b, pad};
+}
+
+ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double a, double b,
+                                                         TraceCounters& work) const {
   ++work.box_evals;
-  prune(program_, box, workspace(program_));
-  for (int i = 0; i < 60 && b - a > 1e-3 * min_step_; ++i) {
-    const double m = 0.5 * (a + b);
+  // One pass: the interval, the slope bound and the program pruned to the segment (the children
+  // whose supports it passes through), which the points of this segment evaluate afterwards.
+  const BoxBounds bb = bounds(program_, segment(ray, a, b), workspace(program_));
+  const double iso = object_->iso;
+  const Interval g = object_->inside_sign > 0 ? Interval{bb.value.lo - iso, bb.value.hi - iso}
+                                              : Interval{iso - bb.value.hi, iso - bb.value.lo};
+  return {g, mode_ == LipschitzMode::Global ? global_L_ : bb.lipschitz};
+}
+
+ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double c, double finest,
+                                      TraceCounters& work) const {
+  // Left to right over [a, c]: a piece the interval clears is passed (and the next piece is
+  // twice as long); a piece it cannot clear is halved, after its end's sign is checked.
+  double lo = a, w = c - a;
+  while (lo < c) {
+    const double hi = std::min(lo + w, c);
+    const SegmentBounds sb = segment_bounds(ray, lo, hi, work);
+    if (sb.g.hi < 0) {
+      lo = hi;
+      w *= 2;
+      continue;
+    }
     ++work.point_evals;
+    const double ghi = g_view(ray.o + ray.d * hi);
+    if (ghi >= 0) return {Scan::Bracket, lo, hi, ghi};
+    if (hi - lo <= finest) return {Scan::Undecided, lo, lo, ghi};
+    w = 0.5 * (hi - lo);
+  }
+  return {Scan::Clear, c, c, NAN};
+}
+
+double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb, double tol,
+                            TraceCounters& work) const {
+  // The Illinois variant of regula falsi, on the program pruned to a box holding the bracket
+  // (ws.view): superlinear on smooth roots, and a bracket always, so it never leaves [a, b].
+  const auto g_at = [&](double t) {
+    ++work.point_evals;
+    return g_view(ray.o + ray.d * t);
+  };
+  if (std::isnan(ga)) ga = g_at(a);
+  if (!(ga < 0)) return a;  // rounding on the pruned program: a itself is on the surface
+  int side = 0;             // which end was kept last time (-1 a, +1 b): Illinois halves its value
+  for (int i = 0; i < 100 && b - a > tol; ++i) {
+    // False position, kept half a tolerance inside the bracket: a root within that of an end
+    // then ends the search at the next step.
+    const double m = std::clamp((a * gb - b * ga) / (gb - ga), a + 0.5 * tol, b - 0.5 * tol);
     ++work.refine_iterations;
-    (g_view(ray.o + ray.d * m) >= 0 ? b : a) = m;
+    const double gm = g_at(m);
+    if (gm >= 0) {
+      b = m;
+      gb = gm;
+      if (side == +1) ga *= 0.5;
+      side = +1;
+    } else {
+      a = m;
+      ga = gm;
+      if (side == -1) gb *= 0.5;
+      side = -1;
+    }
   }
   return b;
 }
 
-MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar,
-                                    TraceCounters& work) const {
+MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
+                                    Query query) const {
   double t0 = tnear, t1 = tfar;
   if (!clip_to_box(ray, object_->bounds, t0, t1)) return {};
   work.entered_box = true;
   const auto at = [&](double t) { return ray.o + ray.d * t; };
-  const auto stretch_box = [&](double a, double b) {
-    Box box;
-    box.extend(at(a));
-    box.extend(at(b));
-    return box;
+  // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].
+  const auto hit = [&](double a, double ga, double b, double gb) -> MarchResult {
+    if (query == Query::Any) return {true, b};
+    return {true, refine(ray, a, ga, b, gb, kRefine * footprint(ray, b), work)};
+  };
+  const auto give_up = [&](double t) {
+    ++work.give_ups;
+    return MarchResult{true, t, false, true};
   };
 
-  double t = t0, h = std::max((t1 - t0) / 8, min_step_);
   ++work.point_evals;
-  double gt = g(at(t));
-  bool gt_known = true;
-  if (gt >= 0) return {true, t, t > tnear};
-  // The latest point known to be outside: the left end for bisection. A stretch may end on a
-  // step shortened to min_step_ (not certified), so a new stretch can start inside the solid.
-  double prev = t;
+  double gt = g(at(t0));
+  if (gt >= 0) return {true, t0, t0 > tnear};
+  double t = t0;
+  bool gt_known = true;      // whether gt is g(t); g(t) < 0 is always known
+  double s = (t1 - t0) / 8;  // the next segment's length
 
-  while (t < t1 && work.evaluations() < kMaxSteps) {
-    const double b = std::min(t + h, t1);
-    const Box box = stretch_box(t, b);
-    ++work.box_evals;
-    // One pass: the interval, the slope bound and the program pruned to the stretch's box, which
-    // the points of this stretch evaluate below.
-    const BoxBounds bb = bounds(program_, box, workspace(program_));
-    const Interval f = bb.value;
-    const double ghi = object_->inside_sign > 0 ? f.hi - object_->iso : object_->iso - f.lo;
-    if (ghi < 0) {  // the solid cannot be reached anywhere in this stretch
+  while (t < t1) {
+    if (work.evaluations() >= kMaxSteps) return give_up(t);
+    const double b = std::min(t + s, t1);
+    const SegmentBounds sb = segment_bounds(ray, t, b, work);
+    if (sb.g.hi < 0) {  // the solid cannot be reached anywhere in this segment
       t = b;
       gt_known = false;
-      h *= 2;
+      s *= 2;
       continue;
     }
-    const double L = mode_ == LipschitzMode::Global ? global_L_ : bb.lipschitz;
+    const double tol = kDecide * footprint(ray, t);
+    if (!gt_known) {
+      ++work.point_evals;
+      gt = g_view(at(t));
+      gt_known = true;
+      if (gt >= 0) return {true, t};  // the previous piece ended on the surface, to rounding
+    }
+    const double L = sb.lipschitz;
     if (!std::isfinite(L)) {
-      if (b - t > min_step_) {  // no slope bound here: decide on shorter stretches
-        h = 0.5 * (b - t);
+      if (b - t > tol) {  // no slope bound here: bound shorter segments
+        s = 0.5 * (b - t);
         continue;
       }
-      if (!gt_known) {
-        ++work.point_evals;
-        gt = g_view(at(t));
-        if (gt >= 0) return {true, bisect(ray, prev, t, work)};
-      }
-      prev = t;
-      ++work.point_evals;
-      const double gb = g_view(at(b));
-      if (gb >= 0) return {true, bisect(ray, t, b, work)};
+      const Scan sc = scan(ray, t, b, kFinest * tol, work);
+      if (sc.kind == Scan::Bracket) return hit(sc.lo, NAN, sc.hi, sc.ghi);
+      if (sc.kind == Scan::Undecided) return give_up(sc.lo);
       t = b;
-      gt = gb;
-      gt_known = true;
+      gt_known = false;
       continue;
     }
-    // Sphere tracing inside the stretch: from a point with g < 0, g stays negative for at least
+    // Sphere tracing inside the segment: from a point with g < 0, g stays negative for at least
     // -g/L along any path inside the box, so a step of that length cannot cross the surface.
-    int stretch_steps = 0;
-    while (work.evaluations() < kMaxSteps) {
-      if (!gt_known) {
-        ++work.point_evals;
-        gt = g_view(at(t));
-        gt_known = true;
-      }
-      if (gt >= 0) return {true, bisect(ray, prev, t, work)};
-      if (++stretch_steps > kStretchSteps)
-        break;  // a loose bound: re-bound a shorter stretch from t
-      const double step = L > 0 ? std::max(-gt / L, min_step_) : b - t;
-      prev = t;
-      if (t + step >= b) {
-        // The bound certifies the rest of the stretch; at its end, g is not known yet.
+    for (int steps = 0;; ++steps) {
+      const double r = L > 0 ? -gt / L : b - t;
+      if (r >= b - t) {  // the bound clears the rest of the segment; g at its end is not known
         t = b;
         gt_known = false;
+        s *= 2;
         break;
       }
-      t += step;
-      gt_known = false;
+      if (r < tol) {
+        // Within a tolerance of the surface, perhaps: probe one tolerance ahead.
+        const double p = std::min(t + tol, t1);
+        if (p > b) {  // the probe is outside this segment's box: bound a segment that holds it
+          s = p - t;
+          break;
+        }
+        ++work.point_evals;
+        const double gp = g_view(at(p));
+        if (gp >= 0) return hit(t, gt, p, gp);
+        if (r + -gp / L >= p - t) {  // the two points' spheres cover [t, p]
+          t = p;
+          gt = gp;
+          continue;
+        }
+        const Scan sc = scan(ray, t, p, kFinest * tol, work);
+        if (sc.kind == Scan::Bracket) return hit(sc.lo, NAN, sc.hi, sc.ghi);
+        if (sc.kind == Scan::Undecided) return give_up(sc.lo);
+        t = p;  // scan re-pruned ws.view: bound the next segment afresh
+        gt = gp;
+        s = 4 * tol;
+        break;
+      }
+      if (steps == kSegmentSteps) {  // a loose bound: bound a shorter segment from t
+        s = 4 * r;
+        break;
+      }
+      t += r;
+      ++work.point_evals;
+      gt = g_view(at(t));
+      if (gt >= 0) return {true, t};  // a certified step ends on the surface at most
     }
-    // Many steps mean a loose bound: shorter stretches give tighter box bounds.
-    h = stretch_steps > kStretchSteps ? std::max(0.5 * h, min_step_) : h;
   }
   return {};
 }

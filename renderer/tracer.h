@@ -1,13 +1,20 @@
-// Finding the first point of an object's solid along a ray: interval-guided sphere tracing.
+// Finding the first point of an object's solid along a ray: certified segment tracing.
 // Pure fieldlib maths, no Embree: the Embree adapter only calls in here.
 //
-// The object's field is compiled once to a flat program (fieldlib/program.h). The ray is cut
-// into stretches; one bounds pass over the box around a stretch gives its value interval, its
-// Lipschitz bound and the program pruned to that box, which every point of the stretch then
-// evaluates. A stretch whose interval shows the solid cannot be reached is skipped whole. Otherwise
-// the tracer steps by |f - iso| / L with L the Lipschitz bound over that stretch's box, which can
-// never step over the surface; where no finite bound exists the stretch is halved until it is short
-// enough to decide by sign. A sign change is then refined by bisection.
+// The object's field is compiled once to a flat program (fieldlib/program.h). The ray is cut into
+// segments; one bounds pass over the box around a segment gives its value interval, its Lipschitz
+// bound and the program pruned to that box, which every point of the segment then evaluates.
+// Every advance along the ray is certified, never sampled:
+// - a segment whose interval shows the solid cannot be reached is skipped whole (and the next
+//   segment is twice as long);
+// - inside a segment the tracer steps by |g| / L, L the segment's Lipschitz bound, which cannot
+//   cross the surface (and a segment that needs many such steps is cut shorter: its bound is
+//   loose);
+// - once the step is below the ray's tolerance (a fraction of the pixel footprint there), one
+//   probe a tolerance ahead decides: a sign change is a bracket; two covering spheres, or intervals
+//   on halvings down to 1/16 of the tolerance, certify the gap; otherwise the tracer gives up
+//   explicitly and reports a hit there (never a silent skip).
+// A bracket is refined by the Illinois method to 1/1000 of the footprint.
 #pragma once
 
 #include "eval.h"
@@ -19,27 +26,37 @@ enum class LipschitzMode { Local, Global };
 
 struct Ray {
   Vec3 o, d;  // d has unit length, so t is a distance
+  // The radius of the pixel's cone at distance t is cone0 + cone * t: how precisely a hit must be
+  // placed. Zero for rays that come from no camera: the tracer then uses 1e-5 of the object box.
+  double cone0 = 0, cone = 0;
 };
+
+// A camera ray wants the nearest hit; a shadow ray only whether there is any.
+enum class Query { Nearest, Any };
 
 // The work one ray costs one object or the whole scene, counted as it is done. `steps` (the AOV
 // and the ray limit) is their sum: point and box evaluations.
 struct TraceCounters {
-  int point_evals = 0;        // field values at a point (refinement's included)
-  int box_evals = 0;          // bounds or pruning passes over a box around a stretch of the ray
-  int refine_iterations = 0;  // bisection steps after a sign change (each one point evaluation)
+  int point_evals = 0;  // field values at a point (refinement's included)
+  int box_evals = 0;    // bounds or pruning passes over a box around a stretch of the ray
+  int refine_iterations =
+      0;             // root refinement steps after a sign change (one point evaluation each)
+  int give_ups = 0;  // searches ended without a certificate (reported as hits)
   bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
   int evaluations() const { return point_evals + box_evals; }
 };
 
 // TraceCounters summed over many rays of one kind (primary or shadow), for `softtrace bench`.
 struct RayWork {
-  long long rays = 0, entered_box = 0, point_evals = 0, box_evals = 0, refine_iterations = 0;
+  long long rays = 0, entered_box = 0, point_evals = 0, box_evals = 0, refine_iterations = 0,
+            give_ups = 0;
   void add(const TraceCounters& c) {
     ++rays;
     entered_box += c.entered_box;
     point_evals += c.point_evals;
     box_evals += c.box_evals;
     refine_iterations += c.refine_iterations;
+    give_ups += c.give_ups;
   }
   RayWork& operator+=(const RayWork& o) {
     rays += o.rays;
@@ -47,6 +64,7 @@ struct RayWork {
     point_evals += o.point_evals;
     box_evals += o.box_evals;
     refine_iterations += o.refine_iterations;
+    give_ups += o.give_ups;
     return *this;
   }
   long long evaluations() const { return point_evals + box_evals; }
@@ -58,15 +76,20 @@ struct MarchResult {
   // The ray entered the object's box already inside the solid: the box cuts the solid, and the
   // surface seen is the box face, not a level set of the field.
   bool on_box_face = false;
+  // No certificate could decide within the tolerance (or the evaluation limit was reached): the
+  // surface may pass within a tolerance of the ray here, and it is reported as a hit.
+  bool gave_up = false;
 };
 
 class ObjectTracer {
  public:
   ObjectTracer(const SceneObject& object, LipschitzMode mode);
 
-  // The first t in [tnear, tfar] where the ray is inside the solid, if any. The work is added to
+  // The first t in [tnear, tfar] where the ray is inside the solid, if any (for Query::Any, some
+  // t where it is: the search stops at the first sign change, unrefined). The work is added to
   // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
-  MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
+  MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
+                        Query query = Query::Nearest) const;
 
   const SceneObject& object() const { return *object_; }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
@@ -84,13 +107,34 @@ class ObjectTracer {
   // g = inside_sign (f - iso): the solid is g >= 0.
   double g(const Vec3& p) const;       // anywhere (prunes to p first)
   double g_view(const Vec3& p) const;  // inside the box of the last bounds/prune pass
-  double bisect(const Ray& ray, double a, double b, TraceCounters& work) const;
+  Segment segment(const Ray& ray, double a, double b) const;
+  // g's interval and Lipschitz bound over the segment [a, b] of the ray; prunes ws.view to it.
+  struct SegmentBounds {
+    Interval g;
+    double lipschitz;
+  };
+  SegmentBounds segment_bounds(const Ray& ray, double a, double b, TraceCounters& work) const;
+  // The radius of the ray's footprint at t (never below what rounding of t can resolve).
+  double footprint(const Ray& ray, double t) const;
+  // Decides [a, c] (g(a) < 0) by intervals over halvings down to `finest`: clear, a bracket of a
+  // sign change, or undecided where the halving stopped.
+  struct Scan {
+    enum Kind { Clear, Bracket, Undecided } kind;
+    double lo, hi;  // Bracket: g(lo) < 0 <= g(hi) = ghi, ws.view holds [lo, hi]; Undecided: at lo
+    double ghi;
+  };
+  Scan scan(const Ray& ray, double a, double c, double finest, TraceCounters& work) const;
+  // A root of g in [a, b] to within `tol`, given g(a) = ga < 0 <= g(b) = gb (ga NaN: not known
+  // yet), on ws.view pruned to a box holding [a, b]; returns a point with g >= 0.
+  double refine(const Ray& ray, double a, double ga, double b, double gb, double tol,
+                TraceCounters& work) const;
 
   const SceneObject* object_;
   Program program_;
   LipschitzMode mode_;
   double global_L_;
-  double min_step_;  // shortest step and stretch: 1e-5 of the object's box diagonal
+  double default_footprint_;  // for rays without a cone: 1e-5 of the object's box diagonal
+  double scale_;              // the magnitude of coordinates near the object (for rounding)
 };
 
 // Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading

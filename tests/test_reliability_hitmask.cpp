@@ -75,10 +75,13 @@ TEST_P(HitMask, MatchesADenseReferenceMarch) {
         ++ref_hits;
         ASSERT_TRUE(hit.hit) << "pixel (" << x << ", " << y
                              << ") skipped the surface at t = " << ref;
-        ASSERT_LE(hit.t, ref + 1e-7 * b.diagonal()) << "pixel (" << x << ", " << y << ")";
+        // Refinement stops within 1/1000 of the pixel footprint's radius (ray.cone per unit t).
+        ASSERT_LE(hit.t, ref + 2e-3 * ray.cone * ref) << "pixel (" << x << ", " << y << ")";
       } else if (hit.hit) {
         ++tracer_only;
-        EXPECT_TRUE(inside(ray.o + ray.d * hit.t)) << "pixel (" << x << ", " << y << ")";
+        // A give-up reports a hit where the surface may pass within a tolerance of the ray.
+        if (hit.work.give_ups == 0)
+          EXPECT_TRUE(inside(ray.o + ray.d * hit.t)) << "pixel (" << x << ", " << y << ")";
       }
     }
   EXPECT_GT(ref_hits, W * H / 20) << "the object should be in view";

@@ -1,0 +1,198 @@
+// No holes: the hit mask of the normal render path (EmbreeScene::intersect for every pixel-centre
+// camera ray) against an exact one. Each scene is one object, a soft_blend of murakami soft
+// objects over n = 2 lp_metrics whose supports do not overlap, so the solid is exactly a union
+// of ellipsoids and every ray's first hit is a quadratic's root. The cases are where a marcher
+// with a shortest step or a loose bound goes wrong: a 1e-3 sphere beside a 1e3 one in the same
+// object, a thin sheet and needles seen edge-on and end-on, and rays grazing a large sphere.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "frame.h"
+
+namespace softtrace {
+namespace {
+
+// murakami (1 - r^2)^2 = 1/2 at r^2 = 1 - 1/sqrt(2): the soft convention's 0.5 level of a
+// soft_object over lp_metric n = 2 with radii [a,b,c] is the ellipsoid kLevel * [a,b,c].
+const double kLevel = std::sqrt(1 - 1 / std::sqrt(2.0));
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Rays whose closest approach to an ellipsoid, in the space where it is the unit sphere, is
+// within this of 1 are left out as tangent. Rounding moves that distance by ~1e-15 (the field,
+// the ray and the reference are all double), so this band is a billion times wider than any
+// honest disagreement; yet in the image it is a ring ~1e-6 of the ellipsoid's apparent size
+// wide around its outline, which no pixel of these 48x36 images should fall into by chance.
+constexpr double kTangentBand = 1e-6;
+
+struct Ellipsoid {
+  Vec3 centre, radii;  // the lp_metric's radii: the support; the surface is kLevel * radii
+};
+
+struct HoleCase {
+  const char* name;
+  Camera camera;
+  std::vector<Ellipsoid> parts;
+};
+
+const std::vector<Ellipsoid> kTinyAndHuge = {{{0, 0, 0}, {1e-3, 1e-3, 1e-3}},
+                                             {{640, 770, 0}, {1e3, 1e3, 1e3}}};
+const std::vector<Ellipsoid> kSheet = {{{0, 0, 0}, {10, 10, 0.01}}};
+const std::vector<Ellipsoid> kNeedles = {{{0, 0, 0}, {0.01, 0.01, 10}},
+                                         {{0.1, 0, 0}, {0.01, 0.01, 10}},
+                                         {{0, 0.3, 0.05}, {10, 0.01, 0.01}}};
+const std::vector<Ellipsoid> kUprightNeedles(kNeedles.begin(), kNeedles.begin() + 2);
+const double kBigR = 1e3 * kLevel;  // the surface radius of the large sphere below
+const std::vector<Ellipsoid> kBig = {{{0, 0, 0}, {1e3, 1e3, 1e3}}};
+
+// Camera: eye, target, up, vertical fov in degrees.
+const HoleCase kCases[] = {
+    // The tiny sphere ~25 pixels across, the huge one filling the right of the picture.
+    {"tiny_near", {{0, -0.003, 0}, {0, 0, 0}, {0, 0, 1}, 30}, kTinyAndHuge},
+    // The same from 8 times farther: the tiny sphere covers a handful of pixels.
+    {"tiny_far", {{0, -0.025, 0}, {1e-4, 0, 6e-5}, {0, 0, 1}, 30}, kTinyAndHuge},
+    {"sheet_oblique", {{12, -9, 7}, {0, 0, 0}, {0, 0, 1}, 50}, kSheet},
+    // About 1 degree above the sheet's plane.
+    {"sheet_grazing", {{19.7, -3.4, 0.35}, {0, 0, 0}, {0, 0, 1}, 10}, kSheet},
+    // Tilting `up` slants the needles across the pixel columns.
+    {"needles_across", {{0, -1.2, 0}, {0.05, 0, 0}, {0.1, 0, 1}, 30}, kNeedles},
+    // About 2 degrees off the vertical needles' axis.
+    {"needles_end_on", {{0.3, 0.2, 12}, {0, 0, 0}, {0, 1, 0}, 2}, kUprightNeedles},
+    // The eye 0.05 above the top of a sphere of radius 541: the horizon at grazing incidence.
+    {"sphere_horizon", {{0, 0, kBigR + 0.05}, {0, 100, kBigR - 3}, {0, 0, 1}, 30}, kBig},
+    // Its top outline from afar, the eye 0.5 above the tangent plane.
+    {"sphere_outline", {{0, -2000, kBigR + 0.5}, {0, 0, kBigR}, {0, 0, 1}, 1}, kBig},
+};
+
+std::string json_num(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.17g", v);
+  return s;
+}
+
+std::string json_vec(const Vec3& v) {
+  return "[" + json_num(v.x) + "," + json_num(v.y) + "," + json_num(v.z) + "]";
+}
+
+std::string scene_json(const HoleCase& c) {
+  std::string parts;
+  for (const Ellipsoid& e : c.parts)
+    parts += std::string(parts.empty() ? "" : ",") + R"({"type":"soft_object","translate":)" +
+             json_vec(e.centre) + R"(,"potential":{"type":"murakami"},)" +
+             R"("distance":{"type":"lp_metric","n":2,"radii":)" + json_vec(e.radii) + "}}";
+  const std::string field =
+      c.parts.size() == 1 ? parts : R"({"type":"soft_blend","children":[)" + parts + "]}";
+  return R"({"camera":{"eye":)" + json_vec(c.camera.eye) + R"(,"target":)" +
+         json_vec(c.camera.target) + R"(,"up":)" + json_vec(c.camera.up) + R"(,"fov":)" +
+         json_num(c.camera.fov) + R"(},"objects":[{"field":)" + field + "}]}";
+}
+
+struct RefHit {
+  double t = kInf;  // the first hit at t >= 0, or inf
+  bool tangent = false;
+};
+
+// The offset p from the ellipsoid's centre in the space where its surface is the unit sphere.
+Vec3 unit_space(const Ellipsoid& e, const Vec3& p) {
+  const Vec3 s = e.radii * kLevel;
+  return {p.x / s.x, p.y / s.y, p.z / s.z};
+}
+
+// There the ray is u + t v; its closest approach to the centre, m, is taken from the
+// perpendicular component so that it is accurate near 1.
+RefHit ellipsoid_hit(const Ray& ray, const Ellipsoid& e) {
+  const Vec3 u = unit_space(e, ray.o - e.centre), v = unit_space(e, ray.d);
+  const double tc = -dot(u, v) / dot(v, v);
+  if (tc <= 0) return {};  // moving away from an eye outside: no hit, far from tangent
+  const double m = length(u + v * tc);
+  if (std::abs(m - 1) < kTangentBand) return {kInf, true};
+  if (m > 1) return {};
+  return {tc - std::sqrt((1 - m) * (1 + m)) / length(v), false};
+}
+
+class NoHoles : public testing::TestWithParam<std::tuple<int, LipschitzMode>> {};
+
+TEST_P(NoHoles, HitMaskIsExact) {
+  const HoleCase& c = kCases[std::get<0>(GetParam())];
+  const Scene scene = parse_scene(scene_json(c), "<test>");
+  const TracedScene rt(scene, std::get<1>(GetParam()));
+  const SceneObject& obj = scene.objects[0];
+  for (const Ellipsoid& e : c.parts)  // which ellipsoid_hit assumes
+    ASSERT_GT(length(unit_space(e, c.camera.eye - e.centre)), 1 + kTangentBand)
+        << "the eye must be outside every ellipsoid";
+  const int W = 48, H = 36;
+  const PinholeCamera camera(scene.camera, W, H);
+  // A pixel's width at unit depth; the t tolerance is 1e-3 of it at the hit's depth.
+  const double footprint = 2 * std::tan(0.5 * c.camera.fov * M_PI / 180) / H;
+  int hits = 0, misses = 0, tangent = 0;  // the reference's, over the pixels not left out
+  int missed = 0, extra = 0, off = 0;     // hits the tracer missed, made up, or put elsewhere
+  std::vector<int> seen(c.parts.size(), 0);
+  double worst = 0, worst_ratio = 0;  // |t - t_ref|, and over its tolerance
+  std::string first;                  // the first wrong pixel
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const Ray ray = camera.generate(x + 0.5, y + 0.5);
+      RefHit ref;
+      int part = -1;
+      for (size_t i = 0; i < c.parts.size(); ++i) {
+        const RefHit h = ellipsoid_hit(ray, c.parts[i]);
+        ref.tangent |= h.tangent;
+        if (h.t < ref.t) ref.t = h.t, part = int(i);
+      }
+      if (ref.tangent) {
+        ++tangent;
+        continue;
+      }
+      const TraceHit hit = rt.embree.intersect(ray, 0, kInf);
+      const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): ";
+      if (!std::isfinite(ref.t)) {
+        ++misses;
+        if (hit.hit && extra++ + missed + off == 0)
+          first = where + "hit at t = " + std::to_string(hit.t) + " where there is nothing";
+        continue;
+      }
+      ++hits;
+      ++seen[part];
+      // The reference is the field's level: an independent check of kLevel and the placement.
+      ASSERT_NEAR(obj.field->value(ray.o + ray.d * ref.t), obj.iso, 1e-9) << where;
+      if (!hit.hit) {
+        if (extra + missed++ + off == 0)
+          first = where + "missed ellipsoid " + std::to_string(part) +
+                  " at t = " + std::to_string(ref.t);
+        continue;
+      }
+      const double err = std::abs(hit.t - ref.t), tol = 1e-3 * footprint * ref.t + 1e-12;
+      worst = std::max(worst, err);
+      worst_ratio = std::max(worst_ratio, err / tol);
+      if (err > tol && extra + missed + off++ == 0)
+        first = where + "hit at t = " + std::to_string(hit.t) + ", not at ellipsoid " +
+                std::to_string(part) + "'s t = " + std::to_string(ref.t);
+    }
+  std::printf(
+      "%s: %d hits, %d misses, %d tangent; %d missed, %d extra, %d off; "
+      "worst |t - t_ref| %.3g (%.3g of the tolerance)\n",
+      c.name, hits, misses, tangent, missed, extra, off, worst, worst_ratio);
+  EXPECT_EQ(missed + extra + off, 0)
+      << missed << " hits missed, " << extra << " made up, " << off
+      << " off by more than the tolerance (worst " << worst << "); the first, " << first;
+  EXPECT_LE(tangent, W * H / 100) << "too many pixels left out as tangent";
+  EXPECT_GE(hits, W * H / 100) << "the object should be in view";
+  EXPECT_GE(misses, W * H / 100) << "the background should be in view";
+  for (size_t i = 0; i < seen.size(); ++i)
+    EXPECT_GT(seen[i], 0) << "ellipsoid " << i << " is the first hit of no pixel";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, NoHoles,
+                         testing::Combine(testing::Range(0, int(std::size(kCases))),
+                                          testing::Values(LipschitzMode::Local,
+                                                          LipschitzMode::Global)),
+                         [](const testing::TestParamInfo<NoHoles::ParamType>& i) {
+                           return std::string(kCases[std::get<0>(i.param)].name) +
+                                  (std::get<1>(i.param) == LipschitzMode::Local ? "_local"
+                                                                                : "_global");
+                         });
+
+}  // namespace
+}  // namespace softtrace
