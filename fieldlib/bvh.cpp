@@ -72,39 +72,54 @@ int32_t BoxBvh::build(int32_t first, int32_t count, std::vector<Box>& scratch) {
 }
 
 namespace {
-// Whether the segment a + s (b - a), s in [0, 1], meets the box grown by pad (the slab test; the
-// slack on s covers the divisions' rounding, far below what pad adds).
-bool meets(const Box& box, const Vec3& a, const Vec3& b, double pad) {
-  double s0 = 0, s1 = 1;
-  for (int i = 0; i < 3; ++i) {
-    const double lo = box.lo[i] - pad, hi = box.hi[i] + pad, e = b[i] - a[i];
-    if (e == 0) {
-      if (a[i] < lo || a[i] > hi) return false;
-      continue;
+// The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
+// reciprocals taken once per query. The slack on s covers the products' rounding, far below what
+// pad adds. An axis the segment does not move along compares a's coordinate instead.
+class SegmentTest {
+ public:
+  SegmentTest(const Vec3& a, const Vec3& b, double pad) : a_(a), pad_(pad) {
+    for (int i = 0; i < 3; ++i) {
+      const double e = b[i] - a[i];
+      flat_[i] = e == 0;
+      inv_[i] = flat_[i] ? 0 : 1 / e;
     }
-    double u = (lo - a[i]) / e, v = (hi - a[i]) / e;
-    if (u > v) std::swap(u, v);
-    s0 = std::max(s0, u);
-    s1 = std::min(s1, v);
   }
-  return s0 <= s1 + 1e-12;
-}
+  bool meets(const Box& box) const {
+    double s0 = 0, s1 = 1;
+    for (int i = 0; i < 3; ++i) {
+      const double lo = box.lo[i] - pad_, hi = box.hi[i] + pad_;
+      if (flat_[i]) {
+        if (a_[i] < lo || a_[i] > hi) return false;
+        continue;
+      }
+      const double u = (lo - a_[i]) * inv_[i], v = (hi - a_[i]) * inv_[i];
+      s0 = std::max(s0, std::min(u, v));
+      s1 = std::min(s1, std::max(u, v));
+    }
+    return s0 <= s1 + 1e-12;
+  }
+
+ private:
+  Vec3 a_;
+  double pad_, inv_[3];
+  bool flat_[3];
+};
 }  // namespace
 
 int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
                   int count) const {
   if (nodes_.empty()) return count;
   const int start = count;
+  const SegmentTest seg(a, b, pad);
   int32_t stack[kMaxDepth];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!overlaps(n.box, q) || !meets(n.box, a, b, pad)) continue;
+    if (!overlaps(n.box, q) || !seg.meets(n.box)) continue;
     if (n.count > 0) {
       for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (overlaps(item_boxes_[i], q) && meets(item_boxes_[i], a, b, pad))
-          out[count++] = items_[i];
+        if (seg.meets(item_boxes_[i])) out[count++] = items_[i];
       continue;
     }
     stack[top++] = n.left;

@@ -132,11 +132,13 @@ class Walker {
       case Op::LpMetric:
         if (bounds_) {
           const double* k = K_ + in.a;
-          lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, B[in.in], &I[in.out], &L[in.out]);
           if (segment_ && k[3] == 2) {
+            // Along a segment the ellipsoid's range is exact; its slope bound 1/min(a) is global.
             const Vec3* S = ws_.segs.data() + 2 * in.in;
-            const Interval r = ellipsoid_range({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in]);
-            I[in.out] = {std::max(I[in.out].lo, r.lo), std::min(I[in.out].hi, r.hi)};
+            I[in.out] = ellipsoid_range({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in]);
+            L[in.out] = k[4];
+          } else {
+            lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, B[in.in], &I[in.out], &L[in.out]);
           }
         }
         break;
@@ -155,8 +157,9 @@ class Walker {
         break;
       case Op::Murakami:
         if (bounds_)
-          potential_bounds([](double d) { return murakami(d, nullptr); }, murakami_lipschitz(),
-                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
+          potential_bounds([](double d) { return murakami(d, nullptr); },
+                           murakami_slope_bound(I[in.in].lo, I[in.in].hi), I[in.in], L[in.in],
+                           &I[in.out], &L[in.out]);
         break;
       case Op::Group:
       case Op::Sum:

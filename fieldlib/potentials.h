@@ -73,6 +73,9 @@ inline double murakami(double d, double* dP) {
 double blanc_lipschitz(double s);  // [PB-5]
 double wyvill_lipschitz();
 double murakami_lipschitz();
+// max |P'| over d in [lo, hi]: |P'| = 4d(1 - d^2) rises to d = 1/sqrt(3) and falls to 0 at 1, so
+// away from the peak it is the larger end's value (rounded up by 1e-12 relative).
+double murakami_slope_bound(double lo, double hi);
 
 class Potential {
  public:

@@ -15,8 +15,10 @@ constexpr int kMaxSteps = 200000;
 // [d]/[f] decorrelates). Every step taken was certified, so stopping early skips nothing.
 constexpr int kSegmentSteps = 8;
 // The tolerance of the march is this fraction of the footprint radius: a certified step shorter
-// than that ends the approach, and a probe one tolerance ahead decides.
-constexpr double kDecide = 0.5;
+// than that ends the approach, and a probe one tolerance ahead decides. It sets the cost, not
+// what is found (a give-up needs the surface within kFinest of it); 1 measured best over the
+// scenes (0.5 costs the 1000 blobs 20 % more evaluations, 2 the pinched prism 3x).
+constexpr double kDecide = 1;
 // Interval halvings below the tolerance before a search gives up: a surface must pass within
 // 1/16 of a tolerance of the ray to end it there.
 constexpr double kFinest = 1.0 / 1024;
@@ -126,26 +128,41 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   return {g, mode_ == LipschitzMode::Global ? global_L_ : bb.lipschitz};
 }
 
-ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double c, double finest,
-                                      TraceCounters& work) const {
-  // Left to right over [a, c]: a piece the interval clears is passed (and the next piece is
-  // twice as long); a piece it cannot clear is halved, after its end's sign is checked.
-  double lo = a, w = c - a;
-  while (lo < c) {
-    const double hi = std::min(lo + w, c);
-    const SegmentBounds sb = segment_bounds(ray, lo, hi, work);
-    if (sb.g.hi < 0) {
-      lo = hi;
-      w *= 2;
-      continue;
-    }
+ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
+                                      double finest, TraceCounters& work) const {
+  // Pieces of [a, c], leftmost first, so that a bracket is the first sign change. A piece is
+  // cleared by its interval or by its ends' spheres (-g/L, L over the piece); otherwise it is
+  // halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
+  struct Piece {
+    double lo, glo, hi, ghi;
+  };
+  constexpr int kDepth = 128;
+  Piece stack[kDepth];
+  int top = 0;
+  stack[top++] = {a, ga, c, gc};
+  const auto g_at = [&](double t) {
     ++work.point_evals;
-    const double ghi = g_view(ray.o + ray.d * hi);
-    if (ghi >= 0) return {Scan::Bracket, lo, hi, ghi};
-    if (hi - lo <= finest) return {Scan::Undecided, lo, lo, ghi};
-    w = 0.5 * (hi - lo);
+    return g_view(ray.o + ray.d * t);
+  };
+  while (top > 0) {
+    Piece q = stack[--top];
+    const SegmentBounds sb = segment_bounds(ray, q.lo, q.hi, work);
+    if (sb.g.hi < 0) continue;
+    if (std::isnan(q.ghi) && (q.ghi = g_at(q.hi)) >= 0)
+      return {Scan::Bracket, q.lo, q.glo, q.hi, q.ghi};
+    if (std::isnan(q.glo)) q.glo = g_at(q.lo);
+    if (!(q.glo < 0))
+      return {Scan::Bracket, q.lo, NAN, q.lo, q.glo};  // on the surface, to rounding
+    const double L = sb.lipschitz;
+    if (L > 0 && (-q.glo - q.ghi) / L >= q.hi - q.lo) continue;
+    if (q.hi - q.lo <= finest || top + 2 > kDepth)
+      return {Scan::Undecided, q.lo, q.glo, q.lo, q.glo};
+    const double m = 0.5 * (q.lo + q.hi), gm = g_at(m);
+    if (gm >= 0) return {Scan::Bracket, q.lo, q.glo, m, gm};
+    stack[top++] = {m, gm, q.hi, q.ghi};
+    stack[top++] = {q.lo, q.glo, m, gm};
   }
-  return {Scan::Clear, c, c, NAN};
+  return {Scan::Clear, c, NAN, c, NAN};
 }
 
 double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb, double tol,
@@ -196,11 +213,9 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     return MarchResult{true, t, false, true};
   };
 
-  ++work.point_evals;
-  double gt = g(at(t0));
-  if (gt >= 0) return {true, t0, t0 > tnear};
-  double t = t0;
-  bool gt_known = true;      // whether gt is g(t); g(t) < 0 is always known
+  double t = t0, gt = 0;
+  // Whether gt is g(t). Past t0, g(t) < 0 is always known (from an interval or a value).
+  bool gt_known = false;
   double s = (t1 - t0) / 8;  // the next segment's length
 
   while (t < t1) {
@@ -218,7 +233,9 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       ++work.point_evals;
       gt = g_view(at(t));
       gt_known = true;
-      if (gt >= 0) return {true, t};  // the previous piece ended on the surface, to rounding
+      // Inside where the ray enters the box (the box cuts the solid: the hit is on its face), or
+      // the previous piece ended on the surface, to rounding.
+      if (gt >= 0) return {true, t, t == t0 && t0 > tnear};
     }
     const double L = sb.lipschitz;
     if (!std::isfinite(L)) {
@@ -226,8 +243,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         s = 0.5 * (b - t);
         continue;
       }
-      const Scan sc = scan(ray, t, b, kFinest * tol, work);
-      if (sc.kind == Scan::Bracket) return hit(sc.lo, NAN, sc.hi, sc.ghi);
+      const Scan sc = scan(ray, t, gt, b, NAN, kFinest * tol, work);
+      if (sc.kind == Scan::Bracket) return hit(sc.lo, sc.glo, sc.hi, sc.ghi);
       if (sc.kind == Scan::Undecided) return give_up(sc.lo);
       t = b;
       gt_known = false;
@@ -258,8 +275,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
           gt = gp;
           continue;
         }
-        const Scan sc = scan(ray, t, p, kFinest * tol, work);
-        if (sc.kind == Scan::Bracket) return hit(sc.lo, NAN, sc.hi, sc.ghi);
+        const Scan sc = scan(ray, t, gt, p, gp, kFinest * tol, work);
+        if (sc.kind == Scan::Bracket) return hit(sc.lo, sc.glo, sc.hi, sc.ghi);
         if (sc.kind == Scan::Undecided) return give_up(sc.lo);
         t = p;  // scan re-pruned ws.view: bound the next segment afresh
         gt = gp;

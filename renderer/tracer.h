@@ -116,14 +116,17 @@ class ObjectTracer {
   SegmentBounds segment_bounds(const Ray& ray, double a, double b, TraceCounters& work) const;
   // The radius of the ray's footprint at t (never below what rounding of t can resolve).
   double footprint(const Ray& ray, double t) const;
-  // Decides [a, c] (g(a) < 0) by intervals over halvings down to `finest`: clear, a bracket of a
-  // sign change, or undecided where the halving stopped.
+  // Decides [a, c] (g(a) = ga < 0, g(c) = gc; either NaN where not known yet) by intervals and
+  // spheres over halvings down to `finest`: clear, the first sign change's bracket, or undecided
+  // where the halving stopped.
   struct Scan {
     enum Kind { Clear, Bracket, Undecided } kind;
-    double lo, hi;  // Bracket: g(lo) < 0 <= g(hi) = ghi, ws.view holds [lo, hi]; Undecided: at lo
-    double ghi;
+    // Bracket: g(lo) = glo < 0 <= g(hi) = ghi (glo NaN: not known), ws.view holds [lo, hi].
+    // Undecided: at lo.
+    double lo, glo, hi, ghi;
   };
-  Scan scan(const Ray& ray, double a, double c, double finest, TraceCounters& work) const;
+  Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest,
+            TraceCounters& work) const;
   // A root of g in [a, b] to within `tol`, given g(a) = ga < 0 <= g(b) = gb (ga NaN: not known
   // yet), on ws.view pruned to a box holding [a, b]; returns a point with g >= 0.
   double refine(const Ray& ray, double a, double ga, double b, double gb, double tol,
