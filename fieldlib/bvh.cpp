@@ -116,10 +116,10 @@ int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!overlaps(n.box, q) || !seg.meets(n.box)) continue;
+    if (!overlaps(n.box, q)) continue;
     if (n.count > 0) {
       for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (seg.meets(item_boxes_[i])) out[count++] = items_[i];
+        if (overlaps(item_boxes_[i], q) && seg.meets(item_boxes_[i])) out[count++] = items_[i];
       continue;
     }
     stack[top++] = n.left;

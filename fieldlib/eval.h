@@ -48,6 +48,7 @@ class Workspace {
   // values
   std::vector<double> slots;  // slot s, lane l at [s * kBatch + l]
   std::vector<double> regs;   // register r, axis i, lane l at [(r * 3 + i) * kBatch + l]
+  std::vector<Vec3> points;   // register r at [r] (one point; the slots then hold slot s at [s])
   // gradient
   struct Dual {
     double v;

@@ -115,10 +115,71 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
   std::copy(S + c.result * kBatch, S + c.result * kBatch + n, f);
 }
 
+// One point: the same operations as one lane of `values` (so the same bits), without the lane
+// loops, whose set-up costs more than the work for a single point (the tracer's case).
 double value(Code c, const Vec3& p, Workspace& ws) {
-  double f;
-  values(c, &p.x, &p.y, &p.z, 1, &f, ws);
-  return f;
+  double* S = ws.slots.data();
+  Vec3* R = ws.points.data();
+  const double* K = c.base->consts.data();
+  R[0] = p;
+  for (int k = 0; k < c.size; ++k) {
+    const Instr& in = c.code[k];
+    double& out = S[in.out];
+    switch (in.op) {
+      case Op::Translate: {
+        const double* t = K + in.a;
+        const Vec3& q = R[in.in];
+        R[in.out] = {q.x - t[0], q.y - t[1], q.z - t[2]};
+        break;
+      }
+      case Op::Place: {
+        const double* t = K + in.a;
+        const double* M = t + 3;
+        const Vec3& q = R[in.in];
+        const double u = q.x - t[0], v = q.y - t[1], w = q.z - t[2];
+        R[in.out] = {M[0] * u + M[1] * v + M[2] * w, M[3] * u + M[4] * v + M[5] * w,
+                     M[6] * u + M[7] * v + M[8] * w};
+        break;
+      }
+      case Op::Oracle:
+        out = in.node->eval(R[in.in], nullptr);
+        break;
+      case Op::LpMetric: {
+        const double* k = K + in.a;
+        out = lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, R[in.in], nullptr);
+        break;
+      }
+      case Op::Blanc:
+        out = blanc(S[in.in], K[in.a], nullptr);
+        break;
+      case Op::Wyvill:
+        out = wyvill(S[in.in], nullptr);
+        break;
+      case Op::Murakami:
+        out = murakami(S[in.in], nullptr);
+        break;
+      case Op::Group:
+        break;
+      case Op::Sum: {
+        double sum = 0;
+        for (int j = 0; j < in.n; ++j) sum += S[c.args[in.a + j]];
+        out = sum;
+        break;
+      }
+      case Op::Min:
+      case Op::Max: {
+        const bool is_min = in.op == Op::Min;
+        double e = S[c.args[in.a]];
+        for (int j = 1; j < in.n; ++j) {
+          const double a = S[c.args[in.a + j]];
+          if (is_min ? a < e : a > e) e = a;
+        }
+        out = e;
+        break;
+      }
+    }
+  }
+  return S[c.result];
 }
 
 }  // namespace softtrace

@@ -26,19 +26,6 @@ double wyvill_lipschitz() {
 }
 
 // |P'| = 4d(1-d^2) peaks at d = 1/sqrt(3) with 8/(3 sqrt 3).
-double murakami_lipschitz() {
-  return 8 / (3 * std::sqrt(3.0)) * (1 + 1e-12);
-}
-
-double murakami_slope_bound(double lo, double hi) {
-  lo = std::clamp(lo, 0.0, 1.0);
-  hi = std::clamp(hi, 0.0, 1.0);
-  constexpr double kPeak = 0.57735026918962576;  // 1/sqrt(3), to within an ulp
-  if (!(lo <= hi) || (lo <= kPeak && kPeak <= hi)) return murakami_lipschitz();
-  const auto slope = [](double d) { return 4 * d * (1 - d * d); };
-  return std::min(murakami_lipschitz(), std::max(slope(lo), slope(hi)) * (1 + 1e-12) + 1e-300);
-}
-
 namespace {
 
 // Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), docs/math.md §3.2

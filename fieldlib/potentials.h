@@ -72,10 +72,19 @@ inline double murakami(double d, double* dP) {
 // max |P'| over d >= 0, each derived in potentials.cpp (rounded up by 1e-12 relative).
 double blanc_lipschitz(double s);  // [PB-5]
 double wyvill_lipschitz();
-double murakami_lipschitz();
+inline double murakami_lipschitz() {
+  return 8 / (3 * 1.7320508075688772) * (1 + 1e-12);  // 8/(3 sqrt 3), sqrt 3 to within an ulp
+}
 // max |P'| over d in [lo, hi]: |P'| = 4d(1 - d^2) rises to d = 1/sqrt(3) and falls to 0 at 1, so
 // away from the peak it is the larger end's value (rounded up by 1e-12 relative).
-double murakami_slope_bound(double lo, double hi);
+inline double murakami_slope_bound(double lo, double hi) {
+  lo = std::clamp(lo, 0.0, 1.0);
+  hi = std::clamp(hi, 0.0, 1.0);
+  constexpr double kPeak = 0.57735026918962576;  // 1/sqrt(3), to within an ulp
+  if (!(lo <= hi) || (lo <= kPeak && kPeak <= hi)) return murakami_lipschitz();
+  const auto slope = [](double d) { return 4 * d * (1 - d * d); };
+  return std::min(murakami_lipschitz(), std::max(slope(lo), slope(hi)) * (1 + 1e-12) + 1e-300);
+}
 
 class Potential {
  public:

@@ -15,6 +15,7 @@ void Workspace::fit(const Program& p) {
   const size_t slots_n = std::max<int32_t>(p.slots, 1), regs_n = p.regs;
   grow(slots, slots_n * kBatch);
   grow(regs, regs_n * 3 * kBatch);
+  grow(points, regs_n);
   grow(duals, slots_n);
   grow(frames, regs_n);
   grow(ivals, slots_n);
