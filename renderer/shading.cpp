@@ -14,11 +14,12 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
 
-  // Leave the surface by a little more than the tracer's tolerance before casting shadow rays.
-  const double offset = 1e-4 * obj.bounds.diagonal();
-  const Vec3 origin = p + n * offset;
-  // Shadow rays keep the camera ray's footprint: they decide what this pixel shows.
+  // Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave
+  // the surface by that footprint's radius (at least 1e-4 of the object's box), far more than the
+  // hit's error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
   const double cone0 = ray.cone0 + ray.cone * hit.t;
+  const double offset = std::max(1e-4 * obj.bounds.diagonal(), cone0);
+  const Vec3 origin = p + n * offset;
 
   Vec3 light{0, 0, 0};
   for (const Light& l : scene.lights) {
