@@ -111,22 +111,29 @@ class Walker {
 
  private:
   void step(const Instr& in) {
-    Box* B = ws_.boxes.data();
+    Box* B = ws_.boxes.data();  // (off a segment: on one, box() makes them)
     Interval* I = ws_.ivals.data();
     double* L = ws_.lips.data();
     switch (in.op) {
       case Op::Translate:
-        B[in.out] = translate_box(B[in.in], K_ + in.a);
-        if (segment_) place_segment(in, false);
+        if (segment_) {
+          place_segment(in, false);
+        } else {
+          B[in.out] = translate_box(B[in.in], K_ + in.a);
+        }
         break;
       case Op::Place:
-        B[in.out] = place_box(B[in.in], K_ + in.a);
-        if (segment_) place_segment(in, true);
+        if (segment_) {
+          place_segment(in, true);
+        } else {
+          B[in.out] = place_box(B[in.in], K_ + in.a);
+        }
         break;
       case Op::Oracle:
         if (bounds_) {
-          I[in.out] = in.node->interval(B[in.in]);
-          L[in.out] = in.node->lipschitz(B[in.in]);
+          const Box b = box(in.in);
+          I[in.out] = in.node->interval(b);
+          L[in.out] = in.node->lipschitz(b);
         }
         break;
       case Op::LpMetric:
@@ -138,7 +145,7 @@ class Walker {
             I[in.out] = ellipsoid_range({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in]);
             L[in.out] = k[4];
           } else {
-            lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, B[in.in], &I[in.out], &L[in.out]);
+            lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
           }
         }
         break;
@@ -167,6 +174,18 @@ class Walker {
       case Op::Max:
         break;  // handled by group()
     }
+  }
+
+  // Register r's box: on a segment, the segment's own box (grown by its pad), tighter than the
+  // box carried through a rotation and only made where an instruction asks for it.
+  Box box(int r) const {
+    if (!segment_) return ws_.boxes[r];
+    const Vec3* S = ws_.segs.data() + 2 * r;
+    const double pad = ws_.seg_pads[r];
+    Box b;
+    b.extend(S[0]);
+    b.extend(S[1]);
+    return {b.lo - Vec3{pad, pad, pad}, b.hi + Vec3{pad, pad, pad}};
   }
 
   // The segment of register in.out from that of in.in: the same affine map as the points.
@@ -203,9 +222,9 @@ class Walker {
       // The children that are never dropped, merged in order with those whose support meets the
       // box (both lists ascend).
       const Vec3* S = ws_.segs.data() + 2 * g.reg;
-      const int mid =
-          segment_ ? g.bvh.query(ws_.boxes[g.reg], S[0], S[1], ws_.seg_pads[g.reg], kept, first)
-                   : g.bvh.query(ws_.boxes[g.reg], kept, first);
+      const int mid = segment_
+                          ? g.bvh.query(box(g.reg), S[0], S[1], ws_.seg_pads[g.reg], kept, first)
+                          : g.bvh.query(ws_.boxes[g.reg], kept, first);
       const int n_bvh = mid - first;
       top_ = mid;
       for (int32_t a : g.always) kept[top_++] = a;
