@@ -74,7 +74,8 @@ int32_t BoxBvh::build(int32_t first, int32_t count, std::vector<Box>& scratch) {
 namespace {
 // The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
 // reciprocals taken once per query. The slack on s covers the products' rounding, far below what
-// pad adds. An axis the segment does not move along compares a's coordinate instead.
+// pad adds. An axis the segment does not move along compares a's coordinate instead; a NaN
+// (0 times an infinite reciprocal) constrains nothing, as std::min/max keep the other operand.
 class SegmentTest {
  public:
   SegmentTest(const Vec3& a, const Vec3& b, double pad) : a_(a), pad_(pad) {
@@ -106,30 +107,8 @@ class SegmentTest {
 };
 }  // namespace
 
-int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
-                  int count) const {
-  if (nodes_.empty()) return count;
-  const int start = count;
-  const SegmentTest seg(a, b, pad);
-  int32_t stack[kMaxDepth];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    if (!overlaps(n.box, q)) continue;
-    if (n.count > 0) {
-      for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (overlaps(item_boxes_[i], q) && seg.meets(item_boxes_[i])) out[count++] = items_[i];
-      continue;
-    }
-    stack[top++] = n.left;
-    stack[top++] = n.right;
-  }
-  std::sort(out + start, out + count);
-  return count;
-}
-
-int BoxBvh::query(const Box& q, int32_t* out, int count) const {
+template <class Accept>
+int BoxBvh::collect(const Box& q, const Accept& accept, int32_t* out, int count) const {
   if (nodes_.empty()) return count;
   const int start = count;
   int32_t stack[kMaxDepth];
@@ -140,7 +119,7 @@ int BoxBvh::query(const Box& q, int32_t* out, int count) const {
     if (!overlaps(n.box, q)) continue;
     if (n.count > 0) {
       for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (overlaps(item_boxes_[i], q)) out[count++] = items_[i];
+        if (overlaps(item_boxes_[i], q) && accept(item_boxes_[i])) out[count++] = items_[i];
       continue;
     }
     stack[top++] = n.left;
@@ -149,6 +128,18 @@ int BoxBvh::query(const Box& q, int32_t* out, int count) const {
   // Children are combined in their scene order, so results do not depend on the tree's shape.
   std::sort(out + start, out + count);
   return count;
+}
+
+int BoxBvh::query(const Box& q, int32_t* out, int count) const {
+  return collect(
+      q, [](const Box&) { return true; }, out, count);
+}
+
+int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
+                  int count) const {
+  const SegmentTest segment(a, b, pad);
+  return collect(
+      q, [&](const Box& box) { return segment.meets(box); }, out, count);
 }
 
 }  // namespace softtrace

@@ -33,6 +33,9 @@ class BoxBvh {
     int32_t left, right;
   };
   int32_t build(int32_t first, int32_t count, std::vector<Box>& centre_boxes);
+  // The items whose boxes overlap q and pass `accept`, appended in id order.
+  template <class Accept>
+  int collect(const Box& q, const Accept& accept, int32_t* out, int count) const;
 
   std::vector<Node> nodes_;
   std::vector<int32_t> items_;  // ids
