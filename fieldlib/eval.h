@@ -67,6 +67,7 @@ class Workspace {
   std::vector<Box> boxes;
   std::vector<Vec3> segs;        // register r's segment ends at [2r], [2r + 1] (segment bounds)
   std::vector<double> seg_pads;  // how far the computed points may stray from that segment
+  std::vector<Interval> slopes;  // each slot's derivative along the segment
   std::vector<int32_t> kept;     // pruning's stack of chosen children
   std::vector<int32_t> marks;    // where each kept child's code starts in the view
   ProgramView view;              // the last pruned program (bounds, prune)
@@ -90,6 +91,10 @@ struct Segment {
 struct BoxBounds {
   Interval value;    // contains f over the box
   double lipschitz;  // >= |∇f| over the box (+inf where no bound exists)
+  // On a segment: contains df/dt along it (t the distance from a towards b) wherever f is
+  // differentiable, so f(t2) - f(t1) lies in slope (t2 - t1); off a segment, [-lipschitz,
+  // lipschitz].
+  Interval slope = Interval::entire();
 };
 
 // One walk over the box: bounds, and in ws.view the program pruned to the box (children of sums

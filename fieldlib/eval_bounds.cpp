@@ -82,6 +82,20 @@ Interval ellipsoid_range(const Vec3& a, const Vec3& A, const Vec3& B, double pad
   return {std::max(0.0, widen_down(near - grow, 1e-12)), widen_up(far + grow, 1e-12)};
 }
 
+// The derivative of |p / a| along the segment [A, B] per unit of its length `len`: q(s) · q' /
+// |q(s)| with q(s) = (A + s (B - A)) / a is |q'| cos(angle between q(s) and q'), and that angle
+// only shrinks as s moves along q', so the range is the ends' values (where q passes through 0,
+// d has a kink and the end's value is -|q'| or |q'|).
+Interval ellipsoid_slope(const Vec3& a, const Vec3& A, const Vec3& B, double len) {
+  if (!(len > 0)) return Interval::entire();
+  const Vec3 q0{A.x / a.x, A.y / a.y, A.z / a.z}, q1{B.x / a.x, B.y / a.y, B.z / a.z};
+  const Vec3 qe = q1 - q0;
+  const double n0 = length(q0), n1 = length(q1), ne = length(qe);
+  const double lo = n0 > 0 ? dot(q0, qe) / n0 : -ne, hi = n1 > 0 ? dot(q1, qe) / n1 : ne;
+  const double pad = 1e-9 * ne + kTiny;  // far above these few operations' rounding
+  return {std::max(-ne, lo - pad) / len * (1 + 1e-12), std::min(ne, hi + pad) / len * (1 + 1e-12)};
+}
+
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
 template <class P>
 void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* out, double* L) {
@@ -93,7 +107,12 @@ void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* 
 class Walker {
  public:
   Walker(const Program& p, Workspace& ws, bool with_bounds, bool on_segment)
-      : p_(p), ws_(ws), bounds_(with_bounds), segment_(on_segment), K_(p.consts.data()) {}
+      : p_(p),
+        ws_(ws),
+        bounds_(with_bounds),
+        segment_(on_segment),
+        K_(p.consts.data()),
+        length_(on_segment ? length(ws.segs[1] - ws.segs[0]) : 0) {}
 
   // Walks code[begin, end) of the base program, appending what is kept to ws.view.
   void walk(int begin, int end) {
@@ -114,6 +133,7 @@ class Walker {
     Box* B = ws_.boxes.data();  // (off a segment: on one, box() makes them)
     Interval* I = ws_.ivals.data();
     double* L = ws_.lips.data();
+    Interval* D = ws_.slopes.data();  // on a segment: d/dt along it
     switch (in.op) {
       case Op::Translate:
         if (segment_) {
@@ -134,6 +154,7 @@ class Walker {
           const Box b = box(in.in);
           I[in.out] = in.node->interval(b);
           L[in.out] = in.node->lipschitz(b);
+          D[in.out] = {-L[in.out], L[in.out]};
         }
         break;
       case Op::LpMetric:
@@ -144,8 +165,10 @@ class Walker {
             const Vec3* S = ws_.segs.data() + 2 * in.in;
             I[in.out] = ellipsoid_range({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in]);
             L[in.out] = k[4];
+            D[in.out] = ellipsoid_slope({k[0], k[1], k[2]}, S[0], S[1], length_);
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
+            D[in.out] = {-L[in.out], L[in.out]};
           }
         }
         break;
@@ -154,19 +177,24 @@ class Walker {
           const double s = K_[in.a];
           potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_lipschitz(s),
                            I[in.in], L[in.in], &I[in.out], &L[in.out]);
+          // P is non-increasing: dP/dt = P'(d) d' with P' in [-max |P'|, 0].
+          D[in.out] = Interval(-blanc_lipschitz(s), 0) * D[in.in];
         }
         break;
       case Op::Wyvill:
         if (bounds_) {
           potential_bounds([](double d) { return wyvill(d, nullptr); }, wyvill_lipschitz(),
                            I[in.in], L[in.in], &I[in.out], &L[in.out]);
+          D[in.out] = Interval(-wyvill_lipschitz(), 0) * D[in.in];
         }
         break;
       case Op::Murakami:
-        if (bounds_)
-          potential_bounds([](double d) { return murakami(d, nullptr); },
-                           murakami_slope_bound(I[in.in].lo, I[in.in].hi), I[in.in], L[in.in],
+        if (bounds_) {
+          const double slope = murakami_slope_bound(I[in.in].lo, I[in.in].hi);
+          potential_bounds([](double d) { return murakami(d, nullptr); }, slope, I[in.in], L[in.in],
                            &I[in.out], &L[in.out]);
+          D[in.out] = Interval(-slope, 0) * D[in.in];
+        }
         break;
       case Op::Group:
       case Op::Sum:
@@ -297,24 +325,40 @@ class Walker {
       I[out.out] =
           std::isnan(lo) || std::isnan(hi) ? Interval::entire() : Interval(lo - pad, hi + pad);
       L[out.out] = Ls;
+      // The derivative of a sum is the sum of the derivatives, rounded as the values are.
+      double dlo = 0, dhi = 0, dmag = 0;
+      for (int j = first; j < first + n; ++j) {
+        const Interval& d = ws_.slopes[g.children[kept[j]].slot];
+        dlo += d.lo;
+        dhi += d.hi;
+        dmag += std::max(std::abs(d.lo), std::abs(d.hi));
+      }
+      const double dpad = n * kEps * dmag + kTiny;
+      ws_.slopes[out.out] = std::isnan(dlo) || std::isnan(dhi) ? Interval::entire()
+                                                               : Interval(dlo - dpad, dhi + dpad);
       return;
     }
     const bool is_min = out.op == Op::Min;
-    Interval r = I[g.children[kept[first]].slot];
+    Interval r = I[g.children[kept[first]].slot], D = ws_.slopes[g.children[kept[first]].slot];
     double Lm = 0;
     for (int j = first; j < first + n; ++j) {
       const int s = g.children[kept[j]].slot;
       r = is_min ? min(r, I[s]) : max(r, I[s]);
       Lm = std::max(Lm, L[s]);
+      // min and max take some child's value at every point: their difference quotients lie in
+      // the hull of the children's.
+      D = hull(D, ws_.slopes[s]);
     }
     I[out.out] = r;
     L[out.out] = Lm;
+    ws_.slopes[out.out] = D;
   }
 
   const Program& p_;
   Workspace& ws_;
   const bool bounds_, segment_;
   const double* K_;
+  const double length_;  // the segment's length in the world: t runs over [0, length_]
   int top_ = 0;
 };
 
@@ -345,12 +389,13 @@ Box segment_box(const Segment& s) {
 
 BoxBounds bounds(const Program& p, const Box& b, Workspace& ws) {
   run(p, b, nullptr, ws, true);
-  return {ws.ivals[p.result], ws.lips[p.result]};
+  const double L = ws.lips[p.result];
+  return {ws.ivals[p.result], L, {-L, L}};
 }
 
 BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws) {
   run(p, segment_box(s), &s, ws, true);
-  return {ws.ivals[p.result], ws.lips[p.result]};
+  return {ws.ivals[p.result], ws.lips[p.result], ws.slopes[p.result]};
 }
 
 void prune(const Program& p, const Box& b, Workspace& ws) {

@@ -7,6 +7,10 @@
 namespace softtrace {
 
 namespace {
+// How far from a point with g = v < 0 the ray is clear when g changes at most `rate` per unit.
+double reach(double v, double rate) {
+  return rate > 0 ? -v / rate : std::numeric_limits<double>::infinity();
+}
 // A ray that needs more evaluations than this gives up (reported as a hit); no test scene comes
 // close.
 constexpr int kMaxSteps = 200000;
@@ -123,16 +127,20 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   // whose supports it passes through), which the points of this segment evaluate afterwards.
   const BoxBounds bb = bounds(program_, segment(ray, a, b), workspace(program_));
   const double iso = object_->iso;
-  const Interval g = object_->inside_sign > 0 ? Interval{bb.value.lo - iso, bb.value.hi - iso}
-                                              : Interval{iso - bb.value.hi, iso - bb.value.lo};
-  return {g, mode_ == LipschitzMode::Global ? global_L_ : bb.lipschitz};
+  const bool up = object_->inside_sign > 0;
+  const Interval g = up ? Interval{bb.value.lo - iso, bb.value.hi - iso}
+                        : Interval{iso - bb.value.hi, iso - bb.value.lo};
+  // The global mode is the baseline the local bounds are measured against: its bound only.
+  if (mode_ == LipschitzMode::Global) return {g, global_L_, global_L_};
+  const Interval slope = up ? bb.slope : -bb.slope;
+  return {g, std::min(bb.lipschitz, slope.hi), std::min(bb.lipschitz, -slope.lo)};
 }
 
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
                                       double finest, TraceCounters& work) const {
   // Pieces of [a, c], leftmost first, so that a bracket is the first sign change. A piece is
-  // cleared by its interval or by its ends' spheres (-g/L, L over the piece); otherwise it is
-  // halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
+  // cleared by its interval or by what its ends clear (reach, from the piece's rates); otherwise it
+  // is halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
   struct Piece {
     double lo, glo, hi, ghi;
   };
@@ -153,8 +161,7 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
     if (std::isnan(q.glo)) q.glo = g_at(q.lo);
     if (!(q.glo < 0))
       return {Scan::Bracket, q.lo, NAN, q.lo, q.glo};  // on the surface, to rounding
-    const double L = sb.lipschitz;
-    if (L > 0 && (-q.glo - q.ghi) / L >= q.hi - q.lo) continue;
+    if (reach(q.glo, sb.rise) + reach(q.ghi, sb.fall) >= q.hi - q.lo) continue;
     if (q.hi - q.lo <= finest || top + 2 > kDepth)
       return {Scan::Undecided, q.lo, q.glo, q.lo, q.glo};
     const double m = 0.5 * (q.lo + q.hi), gm = g_at(m);
@@ -237,8 +244,18 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       // the previous piece ended on the surface, to rounding.
       if (gt >= 0) return {true, t, t == t0 && t0 > tnear};
     }
-    const double L = sb.lipschitz;
-    if (!std::isfinite(L)) {
+    // g cannot fall along the segment: its value at the end decides the segment, and a sign
+    // change there brackets the only crossing in it.
+    if (sb.fall <= 0) {
+      ++work.point_evals;
+      const double gb = g_view(at(b));
+      if (gb >= 0) return hit(t, gt, b, gb);
+      t = b;
+      gt = gb;
+      s *= 2;
+      continue;
+    }
+    if (!std::isfinite(sb.rise)) {
       if (b - t > tol) {  // no slope bound here: bound shorter segments
         s = 0.5 * (b - t);
         continue;
@@ -251,9 +268,9 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       continue;
     }
     // Sphere tracing inside the segment: from a point with g < 0, g stays negative for at least
-    // -g/L along any path inside the box, so a step of that length cannot cross the surface.
+    // -g/rise along the ray, so a step of that length cannot cross the surface.
     for (int steps = 0;; ++steps) {
-      const double r = L > 0 ? -gt / L : b - t;
+      const double r = reach(gt, sb.rise);
       if (r >= b - t) {  // the bound clears the rest of the segment; g at its end is not known
         t = b;
         gt_known = false;
@@ -270,7 +287,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         ++work.point_evals;
         const double gp = g_view(at(p));
         if (gp >= 0) return hit(t, gt, p, gp);
-        if (r + -gp / L >= p - t) {  // the two points' spheres cover [t, p]
+        if (r + reach(gp, sb.fall) >= p - t) {  // what t and p clear covers [t, p]
           t = p;
           gt = gp;
           continue;

@@ -109,9 +109,13 @@ class ObjectTracer {
   double g_view(const Vec3& p) const;  // inside the box of the last bounds/prune pass
   Segment segment(const Ray& ray, double a, double b) const;
   // g's interval and Lipschitz bound over the segment [a, b] of the ray; prunes ws.view to it.
+  // Over the segment: g's interval, and how fast g can rise along the ray and fall back against
+  // it, from the slope bounds (the Lipschitz bound and the derivative along the segment): for
+  // t <= u in it, g(u) <= g(t) + rise (u - t) and g(t) <= g(u) + fall (u - t). A point with
+  // g < 0 thus clears -g/rise ahead of it and -g/fall behind it (all of it where the rate is <= 0).
   struct SegmentBounds {
     Interval g;
-    double lipschitz;
+    double rise, fall;
   };
   SegmentBounds segment_bounds(const Ray& ray, double a, double b, TraceCounters& work) const;
   // The radius of the ray's footprint at t (never below what rounding of t can resolve).

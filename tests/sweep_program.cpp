@@ -76,4 +76,42 @@ TEST_P(NodeSweep, ProgramBoxPassEnclosesSamplesAndPrunesExactly) {
   }
 }
 
+TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
+  // The tracer's pass over a stretch of a ray: the values, and the difference quotients along it
+  // against the slope interval, at points on the segment.
+  const SweepCase& c = GetParam();
+  const NodePtr n = build_from_json(c.json, c.convention);
+  const Program prog = compile(*n);
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(8);
+  for (int i = 0; i < 200; ++i) {
+    const Box box = random_box(rng, c.domain);
+    const Segment seg{uniform_in(rng, box), uniform_in(rng, box)};
+    const double len = length(seg.b - seg.a);
+    if (!(len > 0)) continue;
+    const Vec3 dir = (seg.b - seg.a) / len;
+    const BoxBounds bb = bounds(prog, seg, ws);
+    const ProgramView view = ws.view;
+    std::uniform_real_distribution<double> u(0, len);
+    for (int j = 0; j < 20; ++j) {
+      double t1 = u(rng), t2 = u(rng);
+      if (t1 > t2) std::swap(t1, t2);
+      const Vec3 p = seg.a + dir * t1, q = seg.a + dir * t2;
+      const double v = n->value(p), w = n->value(q);
+      ASSERT_EQ(value(view, p, ws), v) << c.name << ": the pruned program differs on its segment";
+      ASSERT_TRUE(bb.value.contains(v))
+          << c.name << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
+      if (!(t2 > t1) || !std::isfinite(v) || !std::isfinite(w)) continue;
+      const double quotient = (w - v) / (t2 - t1);
+      const double slack = 1e-9 * (std::abs(bb.slope.lo) + std::abs(bb.slope.hi)) +
+                           1e-12 * (std::abs(v) + std::abs(w)) / (t2 - t1) + 1e-12;
+      ASSERT_GE(quotient, bb.slope.lo - slack)
+          << c.name << ": [" << bb.slope.lo << ", " << bb.slope.hi << "]";
+      ASSERT_LE(quotient, bb.slope.hi + slack)
+          << c.name << ": [" << bb.slope.lo << ", " << bb.slope.hi << "]";
+    }
+  }
+}
+
 }  // namespace softtrace::test

@@ -80,8 +80,9 @@ TEST_P(HitMask, MatchesADenseReferenceMarch) {
       } else if (hit.hit) {
         ++tracer_only;
         // A give-up reports a hit where the surface may pass within a tolerance of the ray.
-        if (hit.work.give_ups == 0)
+        if (hit.work.give_ups == 0) {
           EXPECT_TRUE(inside(ray.o + ray.d * hit.t)) << "pixel (" << x << ", " << y << ")";
+        }
       }
     }
   EXPECT_GT(ref_hits, W * H / 20) << "the object should be in view";
