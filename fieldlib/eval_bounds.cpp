@@ -193,7 +193,7 @@ class Walker {
           const double slope = murakami_slope_bound(I[in.in].lo, I[in.in].hi);
           potential_bounds([](double d) { return murakami(d, nullptr); }, slope, I[in.in], L[in.in],
                            &I[in.out], &L[in.out]);
-          D[in.out] = Interval(-slope, 0) * D[in.in];
+          D[in.out] = Interval(-slope, -murakami_slope_floor(I[in.in].lo, I[in.in].hi)) * D[in.in];
         }
         break;
       case Op::Group:

@@ -85,6 +85,14 @@ inline double murakami_slope_bound(double lo, double hi) {
   const auto slope = [](double d) { return 4 * d * (1 - d * d); };
   return std::min(murakami_lipschitz(), std::max(slope(lo), slope(hi)) * (1 + 1e-12) + 1e-300);
 }
+// min |P'| over d in [lo, hi]: the smaller end's value, |P'| being unimodal (rounded down).
+inline double murakami_slope_floor(double lo, double hi) {
+  lo = std::clamp(lo, 0.0, 1.0);
+  hi = std::clamp(hi, 0.0, 1.0);
+  if (!(lo <= hi)) return 0;
+  const auto slope = [](double d) { return 4 * d * (1 - d * d); };
+  return std::max(0.0, std::min(slope(lo), slope(hi)) * (1 - 1e-12) - 1e-300);
+}
 
 class Potential {
  public:

@@ -172,7 +172,7 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
   return {Scan::Clear, c, NAN, c, NAN};
 }
 
-double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb, double tol,
+double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb,
                             TraceCounters& work) const {
   // The Illinois variant of regula falsi, on the program pruned to a box holding the bracket
   // (ws.view): superlinear on smooth roots, and a bracket always, so it never leaves [a, b].
@@ -183,7 +183,11 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   if (std::isnan(ga)) ga = g_at(a);
   if (!(ga < 0)) return a;  // rounding on the pruned program: a itself is on the surface
   int side = 0;             // which end was kept last time (-1 a, +1 b): Illinois halves its value
-  for (int i = 0; i < 100 && b - a > tol; ++i) {
+  for (int i = 0; i < 100; ++i) {
+    // The footprint at a, the nearest the root can be: a wide bracket must not take its
+    // tolerance from its far end.
+    const double tol = kRefine * footprint(ray, a);
+    if (b - a <= tol) break;
     // False position, kept half a tolerance inside the bracket: a root within that of an end
     // then ends the search at the next step.
     const double m = std::clamp((a * gb - b * ga) / (gb - ga), a + 0.5 * tol, b - 0.5 * tol);
@@ -213,7 +217,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].
   const auto hit = [&](double a, double ga, double b, double gb) -> MarchResult {
     if (query == Query::Any) return {true, b};
-    return {true, refine(ray, a, ga, b, gb, kRefine * footprint(ray, b), work)};
+    return {true, refine(ray, a, ga, b, gb, work)};
   };
   const auto give_up = [&](double t) {
     ++work.give_ups;
@@ -224,6 +228,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   // Whether gt is g(t). Past t0, g(t) < 0 is always known (from an interval or a value).
   bool gt_known = false;
   double s = (t1 - t0) / 8;  // the next segment's length
+  double probe = 0;          // how far ahead to probe near the surface
 
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) return give_up(t);
@@ -236,6 +241,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       continue;
     }
     const double tol = kDecide * footprint(ray, t);
+    probe = std::max(probe, tol);
     if (!gt_known) {
       ++work.point_evals;
       gt = g_view(at(t));
@@ -278,8 +284,10 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         break;
       }
       if (r < tol) {
-        // Within a tolerance of the surface, perhaps: probe one tolerance ahead.
-        const double p = std::min(t + tol, t1);
+        // Within a tolerance of the surface, perhaps: probe ahead, one tolerance first, then
+        // twice as far after each probe that cleared its way (up to 4 tolerances: a bracket is
+        // refined to its one crossing only when it is that short).
+        const double p = std::min(t + std::min(probe, 4 * tol), t1);
         if (p > b) {  // the probe is outside this segment's box: bound a segment that holds it
           s = p - t;
           break;
@@ -288,6 +296,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         const double gp = g_view(at(p));
         if (gp >= 0) return hit(t, gt, p, gp);
         if (r + reach(gp, sb.fall) >= p - t) {  // what t and p clear covers [t, p]
+          probe = 2 * (p - t);
           t = p;
           gt = gp;
           continue;
@@ -305,6 +314,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         break;
       }
       t += r;
+      probe = tol;
       ++work.point_evals;
       gt = g_view(at(t));
       if (gt >= 0) return {true, t};  // a certified step ends on the surface at most

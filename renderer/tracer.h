@@ -131,9 +131,10 @@ class ObjectTracer {
   };
   Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest,
             TraceCounters& work) const;
-  // A root of g in [a, b] to within `tol`, given g(a) = ga < 0 <= g(b) = gb (ga NaN: not known
-  // yet), on ws.view pruned to a box holding [a, b]; returns a point with g >= 0.
-  double refine(const Ray& ray, double a, double ga, double b, double gb, double tol,
+  // A root of g in [a, b] to within 1/1000 of the footprint there, given g(a) = ga < 0 <= g(b) =
+  // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b]; returns a point with
+  // g >= 0.
+  double refine(const Ray& ray, double a, double ga, double b, double gb,
                 TraceCounters& work) const;
 
   const SceneObject* object_;
