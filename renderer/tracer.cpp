@@ -262,7 +262,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       continue;
     }
     if (!std::isfinite(sb.rise)) {
-      if (b - t > tol) {  // no slope bound here: bound shorter segments
+      if (b - t > 4 * tol) {  // no slope bound here: bound shorter segments
         s = 0.5 * (b - t);
         continue;
       }
@@ -287,7 +287,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         // Within a tolerance of the surface, perhaps: probe ahead, one tolerance first, then
         // twice as far after each probe that cleared its way (up to 4 tolerances: a bracket is
         // refined to its one crossing only when it is that short).
-        const double p = std::min(t + std::min(probe, 4 * tol), t1);
+        double p = std::min(t + std::min(probe, 4 * tol), t1);
+        if (p > b && b - t >= tol) p = b;  // a probe this segment holds is far enough
         if (p > b) {  // the probe is outside this segment's box: bound a segment that holds it
           s = p - t;
           break;
