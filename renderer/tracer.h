@@ -2,19 +2,20 @@
 // Pure fieldlib maths, no Embree: the Embree adapter only calls in here.
 //
 // The object's field is compiled once to a flat program (fieldlib/program.h). The ray is cut into
-// segments; one bounds pass over the box around a segment gives its value interval, its Lipschitz
-// bound and the program pruned to that box, which every point of the segment then evaluates.
-// Every advance along the ray is certified, never sampled:
+// segments; one bounds pass over a segment gives g's interval, its Lipschitz bound and its
+// derivative along the segment, and the program pruned to the children the segment passes
+// through, which every point of the segment then evaluates. Every advance is certified, never
+// sampled:
 // - a segment whose interval shows the solid cannot be reached is skipped whole (and the next
-//   segment is twice as long);
-// - inside a segment the tracer steps by |g| / L, L the segment's Lipschitz bound, which cannot
-//   cross the surface (and a segment that needs many such steps is cut shorter: its bound is
-//   loose);
-// - once the step is below the ray's tolerance (a fraction of the pixel footprint there), one
-//   probe a tolerance ahead decides: a sign change is a bracket; two covering spheres, or intervals
-//   on halvings down to 1/16 of the tolerance, certify the gap; otherwise the tracer gives up
-//   explicitly and reports a hit there (never a silent skip).
-// A bracket is refined by the Illinois method to 1/1000 of the footprint.
+//   segment is twice as long); one where g cannot fall is decided by its end value;
+// - otherwise the tracer steps by -g / rise, how fast g can rise along the ray, which cannot cross
+//   the surface (a segment that needs many such steps is cut shorter: its bounds are loose);
+// - once the step is below the ray's tolerance (the pixel footprint's radius there), probes ahead
+//   decide: a sign change is a bracket; what the points clear, or intervals on halvings down to
+//   1/1024 of the tolerance, certify the gap; otherwise the tracer gives up explicitly and reports
+//   a hit there (never a silent skip).
+// A bracket is refined by the Illinois method to 1/1000 of the footprint (docs/math.md, "How the
+// tracer uses them").
 #pragma once
 
 #include "eval.h"
