@@ -18,14 +18,25 @@ bool near(double a, double b) {
   return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
 }
 
+// A case's model, the program compiled from it and a workspace fitted to that.
+struct Compiled {
+  explicit Compiled(const SweepCase& c)
+      : node(build_from_json(c.json, c.convention)), prog(compile(*node)) {
+    ws.fit(prog);
+  }
+  NodePtr node;
+  Program prog;
+  Workspace ws;
+};
+
 }  // namespace
 
 TEST_P(NodeSweep, ProgramValuesAndGradientsMatchTheModel) {
   const SweepCase& c = GetParam();
-  const NodePtr n = build_from_json(c.json, c.convention);
-  const Program prog = compile(*n);
-  Workspace ws;
-  ws.fit(prog);
+  Compiled cc(c);
+  const NodePtr& n = cc.node;
+  const Program& prog = cc.prog;
+  Workspace& ws = cc.ws;
   std::mt19937_64 rng(6);
   for (int i = 0; i < 200; ++i) {
     double x[kBatch], y[kBatch], z[kBatch], f[kBatch];
@@ -51,10 +62,10 @@ TEST_P(NodeSweep, ProgramValuesAndGradientsMatchTheModel) {
 
 TEST_P(NodeSweep, ProgramBoxPassEnclosesSamplesAndPrunesExactly) {
   const SweepCase& c = GetParam();
-  const NodePtr n = build_from_json(c.json, c.convention);
-  const Program prog = compile(*n);
-  Workspace ws;
-  ws.fit(prog);
+  Compiled cc(c);
+  const NodePtr& n = cc.node;
+  const Program& prog = cc.prog;
+  Workspace& ws = cc.ws;
   std::mt19937_64 rng(7);
   for (int i = 0; i < 200; ++i) {
     const Box b = random_box(rng, c.domain);
@@ -80,10 +91,10 @@ TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
   // The tracer's pass over a stretch of a ray: the values, and the difference quotients along it
   // against the slope interval, at points on the segment.
   const SweepCase& c = GetParam();
-  const NodePtr n = build_from_json(c.json, c.convention);
-  const Program prog = compile(*n);
-  Workspace ws;
-  ws.fit(prog);
+  Compiled cc(c);
+  const NodePtr& n = cc.node;
+  const Program& prog = cc.prog;
+  Workspace& ws = cc.ws;
   std::mt19937_64 rng(8);
   for (int i = 0; i < 200; ++i) {
     const Box box = random_box(rng, c.domain);
