@@ -70,30 +70,35 @@ double max_abs(const Vec3& v) {
 // step's rounding is a few ulps of its operands; 1e-12 is thousands).
 constexpr double kSegmentRounding = 1e-12;
 
-// The range of the ellipsoidal distance |p / a| along the segment [A, B] (grown by pad): its
-// square is a quadratic in the segment's parameter, least at its vertex or an end.
-Interval ellipsoid_range(const Vec3& a, const Vec3& A, const Vec3& B, double pad) {
-  const Vec3 q0{A.x / a.x, A.y / a.y, A.z / a.z};
-  const Vec3 qe{(B.x - A.x) / a.x, (B.y - A.y) / a.y, (B.z - A.z) / a.z};
-  const double ee = dot(qe, qe);
+// The ellipsoidal distance d = |q|, q = p / a, along the segment [A, B] of length `len`, with q(s)
+// = q0 + s qe for s in [0, 1]:
+// - its range (grown by pad): d^2 is a quadratic in s, least at its vertex or an end;
+// - the range of dd/dt (t = s len): q · qe / (|q| len) is |qe| cos(angle between q and qe) / len,
+//   and that angle only shrinks as s grows, so the ends bound it (where q passes through 0, d has
+//   a kink and that end's value is -|qe| or |qe|).
+// The ends' lengths serve both. Reciprocals and the few operations err by a few ulps, far inside
+// the 1e-12 (range) and 1e-9 (slope) widening.
+void ellipsoid_on_segment(const Vec3& a, const Vec3& A, const Vec3& B, double pad, double len,
+                          Interval* range, Interval* slope) {
+  const Vec3 ia{1 / a.x, 1 / a.y, 1 / a.z};
+  const Vec3 q0{A.x * ia.x, A.y * ia.y, A.z * ia.z}, q1{B.x * ia.x, B.y * ia.y, B.z * ia.z};
+  // From B - A, not q1 - q0: a short segment far out must not lose its direction to cancellation.
+  const Vec3 qe{(B.x - A.x) * ia.x, (B.y - A.y) * ia.y, (B.z - A.z) * ia.z};
+  const double ee = dot(qe, qe), n0 = length(q0), n1 = length(q1);
   const double s = ee > 0 ? std::clamp(-dot(q0, qe) / ee, 0.0, 1.0) : 0.0;
-  const double near = length(q0 + qe * s), far = std::max(length(q0), length(q0 + qe));
-  const double grow = pad / std::min({a.x, a.y, a.z});
-  return {std::max(0.0, widen_down(near - grow, 1e-12)), widen_up(far + grow, 1e-12)};
-}
-
-// The derivative of |p / a| along the segment [A, B] per unit of its length `len`: q(s) · q' /
-// |q(s)| with q(s) = (A + s (B - A)) / a is |q'| cos(angle between q(s) and q'), and that angle
-// only shrinks as s moves along q', so the range is the ends' values (where q passes through 0,
-// d has a kink and the end's value is -|q'| or |q'|).
-Interval ellipsoid_slope(const Vec3& a, const Vec3& A, const Vec3& B, double len) {
-  if (!(len > 0)) return Interval::entire();
-  const Vec3 q0{A.x / a.x, A.y / a.y, A.z / a.z}, q1{B.x / a.x, B.y / a.y, B.z / a.z};
-  const Vec3 qe = q1 - q0;
-  const double n0 = length(q0), n1 = length(q1), ne = length(qe);
+  const double near = length(q0 + qe * s), far = std::max(n0, n1);
+  // The vertex's s carries the ends' rounding (eps |q0| / |qe|): at most eps far off in d.
+  const double grow = pad / std::min({a.x, a.y, a.z}) + 1e-12 * far;
+  *range = {std::max(0.0, widen_down(near - grow, 1e-12)), widen_up(far + grow, 1e-12)};
+  if (!(len > 0)) {
+    *slope = Interval::entire();
+    return;
+  }
+  const double ne = std::sqrt(ee);
   const double lo = n0 > 0 ? dot(q0, qe) / n0 : -ne, hi = n1 > 0 ? dot(q1, qe) / n1 : ne;
-  const double pad = 1e-9 * ne + kTiny;  // far above these few operations' rounding
-  return {std::max(-ne, lo - pad) / len * (1 + 1e-12), std::min(ne, hi + pad) / len * (1 + 1e-12)};
+  const double spad = 1e-9 * ne + kTiny;
+  *slope = {std::max(-ne, lo - spad) / len * (1 + 1e-12),
+            std::min(ne, hi + spad) / len * (1 + 1e-12)};
 }
 
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
@@ -161,11 +166,11 @@ class Walker {
         if (bounds_) {
           const double* k = K_ + in.a;
           if (segment_ && k[3] == 2) {
-            // Along a segment the ellipsoid's range is exact; its slope bound 1/min(a) is global.
+            // Along a segment the ellipsoid's range and slope are exact; 1/min(a) bounds |∇d|.
             const Vec3* S = ws_.segs.data() + 2 * in.in;
-            I[in.out] = ellipsoid_range({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in]);
+            ellipsoid_on_segment({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in], length_,
+                                 &I[in.out], &D[in.out]);
             L[in.out] = k[4];
-            D[in.out] = ellipsoid_slope({k[0], k[1], k[2]}, S[0], S[1], length_);
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
             D[in.out] = {-L[in.out], L[in.out]};
