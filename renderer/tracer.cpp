@@ -19,12 +19,12 @@ constexpr int kMaxSteps = 200000;
 // [d]/[f] decorrelates). Every step taken was certified, so stopping early skips nothing.
 constexpr int kSegmentSteps = 8;
 // The tolerance of the march is this fraction of the footprint radius: a certified step shorter
-// than that ends the approach, and a probe one tolerance ahead decides. It sets the cost, not
-// what is found (a give-up needs the surface within kFinest of it); 1 measured best over the
-// scenes (0.5 costs the 1000 blobs 20 % more evaluations, 2 the pinched prism 3x).
+// than that ends the approach, and probes ahead decide. It sets the cost, not what is found (a
+// give-up needs the surface within kFinest of a tolerance); 1 measured best over the scenes
+// (0.5 cost the 1000 blobs 20 % more evaluations, 2 the pinched prism 3x).
 constexpr double kDecide = 1;
-// Interval halvings below the tolerance before a search gives up: a surface must pass within
-// 1/16 of a tolerance of the ray to end it there.
+// The shortest piece the halving looks at, in tolerances: a surface must pass within about this
+// of the ray for a search to give up there.
 constexpr double kFinest = 1.0 / 1024;
 // Root refinement stops when the bracket is this fraction of the footprint radius.
 constexpr double kRefine = 1e-3;
