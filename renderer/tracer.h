@@ -10,7 +10,7 @@
 //   segment is twice as long); one where g cannot fall is decided by its end value;
 // - otherwise the tracer steps by -g / rise, how fast g can rise along the ray, which cannot cross
 //   the surface (a segment that needs many such steps is cut shorter: its bounds are loose);
-// - once the step is below the ray's tolerance (the pixel footprint's radius there), probes ahead
+// - once the step is below the ray's tolerance (a pixel's footprint there), probes ahead
 //   decide: a sign change is a bracket; what the points clear, or intervals on halvings down to
 //   1/1024 of the tolerance, certify the gap; otherwise the tracer gives up explicitly and reports
 //   a hit there (never a silent skip).
