@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "illinois.h"
 #include "interval.h"
 #include "node_util.h"
 
@@ -120,25 +121,15 @@ double bt_hyper(const double* x, int k, const double* r, const double* p, const 
   }
   double h = h_hi, T_hi = hyper_T(x, k, r, p, m, h_hi);
   if (T_hi > 0) {  // T(h_hi) <= 0 only where the arg-min term alone is active (non-blending)
-    double lo = bt_lower(x, k, r, m), hi = h_hi;
-    double T_lo = hyper_T(x, k, r, p, m, lo);  // -1 up to rounding
-    int side = 0, it = 0;
+    const double lo = bt_lower(x, k, r, m);
+    IllinoisBracket br{lo, hyper_T(x, k, r, p, m, lo), h_hi, T_hi};  // T(lo) = -1 up to rounding
+    int it = 0;
     while (it < 200) {
       ++it;
-      h = std::min(std::max((lo * T_hi - hi * T_lo) / (T_hi - T_lo), lo), hi);
+      h = std::min(std::max(br.false_position(), br.lo), br.hi);
       const double T = hyper_T(x, k, r, p, m, h);
-      if (std::abs(T) <= 1e-14 || hi - lo <= 1e-14 * std::max(1.0, std::abs(h))) break;
-      if (T > 0) {  // keep the sign bracket; halve the stale end's T on a repeat (Illinois)
-        hi = h;
-        T_hi = T;
-        if (side == +1) T_lo *= 0.5;
-        side = +1;
-      } else {
-        lo = h;
-        T_lo = T;
-        if (side == -1) T_hi *= 0.5;
-        side = -1;
-      }
+      if (std::abs(T) <= 1e-14 || br.hi - br.lo <= 1e-14 * std::max(1.0, std::abs(h))) break;
+      br.update(h, T, T > 0);
     }
     if (iterations) *iterations = it;
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "illinois.h"
+
 namespace softtrace {
 
 namespace {
@@ -186,30 +188,20 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   };
   if (std::isnan(ga)) ga = g_at(a);
   if (!(ga < 0)) return a;  // rounding on the pruned program: a itself is on the surface
-  int side = 0;             // which end was kept last time (-1 a, +1 b): Illinois halves its value
+  IllinoisBracket br{a, ga, b, gb};
   for (int i = 0; i < 100; ++i) {
-    // The footprint at a, the nearest the root can be: a wide bracket must not take its
-    // tolerance from its far end.
-    const double tol = kRefine * footprint(ray, a);
-    if (b - a <= tol) break;
+    // The footprint at the near end, the nearest the root can be: a wide bracket must not take
+    // its tolerance from its far end.
+    const double tol = kRefine * footprint(ray, br.lo);
+    if (br.hi - br.lo <= tol) break;
     // False position, kept half a tolerance inside the bracket: a root within that of an end
     // then ends the search at the next step.
-    const double m = std::clamp((a * gb - b * ga) / (gb - ga), a + 0.5 * tol, b - 0.5 * tol);
+    const double m = std::clamp(br.false_position(), br.lo + 0.5 * tol, br.hi - 0.5 * tol);
     ++work.refine_iterations;
     const double gm = g_at(m);
-    if (gm >= 0) {
-      b = m;
-      gb = gm;
-      if (side == +1) ga *= 0.5;
-      side = +1;
-    } else {
-      a = m;
-      ga = gm;
-      if (side == -1) gb *= 0.5;
-      side = -1;
-    }
+    br.update(m, gm, gm >= 0);
   }
-  return b;
+  return br.hi;
 }
 
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
