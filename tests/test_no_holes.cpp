@@ -12,6 +12,7 @@
 
 #include "camera.h"
 #include "frame.h"
+#include "scene_modes.h"
 
 namespace softtrace {
 namespace {
@@ -112,7 +113,7 @@ RefHit ellipsoid_hit(const Ray& ray, const Ellipsoid& e) {
   return {tc - std::sqrt((1 - m) * (1 + m)) / length(v), false};
 }
 
-class NoHoles : public testing::TestWithParam<std::tuple<int, LipschitzMode>> {};
+class NoHoles : public testing::TestWithParam<SceneMode> {};
 
 TEST_P(NoHoles, HitMaskIsExact) {
   const HoleCase& c = kCases[std::get<0>(GetParam())];
@@ -184,14 +185,9 @@ TEST_P(NoHoles, HitMaskIsExact) {
     EXPECT_GT(seen[i], 0) << "ellipsoid " << i << " is the first hit of no pixel";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, NoHoles,
-                         testing::Combine(testing::Range(0, int(std::size(kCases))),
-                                          testing::Values(LipschitzMode::Local,
-                                                          LipschitzMode::Global)),
-                         [](const testing::TestParamInfo<NoHoles::ParamType>& i) {
-                           return std::string(kCases[std::get<0>(i.param)].name) +
-                                  (std::get<1>(i.param) == LipschitzMode::Local ? "_local"
-                                                                                : "_global");
+INSTANTIATE_TEST_SUITE_P(Scenes, NoHoles, scene_modes(kCases),
+                         [](const testing::TestParamInfo<SceneMode>& i) {
+                           return scene_mode_name(kCases, i);
                          });
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "camera.h"
 #include "frame.h"
+#include "scene_modes.h"
 
 namespace softtrace {
 namespace {
@@ -46,7 +47,7 @@ const MaskCase kCases[] = {
         {"type":"offset","children":[{"type":"segment","p0":[0,-1.85,0],"p1":[0,1.85,0],"radius":0.16}]}]}}]})"},
 };
 
-class HitMask : public testing::TestWithParam<std::tuple<int, LipschitzMode>> {};
+class HitMask : public testing::TestWithParam<SceneMode> {};
 
 TEST_P(HitMask, MatchesADenseReferenceMarch) {
   const Scene scene = parse_scene(kCases[std::get<0>(GetParam())].scene, "<test>");
@@ -89,14 +90,9 @@ TEST_P(HitMask, MatchesADenseReferenceMarch) {
   EXPECT_LE(tracer_only, W * H / 50) << "the tracer finds far more than the reference";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, HitMask,
-                         testing::Combine(testing::Range(0, int(std::size(kCases))),
-                                          testing::Values(LipschitzMode::Local,
-                                                          LipschitzMode::Global)),
-                         [](const testing::TestParamInfo<HitMask::ParamType>& i) {
-                           return std::string(kCases[std::get<0>(i.param)].name) +
-                                  (std::get<1>(i.param) == LipschitzMode::Local ? "_local"
-                                                                                : "_global");
+INSTANTIATE_TEST_SUITE_P(Scenes, HitMask, scene_modes(kCases),
+                         [](const testing::TestParamInfo<SceneMode>& i) {
+                           return scene_mode_name(kCases, i);
                          });
 
 }  // namespace
