@@ -101,6 +101,14 @@ void ellipsoid_on_segment(const Vec3& a, const Vec3& A, const Vec3& B, double pa
             std::min(ne, hi + spad) / len * (1 + 1e-12)};
 }
 
+// The box around the segment [a, b], grown by pad.
+Box segment_box(const Vec3& a, const Vec3& b, double pad) {
+  Box box;
+  box.extend(a);
+  box.extend(b);
+  return {box.lo - Vec3{pad, pad, pad}, box.hi + Vec3{pad, pad, pad}};
+}
+
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
 template <class P>
 void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* out, double* L) {
@@ -214,11 +222,7 @@ class Walker {
   Box box(int r) const {
     if (!segment_) return ws_.boxes[r];
     const Vec3* S = ws_.segs.data() + 2 * r;
-    const double pad = ws_.seg_pads[r];
-    Box b;
-    b.extend(S[0]);
-    b.extend(S[1]);
-    return {b.lo - Vec3{pad, pad, pad}, b.hi + Vec3{pad, pad, pad}};
+    return segment_box(S[0], S[1], ws_.seg_pads[r]);
   }
 
   // The segment of register in.out from that of in.in: the same affine map as the points.
@@ -381,15 +385,6 @@ void run(const Program& p, const Box& b, const Segment* seg, Workspace& ws, bool
   ws.view.result = p.result;
 }
 
-// The segment's box, grown by its pad.
-Box segment_box(const Segment& s) {
-  Box b;
-  b.extend(s.a);
-  b.extend(s.b);
-  const Vec3 pad{s.pad, s.pad, s.pad};
-  return {b.lo - pad, b.hi + pad};
-}
-
 }  // namespace
 
 BoxBounds bounds(const Program& p, const Box& b, Workspace& ws) {
@@ -399,7 +394,7 @@ BoxBounds bounds(const Program& p, const Box& b, Workspace& ws) {
 }
 
 BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws) {
-  run(p, segment_box(s), &s, ws, true);
+  run(p, segment_box(s.a, s.b, s.pad), &s, ws, true);
   return {ws.ivals[p.result], ws.lips[p.result], ws.slopes[p.result]};
 }
 
@@ -408,7 +403,7 @@ void prune(const Program& p, const Box& b, Workspace& ws) {
 }
 
 void prune(const Program& p, const Segment& s, Workspace& ws) {
-  run(p, segment_box(s), &s, ws, false);
+  run(p, segment_box(s.a, s.b, s.pad), &s, ws, false);
 }
 
 }  // namespace softtrace
