@@ -1,5 +1,7 @@
 #include "program.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <limits>
 
 #include "node.h"
@@ -41,6 +43,52 @@ int ProgramBuilder::oracle(const FieldNode& node, int reg) {
   return emit(i);
 }
 
+namespace {
+// Spreads the low 21 bits of v to every third bit (for a Morton code).
+uint64_t spread3(uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+}  // namespace
+
+std::vector<int32_t> ProgramBuilder::compile_order(
+    Op op, const std::vector<std::unique_ptr<FieldNode>>& children) {
+  std::vector<int32_t> order(children.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int32_t>(k);
+  // A sum of many soft fields is walked a few nearby children at a time (those a box or a
+  // segment meets): compiled in the Morton order of their supports, nearby children's code and
+  // constants are near in memory too. Other groups keep the scene's order.
+  if (op != Op::Sum || children.size() < kSpatialOrder) return order;
+  std::vector<Box> boxes;
+  Box all;
+  for (const auto& c : children) {
+    const Box b = global_range(*c).lo >= 0
+                      ? c->region(std::numeric_limits<double>::min(), Side::Above)
+                      : Box::unbounded();
+    if (!b.bounded() || b.empty()) return order;
+    boxes.push_back(b);
+    all.extend(b.center());
+  }
+  std::vector<uint64_t> key(children.size());
+  const Vec3 e = all.extent();
+  for (size_t k = 0; k < boxes.size(); ++k) {
+    const Vec3 c = boxes[k].center() - all.lo;
+    uint64_t code = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double u = e[i] > 0 ? c[i] / e[i] : 0;
+      code |= spread3(static_cast<uint64_t>(std::clamp(u, 0.0, 1.0) * 0x1fffff)) << i;
+    }
+    key[k] = code;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return key[a] < key[b]; });
+  return order;
+}
+
 int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg) {
   const int g = static_cast<int>(prog_.groups.size());
   prog_.groups.emplace_back();
@@ -52,8 +100,9 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
   std::vector<uint8_t> prunable;
   std::vector<Box> supports;
   std::vector<int32_t> ids;
+  const std::vector<int32_t> order = compile_order(op, children);
   for (size_t k = 0; k < children.size(); ++k) {
-    const FieldNode& c = *children[k];
+    const FieldNode& c = *children[order[k]];
     const int32_t begin = static_cast<int32_t>(prog_.code.size());
     const int slot = compile(c, reg);
     kids.push_back({begin, static_cast<int32_t>(prog_.code.size()), slot});
