@@ -68,6 +68,9 @@ class Workspace {
   std::vector<Vec3> segs;        // register r's segment ends at [2r], [2r + 1] (segment bounds)
   std::vector<double> seg_pads;  // how far the computed points may stray from that segment
   std::vector<Interval> slopes;  // each slot's derivative along the segment
+  // On a segment, over the first fraction quiet[s] of it, slot s is a distance >= 1 or a field
+  // that is exactly 0 (a potential of such a distance, a sum of such fields): no support begins.
+  std::vector<double> quiet;
   std::vector<int32_t> kept;     // pruning's stack of chosen children
   std::vector<int32_t> marks;    // where each kept child's code starts in the view
   ProgramView view;              // the last pruned program (bounds, prune)
@@ -95,6 +98,9 @@ struct BoxBounds {
   // differentiable, so f(t2) - f(t1) lies in slope (t2 - t1); off a segment, [-lipschitz,
   // lipschitz].
   Interval slope = Interval::entire();
+  // On a segment: f is exactly 0 over this first fraction of it (the segment has entered no
+  // child's support yet, as POV-Ray's blob finds from its list of support entries); else 0.
+  double quiet = 0;
 };
 
 // One walk over the box: bounds, and in ws.view the program pruned to the box (children of sums

@@ -75,11 +75,13 @@ constexpr double kSegmentRounding = 1e-12;
 // - its range (grown by pad): d^2 is a quadratic in s, least at its vertex or an end;
 // - the range of dd/dt (t = s len): q · qe / (|q| len) is |qe| cos(angle between q and qe) / len,
 //   and that angle only shrinks as s grows, so the ends bound it (where q passes through 0, d has
-//   a kink and that end's value is -|qe| or |qe|).
-// The ends' lengths serve both. Reciprocals and the few operations err by a few ulps, far inside
-// the 1e-12 (range) and 1e-9 (slope) widening.
+//   a kink and that end's value is -|qe| or |qe|);
+// - the first s where d may be below 1 (the support's entry): the nearer root of |q(s)|^2 = r^2,
+//   r = 1 plus the range's growth, so that no computed point before it has d < 1.
+// The ends' lengths serve all three. Reciprocals and the few operations err by a few ulps, far
+// inside the 1e-12 (range) and 1e-9 (slope, entry) widening.
 void ellipsoid_on_segment(const Vec3& a, const Vec3& A, const Vec3& B, double pad, double len,
-                          Interval* range, Interval* slope) {
+                          Interval* range, Interval* slope, double* entry) {
   const Vec3 ia{1 / a.x, 1 / a.y, 1 / a.z};
   const Vec3 q0{A.x * ia.x, A.y * ia.y, A.z * ia.z}, q1{B.x * ia.x, B.y * ia.y, B.z * ia.z};
   // From B - A, not q1 - q0: a short segment far out must not lose its direction to cancellation.
@@ -90,6 +92,16 @@ void ellipsoid_on_segment(const Vec3& a, const Vec3& A, const Vec3& B, double pa
   // The vertex's s carries the ends' rounding (eps |q0| / |qe|): at most eps far off in d.
   const double grow = pad / std::min({a.x, a.y, a.z}) + 1e-12 * far;
   *range = {std::max(0.0, widen_down(near - grow, 1e-12)), widen_up(far + grow, 1e-12)};
+  // |q0 + s qe|^2 = r^2: ee s^2 + 2 B s + c = 0 with c > 0 (the start is outside); the nearer
+  // root c / (-B + sqrt(B^2 - ee c)) has no cancellation.
+  const double r = widen_up(1 + grow, 1e-12), B0 = dot(q0, qe), c = (n0 - r) * (n0 + r);
+  const double disc = B0 * B0 - ee * c;
+  if (!(c > 0))
+    *entry = 0;
+  else if (B0 >= 0 || disc < 0)
+    *entry = 1;  // moving away from the centre, or passing outside the support
+  else
+    *entry = std::min(1.0, c / (-B0 + std::sqrt(disc)) * (1 - 1e-9));
   if (!(len > 0)) {
     *slope = Interval::entire();
     return;
@@ -99,6 +111,12 @@ void ellipsoid_on_segment(const Vec3& a, const Vec3& A, const Vec3& B, double pa
   const double spad = 1e-9 * ne + kTiny;
   *slope = {std::max(-ne, lo - spad) / len * (1 + 1e-12),
             std::min(ne, hi + spad) / len * (1 + 1e-12)};
+}
+
+// Whether an instruction's quiet start (Workspace::quiet) means its value is 0 there: a
+// potential's or a sum's, not a distance's (>= 1).
+bool zero_when_quiet(Op op) {
+  return op == Op::Sum || op == Op::Blanc || op == Op::Wyvill || op == Op::Murakami;
 }
 
 // The box around the segment [a, b], grown by pad.
@@ -147,6 +165,7 @@ class Walker {
     Interval* I = ws_.ivals.data();
     double* L = ws_.lips.data();
     Interval* D = ws_.slopes.data();  // on a segment: d/dt along it
+    double* Q = ws_.quiet.data();     // on a segment: its quiet start (Workspace::quiet)
     switch (in.op) {
       case Op::Translate:
         if (segment_) {
@@ -168,6 +187,7 @@ class Walker {
           I[in.out] = in.node->interval(b);
           L[in.out] = in.node->lipschitz(b);
           D[in.out] = {-L[in.out], L[in.out]};
+          Q[in.out] = 0;
         }
         break;
       case Op::LpMetric:
@@ -177,11 +197,12 @@ class Walker {
             // Along a segment the ellipsoid's range and slope are exact; 1/min(a) bounds |∇d|.
             const Vec3* S = ws_.segs.data() + 2 * in.in;
             ellipsoid_on_segment({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in], length_,
-                                 &I[in.out], &D[in.out]);
+                                 &I[in.out], &D[in.out], &Q[in.out]);
             L[in.out] = k[4];
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
             D[in.out] = {-L[in.out], L[in.out]};
+            Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
           }
         }
         break;
@@ -192,6 +213,7 @@ class Walker {
                            I[in.in], L[in.in], &I[in.out], &L[in.out]);
           // P is non-increasing: dP/dt = P'(d) d' with P' in [-max |P'|, 0].
           D[in.out] = Interval(-blanc_lipschitz(s), 0) * D[in.in];
+          Q[in.out] = quiet_potential(in.in);
         }
         break;
       case Op::Wyvill:
@@ -199,6 +221,7 @@ class Walker {
           potential_bounds([](double d) { return wyvill(d, nullptr); }, wyvill_lipschitz(),
                            I[in.in], L[in.in], &I[in.out], &L[in.out]);
           D[in.out] = Interval(-wyvill_lipschitz(), 0) * D[in.in];
+          Q[in.out] = quiet_potential(in.in);
         }
         break;
       case Op::Murakami:
@@ -207,6 +230,7 @@ class Walker {
           potential_bounds([](double d) { return murakami(d, nullptr); }, slope, I[in.in], L[in.in],
                            &I[in.out], &L[in.out]);
           D[in.out] = Interval(-slope, -murakami_slope_floor(I[in.in].lo, I[in.in].hi)) * D[in.in];
+          Q[in.out] = quiet_potential(in.in);
         }
         break;
       case Op::Group:
@@ -215,6 +239,11 @@ class Walker {
       case Op::Max:
         break;  // handled by group()
     }
+  }
+
+  // A potential is 0 where its distance is >= 1.
+  double quiet_potential(int d) const {
+    return ws_.ivals[d].lo >= 1 ? 1.0 : ws_.quiet[d];
   }
 
   // Register r's box: on a segment, the segment's own box (grown by its pad), tighter than the
@@ -345,6 +374,13 @@ class Walker {
       const double dpad = n * kEps * dmag + kTiny;
       ws_.slopes[out.out] = std::isnan(dlo) || std::isnan(dhi) ? Interval::entire()
                                                                : Interval(dlo - dpad, dhi + dpad);
+      // The children dropped are 0 all along; the others until the first support entry.
+      double quiet = 1;
+      for (int j = first; j < first + n; ++j) {
+        const Group::Child& c = g.children[kept[j]];
+        quiet = std::min(quiet, zero_when_quiet(p_.code[c.end - 1].op) ? ws_.quiet[c.slot] : 0.0);
+      }
+      ws_.quiet[out.out] = quiet;
       return;
     }
     const bool is_min = out.op == Op::Min;
@@ -361,6 +397,7 @@ class Walker {
     I[out.out] = r;
     L[out.out] = Lm;
     ws_.slopes[out.out] = D;
+    ws_.quiet[out.out] = 0;
   }
 
   const Program& p_;
@@ -395,7 +432,8 @@ BoxBounds bounds(const Program& p, const Box& b, Workspace& ws) {
 
 BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws) {
   run(p, segment_box(s.a, s.b, s.pad), &s, ws, true);
-  return {ws.ivals[p.result], ws.lips[p.result], ws.slopes[p.result]};
+  return {ws.ivals[p.result], ws.lips[p.result], ws.slopes[p.result],
+          zero_when_quiet(p.code.back().op) ? ws.quiet[p.result] : 0.0};
 }
 
 void prune(const Program& p, const Box& b, Workspace& ws) {

@@ -24,6 +24,7 @@ void Workspace::fit(const Program& p) {
   grow(segs, regs_n * 2);
   grow(seg_pads, regs_n);
   grow(slopes, slots_n);
+  grow(quiet, slots_n);
   grow(kept, size_t(p.children) + 1);
   grow(marks, size_t(p.children) + 1);
   if (view.code.capacity() < p.code.size()) view.code.reserve(p.code.size());

@@ -16,6 +16,7 @@ double reach(double v, double rate) {
 // A ray that needs more evaluations than this gives up (reported as a hit); no test scene comes
 // close.
 constexpr int kMaxSteps = 200000;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 // Sphere-tracing steps within one segment before it is cut short at the current point: the bound
 // over a long segment's box can be far looser than over a short one (e.g. a modulated radius whose
 // [d]/[f] decorrelates). Every step taken was certified, so stopping early skips nothing.
@@ -139,7 +140,9 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   // The global mode is the baseline the local bounds are measured against: its bound only.
   if (mode_ == LipschitzMode::Global) return {g, global_L_, global_L_};
   const Interval slope = up ? bb.slope : -bb.slope;
-  return {g, std::min(bb.lipschitz, slope.hi), std::min(bb.lipschitz, -slope.lo)};
+  const bool empty_outside = (up ? -iso : iso) < 0;  // g where f = 0
+  return {g, std::min(bb.lipschitz, slope.hi), std::min(bb.lipschitz, -slope.lo),
+          empty_outside ? bb.quiet * (b - a) : 0.0};
 }
 
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
@@ -179,29 +182,47 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
 }
 
 double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb,
-                            TraceCounters& work) const {
-  // The Illinois variant of regula falsi, on the program pruned to a box holding the bracket
-  // (ws.view): superlinear on smooth roots, and a bracket always, so it never leaves [a, b].
+                            SegmentBounds rates, TraceCounters& work) const {
+  // The Anderson-Bjorck variant of regula falsi, on the program pruned to a box holding the
+  // bracket (ws.view): superlinear on smooth roots, and a bracket always, so it never leaves
+  // [a, b]. Beside the bracket, [lo, hi] holds the first root: a value g(m) < 0 puts it at least
+  // -g/rise past m, and where g rises at least -fall > 0 (one crossing), at most -g/-fall past m
+  // (and a value >= 0 at least g/-fall before m). That range closes long before the bracket's
+  // far end moves.
   const auto g_at = [&](double t) {
     ++work.point_evals;
     return g_view(ray.o + ray.d * t);
   };
   if (std::isnan(ga)) ga = g_at(a);
   if (!(ga < 0)) return a;  // rounding on the pruned program: a itself is on the surface
+  const double floor = -rates.fall;  // > 0: g rises at least this fast on [a, b]
+  double lo = a, hi = b;
+  const auto narrow = [&](double m, double gm) {
+    if (gm < 0) {
+      lo = std::max(lo, m + reach(gm, rates.rise));
+      if (floor > 0) hi = std::min(hi, m - gm / floor);
+    } else {
+      hi = std::min(hi, m);
+      if (floor > 0) lo = std::max(lo, m - gm / floor);
+    }
+  };
+  narrow(a, ga);
   IllinoisBracket br{a, ga, b, gb};
+  br.anderson_bjorck = true;
   for (int i = 0; i < 100; ++i) {
     // The footprint at the near end, the nearest the root can be: a wide bracket must not take
     // its tolerance from its far end.
-    const double tol = kRefine * footprint(ray, br.lo);
-    if (br.hi - br.lo <= tol) break;
-    // False position, kept half a tolerance inside the bracket: a root within that of an end
-    // then ends the search at the next step.
-    const double m = std::clamp(br.false_position(), br.lo + 0.5 * tol, br.hi - 0.5 * tol);
+    const double tol = kRefine * footprint(ray, lo);
+    if (hi - lo <= tol) break;
+    // False position, kept half a tolerance inside the root's range: a root within that of an
+    // end then ends the search at the next step.
+    const double m = std::clamp(br.false_position(), lo + 0.5 * tol, hi - 0.5 * tol);
     ++work.refine_iterations;
     const double gm = g_at(m);
     br.update(m, gm, gm >= 0);
+    narrow(m, gm);
   }
-  return br.hi;
+  return hi;
 }
 
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
@@ -211,9 +232,11 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   work.entered_box = true;
   const auto at = [&](double t) { return ray.o + ray.d * t; };
   // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].
-  const auto hit = [&](double a, double ga, double b, double gb) -> MarchResult {
+  // `rates`: slope bounds over [a, b], if known.
+  const auto hit = [&](double a, double ga, double b, double gb,
+                       SegmentBounds rates = {{}, kInf, kInf}) -> MarchResult {
     if (query == Query::Any) return {true, b};
-    return {true, refine(ray, a, ga, b, gb, work)};
+    return {true, refine(ray, a, ga, b, gb, rates, work)};
   };
   const auto give_up = [&](double t) {
     ++work.give_ups;
@@ -221,6 +244,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   };
 
   double t = t0, gt = 0;
+  const double g_empty = -object_->inside_sign * object_->iso;  // g where f = 0
   // Whether gt is g(t). Past t0, g(t) < 0 is always known (from an interval or a value).
   bool gt_known = false;
   double s = (t1 - t0) / 8;  // the next segment's length
@@ -238,6 +262,16 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     }
     const double tol = kDecide * footprint(ray, t);
     probe = std::max(probe, tol);
+    if (sb.quiet >= tol) {
+      // No support begins before t + quiet: g is the empty field's value up to there (and at
+      // it: the entry is taken short of the support by more than rounding). Bound the rest of
+      // the segment, now without that stretch.
+      t += sb.quiet;
+      gt = g_empty;
+      gt_known = true;
+      s = b - t;
+      continue;
+    }
     if (!gt_known) {
       ++work.point_evals;
       gt = g_view(at(t));
@@ -249,12 +283,16 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     // g cannot fall along the segment: its value at the end decides the segment, and a sign
     // change there brackets the only crossing in it.
     if (sb.fall <= 0) {
+      // Where g rises at least -fall per unit, the crossing is no farther than -g/-fall (unless
+      // that is below what t can resolve).
+      const double reach_max = sb.fall < 0 ? t + gt / sb.fall : b;
+      const double e = reach_max > t ? std::min(b, reach_max) : b;
       ++work.point_evals;
-      const double gb = g_view(at(b));
-      if (gb >= 0) return hit(t, gt, b, gb);
-      t = b;
-      gt = gb;
-      s *= 2;
+      const double ge = g_view(at(e));
+      if (ge >= 0) return hit(t, gt, e, ge, sb);
+      if (e == b) s *= 2;
+      t = e;
+      gt = ge;
       continue;
     }
     if (!std::isfinite(sb.rise)) {
@@ -290,7 +328,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         }
         ++work.point_evals;
         const double gp = g_view(at(p));
-        if (gp >= 0) return hit(t, gt, p, gp);
+        if (gp >= 0) return hit(t, gt, p, gp, sb);
         if (r + reach(gp, sb.fall) >= p - t) {  // what t and p clear covers [t, p]
           probe = 2 * (p - t);
           t = p;

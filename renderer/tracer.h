@@ -14,8 +14,8 @@
 //   decide: a sign change is a bracket; what the points clear, or intervals on halvings down to
 //   1/1024 of the tolerance, certify the gap; otherwise the tracer gives up explicitly and reports
 //   a hit there (never a silent skip).
-// A bracket is refined by the Illinois method to 1/1000 of the footprint (docs/math.md, "How the
-// tracer uses them").
+// A bracket is refined by regula falsi (Anderson-Bjorck) to 1/1000 of the footprint, the slope
+// bounds narrowing it from both sides (docs/math.md, "How the tracer uses them").
 #pragma once
 
 #include "eval.h"
@@ -114,9 +114,12 @@ class ObjectTracer {
   // it, from the slope bounds (the Lipschitz bound and the derivative along the segment): for
   // t <= u in it, g(u) <= g(t) + rise (u - t) and g(t) <= g(u) + fall (u - t). A point with
   // g < 0 thus clears -g/rise ahead of it and -g/fall behind it (all of it where the rate is <= 0).
+  // `quiet`: from a, the stretch where the ray has entered no support, so that g is the empty
+  // field's value there, known < 0 (0 where not known).
   struct SegmentBounds {
     Interval g;
     double rise, fall;
+    double quiet = 0;
   };
   SegmentBounds segment_bounds(const Ray& ray, double a, double b, TraceCounters& work) const;
   // The radius of the ray's footprint at t (never below what rounding of t can resolve).
@@ -133,9 +136,10 @@ class ObjectTracer {
   Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest,
             TraceCounters& work) const;
   // A root of g in [a, b] to within 1/1000 of the footprint there, given g(a) = ga < 0 <= g(b) =
-  // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b]; returns a point with
-  // g >= 0.
-  double refine(const Ray& ray, double a, double ga, double b, double gb,
+  // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b]. `rates` bound g's
+  // slope over [a, b] (infinite where not known): each value then narrows the root's range from
+  // both sides. Returns the range's far end, no nearer than the first root in [a, b].
+  double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
                 TraceCounters& work) const;
 
   const SceneObject* object_;

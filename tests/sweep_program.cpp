@@ -88,8 +88,8 @@ TEST_P(NodeSweep, ProgramBoxPassEnclosesSamplesAndPrunesExactly) {
 }
 
 TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
-  // The tracer's pass over a stretch of a ray: the values, and the difference quotients along it
-  // against the slope interval, at points on the segment.
+  // The tracer's pass over a stretch of a ray: the values, the zero of the quiet start, and the
+  // difference quotients along it against the slope interval, at points on the segment.
   const SweepCase& c = GetParam();
   Compiled cc(c);
   const NodePtr& n = cc.node;
@@ -113,6 +113,8 @@ TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
       ASSERT_EQ(value(view, p, ws), v) << c.name << ": the pruned program differs on its segment";
       ASSERT_TRUE(bb.value.contains(v))
           << c.name << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
+      if (t1 <= bb.quiet * len)
+        ASSERT_EQ(v, 0) << c.name << ": not 0 within the quiet start " << bb.quiet;
       if (!(t2 > t1) || !std::isfinite(v) || !std::isfinite(w)) continue;
       const double quotient = (w - v) / (t2 - t1);
       const double slack = 1e-9 * (std::abs(bb.slope.lo) + std::abs(bb.slope.hi)) +

@@ -94,6 +94,36 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
   EXPECT_GT(nonempty, 50) << "too few boxes met a blob to judge";
 }
 
+// Along a segment, the pass reports how far from its start no support has begun (POV-Ray's first
+// support entry): the field is exactly 0 there, entry included (the tracer takes g there as known),
+// and for spheres the bound is tight: just past it the field is positive.
+TEST(Program, SegmentQuietStartEndsAtTheFirstSupportEntry) {
+  std::vector<Vec3> centres;
+  const NodePtr n = build_from_json(blobs_json(1000, 3, &centres));
+  const Program prog = compile(*n);
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-30, 30);
+  int entered = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Segment seg{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+    const BoxBounds bb = bounds(prog, seg, ws);
+    ASSERT_GE(bb.quiet, 0);
+    ASSERT_LE(bb.quiet, 1);
+    const auto at = [&](double s) { return seg.a + (seg.b - seg.a) * s; };
+    for (int j = 0; j <= 20 && bb.quiet > 0; ++j) {  // (quiet = 0 claims nothing)
+      const double s = bb.quiet * j / 20;
+      ASSERT_EQ(n->value(at(s)), 0) << "segment " << i << " at s = " << s << " of " << bb.quiet;
+    }
+    if (bb.quiet < 1) {
+      ++entered;
+      EXPECT_GT(n->value(at(bb.quiet + 1e-6)), 0) << "segment " << i << ": the entry is loose";
+    }
+  }
+  EXPECT_GT(entered, 100) << "too few segments entered a support to judge";
+}
+
 TEST(Program, MinDropsChildrenThatCannotBeTheMinimum) {
   const NodePtr n = build_from_json(
       R"({"type":"min","children":[{"type":"lp_metric","radii":[1,1,1],"n":2},
