@@ -38,6 +38,14 @@ double power_sum(const double* u, int k, double n, double* dfdu) {
   return f;
 }
 
+void power_sum_lanes(const double* const* u, int k, double n, int lanes, double* f) {
+  for (int l = 0; l < lanes; ++l) {
+    double v[3];
+    for (int i = 0; i < k; ++i) v[i] = u[i][l];
+    f[l] = power_sum(v, k, n, nullptr);
+  }
+}
+
 Interval power_sum(const Interval* u, int k, double n) {
   Scratch<double> lo(k), hi(k);
   for (int i = 0; i < k; ++i) {
