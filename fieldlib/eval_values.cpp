@@ -57,7 +57,15 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         const LpMetricParams m{{k[0], k[1], k[2]}, k[3], k[4]};
         const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
         if (m.n != 2) {
-          for (int l = 0; l < n; ++l) out[l] = lp_metric(m, {px[l], py[l], pz[l]}, nullptr);
+          // lp_metric's general path: the terms |p_i / a_i|, then the power sum over the lanes.
+          double u[3][kBatch];
+          for (int l = 0; l < n; ++l) {
+            u[0][l] = std::abs(px[l] / k[0]);
+            u[1][l] = std::abs(py[l] / k[1]);
+            u[2][l] = std::abs(pz[l] / k[2]);
+          }
+          const double* rows[3] = {u[0], u[1], u[2]};
+          power_sum_lanes(rows, 3, m.n, n, out);
           break;
         }
         // lp_metric's n = 2 path as a branch-free loop over the lanes (it vectorises), then the

@@ -20,6 +20,12 @@ double pow_fast(double x, double n) {
   }
   return std::pow(x, n);
 }
+
+// m s^(1/n), s a power sum relative to its largest term m: n = 2 (spheres, ellipsoids: most
+// blobs) takes the correctly rounded square root.
+double scale_root(double m, double s, double n) {
+  return m * (n == 2 ? std::sqrt(s) : std::pow(s, 1 / n));
+}
 }  // namespace
 
 double power_sum(const double* u, int k, double n, double* dfdu) {
@@ -31,19 +37,36 @@ double power_sum(const double* u, int k, double n, double* dfdu) {
   }
   double s = 0;
   for (int i = 0; i < k; ++i) s += pow_fast(u[i] / m, n);
-  // n = 2 (spheres, ellipsoids: most blobs) takes the correctly rounded square root.
-  const double f = m * (n == 2 ? std::sqrt(s) : std::pow(s, 1 / n));
+  const double f = scale_root(m, s, n);
   if (dfdu)
     for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? pow_fast(u[i] / f, n - 1) : 0.0;
   return f;
 }
 
 void power_sum_lanes(const double* const* u, int k, double n, int lanes, double* f) {
-  for (int l = 0; l < lanes; ++l) {
-    double v[3];
-    for (int i = 0; i < k; ++i) v[i] = u[i][l];
-    f[l] = power_sum(v, k, n, nullptr);
+  // power_sum's operations in its order, one loop over the lanes at a time.
+  double m[16], s[16], b[16], r[16];
+  for (int l = 0; l < lanes; ++l) m[l] = 0;
+  for (int i = 0; i < k; ++i)
+    for (int l = 0; l < lanes; ++l) m[l] = std::max(m[l], u[i][l]);
+  for (int l = 0; l < lanes; ++l) s[l] = 0;
+  const bool squaring = n >= 1 && n <= 64 && n == static_cast<int>(n);  // as pow_fast
+  for (int i = 0; i < k; ++i) {
+    for (int l = 0; l < lanes; ++l) b[l] = u[i][l] / m[l];
+    if (!squaring) {
+      for (int l = 0; l < lanes; ++l) s[l] += std::pow(b[l], n);
+      continue;
+    }
+    for (int l = 0; l < lanes; ++l) r[l] = 1;
+    for (int e = static_cast<int>(n);; e >>= 1) {
+      if (e & 1)
+        for (int l = 0; l < lanes; ++l) r[l] *= b[l];
+      if (e == 1) break;
+      for (int l = 0; l < lanes; ++l) b[l] *= b[l];
+    }
+    for (int l = 0; l < lanes; ++l) s[l] += r[l];
   }
+  for (int l = 0; l < lanes; ++l) f[l] = m[l] == 0 ? 0 : scale_root(m[l], s[l], n);
 }
 
 Interval power_sum(const Interval* u, int k, double n) {
