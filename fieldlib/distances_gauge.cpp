@@ -11,6 +11,7 @@
 #include "node_util.h"
 #include "one_sided.h"
 #include "program.h"
+#include "spherical_product.h"
 
 namespace softtrace {
 
@@ -94,41 +95,40 @@ class LpMetric final : public FieldNode {
 // m(h(x,y), ζ_L(z)) with h = (u_x^n1 + u_y^n1)^(1/n1), m = (h^n2 + u_z^n2)^(1/n2) and the
 // one-sided terms u of one_sided.h. L = 0: the superquadric, 000 Eq. 3 / 002 Eq. 15 (n1 on both x
 // and y, R2); n1 = n2, L >= 0: the super-elliptic cylinder, 002 Eqs. 17-18. docs/math.md §2.6,
-// §2.9-2.10. Bounds: the gradient is (∂m/∂h·∂h/∂u_x·u_x', ∂m/∂h·∂h/∂u_y·u_y', ∂m/∂u_z·u_z'), ∇h ⟂
-// z, so the nested gauge_lipschitz with the largest slopes 1/(a·min t) is global; over a box each
-// partial is bounded by power_sum_partial_bound and each slope by the signs the box reaches.
+// §2.9-2.10. The kernels and their bounds: spherical_product.h. The nested gauge_lipschitz with
+// the largest slopes 1/(a·min t) is global because ∇h ⟂ z.
 class SphericalProduct final : public FieldNode {
  public:
   SphericalProduct(const OneSidedTerm (&t)[3], double n1, double n2)
-      : t_{t[0], t[1], t[2]}, n1_(n1), n2_(n2) {
-    const double wh[2] = {t_[0].slope(), t_[1].slope()};
-    const double Lh = gauge_lipschitz(wh, 2, n1_);
-    const double wm[2] = {Lh, t_[2].slope()};
-    global_L_ = std::isfinite(Lh) ? gauge_lipschitz(wm, 2, n2_) : Lh;
+      : m_{{t[0], t[1], t[2]}, n1, n2, 0} {
+    const double wh[2] = {t[0].slope(), t[1].slope()};
+    const double Lh = gauge_lipschitz(wh, 2, n1);
+    const double wm[2] = {Lh, t[2].slope()};
+    m_.global_L = std::isfinite(Lh) ? gauge_lipschitz(wm, 2, n2) : Lh;
   }
 
-  double eval(const Vec3& p, Vec3* grad) const override {
-    double dx, dy, dz, dh[2], dm[2];
-    const double uh[2] = {t_[0].value(p.x, &dx), t_[1].value(p.y, &dy)};
-    const double um[2] = {power_sum(uh, 2, n1_, grad ? dh : nullptr), t_[2].value(p.z, &dz)};
-    const double f = power_sum(um, 2, n2_, grad ? dm : nullptr);
-    if (grad) *grad = {dm[0] * dh[0] * dx, dm[0] * dh[1] * dy, dm[1] * dz};
+  double eval(const Vec3& p, Vec3* grad) const override { return spherical_product(m_, p, grad); }
+  Interval interval(const Box& b) const override {
+    Interval f;
+    spherical_product_bounds(m_, b, &f, nullptr);
     return f;
   }
-  Interval interval(const Box& b) const override {
-    Interval uh[2], um[2];
-    return terms(b, uh, um);
-  }
-  double lipschitz() const override { return global_L_; }
+  double lipschitz() const override { return m_.global_L; }
   double lipschitz(const Box& b) const override {
-    Interval uh[2], um[2];
-    const Interval f = terms(b, uh, um);
-    const double bx = chain(power_sum_partial_bound(uh[0], um[0], n1_), t_[0].slope(b.axis(0)));
-    const double by = chain(power_sum_partial_bound(uh[1], um[0], n1_), t_[1].slope(b.axis(1)));
-    const double gh = chain(power_sum_partial_bound(um[0], f, n2_), std::sqrt(bx * bx + by * by));
-    const double gz = chain(power_sum_partial_bound(um[1], f, n2_), t_[2].slope(b.axis(2)));
-    const double L = std::sqrt(gh * gh + gz * gz) * (1 + 1e-13);
-    return std::isnan(L) ? global_L_ : std::min(global_L_, L);
+    Interval f;
+    double L;
+    spherical_product_bounds(m_, b, &f, &L);
+    return L;
+  }
+  // One instruction with the parameters inline, in spherical_product_params' order.
+  int compile(ProgramBuilder& b, int reg) const override {
+    const OneSidedTerm* t = m_.t;
+    Instr i{Op::SphericalProduct};
+    i.in = reg;
+    i.out = b.new_slot();
+    i.a = b.consts({t[0].r_pos, t[0].r_neg, t[0].dead, t[1].r_pos, t[1].r_neg, t[1].dead,
+                    t[2].r_pos, t[2].r_neg, t[2].dead, m_.n1, m_.n2, m_.global_L});
+    return b.emit(i);
   }
   // [DF-5]: a power sum is at least its largest term, so f <= c needs every u <= c.
   Box region(double level, Side side) const override {
@@ -136,7 +136,7 @@ class SphericalProduct final : public FieldNode {
     if (level < 0) return Box();
     Box b;
     for (int i = 0; i < 3; ++i) {
-      const Interval s = t_[i].below(level);
+      const Interval s = m_.t[i].below(level);
       b.lo[i] = s.lo;
       b.hi[i] = s.hi;
     }
@@ -144,19 +144,11 @@ class SphericalProduct final : public FieldNode {
   }
 
  private:
-  Interval terms(const Box& b, Interval* uh, Interval* um) const {
-    uh[0] = t_[0].range(b.axis(0));
-    uh[1] = t_[1].range(b.axis(1));
-    um[0] = power_sum(uh, 2, n1_);
-    um[1] = t_[2].range(b.axis(2));
-    return power_sum(um, 2, n2_);
-  }
-  OneSidedTerm t_[3];
-  double n1_, n2_, global_L_;
+  SphericalProductParams m_;
 };
 
 // Terms for radii a1..a3 and side lengths t1..t6 (t_{2i-1} on +axis i, t_{2i} on -axis i).
-NodePtr spherical_product(const Params& p, double n1, double n2, double half_length) {
+NodePtr spherical_product_node(const Params& p, double n1, double n2, double half_length) {
   const Vec3 a = p.vec3("radii");
   const std::vector<double> t = side_lengths(p, "t", 6);
   OneSidedTerm terms[3];
@@ -173,12 +165,12 @@ NodePtr create_lp_metric(const Params& p, const BuildContext&) {
 
 NodePtr create_superquadric(const Params& p, const BuildContext&) {
   const double n1 = p.number("n1"), n2 = p.number("n2");
-  return spherical_product(p, n1, n2, 0.0);
+  return spherical_product_node(p, n1, n2, 0.0);
 }
 
 NodePtr create_superelliptic_cylinder(const Params& p, const BuildContext&) {
   const double n = p.number("n");
-  return spherical_product(p, n, n, p.number("half_length"));
+  return spherical_product_node(p, n, n, p.number("half_length"));
 }
 
 }  // namespace softtrace

@@ -21,6 +21,7 @@
 #include "node.h"
 #include "node_util.h"
 #include "potentials.h"
+#include "spherical_product.h"
 
 namespace softtrace {
 
@@ -204,6 +205,14 @@ class Walker {
             D[in.out] = {-L[in.out], L[in.out]};
             Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
           }
+        }
+        break;
+      case Op::SphericalProduct:
+        if (bounds_) {
+          spherical_product_bounds(spherical_product_params(K_ + in.a), box(in.in), &I[in.out],
+                                   &L[in.out]);
+          D[in.out] = {-L[in.out], L[in.out]};
+          Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
         }
         break;
       case Op::Blanc:

@@ -5,6 +5,7 @@
 #include "lp_metric.h"
 #include "node.h"
 #include "potentials.h"
+#include "spherical_product.h"
 
 namespace softtrace {
 
@@ -59,6 +60,13 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         const Workspace::Frame& f = R[in.in];
         Vec3 g;
         const double v = lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, f.p, &g);
+        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        break;
+      }
+      case Op::SphericalProduct: {
+        const Workspace::Frame& f = R[in.in];
+        Vec3 g;
+        const double v = spherical_product(spherical_product_params(K + in.a), f.p, &g);
         S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
         break;
       }

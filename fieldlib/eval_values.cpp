@@ -5,9 +5,11 @@
 #include <cmath>
 
 #include "eval.h"
+#include "gauge.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "potentials.h"
+#include "spherical_product.h"
 
 namespace softtrace {
 
@@ -77,6 +79,27 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         for (int l = 0; l < n; ++l)
           out[l] = out[l] > 1e-280 && out[l] < 1e280 ? std::sqrt(out[l])
                                                      : lp_metric(m, {px[l], py[l], pz[l]}, nullptr);
+        break;
+      }
+      case Op::SphericalProduct: {
+        const SphericalProductParams m = spherical_product_params(K + in.a);
+        // OneSidedTerm::value over the lanes as plain selects on locals, a loop GCC vectorises
+        // (not with nested selects, nor with the parameters read through m): at most one of
+        // s - L and -s - L is positive, so one quotient; 0/1 where neither is (NaN s included).
+        double u[3][kBatch], h[kBatch];
+        for (int i = 0; i < 3; ++i) {
+          const double dead = m.t[i].dead, r_pos = m.t[i].r_pos, r_neg = m.t[i].r_neg;
+          const double* s = reg(in.in, i);
+          for (int l = 0; l < n; ++l) {
+            const double a = s[l] - dead, b = -s[l] - dead;
+            const double nb = b > 0 ? b : 0.0, rb = b > 0 ? r_neg : 1.0;
+            u[i][l] = (a > 0 ? a : nb) / (a > 0 ? r_pos : rb);
+          }
+        }
+        const double* inner[2] = {u[0], u[1]};
+        power_sum_lanes(inner, 2, m.n1, n, h);
+        const double* outer[2] = {h, u[2]};
+        power_sum_lanes(outer, 2, m.n2, n, out);
         break;
       }
       case Op::Blanc: {
@@ -157,6 +180,9 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         out = lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, R[in.in], nullptr);
         break;
       }
+      case Op::SphericalProduct:
+        out = spherical_product(spherical_product_params(K + in.a), R[in.in], nullptr);
+        break;
       case Op::Blanc:
         out = blanc(S[in.in], K[in.a], nullptr);
         break;

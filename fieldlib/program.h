@@ -27,18 +27,19 @@ namespace softtrace {
 class FieldNode;
 
 // The one list of instructions; each evaluator has one case per entry.
-#define SOFTTRACE_OPS(X)                                                              \
-  X(Translate) /* reg out = reg in - c[0..2]                                      */  \
-  X(Place)     /* reg out = Rt (reg in - t), c = t[3], Rt[9] row-major            */  \
-  X(Oracle)    /* slot out = node(reg in): a model node evaluates its subtree     */  \
-  X(LpMetric)  /* slot out = lp_metric(reg in; a = c[0..2], n = c[3], L = c[4])   */  \
-  X(Blanc)     /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2                */  \
-  X(Wyvill)    /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)            */  \
-  X(Murakami)  /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density          */  \
-  X(Group)     /* announces the children of the n-ary instruction groups[a]       */  \
-  X(Sum)       /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12          */ \
-  X(Min)       /* slot out = min of args[a..a+n)                                  */  \
-  X(Max)       /* slot out = max of args[a..a+n)                                  */
+#define SOFTTRACE_OPS(X)                                                                    \
+  X(Translate)        /* reg out = reg in - c[0..2]                                     */  \
+  X(Place)            /* reg out = Rt (reg in - t), c = t[3], Rt[9] row-major           */  \
+  X(Oracle)           /* slot out = node(reg in): a model node evaluates its subtree    */  \
+  X(LpMetric)         /* slot out = lp_metric(reg in; a = c[0..2], n = c[3], L = c[4])  */  \
+  X(SphericalProduct) /* slot out = spherical_product(reg in; terms c[0..8], n1, n2, L) */  \
+  X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
+  X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
+  X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
+  X(Group)            /* announces the children of the n-ary instruction groups[a]      */  \
+  X(Sum)              /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12         */ \
+  X(Min)              /* slot out = min of args[a..a+n)                                 */  \
+  X(Max)              /* slot out = max of args[a..a+n)                                 */
 
 enum class Op : uint8_t {
 #define SOFTTRACE_OP_ENUM(name) name,

@@ -1,6 +1,8 @@
 // Compiled programs (fieldlib/program.h): what compile emits and what pruning keeps.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 
@@ -55,6 +57,51 @@ TEST(Program, SoftObjectIsDistanceThenPotential) {
   ASSERT_EQ(p.code.size(), 2u);
   EXPECT_EQ(p.code[0].op, Op::Oracle);
   EXPECT_EQ(p.code[1].op, Op::Wyvill);
+}
+
+// The superquadric and the super-elliptic cylinder compile to one native instruction whose batch
+// values are the model's bits lane by lane (odd lane counts included), where the one-sided terms
+// take each branch: random points, the axes and the origin (terms 0), the cylinder's dead zone and
+// its ends (|z| <= L), and a NaN coordinate (whose term the model takes as 0).
+TEST(Program, SphericalProductIsOneInstructionWithTheModelsBits) {
+  const char* const kJson[] = {
+      R"({"type":"superquadric","radii":[1,0.8,1.2],"n1":0.6,"n2":3,"t":[1.5,0.7,2,1,1.2,0.6]})",
+      R"({"type":"superelliptic_cylinder","radii":[0.5,0.7,0.4],"n":2.5,"half_length":0.6,
+          "t":[1.2,2,1,1.5,1.3,0.7]})"};
+  constexpr double kHalfLength = 0.6;
+  constexpr int kLanes = 13;
+  for (const char* json : kJson) {
+    const NodePtr node = build_from_json(json);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 1u) << json;
+    EXPECT_EQ(prog.code[0].op, Op::SphericalProduct) << json;
+    Workspace ws;
+    ws.fit(prog);
+    std::mt19937_64 rng(13);
+    std::uniform_real_distribution<double> u(-2, 2), dead(-kHalfLength, kHalfLength);
+    for (int i = 0; i < 200; ++i) {
+      double x[kLanes], y[kLanes], z[kLanes], f[kLanes];
+      for (int l = 0; l < kLanes; ++l) {
+        Vec3 p{u(rng), u(rng), u(rng)};
+        // 0: anywhere; 1-3: on the x, y or z axis; 4: the origin; 5: in the dead zone; 6: at
+        // its ends; 7: a NaN coordinate.
+        const int kind = (i + l) % 8;
+        if (kind >= 1 && kind <= 4)
+          for (int a = 0; a < 3; ++a) p[a] = a + 1 == kind ? p[a] : 0;
+        if (kind == 5) p.z = dead(rng);
+        if (kind == 6) p.z = l % 2 ? kHalfLength : -kHalfLength;
+        if (kind == 7) p[l % 3] = std::nan("");
+        x[l] = p.x, y[l] = p.y, z[l] = p.z;
+      }
+      values(prog, x, y, z, kLanes, f, ws);
+      for (int l = 0; l < kLanes; ++l) {
+        const double v = node->value({x[l], y[l], z[l]});
+        ASSERT_EQ(std::memcmp(&f[l], &v, sizeof v), 0)
+            << json << ": lane " << l << " at (" << x[l] << ", " << y[l] << ", " << z[l]
+            << "): " << f[l] << " vs the model's " << v;
+      }
+    }
+  }
 }
 
 // The issue's target: for a box the size of one blob's support the pruned program holds exactly
