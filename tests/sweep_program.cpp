@@ -113,8 +113,9 @@ TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
       ASSERT_EQ(value(view, p, ws), v) << c.name << ": the pruned program differs on its segment";
       ASSERT_TRUE(bb.value.contains(v))
           << c.name << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
-      if (t1 <= bb.quiet * len)
+      if (t1 <= bb.quiet * len) {
         ASSERT_EQ(v, 0) << c.name << ": not 0 within the quiet start " << bb.quiet;
+      }
       if (!(t2 > t1) || !std::isfinite(v) || !std::isfinite(w)) continue;
       const double quotient = (w - v) / (t2 - t1);
       const double slack = 1e-9 * (std::abs(bb.slope.lo) + std::abs(bb.slope.hi)) +
