@@ -315,6 +315,7 @@ class Walker {
       walk(c.begin, c.end);
     }
     if (bounds_ && combine.op != Op::Sum) drop_inactive(g, combine.op == Op::Min, first, last);
+    if (bounds_ && segment_ && combine.op == Op::Sum) drop_quiet(g, first, last);
     const int n = top_ - first;
 
     Instr out = combine;
@@ -328,24 +329,43 @@ class Walker {
   }
 
   // min/max: a child whose interval lies wholly beyond the extreme's is never the extreme in the
-  // box; its code is removed from the view (the kept children's code moves down).
+  // box; its code is removed from the view.
   void drop_inactive(const Group& g, bool is_min, int first, int last) {
     const Interval* I = ws_.ivals.data();
-    int32_t* kept = ws_.kept.data();
-    int32_t* marks = ws_.marks.data();
+    const int32_t* kept = ws_.kept.data();
     double bound =
         is_min ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
     for (int j = first; j < last; ++j) {
       const Interval& a = I[g.children[kept[j]].slot];
       bound = is_min ? std::min(bound, a.hi) : std::max(bound, a.lo);
     }
+    // NaN bounds count as active: nothing is known of them.
+    drop_children(g, first, last, [&](const Group::Child& c) {
+      return is_min ? I[c.slot].lo > bound : I[c.slot].hi < bound;
+    });
+  }
+
+  // A sum on a segment: a child quiet all along it (its support never entered) is exactly 0
+  // there, so the points of the segment need not evaluate it.
+  void drop_quiet(const Group& g, int first, int last) {
+    drop_children(g, first, last, [&](const Group::Child& c) {
+      return ws_.quiet[c.slot] >= 1 && zero_when_quiet(p_.code[c.end - 1].op);
+    });
+  }
+
+  // Removes the kept children [first, last) that `drop` picks, and their code from the view (the
+  // others' code moves down).
+  template <class Drop>
+  void drop_children(const Group& g, int first, int last, const Drop& drop) {
+    if (first == last) return;
+    int32_t* kept = ws_.kept.data();
+    const int32_t* marks = ws_.marks.data();
     auto& code = ws_.view.code;
     int w = first;
     size_t write = marks[first];
     for (int j = first; j < last; ++j) {
-      const Interval& a = I[g.children[kept[j]].slot];
-      // NaN bounds count as active: nothing is known of them.
-      if (is_min ? a.lo > bound : a.hi < bound) continue;
+      const Group::Child& c = g.children[kept[j]];
+      if (drop(c)) continue;
       const size_t from = marks[j], to = j + 1 < last ? marks[j + 1] : code.size();
       std::copy(code.begin() + from, code.begin() + to, code.begin() + write);
       write += to - from;
