@@ -48,7 +48,7 @@ class LpMetric final : public FieldNode {
     Instr i{Op::LpMetric};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({a_.x, a_.y, a_.z, n_, global_L_});
+    i.a = b.consts({a_.x, a_.y, a_.z, n_, global_L_, 1 / a_.x, 1 / a_.y, 1 / a_.z});
     return b.emit(i);
   }
   Box region(double level, Side side) const override {

@@ -81,9 +81,9 @@ constexpr double kSegmentRounding = 1e-12;
 //   r = 1 plus the range's growth, so that no computed point before it has d < 1.
 // The ends' lengths serve all three. Reciprocals and the few operations err by a few ulps, far
 // inside the 1e-12 (range) and 1e-9 (slope, entry) widening.
-void ellipsoid_on_segment(const Vec3& a, const Vec3& A, const Vec3& B, double pad, double len,
-                          Interval* range, Interval* slope, double* entry) {
-  const Vec3 ia{1 / a.x, 1 / a.y, 1 / a.z};
+void ellipsoid_on_segment(const Vec3& a, const Vec3& ia, const Vec3& A, const Vec3& B,
+                          double pad, double len, Interval* range, Interval* slope,
+                          double* entry) {
   const Vec3 q0{A.x * ia.x, A.y * ia.y, A.z * ia.z}, q1{B.x * ia.x, B.y * ia.y, B.z * ia.z};
   // From B - A, not q1 - q0: a short segment far out must not lose its direction to cancellation.
   const Vec3 qe{(B.x - A.x) * ia.x, (B.y - A.y) * ia.y, (B.z - A.z) * ia.z};
@@ -197,8 +197,8 @@ class Walker {
           if (segment_ && k[3] == 2) {
             // Along a segment the ellipsoid's range and slope are exact; 1/min(a) bounds |∇d|.
             const Vec3* S = ws_.segs.data() + 2 * in.in;
-            ellipsoid_on_segment({k[0], k[1], k[2]}, S[0], S[1], ws_.seg_pads[in.in], length_,
-                                 &I[in.out], &D[in.out], &Q[in.out]);
+            ellipsoid_on_segment({k[0], k[1], k[2]}, {k[5], k[6], k[7]}, S[0], S[1],
+                                 ws_.seg_pads[in.in], length_, &I[in.out], &D[in.out], &Q[in.out]);
             L[in.out] = k[4];
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
