@@ -105,7 +105,7 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
       case Op::Blanc: {
         const double* d = S + in.in * kBatch;
         const double s = K[in.a];
-        for (int l = 0; l < n; ++l) out[l] = blanc(d[l], s, nullptr);
+        blanc_lanes(d, s, n, out);
         break;
       }
       case Op::Wyvill: {

@@ -22,9 +22,10 @@ double pow_fast(double x, double n) {
 }
 
 // m s^(1/n), s a power sum relative to its largest term m: n = 2 (spheres, ellipsoids: most
-// blobs) takes the correctly rounded square root.
+// blobs) takes the correctly rounded square root, and n = 1 (a superquadric's inner sum) none:
+// pow(s, 1) is s.
 double scale_root(double m, double s, double n) {
-  return m * (n == 2 ? std::sqrt(s) : std::pow(s, 1 / n));
+  return m * (n == 2 ? std::sqrt(s) : n == 1 ? s : std::pow(s, 1 / n));
 }
 }  // namespace
 

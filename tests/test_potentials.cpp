@@ -1,7 +1,9 @@
 // Potential properties of docs/math.md §3 ([PB-1]..[PB-6]) for several s, and Wyvill/quartic facts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "potentials.h"
 
@@ -64,6 +66,29 @@ TEST_P(Blanc, MonotoneAndLipschitz) {  // [PB-4], [PB-5], and P = 0.5 only at d 
   }
   EXPECT_LE(max_slope, p->lipschitz());
   EXPECT_NEAR(max_slope, p->lipschitz(), 1e-3) << "the bound is attained at d = 0.5";
+}
+
+// The batch evaluator's form gives the kernel's bits: across both pieces, at the joint, the ends,
+// outside, below 0 and at NaN.
+TEST_P(Blanc, LanesGiveTheKernelsBits) {
+  const double s = GetParam();
+  std::vector<double> d;
+  for (int i = -20; i <= 260; ++i) d.push_back(i / 200.0);
+  for (const double e : {0.5, std::nextafter(0.5, 0.0), std::nextafter(0.5, 1.0), 1.0,
+                         std::nextafter(1.0, 0.0), 1e-300, -0.0, double(NAN), double(INFINITY)})
+    d.push_back(e);
+  for (size_t at = 0; at < d.size(); at += 16) {
+    const int n = static_cast<int>(std::min<size_t>(16, d.size() - at));
+    double P[16];
+    blanc_lanes(d.data() + at, s, n, P);
+    for (int l = 0; l < n; ++l) {
+      const double want = blanc(d[at + l], s, nullptr);
+      if (std::isnan(want))
+        EXPECT_TRUE(std::isnan(P[l])) << "d = " << d[at + l];
+      else
+        EXPECT_EQ(P[l], want) << "d = " << d[at + l] << ", s = " << s;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Softness, Blanc, testing::Values(0.0, 0.25, 0.5, 1.0, 3.0, 20.0));
