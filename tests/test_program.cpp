@@ -29,6 +29,17 @@ std::string blobs_json(int n, double r, std::vector<Vec3>* centres) {
   return s + "]}";
 }
 
+// n blobs of radius r (blobs_json), compiled, with a workspace fitted to the program.
+struct Blobs {
+  std::vector<Vec3> centres;
+  NodePtr node;
+  Program prog;
+  Workspace ws;
+  Blobs(int n, double r) : node(build_from_json(blobs_json(n, r, &centres))), prog(compile(*node)) {
+    ws.fit(prog);
+  }
+};
+
 int count_ops(const std::vector<Instr>& code, Op op) {
   int n = 0;
   for (const Instr& i : code) n += i.op == op;
@@ -109,13 +120,13 @@ TEST(Program, SphericalProductIsOneInstructionWithTheModelsBits) {
 // the bit: only zeros are dropped), which is the model's field up to the rounding of the sum's
 // order (a large sum is compiled in the spatial order of its children).
 TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
-  std::vector<Vec3> centres;
   const double r = 3;
-  const NodePtr n = build_from_json(blobs_json(1000, r, &centres));
-  const Program prog = compile(*n);
+  Blobs blobs(1000, r);
+  const std::vector<Vec3>& centres = blobs.centres;
+  const NodePtr& n = blobs.node;
+  const Program& prog = blobs.prog;
+  Workspace& ws = blobs.ws;
   ASSERT_TRUE(prog.has_pruning);
-  Workspace ws;
-  ws.fit(prog);
   std::mt19937_64 rng(12);
   std::uniform_real_distribution<double> u(-22, 22);
   int nonempty = 0;
@@ -145,17 +156,15 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
 // support entry): the field is exactly 0 there, entry included (the tracer takes g there as known),
 // and for spheres the bound is tight: just past it the field is positive.
 TEST(Program, SegmentQuietStartEndsAtTheFirstSupportEntry) {
-  std::vector<Vec3> centres;
-  const NodePtr n = build_from_json(blobs_json(1000, 3, &centres));
-  const Program prog = compile(*n);
-  Workspace ws;
-  ws.fit(prog);
+  Blobs blobs(1000, 3);
+  const NodePtr& n = blobs.node;
+  Workspace& ws = blobs.ws;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-30, 30);
   int entered = 0;
   for (int i = 0; i < 300; ++i) {
     const Segment seg{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
-    const BoxBounds bb = bounds(prog, seg, ws);
+    const BoxBounds bb = bounds(blobs.prog, seg, ws);
     ASSERT_GE(bb.quiet, 0);
     ASSERT_LE(bb.quiet, 1);
     const auto at = [&](double s) { return seg.a + (seg.b - seg.a) * s; };
