@@ -265,11 +265,12 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     if (sb.quiet >= tol) {
       // No support begins before t + quiet: g is the empty field's value up to there (and at
       // it: the entry is taken short of the support by more than rounding). Bound the rest of
-      // the segment, now without that stretch.
+      // the segment, now without that stretch (at least a tolerance: an entry at the segment's
+      // very end leaves nothing of it).
       t += sb.quiet;
       gt = g_empty;
       gt_known = true;
-      s = b - t;
+      s = std::max(b - t, tol);
       continue;
     }
     if (!gt_known) {
