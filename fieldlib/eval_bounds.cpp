@@ -81,9 +81,8 @@ constexpr double kSegmentRounding = 1e-12;
 //   r = 1 plus the range's growth, so that no computed point before it has d < 1.
 // The ends' lengths serve all three. Reciprocals and the few operations err by a few ulps, far
 // inside the 1e-12 (range) and 1e-9 (slope, entry) widening.
-void ellipsoid_on_segment(const Vec3& a, const Vec3& ia, const Vec3& A, const Vec3& B,
-                          double pad, double len, Interval* range, Interval* slope,
-                          double* entry) {
+void ellipsoid_on_segment(const Vec3& a, const Vec3& ia, const Vec3& A, const Vec3& B, double pad,
+                          double len, Interval* range, Interval* slope, double* entry) {
   const Vec3 q0{A.x * ia.x, A.y * ia.y, A.z * ia.z}, q1{B.x * ia.x, B.y * ia.y, B.z * ia.z};
   // From B - A, not q1 - q0: a short segment far out must not lose its direction to cancellation.
   const Vec3 qe{(B.x - A.x) * ia.x, (B.y - A.y) * ia.y, (B.z - A.z) * ia.z};
@@ -251,9 +250,7 @@ class Walker {
   }
 
   // A potential is 0 where its distance is >= 1.
-  double quiet_potential(int d) const {
-    return ws_.ivals[d].lo >= 1 ? 1.0 : ws_.quiet[d];
-  }
+  double quiet_potential(int d) const { return ws_.ivals[d].lo >= 1 ? 1.0 : ws_.quiet[d]; }
 
   // Register r's box: on a segment, the segment's own box (grown by its pad), tighter than the
   // box carried through a rotation and only made where an instruction asks for it.

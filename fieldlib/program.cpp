@@ -85,7 +85,8 @@ std::vector<int32_t> ProgramBuilder::compile_order(
     }
     key[k] = code;
   }
-  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return key[a] < key[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int32_t a, int32_t b) { return key[a] < key[b]; });
   return order;
 }
 

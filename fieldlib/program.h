@@ -31,7 +31,7 @@ class FieldNode;
   X(Translate)        /* reg out = reg in - c[0..2]                                     */  \
   X(Place)            /* reg out = Rt (reg in - t), c = t[3], Rt[9] row-major           */  \
   X(Oracle)           /* slot out = node(reg in): a model node evaluates its subtree    */  \
-  X(LpMetric)         /* slot out = lp_metric(reg in; a = c[0..2], n = c[3], L = c[4], 1/a = c[5..7]) */ \
+  X(LpMetric)         /* slot out = lp_metric(reg in; a = c[0..2], n, L, 1/a = c[5..7]) */  \
   X(SphericalProduct) /* slot out = spherical_product(reg in; terms c[0..8], n1, n2, L) */  \
   X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \

@@ -194,7 +194,7 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
     return g_view(ray.o + ray.d * t);
   };
   if (std::isnan(ga)) ga = g_at(a);
-  if (!(ga < 0)) return a;  // rounding on the pruned program: a itself is on the surface
+  if (!(ga < 0)) return a;           // rounding on the pruned program: a itself is on the surface
   const double floor = -rates.fall;  // > 0: g rises at least this fast on [a, b]
   double lo = a, hi = b;
   const auto narrow = [&](double m, double gm) {
