@@ -36,8 +36,9 @@ TEST(Kinds, TableIsWellFormed) {
     std::set<std::string> params;
     for (const auto& p : k.params) {
       EXPECT_TRUE(params.insert(p.name).second) << k.name << "." << p.name;
-      if (p.type == ParamType::Node || p.type == ParamType::Nodes)
+      if (p.type == ParamType::Node || p.type == ParamType::Nodes) {
         EXPECT_NE(p.slot, Family::Any) << k.name << "." << p.name << " takes no family";
+      }
     }
   }
 }
