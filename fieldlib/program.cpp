@@ -54,30 +54,31 @@ uint64_t spread3(uint64_t v) {
   v = (v | v << 2) & 0x1249249249249249ULL;
   return v;
 }
+
+// A sum's term is exactly 0 outside its support box if it is a field that is never negative
+// ({f > 0} lies in region(min, Above), and f >= 0 everywhere); unbounded for any other term.
+Box sum_support(const FieldNode& c) {
+  return global_range(c).lo >= 0 ? c.region(std::numeric_limits<double>::min(), Side::Above)
+                                 : Box::unbounded();
+}
 }  // namespace
 
-std::vector<int32_t> ProgramBuilder::compile_order(
-    Op op, const std::vector<std::unique_ptr<FieldNode>>& children) {
-  std::vector<int32_t> order(children.size());
+std::vector<int32_t> ProgramBuilder::compile_order(Op op, const std::vector<Box>& supports) {
+  std::vector<int32_t> order(supports.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int32_t>(k);
   // A sum of many soft fields is walked a few nearby children at a time (those a box or a
   // segment meets): compiled in the Morton order of their supports, nearby children's code and
   // constants are near in memory too. Other groups keep the scene's order.
-  if (op != Op::Sum || children.size() < kSpatialOrder) return order;
-  std::vector<Box> boxes;
+  if (op != Op::Sum || supports.size() < kSpatialOrder) return order;
   Box all;
-  for (const auto& c : children) {
-    const Box b = global_range(*c).lo >= 0
-                      ? c->region(std::numeric_limits<double>::min(), Side::Above)
-                      : Box::unbounded();
+  for (const Box& b : supports) {
     if (!b.bounded() || b.empty()) return order;
-    boxes.push_back(b);
     all.extend(b.center());
   }
-  std::vector<uint64_t> key(children.size());
+  std::vector<uint64_t> key(supports.size());
   const Vec3 e = all.extent();
-  for (size_t k = 0; k < boxes.size(); ++k) {
-    const Vec3 c = boxes[k].center() - all.lo;
+  for (size_t k = 0; k < supports.size(); ++k) {
+    const Vec3 c = supports[k].center() - all.lo;
     uint64_t code = 0;
     for (int i = 0; i < 3; ++i) {
       const double u = e[i] > 0 ? c[i] / e[i] : 0;
@@ -99,24 +100,22 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
 
   std::vector<Group::Child> kids;
   std::vector<uint8_t> prunable;
-  std::vector<Box> supports;
+  std::vector<Box> supports;  // of the prunable children, for the BVH
   std::vector<int32_t> ids;
-  const std::vector<int32_t> order = compile_order(op, children);
+  // A term of a sum may be dropped where it is exactly 0: outside a bounded support.
+  std::vector<Box> child_supports(children.size(), Box::unbounded());
+  if (op == Op::Sum)
+    for (size_t k = 0; k < children.size(); ++k) child_supports[k] = sum_support(*children[k]);
+  const std::vector<int32_t> order = compile_order(op, child_supports);
   for (size_t k = 0; k < children.size(); ++k) {
-    const FieldNode& c = *children[order[k]];
     const int32_t begin = static_cast<int32_t>(prog_.code.size());
-    const int slot = compile(c, reg);
+    const int slot = compile(*children[order[k]], reg);
     kids.push_back({begin, static_cast<int32_t>(prog_.code.size()), slot});
-    // A term of a sum may be dropped where it is exactly 0: outside the support box of a field
-    // that is never negative ({f > 0} lies in region(min, Above), and f >= 0 everywhere).
-    bool drop_ok = false;
-    if (op == Op::Sum && global_range(c).lo >= 0) {
-      const Box support = c.region(std::numeric_limits<double>::min(), Side::Above);
-      if (support.bounded() || support.empty()) {
-        drop_ok = true;
-        supports.push_back(support);
-        ids.push_back(static_cast<int32_t>(k));
-      }
+    const Box& support = child_supports[order[k]];
+    const bool drop_ok = support.bounded() || support.empty();
+    if (drop_ok) {
+      supports.push_back(support);
+      ids.push_back(static_cast<int32_t>(k));
     }
     prunable.push_back(drop_ok);
   }

@@ -116,10 +116,10 @@ class ProgramBuilder {
   Program finish(int result);
 
  private:
-  // The order `nary` compiles the children in: a large sum's in the Morton order of their
-  // supports' centres (its value changes only by the rounding of the sum's order).
-  static std::vector<int32_t> compile_order(
-      Op op, const std::vector<std::unique_ptr<FieldNode>>& children);
+  // The order `nary` compiles the children in, given their supports (unbounded where a child is
+  // never dropped): a large sum's in the Morton order of their supports' centres (its value
+  // changes only by the rounding of the sum's order).
+  static std::vector<int32_t> compile_order(Op op, const std::vector<Box>& supports);
   // The number of children from which a sum is compiled in spatial order.
   static constexpr size_t kSpatialOrder = 32;
 
