@@ -201,8 +201,7 @@ class Walker {
             L[in.out] = k[4];
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
-            D[in.out] = {-L[in.out], L[in.out]};
-            Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
+            segment_facts_from_box(in.out);
           }
         }
         break;
@@ -210,8 +209,7 @@ class Walker {
         if (bounds_) {
           spherical_product_bounds(spherical_product_params(K_ + in.a), box(in.in), &I[in.out],
                                    &L[in.out]);
-          D[in.out] = {-L[in.out], L[in.out]};
-          Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
+          segment_facts_from_box(in.out);
         }
         break;
       case Op::Blanc:
@@ -247,6 +245,20 @@ class Walker {
       case Op::Max:
         break;  // handled by group()
     }
+  }
+
+  // A distance bounded over its register's box only: its slope along the segment is the Lipschitz
+  // bound either way, and it stays >= 1 all along only where it does over the whole box.
+  void segment_facts_from_box(int out) {
+    const double L = ws_.lips[out];
+    ws_.slopes[out] = {-L, L};
+    ws_.quiet[out] = ws_.ivals[out].lo >= 1 ? 1 : 0;
+  }
+
+  // How far along the segment a sum's child is exactly 0 (Workspace::quiet, where its result is a
+  // field's: a distance's quiet start says nothing of 0).
+  double zero_start(const Group::Child& c) const {
+    return zero_when_quiet(p_.code[c.end - 1].op) ? ws_.quiet[c.slot] : 0.0;
   }
 
   // A potential is 0 where its distance is >= 1.
@@ -345,9 +357,7 @@ class Walker {
   // A sum on a segment: a child quiet all along it (its support never entered) is exactly 0
   // there, so the points of the segment need not evaluate it.
   void drop_quiet(const Group& g, int first, int last) {
-    drop_children(g, first, last, [&](const Group::Child& c) {
-      return ws_.quiet[c.slot] >= 1 && zero_when_quiet(p_.code[c.end - 1].op);
-    });
+    drop_children(g, first, last, [&](const Group::Child& c) { return zero_start(c) >= 1; });
   }
 
   // Removes the kept children [first, last) that `drop` picks, and their code from the view (the
@@ -402,10 +412,8 @@ class Walker {
                                                                : Interval(dlo - dpad, dhi + dpad);
       // The children dropped are 0 all along; the others until the first support entry.
       double quiet = 1;
-      for (int j = first; j < first + n; ++j) {
-        const Group::Child& c = g.children[kept[j]];
-        quiet = std::min(quiet, zero_when_quiet(p_.code[c.end - 1].op) ? ws_.quiet[c.slot] : 0.0);
-      }
+      for (int j = first; j < first + n; ++j)
+        quiet = std::min(quiet, zero_start(g.children[kept[j]]));
       ws_.quiet[out.out] = quiet;
       return;
     }
