@@ -67,6 +67,7 @@ bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
 ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
     : object_(&object), program_(compile(*object.field)), mode_(mode) {
   global_L_ = object.field->lipschitz();
+  g_empty_ = -object.inside_sign * object.iso;
   default_footprint_ = 1e-5 * object.bounds.diagonal();
   const Box& b = object.bounds;
   scale_ = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
@@ -140,9 +141,8 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   // The global mode is the baseline the local bounds are measured against: its bound only.
   if (mode_ == LipschitzMode::Global) return {g, global_L_, global_L_};
   const Interval slope = up ? bb.slope : -bb.slope;
-  const bool empty_outside = (up ? -iso : iso) < 0;  // g where f = 0
   return {g, std::min(bb.lipschitz, slope.hi), std::min(bb.lipschitz, -slope.lo),
-          empty_outside ? bb.quiet * (b - a) : 0.0};
+          g_empty_ < 0 ? bb.quiet * (b - a) : 0.0};
 }
 
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
@@ -244,7 +244,6 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   };
 
   double t = t0, gt = 0;
-  const double g_empty = -object_->inside_sign * object_->iso;  // g where f = 0
   // Whether gt is g(t). Past t0, g(t) < 0 is always known (from an interval or a value).
   bool gt_known = false;
   double s = (t1 - t0) / 8;  // the next segment's length
@@ -268,7 +267,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       // the segment, now without that stretch (at least a tolerance: an entry at the segment's
       // very end leaves nothing of it).
       t += sb.quiet;
-      gt = g_empty;
+      gt = g_empty_;
       gt_known = true;
       s = std::max(b - t, tol);
       continue;

@@ -148,6 +148,7 @@ class ObjectTracer {
   double global_L_;
   double default_footprint_;  // for rays without a cone: 1e-5 of the object's box diagonal
   double scale_;              // the magnitude of coordinates near the object (for rounding)
+  double g_empty_;            // g where f = 0: outside every support of a soft field
 };
 
 // Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading
