@@ -9,10 +9,15 @@
 namespace softtrace {
 
 namespace {
-// x^n for x >= 0. The papers' exponents are mostly small integers (n = 20 for cubes and bars):
-// squaring is several times faster than std::pow there and within a few ulps of it.
+// The papers' exponents are mostly small integers (n = 20 for cubes and bars): squaring is several
+// times faster than std::pow there and within a few ulps of it.
+bool by_squaring(double n) {
+  return n >= 1 && n <= 64 && n == static_cast<int>(n);
+}
+
+// x^n for x >= 0.
 double pow_fast(double x, double n) {
-  if (n >= 1 && n <= 64 && n == static_cast<int>(n)) {
+  if (by_squaring(n)) {
     double r = 1, b = x;
     for (int k = static_cast<int>(n); k; k >>= 1, b *= b)
       if (k & 1) r *= b;
@@ -51,7 +56,7 @@ void power_sum_lanes(const double* const* u, int k, double n, int lanes, double*
   for (int i = 0; i < k; ++i)
     for (int l = 0; l < lanes; ++l) m[l] = std::max(m[l], u[i][l]);
   for (int l = 0; l < lanes; ++l) s[l] = 0;
-  const bool squaring = n >= 1 && n <= 64 && n == static_cast<int>(n);  // as pow_fast
+  const bool squaring = by_squaring(n);  // as pow_fast
   for (int i = 0; i < k; ++i) {
     for (int l = 0; l < lanes; ++l) b[l] = u[i][l] / m[l];
     if (!squaring) {
