@@ -60,4 +60,12 @@ struct Box {
   }
 };
 
+// The box around the segment [a, b], grown by pad.
+inline Box segment_box(const Vec3& a, const Vec3& b, double pad) {
+  Box box;
+  box.extend(a);
+  box.extend(b);
+  return {box.lo - Vec3{pad, pad, pad}, box.hi + Vec3{pad, pad, pad}};
+}
+
 }  // namespace softtrace

@@ -142,4 +142,25 @@ int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_
       q, [&](const Box& box) { return segment.meets(box); }, out, count);
 }
 
+int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const {
+  if (nodes_.empty()) return 0;
+  const SegmentTest segment(a, b, pad);
+  int count = 0;
+  int32_t stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!segment.meets(n.box)) continue;
+    if (n.count > 0) {
+      for (int32_t i = n.first; i < n.first + n.count; ++i)
+        if (segment.meets(item_boxes_[i])) out[count++] = items_[i];
+      continue;
+    }
+    stack[top++] = n.right;
+    stack[top++] = n.left;
+  }
+  return count;
+}
+
 }  // namespace softtrace

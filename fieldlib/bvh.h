@@ -25,6 +25,10 @@ class BoxBvh {
   // overlap `q`, a box holding the segment): the children a stretch of a ray passes through, as
   // POV-Ray's blob keeps the list of support entries and exits along its ray.
   int query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out, int count) const;
+  // The same items in the order of the tree (not sorted): every node is tested against the
+  // segment itself, which pays on long segments, whose bounding box holds far more nodes than
+  // the segment meets (blob_ray.h's stretches of a ray). Returns how many were written to out.
+  int segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const;
 
  private:
   struct Node {

@@ -119,14 +119,6 @@ bool zero_when_quiet(Op op) {
   return op == Op::Sum || op == Op::Blanc || op == Op::Wyvill || op == Op::Murakami;
 }
 
-// The box around the segment [a, b], grown by pad.
-Box segment_box(const Vec3& a, const Vec3& b, double pad) {
-  Box box;
-  box.extend(a);
-  box.extend(b);
-  return {box.lo - Vec3{pad, pad, pad}, box.hi + Vec3{pad, pad, pad}};
-}
-
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
 template <class P>
 void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* out, double* L) {

@@ -5,36 +5,18 @@
 #include <limits>
 
 #include "illinois.h"
+#include "tracer_limits.h"
 
 namespace softtrace {
 
+using namespace tracer_limits;
+
 namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
 // How far from a point with g = v < 0 the ray is clear when g changes at most `rate` per unit.
 double reach(double v, double rate) {
   return rate > 0 ? -v / rate : std::numeric_limits<double>::infinity();
 }
-// A ray that needs more evaluations than this gives up (reported as a hit); no test scene comes
-// close.
-constexpr int kMaxSteps = 200000;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-// Sphere-tracing steps within one segment before it is cut short at the current point: the bound
-// over a long segment's box can be far looser than over a short one (e.g. a modulated radius whose
-// [d]/[f] decorrelates). Every step taken was certified, so stopping early skips nothing.
-constexpr int kSegmentSteps = 4;
-// The tolerance of the march is this multiple of the footprint radius: a certified step shorter
-// than that ends the approach, and probes ahead decide. It sets the cost, not what is found (a
-// give-up needs the surface within kFinest of a tolerance). With kSegmentSteps, measured over
-// the 1000 blobs and six figure scenes at 80x60: 2 and 4 take 4-13 % fewer evaluations than 1
-// and 8, 0.7 more.
-constexpr double kDecide = 2;
-// The farthest probe, in tolerances (4 footprint radii): a bracket is refined to its one crossing
-// only when it is that short.
-constexpr double kProbeReach = 2;
-// The shortest piece the halving looks at, in tolerances: a surface must pass within about this
-// of the ray for a search to give up there.
-constexpr double kFinest = 1.0 / 1024;
-// Root refinement stops when the bracket is this fraction of the footprint radius.
-constexpr double kRefine = 1e-3;
 // One workspace per thread, shared by every object's tracer: evaluations do not allocate once it
 // has grown to the largest program.
 Workspace& workspace(const Program& p) {
@@ -69,6 +51,8 @@ ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
   global_L_ = object.field->lipschitz();
   g_empty_ = -object.inside_sign * object.iso;
   default_footprint_ = 1e-5 * object.bounds.diagonal();
+  if (mode == LipschitzMode::Local && object.inside_sign > 0 && object.iso > 0)
+    blobs_ = BlobSum::of(program_);
   const Box& b = object.bounds;
   scale_ = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
                      std::abs(b.hi.y), std::abs(b.hi.z)});
@@ -230,6 +214,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   double t0 = tnear, t1 = tfar;
   if (!clip_to_box(ray, object_->bounds, t0, t1)) return {};
   work.entered_box = true;
+  if (blobs_) return first_hit_blobs(ray, tnear, t0, t1, work, query);
   const auto at = [&](double t) { return ray.o + ray.d * t; };
   // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].
   // `rates`: slope bounds over [a, b], if known.

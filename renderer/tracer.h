@@ -18,6 +18,9 @@
 // bounds narrowing it from both sides (docs/math.md, "How the tracer uses them").
 #pragma once
 
+#include <optional>
+
+#include "blob_ray.h"
 #include "eval.h"
 #include "scene.h"
 
@@ -141,6 +144,9 @@ class ObjectTracer {
   // both sides. Returns the range's far end, no nearer than the first root in [a, b].
   double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
                 TraceCounters& work) const;
+  // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
+  MarchResult first_hit_blobs(const Ray& ray, double tnear, double t0, double t1,
+                              TraceCounters& work, Query query) const;
 
   const SceneObject* object_;
   Program program_;
@@ -149,6 +155,9 @@ class ObjectTracer {
   double default_footprint_;  // for rays without a cone: 1e-5 of the object's box diagonal
   double scale_;              // the magnitude of coordinates near the object (for rounding)
   double g_empty_;            // g where f = 0: outside every support of a soft field
+  // Set where the field is a sum of polynomial blobs and the solid is where it reaches iso > 0
+  // (in the local mode; the global one keeps the segment tracer as the baseline).
+  std::optional<BlobSum> blobs_;
 };
 
 // Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading

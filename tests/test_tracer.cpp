@@ -22,6 +22,18 @@ const char* kScenes[] = {
     // Constructive convention on a plain distance function (inside d <= 1).
     R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"convention":"constructive",
         "field":{"type":"lp_metric","radii":[6,9,4],"n":1.5}}]})",
+    // Polynomial blobs (the local mode traces them as polynomials, tracer_blobs.cpp): overlapping
+    // ellipsoids, some rotated, Murakami's and Wyvill's potentials, and a thin one.
+    R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"field":{"type":"soft_blend","children":[
+        {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[5,5,5],"n":2}},
+        {"type":"soft_object","potential":{"type":"wyvill"},"translate":[4,1,0],
+         "distance":{"type":"lp_metric","radii":[3,6,2],"n":2,"rotate":{"axis":[1,1,0],"deg":40}}},
+        {"type":"soft_object","potential":{"type":"murakami"},"translate":[-3,-4,2],
+         "distance":{"type":"lp_metric","radii":[4,2,3],"n":2}},
+        {"type":"soft_object","potential":{"type":"wyvill"},"translate":[0,5,-3],
+         "distance":{"type":"lp_metric","radii":[9,0.6,0.6],"n":2,"rotate":{"axis":[0,0,1],"deg":25}}},
+        {"type":"soft_object","potential":{"type":"murakami"},"translate":[8,-6,4],
+         "distance":{"type":"lp_metric","radii":[1.5,1.5,1.5],"n":2}}]}}]})",
 };
 
 double reference_first_hit(const ObjectTracer& tr, const Ray& ray, double t0, double t1, int n) {
@@ -98,9 +110,38 @@ TEST_P(TracerVsReference, NeverSkipsASurface) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TracerVsReference,
-                         testing::Combine(testing::Values(0, 1, 2),
+                         testing::Combine(testing::Values(0, 1, 2, 3),
                                           testing::Values(LipschitzMode::Local,
                                                           LipschitzMode::Global)));
+
+// The local mode traces a sum of polynomial blobs on its polynomials: no point evaluation, and
+// the same hits as the segment tracer of the global mode, to the tolerance (1e-8 of the
+// diagonal for these rays without a footprint, 1e-3 of that for the refinement).
+TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
+  const Scene scene = parse_scene(kScenes[3], "<test>");
+  const SceneObject& obj = scene.objects[0];
+  const ObjectTracer blobs(obj, LipschitzMode::Local), segments(obj, LipschitzMode::Global);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double R = obj.bounds.diagonal();
+  int hits = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 d = normalize({u(rng), u(rng), u(rng)});
+    const Vec3 target = obj.bounds.center() + Vec3{u(rng), u(rng), u(rng)} * 6;
+    const Ray ray{target - d * R, d};
+    TraceCounters a, b, any;
+    const MarchResult m = blobs.first_hit(ray, 0, 2 * R, a);
+    const MarchResult g = segments.first_hit(ray, 0, 2 * R, b);
+    EXPECT_EQ(a.point_evals, 0);
+    ASSERT_EQ(m.hit, g.hit) << "ray " << i;
+    EXPECT_EQ(blobs.first_hit(ray, 0, 2 * R, any, Query::Any).hit, m.hit) << "ray " << i;
+    if (!m.hit) continue;
+    ++hits;
+    EXPECT_FALSE(m.gave_up);
+    EXPECT_NEAR(m.t, g.t, 2e-8 * R) << "ray " << i;
+  }
+  EXPECT_GT(hits, 100);
+}
 
 // A solid cut by its object's bounds shows the cut as a flat face: the hit is flagged so
 // shading uses the face's normal (the gradient there belongs to the uncut field, and a shadow

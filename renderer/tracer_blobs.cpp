@@ -1,0 +1,130 @@
+// first_hit for a sum of polynomial blobs (blob_ray.h): the ray is taken a stretch at a time.
+// One query of the sum's BVH gives the blobs whose supports the stretch passes through, and
+// their entries and exits cut it into pieces over which the field is one polynomial, walked
+// front to back. A piece whose blobs' peaks cannot reach iso is skipped unread; any other is
+// decided by its Bernstein form (bernstein.h), and a crossing refined on the polynomial itself,
+// with no evaluation of the field. So every skip is certified by the hull of the exact
+// polynomial, not by a Lipschitz bound.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "tracer.h"
+#include "tracer_limits.h"
+
+namespace softtrace {
+
+using namespace tracer_limits;
+
+namespace {
+// The first stretch is this fraction of the ray's way through the box. Measured on the 1000 blobs
+// at 320x240 (one thread): 1/4 took 0.16 s, 1/2 0.19 s, 1/8 0.17 s, the whole box at once 0.26 s.
+constexpr double kFirstStretch = 4;
+// A stretch whose query finds more blobs than this makes the next one half as long, and one that
+// finds fewer than kFewTerms twice as long: each query then costs about the same.
+constexpr int kManyTerms = 16;
+constexpr int kFewTerms = 4;
+
+// Where the ray enters (+) or leaves (-) term `index`'s support.
+struct Event {
+  double u;
+  int32_t index;
+  bool enters;
+  bool operator<(const Event& o) const { return u < o.u || (u == o.u && enters < o.enters); }
+};
+
+// One thread's buffers, grown to the largest sum traced (no allocation per ray after that).
+struct BlobScratch {
+  std::vector<BlobSum::Term> terms;
+  std::vector<int32_t> ids;
+  std::vector<Event> events;
+  std::vector<int> active;
+  void fit(int n) {
+    if (static_cast<int>(terms.size()) >= n) return;
+    terms.resize(n);
+    ids.resize(n);
+    events.resize(2 * n);
+    active.resize(n);
+  }
+};
+}  // namespace
+
+MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t0, double t1,
+                                          TraceCounters& work, Query query) const {
+  thread_local BlobScratch scratch;
+  scratch.fit(blobs_->size());
+  BlobSum::Term* terms = scratch.terms.data();
+  Event* events = scratch.events.data();
+  int* active = scratch.active.data();
+  const double iso = object_->iso;
+
+  double t = t0, s = (t1 - t0) / kFirstStretch;
+  while (t < t1) {
+    if (work.evaluations() >= kMaxSteps) {
+      ++work.give_ups;
+      return {true, t, false, true};
+    }
+    const double len = std::min(t + s, t1) - t;
+    ++work.box_evals;
+    const Segment seg = segment(ray, t, t + len);
+    const int n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
+    for (int i = 0; i < n; ++i) {
+      events[2 * i] = {terms[i].enter, i, true};
+      events[2 * i + 1] = {terms[i].exit, i, false};
+    }
+    std::sort(events, events + 2 * n);
+    // Between consecutive events the active terms are fixed: one polynomial.
+    int n_active = 0;
+    double u0 = 0;
+    for (int e = 0; e < 2 * n; ++e) {
+      const double u1 = events[e].u;
+      if (u1 > u0 && n_active > 0) {
+        double peak = 0;
+        for (int i = 0; i < n_active; ++i) peak += terms[active[i]].peak;
+        // The peaks' rounding: a few ulps of each (r to a few ulps of 1).
+        if (peak * (1 + 1e-12) + n_active * 1e-15 >= iso) {
+          ++work.box_evals;
+          const double S = u1 - u0;
+          const StretchPolynomial sp = stretch_polynomial(terms, active, n_active, u0, S, iso);
+          const double tol = kDecide * footprint(ray, t + u0) / S;
+          const Rise rise = first_rise(sp.a, sp.degree, sp.err, tol, kFinest * tol);
+          const auto at = [&](double x) { return t + u0 + x * S; };
+          if (rise.kind == Rise::AtStart) {
+            // Inside where the ray enters the box: the box cuts the solid, the hit is on its face.
+            const bool face = u0 == 0 && t == t0 && t0 > tnear;
+            return {true, at(0), face};
+          }
+          if (rise.kind == Rise::Undecided) {
+            ++work.give_ups;
+            return {true, at(rise.lo), false, true};
+          }
+          if (rise.kind == Rise::Bracket) {
+            if (query == Query::Any) return {true, at(rise.hi)};
+            // On the polynomial, whose values cost a few multiplications. The tolerance is the
+            // footprint's at the bracket's near end, the nearest the root can be.
+            const double close = kRefine * footprint(ray, at(rise.lo)) / S;
+            return {true,
+                    at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
+          }
+        }
+      }
+      u0 = std::max(u0, u1);
+      const int32_t k = events[e].index;
+      if (events[e].enters) {
+        active[n_active++] = k;
+      } else {
+        for (int i = 0; i < n_active; ++i)
+          if (active[i] == k) {
+            active[i] = active[--n_active];
+            break;
+          }
+      }
+    }
+    t += len;
+    if (n > kManyTerms) s = 0.5 * len;
+    if (n < kFewTerms) s = 2 * len;
+  }
+  return {};
+}
+
+}  // namespace softtrace
