@@ -7,6 +7,7 @@
 // polynomial, not by a Lipschitz bound.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "tracer.h"
@@ -58,6 +59,36 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t
   int* active = scratch.active.data();
   const double iso = object_->iso;
 
+  // The piece [u0, u0 + S] of the stretch from t, where terms[active[0..n)] are the blobs: the
+  // first crossing in it, if any (a hit that is no crossing: a give-up, or the box's face).
+  const auto piece = [&](double t, double u0, double S, int n) -> std::optional<MarchResult> {
+    double peak = 0;  // rounded to a few ulps of each term's (r to a few ulps of 1)
+    for (int i = 0; i < n; ++i) peak += terms[active[i]].peak;
+    if (peak * (1 + 1e-12) + n * 1e-15 < iso) return std::nullopt;
+    ++work.box_evals;
+    const StretchPolynomial sp = stretch_polynomial(terms, active, n, u0, S, iso);
+    const double tol = kDecide * footprint(ray, t + u0) / S;
+    const Rise rise = first_rise(sp.a, sp.degree, sp.err, tol, kFinest * tol);
+    const auto at = [&](double x) { return t + u0 + x * S; };
+    switch (rise.kind) {
+      case Rise::Clear:
+        return std::nullopt;
+      case Rise::AtStart:  // where the ray enters the box: the box cuts the solid (its face)
+        return MarchResult{true, at(0), u0 == 0 && t == t0 && t0 > tnear};
+      case Rise::Undecided:
+        ++work.give_ups;
+        return MarchResult{true, at(rise.lo), false, true};
+      case Rise::Bracket:
+        break;
+    }
+    if (query == Query::Any) return MarchResult{true, at(rise.hi)};
+    // On the polynomial, whose values cost a few multiplications, to the footprint at the
+    // bracket's near end (the nearest the root can be).
+    const double close = kRefine * footprint(ray, at(rise.lo)) / S;
+    return MarchResult{true,
+                       at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
+  };
+
   double t = t0, s = (t1 - t0) / kFirstStretch;
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) {
@@ -78,47 +109,16 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t
     double u0 = 0;
     for (int e = 0; e < 2 * n; ++e) {
       const double u1 = events[e].u;
-      if (u1 > u0 && n_active > 0) {
-        double peak = 0;
-        for (int i = 0; i < n_active; ++i) peak += terms[active[i]].peak;
-        // The peaks' rounding: a few ulps of each (r to a few ulps of 1).
-        if (peak * (1 + 1e-12) + n_active * 1e-15 >= iso) {
-          ++work.box_evals;
-          const double S = u1 - u0;
-          const StretchPolynomial sp = stretch_polynomial(terms, active, n_active, u0, S, iso);
-          const double tol = kDecide * footprint(ray, t + u0) / S;
-          const Rise rise = first_rise(sp.a, sp.degree, sp.err, tol, kFinest * tol);
-          const auto at = [&](double x) { return t + u0 + x * S; };
-          if (rise.kind == Rise::AtStart) {
-            // Inside where the ray enters the box: the box cuts the solid, the hit is on its face.
-            const bool face = u0 == 0 && t == t0 && t0 > tnear;
-            return {true, at(0), face};
-          }
-          if (rise.kind == Rise::Undecided) {
-            ++work.give_ups;
-            return {true, at(rise.lo), false, true};
-          }
-          if (rise.kind == Rise::Bracket) {
-            if (query == Query::Any) return {true, at(rise.hi)};
-            // On the polynomial, whose values cost a few multiplications. The tolerance is the
-            // footprint's at the bracket's near end, the nearest the root can be.
-            const double close = kRefine * footprint(ray, at(rise.lo)) / S;
-            return {true,
-                    at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
-          }
-        }
-      }
+      if (u1 > u0 && n_active > 0)
+        if (const auto hit = piece(t, u0, u1 - u0, n_active)) return *hit;
       u0 = std::max(u0, u1);
       const int32_t k = events[e].index;
       if (events[e].enters) {
         active[n_active++] = k;
-      } else {
-        for (int i = 0; i < n_active; ++i)
-          if (active[i] == k) {
-            active[i] = active[--n_active];
-            break;
-          }
+        continue;
       }
+      *std::find(active, active + n_active, k) = active[n_active - 1];
+      --n_active;
     }
     t += len;
     if (n > kManyTerms) s = 0.5 * len;
