@@ -8,6 +8,8 @@
 #include "gauge.h"
 #include "lp_metric.h"
 #include "node.h"
+#include "offset.h"
+#include "planes.h"
 #include "potentials.h"
 #include "spherical_product.h"
 
@@ -102,6 +104,20 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         power_sum_lanes(outer, 2, m.n2, n, out);
         break;
       }
+      case Op::ParallelPlanes:
+      case Op::OneBranchPlane: {
+        // The kernels' dot(p, n) and quotient over the lanes, with the parameters in locals (a loop
+        // GCC vectorises); std::max keeps the kernel's answer for NaN and -0.
+        const double nx = K[in.a], ny = K[in.a + 1], nz = K[in.a + 2], a = K[in.a + 3];
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        if (in.op == Op::ParallelPlanes) {
+          for (int l = 0; l < n; ++l) out[l] = std::abs(px[l] * nx + py[l] * ny + pz[l] * nz) / a;
+        } else {
+          for (int l = 0; l < n; ++l)
+            out[l] = std::max(px[l] * nx + py[l] * ny + pz[l] * nz, 0.0) / a;
+        }
+        break;
+      }
       case Op::Blanc: {
         const double* d = S + in.in * kBatch;
         const double s = K[in.a];
@@ -116,6 +132,12 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
       case Op::Murakami: {
         const double* d = S + in.in * kBatch;
         for (int l = 0; l < n; ++l) out[l] = murakami(d[l], nullptr);
+        break;
+      }
+      case Op::Offset: {
+        const double* d = S + in.in * kBatch;
+        const double sc = K[in.a], lv = K[in.a + 1];
+        for (int l = 0; l < n; ++l) out[l] = offset_value(sc, lv, d[l]);
         break;
       }
       case Op::Group:
@@ -183,6 +205,12 @@ double value(Code c, const Vec3& p, Workspace& ws) {
       case Op::SphericalProduct:
         out = spherical_product(spherical_product_params(K + in.a), R[in.in], nullptr);
         break;
+      case Op::ParallelPlanes:
+        out = parallel_planes(plane_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::OneBranchPlane:
+        out = one_branch_plane(plane_params(K + in.a), R[in.in], nullptr);
+        break;
       case Op::Blanc:
         out = blanc(S[in.in], K[in.a], nullptr);
         break;
@@ -191,6 +219,9 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         break;
       case Op::Murakami:
         out = murakami(S[in.in], nullptr);
+        break;
+      case Op::Offset:
+        out = offset_value(K[in.a], K[in.a + 1], S[in.in]);
         break;
       case Op::Group:
         break;
