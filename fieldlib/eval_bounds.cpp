@@ -23,6 +23,7 @@
 #include "offset.h"
 #include "planes.h"
 #include "potentials.h"
+#include "skeletal.h"
 #include "spherical_product.h"
 
 namespace softtrace {
@@ -223,6 +224,20 @@ class Walker {
           (both ? parallel_planes_bounds : one_branch_plane_bounds)(m, s, &I[in.out], &L[in.out]);
           D[in.out] = segment_ ? plane_slope(m, s, in.in, both) : Interval(-L[in.out], L[in.out]);
           Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
+        }
+        break;
+      case Op::LineSegment:
+        if (bounds_) {
+          const LineSegmentParams m = line_segment_params(K_ + in.a);
+          I[in.out] = line_segment_interval(m, box(in.in));
+          L[in.out] = 1 / m.r;
+          segment_facts_from_box(in.out);
+        }
+        break;
+      case Op::Torus:
+        if (bounds_) {
+          torus_bounds(torus_params(K_ + in.a), box(in.in), &I[in.out], &L[in.out]);
+          segment_facts_from_box(in.out);
         }
         break;
       case Op::Blanc:

@@ -7,6 +7,7 @@
 #include "offset.h"
 #include "planes.h"
 #include "potentials.h"
+#include "skeletal.h"
 #include "spherical_product.h"
 
 namespace softtrace {
@@ -79,6 +80,16 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         Vec3 g;
         const double v = in.op == Op::ParallelPlanes ? parallel_planes(m, f.p, &g)
                                                      : one_branch_plane(m, f.p, &g);
+        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        break;
+      }
+      case Op::LineSegment:
+      case Op::Torus: {
+        const Workspace::Frame& f = R[in.in];
+        Vec3 g;
+        const double v = in.op == Op::LineSegment
+                             ? line_segment_distance(line_segment_params(K + in.a), f.p, &g)
+                             : torus(torus_params(K + in.a), f.p, &g);
         S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
         break;
       }

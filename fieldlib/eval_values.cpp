@@ -11,6 +11,7 @@
 #include "offset.h"
 #include "planes.h"
 #include "potentials.h"
+#include "skeletal.h"
 #include "spherical_product.h"
 
 namespace softtrace {
@@ -118,6 +119,37 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         }
         break;
       }
+      case Op::LineSegment: {
+        // line_segment_distance over the lanes with the parameters in locals: the squared distances
+        // in a loop GCC vectorises, then the roots (scalar: std::sqrt may set errno).
+        const LineSegmentParams m = line_segment_params(K + in.a);
+        const double ax = m.a.x, ay = m.a.y, az = m.a.z, bx = m.ab.x, by = m.ab.y, bz = m.ab.z;
+        const double len2 = m.len2;
+        const bool along = len2 > 0;
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        for (int l = 0; l < n; ++l) {
+          const double w = (px[l] - ax) * bx + (py[l] - ay) * by + (pz[l] - az) * bz;
+          const double t = along ? std::clamp(w / len2, 0.0, 1.0) : 0.0;
+          const double qx = px[l] - (ax + bx * t), qy = py[l] - (ay + by * t),
+                       qz = pz[l] - (az + bz * t);
+          out[l] = qx * qx + qy * qy + qz * qz;
+        }
+        for (int l = 0; l < n; ++l) out[l] = std::sqrt(out[l]) / m.r;
+        break;
+      }
+      case Op::Torus: {
+        // torus's terms lane by lane (hypot is a libm call), then power_sum_lanes.
+        const TorusParams m = torus_params(K + in.a);
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        double u[2][kBatch];
+        for (int l = 0; l < n; ++l) {
+          u[0][l] = std::abs(std::hypot(px[l], py[l]) - m.R) / m.a;
+          u[1][l] = std::abs(pz[l]) / m.b;
+        }
+        const double* rows[2] = {u[0], u[1]};
+        power_sum_lanes(rows, 2, m.n, n, out);
+        break;
+      }
       case Op::Blanc: {
         const double* d = S + in.in * kBatch;
         const double s = K[in.a];
@@ -210,6 +242,12 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         break;
       case Op::OneBranchPlane:
         out = one_branch_plane(plane_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::LineSegment:
+        out = line_segment_distance(line_segment_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::Torus:
+        out = torus(torus_params(K + in.a), R[in.in], nullptr);
         break;
       case Op::Blanc:
         out = blanc(S[in.in], K[in.a], nullptr);

@@ -35,6 +35,8 @@ class FieldNode;
   X(SphericalProduct) /* slot out = spherical_product(reg in; terms c[0..8], n1, n2, L) */  \
   X(ParallelPlanes)   /* slot out = |reg in · n|/a (n = c[0..2], a = c[3]), 000 Eq. 2   */ \
   X(OneBranchPlane)   /* slot out = [reg in · n]_+/a (n = c[0..2], a = c[3]), 002 f_o   */ \
+  X(LineSegment)      /* slot out = |reg in - nearest|/r (a, ab, r, |ab|^2), 000 Eq. 5  */  \
+  X(Torus)            /* slot out = torus(reg in; R, a, b, n, L = c[0..4]) (skeletal.h) */  \
   X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \

@@ -66,7 +66,7 @@ TEST(Program, SoftObjectIsDistanceThenPotential) {
       R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":1}})");
   const Program p = compile(*n);
   ASSERT_EQ(p.code.size(), 2u);
-  EXPECT_EQ(p.code[0].op, Op::Oracle);
+  EXPECT_EQ(p.code[0].op, Op::LineSegment);
   EXPECT_EQ(p.code[1].op, Op::Wyvill);
 }
 
@@ -220,9 +220,55 @@ TEST(Program, PlanesAreOneInstructionWithTheModelsBits) {
   }
 }
 
+// The segment and the torus compile to one native instruction with the model's bits: at random
+// points, on the skeleton (f = 0: the segment's points and ends, the torus's circle), beyond the
+// segment's ends, on the torus's axis (ρ = 0) and plane (z = 0), and with a NaN coordinate; a
+// degenerate segment (p0 = p1) and torus exponents other than 2 included.
+TEST(Program, SkeletalDistancesAreOneInstructionWithTheModelsBits) {
+  const struct {
+    const char* json;
+    Op op;
+  } kCases[] = {
+      {R"({"type":"segment","p0":[-0.5,0,0],"p1":[0.5,0.3,0.2],"radius":0.7})", Op::LineSegment},
+      {R"({"type":"segment","p0":[0.2,-0.1,0.3],"p1":[0.2,-0.1,0.3],"radius":1.3})",
+       Op::LineSegment},
+      {R"({"type":"torus","major_radius":0.8,"radii":[0.3,0.4]})", Op::Torus},
+      {R"({"type":"torus","major_radius":1,"radii":[0.5,0.3],"n":1.5})", Op::Torus},
+      {R"({"type":"torus","major_radius":0.7,"radii":[0.4,0.4],"n":5})", Op::Torus}};
+  const Vec3 p0{-0.5, 0, 0}, p1{0.5, 0.3, 0.2};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 1u) << c.json;
+    EXPECT_EQ(prog.code[0].op, c.op) << c.json;
+    const bool torus = c.op == Op::Torus;
+    expect_models_bits(c.json, Convention::Soft, [&](Vec3 p, int k) {
+      const double t = (p.x + 2) / 4;  // in [0, 1]
+      // 0: anywhere; 1: on the skeleton; 2: beyond the segment's ends / on the torus's axis;
+      // 3: the segment's ends / the torus's plane; 4: a NaN coordinate.
+      switch (k % 5) {
+        case 1:
+          if (torus) return Vec3{std::cos(7 * t) * 0.8, std::sin(7 * t) * 0.8, 0};
+          return p0 + (p1 - p0) * t;
+        case 2:
+          if (torus) return Vec3{0, 0, p.z};
+          return k % 2 ? p0 - (p1 - p0) * t : p1 + (p1 - p0) * t;
+        case 3:
+          if (torus) return Vec3{p.x, p.y, 0};
+          return k % 2 ? p0 : p1;
+        case 4:
+          p[k % 3] = std::nan("");
+          return p;
+      }
+      return p;
+    });
+  }
+}
+
 // An offset compiles to its child's code (native where the child is) and one instruction, with the
 // model's bits: values, gradients, and over boxes the interval and Lipschitz bound (the children's
-// bounds are the model's own kernels here, and an oracle's its node's), negative scales included.
+// bounds are the model's own kernels here, and an oracle's (generalized_distance) its node's),
+// negative scales included.
 TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
   const struct {
     const char* json;
@@ -243,6 +289,12 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
                  Op::SphericalProduct},
                 {R"({"type":"offset","scale":-3,"level":1.5,"children":[
           {"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],"radius":0.6}]})",
+                 Op::LineSegment},
+                {R"({"type":"offset","level":0.8,"children":[{"type":"torus","major_radius":0.8,
+          "radii":[0.3,0.4],"n":3}]})",
+                 Op::Torus},
+                {R"({"type":"offset","scale":2,"children":[{"type":"generalized_distance",
+          "normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],"n":2}]})",
                  Op::Oracle}};
   for (const auto& c : kCases) {
     const NodePtr node = build_from_json(c.json, Convention::Zero);
