@@ -7,55 +7,70 @@
 #include "distances.h"
 #include "gauge.h"
 #include "one_sided.h"
+#include "planes.h"
+#include "program.h"
 #include "scratch.h"
 
 namespace softtrace {
 
 namespace {
 
-// The exact image of X·n over a box (interval arithmetic, outward rounded).
-Interval dot_range(const Box& b, const Vec3& n) {
-  return Interval(n.x) * b.axis(0) + Interval(n.y) * b.axis(1) + Interval(n.z) * b.axis(2);
+// One instruction with the parameters inline, in plane_params' order.
+int compile_plane(ProgramBuilder& b, int reg, Op op, const PlaneParams& m) {
+  Instr i{op};
+  i.in = reg;
+  i.out = b.new_slot();
+  i.a = b.consts({m.n.x, m.n.y, m.n.z, m.a});
+  return b.emit(i);
 }
 
-// |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3. Slope exactly 1/a.
+// |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3. The kernels: planes.h.
 class ParallelPlanes final : public FieldNode {
  public:
-  ParallelPlanes(const Vec3& n, double a) : n_(n), a_(a) {}
+  ParallelPlanes(const Vec3& n, double a) : m_{n, a} {}
 
-  double eval(const Vec3& p, Vec3* grad) const override {
-    const double s = dot(p, n_);
-    if (grad) *grad = n_ * ((s > 0 ? 1.0 : (s < 0 ? -1.0 : 0.0)) / a_);
-    return std::abs(s) / a_;
+  double eval(const Vec3& p, Vec3* grad) const override { return parallel_planes(m_, p, grad); }
+  Interval interval(const Box& b) const override {
+    Interval f;
+    double L;
+    parallel_planes_bounds(m_, dot_range(b, m_.n), &f, &L);
+    return f;
   }
-  Interval interval(const Box& b) const override { return abs(dot_range(b, n_)) / Interval(a_); }
-  double lipschitz() const override { return 1 / a_; }
+  double lipschitz() const override { return 1 / m_.a; }
   // {f <= c} is a slab: unbounded, so region() keeps the default.
+  int compile(ProgramBuilder& b, int reg) const override {
+    return compile_plane(b, reg, Op::ParallelPlanes, m_);
+  }
 
  private:
-  Vec3 n_;
-  double a_;
+  PlaneParams m_;
 };
 
-// [X·n]_+/a   — 002 §4.5 f_o (R4), docs/math.md §2.4. Slope 1/a, 0 over boxes inside X·n <= 0.
+// [X·n]_+/a   — 002 §4.5 f_o (R4), docs/math.md §2.4. The kernels: planes.h.
 class OneBranchPlane final : public FieldNode {
  public:
-  OneBranchPlane(const Vec3& n, double a) : n_(n), a_(a) {}
+  OneBranchPlane(const Vec3& n, double a) : m_{n, a} {}
 
-  double eval(const Vec3& p, Vec3* grad) const override {
-    const double s = dot(p, n_);
-    if (grad) *grad = s > 0 ? n_ / a_ : Vec3{};
-    return std::max(s, 0.0) / a_;
-  }
+  double eval(const Vec3& p, Vec3* grad) const override { return one_branch_plane(m_, p, grad); }
   Interval interval(const Box& b) const override {
-    return max(dot_range(b, n_), Interval(0)) / Interval(a_);
+    Interval f;
+    double L;
+    one_branch_plane_bounds(m_, dot_range(b, m_.n), &f, &L);
+    return f;
   }
-  double lipschitz() const override { return 1 / a_; }
-  double lipschitz(const Box& b) const override { return dot_range(b, n_).hi > 0 ? 1 / a_ : 0.0; }
+  double lipschitz() const override { return 1 / m_.a; }
+  double lipschitz(const Box& b) const override {
+    Interval f;
+    double L;
+    one_branch_plane_bounds(m_, dot_range(b, m_.n), &f, &L);
+    return L;
+  }
+  int compile(ProgramBuilder& b, int reg) const override {
+    return compile_plane(b, reg, Op::OneBranchPlane, m_);
+  }
 
  private:
-  Vec3 n_;
-  double a_;
+  PlaneParams m_;
 };
 
 // (Σ_i u_i^n)^(1/n), u_i = [X·n_i]_+/(t_{2i-1} a_i) + [-X·n_i]_+/(t_{2i} a_i)

@@ -8,71 +8,56 @@
 #include "gauge.h"
 #include "node_util.h"
 #include "one_sided.h"
+#include "program.h"
+#include "skeletal.h"
 
 namespace softtrace {
 
 namespace {
 
-// ρ = |(x, y)| over a box: exact image by interval arithmetic.
-Interval rho_range(const Box& b) {
-  return sqrt(sqr(b.axis(0)) + sqr(b.axis(1)));
-}
-
-// ∇ρ = (x, y, 0)/ρ; 0 on the axis (an element of the subdifferential, the unit disc).
-Vec3 rho_gradient(const Vec3& p, double rho) {
-  return rho > 0 ? Vec3{p.x / rho, p.y / rho, 0} : Vec3{};
-}
-
 // ((|ρ - R|/a)^n + (|z|/b)^n)^(1/n)   — docs/scene-format.md torus: the LP gauge of §2.5 in the (ρ,
 // z) plane, ray-linear about the nearest point of the circle skeleton (docs/math.md §2.1). Bounds:
 // |∇ρ| = 1 and ∇ρ ⟂ z, so ∇f has orthogonal parts ∂_1/a and ∂_2/b: the 2-D gauge's
-// gauge_lipschitz(1/a, 1/b) globally, partial bounds from (ρ, z) intervals over a box.
+// gauge_lipschitz(1/a, 1/b) globally, partial bounds from (ρ, z) intervals over a box. The
+// kernels: skeletal.h.
 class Torus final : public FieldNode {
  public:
-  Torus(double R, double a, double b, double n) : R_(R), a_(a), b_(b), n_(n) {
-    const double w[2] = {1 / a_, 1 / b_};
-    global_L_ = gauge_lipschitz(w, 2, n_);
+  Torus(double R, double a, double b, double n) : m_{R, a, b, n, 0} {
+    const double w[2] = {1 / a, 1 / b};
+    m_.global_L = gauge_lipschitz(w, 2, n);
   }
 
-  double eval(const Vec3& p, Vec3* grad) const override {
-    const double rho = std::hypot(p.x, p.y), s = rho - R_;
-    const double u[2] = {std::abs(s) / a_, std::abs(p.z) / b_};
-    double d[2];
-    const double f = power_sum(u, 2, n_, grad ? d : nullptr);
-    if (grad) {
-      *grad = rho_gradient(p, rho) * (d[0] * sgn(s) / a_);
-      grad->z = d[1] * sgn(p.z) / b_;
-    }
+  double eval(const Vec3& p, Vec3* grad) const override { return torus(m_, p, grad); }
+  Interval interval(const Box& b) const override {
+    Interval f;
+    torus_bounds(m_, b, &f, nullptr);
     return f;
   }
-  Interval interval(const Box& b) const override {
-    Interval u[2];
-    return terms(b, u);
-  }
-  double lipschitz() const override { return global_L_; }
+  double lipschitz() const override { return m_.global_L; }
   double lipschitz(const Box& b) const override {
-    Interval u[2];
-    const Interval f = terms(b, u);
-    const double g1 = power_sum_partial_bound(u[0], f, n_) / a_;
-    const double g2 = power_sum_partial_bound(u[1], f, n_) / b_;
-    const double L = std::sqrt(g1 * g1 + g2 * g2) * (1 + 1e-13);
-    return std::isnan(L) ? global_L_ : std::min(global_L_, L);
+    Interval f;
+    double L;
+    torus_bounds(m_, b, &f, &L);
+    return L;
   }
   // f <= c forces |ρ - R| <= c·a and |z| <= c·b (a power sum is at least its largest term).
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();
-    const double r = (R_ + level * a_) * (1 + 1e-12), h = level * b_ * (1 + 1e-12);
+    const double r = (m_.R + level * m_.a) * (1 + 1e-12), h = level * m_.b * (1 + 1e-12);
     return {{-r, -r, -h}, {r, r, h}};
+  }
+  // One instruction with the parameters inline, in torus_params' order.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::Torus};
+    i.in = reg;
+    i.out = b.new_slot();
+    i.a = b.consts({m_.R, m_.a, m_.b, m_.n, m_.global_L});
+    return b.emit(i);
   }
 
  private:
-  Interval terms(const Box& b, Interval* u) const {
-    u[0] = abs(rho_range(b) - Interval(R_)) / Interval(a_);
-    u[1] = abs(b.axis(2)) / Interval(b_);
-    return power_sum(u, 2, n_);
-  }
-  double R_, a_, b_, n_, global_L_;
+  TorusParams m_;
 };
 
 // The angular profile g(θ) ∈ [-1, 1] of R(φ) = r0 (1 + A g(kφ)): cos θ (rose) or the triangle

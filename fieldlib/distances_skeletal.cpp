@@ -4,61 +4,60 @@
 #include <limits>
 
 #include "distances.h"
+#include "program.h"
+#include "skeletal.h"
 
 namespace softtrace {
 
 namespace {
 
-// Distance to the segment AB divided by the influential radius   — 000 Eq. 5
+// Distance to the segment AB divided by the influential radius   — 000 Eq. 5. The kernels:
+// skeletal.h.
 class Segment final : public FieldNode {
  public:
-  Segment(const Vec3& a, const Vec3& b, double radius) : a_(a), ab_(b - a), r_(radius) {
-    len2_ = dot(ab_, ab_);
+  Segment(const Vec3& a, const Vec3& b, double radius) : m_{a, b - a, radius, 0} {
+    m_.len2 = dot(m_.ab, m_.ab);
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
-    const Vec3 q = p - closest(p);
-    const double dist = length(q);
-    if (grad) *grad = dist > 0 ? q / (dist * r_) : Vec3{};
-    return dist / r_;
+    return line_segment_distance(m_, p, grad);
   }
-  // The distance to a set is 1-Lipschitz, so over a box it is within half a diagonal of the
-  // distance at the centre.
-  Interval interval(const Box& b) const override {
-    const double c = length(b.center() - closest(b.center())), h = 0.5 * b.diagonal();
-    return iv::out(std::max(0.0, c - h) / r_, (c + h) / r_);
-  }
-  double lipschitz() const override { return 1 / r_; }
+  Interval interval(const Box& b) const override { return line_segment_interval(m_, b); }
+  double lipschitz() const override { return 1 / m_.r; }
   // Off the segment |∇f| = 1/r, and the Euclidean distance e has Hessian norm 1/e (its level
   // sets are cylinders and spheres of radius e, joined C^1), so |Hf| <= 1/(r·e_min).
   double gradient_floor(const Box& b) const override {
-    return distance_lower(b) > 0 ? iv::down(1 / r_) : 0;
+    return distance_lower(b) > 0 ? iv::down(1 / m_.r) : 0;
   }
   double hessian_bound(const Box& b) const override {
     const double e = distance_lower(b);
-    return e > 0 ? iv::up(1 / iv::down(r_ * e)) : std::numeric_limits<double>::infinity();
+    return e > 0 ? iv::up(1 / iv::down(m_.r * e)) : std::numeric_limits<double>::infinity();
   }
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();
     Box b;
-    b.extend(a_);
-    b.extend(a_ + ab_);
-    const double e = level * r_;
+    b.extend(m_.a);
+    b.extend(m_.a + m_.ab);
+    const double e = level * m_.r;
     return {b.lo - Vec3{e, e, e}, b.hi + Vec3{e, e, e}};
+  }
+  // One instruction with the parameters inline, in line_segment_params' order.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::LineSegment};
+    i.in = reg;
+    i.out = b.new_slot();
+    i.a = b.consts({m_.a.x, m_.a.y, m_.a.z, m_.ab.x, m_.ab.y, m_.ab.z, m_.r, m_.len2});
+    return b.emit(i);
   }
 
  private:
   double distance_lower(const Box& b) const {
-    const double c = length(b.center() - closest(b.center())), h = 0.5 * b.diagonal();
+    const double c = length(b.center() - line_segment_closest(m_, b.center())),
+                 h = 0.5 * b.diagonal();
     return iv::down(c - iv::up(h * (1 + 1e-12)));
   }
-  Vec3 closest(const Vec3& p) const {
-    const double t = len2_ > 0 ? std::clamp(dot(p - a_, ab_) / len2_, 0.0, 1.0) : 0.0;
-    return a_ + ab_ * t;
-  }
-  Vec3 a_, ab_;
-  double r_, len2_;
+  LineSegmentParams m_;
 };
 
 }  // namespace

@@ -20,7 +20,10 @@
 #include "lp_metric.h"
 #include "node.h"
 #include "node_util.h"
+#include "offset.h"
+#include "planes.h"
 #include "potentials.h"
+#include "skeletal.h"
 #include "spherical_product.h"
 
 namespace softtrace {
@@ -204,6 +207,31 @@ class Walker {
           segment_facts_from_box(in.out);
         }
         break;
+      case Op::ParallelPlanes:
+      case Op::OneBranchPlane:
+        if (bounds_) {
+          const PlaneParams m = plane_params(K_ + in.a);
+          const Interval s = segment_ ? dot_on_segment(m.n, in.in) : dot_range(box(in.in), m.n);
+          const bool both = in.op == Op::ParallelPlanes;
+          (both ? parallel_planes_bounds : one_branch_plane_bounds)(m, s, &I[in.out], &L[in.out]);
+          D[in.out] = segment_ ? plane_slope(m, s, in.in, both) : Interval(-L[in.out], L[in.out]);
+          Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
+        }
+        break;
+      case Op::LineSegment:
+        if (bounds_) {
+          const LineSegmentParams m = line_segment_params(K_ + in.a);
+          I[in.out] = line_segment_interval(m, box(in.in));
+          L[in.out] = 1 / m.r;
+          segment_facts_from_box(in.out);
+        }
+        break;
+      case Op::Torus:
+        if (bounds_) {
+          torus_bounds(torus_params(K_ + in.a), box(in.in), &I[in.out], &L[in.out]);
+          segment_facts_from_box(in.out);
+        }
+        break;
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
@@ -231,6 +259,17 @@ class Walker {
           Q[in.out] = quiet_potential(in.in);
         }
         break;
+      case Op::Offset:
+        if (bounds_) {
+          const double s = K_[in.a], c = K_[in.a + 1];
+          I[in.out] = offset_interval(s, c, I[in.in]);
+          L[in.out] = offset_lipschitz(s, L[in.in]);
+          // d/dt s·(f - c) = s·df/dt: an interval product, so a negative s swaps the ends. The
+          // offset of a distance is no soft field: no quiet start.
+          D[in.out] = Interval(s) * D[in.in];
+          Q[in.out] = 0;
+        }
+        break;
       case Op::Group:
       case Op::Sum:
       case Op::Min:
@@ -245,6 +284,39 @@ class Walker {
     const double L = ws_.lips[out];
     ws_.slopes[out] = {-L, L};
     ws_.quiet[out] = ws_.ivals[out].lo >= 1 ? 1 : 0;
+  }
+
+  // X·n over register r's segment (n a unit vector): X·n is affine along it, so its range is that
+  // between the ends, grown by how far the computed points may stray and the dot's rounding.
+  Interval dot_on_segment(const Vec3& n, int r) const {
+    const Vec3* S = ws_.segs.data() + 2 * r;
+    const double d0 = dot(S[0], n), d1 = dot(S[1], n);
+    const double grow =
+        ws_.seg_pads[r] + kSegmentRounding * std::max(max_abs(S[0]), max_abs(S[1])) + kTiny;
+    return {std::min(d0, d1) - grow, std::max(d0, d1) + grow};
+  }
+
+  // A plane's slope along register r's segment, where X·n lies in `s`: X·n has the rate
+  // (B - A)·n / len (padded for the rounding of the register's segment, as in
+  // ellipsoid_on_segment), so f's slope is ± that rate where X·n keeps its sign, and between the
+  // two (|X·n|) or between it and 0 ([X·n]_+) where it may change sign. Capped by the bound 1/a.
+  Interval plane_slope(const PlaneParams& m, Interval s, int r, bool both_sides) const {
+    const double L = 1 / m.a;
+    const Vec3* S = ws_.segs.data() + 2 * r;
+    const Vec3 e = S[1] - S[0];
+    const double k = dot(e, m.n), pad = 1e-9 * length(e) + kTiny;
+    const double w = (1 + 1e-12) / (m.a * length_);
+    const double lo = (k - pad) * w, hi = (k + pad) * w;
+    if (!(std::isfinite(lo) && std::isfinite(hi))) return {-L, L};  // a degenerate segment
+    const Interval rate{std::max(-L, lo), std::min(L, hi)};
+    if (both_sides) {
+      if (s.lo >= 0) return rate;
+      if (s.hi <= 0) return -rate;
+      const double most = std::max(-rate.lo, rate.hi);
+      return {-most, most};
+    }
+    if (s.hi <= 0) return 0.0;
+    return s.lo >= 0 ? rate : hull(rate, 0.0);
   }
 
   // How far along the segment a sum's child is exactly 0 (Workspace::quiet, where its result is a

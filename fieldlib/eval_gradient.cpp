@@ -4,7 +4,10 @@
 #include "eval.h"
 #include "lp_metric.h"
 #include "node.h"
+#include "offset.h"
+#include "planes.h"
 #include "potentials.h"
+#include "skeletal.h"
 #include "spherical_product.h"
 
 namespace softtrace {
@@ -70,6 +73,26 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
         break;
       }
+      case Op::ParallelPlanes:
+      case Op::OneBranchPlane: {
+        const PlaneParams m = plane_params(K + in.a);
+        const Workspace::Frame& f = R[in.in];
+        Vec3 g;
+        const double v = in.op == Op::ParallelPlanes ? parallel_planes(m, f.p, &g)
+                                                     : one_branch_plane(m, f.p, &g);
+        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        break;
+      }
+      case Op::LineSegment:
+      case Op::Torus: {
+        const Workspace::Frame& f = R[in.in];
+        Vec3 g;
+        const double v = in.op == Op::LineSegment
+                             ? line_segment_distance(line_segment_params(K + in.a), f.p, &g)
+                             : torus(torus_params(K + in.a), f.p, &g);
+        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        break;
+      }
       case Op::Blanc: {
         double dP;
         const double v = blanc(S[in.in].v, K[in.a], &dP);
@@ -86,6 +109,11 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         double dP;
         const double v = murakami(S[in.in].v, &dP);
         S[in.out] = chain(v, dP, S[in.in]);
+        break;
+      }
+      case Op::Offset: {
+        const Workspace::Dual& d = S[in.in];
+        S[in.out] = {offset_value(K[in.a], K[in.a + 1], d.v), offset_gradient(K[in.a], d.g)};
         break;
       }
       case Op::Group:

@@ -8,7 +8,10 @@
 #include "gauge.h"
 #include "lp_metric.h"
 #include "node.h"
+#include "offset.h"
+#include "planes.h"
 #include "potentials.h"
+#include "skeletal.h"
 #include "spherical_product.h"
 
 namespace softtrace {
@@ -102,6 +105,51 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         power_sum_lanes(outer, 2, m.n2, n, out);
         break;
       }
+      case Op::ParallelPlanes:
+      case Op::OneBranchPlane: {
+        // The kernels' dot(p, n) and quotient over the lanes, with the parameters in locals (a loop
+        // GCC vectorises); std::max keeps the kernel's answer for NaN and -0.
+        const double nx = K[in.a], ny = K[in.a + 1], nz = K[in.a + 2], a = K[in.a + 3];
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        if (in.op == Op::ParallelPlanes) {
+          for (int l = 0; l < n; ++l) out[l] = std::abs(px[l] * nx + py[l] * ny + pz[l] * nz) / a;
+        } else {
+          for (int l = 0; l < n; ++l)
+            out[l] = std::max(px[l] * nx + py[l] * ny + pz[l] * nz, 0.0) / a;
+        }
+        break;
+      }
+      case Op::LineSegment: {
+        // line_segment_distance over the lanes with the parameters in locals: the squared distances
+        // in a loop GCC vectorises, then the roots (scalar: std::sqrt may set errno).
+        const LineSegmentParams m = line_segment_params(K + in.a);
+        const double ax = m.a.x, ay = m.a.y, az = m.a.z, bx = m.ab.x, by = m.ab.y, bz = m.ab.z;
+        const double len2 = m.len2;
+        const bool along = len2 > 0;
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        for (int l = 0; l < n; ++l) {
+          const double w = (px[l] - ax) * bx + (py[l] - ay) * by + (pz[l] - az) * bz;
+          const double t = along ? std::clamp(w / len2, 0.0, 1.0) : 0.0;
+          const double qx = px[l] - (ax + bx * t), qy = py[l] - (ay + by * t),
+                       qz = pz[l] - (az + bz * t);
+          out[l] = qx * qx + qy * qy + qz * qz;
+        }
+        for (int l = 0; l < n; ++l) out[l] = std::sqrt(out[l]) / m.r;
+        break;
+      }
+      case Op::Torus: {
+        // torus's terms lane by lane (hypot is a libm call), then power_sum_lanes.
+        const TorusParams m = torus_params(K + in.a);
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        double u[2][kBatch];
+        for (int l = 0; l < n; ++l) {
+          u[0][l] = std::abs(std::hypot(px[l], py[l]) - m.R) / m.a;
+          u[1][l] = std::abs(pz[l]) / m.b;
+        }
+        const double* rows[2] = {u[0], u[1]};
+        power_sum_lanes(rows, 2, m.n, n, out);
+        break;
+      }
       case Op::Blanc: {
         const double* d = S + in.in * kBatch;
         const double s = K[in.a];
@@ -116,6 +164,12 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
       case Op::Murakami: {
         const double* d = S + in.in * kBatch;
         for (int l = 0; l < n; ++l) out[l] = murakami(d[l], nullptr);
+        break;
+      }
+      case Op::Offset: {
+        const double* d = S + in.in * kBatch;
+        const double sc = K[in.a], lv = K[in.a + 1];
+        for (int l = 0; l < n; ++l) out[l] = offset_value(sc, lv, d[l]);
         break;
       }
       case Op::Group:
@@ -183,6 +237,18 @@ double value(Code c, const Vec3& p, Workspace& ws) {
       case Op::SphericalProduct:
         out = spherical_product(spherical_product_params(K + in.a), R[in.in], nullptr);
         break;
+      case Op::ParallelPlanes:
+        out = parallel_planes(plane_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::OneBranchPlane:
+        out = one_branch_plane(plane_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::LineSegment:
+        out = line_segment_distance(line_segment_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::Torus:
+        out = torus(torus_params(K + in.a), R[in.in], nullptr);
+        break;
       case Op::Blanc:
         out = blanc(S[in.in], K[in.a], nullptr);
         break;
@@ -191,6 +257,9 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         break;
       case Op::Murakami:
         out = murakami(S[in.in], nullptr);
+        break;
+      case Op::Offset:
+        out = offset_value(K[in.a], K[in.a + 1], S[in.in]);
         break;
       case Op::Group:
         break;

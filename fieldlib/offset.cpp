@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "program.h"
 #include "registry.h"
 
 namespace softtrace {
@@ -17,15 +18,15 @@ class Offset final : public FieldNode {
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const double v = child_->eval(p, grad);
-    if (grad) *grad = *grad * s_;
-    return s_ * (v - c_);
+    if (grad) *grad = offset_gradient(s_, *grad);
+    return offset_value(s_, c_, v);
   }
   Interval interval(const Box& b) const override {
-    return Interval(s_) * (child_->interval(b) - Interval(c_));
+    return offset_interval(s_, c_, child_->interval(b));
   }
-  double lipschitz() const override { return iv::up(std::abs(s_) * child_->lipschitz()); }
+  double lipschitz() const override { return offset_lipschitz(s_, child_->lipschitz()); }
   double lipschitz(const Box& b) const override {
-    return iv::up(std::abs(s_) * child_->lipschitz(b));
+    return offset_lipschitz(s_, child_->lipschitz(b));
   }
   double gradient_floor(const Box& b) const override {
     return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
@@ -40,6 +41,14 @@ class Offset final : public FieldNode {
     const double t = child_side == Side::Below ? iv::up(c_ + iv::up(level / s_))
                                                : iv::down(c_ + iv::down(level / s_));
     return child_->region(t, child_side);
+  }
+  // The child's code, then one instruction with s and c inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::Offset};
+    i.in = b.compile(*child_, reg);
+    i.out = b.new_slot();
+    i.a = b.consts({s_, c_});
+    return b.emit(i);
   }
 
  private:

@@ -5,10 +5,29 @@
 // s < 0 (sides swap for >=), with the level c + l/s rounded outward.
 #pragma once
 
+#include <cmath>
+
 #include "build_context.h"
+#include "interval.h"
 #include "node.h"
+#include "vec.h"
 
 namespace softtrace {
+
+// The kernels shared by the model node (offset.cpp) and the program's Offset instruction, so both
+// compute the same bits from the child's value, gradient, interval and Lipschitz bound.
+inline double offset_value(double s, double c, double f) {
+  return s * (f - c);  // s·(f - c) — 003 §2.1
+}
+inline Vec3 offset_gradient(double s, const Vec3& g) {
+  return g * s;
+}
+inline Interval offset_interval(double s, double c, Interval f) {
+  return Interval(s) * (f - Interval(c));
+}
+inline double offset_lipschitz(double s, double L) {
+  return iv::up(std::abs(s) * L);
+}
 
 // `children` (exactly one), `scale` s != 0 (default 1), `level` c (default 1).
 NodePtr create_offset(const Params& p, const BuildContext& ctx);

@@ -33,9 +33,14 @@ class FieldNode;
   X(Oracle)           /* slot out = node(reg in): a model node evaluates its subtree    */  \
   X(LpMetric)         /* slot out = lp_metric(reg in; a = c[0..2], n, L, 1/a = c[5..7]) */  \
   X(SphericalProduct) /* slot out = spherical_product(reg in; terms c[0..8], n1, n2, L) */  \
+  X(ParallelPlanes)   /* slot out = |reg in · n|/a (n = c[0..2], a = c[3]), 000 Eq. 2   */ \
+  X(OneBranchPlane)   /* slot out = [reg in · n]_+/a (n = c[0..2], a = c[3]), 002 f_o   */ \
+  X(LineSegment)      /* slot out = |reg in - nearest|/r (a, ab, r, |ab|^2), 000 Eq. 5  */  \
+  X(Torus)            /* slot out = torus(reg in; R, a, b, n, L = c[0..4]) (skeletal.h) */  \
   X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
+  X(Offset)           /* slot out = s (slot in - c) (s = c[0], c = c[1]), 003 §2.1      */ \
   X(Group)            /* announces the children of the n-ary instruction groups[a]      */  \
   X(Sum)              /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12         */ \
   X(Min)              /* slot out = min of args[a..a+n)                                 */  \
@@ -52,8 +57,10 @@ const char* op_name(Op op);
 struct Instr {
   Op op;
   int32_t out = 0;  // value slot, or point register for Translate/Place
-  int32_t in = 0;   // point register (Translate, Place, Oracle) or value slot (potentials)
-  int32_t a = 0;    // offset into consts (Translate, Place, Blanc), args (Sum/Min/Max) or groups
+  int32_t in = 0;   // point register (Translate, Place, distances, Oracle) or value slot
+                    // (potentials, Offset)
+  int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset), args
+                    // (Sum/Min/Max) or groups
   int32_t n = 0;    // argument count (Sum/Min/Max)
   const FieldNode* node = nullptr;  // Oracle
 };

@@ -66,7 +66,7 @@ TEST(Program, SoftObjectIsDistanceThenPotential) {
       R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":1}})");
   const Program p = compile(*n);
   ASSERT_EQ(p.code.size(), 2u);
-  EXPECT_EQ(p.code[0].op, Op::Oracle);
+  EXPECT_EQ(p.code[0].op, Op::LineSegment);
   EXPECT_EQ(p.code[1].op, Op::Wyvill);
 }
 
@@ -112,6 +112,246 @@ TEST(Program, SphericalProductIsOneInstructionWithTheModelsBits) {
             << "): " << f[l] << " vs the model's " << v;
       }
     }
+  }
+}
+
+// Equal bits, NaN payloads and the sign of zero included.
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same_bits(const Vec3& a, const Vec3& b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
+}
+
+// A native instruction's program against the model node it was compiled from: 13-lane batches, the
+// single-point value and the gradient at points that `special` may move (to the kernels' branch
+// points), the model's bits every one; and over random boxes, the node's interval(b) and
+// lipschitz(b) to the bit, which contain sampled values and gradient lengths.
+template <class Special>
+void expect_models_bits(const std::string& json, Convention convention, const Special& special) {
+  constexpr int kLanes = 13;
+  const NodePtr node = build_from_json(json, convention);
+  const Program prog = compile(*node);
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int i = 0; i < 200; ++i) {
+    double x[kLanes], y[kLanes], z[kLanes], f[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      const Vec3 p = special(Vec3{u(rng), u(rng), u(rng)}, i + l);
+      x[l] = p.x, y[l] = p.y, z[l] = p.z;
+    }
+    values(prog, x, y, z, kLanes, f, ws);
+    for (int l = 0; l < kLanes; ++l) {
+      const Vec3 p{x[l], y[l], z[l]};
+      Vec3 gm, gp;
+      const double v = node->eval(p, &gm);
+      ASSERT_TRUE(same_bits(f[l], v)) << json << ": lane " << l << " at (" << p.x << ", " << p.y
+                                      << ", " << p.z << "): " << f[l] << " vs the model's " << v;
+      ASSERT_TRUE(same_bits(value(prog, p, ws), v)) << json << ": one point";
+      ASSERT_TRUE(same_bits(gradient(prog, p, &gp, ws), v)) << json << ": gradient's value";
+      ASSERT_TRUE(same_bits(gp, gm))
+          << json << " at (" << p.x << ", " << p.y << ", " << p.z << "): (" << gp.x << ", " << gp.y
+          << ", " << gp.z << ") vs the model's (" << gm.x << ", " << gm.y << ", " << gm.z << ")";
+    }
+  }
+  const Box domain({-2, -2, -2}, {2, 2, 2});
+  for (int i = 0; i < 300; ++i) {
+    const Box b = random_box(rng, domain);
+    const BoxBounds bb = bounds(prog, b, ws);
+    const Interval I = node->interval(b);
+    const double L = node->lipschitz(b);
+    ASSERT_TRUE(same_bits(bb.value.lo, I.lo) && same_bits(bb.value.hi, I.hi))
+        << json << ": [" << bb.value.lo << ", " << bb.value.hi << "] vs the model's [" << I.lo
+        << ", " << I.hi << "]";
+    ASSERT_TRUE(same_bits(bb.lipschitz, L)) << json << ": " << bb.lipschitz << " vs " << L;
+    for (int j = 0; j < 20; ++j) {
+      const Vec3 p = uniform_in(rng, b);
+      Vec3 g;
+      const double v = node->eval(p, &g);
+      ASSERT_TRUE(bb.value.contains(v)) << json << ": " << v;
+      ASSERT_LE(length(g), bb.lipschitz * (1 + 1e-12)) << json;
+    }
+  }
+}
+
+// The plane distances compile to one native instruction with the model's bits: at random points,
+// on the plane (p·n = 0 exactly for an axis normal, about 0 for the others), at the origin with
+// signed zeros, and with a NaN or an infinite coordinate. One-branch boxes wholly where p·n <= 0
+// have Lipschitz bound 0, as the model's.
+TEST(Program, PlanesAreOneInstructionWithTheModelsBits) {
+  const struct {
+    const char* json;
+    Op op;
+    Vec3 normal;
+  } kCases[] = {
+      {R"({"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7})",
+       Op::ParallelPlanes,
+       {1, 2, -0.5}},
+      {R"({"type":"parallel_planes","normal":[0,0,3],"a":0.4})", Op::ParallelPlanes, {0, 0, 1}},
+      {R"({"type":"one_branch_plane","normal":[0.3,-1,0.4],"a":0.5})",
+       Op::OneBranchPlane,
+       {0.3, -1, 0.4}},
+      {R"({"type":"one_branch_plane","normal":[0,-2,0],"a":1.5})", Op::OneBranchPlane, {0, -1, 0}}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 1u) << c.json;
+    EXPECT_EQ(prog.code[0].op, c.op) << c.json;
+    const Vec3 n = c.normal / length(c.normal);
+    expect_models_bits(c.json, Convention::Soft, [&](Vec3 p, int k) {
+      // 0: anywhere; 1: on the plane; 2: the origin with signed zeros; 3: a NaN coordinate; 4: an
+      // infinite one.
+      switch (k % 5) {
+        case 1:
+          return p - n * dot(p, n);
+        case 2:
+          return Vec3{k % 2 ? -0.0 : 0.0, -0.0, k % 3 ? 0.0 : -0.0};
+        case 3:
+          p[k % 3] = std::nan("");
+          return p;
+        case 4:
+          p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
+          return p;
+      }
+      return p;
+    });
+  }
+}
+
+// The segment and the torus compile to one native instruction with the model's bits: at random
+// points, on the skeleton (f = 0: the segment's points and ends, the torus's circle), beyond the
+// segment's ends, on the torus's axis (ρ = 0) and plane (z = 0), and with a NaN coordinate; a
+// degenerate segment (p0 = p1) and torus exponents other than 2 included.
+TEST(Program, SkeletalDistancesAreOneInstructionWithTheModelsBits) {
+  const struct {
+    const char* json;
+    Op op;
+  } kCases[] = {
+      {R"({"type":"segment","p0":[-0.5,0,0],"p1":[0.5,0.3,0.2],"radius":0.7})", Op::LineSegment},
+      {R"({"type":"segment","p0":[0.2,-0.1,0.3],"p1":[0.2,-0.1,0.3],"radius":1.3})",
+       Op::LineSegment},
+      {R"({"type":"torus","major_radius":0.8,"radii":[0.3,0.4]})", Op::Torus},
+      {R"({"type":"torus","major_radius":1,"radii":[0.5,0.3],"n":1.5})", Op::Torus},
+      {R"({"type":"torus","major_radius":0.7,"radii":[0.4,0.4],"n":5})", Op::Torus}};
+  const Vec3 p0{-0.5, 0, 0}, p1{0.5, 0.3, 0.2};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 1u) << c.json;
+    EXPECT_EQ(prog.code[0].op, c.op) << c.json;
+    const bool torus = c.op == Op::Torus;
+    expect_models_bits(c.json, Convention::Soft, [&](Vec3 p, int k) {
+      const double t = (p.x + 2) / 4;  // in [0, 1]
+      // 0: anywhere; 1: on the skeleton; 2: beyond the segment's ends / on the torus's axis;
+      // 3: the segment's ends / the torus's plane; 4: a NaN coordinate.
+      switch (k % 5) {
+        case 1:
+          if (torus) return Vec3{std::cos(7 * t) * 0.8, std::sin(7 * t) * 0.8, 0};
+          return p0 + (p1 - p0) * t;
+        case 2:
+          if (torus) return Vec3{0, 0, p.z};
+          return k % 2 ? p0 - (p1 - p0) * t : p1 + (p1 - p0) * t;
+        case 3:
+          if (torus) return Vec3{p.x, p.y, 0};
+          return k % 2 ? p0 : p1;
+        case 4:
+          p[k % 3] = std::nan("");
+          return p;
+      }
+      return p;
+    });
+  }
+}
+
+// An offset compiles to its child's code (native where the child is) and one instruction, with the
+// model's bits: values, gradients, and over boxes the interval and Lipschitz bound (the children's
+// bounds are the model's own kernels here, and an oracle's (generalized_distance) its node's),
+// negative scales included.
+TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
+  const struct {
+    const char* json;
+    Op child;
+  } kCases[] = {{R"({"type":"offset","children":[{"type":"lp_metric","radii":[1,0.8,1.2],"n":3}]})",
+                 Op::LpMetric},
+                {R"({"type":"offset","scale":0.5,"level":2,"children":[
+          {"type":"lp_metric","radii":[0.6,0.8,1.2],"n":2}]})",
+                 Op::LpMetric},
+                {R"({"type":"offset","scale":-2,"level":0.5,"children":[
+          {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7}]})",
+                 Op::ParallelPlanes},
+                {R"({"type":"offset","scale":0.7,"children":[
+          {"type":"one_branch_plane","normal":[0.3,-1,0.4],"a":0.5}]})",
+                 Op::OneBranchPlane},
+                {R"({"type":"offset","scale":0.7,"children":[
+          {"type":"superquadric","radii":[0.4,0.5,1.2],"n1":2,"n2":6}]})",
+                 Op::SphericalProduct},
+                {R"({"type":"offset","scale":-3,"level":1.5,"children":[
+          {"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],"radius":0.6}]})",
+                 Op::LineSegment},
+                {R"({"type":"offset","level":0.8,"children":[{"type":"torus","major_radius":0.8,
+          "radii":[0.3,0.4],"n":3}]})",
+                 Op::Torus},
+                {R"({"type":"offset","scale":2,"children":[{"type":"generalized_distance",
+          "normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],"n":2}]})",
+                 Op::Oracle}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json, Convention::Zero);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 2u) << c.json;
+    EXPECT_EQ(prog.code[0].op, c.child) << c.json;
+    EXPECT_EQ(prog.code[1].op, Op::Offset) << c.json;
+    expect_models_bits(c.json, Convention::Zero, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin; 2: a NaN coordinate.
+      if (k % 3 == 1) return Vec3{};
+      if (k % 3 == 2) p[k % 3] = std::nan("");
+      return p;
+    });
+  }
+}
+
+// Along a segment X·n is affine, so a plane's slope interval is its rate (n·dir)/a to within the
+// padding where the segment keeps to one side of the plane (an offset's is s times that, ends
+// swapped for s < 0; under a rotation too), and holds the rate, with either sign for |X·n|, where
+// it crosses; the value interval holds the values along it.
+TEST(Program, PlaneSlopeAlongASegmentIsItsRate) {
+  const char* const kJson[] = {R"({"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7})",
+                               R"({"type":"one_branch_plane","normal":[0.3,-1,0.4],"a":0.5})",
+                               R"({"type":"offset","scale":-2,"level":0.5,"children":[
+          {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7,
+           "rotate":{"axis":[1,1,0],"deg":40}}]})"};
+  for (const char* json : kJson) {
+    const NodePtr node = build_from_json(json, Convention::Zero);
+    const Program prog = compile(*node);
+    Workspace ws;
+    ws.fit(prog);
+    std::mt19937_64 rng(19);
+    std::uniform_real_distribution<double> u(-2, 2);
+    int one_side = 0, crossing = 0;
+    for (int i = 0; i < 300; ++i) {
+      const Segment seg{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+      const Vec3 dir = (seg.b - seg.a) / length(seg.b - seg.a);
+      const BoxBounds bb = bounds(prog, seg, ws);
+      const Interval D = bb.slope;
+      for (int j = 0; j <= 10; ++j) {
+        const double v = node->value(seg.a + (seg.b - seg.a) * (j / 10.0));
+        ASSERT_TRUE(bb.value.contains(v))
+            << json << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
+      }
+      const Vec3 ga = node->gradient(seg.a), gb = node->gradient(seg.b);
+      const double ra = dot(ga, dir), rb = dot(gb, dir), tol = 1e-12 * length(ga);
+      ASSERT_TRUE(D.lo <= ra + tol && ra - tol <= D.hi && D.lo <= rb + tol && rb - tol <= D.hi)
+          << json << ": " << ra << ", " << rb << " outside [" << D.lo << ", " << D.hi << "]";
+      if (same_bits(ga, gb)) {
+        ++one_side;
+        EXPECT_LE(D.width(), 1e-8 * length(ga)) << json << ": [" << D.lo << ", " << D.hi << "]";
+      } else {
+        ++crossing;
+      }
+    }
+    EXPECT_GT(one_side, 50) << json;
+    EXPECT_GT(crossing, 50) << json;
   }
 }
 
