@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace softtrace {
 
@@ -84,6 +85,14 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     next = c.end;
   }
   if (next != group.op_index) return std::nullopt;
+  // sqrt(3 / |L|_F^2) = sqrt(3 / Σ 1/a_i^2) for radii a_i, rotations aside: a mean of the radii
+  // (a ball's radius for a ball).
+  std::vector<double> radii;
+  for (const Blob& b : s.blobs_)
+    radii.push_back(std::sqrt(
+        3 / (dot(b.L.r[0], b.L.r[0]) + dot(b.L.r[1], b.L.r[1]) + dot(b.L.r[2], b.L.r[2]))));
+  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+  s.typical_radius_ = radii[radii.size() / 2];
   return s;
 }
 

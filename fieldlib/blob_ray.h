@@ -37,6 +37,8 @@ class BlobSum {
   int terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad, Term* out,
             int32_t* ids) const;
   int size() const { return static_cast<int>(blobs_.size()); }
+  // The median of the blobs' mean support radii: how long a stretch meets a few of them.
+  double typical_radius() const { return typical_radius_; }
 
  private:
   struct Blob {
@@ -46,6 +48,7 @@ class BlobSum {
   };
   std::vector<Blob> blobs_;  // by child of the sum
   int group_ = 0;
+  double typical_radius_ = 0;
 };
 
 // The sum of the potentials of terms[active[i]], i < n, minus iso over [s0, s0 + S], as a

@@ -18,9 +18,12 @@ namespace softtrace {
 using namespace tracer_limits;
 
 namespace {
-// The first stretch is this fraction of the ray's way through the box. Measured on the 1000 blobs
-// at 320x240 (one thread): 1/4 took 0.16 s, 1/2 0.19 s, 1/8 0.17 s, the whole box at once 0.26 s.
+// The first stretch is this fraction of the ray's way through the box, or at most kFirstRadii
+// typical blob radii (a stretch meets about as many blobs whatever their number). Measured at
+// 320x240 on one thread: on 1000 blobs 1/4 took 0.16 s, 1/2 0.19 s, 1/8 0.17 s, the whole box at
+// once 0.26 s; the cap of 2 radii took 10,000 blobs from 0.235 to 0.200 s (4 radii: no change).
 constexpr double kFirstStretch = 4;
+constexpr double kFirstRadii = 2;
 // A stretch whose query finds more blobs than this makes the next one half as long, and one that
 // finds fewer than kFewTerms twice as long: each query then costs about the same.
 constexpr int kManyTerms = 16;
@@ -89,7 +92,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t
                        at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
   };
 
-  double t = t0, s = (t1 - t0) / kFirstStretch;
+  double t = t0, s = std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) {
       ++work.give_ups;
