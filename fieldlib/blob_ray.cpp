@@ -121,6 +121,23 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
   return n;
 }
 
+double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const {
+  const int found = p.groups[group_].bvh.query(Box(x, x), ids, 0);
+  double f = 0;
+  Vec3 g;
+  for (int i = 0; i < found; ++i) {
+    const Blob& b = blobs_[ids[i]];
+    const Vec3 w = b.L * x + b.k;
+    const double r = 1 - dot(w, w);
+    if (!(r > 0)) continue;
+    f += r * r * (b.c2 + b.c3 * r);
+    // dP/dr times ∇r = -2 L^T w.
+    g += b.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
+  }
+  *grad = g;
+  return f;
+}
+
 StretchPolynomial stretch_polynomial(const BlobSum::Term* terms, const int* active, int n,
                                      double s0, double S, double iso) {
   StretchPolynomial sp{};

@@ -36,6 +36,9 @@ class BlobSum {
   // returns their number. `ids` and `out` need room for size() entries.
   int terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad, Term* out,
             int32_t* ids) const;
+  // f(x) and ∇f(x) from the blobs whose supports hold x (∇ of c2 r^2 + c3 r^3 with r = 1 - |Lx +
+  // k|^2): the compiled gradient's value without pruning the program first. `ids` as for terms.
+  double gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const;
   int size() const { return static_cast<int>(blobs_.size()); }
   // The median of the blobs' mean support radii: how long a stretch meets a few of them.
   double typical_radius() const { return typical_radius_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "illinois.h"
 #include "tracer_limits.h"
@@ -73,7 +74,13 @@ double ObjectTracer::g_view(const Vec3& p) const {
 
 Vec3 ObjectTracer::normal(const Vec3& p) const {
   Vec3 grad;
-  eval(p, &grad);
+  if (blobs_) {
+    thread_local std::vector<int32_t> ids;
+    if (static_cast<int>(ids.size()) < blobs_->size()) ids.resize(blobs_->size());
+    blobs_->gradient(program_, p, &grad, ids.data());
+  } else {
+    eval(p, &grad);
+  }
   grad = grad * -object_->inside_sign;
   const double len = length(grad);
   return len > 0 && std::isfinite(len) ? grad / len : Vec3{};

@@ -125,6 +125,32 @@ TEST(BlobSum, EachPieceOfAStretchIsOnePolynomialOfTheField) {
   EXPECT_GT(outside, 50);
 }
 
+// The normals of blob sums come from BlobSum::gradient: the compiled gradient's value and
+// direction, to rounding, inside and between supports, and 0 outside all of them.
+TEST(BlobSum, GradientIsTheCompiledOne) {
+  const NodePtr node = build_from_json(blob_cloud(40, 3));
+  const Program prog = compile(*node);
+  const auto blobs = BlobSum::of(prog);
+  ASSERT_TRUE(blobs.has_value());
+  Workspace ws;
+  ws.fit(prog);
+  std::vector<int32_t> ids(blobs->size());
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-12, 12);
+  int inside = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 x{u(rng), u(rng), u(rng)};
+    Vec3 g_blob, g_prog;
+    const double f_blob = blobs->gradient(prog, x, &g_blob, ids.data());
+    const double f_prog = gradient(prog, x, &g_prog, ws);
+    ASSERT_NEAR(f_blob, f_prog, 1e-14) << "at point " << i;
+    ASSERT_LE(length(g_blob - g_prog), 1e-12 * (1 + length(g_prog))) << "at point " << i;
+    inside += f_prog > 0;
+  }
+  EXPECT_GT(inside, 300);
+  EXPECT_LT(inside, 1900);
+}
+
 TEST(FirstRise, FindsTheFirstCrossingOnly) {
   // (x - 0.3)(x - 0.6)(x - 0.9): up through 0 at 0.3, down at 0.6, up again at 0.9.
   const double three[4] = {-0.162, 0.99, -1.8, 1};
