@@ -42,10 +42,13 @@ enum class Query { Nearest, Any };
 // and the ray limit) is their sum: point and box evaluations.
 struct TraceCounters {
   int point_evals = 0;  // field values at a point (refinement's included)
-  int box_evals = 0;    // bounds or pruning passes over a box around a stretch of the ray
-  int refine_iterations =
-      0;             // root refinement steps after a sign change (one point evaluation each)
-  int give_ups = 0;  // searches ended without a certificate (reported as hits)
+  // Bounds or pruning passes over a box around a stretch of the ray; for polynomial blobs, the
+  // query of a stretch's blobs and each piece whose polynomial is read.
+  int box_evals = 0;
+  // Root refinement steps after a sign change: one point evaluation each, or for polynomial
+  // blobs one value of the piece's polynomial (not counted as a point evaluation).
+  int refine_iterations = 0;
+  int give_ups = 0;          // searches ended without a certificate (reported as hits)
   bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
   int evaluations() const { return point_evals + box_evals; }
 };
