@@ -58,6 +58,9 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, Mat3* L, V
   if (!potential_in_r(potential.op, c2, c3)) return false;
   for (int r = 0; r < 3; ++r) {
     const double a = K[metric.a + r];
+    // The squares of |L x + k| must neither overflow nor vanish for any point a ray reaches (the
+    // kernel rescales those; these sums would lose the blob): such radii keep the segment tracer.
+    if (!(a > 1e-100 && a < 1e100 && std::abs(off[r]) < 1e100)) return false;
     L->r[r] = M.r[r] / a;
     (*k)[r] = off[r] / a;
   }

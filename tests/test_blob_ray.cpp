@@ -62,6 +62,13 @@ TEST(BlobSum, RecognisesOnlySumsOfPolynomialBlobs) {
   EXPECT_FALSE(is_blob_sum(
       sum(soft("murakami", ball),
           soft("murakami", R"({"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":1})"))));
+  // Radii whose squares' reciprocals underflow or overflow: the segment tracer's kernels rescale.
+  EXPECT_FALSE(
+      is_blob_sum(sum(soft("murakami", ball),
+                      soft("murakami", R"({"type":"lp_metric","radii":[1e120,1,1],"n":2})"))));
+  EXPECT_FALSE(
+      is_blob_sum(sum(soft("murakami", ball),
+                      soft("murakami", R"({"type":"lp_metric","radii":[1e-120,1,1],"n":2})"))));
   // One blob is no sum; a sum placed as a whole reads its children in another frame.
   EXPECT_FALSE(is_blob_sum(soft("murakami", ball)));
   EXPECT_FALSE(is_blob_sum(R"({"type":"soft_blend","translate":[1,0,0],"children":[)" +
@@ -84,10 +91,13 @@ TEST(BlobSum, EachPieceOfAStretchIsOnePolynomialOfTheField) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1, 1), x01(0, 1);
   int pieces = 0, outside = 0;
-  for (int ray = 0; ray < 200; ++ray) {
+  for (int ray = 0; ray < 300; ++ray) {
+    // Every third stretch starts 1e8 away and ends 1e8 beyond the cloud: the terms then lose
+    // digits to w = L o + k as the points o + u d do to their own rounding, no more.
+    const bool far = ray % 3 == 2;
     const Vec3 d = normalize({u(rng), u(rng), u(rng)});
-    const Vec3 o = Vec3{u(rng), u(rng), u(rng)} * 12;
-    const double len = 30 * x01(rng);
+    const Vec3 o = Vec3{u(rng), u(rng), u(rng)} * 12 - (far ? d * 1e8 : Vec3{});
+    const double len = far ? 2e8 : 30 * x01(rng);
     const int n = blobs->terms(prog, o, d, len, 1e-12, terms.data(), ids.data());
     std::vector<double> cuts{0, len};
     for (int i = 0; i < n; ++i) {
@@ -112,7 +122,9 @@ TEST(BlobSum, EachPieceOfAStretchIsOnePolynomialOfTheField) {
           continue;
         }
         ++pieces;
-        ASSERT_NEAR(power_value(sp.a, sp.degree, x) + 0.5, field, sp.err + 1e-13)
+        // The field is evaluated at the rounded o + u d: 1e-16 of |o| + u, over radii >= 2.
+        const double rounding = 1e-13 + 2e-16 * (length(o) + s0 + S);
+        ASSERT_NEAR(power_value(sp.a, sp.degree, x) + 0.5, field, sp.err + rounding)
             << "ray " << ray << ", piece at " << s0 << " of length " << S;
       }
       // The peaks bound the piece from above.
