@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "blends.h"
+#include "complement.h"
 #include "node_util.h"
 #include "program.h"
 #include "registry.h"
@@ -163,46 +164,15 @@ class Complement final : public FieldNode {
   Complement(NodePtr c, Convention conv) : c_(std::move(c)), conv_(conv) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
-    const double f = c_->eval(p, grad);
-    switch (conv_) {
-      case Convention::Soft:
-        if (grad) *grad = -*grad;
-        return 1 - f;
-      case Convention::Zero:
-        if (grad) *grad = -*grad;
-        return -f;
-      case Convention::Constructive:
-        if (f <= kCgFloor) {
-          if (grad) *grad = {};
-          return 1 / kCgFloor;
-        }
-        if (grad) *grad = *grad * (-1 / (f * f));
-        return 1 / f;
-    }
-    return f;
+    return complement(conv_, c_->eval(p, grad), grad);
   }
   Interval interval(const Box& b) const override {
-    const Interval f = c_->interval(b);
-    switch (conv_) {
-      case Convention::Soft:
-        return Interval(1) - f;
-      case Convention::Zero:
-        return -f;
-      case Convention::Constructive:
-        return {iv::down(1 / std::max(f.hi, kCgFloor)), iv::up(1 / std::max(f.lo, kCgFloor))};
-    }
-    return f;
+    return complement_interval(conv_, c_->interval(b));
   }
-  double lipschitz() const override {
-    return conv_ == Convention::Constructive ? std::numeric_limits<double>::infinity()
-                                             : c_->lipschitz();
-  }
+  double lipschitz() const override { return complement_lipschitz(conv_, c_->lipschitz()); }
   double lipschitz(const Box& b) const override {
     if (conv_ != Convention::Constructive) return c_->lipschitz(b);
-    // |∇(1/f)| = |∇f|/f^2, and 0 where the guard holds.
-    const double lo = std::max(c_->interval(b).lo, kCgFloor);
-    const double L = c_->lipschitz(b);
-    return L == 0 ? 0 : L / (lo * lo) * (1 + 1e-12);
+    return complement_lipschitz(conv_, c_->interval(b), c_->lipschitz(b));
   }
   Box region(double level, Side side) const override {
     const Side other = side == Side::Above ? Side::Below : Side::Above;
@@ -221,6 +191,14 @@ class Complement final : public FieldNode {
         return 1 / level <= kCgFloor ? Box::unbounded() : c_->region(1 / level, other);
     }
     return Box::unbounded();
+  }
+  // The child's code, then one instruction with the convention inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::Complement};
+    i.in = b.compile(*c_, reg);
+    i.out = b.new_slot();
+    i.a = b.consts({static_cast<double>(conv_)});
+    return b.emit(i);
   }
 
  private:

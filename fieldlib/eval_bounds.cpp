@@ -16,6 +16,7 @@
 #include <cmath>
 #include <limits>
 
+#include "complement.h"
 #include "eval.h"
 #include "lp_metric.h"
 #include "node.h"
@@ -267,6 +268,18 @@ class Walker {
           // d/dt s·(f - c) = s·df/dt: an interval product, so a negative s swaps the ends. The
           // offset of a distance is no soft field: no quiet start.
           D[in.out] = Interval(s) * D[in.in];
+          Q[in.out] = 0;
+        }
+        break;
+      case Op::Complement:
+        if (bounds_) {
+          const Convention conv = complement_convention(K_ + in.a);
+          I[in.out] = complement_interval(conv, I[in.in]);
+          L[in.out] = complement_lipschitz(conv, I[in.in], L[in.in]);
+          // d/dt (1 - f) = d/dt (-f) = -df/dt exactly; for 1/f the bound either way. 1 - f and
+          // -f are 0 nowhere in particular: no quiet start.
+          D[in.out] =
+              conv == Convention::Constructive ? Interval(-L[in.out], L[in.out]) : -D[in.in];
           Q[in.out] = 0;
         }
         break;

@@ -1,6 +1,7 @@
 // f and ∇f at one point, forward mode: every slot carries its value and its gradient with respect
 // to the world point, and every point register carries its Jacobian with respect to the world
 // point, so an oracle's local gradient g becomes Jᵀg.
+#include "complement.h"
 #include "eval.h"
 #include "lp_metric.h"
 #include "node.h"
@@ -114,6 +115,12 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
       case Op::Offset: {
         const Workspace::Dual& d = S[in.in];
         S[in.out] = {offset_value(K[in.a], K[in.a + 1], d.v), offset_gradient(K[in.a], d.g)};
+        break;
+      }
+      case Op::Complement: {
+        Workspace::Dual d = S[in.in];
+        d.v = complement(complement_convention(K + in.a), d.v, &d.g);
+        S[in.out] = d;
         break;
       }
       case Op::Group:

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "complement.h"
 #include "eval.h"
 #include "gauge.h"
 #include "lp_metric.h"
@@ -172,6 +173,22 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         for (int l = 0; l < n; ++l) out[l] = offset_value(sc, lv, d[l]);
         break;
       }
+      case Op::Complement: {
+        // The kernel's three forms as loops over the lanes (the guarded 1/f as a select).
+        const double* d = S + in.in * kBatch;
+        switch (complement_convention(K + in.a)) {
+          case Convention::Soft:
+            for (int l = 0; l < n; ++l) out[l] = 1 - d[l];
+            break;
+          case Convention::Zero:
+            for (int l = 0; l < n; ++l) out[l] = -d[l];
+            break;
+          case Convention::Constructive:
+            for (int l = 0; l < n; ++l) out[l] = 1 / (d[l] <= kCgFloor ? kCgFloor : d[l]);
+            break;
+        }
+        break;
+      }
       case Op::Group:
         break;
       case Op::Sum: {
@@ -260,6 +277,9 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         break;
       case Op::Offset:
         out = offset_value(K[in.a], K[in.a + 1], S[in.in]);
+        break;
+      case Op::Complement:
+        out = complement(complement_convention(K + in.a), S[in.in], nullptr);
         break;
       case Op::Group:
         break;

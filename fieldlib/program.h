@@ -41,6 +41,7 @@ class FieldNode;
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
   X(Offset)           /* slot out = s (slot in - c) (s = c[0], c = c[1]), 003 §2.1      */ \
+  X(Complement)       /* slot out = 1 - f, -f or 1/f of slot in (convention = c[0])     */  \
   X(Group)            /* announces the children of the n-ary instruction groups[a]      */  \
   X(Sum)              /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12         */ \
   X(Min)              /* slot out = min of args[a..a+n)                                 */  \

@@ -311,6 +311,55 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
   }
 }
 
+// A complement compiles to its child's code (native where the child is) and one instruction, with
+// the model's bits in each convention: values, gradients, and over boxes the interval and Lipschitz
+// bound. Points at the centre reach the constructive guard (f <= kCgFloor), others a NaN value.
+// The soft child is an oracle: a soft_object's program bounds are its potential instruction's,
+// not the node's.
+TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
+  const struct {
+    const char* json;
+    Convention convention;
+    Op child;
+  } kCases[] = {
+      {R"({"type":"complement","children":[{"type":"ricci_union","n":2,"children":[
+          {"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}},
+          {"type":"soft_object","distance":{"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}}
+          ]}]})",
+       Convention::Soft, Op::Oracle},
+      {R"({"type":"complement","children":[{"type":"offset","scale":-2,"level":0.5,"children":[
+          {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7}]}]})",
+       Convention::Zero, Op::Offset},
+      {R"({"type":"complement","children":[{"type":"lp_metric","radii":[0.6,0.8,1.2],"n":3}]})",
+       Convention::Constructive, Op::LpMetric},
+      {R"({"type":"complement","children":[{"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],
+          "radius":0.6}]})",
+       Convention::Constructive, Op::LineSegment},
+      {R"({"type":"complement","children":[{"type":"generalized_distance",
+          "normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],"n":2}]})",
+       Convention::Constructive, Op::Oracle}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json, c.convention);
+    const Program prog = compile(*node);
+    ASSERT_GE(prog.code.size(), 2u) << c.json;
+    EXPECT_EQ(prog.code[prog.code.size() - 2].op, c.child) << c.json;
+    EXPECT_EQ(prog.code.back().op, Op::Complement) << c.json;
+    expect_models_bits(c.json, c.convention, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin (the skeleton: f = 0); 2: a NaN coordinate; 3: on the z axis.
+      switch (k % 4) {
+        case 1:
+          return Vec3{};
+        case 2:
+          p[k % 3] = std::nan("");
+          return p;
+        case 3:
+          return Vec3{0, 0, p.z};
+      }
+      return p;
+    });
+  }
+}
+
 // Along a segment X·n is affine, so a plane's slope interval is its rate (n·dir)/a to within the
 // padding where the segment keeps to one side of the plane (an offset's is s times that, ends
 // swapped for s < 0; under a rotation too), and holds the rate, with either sign for |X·n|, where
