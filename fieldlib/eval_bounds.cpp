@@ -24,8 +24,10 @@
 #include "offset.h"
 #include "planes.h"
 #include "potentials.h"
+#include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -287,6 +289,8 @@ class Walker {
       case Op::Sum:
       case Op::Min:
       case Op::Max:
+      case Op::SuperUnion:
+      case Op::SuperIntersect:
         break;  // handled by group()
     }
   }
@@ -400,7 +404,9 @@ class Walker {
       marks[j] = static_cast<int32_t>(ws_.view.code.size());
       walk(c.begin, c.end);
     }
-    if (bounds_ && combine.op != Op::Sum) drop_inactive(g, combine.op == Op::Min, first, last);
+    // The power sums keep every child: each one's value moves theirs.
+    const bool min_max = combine.op == Op::Min || combine.op == Op::Max;
+    if (bounds_ && min_max) drop_inactive(g, combine.op == Op::Min, first, last);
     if (bounds_ && segment_ && combine.op == Op::Sum) drop_quiet(g, first, last);
     const int n = top_ - first;
 
@@ -494,6 +500,10 @@ class Walker {
       ws_.quiet[out.out] = quiet;
       return;
     }
+    if (out.op == Op::SuperUnion || out.op == Op::SuperIntersect) {
+      power_sum_bounds(out, g, first, n);
+      return;
+    }
     const bool is_min = out.op == Op::Min;
     Interval r = I[g.children[kept[first]].slot], D = ws_.slopes[g.children[kept[first]].slot];
     double Lm = 0;
@@ -508,6 +518,34 @@ class Walker {
     I[out.out] = r;
     L[out.out] = Lm;
     ws_.slopes[out.out] = D;
+    ws_.quiet[out.out] = 0;
+  }
+
+  // The super-ellipsoidal union and intersection: the kernels on the children's intervals and
+  // bounds (the model's bits); along a segment the slope is the bound [-L, L], and a combination
+  // of distances has no quiet start.
+  void power_sum_bounds(const Instr& out, const Group& g, int first, int n) {
+    const int32_t* kept = ws_.kept.data();
+    const double e = K_[out.in];
+    Scratch<Interval> x(n);
+    Scratch<double> Lc(n);
+    for (int j = 0; j < n; ++j) {
+      const int s = g.children[kept[first + j]].slot;
+      x[j] = ws_.ivals[s];
+      Lc[j] = ws_.lips[s];
+    }
+    Interval f;
+    double L;
+    if (out.op == Op::SuperUnion) {
+      f = super_union_interval(x.data(), n, e);
+      L = super_union_lipschitz(x.data(), Lc.data(), n, e, f);
+    } else {
+      f = power_sum(x.data(), n, e);
+      L = super_intersection_lipschitz(x.data(), Lc.data(), n, e, f, K_[out.in + 1]);
+    }
+    ws_.ivals[out.out] = f;
+    ws_.lips[out.out] = L;
+    ws_.slopes[out.out] = {-L, L};
     ws_.quiet[out.out] = 0;
   }
 

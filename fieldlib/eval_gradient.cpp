@@ -8,8 +8,10 @@
 #include "offset.h"
 #include "planes.h"
 #include "potentials.h"
+#include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -144,6 +146,27 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
           if (is_min ? a.v < best.v : a.v > best.v) best = a;
         }
         S[in.out] = best;
+        break;
+      }
+      case Op::SuperUnion:
+      case Op::SuperIntersect: {
+        // The kernels on the children's values and gradients gathered.
+        const size_t k = in.n;
+        const double e = K[in.in];
+        Scratch<double> x(k);
+        Scratch<Vec3> g(k);
+        for (size_t j = 0; j < k; ++j) {
+          x[j] = S[c.args[in.a + j]].v;
+          g[j] = S[c.args[in.a + j]].g;
+        }
+        Workspace::Dual d;
+        if (in.op == Op::SuperUnion) {
+          d.v = super_union(x.data(), k, e);
+          d.g = super_union_gradient(x.data(), g.data(), k, e, d.v);
+        } else {
+          d.v = super_intersection(x.data(), g.data(), k, e, &d.g);
+        }
+        S[in.out] = d;
         break;
       }
     }

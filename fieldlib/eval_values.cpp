@@ -12,8 +12,10 @@
 #include "offset.h"
 #include "planes.h"
 #include "potentials.h"
+#include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -212,6 +214,19 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         }
         break;
       }
+      case Op::SuperUnion:
+      case Op::SuperIntersect: {
+        // The kernels lane by lane (pow is a libm call), on the children's values gathered.
+        const size_t k = in.n;
+        const double e = K[in.in];
+        Scratch<double> x(k);
+        for (int l = 0; l < n; ++l) {
+          for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
+          out[l] = in.op == Op::SuperUnion ? super_union(x.data(), k, e)
+                                           : super_intersection(x.data(), nullptr, k, e, nullptr);
+        }
+        break;
+      }
     }
   }
   std::copy(S + c.result * kBatch, S + c.result * kBatch + n, f);
@@ -298,6 +313,15 @@ double value(Code c, const Vec3& p, Workspace& ws) {
           if (is_min ? a < e : a > e) e = a;
         }
         out = e;
+        break;
+      }
+      case Op::SuperUnion:
+      case Op::SuperIntersect: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
+        out = in.op == Op::SuperUnion ? super_union(x.data(), k, K[in.in])
+                                      : super_intersection(x.data(), nullptr, k, K[in.in], nullptr);
         break;
       }
     }

@@ -360,6 +360,74 @@ TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
   }
 }
 
+// The super-ellipsoidal union and intersection compile to their children's code as a group that is
+// never pruned (nor are children dropped over boxes: every one moves the power sum) and one
+// instruction, with the model's bits: values, gradients, and over boxes the interval and
+// Lipschitz bound. Points at a child's skeleton reach the union's U = 0 branch and the
+// intersection's clamp; NaN coordinates give NaN children. No child is placed: a translation's
+// box bounds are the program's own (translate_box), not the placed node's.
+TEST(Program, SuperEllipsoidalCombinationsAreOneInstructionAfterTheirChildren) {
+  const struct {
+    const char* json;
+    Op op;
+    int children;
+  } kCases[] = {{R"({"type":"super_ellipsoidal_union","n":2,"children":[
+          {"type":"lp_metric","radii":[1,0.8,1.2],"n":2},
+          {"type":"lp_metric","radii":[0.6,0.8,1.2],"n":3}]})",
+                 Op::SuperUnion, 2},
+                {R"({"type":"super_ellipsoidal_union","n":7.5,"children":[
+          {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7},
+          {"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],"radius":0.6},
+          {"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],
+           "n":2}]})",
+                 Op::SuperUnion, 3},
+                {R"({"type":"super_ellipsoidal_intersection","n":2,"children":[
+          {"type":"lp_metric","radii":[1,0.8,1.2],"n":2},
+          {"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}]})",
+                 Op::SuperIntersect, 2},
+                {R"({"type":"super_ellipsoidal_intersection","n":0.7,"children":[
+          {"type":"one_branch_plane","normal":[0.3,-1,0.4],"a":0.5},
+          {"type":"lp_metric","radii":[0.6,0.8,1.2],"n":3},
+          {"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],
+           "n":2}]})",
+                 Op::SuperIntersect, 3},
+                {R"({"type":"super_ellipsoidal_intersection","n":4,"children":[
+          {"type":"super_ellipsoidal_union","n":3,"children":[
+            {"type":"lp_metric","radii":[1,1,1],"n":2},
+            {"type":"torus","major_radius":0.8,"radii":[0.3,0.4],"n":3}]},
+          {"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":0.6}]})",
+                 Op::SuperIntersect, 2}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json, Convention::Constructive);
+    const Program prog = compile(*node);
+    EXPECT_EQ(count_ops(prog.code, Op::Oracle), std::strstr(c.json, "generalized") ? 1 : 0)
+        << c.json;
+    EXPECT_EQ(prog.code.back().op, c.op) << c.json;
+    EXPECT_EQ(prog.code.back().n, c.children) << c.json;
+    EXPECT_FALSE(prog.has_pruning) << c.json;
+    for (const Group& g : prog.groups) EXPECT_TRUE(g.bvh.empty()) << c.json;
+    expect_models_bits(c.json, Convention::Constructive, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin (a skeleton); 2: a NaN coordinate; 3: on the x axis.
+      switch (k % 4) {
+        case 1:
+          return Vec3{};
+        case 2:
+          p[k % 3] = std::nan("");
+          return p;
+        case 3:
+          return Vec3{p.x, 0, 0};
+      }
+      return p;
+    });
+    // Over a box far from every child no child is dropped.
+    Workspace ws;
+    ws.fit(prog);
+    bounds(prog, Box::around({1.5, 1.5, 1.5}, 0.1), ws);
+    EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << c.json;
+    EXPECT_EQ(ws.view.code.back().n, c.children) << c.json;
+  }
+}
+
 // Along a segment X·n is affine, so a plane's slope interval is its rate (n·dir)/a to within the
 // padding where the segment keeps to one side of the plane (an offset's is s times that, ends
 // swapped for s < 0; under a rotation too), and holds the rate, with either sign for |X·n|, where
