@@ -22,6 +22,7 @@
 #include "node.h"
 #include "node_util.h"
 #include "offset.h"
+#include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
 #include "scratch.h"
@@ -291,6 +292,7 @@ class Walker {
       case Op::Max:
       case Op::SuperUnion:
       case Op::SuperIntersect:
+      case Op::Perlin:
         break;  // handled by group()
     }
   }
@@ -404,7 +406,7 @@ class Walker {
       marks[j] = static_cast<int32_t>(ws_.view.code.size());
       walk(c.begin, c.end);
     }
-    // The power sums keep every child: each one's value moves theirs.
+    // The power sums and products keep every child: each one's value moves theirs.
     const bool min_max = combine.op == Op::Min || combine.op == Op::Max;
     if (bounds_ && min_max) drop_inactive(g, combine.op == Op::Min, first, last);
     if (bounds_ && segment_ && combine.op == Op::Sum) drop_quiet(g, first, last);
@@ -500,8 +502,8 @@ class Walker {
       ws_.quiet[out.out] = quiet;
       return;
     }
-    if (out.op == Op::SuperUnion || out.op == Op::SuperIntersect) {
-      power_sum_bounds(out, g, first, n);
+    if (out.op == Op::SuperUnion || out.op == Op::SuperIntersect || out.op == Op::Perlin) {
+      combination_bounds(out, g, first, n);
       return;
     }
     const bool is_min = out.op == Op::Min;
@@ -521,10 +523,11 @@ class Walker {
     ws_.quiet[out.out] = 0;
   }
 
-  // The super-ellipsoidal union and intersection: the kernels on the children's intervals and
-  // bounds (the model's bits); along a segment the slope is the bound [-L, L], and a combination
-  // of distances has no quiet start.
-  void power_sum_bounds(const Instr& out, const Group& g, int first, int n) {
+  // The super-ellipsoidal union and intersection and Perlin's blends: the kernels on the
+  // children's intervals and bounds (the model's bits); along a segment the slope is the bound
+  // [-L, L], and no quiet start (a combination of distances; 1 - Π(1 - f_i) and the products
+  // could claim one, not taken here).
+  void combination_bounds(const Instr& out, const Group& g, int first, int n) {
     const int32_t* kept = ws_.kept.data();
     const double e = K_[out.in];
     Scratch<Interval> x(n);
@@ -536,7 +539,11 @@ class Walker {
     }
     Interval f;
     double L;
-    if (out.op == Op::SuperUnion) {
+    if (out.op == Op::Perlin) {
+      const PerlinMode mode = perlin_mode(K_ + out.in);
+      f = perlin_interval(mode, x.data(), n);
+      L = perlin_lipschitz(mode, x.data(), Lc.data(), n, K_[out.in + 1]);
+    } else if (out.op == Op::SuperUnion) {
       f = super_union_interval(x.data(), n, e);
       L = super_union_lipschitz(x.data(), Lc.data(), n, e, f);
     } else {

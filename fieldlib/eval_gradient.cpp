@@ -6,6 +6,7 @@
 #include "lp_metric.h"
 #include "node.h"
 #include "offset.h"
+#include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
 #include "scratch.h"
@@ -166,6 +167,19 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         } else {
           d.v = super_intersection(x.data(), g.data(), k, e, &d.g);
         }
+        S[in.out] = d;
+        break;
+      }
+      case Op::Perlin: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        Scratch<Vec3> g(k);
+        for (size_t j = 0; j < k; ++j) {
+          x[j] = S[c.args[in.a + j]].v;
+          g[j] = S[c.args[in.a + j]].g;
+        }
+        Workspace::Dual d;
+        d.v = perlin(perlin_mode(K + in.in), x.data(), g.data(), k, &d.g);
         S[in.out] = d;
         break;
       }

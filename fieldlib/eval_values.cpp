@@ -10,6 +10,7 @@
 #include "lp_metric.h"
 #include "node.h"
 #include "offset.h"
+#include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
 #include "scratch.h"
@@ -227,6 +228,17 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         }
         break;
       }
+      case Op::Perlin: {
+        // The kernel lane by lane on the children's values gathered.
+        const size_t k = in.n;
+        const PerlinMode mode = perlin_mode(K + in.in);
+        Scratch<double> x(k);
+        for (int l = 0; l < n; ++l) {
+          for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
+          out[l] = perlin(mode, x.data(), nullptr, k, nullptr);
+        }
+        break;
+      }
     }
   }
   std::copy(S + c.result * kBatch, S + c.result * kBatch + n, f);
@@ -322,6 +334,13 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
         out = in.op == Op::SuperUnion ? super_union(x.data(), k, K[in.in])
                                       : super_intersection(x.data(), nullptr, k, K[in.in], nullptr);
+        break;
+      }
+      case Op::Perlin: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
+        out = perlin(perlin_mode(K + in.in), x.data(), nullptr, k, nullptr);
         break;
       }
     }

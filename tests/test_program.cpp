@@ -428,6 +428,60 @@ TEST(Program, SuperEllipsoidalCombinationsAreOneInstructionAfterTheirChildren) {
   }
 }
 
+// Perlin's blends compile to their children's code as a group that is never pruned and one
+// instruction, with the model's bits: values, gradients, and over boxes the interval and
+// Lipschitz bound. The leaves are oracles (ricci blends of soft objects) or nested blends of them:
+// a soft_object's program bounds are its potential instruction's, not the node's. Points at the
+// origin put the children at their peaks; NaN coordinates give NaN children.
+TEST(Program, PerlinBlendsAreOneInstructionAfterTheirChildren) {
+#define SOFT_A R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}})"
+#define SOFT_B                                                                         \
+  R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"torus",)" \
+  R"("major_radius":0.8,"radii":[0.3,0.4]}})"
+#define RICCI(n, a, b) R"({"type":"ricci_union","n":)" #n R"(,"children":[)" a "," b "]}"
+  const std::string a = RICCI(2, SOFT_A, SOFT_B), b = RICCI(3, SOFT_B, SOFT_A),
+                    c = RICCI(1.5, SOFT_A, SOFT_A);
+#undef RICCI
+#undef SOFT_B
+#undef SOFT_A
+  const auto blend = [](const char* kind, const std::vector<std::string>& children) {
+    std::string s = std::string(R"({"type":")") + kind + R"(","children":[)";
+    for (size_t i = 0; i < children.size(); ++i) s += (i ? "," : "") + children[i];
+    return s + "]}";
+  };
+  const std::string kCases[] = {blend("perlin_union", {a, b}),
+                                blend("perlin_union", {a, b, c}),
+                                blend("perlin_intersection", {a, b}),
+                                blend("perlin_intersection", {c, a, b}),
+                                blend("perlin_difference", {a, b}),
+                                blend("perlin_difference", {b, c, a}),
+                                blend("perlin_union", {blend("perlin_difference", {a, c}), b})};
+  for (const std::string& json : kCases) {
+    const NodePtr node = build_from_json(json, Convention::Soft);
+    const Program prog = compile(*node);
+    EXPECT_EQ(prog.code.back().op, Op::Perlin) << json;
+    int blends = 0;
+    for (size_t at = json.find("perlin_"); at != std::string::npos;
+         at = json.find("perlin_", at + 1))
+      ++blends;
+    EXPECT_EQ(count_ops(prog.code, Op::Perlin), blends) << json;
+    EXPECT_FALSE(prog.has_pruning) << json;
+    expect_models_bits(json, Convention::Soft, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin; 2: a NaN coordinate.
+      if (k % 3 == 1) return Vec3{};
+      if (k % 3 == 2) p[k % 3] = std::nan("");
+      return p;
+    });
+    // Over a box outside every support no child is dropped; over all of space the bound is the
+    // node's global one.
+    Workspace ws;
+    ws.fit(prog);
+    bounds(prog, Box::around({5, 5, 5}, 0.1), ws);
+    EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << json;
+    EXPECT_TRUE(same_bits(bounds(prog, Box::unbounded(), ws).lipschitz, node->lipschitz())) << json;
+  }
+}
+
 // Along a segment X·n is affine, so a plane's slope interval is its rate (n·dir)/a to within the
 // padding where the segment keeps to one side of the plane (an offset's is s times that, ends
 // swapped for s < 0; under a rotation too), and holds the rate, with either sign for |X·n|, where
