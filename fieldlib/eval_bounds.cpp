@@ -529,7 +529,7 @@ class Walker {
   // could claim one, not taken here).
   void combination_bounds(const Instr& out, const Group& g, int first, int n) {
     const int32_t* kept = ws_.kept.data();
-    const double e = K_[out.in];
+    const double* c = K_ + out.in;  // n (and the global bound), or the mode and the global bound
     Scratch<Interval> x(n);
     Scratch<double> Lc(n);
     for (int j = 0; j < n; ++j) {
@@ -540,15 +540,14 @@ class Walker {
     Interval f;
     double L;
     if (out.op == Op::Perlin) {
-      const PerlinMode mode = perlin_mode(K_ + out.in);
-      f = perlin_interval(mode, x.data(), n);
-      L = perlin_lipschitz(mode, x.data(), Lc.data(), n, K_[out.in + 1]);
+      f = perlin_interval(perlin_mode(c), x.data(), n);
+      L = perlin_lipschitz(perlin_mode(c), x.data(), Lc.data(), n, c[1]);
     } else if (out.op == Op::SuperUnion) {
-      f = super_union_interval(x.data(), n, e);
-      L = super_union_lipschitz(x.data(), Lc.data(), n, e, f);
+      f = super_union_interval(x.data(), n, c[0]);
+      L = super_union_lipschitz(x.data(), Lc.data(), n, c[0], f);
     } else {
-      f = power_sum(x.data(), n, e);
-      L = super_intersection_lipschitz(x.data(), Lc.data(), n, e, f, K_[out.in + 1]);
+      f = power_sum(x.data(), n, c[0]);
+      L = super_intersection_lipschitz(x.data(), Lc.data(), n, c[0], f, c[1]);
     }
     ws_.ivals[out.out] = f;
     ws_.lips[out.out] = L;
