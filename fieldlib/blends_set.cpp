@@ -4,7 +4,9 @@
 #include <limits>
 
 #include "blends.h"
+#include "complement.h"
 #include "node_util.h"
+#include "perlin.h"
 #include "program.h"
 #include "registry.h"
 #include "scratch.h"
@@ -13,87 +15,62 @@ namespace softtrace {
 
 namespace {
 
-// 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, docs/math.md §5.2. Each is a
-// product of factors g_i = f_i or 1 - f_i, complemented for the union.
+// 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, docs/math.md §5.2 (perlin.h).
 class Perlin final : public FieldNode {
  public:
-  enum Mode { Union, Intersection, Difference };
+  using Mode = PerlinMode;
   Perlin(std::vector<NodePtr> c, Mode m) : c_(std::move(c)), mode_(m) {
     std::vector<Interval> G;
-    for (size_t i = 0; i < c_.size(); ++i) G.push_back(factor(i, global_range(*c_[i])));
+    for (size_t i = 0; i < c_.size(); ++i) G.push_back(perlin_factor(m, i, global_range(*c_[i])));
     std::vector<double> L;
     for (const auto& c : c_) L.push_back(c->lipschitz());
-    global_L_ = slope(G.data(), L.data(), G.size());
+    global_L_ = perlin_slope(G.data(), L.data(), G.size());
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
     Scratch<double> g(k);
     Scratch<Vec3> gg(k);
-    for (size_t i = 0; i < k; ++i) {
-      g[i] = c_[i]->eval(p, grad ? &gg[i] : nullptr);
-      if (complemented(i)) {
-        g[i] = 1 - g[i];
-        gg[i] = -gg[i];
-      }
-    }
-    // Prefix and suffix products give Π_{j≠i} g_j without dividing by a g_i that may be 0.
-    Scratch<double, 17> pre(k + 1), suf(k + 1);  // 16 children on the stack, as g
-    pre[0] = suf[k] = 1.0;
-    for (size_t i = 0; i < k; ++i) pre[i + 1] = pre[i] * g[i];
-    for (size_t i = k; i-- > 0;) suf[i] = suf[i + 1] * g[i];
-    const double sign = mode_ == Union ? -1 : 1;
-    if (grad) {
-      *grad = {};
-      for (size_t i = 0; i < k; ++i) *grad += gg[i] * (sign * pre[i] * suf[i + 1]);
-    }
-    return mode_ == Union ? 1 - pre[k] : pre[k];
+    for (size_t i = 0; i < k; ++i) g[i] = c_[i]->eval(p, grad ? &gg[i] : nullptr);
+    return perlin(mode_, g.data(), gg.data(), k, grad);
   }
   Interval interval(const Box& b) const override {
-    Interval prod(1);
-    for (size_t i = 0; i < c_.size(); ++i) prod = prod * factor(i, c_[i]->interval(b));
-    return mode_ == Union ? Interval(1) - prod : prod;
+    Scratch<Interval> f(c_.size());
+    for (size_t i = 0; i < c_.size(); ++i) f[i] = c_[i]->interval(b);
+    return perlin_interval(mode_, f.data(), c_.size());
   }
   double lipschitz() const override { return global_L_; }
   double lipschitz(const Box& b) const override {
     const size_t k = c_.size();
-    Scratch<Interval> G(k);
+    Scratch<Interval> f(k);
     Scratch<double> L(k);
     for (size_t i = 0; i < k; ++i) {
-      G[i] = factor(i, c_[i]->interval(b));
+      f[i] = c_[i]->interval(b);
       L[i] = c_[i]->lipschitz(b);
     }
-    return std::min(global_L_, slope(G.data(), L.data(), k));
+    return perlin_lipschitz(mode_, f.data(), L.data(), k, global_L_);
   }
   // Soft children (f >= 0): B > 0 needs some f_i > 0 (union), every f_i > 0 (intersection), or
   // f_1 > 0 (difference); the support boxes follow.
   Box region(double level, Side side) const override {
     if (side == Side::Below || level <= 0) return Box::unbounded();
     const double tiny = std::numeric_limits<double>::min();
-    if (mode_ == Difference) return c_[0]->region(tiny, side);
-    Box b = mode_ == Union ? Box() : Box::unbounded();
+    if (mode_ == Mode::Difference) return c_[0]->region(tiny, side);
+    Box b = mode_ == Mode::Union ? Box() : Box::unbounded();
     for (const auto& c : c_) {
       const Box r = c->region(tiny, side);
-      b = mode_ == Union ? b.united(r) : b.intersected(r);
+      b = mode_ == Mode::Union ? b.united(r) : b.intersected(r);
     }
     return b;
   }
 
- private:
-  bool complemented(size_t i) const { return mode_ == Union || (mode_ == Difference && i > 0); }
-  Interval factor(size_t i, Interval f) const { return complemented(i) ? Interval(1) - f : f; }
-  // Σ_i L_i sup|Π_{j≠i} G_j| ([PE-3]).
-  static double slope(const Interval* G, const double* L, size_t k) {
-    double s = 0;
-    for (size_t i = 0; i < k; ++i) {
-      double m = 1;  // a zero factor wins over an infinite one (inf * 0 would be NaN)
-      for (size_t j = 0; j < k && m != 0; ++j)
-        if (j != i) m = flat_product(m, magnitude(G[j]));
-      s += flat_product(m, L[i]);
-    }
-    return s * (1 + 1e-12);
+  // The children's code as a group (never pruned), then one instruction with the mode and the
+  // global bound inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    return b.nary(Op::Perlin, c_, reg, b.consts({static_cast<double>(mode_), global_L_}));
   }
 
+ private:
   std::vector<NodePtr> c_;
   Mode mode_;
   double global_L_;
@@ -163,46 +140,15 @@ class Complement final : public FieldNode {
   Complement(NodePtr c, Convention conv) : c_(std::move(c)), conv_(conv) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
-    const double f = c_->eval(p, grad);
-    switch (conv_) {
-      case Convention::Soft:
-        if (grad) *grad = -*grad;
-        return 1 - f;
-      case Convention::Zero:
-        if (grad) *grad = -*grad;
-        return -f;
-      case Convention::Constructive:
-        if (f <= kCgFloor) {
-          if (grad) *grad = {};
-          return 1 / kCgFloor;
-        }
-        if (grad) *grad = *grad * (-1 / (f * f));
-        return 1 / f;
-    }
-    return f;
+    return complement(conv_, c_->eval(p, grad), grad);
   }
   Interval interval(const Box& b) const override {
-    const Interval f = c_->interval(b);
-    switch (conv_) {
-      case Convention::Soft:
-        return Interval(1) - f;
-      case Convention::Zero:
-        return -f;
-      case Convention::Constructive:
-        return {iv::down(1 / std::max(f.hi, kCgFloor)), iv::up(1 / std::max(f.lo, kCgFloor))};
-    }
-    return f;
+    return complement_interval(conv_, c_->interval(b));
   }
-  double lipschitz() const override {
-    return conv_ == Convention::Constructive ? std::numeric_limits<double>::infinity()
-                                             : c_->lipschitz();
-  }
+  double lipschitz() const override { return complement_lipschitz(conv_, c_->lipschitz()); }
   double lipschitz(const Box& b) const override {
     if (conv_ != Convention::Constructive) return c_->lipschitz(b);
-    // |∇(1/f)| = |∇f|/f^2, and 0 where the guard holds.
-    const double lo = std::max(c_->interval(b).lo, kCgFloor);
-    const double L = c_->lipschitz(b);
-    return L == 0 ? 0 : L / (lo * lo) * (1 + 1e-12);
+    return complement_lipschitz(conv_, c_->interval(b), c_->lipschitz(b));
   }
   Box region(double level, Side side) const override {
     const Side other = side == Side::Above ? Side::Below : Side::Above;
@@ -222,6 +168,14 @@ class Complement final : public FieldNode {
     }
     return Box::unbounded();
   }
+  // The child's code, then one instruction with the convention inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::Complement};
+    i.in = b.compile(*c_, reg);
+    i.out = b.new_slot();
+    i.a = b.consts({static_cast<double>(conv_)});
+    return b.emit(i);
+  }
 
  private:
   NodePtr c_;
@@ -231,13 +185,13 @@ class Complement final : public FieldNode {
 }  // namespace
 
 NodePtr create_perlin_union(const Params& p, const BuildContext& ctx) {
-  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Union);
+  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Mode::Union);
 }
 NodePtr create_perlin_intersection(const Params& p, const BuildContext& ctx) {
-  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Intersection);
+  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Mode::Intersection);
 }
 NodePtr create_perlin_difference(const Params& p, const BuildContext& ctx) {
-  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Difference);
+  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Mode::Difference);
 }
 NodePtr create_min(const Params& p, const BuildContext& ctx) {
   return std::make_unique<MinMax>(build_children(p, "children", ctx), true);

@@ -7,9 +7,10 @@
 
 #include "distances.h"
 #include "gauge.h"
-#include "one_sided.h"
+#include "program.h"
 #include "registry.h"
 #include "scratch.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -30,20 +31,8 @@ class SuperEllipsoidalUnion final : public FieldNode {
     Scratch<double> x(k);
     Scratch<Vec3> g(k);
     for (size_t i = 0; i < k; ++i) x[i] = c_[i]->eval(p, grad ? &g[i] : nullptr);
-    const double U = combine(x.data());
-    if (grad) {
-      *grad = {};
-      if (U == 0) {
-        // U = x_j on the zero set of child j (the partial (U/x_j)^(n+1) tends to 1 there).
-        for (size_t i = 0; i < k; ++i)
-          if (x[i] <= 0) {
-            *grad = x[i] == 0 ? g[i] : Vec3{};
-            break;
-          }
-      } else {
-        for (size_t i = 0; i < k; ++i) *grad += g[i] * std::pow(U / x[i], n_ + 1);
-      }
-    }
+    const double U = super_union(x.data(), k, n_);
+    if (grad) *grad = super_union_gradient(x.data(), g.data(), k, n_, U);
     return U;
   }
   Interval interval(const Box& b) const override {
@@ -58,14 +47,9 @@ class SuperEllipsoidalUnion final : public FieldNode {
   double lipschitz(const Box& b) const override {
     Scratch<Interval> x(c_.size());
     const Interval U = terms(b, x);
-    double sum = 0, L_max = 0;
-    for (size_t i = 0; i < c_.size(); ++i) {
-      const double Li = c_[i]->lipschitz(b);
-      const double v = x[i].lo > 0 ? std::min(1.0, std::pow(U.hi / x[i].lo, n_ + 1)) : 1.0;
-      sum += chain(v, Li);
-      L_max = std::max(L_max, Li);
-    }
-    return std::min(L_max, sum * (1 + 1e-13));
+    Scratch<double> L(c_.size());
+    for (size_t i = 0; i < c_.size(); ++i) L[i] = c_[i]->lipschitz(b);
+    return super_union_lipschitz(x.data(), L.data(), c_.size(), n_, U);
   }
   Box region(double level, Side side) const override {
     Box out = side == Side::Below ? Box() : Box::unbounded();
@@ -78,26 +62,16 @@ class SuperEllipsoidalUnion final : public FieldNode {
     }
     return out;
   }
+  // The children's code as a group (never pruned: they are distances, not soft fields), then
+  // one instruction with n inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    return b.nary(Op::SuperUnion, c_, reg, b.consts({n_}));
+  }
 
  private:
-  // m·(Σ (m/x_i)^n)^(-1/n) with m = min x_i: every ratio is <= 1, so n = 20 cannot overflow.
-  double combine(const double* x) const {
-    double m = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < c_.size(); ++i) m = std::min(m, x[i]);
-    if (!(m > 0)) return 0;
-    double s = 0;
-    for (size_t i = 0; i < c_.size(); ++i) s += std::pow(m / x[i], n_);
-    return m * std::pow(s, -1 / n_);
-  }
   Interval terms(const Box& b, Scratch<Interval>& x) const {
-    Scratch<double> lo(c_.size()), hi(c_.size());
-    for (size_t i = 0; i < c_.size(); ++i) {
-      x[i] = c_[i]->interval(b);
-      lo[i] = std::max(0.0, x[i].lo);
-      hi[i] = std::max(0.0, x[i].hi);
-    }
-    // pow is faithfully rounded: widen by a relative margin well above its error.
-    return {std::max(0.0, combine(lo.data()) * (1 - 1e-13)), combine(hi.data()) * (1 + 1e-13)};
+    for (size_t i = 0; i < c_.size(); ++i) x[i] = c_[i]->interval(b);
+    return super_union_interval(x.data(), c_.size(), n_);
   }
 
   std::vector<NodePtr> c_;
@@ -125,15 +99,10 @@ class SuperEllipsoidalIntersection final : public FieldNode {
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
-    Scratch<double> x(k), d(k);
+    Scratch<double> x(k);
     Scratch<Vec3> g(k);
-    for (size_t i = 0; i < k; ++i) x[i] = std::max(0.0, c_[i]->eval(p, grad ? &g[i] : nullptr));
-    const double f = power_sum(x.data(), static_cast<int>(k), n_, grad ? d.data() : nullptr);
-    if (grad) {
-      *grad = {};
-      for (size_t i = 0; i < k; ++i) *grad += g[i] * d[i];
-    }
-    return f;
+    for (size_t i = 0; i < k; ++i) x[i] = c_[i]->eval(p, grad ? &g[i] : nullptr);
+    return super_intersection(x.data(), g.data(), k, n_, grad);
   }
   Interval interval(const Box& b) const override {
     Scratch<Interval> x(c_.size());
@@ -143,16 +112,9 @@ class SuperEllipsoidalIntersection final : public FieldNode {
   double lipschitz(const Box& b) const override {
     Scratch<Interval> x(c_.size());
     const Interval f = terms(b, x);
-    Scratch<double> Lb(c_.size());
-    double sum = 0;
-    for (size_t i = 0; i < c_.size(); ++i) {
-      Lb[i] = c_[i]->lipschitz(b);
-      sum += chain(power_sum_partial_bound(x[i], f, n_), Lb[i]);
-    }
-    double L = sum * (1 + 1e-13);
-    if (n_ >= 1)
-      L = std::min(L, power_sum(Lb.data(), static_cast<int>(c_.size()), n_, nullptr) * (1 + 1e-13));
-    return std::isnan(L) ? global_L_ : std::min(global_L_, L);
+    Scratch<double> L(c_.size());
+    for (size_t i = 0; i < c_.size(); ++i) L[i] = c_[i]->lipschitz(b);
+    return super_intersection_lipschitz(x.data(), L.data(), c_.size(), n_, f, global_L_);
   }
   Box region(double level, Side side) const override {
     Box out = side == Side::Below ? Box::unbounded() : Box();
@@ -164,6 +126,10 @@ class SuperEllipsoidalIntersection final : public FieldNode {
         out = out.united(c->region(level / scale, side));
     }
     return out;
+  }
+  // As the union's: a group never pruned, then one instruction with n and the global bound.
+  int compile(ProgramBuilder& b, int reg) const override {
+    return b.nary(Op::SuperIntersect, c_, reg, b.consts({n_, global_L_}));
   }
 
  private:

@@ -16,15 +16,19 @@
 #include <cmath>
 #include <limits>
 
+#include "complement.h"
 #include "eval.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "node_util.h"
 #include "offset.h"
+#include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
+#include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -270,10 +274,25 @@ class Walker {
           Q[in.out] = 0;
         }
         break;
+      case Op::Complement:
+        if (bounds_) {
+          const Convention conv = complement_convention(K_ + in.a);
+          I[in.out] = complement_interval(conv, I[in.in]);
+          L[in.out] = complement_lipschitz(conv, I[in.in], L[in.in]);
+          // d/dt (1 - f) = d/dt (-f) = -df/dt exactly; for 1/f the bound either way. 1 - f and
+          // -f are 0 nowhere in particular: no quiet start.
+          D[in.out] =
+              conv == Convention::Constructive ? Interval(-L[in.out], L[in.out]) : -D[in.in];
+          Q[in.out] = 0;
+        }
+        break;
       case Op::Group:
       case Op::Sum:
       case Op::Min:
       case Op::Max:
+      case Op::SuperUnion:
+      case Op::SuperIntersect:
+      case Op::Perlin:
         break;  // handled by group()
     }
   }
@@ -387,7 +406,9 @@ class Walker {
       marks[j] = static_cast<int32_t>(ws_.view.code.size());
       walk(c.begin, c.end);
     }
-    if (bounds_ && combine.op != Op::Sum) drop_inactive(g, combine.op == Op::Min, first, last);
+    // The power sums and products keep every child: each one's value moves theirs.
+    const bool min_max = combine.op == Op::Min || combine.op == Op::Max;
+    if (bounds_ && min_max) drop_inactive(g, combine.op == Op::Min, first, last);
     if (bounds_ && segment_ && combine.op == Op::Sum) drop_quiet(g, first, last);
     const int n = top_ - first;
 
@@ -481,6 +502,10 @@ class Walker {
       ws_.quiet[out.out] = quiet;
       return;
     }
+    if (out.op == Op::SuperUnion || out.op == Op::SuperIntersect || out.op == Op::Perlin) {
+      combination_bounds(out, g, first, n);
+      return;
+    }
     const bool is_min = out.op == Op::Min;
     Interval r = I[g.children[kept[first]].slot], D = ws_.slopes[g.children[kept[first]].slot];
     double Lm = 0;
@@ -495,6 +520,38 @@ class Walker {
     I[out.out] = r;
     L[out.out] = Lm;
     ws_.slopes[out.out] = D;
+    ws_.quiet[out.out] = 0;
+  }
+
+  // The super-ellipsoidal union and intersection and Perlin's blends: the kernels on the
+  // children's intervals and bounds (the model's bits); along a segment the slope is the bound
+  // [-L, L], and no quiet start (a combination of distances; 1 - Π(1 - f_i) and the products
+  // could claim one, not taken here).
+  void combination_bounds(const Instr& out, const Group& g, int first, int n) {
+    const int32_t* kept = ws_.kept.data();
+    const double* c = K_ + out.in;  // n (and the global bound), or the mode and the global bound
+    Scratch<Interval> x(n);
+    Scratch<double> Lc(n);
+    for (int j = 0; j < n; ++j) {
+      const int s = g.children[kept[first + j]].slot;
+      x[j] = ws_.ivals[s];
+      Lc[j] = ws_.lips[s];
+    }
+    Interval f;
+    double L;
+    if (out.op == Op::Perlin) {
+      f = perlin_interval(perlin_mode(c), x.data(), n);
+      L = perlin_lipschitz(perlin_mode(c), x.data(), Lc.data(), n, c[1]);
+    } else if (out.op == Op::SuperUnion) {
+      f = super_union_interval(x.data(), n, c[0]);
+      L = super_union_lipschitz(x.data(), Lc.data(), n, c[0], f);
+    } else {
+      f = power_sum(x.data(), n, c[0]);
+      L = super_intersection_lipschitz(x.data(), Lc.data(), n, c[0], f, c[1]);
+    }
+    ws_.ivals[out.out] = f;
+    ws_.lips[out.out] = L;
+    ws_.slopes[out.out] = {-L, L};
     ws_.quiet[out.out] = 0;
   }
 

@@ -1,14 +1,18 @@
 // f and ∇f at one point, forward mode: every slot carries its value and its gradient with respect
 // to the world point, and every point register carries its Jacobian with respect to the world
 // point, so an oracle's local gradient g becomes Jᵀg.
+#include "complement.h"
 #include "eval.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "offset.h"
+#include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
+#include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -116,6 +120,12 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         S[in.out] = {offset_value(K[in.a], K[in.a + 1], d.v), offset_gradient(K[in.a], d.g)};
         break;
       }
+      case Op::Complement: {
+        Workspace::Dual d = S[in.in];
+        d.v = complement(complement_convention(K + in.a), d.v, &d.g);
+        S[in.out] = d;
+        break;
+      }
       case Op::Group:
         break;
       case Op::Sum: {
@@ -137,6 +147,40 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
           if (is_min ? a.v < best.v : a.v > best.v) best = a;
         }
         S[in.out] = best;
+        break;
+      }
+      case Op::SuperUnion:
+      case Op::SuperIntersect: {
+        // The kernels on the children's values and gradients gathered.
+        const size_t k = in.n;
+        const double e = K[in.in];
+        Scratch<double> x(k);
+        Scratch<Vec3> g(k);
+        for (size_t j = 0; j < k; ++j) {
+          x[j] = S[c.args[in.a + j]].v;
+          g[j] = S[c.args[in.a + j]].g;
+        }
+        Workspace::Dual d;
+        if (in.op == Op::SuperUnion) {
+          d.v = super_union(x.data(), k, e);
+          d.g = super_union_gradient(x.data(), g.data(), k, e, d.v);
+        } else {
+          d.v = super_intersection(x.data(), g.data(), k, e, &d.g);
+        }
+        S[in.out] = d;
+        break;
+      }
+      case Op::Perlin: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        Scratch<Vec3> g(k);
+        for (size_t j = 0; j < k; ++j) {
+          x[j] = S[c.args[in.a + j]].v;
+          g[j] = S[c.args[in.a + j]].g;
+        }
+        Workspace::Dual d;
+        d.v = perlin(perlin_mode(K + in.in), x.data(), g.data(), k, &d.g);
+        S[in.out] = d;
         break;
       }
     }

@@ -4,15 +4,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "complement.h"
 #include "eval.h"
 #include "gauge.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "offset.h"
+#include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
+#include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
+#include "super_ellipsoidal.h"
 
 namespace softtrace {
 
@@ -172,6 +176,22 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         for (int l = 0; l < n; ++l) out[l] = offset_value(sc, lv, d[l]);
         break;
       }
+      case Op::Complement: {
+        // The kernel's three forms as loops over the lanes (the guarded 1/f as a select).
+        const double* d = S + in.in * kBatch;
+        switch (complement_convention(K + in.a)) {
+          case Convention::Soft:
+            for (int l = 0; l < n; ++l) out[l] = 1 - d[l];
+            break;
+          case Convention::Zero:
+            for (int l = 0; l < n; ++l) out[l] = -d[l];
+            break;
+          case Convention::Constructive:
+            for (int l = 0; l < n; ++l) out[l] = 1 / (d[l] <= kCgFloor ? kCgFloor : d[l]);
+            break;
+        }
+        break;
+      }
       case Op::Group:
         break;
       case Op::Sum: {
@@ -192,6 +212,30 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
           const double* a = S + c.args[in.a + j] * kBatch;
           for (int l = 0; l < n; ++l)
             if (is_min ? a[l] < out[l] : a[l] > out[l]) out[l] = a[l];
+        }
+        break;
+      }
+      case Op::SuperUnion:
+      case Op::SuperIntersect: {
+        // The kernels lane by lane (pow is a libm call), on the children's values gathered.
+        const size_t k = in.n;
+        const double e = K[in.in];
+        Scratch<double> x(k);
+        for (int l = 0; l < n; ++l) {
+          for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
+          out[l] = in.op == Op::SuperUnion ? super_union(x.data(), k, e)
+                                           : super_intersection(x.data(), nullptr, k, e, nullptr);
+        }
+        break;
+      }
+      case Op::Perlin: {
+        // The kernel lane by lane on the children's values gathered.
+        const size_t k = in.n;
+        const PerlinMode mode = perlin_mode(K + in.in);
+        Scratch<double> x(k);
+        for (int l = 0; l < n; ++l) {
+          for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
+          out[l] = perlin(mode, x.data(), nullptr, k, nullptr);
         }
         break;
       }
@@ -261,6 +305,9 @@ double value(Code c, const Vec3& p, Workspace& ws) {
       case Op::Offset:
         out = offset_value(K[in.a], K[in.a + 1], S[in.in]);
         break;
+      case Op::Complement:
+        out = complement(complement_convention(K + in.a), S[in.in], nullptr);
+        break;
       case Op::Group:
         break;
       case Op::Sum: {
@@ -278,6 +325,22 @@ double value(Code c, const Vec3& p, Workspace& ws) {
           if (is_min ? a < e : a > e) e = a;
         }
         out = e;
+        break;
+      }
+      case Op::SuperUnion:
+      case Op::SuperIntersect: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
+        out = in.op == Op::SuperUnion ? super_union(x.data(), k, K[in.in])
+                                      : super_intersection(x.data(), nullptr, k, K[in.in], nullptr);
+        break;
+      }
+      case Op::Perlin: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
+        out = perlin(perlin_mode(K + in.in), x.data(), nullptr, k, nullptr);
         break;
       }
     }

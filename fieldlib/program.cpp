@@ -91,7 +91,8 @@ std::vector<int32_t> ProgramBuilder::compile_order(Op op, const std::vector<Box>
   return order;
 }
 
-int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg) {
+int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg,
+                         int consts_at) {
   const int g = static_cast<int>(prog_.groups.size());
   prog_.groups.emplace_back();
   Instr head{Op::Group};
@@ -122,6 +123,7 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
 
   Instr combine{op};
   combine.out = new_slot();
+  combine.in = consts_at;
   combine.a = static_cast<int32_t>(prog_.args.size());
   combine.n = static_cast<int32_t>(kids.size());
   for (const auto& k : kids) prog_.args.push_back(k.slot);

@@ -41,10 +41,14 @@ class FieldNode;
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
   X(Offset)           /* slot out = s (slot in - c) (s = c[0], c = c[1]), 003 §2.1      */ \
+  X(Complement)       /* slot out = 1 - f, -f or 1/f of slot in (convention = c[0])     */  \
   X(Group)            /* announces the children of the n-ary instruction groups[a]      */  \
   X(Sum)              /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12         */ \
   X(Min)              /* slot out = min of args[a..a+n)                                 */  \
-  X(Max)              /* slot out = max of args[a..a+n)                                 */
+  X(Max)              /* slot out = max of args[a..a+n)                                 */  \
+  X(SuperUnion)       /* slot out = (Σ args^-n)^(-1/n) (n = c[in]), 000 Eq. 6 B_RU^cg   */ \
+  X(SuperIntersect)   /* slot out = (Σ [args]_+^n)^(1/n) (n, L = c[in..]), B_RI^cg      */ \
+  X(Perlin)           /* slot out = Perlin blend (mode, L = c[in..]), 002 Eqs. 4-6      */
 
 enum class Op : uint8_t {
 #define SOFTTRACE_OP_ENUM(name) name,
@@ -57,18 +61,19 @@ const char* op_name(Op op);
 struct Instr {
   Op op;
   int32_t out = 0;  // value slot, or point register for Translate/Place
-  int32_t in = 0;   // point register (Translate, Place, distances, Oracle) or value slot
-                    // (potentials, Offset)
+  int32_t in = 0;   // point register (Translate, Place, distances, Oracle), value slot
+                    // (potentials, Offset, Complement) or offset into consts (SuperUnion,
+                    // SuperIntersect, Perlin)
   int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset), args
-                    // (Sum/Min/Max) or groups
-  int32_t n = 0;    // argument count (Sum/Min/Max)
+                    // (n-ary instructions) or groups
+  int32_t n = 0;    // argument count (n-ary instructions)
   const FieldNode* node = nullptr;  // Oracle
 };
 
 // The children of one n-ary instruction: where each child's instructions are and which slot holds
 // its result, plus what lets the bounds pass prune them.
 struct Group {
-  int32_t op_index = 0;  // the Sum/Min/Max instruction that combines the children
+  int32_t op_index = 0;  // the n-ary instruction that combines the children
   int32_t reg = 0;       // the point register the children read
   struct Child {
     int32_t begin, end;  // instruction range [begin, end)
@@ -116,9 +121,11 @@ class ProgramBuilder {
 
   // An oracle instruction: `node` evaluates its own subtree at register `reg`.
   int oracle(const FieldNode& node, int reg);
-  // Emits `children` as a group combined by `op` (Sum, Min, Max); for Sum, children whose value
-  // is exactly 0 outside their support are made prunable.
-  int nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg);
+  // Emits `children` as a group combined by `op` (Sum, Min, Max, SuperUnion, SuperIntersect,
+  // Perlin), whose `in` is `consts_at`; for Sum, children whose value is exactly 0 outside their
+  // support are made prunable.
+  int nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg,
+           int consts_at = 0);
 
   Program finish(int result);
 

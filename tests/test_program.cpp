@@ -311,6 +311,177 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
   }
 }
 
+// A complement compiles to its child's code (native where the child is) and one instruction, with
+// the model's bits in each convention: values, gradients, and over boxes the interval and Lipschitz
+// bound. Points at the centre reach the constructive guard (f <= kCgFloor), others a NaN value.
+// The soft child is an oracle: a soft_object's program bounds are its potential instruction's,
+// not the node's.
+TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
+  const struct {
+    const char* json;
+    Convention convention;
+    Op child;
+  } kCases[] = {
+      {R"({"type":"complement","children":[{"type":"ricci_union","n":2,"children":[
+          {"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}},
+          {"type":"soft_object","distance":{"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}}
+          ]}]})",
+       Convention::Soft, Op::Oracle},
+      {R"({"type":"complement","children":[{"type":"offset","scale":-2,"level":0.5,"children":[
+          {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7}]}]})",
+       Convention::Zero, Op::Offset},
+      {R"({"type":"complement","children":[{"type":"lp_metric","radii":[0.6,0.8,1.2],"n":3}]})",
+       Convention::Constructive, Op::LpMetric},
+      {R"({"type":"complement","children":[{"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],
+          "radius":0.6}]})",
+       Convention::Constructive, Op::LineSegment},
+      {R"({"type":"complement","children":[{"type":"generalized_distance",
+          "normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],"n":2}]})",
+       Convention::Constructive, Op::Oracle}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json, c.convention);
+    const Program prog = compile(*node);
+    ASSERT_GE(prog.code.size(), 2u) << c.json;
+    EXPECT_EQ(prog.code[prog.code.size() - 2].op, c.child) << c.json;
+    EXPECT_EQ(prog.code.back().op, Op::Complement) << c.json;
+    expect_models_bits(c.json, c.convention, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin (the skeleton: f = 0); 2: a NaN coordinate; 3: on the z axis.
+      switch (k % 4) {
+        case 1:
+          return Vec3{};
+        case 2:
+          p[k % 3] = std::nan("");
+          return p;
+        case 3:
+          return Vec3{0, 0, p.z};
+      }
+      return p;
+    });
+  }
+}
+
+// The super-ellipsoidal union and intersection compile to their children's code as a group that is
+// never pruned (nor are children dropped over boxes: every one moves the power sum) and one
+// instruction, with the model's bits: values, gradients, and over boxes the interval and
+// Lipschitz bound. Points at a child's skeleton reach the union's U = 0 branch and the
+// intersection's clamp; NaN coordinates give NaN children. No child is placed: a translation's
+// box bounds are the program's own (translate_box), not the placed node's.
+TEST(Program, SuperEllipsoidalCombinationsAreOneInstructionAfterTheirChildren) {
+  const struct {
+    const char* json;
+    Op op;
+    int children;
+  } kCases[] = {{R"({"type":"super_ellipsoidal_union","n":2,"children":[
+          {"type":"lp_metric","radii":[1,0.8,1.2],"n":2},
+          {"type":"lp_metric","radii":[0.6,0.8,1.2],"n":3}]})",
+                 Op::SuperUnion, 2},
+                {R"({"type":"super_ellipsoidal_union","n":7.5,"children":[
+          {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7},
+          {"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],"radius":0.6},
+          {"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],
+           "n":2}]})",
+                 Op::SuperUnion, 3},
+                {R"({"type":"super_ellipsoidal_intersection","n":2,"children":[
+          {"type":"lp_metric","radii":[1,0.8,1.2],"n":2},
+          {"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}]})",
+                 Op::SuperIntersect, 2},
+                {R"({"type":"super_ellipsoidal_intersection","n":0.7,"children":[
+          {"type":"one_branch_plane","normal":[0.3,-1,0.4],"a":0.5},
+          {"type":"lp_metric","radii":[0.6,0.8,1.2],"n":3},
+          {"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],
+           "n":2}]})",
+                 Op::SuperIntersect, 3},
+                {R"({"type":"super_ellipsoidal_intersection","n":4,"children":[
+          {"type":"super_ellipsoidal_union","n":3,"children":[
+            {"type":"lp_metric","radii":[1,1,1],"n":2},
+            {"type":"torus","major_radius":0.8,"radii":[0.3,0.4],"n":3}]},
+          {"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":0.6}]})",
+                 Op::SuperIntersect, 2}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json, Convention::Constructive);
+    const Program prog = compile(*node);
+    EXPECT_EQ(count_ops(prog.code, Op::Oracle), std::strstr(c.json, "generalized") ? 1 : 0)
+        << c.json;
+    EXPECT_EQ(prog.code.back().op, c.op) << c.json;
+    EXPECT_EQ(prog.code.back().n, c.children) << c.json;
+    EXPECT_FALSE(prog.has_pruning) << c.json;
+    for (const Group& g : prog.groups) EXPECT_TRUE(g.bvh.empty()) << c.json;
+    expect_models_bits(c.json, Convention::Constructive, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin (a skeleton); 2: a NaN coordinate; 3: on the x axis.
+      switch (k % 4) {
+        case 1:
+          return Vec3{};
+        case 2:
+          p[k % 3] = std::nan("");
+          return p;
+        case 3:
+          return Vec3{p.x, 0, 0};
+      }
+      return p;
+    });
+    // Over a box far from every child no child is dropped.
+    Workspace ws;
+    ws.fit(prog);
+    bounds(prog, Box::around({1.5, 1.5, 1.5}, 0.1), ws);
+    EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << c.json;
+    EXPECT_EQ(ws.view.code.back().n, c.children) << c.json;
+  }
+}
+
+// Perlin's blends compile to their children's code as a group that is never pruned and one
+// instruction, with the model's bits: values, gradients, and over boxes the interval and
+// Lipschitz bound. The leaves are oracles (ricci blends of soft objects) or nested blends of them:
+// a soft_object's program bounds are its potential instruction's, not the node's. Points at the
+// origin put the children at their peaks; NaN coordinates give NaN children.
+TEST(Program, PerlinBlendsAreOneInstructionAfterTheirChildren) {
+#define SOFT_A R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}})"
+#define SOFT_B                                                                         \
+  R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"torus",)" \
+  R"("major_radius":0.8,"radii":[0.3,0.4]}})"
+#define RICCI(n, a, b) R"({"type":"ricci_union","n":)" #n R"(,"children":[)" a "," b "]}"
+  const std::string a = RICCI(2, SOFT_A, SOFT_B), b = RICCI(3, SOFT_B, SOFT_A),
+                    c = RICCI(1.5, SOFT_A, SOFT_A);
+#undef RICCI
+#undef SOFT_B
+#undef SOFT_A
+  const auto blend = [](const char* kind, const std::vector<std::string>& children) {
+    std::string s = std::string(R"({"type":")") + kind + R"(","children":[)";
+    for (size_t i = 0; i < children.size(); ++i) s += (i ? "," : "") + children[i];
+    return s + "]}";
+  };
+  const std::string kCases[] = {blend("perlin_union", {a, b}),
+                                blend("perlin_union", {a, b, c}),
+                                blend("perlin_intersection", {a, b}),
+                                blend("perlin_intersection", {c, a, b}),
+                                blend("perlin_difference", {a, b}),
+                                blend("perlin_difference", {b, c, a}),
+                                blend("perlin_union", {blend("perlin_difference", {a, c}), b})};
+  for (const std::string& json : kCases) {
+    const NodePtr node = build_from_json(json, Convention::Soft);
+    const Program prog = compile(*node);
+    EXPECT_EQ(prog.code.back().op, Op::Perlin) << json;
+    int blends = 0;
+    for (size_t at = json.find("perlin_"); at != std::string::npos;
+         at = json.find("perlin_", at + 1))
+      ++blends;
+    EXPECT_EQ(count_ops(prog.code, Op::Perlin), blends) << json;
+    EXPECT_FALSE(prog.has_pruning) << json;
+    expect_models_bits(json, Convention::Soft, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin; 2: a NaN coordinate.
+      if (k % 3 == 1) return Vec3{};
+      if (k % 3 == 2) p[k % 3] = std::nan("");
+      return p;
+    });
+    // Over a box outside every support no child is dropped; over all of space the bound is the
+    // node's global one.
+    Workspace ws;
+    ws.fit(prog);
+    bounds(prog, Box::around({5, 5, 5}, 0.1), ws);
+    EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << json;
+    EXPECT_TRUE(same_bits(bounds(prog, Box::unbounded(), ws).lipschitz, node->lipschitz())) << json;
+  }
+}
+
 // Along a segment X·n is affine, so a plane's slope interval is its rate (n·dir)/a to within the
 // padding where the segment keeps to one side of the plane (an offset's is s times that, ends
 // swapped for s < 0; under a rotation too), and holds the rate, with either sign for |X·n|, where
