@@ -37,6 +37,13 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
   Workspace::Frame* R = ws.frames.data();
   const double* K = c.base->consts.data();
   R[0] = {p, Mat3{}, true};
+  // An n-ary instruction's children's values and gradients, for kernels that take them as arrays.
+  const auto gather = [&](const Instr& in, double* x, Vec3* g) {
+    for (int j = 0; j < in.n; ++j) {
+      x[j] = S[c.args[in.a + j]].v;
+      g[j] = S[c.args[in.a + j]].g;
+    }
+  };
 
   for (int k = 0; k < c.size; ++k) {
     const Instr& in = c.code[k];
@@ -156,10 +163,7 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         const double e = K[in.in];
         Scratch<double> x(k);
         Scratch<Vec3> g(k);
-        for (size_t j = 0; j < k; ++j) {
-          x[j] = S[c.args[in.a + j]].v;
-          g[j] = S[c.args[in.a + j]].g;
-        }
+        gather(in, x.data(), g.data());
         Workspace::Dual d;
         if (in.op == Op::SuperUnion) {
           d.v = super_union(x.data(), k, e);
@@ -174,10 +178,7 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         const size_t k = in.n;
         Scratch<double> x(k);
         Scratch<Vec3> g(k);
-        for (size_t j = 0; j < k; ++j) {
-          x[j] = S[c.args[in.a + j]].v;
-          g[j] = S[c.args[in.a + j]].g;
-        }
+        gather(in, x.data(), g.data());
         Workspace::Dual d;
         d.v = perlin(perlin_mode(K + in.in), x.data(), g.data(), k, &d.g);
         S[in.out] = d;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -35,6 +36,22 @@ std::string blob_cloud(int n, unsigned seed) {
   }
   return s + "]}";
 }
+
+// blob_cloud(40, seed) compiled, its BlobSum, a workspace and an id buffer.
+struct Cloud {
+  NodePtr node;
+  Program prog;
+  std::optional<BlobSum> blobs;
+  Workspace ws;
+  std::vector<int32_t> ids;
+  explicit Cloud(unsigned seed)
+      : node(build_from_json(blob_cloud(40, seed))),
+        prog(compile(*node)),
+        blobs(BlobSum::of(prog)) {
+    ws.fit(prog);
+    if (blobs) ids.resize(blobs->size());
+  }
+};
 
 bool is_blob_sum(const std::string& json) {
   return BlobSum::of(compile(*build_from_json(json))).has_value();
@@ -80,14 +97,13 @@ TEST(BlobSum, RecognisesOnlySumsOfPolynomialBlobs) {
 // rounded o + u d, the polynomial at exact u: a few ulps of the coordinates, times a slope of
 // at most ~1 per unit here).
 TEST(BlobSum, EachPieceOfAStretchIsOnePolynomialOfTheField) {
-  const NodePtr node = build_from_json(blob_cloud(40, 2));
-  const Program prog = compile(*node);
-  const auto blobs = BlobSum::of(prog);
-  ASSERT_TRUE(blobs.has_value());
-  Workspace ws;
-  ws.fit(prog);
+  Cloud cloud(2);
+  ASSERT_TRUE(cloud.blobs.has_value());
+  const Program& prog = cloud.prog;
+  const auto& blobs = cloud.blobs;
+  Workspace& ws = cloud.ws;
   std::vector<BlobSum::Term> terms(blobs->size());
-  std::vector<int32_t> ids(blobs->size());
+  std::vector<int32_t>& ids = cloud.ids;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1, 1), x01(0, 1);
   int pieces = 0, outside = 0;
@@ -140,13 +156,12 @@ TEST(BlobSum, EachPieceOfAStretchIsOnePolynomialOfTheField) {
 // The normals of blob sums come from BlobSum::gradient: the compiled gradient's value and
 // direction, to rounding, inside and between supports, and 0 outside all of them.
 TEST(BlobSum, GradientIsTheCompiledOne) {
-  const NodePtr node = build_from_json(blob_cloud(40, 3));
-  const Program prog = compile(*node);
-  const auto blobs = BlobSum::of(prog);
-  ASSERT_TRUE(blobs.has_value());
-  Workspace ws;
-  ws.fit(prog);
-  std::vector<int32_t> ids(blobs->size());
+  Cloud cloud(3);
+  ASSERT_TRUE(cloud.blobs.has_value());
+  const Program& prog = cloud.prog;
+  const auto& blobs = cloud.blobs;
+  Workspace& ws = cloud.ws;
+  std::vector<int32_t>& ids = cloud.ids;
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(-12, 12);
   int inside = 0;
