@@ -37,6 +37,14 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
   Workspace::Frame* R = ws.frames.data();
   const double* K = c.base->consts.data();
   R[0] = {p, Mat3{}, true};
+  // A kernel of the point register in.in: its value, and its local gradient pulled back to the
+  // world point (Jᵀg; passed unchanged where J = I, so an infinite gradient meets no 0·inf).
+  const auto local = [&](const Instr& in, const auto& kernel) {
+    const Workspace::Frame& f = R[in.in];
+    Vec3 g;
+    const double v = kernel(f.p, &g);
+    S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+  };
   // An n-ary instruction's children's values and gradients, for kernels that take them as arrays.
   const auto gather = [&](const Instr& in, double* x, Vec3* g) {
     for (int j = 0; j < in.n; ++j) {
@@ -62,48 +70,39 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         R[in.out] = {Rt * (f.p - Vec3{t[0], t[1], t[2]}), f.identity ? Rt : times(Rt, f.J), false};
         break;
       }
-      case Op::Oracle: {
-        const Workspace::Frame& f = R[in.in];
-        Vec3 g;
-        const double v = in.node->eval(f.p, &g);
-        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+      case Op::Oracle:
+        local(in, [&](const Vec3& q, Vec3* g) { return in.node->eval(q, g); });
         break;
-      }
       case Op::LpMetric: {
         const double* k = K + in.a;
-        const Workspace::Frame& f = R[in.in];
-        Vec3 g;
-        const double v = lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, f.p, &g);
-        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, q, g);
+        });
         break;
       }
-      case Op::SphericalProduct: {
-        const Workspace::Frame& f = R[in.in];
-        Vec3 g;
-        const double v = spherical_product(spherical_product_params(K + in.a), f.p, &g);
-        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+      case Op::SphericalProduct:
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return spherical_product(spherical_product_params(K + in.a), q, g);
+        });
         break;
-      }
       case Op::ParallelPlanes:
-      case Op::OneBranchPlane: {
-        const PlaneParams m = plane_params(K + in.a);
-        const Workspace::Frame& f = R[in.in];
-        Vec3 g;
-        const double v = in.op == Op::ParallelPlanes ? parallel_planes(m, f.p, &g)
-                                                     : one_branch_plane(m, f.p, &g);
-        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return parallel_planes(plane_params(K + in.a), q, g);
+        });
         break;
-      }
+      case Op::OneBranchPlane:
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return one_branch_plane(plane_params(K + in.a), q, g);
+        });
+        break;
       case Op::LineSegment:
-      case Op::Torus: {
-        const Workspace::Frame& f = R[in.in];
-        Vec3 g;
-        const double v = in.op == Op::LineSegment
-                             ? line_segment_distance(line_segment_params(K + in.a), f.p, &g)
-                             : torus(torus_params(K + in.a), f.p, &g);
-        S[in.out] = {v, f.identity ? g : f.J.transposed_times(g)};
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return line_segment_distance(line_segment_params(K + in.a), q, g);
+        });
         break;
-      }
+      case Op::Torus:
+        local(in, [&](const Vec3& q, Vec3* g) { return torus(torus_params(K + in.a), q, g); });
+        break;
       case Op::Blanc: {
         double dP;
         const double v = blanc(S[in.in].v, K[in.a], &dP);
