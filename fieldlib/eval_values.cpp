@@ -20,6 +20,22 @@
 
 namespace softtrace {
 
+namespace {
+// A super-ellipsoidal or Perlin combination of its children's values x[0..in.n), gathered by the
+// caller into scratch the kernels work in.
+double combination(const Instr& in, const double* K, double* x) {
+  const size_t k = in.n;
+  switch (in.op) {
+    case Op::SuperUnion:
+      return super_union(x, k, K[in.in]);
+    case Op::SuperIntersect:
+      return super_intersection(x, nullptr, k, K[in.in], nullptr);
+    default:
+      return perlin(perlin_mode(K + in.in), x, nullptr, k, nullptr);
+  }
+}
+}  // namespace
+
 void values(Code c, const double* x, const double* y, const double* z, int n, double* f,
             Workspace& ws) {
   double* S = ws.slots.data();
@@ -216,26 +232,13 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         break;
       }
       case Op::SuperUnion:
-      case Op::SuperIntersect: {
-        // The kernels lane by lane (pow is a libm call), on the children's values gathered.
-        const size_t k = in.n;
-        const double e = K[in.in];
-        Scratch<double> x(k);
-        for (int l = 0; l < n; ++l) {
-          for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
-          out[l] = in.op == Op::SuperUnion ? super_union(x.data(), k, e)
-                                           : super_intersection(x.data(), nullptr, k, e, nullptr);
-        }
-        break;
-      }
+      case Op::SuperIntersect:
       case Op::Perlin: {
-        // The kernel lane by lane on the children's values gathered.
-        const size_t k = in.n;
-        const PerlinMode mode = perlin_mode(K + in.in);
-        Scratch<double> x(k);
+        // The kernels lane by lane (pow is a libm call), on the children's values gathered.
+        Scratch<double> x(in.n);
         for (int l = 0; l < n; ++l) {
-          for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
-          out[l] = perlin(mode, x.data(), nullptr, k, nullptr);
+          for (int j = 0; j < in.n; ++j) x[j] = S[c.args[in.a + j] * kBatch + l];
+          out[l] = combination(in, K, x.data());
         }
         break;
       }
@@ -328,19 +331,11 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         break;
       }
       case Op::SuperUnion:
-      case Op::SuperIntersect: {
-        const size_t k = in.n;
-        Scratch<double> x(k);
-        for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
-        out = in.op == Op::SuperUnion ? super_union(x.data(), k, K[in.in])
-                                      : super_intersection(x.data(), nullptr, k, K[in.in], nullptr);
-        break;
-      }
+      case Op::SuperIntersect:
       case Op::Perlin: {
-        const size_t k = in.n;
-        Scratch<double> x(k);
-        for (size_t j = 0; j < k; ++j) x[j] = S[c.args[in.a + j]];
-        out = perlin(perlin_mode(K + in.in), x.data(), nullptr, k, nullptr);
+        Scratch<double> x(in.n);
+        for (int j = 0; j < in.n; ++j) x[j] = S[c.args[in.a + j]];
+        out = combination(in, K, x.data());
         break;
       }
     }
