@@ -107,27 +107,35 @@ class SegmentTest {
 };
 }  // namespace
 
-template <class Accept>
-int BoxBvh::collect(const Box& q, const Accept& accept, int32_t* out, int count) const {
+template <class NodeTest, class ItemTest>
+int BoxBvh::walk(const NodeTest& node_test, const ItemTest& item_test, int32_t* out,
+                 int count) const {
   if (nodes_.empty()) return count;
-  const int start = count;
   int32_t stack[kMaxDepth];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!overlaps(n.box, q)) continue;
+    if (!node_test(n.box)) continue;
     if (n.count > 0) {
       for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (overlaps(item_boxes_[i], q) && accept(item_boxes_[i])) out[count++] = items_[i];
+        if (item_test(item_boxes_[i])) out[count++] = items_[i];
       continue;
     }
-    stack[top++] = n.left;
     stack[top++] = n.right;
+    stack[top++] = n.left;
   }
-  // Children are combined in their scene order, so results do not depend on the tree's shape.
-  std::sort(out + start, out + count);
   return count;
+}
+
+template <class Accept>
+int BoxBvh::collect(const Box& q, const Accept& accept, int32_t* out, int count) const {
+  const auto in_q = [&](const Box& box) { return overlaps(box, q); };
+  const int end = walk(
+      in_q, [&](const Box& box) { return in_q(box) && accept(box); }, out, count);
+  // Children are combined in their scene order, so results do not depend on the tree's shape.
+  std::sort(out + count, out + end);
+  return end;
 }
 
 int BoxBvh::query(const Box& q, int32_t* out, int count) const {
@@ -143,24 +151,9 @@ int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_
 }
 
 int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const {
-  if (nodes_.empty()) return 0;
   const SegmentTest segment(a, b, pad);
-  int count = 0;
-  int32_t stack[kMaxDepth];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    if (!segment.meets(n.box)) continue;
-    if (n.count > 0) {
-      for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (segment.meets(item_boxes_[i])) out[count++] = items_[i];
-      continue;
-    }
-    stack[top++] = n.right;
-    stack[top++] = n.left;
-  }
-  return count;
+  const auto meets = [&](const Box& box) { return segment.meets(box); };
+  return walk(meets, meets, out, 0);
 }
 
 }  // namespace softtrace

@@ -37,6 +37,10 @@ class BoxBvh {
     int32_t left, right;
   };
   int32_t build(int32_t first, int32_t count, std::vector<Box>& centre_boxes);
+  // The items whose boxes pass item_test and whose nodes' boxes all pass node_test, appended to
+  // out[count..] in the tree's order (left first); returns the new count.
+  template <class NodeTest, class ItemTest>
+  int walk(const NodeTest& node_test, const ItemTest& item_test, int32_t* out, int count) const;
   // The items whose boxes overlap q and pass `accept`, appended in id order.
   template <class Accept>
   int collect(const Box& q, const Accept& accept, int32_t* out, int count) const;
