@@ -36,11 +36,13 @@ inline double power_value(const double* a, int degree, double x) {
 // `finest`. `err` bounds |computed - exact| of the coefficients' hulls on every piece.
 inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
   // b_i = Σ_{j<=i} C(i,j)/C(m,j) a_j.
-  double binom[kMaxDegree + 1][kMaxDegree + 1] = {};
-  for (int i = 0; i <= degree; ++i) {
-    binom[i][0] = 1;
-    for (int j = 1; j <= i; ++j) binom[i][j] = binom[i - 1][j - 1] + (j < i ? binom[i - 1][j] : 0);
-  }
+  static constexpr double binom[kMaxDegree + 1][kMaxDegree + 1] = {{1},
+                                                                   {1, 1},
+                                                                   {1, 2, 1},
+                                                                   {1, 3, 3, 1},
+                                                                   {1, 4, 6, 4, 1},
+                                                                   {1, 5, 10, 10, 5, 1},
+                                                                   {1, 6, 15, 20, 15, 6, 1}};
   struct Piece {
     double lo, hi, b[kMaxDegree + 1];
   };
