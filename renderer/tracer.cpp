@@ -14,9 +14,16 @@ using namespace tracer_limits;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Sphere-tracing steps within one segment before it is cut short at the current point: the bound
+// over a long segment's box can be far looser than over a short one (e.g. a modulated radius whose
+// [d]/[f] decorrelates). Every step taken was certified, so stopping early skips nothing.
+constexpr int kSegmentSteps = 4;
+// The farthest probe, in tolerances (4 footprint radii): a bracket is refined to its one crossing
+// only when it is that short.
+constexpr double kProbeReach = 2;
 // How far from a point with g = v < 0 the ray is clear when g changes at most `rate` per unit.
 double reach(double v, double rate) {
-  return rate > 0 ? -v / rate : std::numeric_limits<double>::infinity();
+  return rate > 0 ? -v / rate : kInf;
 }
 // One workspace per thread, shared by every object's tracer: evaluations do not allocate once it
 // has grown to the largest program.
