@@ -95,6 +95,27 @@ class BtBlend final : public FieldNode {
     return L;
   }
 
+  // Without bulge elimination, the children's intervals and bounds in one call each.
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    if (bulge()) return FieldNode::bounds(b, value, L);
+    const int k = op_.k();
+    Scratch<Interval> X(k);
+    Scratch<double> Lc(k), lo(k), hi(k);
+    for (int i = 0; i < k; ++i) {
+      Interval f;
+      c_[i]->bounds(b, &f, &Lc[i]);
+      X[i] = signed_interval(sigma_[i], f);
+      lo[i] = X[i].lo;
+      hi[i] = X[i].hi;
+    }
+    const Interval bt = monotone_enclosure(lo.data(), hi.data());
+    *value = tau_ > 0 ? bt : -bt;
+    *L = 0;
+    for (int i = 0; i < k; ++i)
+      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
+        *L = std::max(*L, iv::up(Lc[i] / op_.m()[i]));
+  }
+
   Box region(double level, Side side) const override {
     // R <= c  ⇔  BT <= c (τ = 1) or BT >= -c (τ = -1); R >= c likewise with the sides swapped.
     const bool bt_below = (side == Side::Below) == (tau_ > 0);

@@ -87,15 +87,21 @@ class Scale final : public FieldNode {
     return h;
   }
   Interval interval(const Box& b) const override {
-    const Interval i1 = f1_->interval(b), i2 = f2_->interval(b);
-    const double lo = op_(i1.lo, i2.lo, nullptr), hi = op_(i1.hi, i2.hi, nullptr);
-    return iv::out(lo - 1e-13 * std::abs(lo), hi + 1e-13 * std::abs(hi));
+    return range(f1_->interval(b), f2_->interval(b));
   }
   double lipschitz() const override {
     return std::max(f1_->lipschitz(), f2_->lipschitz()) * gain_ * (1 + 1e-12);
   }
   double lipschitz(const Box& b) const override {
     return std::max(f1_->lipschitz(b), f2_->lipschitz(b)) * gain_ * (1 + 1e-12);
+  }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    Interval i1, i2;
+    double L1, L2;
+    f1_->bounds(b, &i1, &L1);
+    f2_->bounds(b, &i2, &L2);
+    *value = range(i1, i2);
+    *L = std::max(L1, L2) * gain_ * (1 + 1e-12);
   }
   Box region(double level, Side side) const override {
     // BSA2: {B >= l} needs both x_i >= l; {B <= c} needs some x_i <= c/κ_A (c > 0).
@@ -108,6 +114,12 @@ class Scale final : public FieldNode {
   }
 
  private:
+  // B is non-decreasing in both arguments: its range is B at the ends, widened for rounding.
+  Interval range(Interval i1, Interval i2) const {
+    const double lo = op_(i1.lo, i2.lo, nullptr), hi = op_(i1.hi, i2.hi, nullptr);
+    return iv::out(lo - 1e-13 * std::abs(lo), hi + 1e-13 * std::abs(hi));
+  }
+
   NodePtr f1_, f2_;
   ScaleOperator op_;
   bool bsa_;

@@ -43,6 +43,9 @@ class LpMetric final : public FieldNode {
     lp_metric_bounds(params(), b, &f, &L);
     return L;
   }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    lp_metric_bounds(params(), b, value, L);
+  }
   // One instruction with the parameters inline.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LpMetric};
@@ -119,6 +122,9 @@ class SphericalProduct final : public FieldNode {
     double L;
     spherical_product_bounds(m_, b, &f, &L);
     return L;
+  }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    spherical_product_bounds(m_, b, value, L);
   }
   // One instruction with the parameters inline, in spherical_product_params' order.
   int compile(ProgramBuilder& b, int reg) const override {

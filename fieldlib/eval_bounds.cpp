@@ -183,8 +183,7 @@ class Walker {
       case Op::Oracle:
         if (bounds_) {
           const Box b = box(in.in);
-          I[in.out] = in.node->interval(b);
-          L[in.out] = in.node->lipschitz(b);
+          in.node->bounds(b, &I[in.out], &L[in.out]);
           D[in.out] = {-L[in.out], L[in.out]};
           Q[in.out] = 0;
         }

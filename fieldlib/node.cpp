@@ -11,6 +11,11 @@ Interval FieldNode::interval(const Box& b) const {
   return iv::out(v - r, v + r);
 }
 
+void FieldNode::bounds(const Box& b, Interval* value, double* L) const {
+  *value = interval(b);
+  *L = lipschitz(b);
+}
+
 int FieldNode::compile(ProgramBuilder& b, int reg) const {
   return b.oracle(*this, reg);
 }

@@ -31,6 +31,10 @@ class FieldNode {
   // Bounds on |∇f|: globally and over a box. +inf where no bound exists (exponents below 1).
   virtual double lipschitz() const = 0;
   virtual double lipschitz(const Box& b) const { return lipschitz(); }
+  // interval(b) and lipschitz(b) together, equal to them bit for bit. Nodes whose two bounds
+  // share their work (a gauge's terms; a modulated soft object's octant refinement) override it,
+  // so that a caller needing both, as the bounds pass does for an oracle, pays for it once.
+  virtual void bounds(const Box& b, Interval* value, double* lipschitz) const;
 
   // A box containing {p : f(p) >= level} (Side::Above) or {f(p) <= level} (Side::Below);
   // Box::unbounded() when no finite box is known. For soft fields, region(l, Above) with

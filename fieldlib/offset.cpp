@@ -28,6 +28,13 @@ class Offset final : public FieldNode {
   double lipschitz(const Box& b) const override {
     return offset_lipschitz(s_, child_->lipschitz(b));
   }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    Interval f;
+    double Lf;
+    child_->bounds(b, &f, &Lf);
+    *value = offset_interval(s_, c_, f);
+    *L = offset_lipschitz(s_, Lf);
+  }
   double gradient_floor(const Box& b) const override {
     return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
   }

@@ -28,6 +28,9 @@ class Placed final : public FieldNode {
   Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
   double lipschitz() const override { return child_->lipschitz(); }
   double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    child_->bounds(to_local(b), value, L);
+  }
   // A rigid motion keeps gradient lengths and Hessian norms.
   double gradient_floor(const Box& b) const override { return child_->gradient_floor(to_local(b)); }
   double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }

@@ -39,6 +39,13 @@ class SoftObject final : public FieldNode {
   double lipschitz(const Box& b) const override {
     return flat_product(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));
   }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    Interval d;
+    double Ld;
+    d_->bounds(b, &d, &Ld);
+    *value = P_->interval(d);
+    *L = flat_product(P_->lipschitz(d), Ld);
+  }
   Box region(double level, Side side) const override {
     if (side == Side::Above && level > 0) return d_->region(1, Side::Below);
     return Box::unbounded();
@@ -111,7 +118,10 @@ class TransformedSoftObject final : public FieldNode {
   // blends, where every stretch box asks every child, and the decorrelated [d]/[f] bounds of a
   // far-away child are loose (measured on [002] Fig. 8(c): thousands of evaluations per ray).
   Interval interval(const Box& b) const override {
-    return outside_support(b) ? Interval(0) : refined_interval(b, kRefine);
+    if (outside_support(b)) return Interval(0);
+    Interval I;
+    refined(b, kRefine, &I, nullptr);
+    return I;
   }
 
   double lipschitz() const override {
@@ -121,7 +131,18 @@ class TransformedSoftObject final : public FieldNode {
   }
 
   double lipschitz(const Box& b) const override {
-    return outside_support(b) ? 0 : refined_lipschitz(b, kRefine);
+    Interval I;
+    double L;
+    bounds(b, &I, &L);
+    return L;
+  }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    if (outside_support(b)) {
+      *value = Interval(0);
+      *L = 0;
+      return;
+    }
+    refined(b, kRefine, value, L);
   }
 
   Box region(double level, Side side) const override {
@@ -145,6 +166,7 @@ class TransformedSoftObject final : public FieldNode {
 
   struct Bounds {
     Interval d, f, r, w, T;  // r = d/f, unclamped
+    double Ld = 0, Lf = 0;   // d's and f's (unscaled) Lipschitz bounds, where asked for
   };
 
   // [d]/[f] loses the correlation of d and f (their ratio is constant along rays from a common
@@ -154,21 +176,23 @@ class TransformedSoftObject final : public FieldNode {
   // slopes of ~10). Every level is sound; the smaller bound is kept.
   static constexpr int kRefine = 2;  // octant levels: at most 8 + 64 sub-boxes
 
-  Interval refined_interval(const Box& b, int levels) const {
-    const Bounds B = bounds(b);
-    const Interval I = P_->interval(B.T);
-    if (levels == 0 || !decorrelated(B, b)) return I;
+  // The interval over b and, where L is non-null, the Lipschitz bound: each the tighter of b's own
+  // and its octants' (one walk over the octants serves both).
+  void refined(const Box& b, int levels, Interval* I, double* L) const {
+    const Bounds B = bounds(b, L != nullptr);
+    *I = P_->interval(B.T);
+    if (L) *L = slope_bound(B);
+    if (levels == 0 || !decorrelated(B, b)) return;
     Interval h(kInf, -kInf);
-    for (const Box& s : octants(b)) h = hull(h, refined_interval(s, levels - 1));
-    return {std::max(I.lo, h.lo), std::min(I.hi, h.hi)};
-  }
-  double refined_lipschitz(const Box& b, int levels) const {
-    const Bounds B = bounds(b);
-    const double L = lipschitz(b, B);
-    if (levels == 0 || !decorrelated(B, b)) return L;
-    double m = 0;
-    for (const Box& s : octants(b)) m = std::max(m, refined_lipschitz(s, levels - 1));
-    return std::min(L, m);
+    double m = 0, Ls;
+    for (const Box& s : octants(b)) {
+      Interval Is;
+      refined(s, levels - 1, &Is, L ? &Ls : nullptr);
+      h = hull(h, Is);
+      if (L) m = std::max(m, Ls);
+    }
+    *I = {std::max(I->lo, h.lo), std::min(I->hi, h.hi)};
+    if (L) *L = std::min(*L, m);
   }
   bool decorrelated(const Bounds& B, const Box& b) const {
     return src_ != WSource::Constant && b.bounded() && B.w.lo < 0.25 * B.w.hi && B.T.lo < B.T.hi;
@@ -185,19 +209,19 @@ class TransformedSoftObject final : public FieldNode {
     return out;
   }
 
-  double lipschitz(const Box& b, const Bounds& B) const {
+  // The Lipschitz bound over the box B was taken on (bounds(b, true)).
+  double slope_bound(const Bounds& B) const {
     if (B.T.hi <= 0) return 0;  // T = 0: P(0) over the whole box
     const double LP = P_->lipschitz(B.T);
     if (LP == 0) return 0;
-    const double Ld = d_->lipschitz(b);
-    const double dterm = flat_product(T_->slope_d(B.d, B.w), Ld);
+    const double dterm = flat_product(T_->slope_d(B.d, B.w), B.Ld);
     if (src_ == WSource::Constant) return std::min(lipschitz(), flat_product(LP, dterm));
     const double sw = T_->slope_w(B.d, B.w);
     double wterm = 0;
     if (sw > 0) {
-      const double Lf = scale_ * f_->lipschitz(b);
-      const double G1 = B.f.lo > 0 ? Ld / B.f.lo + B.d.hi * Lf / (B.f.lo * B.f.lo) : kInf;
-      const double G2 = B.r.hi * (Ld + B.r.hi * Lf);
+      const double Lf = scale_ * B.Lf;
+      const double G1 = B.f.lo > 0 ? B.Ld / B.f.lo + B.d.hi * Lf / (B.f.lo * B.f.lo) : kInf;
+      const double G2 = B.r.hi * (B.Ld + B.r.hi * Lf);
       wterm = std::min(flat_product(sw, G1), flat_product(T_->slope_w_per_d(B.d, B.w), G2));
     }
     return flat_product(LP, (dterm + wterm) * (1 + 1e-12));
@@ -217,16 +241,27 @@ class TransformedSoftObject final : public FieldNode {
     return w;
   }
 
-  Bounds bounds(const Box& b) const {
+  // With `slopes`, d's and f's Lipschitz bounds too, from the same calls as their intervals.
+  Bounds bounds(const Box& b, bool slopes) const {
     Bounds B;
-    const Interval d = d_->interval(b);
+    Interval d;
+    if (slopes) {
+      d_->bounds(b, &d, &B.Ld);
+    } else {
+      d = d_->interval(b);
+    }
     B.d = {std::max(0.0, d.lo), std::max(0.0, d.hi)};
     if (src_ == WSource::Constant) {
       B.w = Interval(w_);
       B.T = T_->image(B.d, B.w);
       return B;
     }
-    const Interval f = f_->interval(b);
+    Interval f;
+    if (slopes) {
+      f_->bounds(b, &f, &B.Lf);
+    } else {
+      f = f_->interval(b);
+    }
     B.f = {iv::down(scale_ * f.lo), iv::up(scale_ * f.hi)};
     if (B.f.lo > 0) {
       B.r = B.d / B.f;
