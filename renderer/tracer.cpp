@@ -245,8 +245,12 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   double t = t0, gt = 0;
   // Whether gt is g(t). Past t0, g(t) < 0 is always known (from an interval or a value).
   bool gt_known = false;
-  double s = (t1 - t0) / 8;  // the next segment's length
+  double s = (t1 - t0) / 4;  // the next segment's length
   double probe = 0;          // how far ahead to probe near the surface
+  // Whether s was halved because the last segment's bound was too loose to decide it: its first
+  // half, once cleared, is followed by the second at the same length, not twice it (the surface
+  // that kept the whole from clearing is likely there).
+  bool halved = false;
 
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) return give_up(t);
@@ -255,7 +259,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     if (sb.g.hi < 0) {  // the solid cannot be reached anywhere in this segment
       t = b;
       gt_known = false;
-      s *= 2;
+      if (!halved) s *= 2;
+      halved = false;
       continue;
     }
     const double tol = kDecide * footprint(ray, t);
@@ -269,6 +274,13 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       gt = g_empty_;
       gt_known = true;
       s = std::max(b - t, tol);
+      continue;
+    }
+    // No point of the segment can clear a tolerance by the slope bound (g >= g.lo everywhere):
+    // sphere steps cannot move, so bisect on intervals before spending values on it.
+    if (sb.fall > 0 && -sb.g.lo < tol * sb.rise && b - t > 4 * tol) {
+      s = 0.5 * (b - t);
+      halved = true;
       continue;
     }
     if (!gt_known) {
@@ -297,6 +309,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     if (!std::isfinite(sb.rise)) {
       if (b - t > 4 * tol) {  // no slope bound here: bound shorter segments
         s = 0.5 * (b - t);
+        halved = true;
         continue;
       }
       const Scan sc = scan(ray, t, gt, b, NAN, kFinest * tol, work);
