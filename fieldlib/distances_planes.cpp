@@ -1,15 +1,13 @@
 // Parallel planes, one-branch plane and the (modulated) generalized distance function
 // (docs/math.md §2.3, §2.4, §2.7, §2.10). Normals are normalised, so a is the distance to a plane.
 #include <cmath>
-#include <limits>
 
 #include "distance_params.h"
 #include "distances.h"
-#include "gauge.h"
+#include "generalized_distance.h"
 #include "one_sided.h"
 #include "planes.h"
 #include "program.h"
-#include "scratch.h"
 
 namespace softtrace {
 
@@ -74,66 +72,31 @@ class OneBranchPlane final : public FieldNode {
 };
 
 // (Σ_i u_i^n)^(1/n), u_i = [X·n_i]_+/(t_{2i-1} a_i) + [-X·n_i]_+/(t_{2i} a_i)
-//   — 000 Eq. 4, 002 Eq. 16 with AMBIGUITY A2 (R3); docs/math.md §2.7, §2.10.
-// Bounds. ∇f = N^T v with N the unit normals as rows and v_i = ∂f/∂u_i · u_i'. For n >= 1 the
-// partials have l_q norm 1 (1/n + 1/q = 1) and |u_i'| <= r_i = 1/(a_i min t), so
-//   |∇f| <= Σ ∂_i r_i <= ||r||_n                                      (Hölder), and
-//   |∇f| <= σ_max(N)·|v|_2 <= σ_max(N)·gauge_lipschitz(r)             (l_q -> l_2 norm of diag r),
-// with σ_max(N)^2 = λ_max(N^T N) <= min(trace, max row sum). With the axes as normals σ = 1 and
-// the second bound is the LP metric's. Over a box, ∂_i and u_i' are bounded from the intervals.
+//   — 000 Eq. 4, 002 Eq. 16 with AMBIGUITY A2 (R3); docs/math.md §2.7, §2.10. The kernels and
+// why their bounds hold: generalized_distance.h.
 // region(c, Below): f <= c forces every u_i <= c, i.e. X·n_i ∈ [-c t_{2i} a_i, c t_{2i-1} a_i];
 // any three independent normals then bound X (X = N3^{-1} s, interval arithmetic).
 class GeneralizedDistance final : public FieldNode {
  public:
   GeneralizedDistance(std::vector<Vec3> normals, std::vector<OneSidedTerm> terms, double n)
-      : n_(std::move(normals)), t_(std::move(terms)), e_(n) {
-    global_L_ = std::numeric_limits<double>::infinity();
-    double G[3][3] = {};
-    for (const Vec3& v : n_)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) G[i][j] += v[i] * v[j];
-    double trace = 0, row_sum = 0;
-    for (int i = 0; i < 3; ++i) {
-      trace += G[i][i];
-      row_sum = std::max(row_sum, std::abs(G[i][0]) + std::abs(G[i][1]) + std::abs(G[i][2]));
-    }
-    sigma_ = std::sqrt(std::min(trace, row_sum)) * (1 + 1e-12);
-    if (e_ < 1) return;
-    std::vector<double> r;
-    for (const auto& t : t_) r.push_back(t.slope());
-    const int k = static_cast<int>(r.size());
-    global_L_ =
-        std::min(power_sum(r.data(), k, e_, nullptr), sigma_ * gauge_lipschitz(r.data(), k, e_));
-    global_L_ *= 1 + 1e-12;
-  }
+      : n_(std::move(normals)),
+        t_(std::move(terms)),
+        c_(generalized_distance_constants(n_, t_, n)) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
-    const size_t k = n_.size();
-    Scratch<double> u(k), du(k), dfdu(k);
-    for (size_t i = 0; i < k; ++i) u[i] = t_[i].value(dot(p, n_[i]), &du[i]);
-    const double f = power_sum(u.data(), static_cast<int>(k), e_, grad ? dfdu.data() : nullptr);
-    if (grad) {
-      *grad = {};
-      for (size_t i = 0; i < k; ++i) *grad += n_[i] * (dfdu[i] * du[i]);
-    }
-    return f;
+    return generalized_distance(params(), p, grad);
   }
   Interval interval(const Box& b) const override {
-    Scratch<Interval> s(n_.size()), u(n_.size());
-    return terms(b, s, u);
+    Interval f;
+    generalized_distance_bounds(params(), b, &f, nullptr);
+    return f;
   }
-  double lipschitz() const override { return global_L_; }
+  double lipschitz() const override { return params().global_L(); }
   double lipschitz(const Box& b) const override {
-    Scratch<Interval> s(n_.size()), u(n_.size());
-    const Interval f = terms(b, s, u);
-    double sum = 0, sum2 = 0;
-    for (size_t i = 0; i < n_.size(); ++i) {
-      const double g = chain(power_sum_partial_bound(u[i], f, e_), t_[i].slope(s[i]));
-      sum += g;
-      sum2 += g * g;
-    }
-    const double L = std::min(sum, sigma_ * std::sqrt(sum2)) * (1 + 1e-13);
-    return std::isnan(L) ? global_L_ : std::min(global_L_, L);
+    Interval f;
+    double L;
+    generalized_distance_bounds(params(), b, &f, &L);
+    return L;
   }
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
@@ -145,15 +108,18 @@ class GeneralizedDistance final : public FieldNode {
         for (size_t l = j + 1; l < k; ++l) best = best.intersected(solve(level, i, j, l));
     return best;
   }
+  // One instruction: the normal count in n, the parameters in GeneralizedDistanceParams' layout.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::GenDistance};
+    i.in = reg;
+    i.out = b.new_slot();
+    i.a = b.consts(c_);
+    i.n = static_cast<int32_t>(n_.size());
+    return b.emit(i);
+  }
 
  private:
-  Interval terms(const Box& b, Scratch<Interval>& s, Scratch<Interval>& u) const {
-    for (size_t i = 0; i < n_.size(); ++i) {
-      s[i] = dot_range(b, n_[i]);
-      u[i] = t_[i].range(s[i]);
-    }
-    return power_sum(u.data(), static_cast<int>(n_.size()), e_);
-  }
+  GeneralizedDistanceParams params() const { return {c_.data(), static_cast<int>(n_.size())}; }
   // The box of {X : X·n_m ∈ below_m(c), m = i, j, l}; unbounded for a near-singular triple.
   Box solve(double c, size_t i, size_t j, size_t l) const {
     const Vec3 cols[3] = {cross(n_[j], n_[l]), cross(n_[l], n_[i]), cross(n_[i], n_[j])};
@@ -174,7 +140,7 @@ class GeneralizedDistance final : public FieldNode {
 
   std::vector<Vec3> n_;
   std::vector<OneSidedTerm> t_;
-  double e_, sigma_, global_L_;
+  std::vector<double> c_;  // the kernels' parameters (generalized_distance.h)
 };
 
 }  // namespace

@@ -108,9 +108,9 @@ struct BoxBounds {
 // The view is valid only for points inside the box.
 BoxBounds bounds(const Program& p, const Box& b, Workspace& ws);
 // The same for the points of a segment only (b its bounding box): the children whose supports the
-// segment misses are dropped too, and ellipsoidal distances (lp_metric, n = 2) and planes take
-// their range along the segment, far tighter than over a long segment's box. Valid only on the
-// segment.
+// segment misses are dropped too, and ellipsoidal distances (lp_metric, n = 2), planes and
+// generalized distances take their range along the segment, far tighter than over a long
+// segment's box. Valid only on the segment.
 BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws);
 
 // Only the pruning of `bounds`, by support boxes (no min/max pruning, no bound computed): the

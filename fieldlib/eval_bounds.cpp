@@ -18,12 +18,14 @@
 
 #include "complement.h"
 #include "eval.h"
+#include "generalized_distance.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "node_util.h"
 #include "offset.h"
 #include "perlin.h"
 #include "planes.h"
+#include "polar_prism.h"
 #include "potentials.h"
 #include "scratch.h"
 #include "skeletal.h"
@@ -235,6 +237,28 @@ class Walker {
           segment_facts_from_box(in.out);
         }
         break;
+      case Op::GenDistance:
+        if (bounds_) {
+          // The kernel on the ranges of X·n_i: over the register's box (the node's bits), or along
+          // the segment, where X·n_i is affine, between its ends as for the planes.
+          const GeneralizedDistanceParams m{K_ + in.a, in.n};
+          Scratch<Interval> s(m.k), u(m.k);
+          for (int i = 0; i < m.k; ++i)
+            s[i] =
+                segment_ ? dot_on_segment(m.normal(i), in.in) : dot_range(box(in.in), m.normal(i));
+          generalized_distance_bounds(m, s.data(), u.data(), &I[in.out], &L[in.out]);
+          D[in.out] = segment_ ? generalized_distance_slope(m, s.data(), u.data(), I[in.out],
+                                                            L[in.out], in.in)
+                               : Interval(-L[in.out], L[in.out]);
+          Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
+        }
+        break;
+      case Op::PolarPrism:
+        if (bounds_) {
+          polar_prism_bounds(polar_prism_params(K_ + in.a), box(in.in), &I[in.out], &L[in.out]);
+          segment_facts_from_box(in.out);
+        }
+        break;
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
@@ -335,6 +359,49 @@ class Walker {
     }
     if (s.hi <= 0) return 0.0;
     return s.lo >= 0 ? rate : hull(rate, 0.0);
+  }
+
+  // A generalized distance's slope along register r's segment, where X·n_i lies in s[i], u_i in
+  // u[i] and f in `f`: where f is differentiable, df/dt = Σ ∂f/∂u_i · u_i' · (X·n_i)', with
+  // ∂f/∂u_i in [0, power_sum_partial_bound], u_i' = 1/r_pos, -1/r_neg or 0 by the side of the dead
+  // zone X·n_i is on, and (X·n_i)' the rate (B - A)·n_i / len, padded as in plane_slope. f is
+  // absolutely continuous along the segment, so its difference quotients lie in the sum of these
+  // intervals, each of which holds 0. Capped by the Lipschitz bound L.
+  Interval generalized_distance_slope(const GeneralizedDistanceParams& m, const Interval* s,
+                                      const Interval* u, Interval f, double L, int r) const {
+    const Vec3* S = ws_.segs.data() + 2 * r;
+    const Vec3 e = S[1] - S[0];
+    const double pad = 1e-9 * length(e) + kTiny, w = (1 + 1e-12) / length_;
+    double lo = 0, hi = 0, mag = 0;
+    for (int i = 0; i < m.k; ++i) {
+      const double k = dot(e, m.normal(i));
+      const Interval rate{(k - pad) * w, (k + pad) * w};
+      if (!(std::isfinite(rate.lo) && std::isfinite(rate.hi))) return {-L, L};  // degenerate
+      const OneSidedTerm t = m.term(i);
+      // u_i' (X·n_i)' over the sides X·n_i reaches (0 in the dead zone).
+      const Interval up = rate / Interval(t.r_pos), down = -rate / Interval(t.r_neg);
+      Interval d;
+      if (s[i].lo > t.dead) {
+        d = up;
+      } else if (s[i].hi < -t.dead) {
+        d = down;
+      } else {
+        d = 0.0;
+        if (s[i].hi > t.dead) d = hull(d, up);
+        if (s[i].lo < -t.dead) d = hull(d, down);
+      }
+      const double P = power_sum_partial_bound(u[i], f, m.n());
+      const double dl = chain(P, std::max(0.0, -d.lo)), dh = chain(P, std::max(0.0, d.hi));
+      lo -= dl;
+      hi += dh;
+      mag += dl + dh;
+    }
+    // The k products and sums err by a few ulps each of at most mag.
+    const double grow = 1e-12 * mag + kTiny;
+    lo -= grow;
+    hi += grow;
+    if (std::isnan(lo) || std::isnan(hi)) return {-L, L};
+    return {std::max(-L, lo), std::min(L, hi)};
   }
 
   // How far along the segment a sum's child is exactly 0 (Workspace::quiet, where its result is a

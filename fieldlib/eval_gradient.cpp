@@ -3,11 +3,13 @@
 // point, so an oracle's local gradient g becomes Jᵀg.
 #include "complement.h"
 #include "eval.h"
+#include "generalized_distance.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "offset.h"
 #include "perlin.h"
 #include "planes.h"
+#include "polar_prism.h"
 #include "potentials.h"
 #include "scratch.h"
 #include "skeletal.h"
@@ -102,6 +104,16 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         break;
       case Op::Torus:
         local(in, [&](const Vec3& q, Vec3* g) { return torus(torus_params(K + in.a), q, g); });
+        break;
+      case Op::GenDistance:
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return generalized_distance({K + in.a, in.n}, q, g);
+        });
+        break;
+      case Op::PolarPrism:
+        local(in, [&](const Vec3& q, Vec3* g) {
+          return polar_prism(polar_prism_params(K + in.a), q, g);
+        });
         break;
       case Op::Blanc: {
         double dP;

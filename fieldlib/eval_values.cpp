@@ -7,11 +7,13 @@
 #include "complement.h"
 #include "eval.h"
 #include "gauge.h"
+#include "generalized_distance.h"
 #include "lp_metric.h"
 #include "node.h"
 #include "offset.h"
 #include "perlin.h"
 #include "planes.h"
+#include "polar_prism.h"
 #include "potentials.h"
 #include "scratch.h"
 #include "skeletal.h"
@@ -170,6 +172,42 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         power_sum_lanes(rows, 2, m.n, n, out);
         break;
       }
+      case Op::GenDistance: {
+        // The one-sided terms of X·n_i over the lanes as SphericalProduct's selects (a loop GCC
+        // vectorises), one row per normal, then power_sum_lanes over the rows.
+        const GeneralizedDistanceParams m{K + in.a, in.n};
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        Scratch<double, 16 * kBatch> u(size_t(m.k) * kBatch);
+        Scratch<const double*> rows(m.k);
+        for (int i = 0; i < m.k; ++i) {
+          const double* t = m.c + kGdHeader + kGdStride * i;
+          const double nx = t[0], ny = t[1], nz = t[2], r_pos = t[3], r_neg = t[4], dead = t[5];
+          double* ui = u.data() + i * kBatch;
+          for (int l = 0; l < n; ++l) {
+            const double s = px[l] * nx + py[l] * ny + pz[l] * nz;
+            const double a = s - dead, b = -s - dead;
+            const double nb = b > 0 ? b : 0.0, rb = b > 0 ? r_neg : 1.0;
+            ui[l] = (a > 0 ? a : nb) / (a > 0 ? r_pos : rb);
+          }
+          rows[i] = ui;
+        }
+        power_sum_lanes(rows.data(), m.k, m.n(), n, out);
+        break;
+      }
+      case Op::PolarPrism: {
+        // polar_prism's terms lane by lane (hypot, atan2 and the profile are libm calls), then
+        // power_sum_lanes.
+        const PolarPrismParams m = polar_prism_params(K + in.a);
+        const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
+        double u[2][kBatch];
+        for (int l = 0; l < n; ++l) {
+          u[0][l] = std::hypot(px[l], py[l]) / polar_prism_radius(m, px[l], py[l], nullptr);
+          u[1][l] = std::abs(pz[l]) / m.c;
+        }
+        const double* rows[2] = {u[0], u[1]};
+        power_sum_lanes(rows, 2, m.n, n, out);
+        break;
+      }
       case Op::Blanc: {
         const double* d = S + in.in * kBatch;
         const double s = K[in.a];
@@ -295,6 +333,12 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         break;
       case Op::Torus:
         out = torus(torus_params(K + in.a), R[in.in], nullptr);
+        break;
+      case Op::GenDistance:
+        out = generalized_distance({K + in.a, in.n}, R[in.in], nullptr);
+        break;
+      case Op::PolarPrism:
+        out = polar_prism(polar_prism_params(K + in.a), R[in.in], nullptr);
         break;
       case Op::Blanc:
         out = blanc(S[in.in], K[in.a], nullptr);

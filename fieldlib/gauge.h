@@ -12,7 +12,7 @@ namespace softtrace {
 double power_sum(const double* u, int k, double n, double* dfdu);
 
 // power_sum without the derivative over `lanes` points at once (structure of arrays: term i of
-// lane l at u[i][l]) into f[l]; the same bits as power_sum lane by lane. k <= 3, lanes <= 16.
+// lane l at u[i][l]) into f[l]; the same bits as power_sum lane by lane. lanes <= 16.
 void power_sum_lanes(const double* const* u, int k, double n, int lanes, double* f);
 
 // f is non-decreasing in every u_i, so its image over a box of u is [f(lo), f(hi)].

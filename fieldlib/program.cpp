@@ -30,6 +30,12 @@ int ProgramBuilder::consts(std::initializer_list<double> c) {
   return at;
 }
 
+int ProgramBuilder::consts(const std::vector<double>& c) {
+  const int at = static_cast<int>(prog_.consts.size());
+  prog_.consts.insert(prog_.consts.end(), c.begin(), c.end());
+  return at;
+}
+
 int ProgramBuilder::emit(const Instr& i) {
   prog_.code.push_back(i);
   return i.out;

@@ -37,6 +37,11 @@ class FieldNode;
   X(OneBranchPlane)   /* slot out = [reg in · n]_+/a (n = c[0..2], a = c[3]), 002 f_o   */ \
   X(LineSegment)      /* slot out = |reg in - nearest|/r (a, ab, r, |ab|^2), 000 Eq. 5  */  \
   X(Torus)            /* slot out = torus(reg in; R, a, b, n, L = c[0..4]) (skeletal.h) */  \
+  X(GenDistance)      /* slot out = (Σ u_i^n)^(1/n), u_i one-sided in (reg in) dot n_i, */ \
+                      /* i < n, 000 Eq. 4; c = n, sigma, L, then n_i[3], r_pos, r_neg,  */  \
+                      /* dead per normal (generalized_distance.h)                       */  \
+  X(PolarPrism)       /* slot out = (h^n + |z/c|^n)^(1/n), h = rho/R(phi) (c[0..7]),    */  \
+                      /* docs/math.md §10.1 (polar_prism.h)                             */ \
   X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
@@ -66,7 +71,7 @@ struct Instr {
                     // SuperIntersect, Perlin)
   int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset), args
                     // (n-ary instructions) or groups
-  int32_t n = 0;    // argument count (n-ary instructions)
+  int32_t n = 0;    // argument count (n-ary instructions) or number of normals (GenDistance)
   const FieldNode* node = nullptr;  // Oracle
 };
 
@@ -117,6 +122,7 @@ class ProgramBuilder {
   int new_slot() { return prog_.slots++; }
   int new_reg() { return prog_.regs++; }
   int consts(std::initializer_list<double> c);
+  int consts(const std::vector<double>& c);
   int emit(const Instr& i);
 
   // An oracle instruction: `node` evaluates its own subtree at register `reg`.

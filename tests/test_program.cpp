@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <string>
@@ -265,10 +266,187 @@ TEST(Program, SkeletalDistancesAreOneInstructionWithTheModelsBits) {
   }
 }
 
+// 17 unit-ish normals round the z axis: more than Scratch keeps on the stack (its heap fallback).
+std::string many_normals() {
+  std::string s;
+  for (int i = 0; i < 17; ++i)
+    s += (i ? ",[" : "[") + std::to_string(std::cos(0.37 * i)) + "," +
+         std::to_string(std::sin(0.37 * i)) + "," + std::to_string(0.3 * (i % 3) - 0.3) + "]";
+  return "[" + s + "]";
+}
+
+// The generalized distance compiles to one native instruction with the model's bits: at random
+// points, at the origin with signed zeros (f = 0, every u_i = 0), on the axes, on the first plane
+// (X·n_0 = 0, a kink of u_0), with a NaN or an infinite coordinate; exponents 2, 3, 20 (by
+// squaring), 2.5 (pow), 1 and 0.7 (no global bound), sides t_pos/t_neg, and 17 normals.
+TEST(Program, GeneralizedDistanceIsOneInstructionWithTheModelsBits) {
+  const std::string kCases[] = {
+      R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],
+          "n":2})",
+      R"({"type":"generalized_distance","normals":[[1,1,1],[1,-1,1],[-1,1,1],[1,1,-1]],"a":0.8,
+          "n":3,"t_pos":[1,1.5,2,1],"t_neg":[1.2,1,1,0.7]})",
+      R"({"type":"generalized_distance","normals":[[1,0.2,0],[0,1,0.3],[0.1,0,1]],
+          "a":[1,0.8,0.6],"n":20,"t_pos":[1,1,2],"t_neg":[1.1,1,1]})",
+      R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1],[1,1,0],[0,1,1]],
+          "a":[1,1,1,1.2,1.2],"n":2.5})",
+      R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,1]],"a":[0.5,0.8],"n":1})",
+      R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1],[1,1,1]],"a":1,
+          "n":0.7})",
+      R"({"type":"generalized_distance","a":0.9,"n":4,"normals":)" + many_normals() + "}"};
+  for (const std::string& json : kCases) {
+    const NodePtr node = build_from_json(json);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 1u) << json;
+    EXPECT_EQ(prog.code[0].op, Op::GenDistance) << json;
+    const Vec3 n0 = [&] {
+      const size_t at = json.find("[[") + 2;
+      Vec3 v;
+      std::sscanf(json.c_str() + at, "%lf,%lf,%lf", &v.x, &v.y, &v.z);
+      return v / length(v);
+    }();
+    expect_models_bits(json, Convention::Soft, [&](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin with signed zeros; 2: on an axis; 3: on the first plane; 4: a
+      // NaN coordinate; 5: an infinite one.
+      switch (k % 6) {
+        case 1:
+          return Vec3{k % 2 ? -0.0 : 0.0, -0.0, k % 3 ? 0.0 : -0.0};
+        case 2: {
+          Vec3 q;
+          q[k % 3] = p[k % 3];
+          return q;
+        }
+        case 3:
+          return p - n0 * dot(p, n0);
+        case 4:
+          p[k % 3] = std::nan("");
+          return p;
+        case 5:
+          p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
+          return p;
+      }
+      return p;
+    });
+  }
+}
+
+// Along a segment every X·n_i is affine: the generalized distance's slope interval holds the
+// directional derivatives at the ends and the difference quotients between points of the segment,
+// and the value interval the values. On segments leaving the origin along a ray (f is positively
+// homogeneous, so it grows along them) every term's rate has f's sign: the slope is one-signed
+// there, never the symmetric [-L, L].
+TEST(Program, GeneralizedDistanceSlopeAlongASegmentFollowsTheRates) {
+  const char* const kJson[] = {
+      R"({"type":"generalized_distance","normals":[[1,1,1],[1,-1,1],[-1,1,1],[1,1,-1]],"a":0.8,
+          "n":3,"t_pos":[1,1.5,2,1],"t_neg":[1.2,1,1,0.7]})",
+      R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[0.5,0.7,0.6],
+          "n":6,"rotate":{"axis":[0,1,1],"deg":25},"translate":[0.3,0,-0.2]})",
+      R"({"type":"generalized_distance","normals":[[1,0,0],[0,1,0],[0,0,1],[1,1,0],[0,1,1]],
+          "a":[1,1,1,1.2,1.2],"n":1})"};
+  for (const char* json : kJson) {
+    const NodePtr node = build_from_json(json, Convention::Zero);
+    const Program prog = compile(*node);
+    EXPECT_EQ(prog.code.back().op, Op::GenDistance) << json;
+    Workspace ws;
+    ws.fit(prog);
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> u(-2, 2);
+    const bool placed = std::strstr(json, "translate") != nullptr;
+    const Vec3 centre = placed ? Vec3{0.3, 0, -0.2} : Vec3{};
+    for (int i = 0; i < 300; ++i) {
+      const Vec3 a{u(rng), u(rng), u(rng)};
+      const bool radial = i % 2 == 0;
+      const Segment seg{a, radial ? centre + (a - centre) * 2.5 : Vec3{u(rng), u(rng), u(rng)}};
+      const double len = length(seg.b - seg.a);
+      const Vec3 dir = (seg.b - seg.a) / len;
+      const BoxBounds bb = bounds(prog, seg, ws);
+      const Interval D = bb.slope;
+      const double slack = 1e-9 * (std::abs(D.lo) + std::abs(D.hi)) + 1e-12;
+      double prev = node->value(seg.a);
+      for (int j = 0; j <= 20; ++j) {
+        const double v = node->value(seg.a + (seg.b - seg.a) * (j / 20.0));
+        ASSERT_TRUE(bb.value.contains(v))
+            << json << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
+        if (j > 0) {
+          const double q = (v - prev) / (len / 20);
+          ASSERT_TRUE(D.lo - slack <= q && q <= D.hi + slack)
+              << json << ": quotient " << q << " outside [" << D.lo << ", " << D.hi << "]";
+        }
+        prev = v;
+      }
+      const Vec3 ga = node->gradient(seg.a), gb = node->gradient(seg.b);
+      const double ra = dot(ga, dir), rb = dot(gb, dir), tol = 1e-12 * length(ga);
+      ASSERT_TRUE(D.lo <= ra + tol && ra - tol <= D.hi && D.lo <= rb + tol && rb - tol <= D.hi)
+          << json << ": " << ra << ", " << rb << " outside [" << D.lo << ", " << D.hi << "]";
+      ASSERT_LE(D.hi, bb.lipschitz) << json;
+      ASSERT_GE(D.lo, -bb.lipschitz) << json;
+      if (radial) {
+        EXPECT_GE(D.lo, -1e-9 * bb.lipschitz)
+            << json << ": [" << D.lo << ", " << D.hi << "] along a ray from the centre";
+      }
+    }
+  }
+}
+
+// The polar prism compiles to one native instruction with the model's bits: at random points, at
+// the origin with signed zeros, on the z axis (ρ = 0, where ∇h is 0), on the plane z = 0, on the
+// negative x axis with y = ±0 (atan2's ±π), at the lobes' tips and valleys (the star's kinks),
+// with a NaN or an infinite coordinate; rose and star, A = 0, one lobe, exponents 20, 2 and 1.5.
+TEST(Program, PolarPrismIsOneInstructionWithTheModelsBits) {
+  const struct {
+    const char* json;
+    int lobes;
+  } kCases[] = {
+      {R"({"type":"polar_prism","radius":0.8,"lobes":5,"amplitude":0.3,"profile":"cosine",
+          "half_height":1.2})",
+       5},
+      {R"({"type":"polar_prism","radius":1.3,"lobes":5,"amplitude":0.35,"profile":"triangle",
+          "half_height":0.7,"n":2})",
+       5},
+      {R"({"type":"polar_prism","radius":0.8,"lobes":3,"amplitude":0.6,"profile":"cosine",
+          "half_height":0.5,"n":1.5})",
+       3},
+      {R"({"type":"polar_prism","radius":0.9,"lobes":1,"amplitude":0.5,"profile":"triangle",
+          "half_height":1})",
+       1},
+      {R"({"type":"polar_prism","radius":0.7,"lobes":4,"amplitude":0,"profile":"cosine",
+          "half_height":0.9,"n":3})",
+       4}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json);
+    const Program prog = compile(*node);
+    ASSERT_EQ(prog.code.size(), 1u) << c.json;
+    EXPECT_EQ(prog.code[0].op, Op::PolarPrism) << c.json;
+    expect_models_bits(c.json, Convention::Soft, [&](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin with signed zeros; 2: the z axis; 3: the plane z = 0; 4: the
+      // negative x axis, y = ±0; 5: a tip or a valley; 6: a NaN coordinate; 7: an infinite one.
+      switch (k % 8) {
+        case 1:
+          return Vec3{k % 2 ? -0.0 : 0.0, k % 3 ? -0.0 : 0.0, k % 5 ? 0.0 : -0.0};
+        case 2:
+          return Vec3{0, 0, p.z};
+        case 3:
+          return Vec3{p.x, p.y, 0};
+        case 4:
+          return Vec3{-std::abs(p.x), k % 2 ? -0.0 : 0.0, p.z};
+        case 5: {
+          const double phi = M_PI * (k % (2 * c.lobes)) / c.lobes, r = std::abs(p.x);
+          return Vec3{r * std::cos(phi), r * std::sin(phi), p.z};
+        }
+        case 6:
+          p[k % 3] = std::nan("");
+          return p;
+        case 7:
+          p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
+          return p;
+      }
+      return p;
+    });
+  }
+}
+
 // An offset compiles to its child's code (native where the child is) and one instruction, with the
 // model's bits: values, gradients, and over boxes the interval and Lipschitz bound (the children's
-// bounds are the model's own kernels here, and an oracle's (generalized_distance) its node's),
-// negative scales included.
+// bounds are the model's own kernels here), negative scales included.
 TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
   const struct {
     const char* json;
@@ -295,7 +473,10 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
                  Op::Torus},
                 {R"({"type":"offset","scale":2,"children":[{"type":"generalized_distance",
           "normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],"n":2}]})",
-                 Op::Oracle}};
+                 Op::GenDistance},
+                {R"({"type":"offset","scale":-0.5,"level":0.3,"children":[{"type":"polar_prism",
+          "radius":0.8,"lobes":5,"amplitude":0.3,"profile":"cosine","half_height":1.2}]})",
+                 Op::PolarPrism}};
   for (const auto& c : kCases) {
     const NodePtr node = build_from_json(c.json, Convention::Zero);
     const Program prog = compile(*node);
@@ -337,7 +518,7 @@ TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
        Convention::Constructive, Op::LineSegment},
       {R"({"type":"complement","children":[{"type":"generalized_distance",
           "normals":[[1,0,0],[0,1,0],[0,0,1]],"a":[1,0.7,1.2],"n":2}]})",
-       Convention::Constructive, Op::Oracle}};
+       Convention::Constructive, Op::GenDistance}};
   for (const auto& c : kCases) {
     const NodePtr node = build_from_json(c.json, c.convention);
     const Program prog = compile(*node);
@@ -400,8 +581,7 @@ TEST(Program, SuperEllipsoidalCombinationsAreOneInstructionAfterTheirChildren) {
   for (const auto& c : kCases) {
     const NodePtr node = build_from_json(c.json, Convention::Constructive);
     const Program prog = compile(*node);
-    EXPECT_EQ(count_ops(prog.code, Op::Oracle), std::strstr(c.json, "generalized") ? 1 : 0)
-        << c.json;
+    EXPECT_EQ(count_ops(prog.code, Op::Oracle), 0) << c.json;
     EXPECT_EQ(prog.code.back().op, c.op) << c.json;
     EXPECT_EQ(prog.code.back().n, c.children) << c.json;
     EXPECT_FALSE(prog.has_pruning) << c.json;
