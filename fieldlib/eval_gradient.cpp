@@ -9,6 +9,7 @@
 #include "perlin.h"
 #include "planes.h"
 #include "potentials.h"
+#include "ricci.h"
 #include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
@@ -180,6 +181,16 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         gather(in, x.data(), g.data());
         Workspace::Dual d;
         d.v = perlin(perlin_mode(K + in.in), x.data(), g.data(), k, &d.g);
+        S[in.out] = d;
+        break;
+      }
+      case Op::Ricci: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        Scratch<Vec3> g(k);
+        gather(in, x.data(), g.data());
+        Workspace::Dual d;
+        d.v = ricci(ricci_params(K + in.in), x.data(), g.data(), k, &d.g);
         S[in.out] = d;
         break;
       }
