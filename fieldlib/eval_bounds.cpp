@@ -27,6 +27,7 @@
 #include "planes.h"
 #include "polar_prism.h"
 #include "potentials.h"
+#include "ricci.h"
 #include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
@@ -316,6 +317,7 @@ class Walker {
       case Op::SuperUnion:
       case Op::SuperIntersect:
       case Op::Perlin:
+      case Op::Ricci:
         break;  // handled by group()
     }
   }
@@ -568,7 +570,8 @@ class Walker {
       ws_.quiet[out.out] = quiet;
       return;
     }
-    if (out.op == Op::SuperUnion || out.op == Op::SuperIntersect || out.op == Op::Perlin) {
+    if (out.op == Op::SuperUnion || out.op == Op::SuperIntersect || out.op == Op::Perlin ||
+        out.op == Op::Ricci) {
       combination_bounds(out, g, first, n);
       return;
     }
@@ -589,13 +592,14 @@ class Walker {
     ws_.quiet[out.out] = 0;
   }
 
-  // The super-ellipsoidal union and intersection and Perlin's blends: the kernels on the
+  // The super-ellipsoidal union and intersection, Perlin's and Ricci's blends: the kernels on the
   // children's intervals and bounds (the model's bits); along a segment the slope is the bound
-  // [-L, L], and no quiet start (a combination of distances; 1 - Π(1 - f_i) and the products
-  // could claim one, not taken here).
+  // [-L, L], and no quiet start (a combination of distances; 1 - Π(1 - f_i), the products and a
+  // soft Ricci union could claim one, not taken here).
   void combination_bounds(const Instr& out, const Group& g, int first, int n) {
     const int32_t* kept = ws_.kept.data();
-    const double* c = K_ + out.in;  // n (and the global bound), or the mode and the global bound
+    // n (and the global bound), the mode and the global bound, or Ricci's parameters and bound
+    const double* c = K_ + out.in;
     Scratch<Interval> x(n);
     Scratch<double> Lc(n);
     for (int j = 0; j < n; ++j) {
@@ -605,7 +609,10 @@ class Walker {
     }
     Interval f;
     double L;
-    if (out.op == Op::Perlin) {
+    if (out.op == Op::Ricci) {
+      f = ricci_interval(ricci_params(c), x.data(), n);
+      L = ricci_lipschitz(ricci_params(c), x.data(), Lc.data(), n, c[3]);
+    } else if (out.op == Op::Perlin) {
       f = perlin_interval(perlin_mode(c), x.data(), n);
       L = perlin_lipschitz(perlin_mode(c), x.data(), Lc.data(), n, c[1]);
     } else if (out.op == Op::SuperUnion) {

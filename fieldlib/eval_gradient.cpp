@@ -11,6 +11,7 @@
 #include "planes.h"
 #include "polar_prism.h"
 #include "potentials.h"
+#include "ricci.h"
 #include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
@@ -192,6 +193,16 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         gather(in, x.data(), g.data());
         Workspace::Dual d;
         d.v = perlin(perlin_mode(K + in.in), x.data(), g.data(), k, &d.g);
+        S[in.out] = d;
+        break;
+      }
+      case Op::Ricci: {
+        const size_t k = in.n;
+        Scratch<double> x(k);
+        Scratch<Vec3> g(k);
+        gather(in, x.data(), g.data());
+        Workspace::Dual d;
+        d.v = ricci(ricci_params(K + in.in), x.data(), g.data(), k, &d.g);
         S[in.out] = d;
         break;
       }

@@ -15,6 +15,7 @@
 #include "planes.h"
 #include "polar_prism.h"
 #include "potentials.h"
+#include "ricci.h"
 #include "scratch.h"
 #include "skeletal.h"
 #include "spherical_product.h"
@@ -23,8 +24,8 @@
 namespace softtrace {
 
 namespace {
-// A super-ellipsoidal or Perlin combination of its children's values x[0..in.n), gathered by the
-// caller into scratch the kernels work in.
+// A super-ellipsoidal, Perlin or Ricci combination of its children's values x[0..in.n), gathered
+// by the caller into scratch the kernels work in.
 double combination(const Instr& in, const double* K, double* x) {
   const size_t k = in.n;
   switch (in.op) {
@@ -32,6 +33,8 @@ double combination(const Instr& in, const double* K, double* x) {
       return super_union(x, k, K[in.in]);
     case Op::SuperIntersect:
       return super_intersection(x, nullptr, k, K[in.in], nullptr);
+    case Op::Ricci:
+      return ricci(ricci_params(K + in.in), x, nullptr, k, nullptr);
     default:
       return perlin(perlin_mode(K + in.in), x, nullptr, k, nullptr);
   }
@@ -271,7 +274,8 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
       }
       case Op::SuperUnion:
       case Op::SuperIntersect:
-      case Op::Perlin: {
+      case Op::Perlin:
+      case Op::Ricci: {
         // The kernels lane by lane (pow is a libm call), on the children's values gathered.
         Scratch<double> x(in.n);
         for (int l = 0; l < n; ++l) {
@@ -376,7 +380,8 @@ double value(Code c, const Vec3& p, Workspace& ws) {
       }
       case Op::SuperUnion:
       case Op::SuperIntersect:
-      case Op::Perlin: {
+      case Op::Perlin:
+      case Op::Ricci: {
         Scratch<double> x(in.n);
         for (int j = 0; j < in.n; ++j) x[j] = S[c.args[in.a + j]];
         out = combination(in, K, x.data());

@@ -53,7 +53,8 @@ class FieldNode;
   X(Max)              /* slot out = max of args[a..a+n)                                 */  \
   X(SuperUnion)       /* slot out = (Σ args^-n)^(-1/n) (n = c[in]), 000 Eq. 6 B_RU^cg   */ \
   X(SuperIntersect)   /* slot out = (Σ [args]_+^n)^(1/n) (n, L = c[in..]), B_RI^cg      */ \
-  X(Perlin)           /* slot out = Perlin blend (mode, L = c[in..]), 002 Eqs. 4-6      */
+  X(Perlin)           /* slot out = Perlin blend (mode, L = c[in..]), 002 Eqs. 4-6      */  \
+  X(Ricci)            /* slot out = (Σ g_i^q)^(1/q) (q = ±n, g, L = c[in..]), 002 Eq. 7 */
 
 enum class Op : uint8_t {
 #define SOFTTRACE_OP_ENUM(name) name,
@@ -68,7 +69,7 @@ struct Instr {
   int32_t out = 0;  // value slot, or point register for Translate/Place
   int32_t in = 0;   // point register (Translate, Place, distances, Oracle), value slot
                     // (potentials, Offset, Complement) or offset into consts (SuperUnion,
-                    // SuperIntersect, Perlin)
+                    // SuperIntersect, Perlin, Ricci)
   int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset), args
                     // (n-ary instructions) or groups
   int32_t n = 0;    // argument count (n-ary instructions) or number of normals (GenDistance)
@@ -128,8 +129,8 @@ class ProgramBuilder {
   // An oracle instruction: `node` evaluates its own subtree at register `reg`.
   int oracle(const FieldNode& node, int reg);
   // Emits `children` as a group combined by `op` (Sum, Min, Max, SuperUnion, SuperIntersect,
-  // Perlin), whose `in` is `consts_at`; for Sum, children whose value is exactly 0 outside their
-  // support are made prunable.
+  // Perlin, Ricci), whose `in` is `consts_at`; for Sum, children whose value is exactly 0 outside
+  // their support are made prunable.
   int nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg,
            int consts_at = 0);
 

@@ -495,8 +495,8 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
 // A complement compiles to its child's code (native where the child is) and one instruction, with
 // the model's bits in each convention: values, gradients, and over boxes the interval and Lipschitz
 // bound. Points at the centre reach the constructive guard (f <= kCgFloor), others a NaN value.
-// The soft child is an oracle: a soft_object's program bounds are its potential instruction's,
-// not the node's.
+// The soft child is a Ricci union (native) of oracles (scale unions of soft objects): a plain
+// soft_object's program bounds are its potential instruction's, not the node's.
 TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
   const struct {
     const char* json;
@@ -504,10 +504,14 @@ TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
     Op child;
   } kCases[] = {
       {R"({"type":"complement","children":[{"type":"ricci_union","n":2,"children":[
-          {"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}},
-          {"type":"soft_object","distance":{"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}}
-          ]}]})",
-       Convention::Soft, Op::Oracle},
+          {"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1,"children":[
+            {"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}},
+            {"type":"soft_object","distance":{"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}}]},
+          {"type":"scale_union","r1":0.5,"r2":0.7,"p":0.2,"children":[
+            {"type":"soft_object","distance":{"type":"lp_metric","radii":[0.5,0.5,0.5],"n":2}},
+            {"type":"soft_object","potential":{"type":"wyvill"},
+             "distance":{"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],"radius":0.6}}]}]}]})",
+       Convention::Soft, Op::Ricci},
       {R"({"type":"complement","children":[{"type":"offset","scale":-2,"level":0.5,"children":[
           {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7}]}]})",
        Convention::Zero, Op::Offset},
@@ -610,20 +614,25 @@ TEST(Program, SuperEllipsoidalCombinationsAreOneInstructionAfterTheirChildren) {
 
 // Perlin's blends compile to their children's code as a group that is never pruned and one
 // instruction, with the model's bits: values, gradients, and over boxes the interval and
-// Lipschitz bound. The leaves are oracles (ricci blends of soft objects) or nested blends of them:
-// a soft_object's program bounds are its potential instruction's, not the node's. Points at the
-// origin put the children at their peaks; NaN coordinates give NaN children.
+// Lipschitz bound. The children are Ricci unions (native) of oracles (scale unions of soft
+// objects) or nested blends of them: a plain soft_object's program bounds are its potential
+// instruction's, not the node's. Points at the origin put the children at their peaks; NaN
+// coordinates give NaN children.
 TEST(Program, PerlinBlendsAreOneInstructionAfterTheirChildren) {
-#define SOFT_A R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}})"
-#define SOFT_B                                                                         \
+#define BALL R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}})"
+#define RING                                                                           \
   R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"torus",)" \
   R"("major_radius":0.8,"radii":[0.3,0.4]}})"
+#define SOFT_A R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1,"children":[)" BALL "," RING "]}"
+#define SOFT_B R"({"type":"scale_union","r1":0.5,"r2":0.7,"p":0.2,"children":[)" RING "," BALL "]}"
 #define RICCI(n, a, b) R"({"type":"ricci_union","n":)" #n R"(,"children":[)" a "," b "]}"
   const std::string a = RICCI(2, SOFT_A, SOFT_B), b = RICCI(3, SOFT_B, SOFT_A),
                     c = RICCI(1.5, SOFT_A, SOFT_A);
 #undef RICCI
 #undef SOFT_B
 #undef SOFT_A
+#undef RING
+#undef BALL
   const auto blend = [](const char* kind, const std::vector<std::string>& children) {
     std::string s = std::string(R"({"type":")") + kind + R"(","children":[)";
     for (size_t i = 0; i < children.size(); ++i) s += (i ? "," : "") + children[i];
@@ -659,6 +668,177 @@ TEST(Program, PerlinBlendsAreOneInstructionAfterTheirChildren) {
     bounds(prog, Box::around({5, 5, 5}, 0.1), ws);
     EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << json;
     EXPECT_TRUE(same_bits(bounds(prog, Box::unbounded(), ws).lipschitz, node->lipschitz())) << json;
+  }
+}
+
+// Ricci's union, intersection and difference, in both conventions, compile to their children's
+// code as a group that is never pruned (nor are children dropped over boxes: every one moves the
+// power mean) and one instruction per blend, with the model's bits: values, gradients, and over
+// boxes the interval and Lipschitz bound. Soft leaves are oracles (scale unions of soft objects: a
+// plain soft_object's program bounds are its potential instruction's, not the node's); constructive
+// leaves are native distances and one oracle (a scale union). Special points
+// put children at 1 (the soft peaks, the constructive unit surface) and at 0 (the constructive
+// skeletons, where 1/f takes its guard, and the soft fields outside their supports, where a
+// difference's 1 - f is 1), or give NaN children. Along segments the slope is [-L, L] and holds
+// the field's differences.
+TEST(Program, RicciBlendsAreOneInstructionAfterTheirChildren) {
+#define BALL R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}})"
+#define RING                                                                           \
+  R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"torus",)" \
+  R"("major_radius":0.8,"radii":[0.3,0.4]}})"
+#define BAR                                                                                   \
+  R"({"type":"soft_object","distance":{"type":"segment","p0":[-0.5,0,0],"p1":[0.5,0.3,0.2],)" \
+  R"("radius":0.7}})"
+#define SOFT_A R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1,"children":[)" BALL "," RING "]}"
+#define SOFT_B R"({"type":"scale_union","r1":0.5,"r2":0.7,"p":0.2,"children":[)" BAR "," BALL "]}"
+#define SOFT_C R"({"type":"scale_union","r1":0.3,"r2":0.8,"p":0,"children":[)" RING "," BAR "]}"
+#define LP R"({"type":"lp_metric","radii":[1,0.8,1.2],"n":2})"
+#define SEG R"({"type":"segment","p0":[0,0,-0.5],"p1":[0,0,0.5],"radius":0.6})"
+#define TORUS R"({"type":"torus","major_radius":0.8,"radii":[0.3,0.4]})"
+#define PLANE R"({"type":"one_branch_plane","normal":[0.3,-1,0.4],"a":0.5})"
+#define SCALE R"({"type":"scale_union","r1":0.5,"r2":0.8,"p":0.2,"children":[)" LP "," SEG "]}"
+  const struct {
+    std::string json;
+    Convention convention;
+    int children, oracles;
+  } kCases[] = {
+      {R"({"type":"ricci_union","n":2,"children":[)" SOFT_A "," SOFT_B "]}", Convention::Soft, 2,
+       2},
+      {R"({"type":"ricci_union","n":0.7,"children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}",
+       Convention::Soft, 3, 3},
+      {R"({"type":"ricci_intersection","n":4,"children":[)" SOFT_A "," SOFT_C "]}",
+       Convention::Soft, 2, 2},
+      {R"({"type":"ricci_difference","n":3,"children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}",
+       Convention::Soft, 3, 3},
+      {R"({"type":"ricci_difference","n":1.5,"children":[{"type":"ricci_union","n":3,)"
+       R"("children":[)" SOFT_A "," SOFT_C "]}," SOFT_B "]}",
+       Convention::Soft, 2, 3},
+      {R"({"type":"ricci_union","n":4,"children":[)" LP "," TORUS "]}", Convention::Constructive, 2,
+       0},
+      {R"({"type":"ricci_union","n":0.5,"children":[)" SEG "," PLANE "," SCALE "]}",
+       Convention::Constructive, 3, 1},
+      {R"({"type":"ricci_intersection","n":2.5,"children":[)" LP "," SEG "," TORUS "]}",
+       Convention::Constructive, 3, 0},
+      {R"({"type":"ricci_intersection","n":0.7,"children":[)" PLANE "," LP "]}",
+       Convention::Constructive, 2, 0},
+      {R"({"type":"ricci_difference","n":6,"children":[)" LP "," SEG "," SCALE "]}",
+       Convention::Constructive, 3, 1},
+      {R"({"type":"ricci_difference","n":2,"children":[{"type":"ricci_intersection","n":3,)"
+       R"("children":[)" LP "," TORUS "]}," SEG "]}",
+       Convention::Constructive, 2, 0}};
+#undef SCALE
+#undef PLANE
+#undef TORUS
+#undef SEG
+#undef LP
+#undef SOFT_C
+#undef SOFT_B
+#undef SOFT_A
+#undef BAR
+#undef RING
+#undef BALL
+  for (const auto& c : kCases) {
+    const std::string& json = c.json;
+    const NodePtr node = build_from_json(json, c.convention);
+    const Program prog = compile(*node);
+    EXPECT_EQ(prog.code.back().op, Op::Ricci) << json;
+    EXPECT_EQ(prog.code.back().n, c.children) << json;
+    int blends = 0;
+    for (size_t at = json.find("ricci_"); at != std::string::npos; at = json.find("ricci_", at + 1))
+      ++blends;
+    EXPECT_EQ(count_ops(prog.code, Op::Ricci), blends) << json;
+    EXPECT_EQ(count_ops(prog.code, Op::Oracle), c.oracles) << json;
+    EXPECT_FALSE(prog.has_pruning) << json;
+    for (const Group& g : prog.groups) EXPECT_TRUE(g.bvh.empty()) << json;
+    expect_models_bits(json, c.convention, [](Vec3 p, int k) {
+      // 0: anywhere; 1: the origin (soft peaks, constructive skeletons); 2: a NaN coordinate;
+      // 3: the lp_metric leaf's unit surface; 4: on the z axis (the segment's skeleton); 5: far
+      // out (outside every support).
+      switch (k % 6) {
+        case 1:
+          return Vec3{};
+        case 2:
+          p[k % 3] = std::nan("");
+          return p;
+        case 3:
+          return p / std::sqrt(p.x * p.x + p.y * p.y / 0.64 + p.z * p.z / 1.44);
+        case 4:
+          return Vec3{0, 0, p.z * 0.25};
+        case 5:
+          return p * 4;
+      }
+      return p;
+    });
+    // Over a box outside every support (every soft child 0) no child is dropped.
+    Workspace ws;
+    ws.fit(prog);
+    bounds(prog, Box::around({5, 5, 5}, 0.1), ws);
+    EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << json;
+    EXPECT_EQ(ws.view.code.back().n, c.children) << json;
+    // Along a segment: the slope is [-L, L], which bounds the differences of values along it.
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> u(-2, 2);
+    for (int i = 0; i < 100; ++i) {
+      const Segment seg{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+      const BoxBounds bb = bounds(prog, seg, ws);
+      ASSERT_TRUE(same_bits(bb.slope.lo, -bb.lipschitz) && same_bits(bb.slope.hi, bb.lipschitz))
+          << json;
+      EXPECT_EQ(bb.quiet, 0) << json;
+      const double len = length(seg.b - seg.a);
+      double prev = node->value(seg.a);
+      for (int j = 0; j <= 16; ++j) {
+        const double v = node->value(seg.a + (seg.b - seg.a) * (j / 16.0));
+        ASSERT_TRUE(bb.value.contains(v)) << json << ": " << v;
+        ASSERT_LE(std::abs(v - prev), bb.lipschitz * len / 16 * (1 + 1e-9) + 1e-15) << json;
+        prev = v;
+      }
+    }
+  }
+}
+
+// A soft object under a Ricci blend is native code, not an oracle: its distance's and potential's
+// instructions, with the model's values and gradients (its bounds are the potential
+// instruction's, sound but not the node's bits).
+TEST(Program, SoftObjectsUnderRicciBlendsAreNative) {
+  const std::string json = R"({"type":"ricci_difference","n":3,"children":[
+      {"type":"ricci_union","n":2,"children":[
+        {"type":"soft_object","distance":{"type":"lp_metric","radii":[1,0.8,1.2],"n":2}},
+        {"type":"soft_object","potential":{"type":"wyvill"},
+         "distance":{"type":"torus","major_radius":0.8,"radii":[0.3,0.4]}}]},
+      {"type":"soft_object","potential":{"type":"murakami"},
+       "distance":{"type":"lp_metric","radii":[0.5,0.5,0.5],"n":2},"translate":[0.6,0,0]}]})";
+  const NodePtr node = build_from_json(json, Convention::Soft);
+  const Program prog = compile(*node);
+  EXPECT_EQ(count_ops(prog.code, Op::Oracle), 0);
+  EXPECT_EQ(count_ops(prog.code, Op::Ricci), 2);
+  EXPECT_EQ(count_ops(prog.code, Op::Blanc) + count_ops(prog.code, Op::Wyvill) +
+                count_ops(prog.code, Op::Murakami),
+            3);
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p = i % 4 == 1   ? Vec3{}
+                   : i % 4 == 2 ? Vec3{0.6, 0, 0}
+                                : Vec3{u(rng), u(rng), u(rng)};
+    Vec3 gm, gp;
+    const double v = node->eval(p, &gm);
+    ASSERT_TRUE(same_bits(value(prog, p, ws), v));
+    ASSERT_TRUE(same_bits(gradient(prog, p, &gp, ws), v));
+    ASSERT_TRUE(same_bits(gp, gm));
+  }
+  const Box domain({-2, -2, -2}, {2, 2, 2});
+  for (int i = 0; i < 300; ++i) {
+    const Box b = random_box(rng, domain);
+    const BoxBounds bb = bounds(prog, b, ws);
+    for (int j = 0; j < 20; ++j) {
+      const Vec3 p = uniform_in(rng, b);
+      Vec3 g;
+      const double v = node->eval(p, &g);
+      ASSERT_TRUE(bb.value.contains(v)) << v;
+      ASSERT_LE(length(g), bb.lipschitz * (1 + 1e-12));
+    }
   }
 }
 
