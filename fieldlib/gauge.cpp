@@ -9,6 +9,8 @@
 namespace softtrace {
 
 namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
 // The papers' exponents are mostly small integers (n = 20 for cubes and bars): squaring is several
 // times faster than std::pow there and within a few ulps of it.
 bool by_squaring(double n) {
@@ -83,7 +85,9 @@ Interval power_sum(const Interval* u, int k, double n) {
   }
   // pow is faithfully but not correctly rounded: widen by a relative margin well above its error.
   const double l = power_sum(lo.data(), k, n, nullptr), h = power_sum(hi.data(), k, n, nullptr);
-  return {std::max(0.0, l * (1 - 1e-13)), h * (1 + 1e-13)};
+  // An infinite term (a box without bounds) makes the scaled sum inf/inf: the sum is infinite.
+  const bool unbounded = std::find(hi.data(), hi.data() + k, kInf) != hi.data() + k;
+  return {std::max(0.0, l * (1 - 1e-13)), unbounded ? kInf : h * (1 + 1e-13)};
 }
 
 double power_sum_partial_bound(Interval ui, Interval f_range, double n) {

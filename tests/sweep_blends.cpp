@@ -16,6 +16,12 @@ const double kNone = std::numeric_limits<double>::quiet_NaN();
   R"({"type":"soft_object","translate":[0.5,0.2,0],"distance":{"type":"superquadric","radii":[0.9,1.2,0.8],"n1":2,"n2":4}})"
 #define SOFT_C \
   R"({"type":"soft_object","translate":[0,-0.3,0.4],"potential":{"type":"wyvill"},"distance":{"type":"lp_metric","radii":[0.7,0.7,1.3],"n":3}})"
+// Soft objects whose radii are transformed: their global ranges and bounds come from bounds over
+// an unbounded box, which an infinite distance once turned into NaN (and [1, 1]).
+#define SOFT_TN \
+  R"({"type":"soft_object","translate":[0.3,0,0.2],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2},"radii":{"type":"T_n","w1":1.6,"w2":0.7}})"
+#define SOFT_TL \
+  R"({"type":"soft_object","translate":[-0.3,0.2,0],"distance":{"type":"superquadric","radii":[0.9,1.2,0.8],"n1":2,"n2":4},"radii":{"type":"T_l","w1":0.6}})"
 #define DIST_A R"({"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2})"
 #define DIST_B \
   R"({"type":"superquadric","translate":[0.5,0.2,0.1],"radii":[0.9,1.2,0.8],"n1":2,"n2":4})"
@@ -29,6 +35,10 @@ const SweepCase kCases[] = {
      R"({"type":"perlin_intersection","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}", kDom},
     {"perlin_difference",
      R"({"type":"perlin_difference","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}", kDom},
+    {"perlin_union_transformed", R"({"type":"perlin_union","children":[)" SOFT_TN "," SOFT_TL "]}",
+     kDom},
+    {"ricci_soft_union_transformed",
+     R"({"type":"ricci_union","n":2,"children":[)" SOFT_TN "," SOFT_TL "]}", kDom},
     {"ricci_soft_union_n2", R"({"type":"ricci_union","n":2,"children":[)" SOFT_A "," SOFT_B "]}",
      kDom},
     {"ricci_soft_union_n0_7",

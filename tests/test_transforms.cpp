@@ -430,5 +430,28 @@ TEST(Transforms, ParametersAreValidated) {
   EXPECT_NO_THROW(build_from_json(head + R"({"type":"T_n","w1":0.5,"w2":1})" + "}"));
 }
 
+// The bounds over an unbounded box must hold everywhere: at the centre (1) and far away (0). The
+// blends take their global ranges and bounds from them (perlin_*, ricci_*).
+TEST(SurfaceDefined, UnboundedBoxBoundsHoldEverywhere) {
+  const std::string so = std::string(R"({"type":"soft_object","distance":)") + kD + R"(,"radii":)";
+  std::vector<std::pair<std::string, NodePtr>> nodes;
+  for (const char* r : {R"({"type":"T_n","w1":1.6,"w2":0.7})", R"({"type":"T_n","w1":1,"w2":1})",
+                        R"({"type":"T_l","w1":0.6})", R"({"type":"T_r","w2":0.7})"})
+    nodes.emplace_back(r, build_from_json(so + r + "}"));
+  for (const char* type : {"T_an", "T_al"}) nodes.emplace_back(type, modulated(type, kFa));
+  for (const char* type : {"T_sn", "T_sr"}) nodes.emplace_back(type, modulated(type, kFs));
+  for (const auto& [name, n] : nodes) {
+    const Interval I = n->interval(Box::unbounded());
+    for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{0.3, 0.1, -0.2}, Vec3{100, 0, 0}, Vec3{0, -1e6, 3}}) {
+      const double v = n->value(p);
+      EXPECT_TRUE(I.contains(v)) << name << ": f = " << v << " at (" << p.x << ", " << p.y << ", "
+                                 << p.z << ") outside [" << I.lo << ", " << I.hi << "]";
+    }
+    const double L = n->lipschitz(Box::unbounded());
+    const Vec3 a{0.4, 0.3, 0}, b{0.45, 0.3, 0};
+    EXPECT_GE(L * length(b - a) * (1 + 1e-9), std::abs(n->value(a) - n->value(b))) << name;
+  }
+}
+
 }  // namespace
 }  // namespace softtrace
