@@ -22,6 +22,16 @@ for f in bin/softtrace bin/softtrace-core include/softtrace/eval.h include/softt
   lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc; do
   [ -e "$prefix/$f" ] || fail "the install has no $f"
 done
+# Every fieldlib header is installed, and every installed header compiles on its own (an
+# installed header that includes one left out would not).
+for h in "$src"/fieldlib/*.h; do
+  [ -e "$prefix/include/softtrace/$(basename "$h")" ] || fail "the install has no $(basename "$h")"
+done
+for h in "$prefix"/include/softtrace/*.h; do
+  echo "#include <softtrace/$(basename "$h")>" |
+    c++ -std=c++17 -fsyntax-only -I"$prefix/include" -x c++ - 2>"$work/header.log" ||
+    fail "$(basename "$h") does not compile alone: $(head -n 3 "$work/header.log")"
+done
 "$prefix/bin/softtrace" --version | grep -q '^softtrace [0-9.]* (commit ' ||
   fail "softtrace --version: '$("$prefix/bin/softtrace" --version)'"
 
