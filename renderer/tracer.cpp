@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 #include "illinois.h"
 #include "tracer_limits.h"
@@ -82,9 +81,7 @@ double ObjectTracer::g_view(const Vec3& p) const {
 Vec3 ObjectTracer::normal(const Vec3& p) const {
   Vec3 grad;
   if (blobs_) {
-    thread_local std::vector<int32_t> ids;
-    if (static_cast<int>(ids.size()) < blobs_->size()) ids.resize(blobs_->size());
-    blobs_->gradient(program_, p, &grad, ids.data());
+    grad = blob_gradient(p);
   } else {
     eval(p, &grad);
   }

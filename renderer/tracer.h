@@ -150,6 +150,8 @@ class ObjectTracer {
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
   MarchResult first_hit_blobs(const Ray& ray, double tnear, double t0, double t1,
                               TraceCounters& work, Query query) const;
+  // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
+  Vec3 blob_gradient(const Vec3& p) const;
 
   const SceneObject* object_;
   Program program_;

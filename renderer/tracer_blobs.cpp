@@ -51,12 +51,23 @@ struct BlobScratch {
     active.resize(n);
   }
 };
+
+BlobScratch& blob_scratch(int n) {
+  thread_local BlobScratch scratch;
+  scratch.fit(n);
+  return scratch;
+}
 }  // namespace
+
+Vec3 ObjectTracer::blob_gradient(const Vec3& p) const {
+  Vec3 grad;
+  blobs_->gradient(program_, p, &grad, blob_scratch(blobs_->size()).ids.data());
+  return grad;
+}
 
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t0, double t1,
                                           TraceCounters& work, Query query) const {
-  thread_local BlobScratch scratch;
-  scratch.fit(blobs_->size());
+  BlobScratch& scratch = blob_scratch(blobs_->size());
   BlobSum::Term* terms = scratch.terms.data();
   Event* events = scratch.events.data();
   int* active = scratch.active.data();
