@@ -32,6 +32,7 @@
 #include "skeletal.h"
 #include "spherical_product.h"
 #include "super_ellipsoidal.h"
+#include "transformed_potential.h"
 
 namespace softtrace {
 
@@ -124,9 +125,10 @@ void ellipsoid_on_segment(const Vec3& a, const Vec3& ia, const Vec3& A, const Ve
 }
 
 // Whether an instruction's quiet start (Workspace::quiet) means its value is 0 there: a
-// potential's or a sum's, not a distance's (>= 1).
+// potential's (transformed or not) or a sum's, not a distance's (>= 1).
 bool zero_when_quiet(Op op) {
-  return op == Op::Sum || op == Op::Blanc || op == Op::Wyvill || op == Op::Murakami;
+  return op == Op::Sum || op == Op::Blanc || op == Op::Wyvill || op == Op::Murakami ||
+         op == Op::RadiusTransform;
 }
 
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
@@ -310,6 +312,9 @@ class Walker {
           Q[in.out] = 0;
         }
         break;
+      case Op::RadiusTransform:
+        if (bounds_) radius_transform(in);
+        break;
       case Op::Group:
       case Op::Sum:
       case Op::Min:
@@ -320,6 +325,64 @@ class Walker {
       case Op::Ricci:
         break;  // handled by group()
     }
+  }
+
+  // A radius-transformed soft object over its register's box: 0 outside its support box, else
+  // the model's bounds from its distance's and modulation's slots, unrefined. The model refines
+  // small boxes where [d]/[f] is wide over octants, re-evaluating d and f on sub-boxes, which
+  // their slots cannot give; asking the model node for those instead was measured
+  // (fig000_13d_star_contour at 80x60, one thread, medians of 3 benches of 3 frames each): 0.256 s
+  // against 0.157 s unrefined, for 19.82 against 19.97 evaluations per ray, and within 0.8 % of
+  // the evaluations on every scene with radius transforms. Along a segment the slope is [-L, L],
+  // and the field is 0 until the segment may enter the support box, or while d >= 1 where that
+  // makes T = 1.
+  void radius_transform(const Instr& in) {
+    Interval* I = ws_.ivals.data();
+    double* L = ws_.lips.data();
+    const TransformedPotential t = TransformedPotential::load(K_ + in.a);
+    if (t.outside_support(box(in.reg))) {
+      I[in.out] = Interval(0);
+      L[in.out] = 0;
+      ws_.slopes[in.out] = Interval(0);
+      ws_.quiet[in.out] = 1;
+      return;
+    }
+    const TransformedPotential::Bounds B = t.bounds(I[in.in], L[in.in], I[in.n], L[in.n]);
+    I[in.out] = t.interval(B);
+    L[in.out] = t.slope_bound(B);
+    ws_.slopes[in.out] = {-L[in.out], L[in.out]};
+    if (!segment_) return;
+    double q = box_entry(t.support, in.reg);
+    if (t.src == WSource::Constant && t.T.outer_end(t.w) <= 1)
+      q = std::max(q, quiet_potential(in.in));
+    ws_.quiet[in.out] = q;
+  }
+
+  // The fraction of register r's segment before which it cannot be in box s (1 where it never
+  // enters): the slab test, with the box grown by how far the computed points may stray and by
+  // the rounding of the slab's quotients (a few ulps of the coordinates, far inside 1e-12).
+  double box_entry(const Box& s, int r) const {
+    if (!s.bounded()) return 0;
+    const Vec3* S = ws_.segs.data() + 2 * r;
+    const double grow =
+        ws_.seg_pads[r] +
+        kSegmentRounding * std::max({max_abs(S[0]), max_abs(S[1]), max_abs(s.lo), max_abs(s.hi)}) +
+        kTiny;
+    double enter = 0, leave = 1;
+    for (int i = 0; i < 3; ++i) {
+      const double lo = s.lo[i] - grow, hi = s.hi[i] + grow, a = S[0][i], e = S[1][i] - a;
+      if (e == 0) {
+        if (a < lo || a > hi) return 1;
+        continue;
+      }
+      double ta = (lo - a) / e, tb = (hi - a) / e;
+      if (e < 0) std::swap(ta, tb);
+      // NaN ends compare false and leave [enter, leave] as it was.
+      enter = std::max(enter, ta);
+      leave = std::min(leave, tb);
+    }
+    if (enter > leave) return 1;
+    return enter * (1 - 1e-9);
   }
 
   // A distance bounded over its register's box only: its slope along the segment is the Lipschitz

@@ -16,6 +16,7 @@
 #include "skeletal.h"
 #include "spherical_product.h"
 #include "super_ellipsoidal.h"
+#include "transformed_potential.h"
 
 namespace softtrace {
 
@@ -143,6 +144,13 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         Workspace::Dual d = S[in.in];
         d.v = complement(complement_convention(K + in.a), d.v, &d.g);
         S[in.out] = d;
+        break;
+      }
+      case Op::RadiusTransform: {
+        const Workspace::Dual &d = S[in.in], &f = S[in.n];
+        Workspace::Dual r;
+        r.v = TransformedPotential::load(K + in.a).eval(d.v, d.g, f.v, f.g, &r.g);
+        S[in.out] = r;
         break;
       }
       case Op::Group:

@@ -20,6 +20,7 @@
 #include "skeletal.h"
 #include "spherical_product.h"
 #include "super_ellipsoidal.h"
+#include "transformed_potential.h"
 
 namespace softtrace {
 
@@ -249,6 +250,15 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         }
         break;
       }
+      case Op::RadiusTransform: {
+        // The shared kernel lane by lane (T and P are branches and libm calls).
+        const TransformedPotential t = TransformedPotential::load(K + in.a);
+        const double* d = S + in.in * kBatch;
+        const double* f = S + in.n * kBatch;
+        const Vec3 none;
+        for (int l = 0; l < n; ++l) out[l] = t.eval(d[l], none, f[l], none, nullptr);
+        break;
+      }
       case Op::Group:
         break;
       case Op::Sum: {
@@ -359,6 +369,11 @@ double value(Code c, const Vec3& p, Workspace& ws) {
       case Op::Complement:
         out = complement(complement_convention(K + in.a), S[in.in], nullptr);
         break;
+      case Op::RadiusTransform: {
+        const Vec3 none;
+        out = TransformedPotential::load(K + in.a).eval(S[in.in], none, S[in.n], none, nullptr);
+        break;
+      }
       case Op::Group:
         break;
       case Op::Sum: {

@@ -5,9 +5,15 @@
 
 namespace softtrace {
 
-Interval Potential::interval(Interval d) const {
-  return {std::max(0.0, iv::down(eval(d.hi, nullptr))),
-          std::min(1.0, iv::up(eval(std::max(0.0, d.lo), nullptr)))};
+double PotentialKind::lipschitz() const {
+  switch (op) {
+    case Op::Wyvill:
+      return wyvill_lipschitz();
+    case Op::Murakami:
+      return murakami_lipschitz();
+    default:
+      return blanc_lipschitz(s);
+  }
 }
 
 double blanc_lipschitz(double s) {

@@ -111,6 +111,31 @@ inline double murakami_slope_floor(double lo, double hi) {
   return std::max(0.0, std::min(slope(lo), slope(hi)) * (1 - 1e-12) - 1e-300);
 }
 
+// The potential an instruction names (Blanc with softness s, Wyvill, Murakami) as a value, for an
+// instruction that applies one inside its own kernel (RadiusTransform) without a virtual call.
+struct PotentialKind {
+  Op op;
+  double s = 0;  // Blanc's softness
+
+  double eval(double d, double* dP) const {
+    switch (op) {
+      case Op::Wyvill:
+        return wyvill(d, dP);
+      case Op::Murakami:
+        return murakami(d, dP);
+      default:
+        return blanc(d, s, dP);
+    }
+  }
+  double lipschitz() const;  // max over d of |P'(d)|
+  // [P(hi), P(lo)] rounded outward: P is non-increasing.
+  Interval interval(Interval d) const {
+    return {std::max(0.0, iv::down(eval(d.hi, nullptr))),
+            std::min(1.0, iv::up(eval(std::max(0.0, d.lo), nullptr)))};
+  }
+  double lipschitz(Interval d) const { return d.lo >= 1 ? 0.0 : lipschitz(); }
+};
+
 class Potential {
  public:
   virtual ~Potential() = default;
@@ -121,7 +146,9 @@ class Potential {
   virtual Op op() const = 0;
   virtual double parameter() const { return 0; }
 
-  Interval interval(Interval d) const;
+  PotentialKind kind() const { return {op(), parameter()}; }
+
+  Interval interval(Interval d) const { return kind().interval(d); }
   double lipschitz(Interval d) const { return d.lo >= 1 ? 0.0 : lipschitz(); }
 };
 

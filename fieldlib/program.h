@@ -47,6 +47,8 @@ class FieldNode;
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
   X(Offset)           /* slot out = s (slot in - c) (s = c[0], c = c[1]), 003 §2.1      */ \
   X(Complement)       /* slot out = 1 - f, -f or 1/f of slot in (convention = c[0])     */  \
+  X(RadiusTransform)  /* slot out = P(T(d, w)), d = slot in, w constant or from f =     */  \
+                      /* slot n; reg = the point register (transformed_potential.h)     */  \
   X(Group)            /* announces the children of the n-ary instruction groups[a]      */  \
   X(Sum)              /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12         */ \
   X(Min)              /* slot out = min of args[a..a+n)                                 */  \
@@ -68,11 +70,13 @@ struct Instr {
   Op op;
   int32_t out = 0;  // value slot, or point register for Translate/Place
   int32_t in = 0;   // point register (Translate, Place, distances, Oracle), value slot
-                    // (potentials, Offset, Complement) or offset into consts (SuperUnion,
-                    // SuperIntersect, Perlin, Ricci)
-  int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset), args
-                    // (n-ary instructions) or groups
-  int32_t n = 0;    // argument count (n-ary instructions) or number of normals (GenDistance)
+                    // (potentials, Offset, Complement, RadiusTransform: the distance) or offset
+                    // into consts (SuperUnion, SuperIntersect, Perlin, Ricci)
+  int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset,
+                    // RadiusTransform), args (n-ary instructions) or groups
+  int32_t n = 0;    // argument count (n-ary instructions), number of normals (GenDistance) or
+                    // value slot (RadiusTransform: the modulation)
+  int32_t reg = 0;  // point register whose box an instruction over slots reads (RadiusTransform)
   const FieldNode* node = nullptr;  // Oracle
 };
 

@@ -19,6 +19,18 @@ double log_w_slope(double w_lo) {
   return std::log(2.0) / ((1 + w_lo) * std::log1p(w_lo)) * kPad;
 }
 
+// T_n's branches that [d] × [w] reaches: the linear one and the quadratic one.
+bool n_linear(Interval d, Interval w) {
+  return d.hi >= 0.5 && d.lo < 0.5 * (1 + w.hi);
+}
+bool n_quadratic(Interval d, double w2hi) {
+  return d.lo < 0.5 && d.hi >= 0.5 * (1 - w2hi);
+}
+// Where T_r is neither 0 nor 1.
+bool r_branch(Interval d, Interval w) {
+  return d.hi >= 0.5 * (1 - w.hi) && d.lo < 1;
+}
+
 }  // namespace
 
 double transform_n(double d, double w1, double w2, TPartials* dT) {
@@ -87,177 +99,176 @@ Interval RadiusProfile::image(Interval d, Interval w) const {
   return {lo, hi};
 }
 
-namespace {
-
-// T_n(d; w1 = w, w2 = rule(w))   — 000 Eq. 13, 002 Eq. 10, docs/math.md §4.2, §4.5, §4.6
-class ProfileN final : public RadiusProfile {
- public:
-  ProfileN(W2Rule rule, double w2) : rule_(rule), w2_(w2) {}
-
-  double eval(double d, double w, double* Td, double* Tw) const override {
-    TPartials p;
-    const double T = transform_n(d, w, w2(w), &p);
-    if (Td) *Td = p.d;
-    if (Tw) *Tw = p.w1 + dw2(w) * p.w2;
-    return T;
-  }
-  double slope_d(Interval d, Interval w) const override {
-    const double w2lo = w2(w.lo), w2hi = w2(w.hi);
-    double s = 0;
-    if (linear(d, w)) s = 1 / w.lo;
-    if (quadratic(d, w2hi)) {
-      const Lows wq = quadratic_w(d, w);
-      if (w.lo == w.hi) {  // N_n' is linear in d: its maximum is at an end of the clipped [d]
-        const double A = 2 * (1 / w.lo - 1 / w2lo) / w2lo;
-        const double a = std::max(d.lo, 0.5 * (1 - w2lo)), b = std::min(d.hi, 0.5);
-        s = std::max({s, 1 / w.lo + 2 * A * (a - 0.5), 1 / w.lo + 2 * A * (b - 0.5)});
-      } else {
-        s = std::max({s, 1 / wq.w1, 2 / wq.w2 - 1 / w.hi});
-      }
-    }
-    return s * kPad;
-  }
-  double slope_w(Interval d, Interval w) const override {
-    double s = 0;
-    if (linear(d, w))
-      s = std::min((std::min(d.hi, 0.5 * (1 + w.hi)) - 0.5) / (w.lo * w.lo), 0.5 / w.lo);
-    const double w2hi = w2(w.hi);
-    if (quadratic(d, w2hi)) {
-      const double e = std::min(0.5 - d.lo, 0.5 * w2hi), w1lo = quadratic_w(d, w).w1;
-      // e(1 - 2e/w2) <= min(e, w2/8) and w2 <= 2 w1 for every rule: <= min(e/w1^2, 1/(4 w1)).
-      double q = std::min({e, w2hi / 8}) / (w1lo * w1lo);
-      q = std::min(q, 0.25 / w1lo);
-      if (rule_ == W2Rule::Equal) q += std::min(e / (w1lo * w1lo), 0.5 / w1lo);
-      s = std::max(s, q);
-    }
-    return s * kPad;
-  }
-  double slope_w_per_d(Interval d, Interval w) const override {
-    if (rule_ == W2Rule::Equal) return kInf;
-    double s = 0;
-    if (linear(d, w))
-      s = 2 * std::min((std::min(d.hi, 0.5 * (1 + w.hi)) - 0.5) / (w.lo * w.lo), 0.5 / w.lo);
-    if (quadratic(d, w2(w.hi))) s = std::max(s, 1 / std::pow(quadratic_w(d, w).w1, 2));
-    return s * kPad;
-  }
-  double outer_end(double w) const override { return 0.5 * (1 + w); }
-
- private:
-  double w2(double w) const {
-    switch (rule_) {
-      case W2Rule::Fixed:
-        return w2_;
-      case W2Rule::Double:
-        return std::min(1.0, 2 * w);
-      case W2Rule::Equal:
-        return w;
-    }
-    return w2_;
-  }
-  double dw2(double w) const {
-    switch (rule_) {
-      case W2Rule::Fixed:
-        return 0;
-      case W2Rule::Double:
-        return 2 * w < 1 ? 2 : 0;
-      case W2Rule::Equal:
-        return 1;
-    }
-    return 0;
-  }
-  // The smallest w1 and w2 at which the quadratic branch is reached from [d]: it needs
-  // d >= 0.5(1 - w2), i.e. w2 >= 1 - 2 d.hi (T and all partials are 0 below it).
-  struct Lows {
-    double w1, w2;
-  };
-  Lows quadratic_w(Interval d, Interval w) const {
-    const double w2lo = std::max(w2(w.lo), 1 - 2 * d.hi);
-    switch (rule_) {
-      case W2Rule::Fixed:
-        return {w.lo, w2lo};
-      case W2Rule::Double:
-        return {std::max(w.lo, 0.5 * w2lo), w2lo};
-      case W2Rule::Equal:
-        return {std::max(w.lo, w2lo), w2lo};
-    }
-    return {w.lo, w2lo};
-  }
-  static bool linear(Interval d, Interval w) { return d.hi >= 0.5 && d.lo < 0.5 * (1 + w.hi); }
-  static bool quadratic(Interval d, double w2hi) { return d.lo < 0.5 && d.hi >= 0.5 * (1 - w2hi); }
-
-  W2Rule rule_;
-  double w2_;
-};
-
-// T_l(d; w1 = w)   — 002 Eq. 13, docs/math.md §4.3, §4.5
-class ProfileL final : public RadiusProfile {
- public:
-  double eval(double d, double w, double* Td, double* Tw) const override {
-    TPartials p;
-    const double T = transform_l(d, w, &p);
-    if (Td) *Td = p.d;
-    if (Tw) *Tw = p.w1;
-    return T;
-  }
-  double slope_d(Interval d, Interval w) const override {
-    if (d.lo >= 0.5 * (1 + w.hi)) return 0;
-    const double k = log_k(w.lo);  // the largest k
-    double s = 0;
-    if (d.hi >= 0.5) s = k / std::max(0.5, d.lo);
-    if (d.lo < 0.5) {
-      if (w.hi <= 1) {
-        s = std::max(s, 2 * k);
-      } else {
-        if (d.lo <= 0) return kInf;
-        s = std::max(s, k * eval(std::min(d.hi, 0.5), w.hi, nullptr, nullptr) / d.lo);
-      }
-    }
-    return s * kPad;
-  }
-  double slope_w(Interval d, Interval w) const override {
-    return d.lo >= 0.5 * (1 + w.hi) ? 0 : log_w_slope(w.lo);
-  }
-  double outer_end(double w) const override { return 0.5 * (1 + w); }
-};
-
-// T_r(d; w2 = w)   — 002 Eq. 14, docs/math.md §4.4, §4.6
-class ProfileR final : public RadiusProfile {
- public:
-  double eval(double d, double w, double* Td, double* Tw) const override {
-    TPartials p;
-    const double T = transform_r(d, w, &p);
-    if (Td) *Td = p.d;
-    if (Tw) *Tw = p.w2;
-    return T;
-  }
-  double slope_d(Interval d, Interval w) const override {
-    if (!branch(d, w)) return 0;
-    if (w.lo == w.hi) {  // k (2m)^k u^(k-1) grows with u = 1-d (k >= 1)
-      const double k = log_k(w.lo), u = std::min(1 - d.lo, 0.5 * (1 + w.lo));
-      // In logs: (2m)^k overflows for small w while u^(k-1) underflows.
-      return std::exp(std::log(k) + k * std::log(2 / (1 + w.lo)) + (k - 1) * std::log(u)) * kPad;
-    }
-    return 2 * log_k(w.lo) / (1 + w.lo) * kPad;
-  }
-  double slope_w(Interval d, Interval w) const override {
-    return branch(d, w) ? log_w_slope(w.lo) : 0;
-  }
-  double outer_end(double) const override { return 1; }
-
- private:
-  static bool branch(Interval d, Interval w) { return d.hi >= 0.5 * (1 - w.hi) && d.lo < 1; }
-};
-
-}  // namespace
-
-std::unique_ptr<RadiusProfile> make_profile_n(W2Rule rule, double fixed_w2) {
-  return std::make_unique<ProfileN>(rule, fixed_w2);
+void RadiusProfile::store(double* c) const {
+  c[0] = static_cast<double>(kind_);
+  c[1] = static_cast<double>(rule_);
+  c[2] = w2_;
 }
-std::unique_ptr<RadiusProfile> make_profile_l() {
-  return std::make_unique<ProfileL>();
+RadiusProfile RadiusProfile::load(const double* c) {
+  return {static_cast<Kind>(static_cast<int>(c[0])), static_cast<W2Rule>(static_cast<int>(c[1])),
+          c[2]};
 }
-std::unique_ptr<RadiusProfile> make_profile_r() {
-  return std::make_unique<ProfileR>();
+
+double RadiusProfile::eval(double d, double w, double* Td, double* Tw) const {
+  TPartials p;
+  double T;
+  switch (kind_) {
+    case Kind::N:  // T_n(d; w1 = w, w2 = rule(w)), docs/math.md §4.2, §4.5, §4.6
+      T = transform_n(d, w, w2(w), &p);
+      if (Tw) *Tw = p.w1 + dw2(w) * p.w2;
+      break;
+    case Kind::L:  // T_l(d; w1 = w), §4.3, §4.5
+      T = transform_l(d, w, &p);
+      if (Tw) *Tw = p.w1;
+      break;
+    default:  // T_r(d; w2 = w), §4.4, §4.6
+      T = transform_r(d, w, &p);
+      if (Tw) *Tw = p.w2;
+      break;
+  }
+  if (Td) *Td = p.d;
+  return T;
+}
+
+double RadiusProfile::slope_d(Interval d, Interval w) const {
+  switch (kind_) {
+    case Kind::N:
+      return slope_d_n(d, w);
+    case Kind::L:
+      return slope_d_l(d, w);
+    default:
+      return slope_d_r(d, w);
+  }
+}
+
+double RadiusProfile::slope_w(Interval d, Interval w) const {
+  switch (kind_) {
+    case Kind::N:
+      return slope_w_n(d, w);
+    case Kind::L:
+      return d.lo >= 0.5 * (1 + w.hi) ? 0 : log_w_slope(w.lo);
+    default:
+      return r_branch(d, w) ? log_w_slope(w.lo) : 0;
+  }
+}
+
+double RadiusProfile::slope_w_per_d(Interval d, Interval w) const {
+  return kind_ == Kind::N ? slope_w_per_d_n(d, w) : kInf;
+}
+
+double RadiusProfile::w2(double w) const {
+  switch (rule_) {
+    case W2Rule::Fixed:
+      return w2_;
+    case W2Rule::Double:
+      return std::min(1.0, 2 * w);
+    case W2Rule::Equal:
+      return w;
+  }
+  return w2_;
+}
+
+double RadiusProfile::dw2(double w) const {
+  switch (rule_) {
+    case W2Rule::Fixed:
+      return 0;
+    case W2Rule::Double:
+      return 2 * w < 1 ? 2 : 0;
+    case W2Rule::Equal:
+      return 1;
+  }
+  return 0;
+}
+
+RadiusProfile::Lows RadiusProfile::quadratic_w(Interval d, Interval w) const {
+  const double w2lo = std::max(w2(w.lo), 1 - 2 * d.hi);
+  switch (rule_) {
+    case W2Rule::Fixed:
+      return {w.lo, w2lo};
+    case W2Rule::Double:
+      return {std::max(w.lo, 0.5 * w2lo), w2lo};
+    case W2Rule::Equal:
+      return {std::max(w.lo, w2lo), w2lo};
+  }
+  return {w.lo, w2lo};
+}
+
+double RadiusProfile::slope_d_n(Interval d, Interval w) const {
+  const double w2lo = w2(w.lo), w2hi = w2(w.hi);
+  double s = 0;
+  if (n_linear(d, w)) s = 1 / w.lo;
+  if (n_quadratic(d, w2hi)) {
+    const Lows wq = quadratic_w(d, w);
+    if (w.lo == w.hi) {  // N_n' is linear in d: its maximum is at an end of the clipped [d]
+      const double A = 2 * (1 / w.lo - 1 / w2lo) / w2lo;
+      const double a = std::max(d.lo, 0.5 * (1 - w2lo)), b = std::min(d.hi, 0.5);
+      s = std::max({s, 1 / w.lo + 2 * A * (a - 0.5), 1 / w.lo + 2 * A * (b - 0.5)});
+    } else {
+      s = std::max({s, 1 / wq.w1, 2 / wq.w2 - 1 / w.hi});
+    }
+  }
+  return s * kPad;
+}
+
+double RadiusProfile::slope_w_n(Interval d, Interval w) const {
+  double s = 0;
+  if (n_linear(d, w))
+    s = std::min((std::min(d.hi, 0.5 * (1 + w.hi)) - 0.5) / (w.lo * w.lo), 0.5 / w.lo);
+  const double w2hi = w2(w.hi);
+  if (n_quadratic(d, w2hi)) {
+    const double e = std::min(0.5 - d.lo, 0.5 * w2hi), w1lo = quadratic_w(d, w).w1;
+    // e(1 - 2e/w2) <= min(e, w2/8) and w2 <= 2 w1 for every rule: <= min(e/w1^2, 1/(4 w1)).
+    double q = std::min({e, w2hi / 8}) / (w1lo * w1lo);
+    q = std::min(q, 0.25 / w1lo);
+    if (rule_ == W2Rule::Equal) q += std::min(e / (w1lo * w1lo), 0.5 / w1lo);
+    s = std::max(s, q);
+  }
+  return s * kPad;
+}
+
+double RadiusProfile::slope_w_per_d_n(Interval d, Interval w) const {
+  if (rule_ == W2Rule::Equal) return kInf;
+  double s = 0;
+  if (n_linear(d, w))
+    s = 2 * std::min((std::min(d.hi, 0.5 * (1 + w.hi)) - 0.5) / (w.lo * w.lo), 0.5 / w.lo);
+  if (n_quadratic(d, w2(w.hi))) s = std::max(s, 1 / std::pow(quadratic_w(d, w).w1, 2));
+  return s * kPad;
+}
+
+double RadiusProfile::slope_d_l(Interval d, Interval w) const {
+  if (d.lo >= 0.5 * (1 + w.hi)) return 0;
+  const double k = log_k(w.lo);  // the largest k
+  double s = 0;
+  if (d.hi >= 0.5) s = k / std::max(0.5, d.lo);
+  if (d.lo < 0.5) {
+    if (w.hi <= 1) {
+      s = std::max(s, 2 * k);
+    } else {
+      if (d.lo <= 0) return kInf;
+      s = std::max(s, k * transform_l(std::min(d.hi, 0.5), w.hi, nullptr) / d.lo);
+    }
+  }
+  return s * kPad;
+}
+
+double RadiusProfile::slope_d_r(Interval d, Interval w) const {
+  if (!r_branch(d, w)) return 0;
+  if (w.lo == w.hi) {  // k (2m)^k u^(k-1) grows with u = 1-d (k >= 1)
+    const double k = log_k(w.lo), u = std::min(1 - d.lo, 0.5 * (1 + w.lo));
+    // In logs: (2m)^k overflows for small w while u^(k-1) underflows.
+    return std::exp(std::log(k) + k * std::log(2 / (1 + w.lo)) + (k - 1) * std::log(u)) * kPad;
+  }
+  return 2 * log_k(w.lo) / (1 + w.lo) * kPad;
+}
+
+RadiusProfile make_profile_n(W2Rule rule, double fixed_w2) {
+  return {RadiusProfile::Kind::N, rule, fixed_w2};
+}
+RadiusProfile make_profile_l() {
+  return {RadiusProfile::Kind::L, W2Rule::Fixed, 1};
+}
+RadiusProfile make_profile_r() {
+  return {RadiusProfile::Kind::R, W2Rule::Fixed, 1};
 }
 
 }  // namespace softtrace

@@ -27,7 +27,6 @@
 #pragma once
 
 #include <limits>
-#include <memory>
 
 #include "interval.h"
 
@@ -43,31 +42,58 @@ double transform_n(double d, double w1, double w2, TPartials* dT);  // 000 Eq. 1
 double transform_l(double d, double w1, TPartials* dT);             // 002 Eq. 13
 double transform_r(double d, double w2, TPartials* dT);             // 002 Eq. 14 (A3: 1 for d > 1)
 
-// T(d; w) with one free parameter; the sup bounds hold over the box [d] × [w] (d.lo >= 0, w.lo >
-// 0).
-class RadiusProfile {
- public:
-  virtual ~RadiusProfile() = default;
-  // T and, when non-null, ∂T/∂d and the total dT/dw.
-  virtual double eval(double d, double w, double* Td, double* Tw) const = 0;
-  virtual double slope_d(Interval d, Interval w) const = 0;
-  virtual double slope_w(Interval d, Interval w) const = 0;
-  // sup |dT/dw| / d; +inf when not derived for the profile.
-  virtual double slope_w_per_d(Interval d, Interval w) const {
-    return std::numeric_limits<double>::infinity();
-  }
-  // {T < 1} = {d < outer_end(w)}: 0.5(1+w1) for T_n/T_l, 1 for T_r.
-  virtual double outer_end(double w) const = 0;
-
-  // The monotone image of [d] × [w] (header comment), padded for rounding.
-  Interval image(Interval d, Interval w) const;
-};
-
 // How w2 of T_n follows w = w1.
 enum class W2Rule { Fixed, Double, Equal };  // T_n: given; T_an/contour: min(1, 2 w1); T_sn: w1
 
-std::unique_ptr<RadiusProfile> make_profile_n(W2Rule rule, double fixed_w2 = 1);
-std::unique_ptr<RadiusProfile> make_profile_l();
-std::unique_ptr<RadiusProfile> make_profile_r();
+// T(d; w) with one free parameter: T_n (w1 = w, w2 by the rule), T_l (w1 = w) or T_r (w2 = w). A
+// value, not a class hierarchy, so that a program instruction rebuilds it from its constants and
+// switches on the kind instead of making a virtual call per point. The sup bounds hold over the
+// box [d] × [w] (d.lo >= 0, w.lo > 0).
+class RadiusProfile {
+ public:
+  enum class Kind { N, L, R };
+  static constexpr int kConsts = 3;  // kind, rule, fixed w2
+
+  RadiusProfile(Kind kind, W2Rule rule, double fixed_w2)
+      : kind_(kind), rule_(rule), w2_(fixed_w2) {}
+  void store(double* c) const;
+  static RadiusProfile load(const double* c);
+
+  // T and, when non-null, ∂T/∂d and the total dT/dw.
+  double eval(double d, double w, double* Td, double* Tw) const;
+  double slope_d(Interval d, Interval w) const;
+  double slope_w(Interval d, Interval w) const;
+  // sup |dT/dw| / d; +inf when not derived for the profile.
+  double slope_w_per_d(Interval d, Interval w) const;
+  // {T < 1} = {d < outer_end(w)}: 0.5(1+w1) for T_n/T_l, 1 for T_r.
+  double outer_end(double w) const { return kind_ == Kind::R ? 1 : 0.5 * (1 + w); }
+
+  // The monotone image of [d] × [w] (header comment), padded for rounding.
+  Interval image(Interval d, Interval w) const;
+
+ private:
+  // T_n's w2 as a function of w, and its derivative.
+  double w2(double w) const;
+  double dw2(double w) const;
+  // The smallest w1 and w2 at which T_n's quadratic branch is reached from [d]: it needs
+  // d >= 0.5(1 - w2), i.e. w2 >= 1 - 2 d.hi (T and all partials are 0 below it).
+  struct Lows {
+    double w1, w2;
+  };
+  Lows quadratic_w(Interval d, Interval w) const;
+  double slope_d_n(Interval d, Interval w) const;
+  double slope_w_n(Interval d, Interval w) const;
+  double slope_w_per_d_n(Interval d, Interval w) const;
+  double slope_d_l(Interval d, Interval w) const;
+  double slope_d_r(Interval d, Interval w) const;
+
+  Kind kind_;
+  W2Rule rule_;
+  double w2_;
+};
+
+RadiusProfile make_profile_n(W2Rule rule, double fixed_w2 = 1);  // 000 Eq. 13, 002 Eq. 10
+RadiusProfile make_profile_l();                                  // 002 Eq. 13
+RadiusProfile make_profile_r();                                  // 002 Eq. 14
 
 }  // namespace softtrace

@@ -10,9 +10,10 @@
 //   over the whole box (P∘T constant), e.g. T_a* with d >= 0.5(1+w_min) and f >= 0.5 ([TA-1]),
 //   T_s* with d < 0.5(1-w_min) and f < 0.5 ([TS-1]). [d]/[f] ignores that d and f are
 //   correlated, so where [w] comes out wide both bounds are refined over up to two levels of
-//   octants (each sub-box bound is sound; the smaller result is kept). Global: the chain rule with
-//   constant w; +inf for surface-defined radii (w has no global bound) and T_l with w1 > 1
-//   ([TL-3]).
+//   octants (each sub-box bound is sound; the smaller result is kept). The compiled program's
+//   RadiusTransform instruction keeps the unrefined bounds (eval_bounds.cpp says why).
+//   Global: the chain rule with constant w; +inf for surface-defined radii (w has no global
+//   bound) and T_l with w1 > 1 ([TL-3]).
 // - support: plain/T_n/T_l {d < 0.5(1+w1)}, T_r and T_s* {d < 1}, T_a* {f_a < 0.5} ∪
 //   {d < 0.5(1+w_min)} ([TA-2]; the second set only matters where the w_min clamp acts),
 //   contour {fc < 1} ∪ {d < 0.5(1+w_min)}.

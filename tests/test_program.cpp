@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 
 #include "eval.h"
 #include "sweep.h"
+#include "transformed_potential.h"
 
 namespace softtrace::test {
 
@@ -128,8 +131,11 @@ bool same_bits(const Vec3& a, const Vec3& b) {
 // single-point value and the gradient at points that `special` may move (to the kernels' branch
 // points), the model's bits every one; and over random boxes, the node's interval(b) and
 // lipschitz(b) to the bit, which contain sampled values and gradient lengths.
+// With `bound_bits` false the bounds are only checked to hold the samples (a placed node's box goes
+// through the model's placement, the program's through its own, rounded otherwise).
 template <class Special>
-void expect_models_bits(const std::string& json, Convention convention, const Special& special) {
+void expect_models_bits(const std::string& json, Convention convention, const Special& special,
+                        bool bound_bits = true) {
   constexpr int kLanes = 13;
   const NodePtr node = build_from_json(json, convention);
   const Program prog = compile(*node);
@@ -163,10 +169,11 @@ void expect_models_bits(const std::string& json, Convention convention, const Sp
     const BoxBounds bb = bounds(prog, b, ws);
     const Interval I = node->interval(b);
     const double L = node->lipschitz(b);
-    ASSERT_TRUE(same_bits(bb.value.lo, I.lo) && same_bits(bb.value.hi, I.hi))
+    ASSERT_TRUE(!bound_bits || (same_bits(bb.value.lo, I.lo) && same_bits(bb.value.hi, I.hi)))
         << json << ": [" << bb.value.lo << ", " << bb.value.hi << "] vs the model's [" << I.lo
         << ", " << I.hi << "]";
-    ASSERT_TRUE(same_bits(bb.lipschitz, L)) << json << ": " << bb.lipschitz << " vs " << L;
+    ASSERT_TRUE(!bound_bits || same_bits(bb.lipschitz, L))
+        << json << ": " << bb.lipschitz << " vs " << L;
     for (int j = 0; j < 20; ++j) {
       const Vec3 p = uniform_in(rng, b);
       Vec3 g;
@@ -489,6 +496,236 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
       if (k % 3 == 2) p[k % 3] = std::nan("");
       return p;
     });
+  }
+}
+
+// Soft objects with a radius transform, one per profile and source of w, on the sweeps' distances
+// and modulations; the segments' modulations reach past the distance's segment, where f = 0 < d
+// (w takes its cap, T_an, or w_min, T_sn) and, near it, d/f reaches w's clamps.
+#define TSO_SPHERE R"({"type":"lp_metric","radii":[1,0.8,1.2],"n":2})"
+#define TSO_BAR R"({"type":"superquadric","radii":[1,1,1.3],"n1":2,"n2":6})"
+const struct TransformCase {
+  const char* name;
+  const char* json;
+  Op distance, modulation;  // modulation Op::RadiusTransform: w is constant
+} kTransformCases[] = {
+    {"T_n",
+     R"({"type":"soft_object","distance":)" TSO_SPHERE
+     R"(,"radii":{"type":"T_n","w1":1.6,"w2":0.7}})",
+     Op::LpMetric, Op::RadiusTransform},
+    {"T_n_wyvill",
+     R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":)" TSO_BAR
+     R"(,"radii":{"type":"T_n","w1":0.4,"w2":0.8}})",
+     Op::SphericalProduct, Op::RadiusTransform},
+    {"T_l",
+     R"({"type":"soft_object","distance":)" TSO_SPHERE R"(,"radii":{"type":"T_l","w1":0.6}})",
+     Op::LpMetric, Op::RadiusTransform},
+    {"T_l_wide",
+     R"({"type":"soft_object","potential":{"type":"murakami"},"distance":)" TSO_BAR
+     R"(,"radii":{"type":"T_l","w1":2}})",
+     Op::SphericalProduct, Op::RadiusTransform},
+    {"T_r",
+     R"({"type":"soft_object","potential":{"type":"blanc","s":0.3},"distance":)" TSO_SPHERE
+     R"(,"radii":{"type":"T_r","w2":0.4}})",
+     Op::LpMetric, Op::RadiusTransform},
+    {"T_an", R"({"type":"soft_object","distance":)" TSO_SPHERE R"(,"radii":{"type":"T_an",
+     "modulation":{"type":"superquadric","radii":[2.2,1.8,1.6],"n1":1,"n2":3}}})",
+     Op::LpMetric, Op::SphericalProduct},
+    {"T_an_segment", R"({"type":"soft_object","distance":{"type":"segment","p0":[0,0,-0.5],
+     "p1":[0,0,0.5],"radius":0.6},"radii":{"type":"T_an","modulation":{"type":"segment",
+     "p0":[0,0,-0.8],"p1":[0,0,0.8],"radius":1.5}}})",
+     Op::LineSegment, Op::LineSegment},
+    {"T_al", R"({"type":"soft_object","distance":)" TSO_SPHERE R"(,"radii":{"type":"T_al",
+     "modulation":{"type":"lp_metric","radii":[1.8,1.2,2.4],"n":3}}})",
+     Op::LpMetric, Op::LpMetric},
+    {"T_sn", R"({"type":"soft_object","distance":)" TSO_BAR R"(,"radii":{"type":"T_sn",
+     "modulation":{"type":"lp_metric","radii":[0.7,0.8,0.6],"n":3}}})",
+     Op::SphericalProduct, Op::LpMetric},
+    {"T_sn_segment", R"({"type":"soft_object","distance":{"type":"segment","p0":[0,0,-0.5],
+     "p1":[0,0,0.5],"radius":1},"radii":{"type":"T_sn","w_min":0.05,"modulation":{
+     "type":"segment","p0":[0,0,-0.52],"p1":[0,0,0.52],"radius":0.6}}})",
+     Op::LineSegment, Op::LineSegment},
+    {"T_sr", R"({"type":"soft_object","distance":)" TSO_SPHERE R"(,"radii":{"type":"T_sr",
+     "modulation":{"type":"superquadric","radii":[0.6,0.5,0.9],"n1":1.5,"n2":2}}})",
+     Op::LpMetric, Op::SphericalProduct},
+    {"contour", R"({"type":"soft_object","distance":)" TSO_SPHERE R"(,"radii":{"type":"contour",
+     "contour":{"type":"lp_metric","radii":[1.4,1.1,2],"n":4}}})",
+     Op::LpMetric, Op::LpMetric},
+    {"T_sr_placed",
+     R"({"type":"soft_object","translate":[1.1,-0.5,0.8],"distance":)" TSO_SPHERE
+     R"(,"radii":{"type":"T_sr","modulation":{"type":"superquadric","radii":[0.6,0.5,0.9],
+     "n1":1.5,"n2":2}}})",
+     Op::LpMetric, Op::SphericalProduct},
+    {"contour_pinched", R"({"type":"soft_object","distance":)" TSO_BAR R"(,"radii":{
+     "type":"contour","w_min":0.01,"contour":{"type":"superquadric","radii":[2,2,2.6],"n1":0.6,
+     "n2":4}}})",
+     Op::SphericalProduct, Op::SphericalProduct},
+};
+
+// Each case's support box (the field is 0 outside it).
+Box transform_support(const char* json) {
+  return build_from_json(json)->region(std::numeric_limits<double>::min(), Side::Above);
+}
+
+// A radius-transformed soft object compiles to its distance's code, its modulation's (where w is
+// not constant) and one RadiusTransform instruction, no oracle, with the model's bits: values in
+// 13-lane batches, single points and gradients at random points, on the skeleton (the centre: d =
+// 0, and f = 0), near it, on the z axis (the segments' ends, where f = 0 < d and w clamps), on the
+// support box's faces and with a NaN coordinate (unplaced); over random boxes bounds that hold
+// sampled values and gradient lengths (RadiusTransformBoundsAreTheModelsUnrefined compares them
+// with the model's).
+TEST(Program, RadiusTransformIsOneInstructionAfterItsChildrensCode) {
+  for (const TransformCase& c : kTransformCases) {
+    SCOPED_TRACE(c.name);
+    const Program prog = compile(*build_from_json(c.json));
+    const bool modulated = c.modulation != Op::RadiusTransform;
+    const bool placed = prog.code[0].op == Op::Translate || prog.code[0].op == Op::Place;
+    ASSERT_EQ(prog.code.size(), (modulated ? 3u : 2u) + placed);
+    EXPECT_EQ(prog.code[placed].op, c.distance);
+    if (modulated) {
+      EXPECT_EQ(prog.code[placed + 1].op, c.modulation);
+    }
+    EXPECT_EQ(prog.code.back().op, Op::RadiusTransform);
+    EXPECT_EQ(count_ops(prog.code, Op::Oracle), 0);
+    const Box support = transform_support(c.json);
+    ASSERT_TRUE(support.bounded());
+    expect_models_bits(
+        c.json, Convention::Soft,
+        [&](Vec3 p, int k) {
+          // The model's placement multiplies by its matrix, identity or not: a NaN coordinate makes
+          // the others NaN, and exact zeros come back +0 from it where the program's translation
+          // keeps -0. Those differences are the placement's, not this instruction's.
+          if (placed && (k % 6 == 2 || k % 6 == 4)) return p;
+          switch (k % 6) {
+            case 1:
+              return Vec3{};
+            case 2:
+              p[k % 3] = std::nan("");
+              return p;
+            case 3:
+              return p * 0.01;
+            case 4:
+              return Vec3{0, 0, p.z * 0.4};
+            case 5:  // a face of the support box
+              p[k % 3] = (k / 6) % 2 ? support.lo[k % 3] : support.hi[k % 3];
+              return p;
+            default:
+              return p;
+          }
+        },
+        false);
+  }
+}
+
+// The program's bounds over a box are the model's kernels (transformed_potential.h) on the model's
+// distance and modulation bounds there, to the bit, without the octants the model refines small
+// boxes over (eval_bounds.cpp says why): so they hold the node's bounds, equal them wherever the
+// node does not refine (never for a constant w), and hold sampled values and gradients. Random
+// boxes, and boxes of 1/100 of the support about points in it and near its centre, where [d]/[f]
+// is widest and the modulated objects refine (some of them must, or this tests nothing).
+TEST(Program, RadiusTransformBoundsAreTheModelsUnrefined) {
+  int modulated_refined = 0;
+  for (const TransformCase& c : kTransformCases) {
+    SCOPED_TRACE(c.name);
+    const NodePtr node = build_from_json(c.json);
+    const Program prog = compile(*node);
+    if (prog.code[0].op == Op::Translate || prog.code[0].op == Op::Place) continue;  // (frames)
+    const nlohmann::json j = nlohmann::json::parse(c.json);
+    const NodePtr d = build_from_json(j["distance"].dump());
+    const nlohmann::json& r = j["radii"];
+    const NodePtr f = r.contains("modulation") ? build_from_json(r["modulation"].dump())
+                      : r.contains("contour")  ? build_from_json(r["contour"].dump())
+                                               : nullptr;
+    const TransformedPotential t =
+        TransformedPotential::load(prog.consts.data() + prog.code.back().a);
+    Workspace ws;
+    ws.fit(prog);
+    const Box support = transform_support(c.json);
+    const Vec3 h = support.extent() * 0.005;
+    std::mt19937_64 rng(23);
+    int refined = 0;
+    const Box core(support.center() - h * 12, support.center() + h * 12);
+    for (int i = 0; i < 900; ++i) {
+      const Vec3 p = uniform_in(rng, i < 600 ? support : core);
+      const Box b = i < 300 ? random_box(rng, Box({-2, -2, -2}, {2, 2, 2})) : Box(p - h, p + h);
+      const BoxBounds bb = bounds(prog, b, ws);
+      Interval I(0);
+      double L = 0;
+      if (!t.outside_support(b)) {
+        Interval Id, If;
+        double Ld, Lf = 0;
+        d->bounds(b, &Id, &Ld);
+        if (f) f->bounds(b, &If, &Lf);
+        const TransformedPotential::Bounds B = t.bounds(Id, Ld, If, Lf);
+        I = t.interval(B);
+        L = t.slope_bound(B);
+      }
+      ASSERT_TRUE(same_bits(bb.value.lo, I.lo) && same_bits(bb.value.hi, I.hi))
+          << "box " << i << ": [" << bb.value.lo << ", " << bb.value.hi << "] vs [" << I.lo << ", "
+          << I.hi << "]";
+      ASSERT_TRUE(same_bits(bb.lipschitz, L)) << "box " << i << ": " << bb.lipschitz << " vs " << L;
+      Interval In;
+      double Ln;
+      node->bounds(b, &In, &Ln);
+      ASSERT_LE(bb.value.lo, In.lo) << "box " << i;
+      ASSERT_GE(bb.value.hi, In.hi) << "box " << i;
+      ASSERT_GE(bb.lipschitz, Ln) << "box " << i;
+      refined += !(same_bits(bb.value.lo, In.lo) && same_bits(bb.value.hi, In.hi) &&
+                   same_bits(bb.lipschitz, Ln));
+      for (int k = 0; k < 10; ++k) {
+        const Vec3 q = uniform_in(rng, b);
+        Vec3 g;
+        const double v = node->eval(q, &g);
+        ASSERT_TRUE(bb.value.contains(v)) << v;
+        ASSERT_LE(length(g), bb.lipschitz * (1 + 1e-12));
+      }
+    }
+    if (!f) {
+      EXPECT_EQ(refined, 0);
+    }
+    modulated_refined += refined;
+  }
+  EXPECT_GT(modulated_refined, 100);
+}
+
+// Along segments through and around each object: the bounds hold the values sampled on the
+// segment, their difference quotients lie in the slope, and the field is exactly 0 over the
+// quiet start, which for segments starting outside the support box is often positive.
+TEST(Program, RadiusTransformSegmentBoundsAndQuietStart) {
+  for (const TransformCase& c : kTransformCases) {
+    SCOPED_TRACE(c.name);
+    const NodePtr node = build_from_json(c.json);
+    const Program prog = compile(*node);
+    Workspace ws;
+    ws.fit(prog);
+    const Box support = transform_support(c.json);
+    const Box around(support.lo - support.extent(), support.hi + support.extent());
+    std::mt19937_64 rng(29);
+    int quiet = 0;
+    for (int i = 0; i < 300; ++i) {
+      const Segment seg{uniform_in(rng, around), uniform_in(rng, around)};
+      const BoxBounds bb = bounds(prog, seg, ws);
+      ASSERT_GE(bb.quiet, 0);
+      ASSERT_LE(bb.quiet, 1);
+      quiet += bb.quiet > 0;
+      const double len = length(seg.b - seg.a);
+      double prev = 0;
+      for (int j = 0; j <= 40; ++j) {
+        const double s = j / 40.0;
+        const double v = node->value(seg.a + (seg.b - seg.a) * s);
+        ASSERT_TRUE(bb.value.contains(v)) << "segment " << i << " at " << s << ": " << v;
+        if (bb.quiet > 0 && s <= bb.quiet) {
+          ASSERT_EQ(v, 0) << "segment " << i << " at " << s << " of " << bb.quiet;
+        }
+        if (j > 0) {
+          const double q = (v - prev) / (len / 40);
+          ASSERT_LE(q, bb.slope.hi * (1 + 1e-9) + 1e-12) << "segment " << i;
+          ASSERT_GE(q, bb.slope.lo * (1 + 1e-9) - 1e-12) << "segment " << i;
+        }
+        prev = v;
+      }
+    }
+    EXPECT_GT(quiet, 30);
   }
 }
 

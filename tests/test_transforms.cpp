@@ -129,7 +129,7 @@ TEST(TransformN, MaximumSlope) {  // [TN-8]
     EXPECT_LE(m, bound * (1 + 1e-12));
     EXPECT_GE(m, bound * 0.999) << "the bound is attained";
     const auto profile = make_profile_n(W2Rule::Fixed, w[1]);
-    EXPECT_NEAR(profile->slope_d({0, 10}, Interval(w[0])), bound, 1e-9 * bound);
+    EXPECT_NEAR(profile.slope_d({0, 10}, Interval(w[0])), bound, 1e-9 * bound);
   }
 }
 
