@@ -127,6 +127,17 @@ bool same_bits(const Vec3& a, const Vec3& b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
 }
 
+// p with coordinate k % 3 NaN, or infinite (+ for odd k): special points every kernel must pass
+// through as its model node does.
+Vec3 with_nan(Vec3 p, int k) {
+  p[k % 3] = std::nan("");
+  return p;
+}
+Vec3 with_infinity(Vec3 p, int k) {
+  p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
+  return p;
+}
+
 // A native instruction's program against the model node it was compiled from: 13-lane batches, the
 // single-point value and the gradient at points that `special` may move (to the kernels' branch
 // points), the model's bits every one; and over random boxes, the node's interval(b) and
@@ -217,11 +228,9 @@ TEST(Program, PlanesAreOneInstructionWithTheModelsBits) {
         case 2:
           return Vec3{k % 2 ? -0.0 : 0.0, -0.0, k % 3 ? 0.0 : -0.0};
         case 3:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
         case 4:
-          p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
-          return p;
+          return with_infinity(p, k);
       }
       return p;
     });
@@ -265,8 +274,7 @@ TEST(Program, SkeletalDistancesAreOneInstructionWithTheModelsBits) {
           if (torus) return Vec3{p.x, p.y, 0};
           return k % 2 ? p0 : p1;
         case 4:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
       }
       return p;
     });
@@ -325,11 +333,9 @@ TEST(Program, GeneralizedDistanceIsOneInstructionWithTheModelsBits) {
         case 3:
           return p - n0 * dot(p, n0);
         case 4:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
         case 5:
-          p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
-          return p;
+          return with_infinity(p, k);
       }
       return p;
     });
@@ -440,11 +446,9 @@ TEST(Program, PolarPrismIsOneInstructionWithTheModelsBits) {
           return Vec3{r * std::cos(phi), r * std::sin(phi), p.z};
         }
         case 6:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
         case 7:
-          p[k % 3] = k % 2 ? HUGE_VAL : -HUGE_VAL;
-          return p;
+          return with_infinity(p, k);
       }
       return p;
     });
@@ -493,7 +497,7 @@ TEST(Program, OffsetIsOneInstructionAfterItsChildsCode) {
     expect_models_bits(c.json, Convention::Zero, [](Vec3 p, int k) {
       // 0: anywhere; 1: the origin; 2: a NaN coordinate.
       if (k % 3 == 1) return Vec3{};
-      if (k % 3 == 2) p[k % 3] = std::nan("");
+      if (k % 3 == 2) return with_nan(p, k);
       return p;
     });
   }
@@ -600,8 +604,7 @@ TEST(Program, RadiusTransformIsOneInstructionAfterItsChildrensCode) {
             case 1:
               return Vec3{};
             case 2:
-              p[k % 3] = std::nan("");
-              return p;
+              return with_nan(p, k);
             case 3:
               return p * 0.01;
             case 4:
@@ -772,8 +775,7 @@ TEST(Program, ComplementIsOneInstructionAfterItsChildsCode) {
         case 1:
           return Vec3{};
         case 2:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
         case 3:
           return Vec3{0, 0, p.z};
       }
@@ -833,8 +835,7 @@ TEST(Program, SuperEllipsoidalCombinationsAreOneInstructionAfterTheirChildren) {
         case 1:
           return Vec3{};
         case 2:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
         case 3:
           return Vec3{p.x, 0, 0};
       }
@@ -895,7 +896,7 @@ TEST(Program, PerlinBlendsAreOneInstructionAfterTheirChildren) {
     expect_models_bits(json, Convention::Soft, [](Vec3 p, int k) {
       // 0: anywhere; 1: the origin; 2: a NaN coordinate.
       if (k % 3 == 1) return Vec3{};
-      if (k % 3 == 2) p[k % 3] = std::nan("");
+      if (k % 3 == 2) return with_nan(p, k);
       return p;
     });
     // Over a box outside every support no child is dropped; over all of space the bound is the
@@ -995,8 +996,7 @@ TEST(Program, RicciBlendsAreOneInstructionAfterTheirChildren) {
         case 1:
           return Vec3{};
         case 2:
-          p[k % 3] = std::nan("");
-          return p;
+          return with_nan(p, k);
         case 3:
           return p / std::sqrt(p.x * p.x + p.y * p.y / 0.64 + p.z * p.z / 1.44);
         case 4:
