@@ -85,17 +85,14 @@ class BtBlend final : public FieldNode {
 
   double lipschitz(const Box& b) const override {
     if (bulge()) return bulge_lipschitz(b);
-    const int k = op_.k();
-    Scratch<Interval> X(k);
-    for (int i = 0; i < k; ++i) X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
-    double L = 0;
-    for (int i = 0; i < k; ++i)
-      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
-        L = std::max(L, iv::up(c_[i]->lipschitz(b) / op_.m()[i]));
+    Interval I;
+    double L;
+    bounds(b, &I, &L);
     return L;
   }
 
-  // Without bulge elimination, the children's intervals and bounds in one call each.
+  // Without bulge elimination, the children's intervals and bounds in one call each; the bound
+  // is the largest L_i/m_i among the children that can be active in the box.
   void bounds(const Box& b, Interval* value, double* L) const override {
     if (bulge()) return FieldNode::bounds(b, value, L);
     const int k = op_.k();

@@ -149,7 +149,7 @@ class Potential {
   PotentialKind kind() const { return {op(), parameter()}; }
 
   Interval interval(Interval d) const { return kind().interval(d); }
-  double lipschitz(Interval d) const { return d.lo >= 1 ? 0.0 : lipschitz(); }
+  double lipschitz(Interval d) const { return kind().lipschitz(d); }
 };
 
 using PotentialPtr = std::unique_ptr<Potential>;

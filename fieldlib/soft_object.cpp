@@ -161,7 +161,7 @@ class TransformedSoftObject final : public FieldNode {
   // The interval over b and, where L is non-null, the Lipschitz bound: each the tighter of b's own
   // and its octants' (one walk over the octants serves both).
   void refined(const Box& b, int levels, Interval* I, double* L) const {
-    const Bounds B = bounds(b, L != nullptr);
+    const Bounds B = child_bounds(b, L != nullptr);
     *I = K_.interval(B);
     if (L) *L = K_.slope_bound(B);
     if (levels == 0 || !decorrelated(B, b) || !worth_refining(b)) return;
@@ -194,8 +194,9 @@ class TransformedSoftObject final : public FieldNode {
     return out;
   }
 
-  // With `slopes`, d's and f's Lipschitz bounds too, from the same calls as their intervals.
-  Bounds bounds(const Box& b, bool slopes) const {
+  // The shared kernel's bounds from d's and f's over b; with `slopes`, their Lipschitz bounds too,
+  // from the same calls as their intervals.
+  Bounds child_bounds(const Box& b, bool slopes) const {
     Interval d, f;
     double Ld = 0, Lf = 0;
     if (slopes) {
