@@ -1,159 +1,312 @@
 #include "bvh.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <numeric>
 
 namespace softtrace {
 
 namespace {
-constexpr int32_t kLeafSize = 4;
-constexpr int kMaxDepth = 64;
+// Past this depth the binary tree splits at the median: the surface-area heuristic can cut one
+// item at a time off a badly graded set, and the walk's stack is sized for depth 32 + log2 n.
+constexpr int kSahDepth = 32;
+constexpr int kBins = 16;
+constexpr int kStack = 256;  // at most (kWidth - 1) per level of the collapsed tree, plus one
 
-bool overlaps(const Box& a, const Box& b) {
-  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
-         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
-}
-}  // namespace
+// The binary tree the build makes first: one item per leaf.
+struct Binary {
+  Box box;
+  int32_t left = -1, right = -1, item = -1;
+};
 
-void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
-  nodes_.clear();
-  items_.clear();
-  item_boxes_.clear();
-  for (size_t i = 0; i < boxes.size(); ++i)
-    if (!boxes[i].empty()) {
-      items_.push_back(ids[i]);
-      item_boxes_.push_back(boxes[i]);
-    }
-  if (items_.empty()) return;
-  std::vector<Box> scratch;
-  build(0, static_cast<int32_t>(items_.size()), scratch);
+double half_area(const Box& b) {
+  const Vec3 e = b.extent();
+  return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
-int32_t BoxBvh::build(int32_t first, int32_t count, std::vector<Box>& scratch) {
-  const int32_t index = static_cast<int32_t>(nodes_.size());
-  nodes_.push_back({});
-  Box box, centres;
-  for (int32_t i = first; i < first + count; ++i) {
-    box = box.united(item_boxes_[i]);
-    centres.extend(item_boxes_[i].center());
-  }
-  nodes_[index].box = box;
-  // Depth is bounded by the median split (log2 n), far below kMaxDepth for any allowed scene.
-  if (count <= kLeafSize) {
-    nodes_[index].first = first;
-    nodes_[index].count = count;
-    return index;
-  }
-  const Vec3 e = centres.extent();
-  const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
-  const int32_t half = count / 2;
-  // Sort the range by centre along the axis, carrying ids and boxes together.
-  std::vector<int32_t> order(count);
-  std::iota(order.begin(), order.end(), 0);
-  std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int32_t a, int32_t b) {
-    const double ca = item_boxes_[first + a].center()[axis],
-                 cb = item_boxes_[first + b].center()[axis];
-    return ca < cb || (ca == cb && items_[first + a] < items_[first + b]);
-  });
-  std::vector<int32_t> ids(count);
-  scratch.resize(count);
-  for (int32_t i = 0; i < count; ++i) {
-    ids[i] = items_[first + order[i]];
-    scratch[i] = item_boxes_[first + order[i]];
-  }
-  std::copy(ids.begin(), ids.end(), items_.begin() + first);
-  std::copy(scratch.begin(), scratch.begin() + count, item_boxes_.begin() + first);
-  const int32_t left = build(first, half, scratch);
-  const int32_t right = build(first + half, count - half, scratch);
-  nodes_[index].count = 0;
-  nodes_[index].left = left;
-  nodes_[index].right = right;
-  return index;
-}
-
-namespace {
-// The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
-// reciprocals taken once per query. The slack on s covers the products' rounding, far below what
-// pad adds. An axis the segment does not move along compares a's coordinate instead; a NaN
-// (0 times an infinite reciprocal) constrains nothing, as std::min/max keep the other operand.
-class SegmentTest {
+class BinaryBuilder {
  public:
-  SegmentTest(const Vec3& a, const Vec3& b, double pad) : a_(a), pad_(pad) {
-    for (int i = 0; i < 3; ++i) {
-      const double e = b[i] - a[i];
-      flat_[i] = e == 0;
-      inv_[i] = flat_[i] ? 0 : 1 / e;
+  BinaryBuilder(std::vector<Box> boxes, std::vector<int32_t> ids)
+      : boxes_(std::move(boxes)), ids_(std::move(ids)) {}
+
+  std::vector<Binary> nodes;
+
+  int32_t build(int32_t first, int32_t count, int depth) {
+    const int32_t index = static_cast<int32_t>(nodes.size());
+    nodes.emplace_back();
+    Box box, centres;
+    for (int32_t i = first; i < first + count; ++i) {
+      box = box.united(boxes_[i]);
+      centres.extend(boxes_[i].center());
     }
-  }
-  bool meets(const Box& box) const {
-    double s0 = 0, s1 = 1;
-    for (int i = 0; i < 3; ++i) {
-      const double lo = box.lo[i] - pad_, hi = box.hi[i] + pad_;
-      if (flat_[i]) {
-        if (a_[i] < lo || a_[i] > hi) return false;
-        continue;
-      }
-      const double u = (lo - a_[i]) * inv_[i], v = (hi - a_[i]) * inv_[i];
-      s0 = std::max(s0, std::min(u, v));
-      s1 = std::min(s1, std::max(u, v));
+    nodes[index].box = box;
+    if (count == 1) {
+      nodes[index].item = ids_[first];
+      return index;
     }
-    return s0 <= s1 + 1e-12;
+    int32_t half = depth < kSahDepth ? sah_split(first, count, centres) : 0;
+    if (half <= 0 || half >= count) half = median_split(first, count, centres);
+    const int32_t left = build(first, half, depth + 1);
+    const int32_t right = build(first + half, count - half, depth + 1);
+    nodes[index].left = left;
+    nodes[index].right = right;
+    return index;
   }
 
  private:
-  Vec3 a_;
-  double pad_, inv_[3];
+  // An unbounded item's centre may be infinite or NaN: the last bin or the first.
+  static int bin_of(const Box& centres, int axis, const Box& b) {
+    const double x = (b.center()[axis] - centres.lo[axis]) / (centres.hi[axis] - centres.lo[axis]);
+    return x >= 1 ? kBins - 1 : x > 0 ? static_cast<int>(x * kBins) : 0;
+  }
+
+  // The binned surface-area heuristic: the split between bins along an axis that least
+  // increases A_left n_left + A_right n_right. Reorders the range so the first `half` go left;
+  // returns half, or 0 where no split is finite (unbounded boxes, equal centres).
+  int32_t sah_split(int32_t first, int32_t count, const Box& centres) {
+    double best = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double w = centres.hi[axis] - centres.lo[axis];
+      if (!(w > 0) || !std::isfinite(w)) continue;
+      Box bins[kBins];
+      int32_t n[kBins] = {};
+      for (int32_t i = first; i < first + count; ++i) {
+        const int k = bin_of(centres, axis, boxes_[i]);
+        bins[k] = bins[k].united(boxes_[i]);
+        ++n[k];
+      }
+      double right_area[kBins];
+      Box acc;
+      for (int k = kBins - 1; k > 0; --k) {
+        acc = acc.united(bins[k]);
+        right_area[k] = half_area(acc);
+      }
+      acc = Box();
+      int32_t left = 0;
+      for (int k = 0; k < kBins - 1; ++k) {
+        acc = acc.united(bins[k]);
+        left += n[k];
+        if (left == 0 || left == count) continue;
+        const double cost = half_area(acc) * left + right_area[k + 1] * (count - left);
+        if (cost < best) {
+          best = cost;
+          best_axis = axis;
+          best_bin = k;
+        }
+      }
+    }
+    if (best_axis < 0) return 0;
+    std::vector<int32_t> order(count);
+    std::iota(order.begin(), order.end(), 0);
+    const auto mid = std::stable_partition(order.begin(), order.end(), [&](int32_t i) {
+      return bin_of(centres, best_axis, boxes_[first + i]) <= best_bin;
+    });
+    permute(first, order);
+    return static_cast<int32_t>(mid - order.begin());
+  }
+
+  int32_t median_split(int32_t first, int32_t count, const Box& centres) {
+    const Vec3 e = centres.extent();
+    const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+    const int32_t half = count / 2;
+    std::vector<int32_t> order(count);
+    std::iota(order.begin(), order.end(), 0);
+    std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int32_t a, int32_t b) {
+      const double ca = boxes_[first + a].center()[axis], cb = boxes_[first + b].center()[axis];
+      return ca < cb || (ca == cb && ids_[first + a] < ids_[first + b]);
+    });
+    permute(first, order);
+    return half;
+  }
+
+  void permute(int32_t first, const std::vector<int32_t>& order) {
+    std::vector<int32_t> ids(order.size());
+    std::vector<Box> boxes(order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+      ids[i] = ids_[first + order[i]];
+      boxes[i] = boxes_[first + order[i]];
+    }
+    std::copy(ids.begin(), ids.end(), ids_.begin() + first);
+    std::copy(boxes.begin(), boxes.end(), boxes_.begin() + first);
+  }
+
+  std::vector<Box> boxes_;
+  std::vector<int32_t> ids_;
+};
+
+// Binary node b's subtree as nodes of four: the two children, then the largest inner slot
+// replaced by its two children until there are four (the order of the tree kept).
+int32_t collapse(const std::vector<Binary>& bin, int32_t b, std::vector<BoxBvh::Node>& out) {
+  std::vector<int32_t> slots;
+  if (bin[b].item >= 0) {
+    slots = {b};  // a tree of one item
+  } else {
+    slots = {bin[b].left, bin[b].right};
+  }
+  while (static_cast<int>(slots.size()) < BoxBvh::kWidth) {
+    int widest = -1;
+    double area = -1;
+    for (int i = 0; i < static_cast<int>(slots.size()); ++i) {
+      const Binary& s = bin[slots[i]];
+      const double a = half_area(s.box);
+      if (s.item < 0 && (widest < 0 || a > area || std::isnan(a))) {
+        widest = i;
+        area = a;
+      }
+    }
+    if (widest < 0) break;
+    const int32_t w = slots[widest];
+    slots[widest] = bin[w].right;
+    slots.insert(slots.begin() + widest, bin[w].left);
+  }
+  const int32_t index = static_cast<int32_t>(out.size());
+  out.emplace_back();
+  BoxBvh::Node node{};
+  node.size = static_cast<int32_t>(slots.size());
+  for (int c = 0; c < BoxBvh::kWidth; ++c) {
+    const Box box = c < node.size ? bin[slots[c]].box : Box();
+    for (int axis = 0; axis < 3; ++axis) {
+      node.lo[axis][c] = box.lo[axis];
+      node.hi[axis][c] = box.hi[axis];
+    }
+  }
+  for (int c = 0; c < node.size; ++c) {
+    const Binary& s = bin[slots[c]];
+    node.ref[c] = s.item >= 0 ? ~s.item : collapse(bin, slots[c], out);
+  }
+  out[index] = node;
+  return index;
+}
+
+// Two slots' coordinates along one axis as one value (GCC's vector extension: one SSE2
+// register, the x86-64 baseline), so a node's four slots take two of each test's instructions.
+using V2 = double __attribute__((vector_size(2 * sizeof(double))));
+V2 load(const double* p) {
+  V2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+using M2 = decltype(V2{} < V2{});  // a lane all ones where a comparison holds
+int bits(M2 lanes_01, M2 lanes_23) {
+  return (lanes_01[0] != 0) | (lanes_01[1] != 0) << 1 | (lanes_23[0] != 0) << 2 |
+         (lanes_23[1] != 0) << 3;
+}
+static_assert(BoxBvh::kWidth == 4, "the tests below take a node's slots two at a time");
+
+// Bit c set where slot c's box overlaps q (closed boxes).
+int overlaps(const BoxBvh::Node& n, const Box& q) {
+  M2 hit[2];
+  for (int h = 0; h < 2; ++h) {
+    hit[h] = (load(n.lo[0] + 2 * h) <= q.hi.x) & (load(n.hi[0] + 2 * h) >= q.lo.x) &
+             (load(n.lo[1] + 2 * h) <= q.hi.y) & (load(n.hi[1] + 2 * h) >= q.lo.y) &
+             (load(n.lo[2] + 2 * h) <= q.hi.z) & (load(n.hi[2] + 2 * h) >= q.lo.z);
+  }
+  return bits(hit[0], hit[1]);
+}
+
+// The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
+// reciprocals taken once per query. The slack on s covers the products' rounding, far below what
+// pad adds. An axis the segment does not move along compares a's coordinate with the slab
+// instead; a NaN (0 times an infinite reciprocal) constrains nothing, as std::min/max keep the
+// other operand.
+class SegmentTest {
+ public:
+  SegmentTest(const Vec3& a, const Vec3& b, double pad) : pad_(pad) {
+    for (int i = 0; i < 3; ++i) {
+      a_[i] = a[i];
+      flat_[i] = b[i] - a[i] == 0;
+      inv_[i] = flat_[i] ? 0 : 1 / (b[i] - a[i]);
+    }
+  }
+  // Bit c set where the segment meets slot c's box.
+  int meets(const BoxBvh::Node& n) const {
+    M2 hit[2];
+    for (int h = 0; h < 2; ++h) {
+      V2 s0 = {0, 0}, s1 = {1, 1};
+      M2 inside = {-1, -1};
+      for (int i = 0; i < 3; ++i) {
+        const V2 lo = load(n.lo[i] + 2 * h) - pad_, hi = load(n.hi[i] + 2 * h) + pad_;
+        if (flat_[i]) {
+          inside &= ~((a_[i] < lo) | (a_[i] > hi));
+          continue;
+        }
+        const V2 u = (lo - a_[i]) * inv_[i], v = (hi - a_[i]) * inv_[i];
+        // std::min(u, v) and std::max(u, v) lane by lane, keeping their NaN behaviour.
+        const V2 near = v < u ? v : u, far = u < v ? v : u;
+        s0 = s0 < near ? near : s0;
+        s1 = far < s1 ? far : s1;
+      }
+      hit[h] = inside & (s0 <= s1 + 1e-12);
+    }
+    return bits(hit[0], hit[1]);
+  }
+
+ private:
+  double a_[3], inv_[3], pad_;
   bool flat_[3];
 };
 }  // namespace
 
-template <class NodeTest, class ItemTest>
-int BoxBvh::walk(const NodeTest& node_test, const ItemTest& item_test, int32_t* out,
-                 int count) const {
+void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
+  nodes_.clear();
+  std::vector<Box> kept_boxes;
+  std::vector<int32_t> kept_ids;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (!boxes[i].empty()) {
+      kept_boxes.push_back(boxes[i]);
+      kept_ids.push_back(ids[i]);
+    }
+  if (kept_ids.empty()) return;
+  const int32_t count = static_cast<int32_t>(kept_ids.size());
+  BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
+  builder.build(0, count, 0);
+  collapse(builder.nodes, 0, nodes_);
+}
+
+template <class Test>
+int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
   if (nodes_.empty()) return count;
-  int32_t stack[kMaxDepth];
+  int32_t stack[kStack];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!node_test(n.box)) continue;
-    if (n.count > 0) {
-      for (int32_t i = n.first; i < n.first + n.count; ++i)
-        if (item_test(item_boxes_[i])) out[count++] = items_[i];
-      continue;
+    const int mask = test(n) & ((1 << n.size) - 1);
+    // Pushed last to first, so the walk visits them (and reports items) in the tree's order.
+    for (int c = n.size - 1; c >= 0; --c) {
+      if (!(mask >> c & 1)) continue;
+      if (n.ref[c] < 0) {
+        out[count++] = ~n.ref[c];
+      } else {
+        stack[top++] = n.ref[c];
+      }
     }
-    stack[top++] = n.right;
-    stack[top++] = n.left;
   }
   return count;
 }
 
-template <class Accept>
-int BoxBvh::collect(const Box& q, const Accept& accept, int32_t* out, int count) const {
-  const auto in_q = [&](const Box& box) { return overlaps(box, q); };
-  const int end = walk(
-      in_q, [&](const Box& box) { return in_q(box) && accept(box); }, out, count);
+int BoxBvh::query(const Box& q, int32_t* out, int count) const {
+  const int end = walk([&](const Node& n) { return overlaps(n, q); }, out, count);
   // Children are combined in their scene order, so results do not depend on the tree's shape.
   std::sort(out + count, out + end);
   return end;
 }
 
-int BoxBvh::query(const Box& q, int32_t* out, int count) const {
-  return collect(
-      q, [](const Box&) { return true; }, out, count);
-}
-
 int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
                   int count) const {
   const SegmentTest segment(a, b, pad);
-  return collect(
-      q, [&](const Box& box) { return segment.meets(box); }, out, count);
+  const int end =
+      walk([&](const Node& n) { return overlaps(n, q) & segment.meets(n); }, out, count);
+  std::sort(out + count, out + end);
+  return end;
 }
 
 int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const {
   const SegmentTest segment(a, b, pad);
-  const auto meets = [&](const Box& box) { return segment.meets(box); };
-  return walk(meets, meets, out, 0);
+  return walk([&](const Node& n) { return segment.meets(n); }, out, 0);
 }
 
 }  // namespace softtrace

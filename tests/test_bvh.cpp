@@ -1,0 +1,162 @@
+// The pruning hierarchy (fieldlib/bvh.h) reports exactly the items a test of every item's box
+// would: boxes that overlap a query box, boxes (grown by a pad) a segment meets, both together.
+// The reference below is the plain scalar test, with its own branch for axes a segment does not
+// move along; the hierarchy's vectorised test has none and must agree with it bit for bit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "bvh.h"
+
+namespace softtrace::test {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool overlaps(const Box& a, const Box& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+
+bool segment_meets(const Vec3& a, const Vec3& b, double pad, const Box& box) {
+  double s0 = 0, s1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double lo = box.lo[i] - pad, hi = box.hi[i] + pad, e = b[i] - a[i];
+    if (e == 0) {
+      if (a[i] < lo || a[i] > hi) return false;
+      continue;
+    }
+    const double u = (lo - a[i]) * (1 / e), v = (hi - a[i]) * (1 / e);
+    s0 = std::max(s0, std::min(u, v));
+    s1 = std::min(s1, std::max(u, v));
+  }
+  return s0 <= s1 + 1e-12;
+}
+
+struct Items {
+  std::vector<Box> boxes;
+  std::vector<int32_t> ids;
+  BoxBvh bvh;
+  void build() { bvh.build(boxes, ids); }
+};
+
+// Boxes in [-10, 10]^3 of many sizes, with points, flat boxes, exact duplicates, boxes unbounded
+// on one side, and empty ones (never reported); ids in no particular order.
+Items random_items(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> c(-10, 10), size(0, 1);
+  Items items;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 centre{c(rng), c(rng), c(rng)};
+    const double s = std::pow(10.0, 3 * size(rng) - 2);
+    Vec3 half{s * size(rng), s * size(rng), s * size(rng)};
+    if (i % 17 == 3) half = {};
+    if (i % 13 == 5) half.y = 0;
+    Box b(centre - half, centre + half);
+    if (i % 29 == 7) b.lo.x = -kInf;
+    if (i % 31 == 11) b.hi.z = kInf;
+    if (i % 37 == 13) b = Box();
+    if (i % 41 == 17 && i > 0) b = items.boxes.back();
+    items.boxes.push_back(b);
+    items.ids.push_back((i * 7919) % (n + 1));
+  }
+  items.build();
+  return items;
+}
+
+std::vector<int32_t> sorted(std::vector<int32_t> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// The three queries against the scalar tests of every item, for random boxes and segments:
+// axis-aligned and zero-length ones, and ones starting on an item's corner or face.
+void check_against_scan(const Items& items, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> c(-12, 12), r(0, 3);
+  const int n = static_cast<int>(items.boxes.size());
+  std::vector<int32_t> out(n);
+  for (int q = 0; q < 600; ++q) {
+    const Vec3 p{c(rng), c(rng), c(rng)};
+    const Box box = Box::around(p, r(rng));
+    Vec3 a = p, b{c(rng), c(rng), c(rng)};
+    if (q % 5 == 1) b = {a.x, a.y, b.z};  // moves along z only
+    if (q % 5 == 2) b = a;                // a point
+    if (q % 7 == 3 && !items.boxes[q % n].empty()) {
+      a = items.boxes[q % n].lo;  // on a corner (or an infinite coordinate: skipped)
+      b = {a.x + r(rng), a.y, a.z};
+      if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(a.z)) continue;
+    }
+    const double pad = q % 3 == 0 ? 0 : 1e-3;
+    const Box around_segment(Vec3{std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)},
+                             Vec3{std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)});
+    const Box q_box = q % 2 ? box : around_segment;
+
+    std::vector<int32_t> want_box, want_segment, want_both;
+    for (int i = 0; i < n; ++i) {
+      const Box& item = items.boxes[i];
+      if (item.empty()) continue;
+      const bool in_box = overlaps(item, q_box), meets = segment_meets(a, b, pad, item);
+      if (in_box) want_box.push_back(items.ids[i]);
+      if (meets) want_segment.push_back(items.ids[i]);
+      if (in_box && meets) want_both.push_back(items.ids[i]);
+    }
+    std::sort(want_box.begin(), want_box.end());
+    std::sort(want_both.begin(), want_both.end());
+
+    // The box queries return ids sorted, after whatever the caller had written before them.
+    out[0] = -5;
+    int end = items.bvh.query(q_box, out.data(), 1);
+    ASSERT_EQ(out[0], -5);
+    EXPECT_EQ(std::vector<int32_t>(out.begin() + 1, out.begin() + end), want_box) << "query " << q;
+    end = items.bvh.query(q_box, a, b, pad, out.data(), 0);
+    EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + end), want_both) << "query " << q;
+    end = items.bvh.segment_items(a, b, pad, out.data());
+    EXPECT_EQ(sorted({out.begin(), out.begin() + end}), sorted(want_segment)) << "query " << q;
+  }
+}
+
+}  // namespace
+
+TEST(BoxBvh, ReportsExactlyTheItemsAScanFinds) {
+  for (int n : {1, 2, 5, 64, 700}) check_against_scan(random_items(n, 3 + n), 11 + n);
+}
+
+// Equal centres leave the surface-area heuristic nothing to split; boxes nested like onion
+// layers make it cut one item at a time, so the tree's depth must be capped for the walk's stack.
+TEST(BoxBvh, DegenerateSetsStillSplit) {
+  Items same;
+  for (int i = 0; i < 300; ++i) {
+    same.boxes.push_back(Box::around({1, 2, 3}, 1 + (i % 3)));
+    same.ids.push_back(i);
+  }
+  same.build();
+  check_against_scan(same, 5);
+
+  Items onion;
+  for (int i = 0; i < 3000; ++i) {
+    const double s = std::pow(1.01, i);
+    onion.boxes.push_back(Box({-s, -s, -s}, {s, 2 * s, s}));
+    onion.ids.push_back(i);
+  }
+  onion.build();
+  check_against_scan(onion, 6);
+}
+
+TEST(BoxBvh, EmptyHasNothing) {
+  Items none;
+  none.boxes = {Box(), Box()};
+  none.ids = {0, 1};
+  none.build();
+  EXPECT_TRUE(none.bvh.empty());
+  int32_t out[2];
+  EXPECT_EQ(none.bvh.query(Box::unbounded(), out, 0), 0);
+  EXPECT_EQ(none.bvh.segment_items({0, 0, 0}, {1, 1, 1}, 0, out), 0);
+}
+
+}  // namespace softtrace::test
