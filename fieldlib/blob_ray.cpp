@@ -26,9 +26,10 @@ bool potential_in_r(Op op, double* c2, double* c3) {
 
 // One child of the sum: placements from register 0, an ellipsoidal lp_metric of the last one,
 // a polynomial potential of that. The frame x -> M x + k is the placements' composition.
-bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, Mat3* L, Vec3* k, double* c2,
-               double* c3) {
+bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::Frame* frame,
+               BlobSum::Blob* blob) {
   Mat3 M;
+  bool rotated = false;
   Vec3 off;
   int32_t reg = reg0;
   int32_t i = c.begin;
@@ -39,6 +40,7 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, Mat3* L, V
     const Vec3 t{K[in.a], K[in.a + 1], K[in.a + 2]};
     off = off - t;
     if (in.op == Op::Place) {  // local = Rt (x - t), Rt row-major after t
+      rotated = true;
       Mat3 Rt;
       for (int r = 0; r < 3; ++r)
         Rt.r[r] = {K[in.a + 3 + 3 * r], K[in.a + 4 + 3 * r], K[in.a + 5 + 3 * r]};
@@ -55,15 +57,19 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, Mat3* L, V
   const Instr& potential = p.code[i + 1];
   if (metric.op != Op::LpMetric || metric.in != reg || K[metric.a + 3] != 2) return false;
   if (potential.in != metric.out || potential.out != c.slot) return false;
-  if (!potential_in_r(potential.op, c2, c3)) return false;
+  if (!potential_in_r(potential.op, &blob->c2, &blob->c3)) return false;
   for (int r = 0; r < 3; ++r) {
     const double a = K[metric.a + r];
     // The squares of |L x + k| must neither overflow nor vanish for any point a ray reaches (the
     // kernel rescales those; these sums would lose the blob): such radii keep the segment tracer.
     if (!(a > 1e-100 && a < 1e100 && std::abs(off[r]) < 1e100)) return false;
-    L->r[r] = M.r[r] / a;
-    (*k)[r] = off[r] / a;
+    frame->L.r[r] = M.r[r] / a;
+    frame->k[r] = off[r] / a;
   }
+  const double a = K[metric.a];
+  const bool ball_like = !rotated && a == K[metric.a + 1] && a == K[metric.a + 2];
+  blob->centre = -off;
+  blob->inv_r2 = ball_like ? 1 / (a * a) : 0.0;
   return true;
 }
 }  // namespace
@@ -82,18 +88,20 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
   int32_t next = 1;  // the children's code must tile the program between the Group and the Sum
   for (const Group::Child& c : group.children) {
     if (c.begin != next) return std::nullopt;
-    Blob b;
-    if (!read_blob(p, c, group.reg, &b.L, &b.k, &b.c2, &b.c3)) return std::nullopt;
-    s.blobs_.push_back(b);
+    Frame frame;
+    Blob blob;
+    if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
+    s.frames_.push_back(frame);
+    s.blobs_.push_back(blob);
     next = c.end;
   }
   if (next != group.op_index) return std::nullopt;
   // sqrt(3 / |L|_F^2) = sqrt(3 / Σ 1/a_i^2) for radii a_i, rotations aside: a mean of the radii
   // (a ball's radius for a ball).
   std::vector<double> radii;
-  for (const Blob& b : s.blobs_)
+  for (const Frame& f : s.frames_)
     radii.push_back(std::sqrt(
-        3 / (dot(b.L.r[0], b.L.r[0]) + dot(b.L.r[1], b.L.r[1]) + dot(b.L.r[2], b.L.r[2]))));
+        3 / (dot(f.L.r[0], f.L.r[0]) + dot(f.L.r[1], f.L.r[1]) + dot(f.L.r[2], f.L.r[2]))));
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
   s.typical_radius_ = radii[radii.size() / 2];
   return s;
@@ -103,17 +111,27 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
                    Term* out, int32_t* ids) const {
   const Vec3 e = o + d * len;
   const int found = p.groups[group_].bvh.segment_items(o, e, pad, ids);
+  const double dd = dot(d, d);
   int n = 0;
   for (int i = 0; i < found; ++i) {
+    // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
+    double alpha, mid, h2;
     const Blob& b = blobs_[ids[i]];
-    const Vec3 w = b.L * o + b.k, v = b.L * d;
-    const double alpha = dot(v, v);
-    if (!(alpha > 0)) continue;
-    // The nearest point to the centre, and how far inside the support it is.
-    const double mid = -dot(w, v) / alpha;
-    const Vec3 w_mid = w + v * mid;
-    const double h2 = 1 - dot(w_mid, w_mid);
-    if (!(h2 > 0)) continue;
+    if (b.inv_r2 > 0) {
+      const Vec3 oc = o - b.centre;
+      mid = -dot(oc, d) / dd;
+      const Vec3 nearest = oc + d * mid;
+      h2 = 1 - dot(nearest, nearest) * b.inv_r2;
+      alpha = dd * b.inv_r2;
+    } else {
+      const Frame& f = frames_[ids[i]];
+      const Vec3 w = f.L * o + f.k, v = f.L * d;
+      alpha = dot(v, v);
+      mid = -dot(w, v) / alpha;
+      const Vec3 w_mid = w + v * mid;
+      h2 = 1 - dot(w_mid, w_mid);
+    }
+    if (!(h2 > 0 && alpha > 0)) continue;
     const double half = std::sqrt(h2 / alpha);
     const double enter = std::max(mid - half, 0.0), exit = std::min(mid + half, len);
     if (!(enter < exit)) continue;
@@ -129,13 +147,14 @@ double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* i
   double f = 0;
   Vec3 g;
   for (int i = 0; i < found; ++i) {
+    const Frame& frame = frames_[ids[i]];
     const Blob& b = blobs_[ids[i]];
-    const Vec3 w = b.L * x + b.k;
+    const Vec3 w = frame.L * x + frame.k;
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
     f += r * r * (b.c2 + b.c3 * r);
     // dP/dr times ∇r = -2 L^T w.
-    g += b.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
+    g += frame.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
   }
   *grad = g;
   return f;

@@ -16,16 +16,18 @@ namespace softtrace::test {
 
 namespace {
 
-// n blobs in [-6, 6]^3: ellipsoids of radii 2..5, every third rotated, every other one Wyvill's
-// potential, the translation on the soft object or on its distance.
+// n blobs in [-6, 6]^3: ellipsoids of radii 2..5 (every fourth a ball), every third rotated,
+// every other one Wyvill's potential, the translation on the soft object or on its distance.
 std::string blob_cloud(int n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> c(-6, 6), r(2, 5), a(-1, 1);
   const auto num = [](double v) { return std::to_string(v); };
   std::string s = R"({"type":"soft_blend","children":[)";
   for (int i = 0; i < n; ++i) {
-    std::string distance = R"({"type":"lp_metric","n":2,"radii":[)" + num(r(rng)) + "," +
-                           num(r(rng)) + "," + num(r(rng)) + "]";
+    // Every fourth one has equal radii: a ball where it is not rotated (BlobSum's short path).
+    const double r0 = r(rng), r1 = i % 4 == 1 ? r0 : r(rng), r2 = i % 4 == 1 ? r0 : r(rng);
+    std::string distance =
+        R"({"type":"lp_metric","n":2,"radii":[)" + num(r0) + "," + num(r1) + "," + num(r2) + "]";
     if (i % 3 == 0)
       distance += R"(,"rotate":{"axis":[)" + num(a(rng)) + "," + num(a(rng)) +
                   ",1],\"deg\":" + num(90 * a(rng)) + "}";
