@@ -264,6 +264,28 @@ void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& id
   BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
   builder.build(0, count, 0);
   collapse(builder.nodes, 0, nodes_);
+  note_order();
+}
+
+std::vector<int32_t> BoxBvh::tree_order() const {
+  size_t items = 0;
+  for (const Node& n : nodes_)
+    items += std::count_if(n.ref, n.ref + n.size, [](int32_t r) { return r < 0; });
+  std::vector<int32_t> out(items);
+  walk([](const Node&) { return (1 << kWidth) - 1; }, out.data(), 0);
+  return out;
+}
+
+void BoxBvh::relabel(const std::vector<int32_t>& to) {
+  for (Node& n : nodes_)
+    for (int c = 0; c < n.size; ++c)
+      if (n.ref[c] < 0) n.ref[c] = ~to[~n.ref[c]];
+  note_order();
+}
+
+void BoxBvh::note_order() {
+  const std::vector<int32_t> order = tree_order();
+  ascending_ = std::is_sorted(order.begin(), order.end());
 }
 
 template <class Test>
@@ -290,8 +312,8 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
 
 int BoxBvh::query(const Box& q, int32_t* out, int count) const {
   const int end = walk([&](const Node& n) { return overlaps(n, q); }, out, count);
-  // Children are combined in their scene order, so results do not depend on the tree's shape.
-  std::sort(out + count, out + end);
+  // Children are combined in their compiled order, so results do not depend on the query.
+  if (!ascending_) std::sort(out + count, out + end);
   return end;
 }
 
@@ -300,7 +322,7 @@ int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_
   const SegmentTest segment(a, b, pad);
   const int end =
       walk([&](const Node& n) { return overlaps(n, q) & segment.meets(n); }, out, count);
-  std::sort(out + count, out + end);
+  if (!ascending_) std::sort(out + count, out + end);
   return end;
 }
 

@@ -21,6 +21,11 @@ class BoxBvh {
   // `boxes[i]` is item `ids[i]`'s box; empty boxes are never reported.
   void build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids);
   bool empty() const { return nodes_.empty(); }
+  // The items' ids in the order every query meets them (the tree's, left to right).
+  std::vector<int32_t> tree_order() const;
+  // Renames item `id` to `to[id]`. Where that makes the tree's order ascending, the queries below
+  // skip their sort.
+  void relabel(const std::vector<int32_t>& to);
 
   // Appends to out[count..] the ids of the items whose boxes overlap `q` (closed boxes), in
   // increasing id order among themselves; returns the new count. `out` must have room for every
@@ -48,7 +53,10 @@ class BoxBvh {
   template <class Test>
   int walk(const Test& test, int32_t* out, int count) const;
 
+  void note_order();
+
   std::vector<Node> nodes_;  // the root is nodes_[0]
+  bool ascending_ = false;   // ids ascend in the tree's order
 };
 
 }  // namespace softtrace

@@ -50,17 +50,6 @@ int ProgramBuilder::oracle(const FieldNode& node, int reg) {
 }
 
 namespace {
-// Spreads the low 21 bits of v to every third bit (for a Morton code).
-uint64_t spread3(uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-
 // A sum's term is exactly 0 outside its support box if it is a field that is never negative
 // ({f > 0} lies in region(min, Above), and f >= 0 everywhere); unbounded for any other term.
 Box sum_support(const FieldNode& c) {
@@ -69,31 +58,22 @@ Box sum_support(const FieldNode& c) {
 }
 }  // namespace
 
-std::vector<int32_t> ProgramBuilder::compile_order(Op op, const std::vector<Box>& supports) {
+std::vector<int32_t> ProgramBuilder::compile_order(Op op, const std::vector<Box>& supports,
+                                                   BoxBvh* tree) {
   std::vector<int32_t> order(supports.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int32_t>(k);
   // A sum of many soft fields is walked a few nearby children at a time (those a box or a
-  // segment meets): compiled in the Morton order of their supports, nearby children's code and
-  // constants are near in memory too. Other groups keep the scene's order.
+  // segment meets): compiled in the order of the leaves of a hierarchy over their supports,
+  // nearby children's code and constants are near in memory, and every query of that hierarchy
+  // finds its children in ascending order, with no sort. Other groups keep the scene's order.
   if (op != Op::Sum || supports.size() < kSpatialOrder) return order;
-  Box all;
-  for (const Box& b : supports) {
+  for (const Box& b : supports)
     if (!b.bounded() || b.empty()) return order;
-    all.extend(b.center());
-  }
-  std::vector<uint64_t> key(supports.size());
-  const Vec3 e = all.extent();
-  for (size_t k = 0; k < supports.size(); ++k) {
-    const Vec3 c = supports[k].center() - all.lo;
-    uint64_t code = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double u = e[i] > 0 ? c[i] / e[i] : 0;
-      code |= spread3(static_cast<uint64_t>(std::clamp(u, 0.0, 1.0) * 0x1fffff)) << i;
-    }
-    key[k] = code;
-  }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int32_t a, int32_t b) { return key[a] < key[b]; });
+  tree->build(supports, order);
+  order = tree->tree_order();
+  std::vector<int32_t> position(order.size());
+  for (size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int32_t>(k);
+  tree->relabel(position);
   return order;
 }
 
@@ -113,7 +93,8 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
   std::vector<Box> child_supports(children.size(), Box::unbounded());
   if (op == Op::Sum)
     for (size_t k = 0; k < children.size(); ++k) child_supports[k] = sum_support(*children[k]);
-  const std::vector<int32_t> order = compile_order(op, child_supports);
+  BoxBvh spatial;  // built by compile_order where it orders the children by it
+  const std::vector<int32_t> order = compile_order(op, child_supports, &spatial);
   for (size_t k = 0; k < children.size(); ++k) {
     const int32_t begin = static_cast<int32_t>(prog_.code.size());
     const int slot = compile(*children[order[k]], reg);
@@ -141,7 +122,11 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
   group.prunable = std::move(prunable);
   for (size_t k = 0; k < group.children.size(); ++k)
     if (!group.prunable[k]) group.always.push_back(static_cast<int32_t>(k));
-  group.bvh.build(supports, ids);
+  if (spatial.empty()) {
+    group.bvh.build(supports, ids);
+  } else {
+    group.bvh = std::move(spatial);  // over every child, by compiled position
+  }
   return emit(combine);
 }
 

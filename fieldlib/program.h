@@ -142,9 +142,10 @@ class ProgramBuilder {
 
  private:
   // The order `nary` compiles the children in, given their supports (unbounded where a child is
-  // never dropped): a large sum's in the Morton order of their supports' centres (its value
-  // changes only by the rounding of the sum's order).
-  static std::vector<int32_t> compile_order(Op op, const std::vector<Box>& supports);
+  // never dropped): a large sum's in the order of the leaves of a BVH over their supports (its
+  // value changes only by the rounding of the sum's order), which is then left in *tree with the
+  // children's compiled positions as ids; the scene's order, and *tree empty, otherwise.
+  static std::vector<int32_t> compile_order(Op op, const std::vector<Box>& supports, BoxBvh* tree);
   // The number of children from which a sum is compiled in spatial order.
   static constexpr size_t kSpatialOrder = 32;
 
