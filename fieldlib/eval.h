@@ -80,6 +80,10 @@ class Workspace {
 void values(Code c, const double* x, const double* y, const double* z, int n, double* f,
             Workspace& ws);
 double value(Code c, const Vec3& p, Workspace& ws);
+// f(p) from a whole program, skipping the children of sums whose support boxes miss p: the value
+// of the program pruned to p (prune() over the point's box), without building that view. `ws`
+// must fit p.
+double value_pruned(const Program& p, const Vec3& point, Workspace& ws);
 
 // f(p) and ∇f(p) into *grad (any element of the Clarke subdifferential at kinks).
 double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws);

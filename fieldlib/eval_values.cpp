@@ -299,14 +299,37 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
   std::copy(S + c.result * kBatch, S + c.result * kBatch + n, f);
 }
 
-// One point: the same operations as one lane of `values` (so the same bits), without the lane
-// loops, whose set-up costs more than the work for a single point (the tracer's case).
-double value(Code c, const Vec3& p, Workspace& ws) {
-  double* S = ws.slots.data();
-  Vec3* R = ws.points.data();
+namespace {
+// One point over c.code[begin, end): the same operations as one lane of `values` (so the same
+// bits), without the lane loops, whose set-up costs more than the work for a single point (the
+// tracer's case). With `kept` (room for the program's children; c a whole program, not a view),
+// a sum whose children have support boxes evaluates only those whose boxes hold the point, as
+// the program pruned to the point would (the others are exactly 0 there) without building it.
+void point_range(const Code& c, int begin, int end, double* S, Vec3* R, int32_t* kept);
+
+// The group of sum `g` so: its kept children, then their sum in the view's order. Returns the
+// index after the sum.
+int point_sum(const Code& c, const Group& g, double* S, Vec3* R, int32_t* kept) {
+  const Vec3& q = R[g.reg];
+  int n = g.bvh.query(Box(q, q), kept, 0);
+  for (int32_t a : g.always) {  // merged in by insertion: std::inplace_merge may allocate
+    int j = n++;
+    for (; j > 0 && kept[j - 1] > a; --j) kept[j] = kept[j - 1];
+    kept[j] = a;
+  }
+  double sum = 0;
+  for (int j = 0; j < n; ++j) {
+    const Group::Child& child = g.children[kept[j]];
+    point_range(c, child.begin, child.end, S, R, kept + n);
+    sum += S[child.slot];
+  }
+  S[c.code[g.op_index].out] = sum;
+  return g.op_index + 1;
+}
+
+void point_range(const Code& c, int begin, int end, double* S, Vec3* R, int32_t* kept) {
   const double* K = c.base->consts.data();
-  R[0] = p;
-  for (int k = 0; k < c.size; ++k) {
+  for (int k = begin; k < end; ++k) {
     const Instr& in = c.code[k];
     double& out = S[in.out];
     switch (in.op) {
@@ -374,8 +397,11 @@ double value(Code c, const Vec3& p, Workspace& ws) {
         out = TransformedPotential::load(K + in.a).eval(S[in.in], none, S[in.n], none, nullptr);
         break;
       }
-      case Op::Group:
+      case Op::Group: {
+        const Group& g = c.base->groups[in.a];
+        if (kept && !g.bvh.empty()) k = point_sum(c, g, S, R, kept) - 1;
         break;
+      }
       case Op::Sum: {
         double sum = 0;
         for (int j = 0; j < in.n; ++j) sum += S[c.args[in.a + j]];
@@ -404,7 +430,20 @@ double value(Code c, const Vec3& p, Workspace& ws) {
       }
     }
   }
-  return S[c.result];
+}
+}  // namespace
+
+double value(Code c, const Vec3& p, Workspace& ws) {
+  ws.points[0] = p;
+  point_range(c, 0, c.size, ws.slots.data(), ws.points.data(), nullptr);
+  return ws.slots[c.result];
+}
+
+double value_pruned(const Program& p, const Vec3& point, Workspace& ws) {
+  ws.points[0] = point;
+  point_range(p, 0, static_cast<int>(p.code.size()), ws.slots.data(), ws.points.data(),
+              ws.kept.data());
+  return ws.slots[p.result];
 }
 
 }  // namespace softtrace

@@ -1160,6 +1160,39 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
   EXPECT_GT(nonempty, 50) << "too few boxes met a blob to judge";
 }
 
+// One point's value without a view (evaluate() without a gradient) is the value of the program
+// pruned to the point, to the bit: through a large sum, a sum nested in a placed child, and a
+// term with no support box (a complement, 1 - f, never dropped) merged in among the kept ones.
+TEST(Program, ValuePrunedToAPointIsThePrunedViewsValue) {
+  std::vector<Vec3> centres;
+  std::string json = blobs_json(60, 3, &centres);
+  const std::string nested =
+      R"({"type":"soft_blend","translate":[2,-1,0.5],"children":[)"
+      R"({"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
+      R"({"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[3,5,2],"n":2},"translate":[1,1,1]}]},)"
+      R"({"type":"complement","children":[{"type":"soft_object","potential":{"type":"murakami"},)"
+      R"("distance":{"type":"lp_metric","radii":[30,30,30],"n":2}}]},)";
+  json.insert(json.find("\"children\":[") + 12, nested);
+  const NodePtr n = build_from_json(json);
+  const Program prog = compile(*n);
+  ASSERT_EQ(prog.groups.size(), 2u);
+  ASSERT_FALSE(prog.groups[0].always.empty()) << "the complement is never dropped";
+  Workspace ws;
+  ws.fit(prog);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-24, 24);
+  int inside = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    prune(prog, Box(p, p), ws);
+    const double in_view = value(ws.view, p, ws);
+    ASSERT_EQ(evaluate(prog, p, nullptr, ws), in_view) << i;
+    ASSERT_EQ(value(prog, p, ws), in_view) << i;  // only zeros are dropped
+    inside += count_ops(ws.view.code, Op::LpMetric) > 1;
+  }
+  EXPECT_GT(inside, 100) << "too few points in a blob to judge";
+}
+
 // Along a segment, the pass reports how far from its start no support has begun (POV-Ray's first
 // support entry): the field is exactly 0 there, entry included (the tracer takes g there as known),
 // and for spheres the bound is tight: just past it the field is positive.
