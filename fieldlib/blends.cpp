@@ -46,9 +46,7 @@ class SoftBlend final : public FieldNode {
     for (const auto& c : c_) b = b.united(c->region(std::numeric_limits<double>::min(), side));
     return b;
   }
-  int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::Sum, c_, reg);
-  }
+  int compile(ProgramBuilder& b, int reg) const override { return b.nary(Op::Sum, c_, reg); }
 
  private:
   std::vector<NodePtr> c_;

@@ -87,6 +87,9 @@ double value_pruned(const Program& p, const Vec3& point, Workspace& ws);
 
 // f(p) and ∇f(p) into *grad (any element of the Clarke subdifferential at kinks).
 double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws);
+// The same from a whole program, skipping the children of sums whose support boxes miss p, as
+// value_pruned does. `ws` must fit p.
+double gradient_pruned(const Program& p, const Vec3& point, Vec3* grad, Workspace& ws);
 
 // A stretch of a ray: the points between a and b, or within `pad` of them (the caller's
 // rounding of the points it will evaluate).
@@ -122,8 +125,8 @@ BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws);
 void prune(const Program& p, const Box& b, Workspace& ws);
 void prune(const Program& p, const Segment& s, Workspace& ws);
 
-// f(p) (and ∇f(p) when grad is non-null) anywhere: on the program pruned to p where that pays.
-// Overwrites ws.view.
+// f(p) (and ∇f(p) when grad is non-null) anywhere: value_pruned or gradient_pruned, after fitting
+// ws to p. Leaves ws.view as it was.
 double evaluate(const Program& p, const Vec3& point, Vec3* grad, Workspace& ws);
 
 }  // namespace softtrace

@@ -36,11 +36,32 @@ Workspace::Dual chain(double v, double dP, const Workspace::Dual& d) {
 }
 }  // namespace
 
-double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
-  Workspace::Dual* S = ws.duals.data();
-  Workspace::Frame* R = ws.frames.data();
+namespace {
+// f and ∇f over c.code[begin, end). With `kept` (c a whole program), a sum skips the children
+// whose support boxes miss the point, as value_pruned does (eval_values.cpp): the value and
+// gradient of the program pruned to the point, without building that view.
+void gradient_range(const Code& c, int begin, int end, Workspace::Dual* S, Workspace::Frame* R,
+                    int32_t* kept);
+
+// The group of sum `g` so: its kept children, then their sum in the view's order. Returns the
+// index after the sum.
+int gradient_sum(const Code& c, const Group& g, Workspace::Dual* S, Workspace::Frame* R,
+                 int32_t* kept) {
+  const int n = g.kept_at(R[g.reg].p, kept);
+  Workspace::Dual s{0, {}};
+  for (int j = 0; j < n; ++j) {
+    const Group::Child& child = g.children[kept[j]];
+    gradient_range(c, child.begin, child.end, S, R, kept + n);
+    s.v += S[child.slot].v;
+    s.g += S[child.slot].g;
+  }
+  S[c.code[g.op_index].out] = s;
+  return g.op_index + 1;
+}
+
+void gradient_range(const Code& c, int begin, int end, Workspace::Dual* S, Workspace::Frame* R,
+                    int32_t* kept) {
   const double* K = c.base->consts.data();
-  R[0] = {p, Mat3{}, true};
   // A kernel of the point register in.in: its value, and its local gradient pulled back to the
   // world point (Jᵀg; passed unchanged where J = I, so an infinite gradient meets no 0·inf).
   const auto local = [&](const Instr& in, const auto& kernel) {
@@ -57,7 +78,7 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
     }
   };
 
-  for (int k = 0; k < c.size; ++k) {
+  for (int k = begin; k < end; ++k) {
     const Instr& in = c.code[k];
     switch (in.op) {
       case Op::Translate: {
@@ -153,8 +174,11 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
         S[in.out] = r;
         break;
       }
-      case Op::Group:
+      case Op::Group: {
+        const Group& g = c.base->groups[in.a];
+        if (kept && !g.bvh.empty()) k = gradient_sum(c, g, S, R, kept) - 1;
         break;
+      }
       case Op::Sum: {
         Workspace::Dual s{0, {}};
         for (int j = 0; j < in.n; ++j) {
@@ -216,8 +240,22 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
       }
     }
   }
-  if (grad) *grad = S[c.result].g;
-  return S[c.result].v;
+}
+}  // namespace
+
+double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws) {
+  ws.frames[0] = {p, Mat3{}, true};
+  gradient_range(c, 0, c.size, ws.duals.data(), ws.frames.data(), nullptr);
+  if (grad) *grad = ws.duals[c.result].g;
+  return ws.duals[c.result].v;
+}
+
+double gradient_pruned(const Program& p, const Vec3& point, Vec3* grad, Workspace& ws) {
+  ws.frames[0] = {point, Mat3{}, true};
+  gradient_range(p, 0, static_cast<int>(p.code.size()), ws.duals.data(), ws.frames.data(),
+                 ws.kept.data());
+  if (grad) *grad = ws.duals[p.result].g;
+  return ws.duals[p.result].v;
 }
 
 }  // namespace softtrace

@@ -310,13 +310,7 @@ void point_range(const Code& c, int begin, int end, double* S, Vec3* R, int32_t*
 // The group of sum `g` so: its kept children, then their sum in the view's order. Returns the
 // index after the sum.
 int point_sum(const Code& c, const Group& g, double* S, Vec3* R, int32_t* kept) {
-  const Vec3& q = R[g.reg];
-  int n = g.bvh.query(Box(q, q), kept, 0);
-  for (int32_t a : g.always) {  // merged in by insertion: std::inplace_merge may allocate
-    int j = n++;
-    for (; j > 0 && kept[j - 1] > a; --j) kept[j] = kept[j - 1];
-    kept[j] = a;
-  }
+  const int n = g.kept_at(R[g.reg], kept);
   double sum = 0;
   for (int j = 0; j < n; ++j) {
     const Group::Child& child = g.children[kept[j]];

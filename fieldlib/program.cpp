@@ -130,6 +130,16 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
   return emit(combine);
 }
 
+int Group::kept_at(const Vec3& p, int32_t* out) const {
+  int n = bvh.query(Box(p, p), out, 0);
+  for (int32_t a : always) {  // merged in by insertion: std::inplace_merge may allocate
+    int j = n++;
+    for (; j > 0 && out[j - 1] > a; --j) out[j] = out[j - 1];
+    out[j] = a;
+  }
+  return n;
+}
+
 Program ProgramBuilder::finish(int result) {
   prog_.result = result;
   for (const Group& g : prog_.groups) {

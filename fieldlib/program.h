@@ -96,6 +96,11 @@ struct Group {
   std::vector<uint8_t> prunable;
   std::vector<int32_t> always;  // children that are never dropped, in order
   BoxBvh bvh;                   // over the prunable children's support boxes
+
+  // The children that may be non-zero at p (p in the frame of `reg`: those whose supports hold
+  // it, and those never dropped), ascending, into out[] (room for every child); returns their
+  // number. Only for a sum with a BVH.
+  int kept_at(const Vec3& p, int32_t* out) const;
 };
 
 struct Program {

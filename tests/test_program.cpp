@@ -1160,10 +1160,10 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
   EXPECT_GT(nonempty, 50) << "too few boxes met a blob to judge";
 }
 
-// One point's value without a view (evaluate() without a gradient) is the value of the program
-// pruned to the point, to the bit: through a large sum, a sum nested in a placed child, and a
+// One point's value and gradient without a view (evaluate()) are those of the program pruned to
+// the point, to the bit: through a large sum, a sum nested in a placed child, and a
 // term with no support box (a complement, 1 - f, never dropped) merged in among the kept ones.
-TEST(Program, ValuePrunedToAPointIsThePrunedViewsValue) {
+TEST(Program, EvaluatingAPointIsEvaluatingTheViewPrunedToIt) {
   std::vector<Vec3> centres;
   std::string json = blobs_json(60, 3, &centres);
   const std::string nested =
@@ -1188,6 +1188,10 @@ TEST(Program, ValuePrunedToAPointIsThePrunedViewsValue) {
     const double in_view = value(ws.view, p, ws);
     ASSERT_EQ(evaluate(prog, p, nullptr, ws), in_view) << i;
     ASSERT_EQ(value(prog, p, ws), in_view) << i;  // only zeros are dropped
+    Vec3 g_view, g;
+    const double with_gradient = gradient(ws.view, p, &g_view, ws);
+    ASSERT_EQ(evaluate(prog, p, &g, ws), with_gradient) << i;
+    ASSERT_TRUE(g.x == g_view.x && g.y == g_view.y && g.z == g_view.z) << i;
     inside += count_ops(ws.view.code, Op::LpMetric) > 1;
   }
   EXPECT_GT(inside, 100) << "too few points in a blob to judge";
