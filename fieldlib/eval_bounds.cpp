@@ -523,10 +523,7 @@ class Walker {
       const int mid = segment_
                           ? g.bvh.query(box(g.reg), S[0], S[1], ws_.seg_pads[g.reg], kept, first)
                           : g.bvh.query(ws_.boxes[g.reg], kept, first);
-      const int n_bvh = mid - first;
-      top_ = mid;
-      for (int32_t a : g.always) kept[top_++] = a;
-      std::inplace_merge(kept + first, kept + first + n_bvh, kept + top_);
+      top_ = first + g.merge_always(kept + first, mid - first);
     } else {
       for (size_t i = 0; i < g.children.size(); ++i) kept[top_++] = static_cast<int32_t>(i);
     }

@@ -131,13 +131,14 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
 }
 
 int Group::kept_at(const Vec3& p, int32_t* out) const {
-  int n = bvh.query(Box(p, p), out, 0);
-  for (int32_t a : always) {  // merged in by insertion: std::inplace_merge may allocate
-    int j = n++;
-    for (; j > 0 && out[j - 1] > a; --j) out[j] = out[j - 1];
-    out[j] = a;
-  }
-  return n;
+  return merge_always(out, bvh.query(Box(p, p), out, 0));
+}
+
+int Group::merge_always(int32_t* kept, int n) const {
+  // From the back, in place: std::inplace_merge may allocate.
+  int i = n - 1, j = static_cast<int>(always.size()) - 1, w = n + j;
+  while (j >= 0) kept[w--] = i >= 0 && kept[i] > always[j] ? kept[i--] : always[j--];
+  return n + static_cast<int>(always.size());
 }
 
 Program ProgramBuilder::finish(int result) {

@@ -101,6 +101,9 @@ struct Group {
   // it, and those never dropped), ascending, into out[] (room for every child); returns their
   // number. Only for a sum with a BVH.
   int kept_at(const Vec3& p, int32_t* out) const;
+  // Merges `always` into the n ascending children in kept[] (room for every child), in order;
+  // returns the new count.
+  int merge_always(int32_t* kept, int n) const;
 };
 
 struct Program {

@@ -1160,6 +1160,17 @@ TEST(Program, PruningKeepsExactlyTheChildrenWhoseSupportsMeetTheBox) {
   EXPECT_GT(nonempty, 50) << "too few boxes met a blob to judge";
 }
 
+TEST(Program, NeverDroppedChildrenMergeInOrder) {
+  Group g;
+  g.always = {1, 4, 9, 12};
+  std::vector<int32_t> kept = {0, 2, 3, 10, -1, -1, -1, -1};
+  ASSERT_EQ(g.merge_always(kept.data(), 4), 8);
+  EXPECT_EQ(kept, (std::vector<int32_t>{0, 1, 2, 3, 4, 9, 10, 12}));
+  std::vector<int32_t> none(4, -1);
+  ASSERT_EQ(g.merge_always(none.data(), 0), 4);
+  EXPECT_EQ(none, g.always);
+}
+
 // One point's value and gradient without a view (evaluate()) are those of the program pruned to
 // the point, to the bit: through a large sum, a sum nested in a placed child, and a
 // term with no support box (a complement, 1 - f, never dropped) merged in among the kept ones.
