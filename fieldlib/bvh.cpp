@@ -297,7 +297,8 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
     const int mask = test(n) & ((1 << n.size) - 1);
-    // Pushed last to first, so the walk visits them (and reports items) in the tree's order.
+    // Nodes pushed last to first are visited left to right; items are reported as their node is
+    // (last to first). That order, the same for every query, is tree_order().
     for (int c = n.size - 1; c >= 0; --c) {
       if (!(mask >> c & 1)) continue;
       if (n.ref[c] < 0) {
