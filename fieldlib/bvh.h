@@ -3,10 +3,9 @@
 // once per blend at compile time; queried from many threads at once (const, no allocation: the
 // caller owns the output buffer).
 //
-// Four children per node, their boxes stored axis by axis so that one loop tests all four and the
-// compiler vectorises it (Embree's BVH4 layout, in double precision so the tests are exactly the
-// scalar ones). The tree is a binned surface-area-heuristic binary tree, one item per leaf,
-// collapsed two levels at a time.
+// Four children per node, their boxes stored axis by axis (Embree's BVH4 layout) and tested two at
+// a time in SSE2 registers, in double precision so the tests are exactly the scalar ones. The tree
+// is a binned surface-area-heuristic binary tree, one item per leaf, collapsed into nodes of four.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +20,7 @@ class BoxBvh {
   // `boxes[i]` is item `ids[i]`'s box; empty boxes are never reported.
   void build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids);
   bool empty() const { return nodes_.empty(); }
-  // The items' ids in the order every query meets them (the tree's, left to right).
+  // The items' ids in the order every query reports them (the walk's, the same for any query).
   std::vector<int32_t> tree_order() const;
   // Renames item `id` to `to[id]`. Where that makes the tree's order ascending, the queries below
   // skip their sort.
