@@ -143,7 +143,7 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const {
-  const int found = p.groups[group_].bvh.query(Box(x, x), ids, 0);
+  const int found = p.groups[group_].kept_at(x, ids);
   double f = 0;
   Vec3 g;
   for (int i = 0; i < found; ++i) {

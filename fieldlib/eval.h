@@ -121,7 +121,8 @@ BoxBounds bounds(const Program& p, const Box& b, Workspace& ws);
 BoxBounds bounds(const Program& p, const Segment& s, Workspace& ws);
 
 // Only the pruning of `bounds`, by support boxes (no min/max pruning, no bound computed): the
-// cheap way to a short program for one point or a small region. Result in ws.view.
+// cheap way to a short program for a small region (a batch of points; one point needs no view:
+// value_pruned). Result in ws.view.
 void prune(const Program& p, const Box& b, Workspace& ws);
 void prune(const Program& p, const Segment& s, Workspace& ws);
 
