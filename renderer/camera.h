@@ -23,13 +23,25 @@ class PinholeCamera {
 
   // (px, py) in pixel units: x to the right, y down from the top-left corner.
   Ray generate(double px, double py) const {
-    const double aspect = static_cast<double>(width_) / height_;
-    const double sx = (2 * px / width_ - 1) * tan_half_ * aspect;
-    const double sy = (1 - 2 * py / height_) * tan_half_;
-    return {eye_, normalize(forward_ + right_ * sx + up_ * sy), 0, cone_};
+    return {eye_, normalize(direction(px, py)), 0, cone_};
+  }
+
+  // The rays through the pixels [x0, x1) x [y0, y1), wherever in them their samples fall.
+  Frustum frustum(int x0, int y0, int x1, int y1) const {
+    return {eye_,
+            forward_,
+            {direction(x0, y0), direction(x1, y0), direction(x0, y1), direction(x1, y1)}};
   }
 
  private:
+  // Through (px, py), with forward component 1.
+  Vec3 direction(double px, double py) const {
+    const double aspect = static_cast<double>(width_) / height_;
+    const double sx = (2 * px / width_ - 1) * tan_half_ * aspect;
+    const double sy = (1 - 2 * py / height_) * tan_half_;
+    return forward_ + right_ * sx + up_ * sy;
+  }
+
   Vec3 eye_, forward_, right_, up_;
   int width_, height_;
   double tan_half_, cone_;

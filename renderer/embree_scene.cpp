@@ -18,6 +18,8 @@ struct RayContext {
   double tnear = 0;
   double t = std::numeric_limits<double>::infinity();  // tfar, then the closest hit so far
   TraceCounters work;
+  const BeamClear* beam = nullptr;
+  double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
   int object = -1;
   bool on_box_face = false;
 };
@@ -45,7 +47,10 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
   // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
-  const MarchResult m = data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
+  // The beam's depth along its axis is depth / cos along the ray.
+  const double clear_to = ctx->beam ? ctx->beam->depth[data->object] / ctx->beam_cos : 0;
+  const MarchResult m =
+      data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Nearest, clear_to);
   if (!m.hit || m.t >= ctx->t) return;
   ctx->t = m.t;
   ctx->object = data->object;
@@ -119,10 +124,16 @@ RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
 }
 }  // namespace
 
-TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar) const {
+TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
+                                const BeamClear* beam) const {
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
+  // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
+  if (beam && dot(ray.d, beam->forward) > 0) {
+    ctx.beam = beam;
+    ctx.beam_cos = dot(ray.d, beam->forward);
+  }
   ctx.tnear = tnear;
   ctx.t = tfar;
   RTCRayHit rh{};

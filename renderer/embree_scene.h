@@ -18,6 +18,13 @@ struct TraceHit {
   TraceCounters work;        // what the ray cost, over every object it met
 };
 
+// What a beam certified for the rays through its block of pixels: per object, the forward depth
+// before which they meet no solid (ObjectTracer::clear_depth).
+struct BeamClear {
+  Vec3 forward;         // the camera's, unit length
+  const double* depth;  // one per object
+};
+
 class EmbreeScene {
  public:
   // The tracers must outlive this object.
@@ -26,8 +33,10 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // Closest hit along the ray in [tnear, tfar]; thread-safe.
-  TraceHit intersect(const Ray& ray, double tnear, double tfar) const;
+  // Closest hit along the ray in [tnear, tfar]; thread-safe. `beam`, if given, holds for this ray:
+  // each object's search starts where it certified.
+  TraceHit intersect(const Ray& ray, double tnear, double tfar,
+                     const BeamClear* beam = nullptr) const;
   // Whether anything lies along the ray in [tnear, tfar]; thread-safe. The ray's work is added to
   // `work`.
   bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;

@@ -1,6 +1,8 @@
-// Pixel -> tile -> frame: the frame is a TBB parallel loop over tiles. Every pixel depends only
-// on its own rays and its place in the full frame, so the result is the same bits for any thread
-// count, and a crop of the frame has the same bits as those pixels of the whole frame.
+// Pixel -> beam -> tile -> frame: the frame is a TBB parallel loop over tiles, each tile a nest of
+// beams (blocks of pixels whose approach to each object is certified together). Every pixel
+// depends only on its own rays and its blocks, which are placed in the full frame, so the result
+// is the same bits for any thread count, and a crop of the frame has the same bits as those
+// pixels of the whole frame.
 #pragma once
 
 #include <atomic>

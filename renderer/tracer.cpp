@@ -24,14 +24,15 @@ constexpr double kProbeReach = 2;
 double reach(double v, double rate) {
   return rate > 0 ? -v / rate : kInf;
 }
-// One workspace per thread, shared by every object's tracer: evaluations do not allocate once it
-// has grown to the largest program.
-Workspace& workspace(const Program& p) {
+}  // namespace
+
+Workspace& ObjectTracer::workspace() const {
+  // One per thread, shared by every object's tracer: evaluations do not allocate once it has grown
+  // to the largest program.
   thread_local Workspace ws;
-  ws.fit(p);
+  ws.fit(program_);
   return ws;
 }
-}  // namespace
 
 SceneTracers::SceneTracers(const Scene& scene, LipschitzMode mode) {
   tracers_.reserve(scene.objects.size());
@@ -66,7 +67,7 @@ ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
 }
 
 double ObjectTracer::eval(const Vec3& p, Vec3* grad) const {
-  return evaluate(program_, p, grad, workspace(program_));
+  return evaluate(program_, p, grad, workspace());
 }
 
 double ObjectTracer::g(const Vec3& p) const {
@@ -74,7 +75,7 @@ double ObjectTracer::g(const Vec3& p) const {
 }
 
 double ObjectTracer::g_view(const Vec3& p) const {
-  Workspace& ws = workspace(program_);
+  Workspace& ws = workspace();
   return object_->inside_sign * (value(ws.view, p, ws) - object_->iso);
 }
 
@@ -128,7 +129,7 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   ++work.box_evals;
   // One pass: the interval, the slope bound and the program pruned to the segment (the children
   // whose supports it passes through), which the points of this segment evaluate afterwards.
-  const BoxBounds bb = bounds(program_, segment(ray, a, b), workspace(program_));
+  const BoxBounds bb = bounds(program_, segment(ray, a, b), workspace());
   const double iso = object_->iso;
   const bool up = object_->inside_sign > 0;
   const Interval g = up ? Interval{bb.value.lo - iso, bb.value.hi - iso}
@@ -221,11 +222,15 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
 }
 
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
-                                    Query query) const {
+                                    Query query, double clear_to) const {
   double t0 = tnear, t1 = tfar;
   if (!clip_to_box(ray, object_->bounds, t0, t1)) return {};
   work.entered_box = true;
-  if (blobs_) return first_hit_blobs(ray, tnear, t0, t1, work, query);
+  // A solid where the ray enters the box from outside it is cut by the box: the hit is its face.
+  const bool face = t0 > tnear && t0 >= clear_to;
+  t0 = std::max(t0, clear_to);
+  if (t0 > t1) return {};
+  if (blobs_) return first_hit_blobs(ray, face, t0, t1, work, query);
   const auto at = [&](double t) { return ray.o + ray.d * t; };
   // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].
   // `rates`: slope bounds over [a, b], if known.
@@ -286,7 +291,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
       gt_known = true;
       // Inside where the ray enters the box (the box cuts the solid: the hit is on its face), or
       // the previous piece ended on the surface, to rounding.
-      if (gt >= 0) return {true, t, t == t0 && t0 > tnear};
+      if (gt >= 0) return {true, t, face && t == t0};
     }
     // g cannot fall along the segment: its value at the end decides the segment, and a sign
     // change there brackets the only crossing in it.

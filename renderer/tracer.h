@@ -35,6 +35,13 @@ struct Ray {
   double cone0 = 0, cone = 0;
 };
 
+// The rays from one eye through a rectangle of the image (a block of pixels): at forward depth s
+// (the distance along `forward`), they pass through the quadrilateral eye + s * corner[0..3].
+struct Frustum {
+  Vec3 eye, forward;  // forward has unit length
+  Vec3 corner[4];     // directions through the rectangle's corners, with forward component 1
+};
+
 // A camera ray wants the nearest hit; a shadow ray only whether there is any.
 enum class Query { Nearest, Any };
 
@@ -95,8 +102,16 @@ class ObjectTracer {
   // The first t in [tnear, tfar] where the ray is inside the solid, if any (for Query::Any, some
   // t where it is: the search stops at the first sign change, unrefined). The work is added to
   // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
+  // `clear_to`: the caller has certified that the ray meets no solid before it (clear_depth).
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
-                        Query query = Query::Nearest) const;
+                        Query query = Query::Nearest, double clear_to = 0) const;
+
+  // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
+  // certified by the interval of g over boxes around slices of the frustum: the work of the
+  // approach, shared by every ray of a block of pixels. 0 where nothing is certified; +inf where
+  // no ray of it meets the solid at all.
+  // `from`: a depth already certified (by a beam holding this one); the search starts there.
+  double clear_depth(const Frustum& f, double from, TraceCounters& work) const;
 
   const SceneObject& object() const { return *object_; }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
@@ -111,6 +126,8 @@ class ObjectTracer {
   const Program& program() const { return program_; }
 
  private:
+  // This thread's workspace, fitted to the program.
+  Workspace& workspace() const;
   // g = inside_sign (f - iso): the solid is g >= 0.
   double g(const Vec3& p) const;       // anywhere (prunes to p first)
   double g_view(const Vec3& p) const;  // inside the box of the last bounds/prune pass
@@ -148,8 +165,9 @@ class ObjectTracer {
   double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
                 TraceCounters& work) const;
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
-  MarchResult first_hit_blobs(const Ray& ray, double tnear, double t0, double t1,
-                              TraceCounters& work, Query query) const;
+  // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
+  MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
+                              Query query) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
   Vec3 blob_gradient(const Vec3& p) const;
 

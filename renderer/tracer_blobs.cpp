@@ -65,7 +65,7 @@ Vec3 ObjectTracer::blob_gradient(const Vec3& p) const {
   return grad;
 }
 
-MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t0, double t1,
+MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
                                           TraceCounters& work, Query query) const {
   BlobScratch& scratch = blob_scratch(blobs_->size());
   BlobSum::Term* terms = scratch.terms.data();
@@ -88,7 +88,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, double tnear, double t
       case Rise::Clear:
         return std::nullopt;
       case Rise::AtStart:  // where the ray enters the box: the box cuts the solid (its face)
-        return MarchResult{true, at(0), u0 == 0 && t == t0 && t0 > tnear};
+        return MarchResult{true, at(0), face && u0 == 0 && t == t0};
       case Rise::Undecided:
         ++work.give_ups;
         return MarchResult{true, at(rise.lo), false, true};

@@ -1,9 +1,11 @@
-// No holes: the hit mask of the normal render path (EmbreeScene::intersect for every pixel-centre
-// camera ray) against an exact one. Each scene is one object, a soft_blend of murakami soft
-// objects over n = 2 lp_metrics whose supports do not overlap, so the solid is exactly a union
-// of ellipsoids and every ray's first hit is a quadratic's root. The cases are where a marcher
-// with a shortest step or a loose bound goes wrong: a 1e-3 sphere beside a 1e3 one in the same
-// object, a thin sheet and needles seen edge-on and end-on, and rays grazing a large sphere.
+// No holes: the hit mask of the normal render path (render_frame, whose beams certify each block
+// of pixels' approach, and EmbreeScene::intersect for each pixel-centre camera ray on its own)
+// against an exact one. Each scene is one object, a soft_blend of soft objects over n = 2
+// lp_metrics whose supports do not overlap, so the solid is exactly a union of ellipsoids and
+// every ray's first hit is a quadratic's root. With Murakami's potential the local mode traces the
+// blobs as polynomials; with Blanc's, by segments, after the frame's beams. The cases are where a
+// marcher with a shortest step or a loose bound goes wrong: a 1e-3 sphere beside a 1e3 one in the
+// same object, a thin sheet and needles seen edge-on and end-on, and rays grazing a large sphere.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -20,6 +22,13 @@ namespace {
 // murakami (1 - r^2)^2 = 1/2 at r^2 = 1 - 1/sqrt(2): the soft convention's 0.5 level of a
 // soft_object over lp_metric n = 2 with radii [a,b,c] is the ellipsoid kLevel * [a,b,c].
 const double kLevel = std::sqrt(1 - 1 / std::sqrt(2.0));
+// Blanc's is at d = 0.5 (docs/math.md §3.2): the same ellipsoid from radii kLevel / 0.5 times as
+// large.
+struct PotentialCase {
+  const char* name;
+  double scale;  // of the lp_metric's radii, for the same surface
+};
+const PotentialCase kPotentials[] = {{"murakami", 1}, {"blanc", kLevel / 0.5}};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Rays whose closest approach to an ellipsoid, in the space where it is the unit sphere, is
 // within this of 1 are left out as tangent. Rounding moves that distance by ~1e-15 (the field,
@@ -27,9 +36,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // honest disagreement; yet in the image it is a ring ~1e-6 of the ellipsoid's apparent size
 // wide around its outline, which no pixel of these 48x36 images should fall into by chance.
 constexpr double kTangentBand = 1e-6;
+constexpr int W = 48, H = 36;  // the images' size
 
 struct Ellipsoid {
-  Vec3 centre, radii;  // the lp_metric's radii: the support; the surface is kLevel * radii
+  // The Murakami lp_metric's radii (its support); the surface is kLevel * radii.
+  Vec3 centre, radii;
 };
 
 struct HoleCase {
@@ -38,8 +49,9 @@ struct HoleCase {
   std::vector<Ellipsoid> parts;
 };
 
+// The centres 1089 apart: even Blanc's supports (radii 1082 and 0.0011) do not overlap.
 const std::vector<Ellipsoid> kTinyAndHuge = {{{0, 0, 0}, {1e-3, 1e-3, 1e-3}},
-                                             {{640, 770, 0}, {1e3, 1e3, 1e3}}};
+                                             {{590, 915, 0}, {1e3, 1e3, 1e3}}};
 const std::vector<Ellipsoid> kSheet = {{{0, 0, 0}, {10, 10, 0.01}}};
 const std::vector<Ellipsoid> kNeedles = {{{0, 0, 0}, {0.01, 0.01, 10}},
                                          {{0.1, 0, 0}, {0.01, 0.01, 10}},
@@ -77,12 +89,13 @@ std::string json_vec(const Vec3& v) {
   return "[" + json_num(v.x) + "," + json_num(v.y) + "," + json_num(v.z) + "]";
 }
 
-std::string scene_json(const HoleCase& c) {
+std::string scene_json(const HoleCase& c, const PotentialCase& pot) {
   std::string parts;
   for (const Ellipsoid& e : c.parts)
     parts += std::string(parts.empty() ? "" : ",") + R"({"type":"soft_object","translate":)" +
-             json_vec(e.centre) + R"(,"potential":{"type":"murakami"},)" +
-             R"("distance":{"type":"lp_metric","n":2,"radii":)" + json_vec(e.radii) + "}}";
+             json_vec(e.centre) + R"(,"potential":{"type":")" + pot.name + R"("},)" +
+             R"("distance":{"type":"lp_metric","n":2,"radii":)" + json_vec(e.radii * pot.scale) +
+             "}}";
   const std::string field =
       c.parts.size() == 1 ? parts : R"({"type":"soft_blend","children":[)" + parts + "]}";
   return R"({"camera":{"eye":)" + json_vec(c.camera.eye) + R"(,"target":)" +
@@ -113,18 +126,11 @@ RefHit ellipsoid_hit(const Ray& ray, const Ellipsoid& e) {
   return {tc - std::sqrt((1 - m) * (1 + m)) / length(v), false};
 }
 
-class NoHoles : public testing::TestWithParam<SceneMode> {};
-
-TEST_P(NoHoles, HitMaskIsExact) {
-  const HoleCase& c = kCases[std::get<0>(GetParam())];
-  const Scene scene = parse_scene(scene_json(c), "<test>");
-  const TracedScene rt(scene, std::get<1>(GetParam()));
-  const SceneObject& obj = scene.objects[0];
-  for (const Ellipsoid& e : c.parts)  // which ellipsoid_hit assumes
-    ASSERT_GT(length(unit_space(e, c.camera.eye - e.centre)), 1 + kTangentBand)
-        << "the eye must be outside every ellipsoid";
-  const int W = 48, H = 36;
-  const PinholeCamera camera(scene.camera, W, H);
+// Every pixel-centre ray's first hit, from `traced` (x, y -> t, inf for none), against the
+// ellipsoids' exact one.
+template <class Traced>
+void check_hit_mask(const HoleCase& c, const SceneObject& obj, const PinholeCamera& camera,
+                    const char* path, const Traced& traced) {
   // A pixel's width at unit depth; the t tolerance is 1e-3 of it at the hit's depth.
   const double footprint = 2 * std::tan(0.5 * c.camera.fov * M_PI / 180) / H;
   int hits = 0, misses = 0, tangent = 0;  // the reference's, over the pixels not left out
@@ -146,43 +152,73 @@ TEST_P(NoHoles, HitMaskIsExact) {
         ++tangent;
         continue;
       }
-      const TraceHit hit = rt.embree.intersect(ray, 0, kInf);
+      const double t = traced(x, y);
+      const bool hit = std::isfinite(t);
       const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): ";
       if (!std::isfinite(ref.t)) {
         ++misses;
-        if (hit.hit && extra++ + missed + off == 0)
-          first = where + "hit at t = " + std::to_string(hit.t) + " where there is nothing";
+        if (hit && extra++ + missed + off == 0)
+          first = where + "hit at t = " + std::to_string(t) + " where there is nothing";
         continue;
       }
       ++hits;
       ++seen[part];
       // The reference is the field's level: an independent check of kLevel and the placement.
       ASSERT_NEAR(obj.field->value(ray.o + ray.d * ref.t), obj.iso, 1e-9) << where;
-      if (!hit.hit) {
+      if (!hit) {
         if (extra + missed++ + off == 0)
           first = where + "missed ellipsoid " + std::to_string(part) +
                   " at t = " + std::to_string(ref.t);
         continue;
       }
-      const double err = std::abs(hit.t - ref.t), tol = 1e-3 * footprint * ref.t + 1e-12;
+      // (The frame keeps t as a float: 6e-8 of t, far inside this.)
+      const double err = std::abs(t - ref.t), tol = 1e-3 * footprint * ref.t + 1e-12;
       worst = std::max(worst, err);
       worst_ratio = std::max(worst_ratio, err / tol);
       if (err > tol && extra + missed + off++ == 0)
-        first = where + "hit at t = " + std::to_string(hit.t) + ", not at ellipsoid " +
+        first = where + "hit at t = " + std::to_string(t) + ", not at ellipsoid " +
                 std::to_string(part) + "'s t = " + std::to_string(ref.t);
     }
   std::printf(
-      "%s: %d hits, %d misses, %d tangent; %d missed, %d extra, %d off; "
+      "%s, %s: %d hits, %d misses, %d tangent; %d missed, %d extra, %d off; "
       "worst |t - t_ref| %.3g (%.3g of the tolerance)\n",
-      c.name, hits, misses, tangent, missed, extra, off, worst, worst_ratio);
+      c.name, path, hits, misses, tangent, missed, extra, off, worst, worst_ratio);
   EXPECT_EQ(missed + extra + off, 0)
-      << missed << " hits missed, " << extra << " made up, " << off
+      << path << ": " << missed << " hits missed, " << extra << " made up, " << off
       << " off by more than the tolerance (worst " << worst << "); the first, " << first;
   EXPECT_LE(tangent, W * H / 100) << "too many pixels left out as tangent";
   EXPECT_GE(hits, W * H / 100) << "the object should be in view";
   EXPECT_GE(misses, W * H / 100) << "the background should be in view";
   for (size_t i = 0; i < seen.size(); ++i)
     EXPECT_GT(seen[i], 0) << "ellipsoid " << i << " is the first hit of no pixel";
+}
+
+class NoHoles : public testing::TestWithParam<SceneMode> {};
+
+TEST_P(NoHoles, HitMaskIsExact) {
+  const HoleCase& c = kCases[std::get<0>(GetParam())];
+  for (const PotentialCase& pot : kPotentials) {
+    SCOPED_TRACE(pot.name);
+    Scene scene = parse_scene(scene_json(c, pot), "<test>");
+    scene.image.spp = 1;  // the pixel's centre
+    const TracedScene rt(scene, std::get<1>(GetParam()));
+    const SceneObject& obj = scene.objects[0];
+    for (const Ellipsoid& e : c.parts)  // which ellipsoid_hit assumes
+      ASSERT_GT(length(unit_space(e, c.camera.eye - e.centre)), 1 + kTangentBand)
+          << "the eye must be outside every ellipsoid";
+    const PinholeCamera camera(scene.camera, W, H);
+    // A pixel-centre ray's first hit (t, or inf where it hits nothing), on its own and in the
+    // whole frame (beams and all).
+    const auto ray_alone = [&](int x, int y) {
+      const TraceHit hit = rt.embree.intersect(camera.generate(x + 0.5, y + 0.5), 0, kInf);
+      return hit.hit ? hit.t : kInf;
+    };
+    Film film(W, H);
+    ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, film, nullptr, nullptr));
+    const auto in_frame = [&](int x, int y) { return double(film.depth[size_t(y) * W + x]); };
+    check_hit_mask(c, obj, camera, (std::string(pot.name) + ", alone").c_str(), ray_alone);
+    check_hit_mask(c, obj, camera, (std::string(pot.name) + ", frame").c_str(), in_frame);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, NoHoles, scene_modes(kCases),

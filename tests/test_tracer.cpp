@@ -5,44 +5,12 @@
 
 #include <random>
 
-#include "tracer.h"
+#include "tracer_scenes.h"
 
 namespace softtrace {
 namespace {
 
-const char* kScenes[] = {
-    // Fig. 12(b).
-    R"({"camera":{"eye":[62,-82,56],"target":[0,0,0]},"objects":[{"field":{"type":"soft_blend","children":[
-        {"type":"soft_object","distance":{"type":"superquadric","radii":[8,8,24],"n1":1,"n2":20}},
-        {"type":"soft_object","distance":{"type":"lp_metric","radii":[30,30,12],"n":20}}]}}]})",
-    // A pinched superquadric (n1 = 0.6: not Lipschitz) next to a segment.
-    R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"field":{"type":"soft_blend","children":[
-        {"type":"soft_object","distance":{"type":"superquadric","radii":[10,10,14],"n1":0.6,"n2":3}},
-        {"type":"soft_object","distance":{"type":"segment","p0":[-12,0,6],"p1":[12,4,6],"radius":5}}]}}]})",
-    // Constructive convention on a plain distance function (inside d <= 1).
-    R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"convention":"constructive",
-        "field":{"type":"lp_metric","radii":[6,9,4],"n":1.5}}]})",
-    // Polynomial blobs (the local mode traces them as polynomials, tracer_blobs.cpp): overlapping
-    // ellipsoids, some rotated, Murakami's and Wyvill's potentials, and a thin one.
-    R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"field":{"type":"soft_blend","children":[
-        {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[5,5,5],"n":2}},
-        {"type":"soft_object","potential":{"type":"wyvill"},"translate":[4,1,0],
-         "distance":{"type":"lp_metric","radii":[3,6,2],"n":2,"rotate":{"axis":[1,1,0],"deg":40}}},
-        {"type":"soft_object","potential":{"type":"murakami"},"translate":[-3,-4,2],
-         "distance":{"type":"lp_metric","radii":[4,2,3],"n":2}},
-        {"type":"soft_object","potential":{"type":"wyvill"},"translate":[0,5,-3],
-         "distance":{"type":"lp_metric","radii":[9,0.6,0.6],"n":2,"rotate":{"axis":[0,0,1],"deg":25}}},
-        {"type":"soft_object","potential":{"type":"murakami"},"translate":[8,-6,4],
-         "distance":{"type":"lp_metric","radii":[1.5,1.5,1.5],"n":2}}]}}]})",
-};
-
-double reference_first_hit(const ObjectTracer& tr, const Ray& ray, double t0, double t1, int n) {
-  for (int i = 0; i <= n; ++i) {
-    const double t = t0 + (t1 - t0) * i / n;
-    if (tr.inside(ray.o + ray.d * t)) return t;
-  }
-  return std::numeric_limits<double>::infinity();
-}
+using namespace tracer_scenes;
 
 class TracerVsReference : public testing::TestWithParam<std::tuple<int, LipschitzMode>> {};
 
@@ -110,7 +78,7 @@ TEST_P(TracerVsReference, NeverSkipsASurface) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TracerVsReference,
-                         testing::Combine(testing::Values(0, 1, 2, 3),
+                         testing::Combine(testing::Range(0, kCount),
                                           testing::Values(LipschitzMode::Local,
                                                           LipschitzMode::Global)));
 
@@ -118,7 +86,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerVsReference,
 // the same hits as the segment tracer of the global mode, to the tolerance (1e-8 of the
 // diagonal for these rays without a footprint, 1e-3 of that for the refinement).
 TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
-  const Scene scene = parse_scene(kScenes[3], "<test>");
+  const Scene scene = parse_scene(kScenes[kBlobs], "<test>");
   const SceneObject& obj = scene.objects[0];
   const ObjectTracer blobs(obj, LipschitzMode::Local), segments(obj, LipschitzMode::Global);
   std::mt19937_64 rng(3);
