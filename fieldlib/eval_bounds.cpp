@@ -202,17 +202,27 @@ class Walker {
             ellipsoid_on_segment({k[0], k[1], k[2]}, {k[5], k[6], k[7]}, S[0], S[1],
                                  ws_.seg_pads[in.in], length_, &I[in.out], &D[in.out], &Q[in.out]);
             L[in.out] = k[4];
+          } else if (segment_) {
+            Interval rate[3];
+            axis_rates(in.in, rate);
+            lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out],
+                             rate, &D[in.out]);
+            gauge_segment_facts(in.out);
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
-            segment_facts_from_box(in.out);
           }
         }
         break;
       case Op::SphericalProduct:
-        if (bounds_) {
+        if (bounds_ && segment_) {
+          Interval rate[3];
+          axis_rates(in.in, rate);
+          spherical_product_bounds(spherical_product_params(K_ + in.a), box(in.in), &I[in.out],
+                                   &L[in.out], rate, &D[in.out]);
+          gauge_segment_facts(in.out);
+        } else if (bounds_) {
           spherical_product_bounds(spherical_product_params(K_ + in.a), box(in.in), &I[in.out],
                                    &L[in.out]);
-          segment_facts_from_box(in.out);
         }
         break;
       case Op::ParallelPlanes:
@@ -265,29 +275,19 @@ class Walker {
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
-          potential_bounds([s](double d) { return blanc(d, s, nullptr); }, blanc_lipschitz(s),
-                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
-          // P is non-increasing: dP/dt = P'(d) d' with P' in [-max |P'|, 0].
-          D[in.out] = Interval(-blanc_lipschitz(s), 0) * D[in.in];
-          Q[in.out] = quiet_potential(in.in);
+          potential(
+              in, [s](double d) { return blanc(d, s, nullptr); }, blanc_slope_range(s, I[in.in]));
         }
         break;
       case Op::Wyvill:
-        if (bounds_) {
-          potential_bounds([](double d) { return wyvill(d, nullptr); }, wyvill_lipschitz(),
-                           I[in.in], L[in.in], &I[in.out], &L[in.out]);
-          D[in.out] = Interval(-wyvill_lipschitz(), 0) * D[in.in];
-          Q[in.out] = quiet_potential(in.in);
-        }
+        if (bounds_)
+          potential(
+              in, [](double d) { return wyvill(d, nullptr); }, wyvill_slope_range(I[in.in]));
         break;
       case Op::Murakami:
-        if (bounds_) {
-          const double slope = murakami_slope_bound(I[in.in].lo, I[in.in].hi);
-          potential_bounds([](double d) { return murakami(d, nullptr); }, slope, I[in.in], L[in.in],
-                           &I[in.out], &L[in.out]);
-          D[in.out] = Interval(-slope, -murakami_slope_floor(I[in.in].lo, I[in.in].hi)) * D[in.in];
-          Q[in.out] = quiet_potential(in.in);
-        }
+        if (bounds_)
+          potential(
+              in, [](double d) { return murakami(d, nullptr); }, murakami_slope_range(I[in.in]));
         break;
       case Op::Offset:
         if (bounds_) {
@@ -325,6 +325,16 @@ class Walker {
       case Op::Ricci:
         break;  // handled by group()
     }
+  }
+
+  // A non-increasing potential P of distance in.in, with |P'| in `slope` over the distance's
+  // interval: dP/dt = P'(d) d' with P' in -slope.
+  template <class P>
+  void potential(const Instr& in, P pot, Interval slope) {
+    potential_bounds(pot, slope.hi, ws_.ivals[in.in], ws_.lips[in.in], &ws_.ivals[in.out],
+                     &ws_.lips[in.out]);
+    ws_.slopes[in.out] = -slope * ws_.slopes[in.in];
+    ws_.quiet[in.out] = quiet_potential(in.in);
   }
 
   // A radius-transformed soft object over its register's box: 0 outside its support box, else
@@ -385,6 +395,13 @@ class Walker {
     return enter * (1 - 1e-9);
   }
 
+  // A gauge with its slope along the segment in ws_.slopes[out] (uncapped): capped by its
+  // Lipschitz bound; it stays >= 1 all along only where it does over the whole box.
+  void gauge_segment_facts(int out) {
+    ws_.slopes[out] = capped(ws_.slopes[out], ws_.lips[out]);
+    ws_.quiet[out] = ws_.ivals[out].lo >= 1 ? 1 : 0;
+  }
+
   // A distance bounded over its register's box only: its slope along the segment is the Lipschitz
   // bound either way, and it stays >= 1 all along only where it does over the whole box.
   void segment_facts_from_box(int out) {
@@ -403,19 +420,28 @@ class Walker {
     return {std::min(d0, d1) - grow, std::max(d0, d1) + grow};
   }
 
+  // The rate of X·n along register r's segment per unit of the ray's t: (B - A)·n / len, padded
+  // for the rounding of the register's segment ends (as ellipsoid_on_segment). Entire for a
+  // degenerate segment.
+  Interval rate_on_segment(const Vec3& n, int r) const {
+    const Vec3* S = ws_.segs.data() + 2 * r;
+    const Vec3 e = S[1] - S[0];
+    const double k = dot(e, n), pad = 1e-9 * length(e) + kTiny;
+    const Interval rate{widen_down((k - pad) / length_, 1e-12),
+                        widen_up((k + pad) / length_, 1e-12)};
+    if (!(std::isfinite(rate.lo) && std::isfinite(rate.hi))) return Interval::entire();
+    return rate;
+  }
+
   // A plane's slope along register r's segment, where X·n lies in `s`: X·n has the rate
-  // (B - A)·n / len (padded for the rounding of the register's segment, as in
-  // ellipsoid_on_segment), so f's slope is ± that rate where X·n keeps its sign, and between the
+  // rate_on_segment, so f's slope is ± that rate / a where X·n keeps its sign, and between the
   // two (|X·n|) or between it and 0 ([X·n]_+) where it may change sign. Capped by the bound 1/a.
   Interval plane_slope(const PlaneParams& m, Interval s, int r, bool both_sides) const {
     const double L = 1 / m.a;
-    const Vec3* S = ws_.segs.data() + 2 * r;
-    const Vec3 e = S[1] - S[0];
-    const double k = dot(e, m.n), pad = 1e-9 * length(e) + kTiny;
-    const double w = (1 + 1e-12) / (m.a * length_);
-    const double lo = (k - pad) * w, hi = (k + pad) * w;
-    if (!(std::isfinite(lo) && std::isfinite(hi))) return {-L, L};  // a degenerate segment
-    const Interval rate{std::max(-L, lo), std::min(L, hi)};
+    const Interval k = rate_on_segment(m.n, r);
+    if (!(std::isfinite(k.lo) && std::isfinite(k.hi))) return {-L, L};  // a degenerate segment
+    const Interval rate{std::max(-L, widen_down(k.lo / m.a, 1e-12)),
+                        std::min(L, widen_up(k.hi / m.a, 1e-12))};
     if (both_sides) {
       if (s.lo >= 0) return rate;
       if (s.hi <= 0) return -rate;
@@ -427,46 +453,28 @@ class Walker {
   }
 
   // A generalized distance's slope along register r's segment, where X·n_i lies in s[i], u_i in
-  // u[i] and f in `f`: where f is differentiable, df/dt = Σ ∂f/∂u_i · u_i' · (X·n_i)', with
-  // ∂f/∂u_i in [0, power_sum_partial_bound], u_i' = 1/r_pos, -1/r_neg or 0 by the side of the dead
-  // zone X·n_i is on, and (X·n_i)' the rate (B - A)·n_i / len, padded as in plane_slope. f is
-  // absolutely continuous along the segment, so its difference quotients lie in the sum of these
-  // intervals, each of which holds 0. Capped by the Lipschitz bound L.
+  // u[i] and f in `f`: power_sum_slope over the terms, each u_i' the one-sided term's rate of
+  // X·n_i (its side of the dead zone). Capped by the Lipschitz bound L.
   Interval generalized_distance_slope(const GeneralizedDistanceParams& m, const Interval* s,
                                       const Interval* u, Interval f, double L, int r) const {
-    const Vec3* S = ws_.segs.data() + 2 * r;
-    const Vec3 e = S[1] - S[0];
-    const double pad = 1e-9 * length(e) + kTiny, w = (1 + 1e-12) / length_;
-    double lo = 0, hi = 0, mag = 0;
-    for (int i = 0; i < m.k; ++i) {
-      const double k = dot(e, m.normal(i));
-      const Interval rate{(k - pad) * w, (k + pad) * w};
-      if (!(std::isfinite(rate.lo) && std::isfinite(rate.hi))) return {-L, L};  // degenerate
-      const OneSidedTerm t = m.term(i);
-      // u_i' (X·n_i)' over the sides X·n_i reaches (0 in the dead zone).
-      const Interval up = rate / Interval(t.r_pos), down = -rate / Interval(t.r_neg);
-      Interval d;
-      if (s[i].lo > t.dead) {
-        d = up;
-      } else if (s[i].hi < -t.dead) {
-        d = down;
-      } else {
-        d = 0.0;
-        if (s[i].hi > t.dead) d = hull(d, up);
-        if (s[i].lo < -t.dead) d = hull(d, down);
-      }
-      const double P = power_sum_partial_bound(u[i], f, m.n());
-      const double dl = chain(P, std::max(0.0, -d.lo)), dh = chain(P, std::max(0.0, d.hi));
-      lo -= dl;
-      hi += dh;
-      mag += dl + dh;
+    Scratch<Interval> du(m.k);
+    for (int i = 0; i < m.k; ++i) du[i] = m.term(i).rate(s[i], rate_on_segment(m.normal(i), r));
+    return capped(power_sum_slope(u, du.data(), m.k, f, m.n()), L);
+  }
+
+  // An axis-aligned gauge's slope along register r's segment (lp_metric, spherical products): the
+  // local coordinates' rates, for gauge_slope (lp_metric.h, spherical_product.h).
+  void axis_rates(int r, Interval* rate) const {
+    for (int i = 0; i < 3; ++i) {
+      Vec3 axis{0, 0, 0};
+      axis[i] = 1;
+      rate[i] = rate_on_segment(axis, r);
     }
-    // The k products and sums err by a few ulps each of at most mag.
-    const double grow = 1e-12 * mag + kTiny;
-    lo -= grow;
-    hi += grow;
-    if (std::isnan(lo) || std::isnan(hi)) return {-L, L};
-    return {std::max(-L, lo), std::min(L, hi)};
+  }
+
+  static Interval capped(Interval slope, double L) {
+    if (std::isnan(slope.lo) || std::isnan(slope.hi)) return {-L, L};
+    return {std::max(-L, slope.lo), std::min(L, slope.hi)};
   }
 
   // How far along the segment a sum's child is exactly 0 (Workspace::quiet, where its result is a

@@ -102,6 +102,35 @@ double power_sum_partial_bound(Interval ui, Interval f_range, double n) {
   return std::pow(std::max(f_range.hi, ui.lo) / ui.lo, 1 - n) * (1 + 1e-13);
 }
 
+Interval power_sum_partial(Interval ui, Interval f_range, double n) {
+  if (n < 1) return {0, kInf};
+  if (n == 1) return {1, 1};
+  const double hi = power_sum_partial_bound(ui, f_range, n);
+  // (u/f)^(n-1) rises with u/f; pow_fast errs by a few ulps, far inside the margin.
+  const double q = std::max(0.0, ui.lo) / f_range.hi;
+  const double lo = q > 0 ? pow_fast(std::min(1.0, q), n - 1) * (1 - 1e-13) : 0.0;
+  return {std::max(0.0, lo), hi};
+}
+
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n) {
+  if (n < 1) return Interval::entire();
+  double lo = 0, hi = 0, mag = 0;
+  for (int i = 0; i < k; ++i) {
+    if (du[i].lo == 0 && du[i].hi == 0) continue;  // a constant term (whatever its partial)
+    const Interval w = power_sum_partial(u[i], f_range, n);  // in [0, 1]
+    // w · du over the two ranges, w >= 0: each end of du takes the w that moves it outward.
+    const double l = du[i].lo * (du[i].lo < 0 ? w.hi : w.lo);
+    const double h = du[i].hi * (du[i].hi > 0 ? w.hi : w.lo);
+    lo += l;
+    hi += h;
+    mag += std::abs(l) + std::abs(h);
+  }
+  // k products and sums, each within a few ulps of at most mag.
+  const double grow = 1e-12 * mag + 1e-300;
+  if (!(std::isfinite(lo) && std::isfinite(hi))) return Interval::entire();
+  return {lo - grow, hi + grow};
+}
+
 double gauge_lipschitz(const double* w, int k, double n) {
   if (n < 1) return std::numeric_limits<double>::infinity();
   if (n >= 2) {

@@ -22,6 +22,17 @@ Interval power_sum(const Interval* u, int k, double n);
 // (u_i <= f); (f_hi/u_lo)^(1-n) for n < 1, infinite when u_i can reach 0.
 double power_sum_partial_bound(Interval ui, Interval f_range, double n);
 
+// The range of ∂f/∂u_i = (u_i/f)^(n-1) where u_i ∈ ui and f ∈ f_range, for n >= 1: between
+// (u_lo/f_hi)^(n-1) and power_sum_partial_bound (both 1 for n = 1, where f = Σ u_i). n < 1: [0,
+// inf].
+Interval power_sum_partial(Interval ui, Interval f_range, double n);
+
+// The range of df/dt along a path where u_i ∈ u[i] and du_i/dt ∈ du[i], f ∈ f_range: f is
+// Lipschitz for n >= 1, so its difference quotients lie in Σ ∂f/∂u_i · du_i/dt over those ranges
+// (the chain rule wherever f is differentiable, which is almost everywhere). Widened for the
+// products' and the sum's rounding. Entire for n < 1 or where a rate is not finite.
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n);
+
 // The global Lipschitz constant of g(v) = (Σ |w_i v_i|^n)^(1/n) over R^k (Euclidean): the
 // l_q -> l_2 norm of diag(w) with 1/n + 1/q = 1, i.e. max_i w_i for n >= 2 and
 // ||w||_r with r = 2n/(2-n) for 1 <= n < 2 (Hölder, attained). Infinite for n < 1 (docs/math.md

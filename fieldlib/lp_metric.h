@@ -11,6 +11,7 @@
 #include "box.h"
 #include "gauge.h"
 #include "node_util.h"
+#include "one_sided.h"
 
 namespace softtrace {
 
@@ -39,9 +40,13 @@ inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
   return f;
 }
 
-// The value interval and the Lipschitz bound over `b` in one pass.
+// The value interval and the Lipschitz bound over `b` in one pass. With `rate` (the local
+// coordinates' rates along a segment in `b`), also the range of df/dt along it into *slope:
+// u_i = |x_i|/a_i is a one-sided term of x_i with both radii a_i, so power_sum_slope over them
+// (not capped by the Lipschitz bound).
 inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* value,
-                             double* lipschitz) {
+                             double* lipschitz, const Interval* rate = nullptr,
+                             Interval* slope = nullptr) {
   Interval u[3];
   for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(m.a[i]);
   Interval f;
@@ -63,6 +68,10 @@ inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* va
     s += g * g;
   }
   *lipschitz = std::min(m.global_L, std::sqrt(s) * (1 + 1e-13));
+  if (!rate) return;
+  Interval du[3];
+  for (int i = 0; i < 3; ++i) du[i] = OneSidedTerm{m.a[i], m.a[i], 0}.rate(b.axis(i), rate[i]);
+  *slope = power_sum_slope(u, du, 3, f, m.n);
 }
 
 }  // namespace softtrace

@@ -53,6 +53,17 @@ struct OneSidedTerm {
     if (s.lo < -dead) m = std::max(m, 1 / r_neg);
     return m;
   }
+  // The range of du/dt along a path where s ∈ [s] changes at a rate in [ds]: ds/r_pos where s may
+  // be above the dead zone, -ds/r_neg where below it, 0 inside it (u is piecewise linear in s).
+  Interval rate(Interval s, Interval ds) const {
+    const Interval up = ds / Interval(r_pos), down = -ds / Interval(r_neg);
+    if (s.lo > dead) return up;
+    if (s.hi < -dead) return down;
+    Interval d = 0.0;
+    if (s.hi > dead) d = hull(d, up);
+    if (s.lo < -dead) d = hull(d, down);
+    return d;
+  }
   // The s range of {u <= c} for c >= 0, widened by a relative 1e-12 against rounding.
   Interval below(double c) const {
     return {-(dead + c * r_neg) * (1 + 1e-12), (dead + c * r_pos) * (1 + 1e-12)};

@@ -21,11 +21,15 @@ double blanc_lipschitz(double s) {
 }
 
 // |P'| peaks where P'' = -(120u^2 - 204u + 44)/9 = 0, u = d^2 in [0,1].
+double wyvill_peak() {
+  static const double d = std::sqrt((204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240);
+  return d;
+}
+
 double wyvill_lipschitz() {
   static const double L = [] {
-    const double u = (204 - std::sqrt(204.0 * 204 - 4 * 120 * 44)) / 240;
     double dP;
-    wyvill(std::sqrt(u), &dP);
+    wyvill(wyvill_peak(), &dP);
     return std::abs(dP) * (1 + 1e-12);
   }();
   return L;

@@ -92,23 +92,45 @@ double wyvill_lipschitz();
 inline double murakami_lipschitz() {
   return 8 / (3 * 1.7320508075688772) * (1 + 1e-12);  // 8/(3 sqrt 3), sqrt 3 to within an ulp
 }
-// max |P'| over d in [lo, hi]: |P'| = 4d(1 - d^2) rises to d = 1/sqrt(3) and falls to 0 at 1, so
-// away from the peak it is the larger end's value (rounded up by 1e-12 relative).
-inline double murakami_slope_bound(double lo, double hi) {
+// [min |P'|, max |P'|] over d in [lo, hi] for a potential whose |P'| rises from d = 0 to its peak
+// `peak` at d = `at` and falls after it to 0 at d = 1 (and is 0 beyond): the ends' values bound
+// it, and the peak where [lo, hi] holds `at`. Rounded by 1e-12 relative (|P'| is computed to a
+// few ulps; `at` is known to a few ulps, where |P'| is flat to second order).
+template <class AbsSlope>
+Interval unimodal_slope_range(AbsSlope abs_slope, double at, double peak, double lo, double hi) {
   lo = std::clamp(lo, 0.0, 1.0);
   hi = std::clamp(hi, 0.0, 1.0);
-  constexpr double kPeak = 0.57735026918962576;  // 1/sqrt(3), to within an ulp
-  if (!(lo <= hi) || (lo <= kPeak && kPeak <= hi)) return murakami_lipschitz();
-  const auto slope = [](double d) { return 4 * d * (1 - d * d); };
-  return std::min(murakami_lipschitz(), std::max(slope(lo), slope(hi)) * (1 + 1e-12) + 1e-300);
+  if (!(lo <= hi)) return {0, peak};
+  const double a = abs_slope(lo), b = abs_slope(hi);
+  const double top =
+      lo <= at && at <= hi ? peak : std::min(peak, std::max(a, b) * (1 + 1e-12) + 1e-300);
+  return {std::max(0.0, std::min(a, b) * (1 - 1e-12) - 1e-300), top};
 }
-// min |P'| over d in [lo, hi]: the smaller end's value, |P'| being unimodal (rounded down).
-inline double murakami_slope_floor(double lo, double hi) {
-  lo = std::clamp(lo, 0.0, 1.0);
-  hi = std::clamp(hi, 0.0, 1.0);
-  if (!(lo <= hi)) return 0;
-  const auto slope = [](double d) { return 4 * d * (1 - d * d); };
-  return std::max(0.0, std::min(slope(lo), slope(hi)) * (1 - 1e-12) - 1e-300);
+// Murakami: |P'| = 4d(1 - d^2), peak 8/(3 sqrt 3) at d = 1/sqrt(3).
+inline Interval murakami_slope_range(Interval d) {
+  constexpr double kPeak = 0.57735026918962576;  // 1/sqrt(3), to within an ulp
+  return unimodal_slope_range([](double x) { return 4 * x * (1 - x * x); }, kPeak,
+                              murakami_lipschitz(), d.lo, d.hi);
+}
+// Blanc: unimodal with its peak [PB-5] at d = 0.5 for every s >= 0 (docs/math.md §3.2: P'' < 0
+// on (0, 0.5) and > 0 on (0.5, 1)).
+inline Interval blanc_slope_range(double s, Interval d) {
+  const auto abs_slope = [s](double x) {
+    double dP;
+    blanc(x, s, &dP);
+    return std::abs(dP);
+  };
+  return unimodal_slope_range(abs_slope, 0.5, blanc_lipschitz(s), d.lo, d.hi);
+}
+// Wyvill: P'' changes sign once on [0, 1], where u = d^2 = (204 - sqrt(20496)) / 240.
+double wyvill_peak();  // that d
+inline Interval wyvill_slope_range(Interval d) {
+  const auto abs_slope = [](double x) {
+    double dP;
+    wyvill(x, &dP);
+    return std::abs(dP);
+  };
+  return unimodal_slope_range(abs_slope, wyvill_peak(), wyvill_lipschitz(), d.lo, d.hi);
 }
 
 // The potential an instruction names (Blanc with softness s, Wyvill, Murakami) as a value, for an

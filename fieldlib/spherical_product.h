@@ -35,9 +35,13 @@ inline double spherical_product(const SphericalProductParams& m, const Vec3& p, 
   return f;
 }
 
-// The value interval and the Lipschitz bound over `b` from one computation of the terms.
+// The value interval and the Lipschitz bound over `b` from one computation of the terms. With
+// `rate` (the local coordinates' rates along a segment in `b`), also the range of df/dt along it
+// into *slope: dm/dt = ∂m/∂h·dh/dt + ∂m/∂u_z·u_z', dh/dt = Σ ∂h/∂u_i·u_i', each a power_sum_slope
+// (not capped by the Lipschitz bound).
 inline void spherical_product_bounds(const SphericalProductParams& m, const Box& b, Interval* value,
-                                     double* lipschitz) {
+                                     double* lipschitz, const Interval* rate = nullptr,
+                                     Interval* slope = nullptr) {
   const Interval uh[2] = {m.t[0].range(b.axis(0)), m.t[1].range(b.axis(1))};
   const Interval um[2] = {power_sum(uh, 2, m.n1), m.t[2].range(b.axis(2))};
   const Interval f = power_sum(um, 2, m.n2);
@@ -49,6 +53,11 @@ inline void spherical_product_bounds(const SphericalProductParams& m, const Box&
   const double gz = chain(power_sum_partial_bound(um[1], f, m.n2), m.t[2].slope(b.axis(2)));
   const double L = std::sqrt(gh * gh + gz * gz) * (1 + 1e-13);
   *lipschitz = std::isnan(L) ? m.global_L : std::min(m.global_L, L);
+  if (!rate) return;
+  const Interval duh[2] = {m.t[0].rate(b.axis(0), rate[0]), m.t[1].rate(b.axis(1), rate[1])};
+  const Interval dum[2] = {power_sum_slope(uh, duh, 2, um[0], m.n1),
+                           m.t[2].rate(b.axis(2), rate[2])};
+  *slope = power_sum_slope(um, dum, 2, f, m.n2);
 }
 
 }  // namespace softtrace

@@ -20,11 +20,17 @@ constexpr int kSegmentSteps = 4;
 // The farthest probe, in tolerances (4 footprint radii): a bracket is refined to its one crossing
 // only when it is that short.
 constexpr double kProbeReach = 2;
-// How far from a point with g = v < 0 the ray is clear when g changes at most `rate` per unit.
-double reach(double v, double rate) {
-  return rate > 0 ? -v / rate : kInf;
-}
 }  // namespace
+
+double ObjectTracer::value_error(double g) const {
+  return 1e-12 * (std::abs(g) + std::abs(object_->iso)) + 1e-300;
+}
+
+double ObjectTracer::reach(double g, double rate) const {
+  const double most = g + value_error(g);  // the true g is at most this
+  if (!(most < 0)) return 0;
+  return rate > 0 ? -most / rate : kInf;
+}
 
 Workspace& ObjectTracer::workspace() const {
   // One per thread, shared by every object's tracer: evaluations do not allocate once it has grown
@@ -194,12 +200,13 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   const double floor = -rates.fall;  // > 0: g rises at least this fast on [a, b]
   double lo = a, hi = b;
   const auto narrow = [&](double m, double gm) {
+    const double err = value_error(gm);
     if (gm < 0) {
       lo = std::max(lo, m + reach(gm, rates.rise));
-      if (floor > 0) hi = std::min(hi, m - gm / floor);
+      if (floor > 0) hi = std::min(hi, m - (gm - err) / floor);
     } else {
       hi = std::min(hi, m);
-      if (floor > 0) lo = std::max(lo, m - gm / floor);
+      if (floor > 0) lo = std::max(lo, m - (gm + err) / floor);
     }
   };
   narrow(a, ga);
@@ -247,8 +254,14 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   double t = t0, gt = 0;
   // Whether gt is g(t). Past t0, g(t) < 0 is always known (from an interval or a value).
   bool gt_known = false;
-  double s = (t1 - t0) / 4;  // the next segment's length
-  double probe = 0;          // how far ahead to probe near the surface
+  // The next segment's length: first, a quarter of the way through the box for a camera ray; for
+  // a shadow ray all of it (most leave the object, and one pass may clear it all: over scenes/ at
+  // 80x60, 4.08 evaluations per shadow ray against 4.75 with a quarter). A sixteenth would save
+  // camera rays 8 % of their evaluations, but its other segmentation brackets a thin sliver with
+  // the surface behind it in one short piece that refinement may settle past (the pinched_segment
+  // hit mask, 0.4 of a tolerance deep): a first-crossing scan should come with it.
+  double s = query == Query::Any ? t1 - t0 : (t1 - t0) / 4;
+  double probe = 0;  // how far ahead to probe near the surface
   // Whether s was halved because the last segment's bound was too loose to decide it: its first
   // half, once cleared, is followed by the second at the same length, not twice it (the surface
   // that kept the whole from clearing is likely there).
@@ -298,7 +311,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
     if (sb.fall <= 0) {
       // Where g rises at least -fall per unit, the crossing is no farther than -g/-fall (unless
       // that is below what t can resolve).
-      const double reach_max = sb.fall < 0 ? t + gt / sb.fall : b;
+      const double reach_max = sb.fall < 0 ? t + (gt - value_error(gt)) / sb.fall : b;
       const double e = reach_max > t ? std::min(b, reach_max) : b;
       ++work.point_evals;
       const double ge = g_view(at(e));

@@ -126,6 +126,13 @@ class ObjectTracer {
   const Program& program() const { return program_; }
 
  private:
+  // How far a computed g may be from the true one: the program's rounding, a few ulps of the
+  // field's terms, far inside this. Every certificate takes the true value anywhere within it
+  // (where slope bounds are tiny, as along a flat face, rounding would otherwise carry a step).
+  double value_error(double g) const;
+  // How far along the ray from a point with computed g < 0 the solid cannot be, where g rises at
+  // most `rate` per unit (0 where g may be >= 0).
+  double reach(double g, double rate) const;
   // This thread's workspace, fitted to the program.
   Workspace& workspace() const;
   // g = inside_sign (f - iso): the solid is g >= 0.

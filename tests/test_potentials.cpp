@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "potentials.h"
@@ -115,6 +116,53 @@ TEST(Murakami, QuarticFacts) {
   for (int i = 0; i <= 20000; ++i) max_slope = std::max(max_slope, std::abs(dP(*p, i / 20000.0)));
   EXPECT_LE(max_slope, p->lipschitz());
   EXPECT_NEAR(max_slope, p->lipschitz(), 1e-6);
+}
+
+// The range of |P'| over an interval of d (the tracer's slope along a segment) holds every
+// sampled |P'| in it, and is the ends' values and the peak: tight, not just [0, max].
+void check_slope_ranges(const Potential& p, Interval (*range)(const Potential&, Interval),
+                        double peak_at) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-0.1, 1.2);
+  int narrowed = 0;
+  for (int i = 0; i < 2000; ++i) {
+    double lo = u(rng), hi = u(rng);
+    if (lo > hi) std::swap(lo, hi);
+    if (i % 4 == 0) hi = lo + (hi - lo) * 1e-3;  // short ones, as along a short segment
+    const Interval r = range(p, {lo, hi});
+    for (int j = 0; j <= 50; ++j) {
+      const double d = lo + (hi - lo) * j / 50, s = std::abs(dP(p, d));
+      ASSERT_LE(r.lo, s) << "[" << lo << ", " << hi << "] at " << d;
+      ASSERT_GE(r.hi, s) << "[" << lo << ", " << hi << "] at " << d;
+    }
+    const double a = std::abs(dP(p, std::clamp(lo, 0.0, 1.0)));
+    const double b = std::abs(dP(p, std::clamp(hi, 0.0, 1.0)));
+    EXPECT_NEAR(r.lo, std::min(a, b), 1e-9);
+    const bool peak = lo <= peak_at && peak_at <= hi;
+    EXPECT_NEAR(r.hi, peak ? p.lipschitz() : std::max(a, b), 1e-9);
+    narrowed += r.lo > 0;
+  }
+  EXPECT_GT(narrowed, 500);
+}
+
+TEST_P(Blanc, SlopeRangeIsUnimodal) {  // |P'| rises to d = 0.5 and falls after (docs/math.md §3.2)
+  check_slope_ranges(
+      *make_blanc(GetParam()),
+      [](const Potential& p, Interval d) { return blanc_slope_range(p.parameter(), d); }, 0.5);
+}
+
+TEST(Wyvill, SlopeRangeIsUnimodal) {
+  const auto p =
+      create_wyvill(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
+  check_slope_ranges(
+      *p, [](const Potential&, Interval d) { return wyvill_slope_range(d); }, wyvill_peak());
+}
+
+TEST(Murakami, SlopeRangeIsUnimodal) {
+  const auto p =
+      create_murakami(Params(nlohmann::json::object(), "", std::make_shared<std::string>("t")));
+  check_slope_ranges(
+      *p, [](const Potential&, Interval d) { return murakami_slope_range(d); }, 1 / std::sqrt(3.0));
 }
 
 TEST(Potential, IntervalIsTheMonotoneImage) {
