@@ -55,6 +55,9 @@ void write_png(const std::string& path, const ImageFile& img, bool srgb) {
       (nc >= 3 ? PNG_FORMAT_FLAG_COLOR : 0) | (nc == 2 || nc == 4 ? PNG_FORMAT_FLAG_ALPHA : 0);
   // Without this flag libpng writes the sRGB chunk for 8-bit data (png_image_write_main).
   if (!srgb) p.image.flags |= PNG_IMAGE_FLAG_COLORSPACE_NOT_sRGB;
+  // Speed over size (libpng then filters less and deflates faster): a render writes its image
+  // after the frame, on one thread.
+  p.image.flags |= PNG_IMAGE_FLAG_FAST;
   std::vector<png_byte> bytes(img.pixels.size());
   for (size_t i = 0; i < bytes.size(); ++i) {
     const float v = std::isnan(img.pixels[i]) ? 0.0f : std::clamp(img.pixels[i], 0.0f, 1.0f);
