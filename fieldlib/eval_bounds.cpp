@@ -275,16 +275,19 @@ class Walker {
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
+          // Off a segment only the Lipschitz bound is wanted: the global one costs nothing.
           potential(
-              in, [s](double d) { return blanc(d, s, nullptr); }, blanc_slope_range(s, I[in.in]));
+              in, [s](double d) { return blanc(d, s, nullptr); },
+              segment_ ? blanc_slope_range(s, I[in.in]) : Interval(0, blanc_lipschitz(s)));
         }
         break;
       case Op::Wyvill:
         if (bounds_)
           potential(
-              in, [](double d) { return wyvill(d, nullptr); }, wyvill_slope_range(I[in.in]));
+              in, [](double d) { return wyvill(d, nullptr); },
+              segment_ ? wyvill_slope_range(I[in.in]) : Interval(0, wyvill_lipschitz()));
         break;
-      case Op::Murakami:
+      case Op::Murakami:  // a polynomial: its range costs little anywhere
         if (bounds_)
           potential(
               in, [](double d) { return murakami(d, nullptr); }, murakami_slope_range(I[in.in]));
@@ -333,6 +336,7 @@ class Walker {
   void potential(const Instr& in, P pot, Interval slope) {
     potential_bounds(pot, slope.hi, ws_.ivals[in.in], ws_.lips[in.in], &ws_.ivals[in.out],
                      &ws_.lips[in.out]);
+    if (!segment_) return;
     ws_.slopes[in.out] = -slope * ws_.slopes[in.in];
     ws_.quiet[in.out] = quiet_potential(in.in);
   }
