@@ -96,6 +96,9 @@ double gradient_pruned(const Program& p, const Vec3& point, Vec3* grad, Workspac
 struct Segment {
   Vec3 a, b;
   double pad = 0;
+  // Whether bounds() derives the slope along it (BoxBounds::slope) where it costs work beyond the
+  // values' (gauges' and potentials' derivative ranges); without, those take [-L, L].
+  bool slopes = true;
 };
 
 struct BoxBounds {

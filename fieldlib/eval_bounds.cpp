@@ -141,13 +141,14 @@ void potential_bounds(P pot, double max_slope, Interval d, double Ld, Interval* 
 
 class Walker {
  public:
-  Walker(const Program& p, Workspace& ws, bool with_bounds, bool on_segment)
+  Walker(const Program& p, Workspace& ws, bool with_bounds, const Segment* seg)
       : p_(p),
         ws_(ws),
         bounds_(with_bounds),
-        segment_(on_segment),
+        segment_(seg != nullptr),
+        slopes_(seg && seg->slopes),
         K_(p.consts.data()),
-        length_(on_segment ? length(ws.segs[1] - ws.segs[0]) : 0) {}
+        length_(seg ? length(ws.segs[1] - ws.segs[0]) : 0) {}
 
   // Walks code[begin, end) of the base program, appending what is kept to ws.view.
   void walk(int begin, int end) {
@@ -202,7 +203,7 @@ class Walker {
             ellipsoid_on_segment({k[0], k[1], k[2]}, {k[5], k[6], k[7]}, S[0], S[1],
                                  ws_.seg_pads[in.in], length_, &I[in.out], &D[in.out], &Q[in.out]);
             L[in.out] = k[4];
-          } else if (segment_) {
+          } else if (slopes_) {
             Interval rate[3];
             axis_rates(in.in, rate);
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out],
@@ -210,11 +211,12 @@ class Walker {
             gauge_segment_facts(in.out);
           } else {
             lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
+            segment_facts_from_box(in.out);
           }
         }
         break;
       case Op::SphericalProduct:
-        if (bounds_ && segment_) {
+        if (bounds_ && slopes_) {
           Interval rate[3];
           axis_rates(in.in, rate);
           spherical_product_bounds(spherical_product_params(K_ + in.a), box(in.in), &I[in.out],
@@ -223,6 +225,7 @@ class Walker {
         } else if (bounds_) {
           spherical_product_bounds(spherical_product_params(K_ + in.a), box(in.in), &I[in.out],
                                    &L[in.out]);
+          segment_facts_from_box(in.out);
         }
         break;
       case Op::ParallelPlanes:
@@ -260,9 +263,9 @@ class Walker {
             s[i] =
                 segment_ ? dot_on_segment(m.normal(i), in.in) : dot_range(box(in.in), m.normal(i));
           generalized_distance_bounds(m, s.data(), u.data(), &I[in.out], &L[in.out]);
-          D[in.out] = segment_ ? generalized_distance_slope(m, s.data(), u.data(), I[in.out],
-                                                            L[in.out], in.in)
-                               : Interval(-L[in.out], L[in.out]);
+          D[in.out] = slopes_ ? generalized_distance_slope(m, s.data(), u.data(), I[in.out],
+                                                           L[in.out], in.in)
+                              : Interval(-L[in.out], L[in.out]);
           Q[in.out] = I[in.out].lo >= 1 ? 1 : 0;
         }
         break;
@@ -275,17 +278,17 @@ class Walker {
       case Op::Blanc:
         if (bounds_) {
           const double s = K_[in.a];
-          // Off a segment only the Lipschitz bound is wanted: the global one costs nothing.
+          // Without slopes only the Lipschitz bound is wanted: the global one costs nothing.
           potential(
               in, [s](double d) { return blanc(d, s, nullptr); },
-              segment_ ? blanc_slope_range(s, I[in.in]) : Interval(0, blanc_lipschitz(s)));
+              slopes_ ? blanc_slope_range(s, I[in.in]) : Interval(0, blanc_lipschitz(s)));
         }
         break;
       case Op::Wyvill:
         if (bounds_)
           potential(
               in, [](double d) { return wyvill(d, nullptr); },
-              segment_ ? wyvill_slope_range(I[in.in]) : Interval(0, wyvill_lipschitz()));
+              slopes_ ? wyvill_slope_range(I[in.in]) : Interval(0, wyvill_lipschitz()));
         break;
       case Op::Murakami:  // a polynomial: its range costs little anywhere
         if (bounds_)
@@ -703,6 +706,7 @@ class Walker {
   const Program& p_;
   Workspace& ws_;
   const bool bounds_, segment_;
+  const bool slopes_;  // on a segment that asks for its slope (Segment::slopes)
   const double* K_;
   const double length_;  // the segment's length in the world: t runs over [0, length_]
   int top_ = 0;
@@ -718,7 +722,7 @@ void run(const Program& p, const Box& b, const Segment* seg, Workspace& ws, bool
     ws.segs[1] = seg->b;
     ws.seg_pads[0] = seg->pad;
   }
-  Walker(p, ws, with_bounds, seg != nullptr).walk(0, static_cast<int>(p.code.size()));
+  Walker(p, ws, with_bounds, seg).walk(0, static_cast<int>(p.code.size()));
   ws.view.result = p.result;
 }
 

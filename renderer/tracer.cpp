@@ -127,7 +127,8 @@ Segment ObjectTracer::segment(const Ray& ray, double a, double b) const {
   // The points o + t d the tracer evaluates are rounded to a few ulps of |o| + |t|.
   const double pad = 1e-12 * (std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)}) +
                               std::max(std::abs(a), std::abs(b)));
-  return {ray.o + ray.d * a, ray.o + ray.d * b, pad};
+  // The global mode steps by the global bound only: no slopes to derive.
+  return {ray.o + ray.d * a, ray.o + ray.d * b, pad, mode_ == LipschitzMode::Local};
 }
 
 ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double a, double b,
