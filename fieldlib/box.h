@@ -33,6 +33,10 @@ struct Box {
     return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z;
   }
   Interval axis(int i) const { return {lo[i], hi[i]}; }
+  // Corner c (0..7): bit 0 picks hi.x over lo.x, bit 1 hi.y, bit 2 hi.z.
+  Vec3 corner(int c) const {
+    return {c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z};
+  }
   Vec3 center() const { return (lo + hi) * 0.5; }
   Vec3 extent() const { return hi - lo; }
   double diagonal() const { return length(hi - lo); }

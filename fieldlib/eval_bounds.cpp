@@ -74,10 +74,6 @@ Box place_box(const Box& b, const double* t) {
   return o;
 }
 
-double max_abs(const Vec3& v) {
-  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-}
-
 // How far a computed point may stray from the segment after a step with these magnitudes (each
 // step's rounding is a few ulps of its operands; 1e-12 is thousands).
 constexpr double kSegmentRounding = 1e-12;
@@ -431,9 +427,13 @@ class Walker {
   // for the rounding of the register's segment ends (as ellipsoid_on_segment). Entire for a
   // degenerate segment.
   Interval rate_on_segment(const Vec3& n, int r) const {
-    const Vec3* S = ws_.segs.data() + 2 * r;
-    const Vec3 e = S[1] - S[0];
-    const double k = dot(e, n), pad = 1e-9 * length(e) + kTiny;
+    const Vec3 e = segment_step(r);
+    return padded_rate(dot(e, n), rate_pad(e));
+  }
+  Vec3 segment_step(int r) const { return ws_.segs[2 * r + 1] - ws_.segs[2 * r]; }
+  static double rate_pad(const Vec3& e) { return 1e-9 * length(e) + kTiny; }
+  // k / len, grown by pad and by the division's rounding.
+  Interval padded_rate(double k, double pad) const {
     const Interval rate{widen_down((k - pad) / length_, 1e-12),
                         widen_up((k + pad) / length_, 1e-12)};
     if (!(std::isfinite(rate.lo) && std::isfinite(rate.hi))) return Interval::entire();
@@ -469,14 +469,12 @@ class Walker {
     return capped(power_sum_slope(u, du.data(), m.k, f, m.n()), L);
   }
 
-  // An axis-aligned gauge's slope along register r's segment (lp_metric, spherical products): the
-  // local coordinates' rates, for gauge_slope (lp_metric.h, spherical_product.h).
+  // The local coordinates' rates along register r's segment (rate_on_segment along each axis),
+  // for the axis-aligned gauges' slopes (lp_metric_bounds, spherical_product_bounds).
   void axis_rates(int r, Interval* rate) const {
-    for (int i = 0; i < 3; ++i) {
-      Vec3 axis{0, 0, 0};
-      axis[i] = 1;
-      rate[i] = rate_on_segment(axis, r);
-    }
+    const Vec3 e = segment_step(r);
+    const double pad = rate_pad(e);
+    for (int i = 0; i < 3; ++i) rate[i] = padded_rate(e[i], pad);
   }
 
   static Interval capped(Interval slope, double L) {

@@ -1,6 +1,7 @@
 // Small 3-vector and 3x3 rotation used throughout fieldlib; double precision everywhere.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace softtrace {
@@ -41,6 +42,10 @@ inline double length(const Vec3& v) {
 }
 inline Vec3 normalize(const Vec3& v) {
   return v / length(v);
+}
+// The largest component's magnitude (the scale of a point's coordinates, for rounding).
+inline double max_abs(const Vec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }
 inline bool isfinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

@@ -130,9 +130,12 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
   // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
-  if (beam && dot(ray.d, beam->forward) > 0) {
-    ctx.beam = beam;
-    ctx.beam_cos = dot(ray.d, beam->forward);
+  if (beam) {
+    const double cos = dot(ray.d, beam->forward);
+    if (cos > 0) {
+      ctx.beam = beam;
+      ctx.beam_cos = cos;
+    }
   }
   ctx.tnear = tnear;
   ctx.t = tfar;

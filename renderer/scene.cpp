@@ -22,15 +22,12 @@ constexpr size_t kMaxObjects = 10000;
 // Lengths and directions of vectors from the scene without overflow or underflow: a component
 // of 1e308 squares to inf, one of 1e-200 to 0. Scaling by the largest component first keeps
 // |v| and v / |v| exact to rounding for every finite v.
-double largest_component(const Vec3& v) {
-  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-}
 double scaled_length(const Vec3& v) {
-  const double m = largest_component(v);
+  const double m = max_abs(v);
   return m > 0 ? m * length(v / m) : 0;
 }
 Vec3 unit(const Vec3& v) {  // v non-zero and finite
-  return normalize(v / largest_component(v));
+  return normalize(v / max_abs(v));
 }
 
 // Distances the renderer squares (camera to target, point light to objects) stay within this,
@@ -45,11 +42,11 @@ Camera load_camera(const Params& p) {
   c.fov = p.number("fov", c.fov);
   p.check(c.fov > 0 && c.fov < 180, "fov", "expected a vertical field of view in (0, 180) degrees");
   const Vec3 view = c.target - c.eye;
-  p.check(largest_component(view) > 0, "target", "expected a target different from the eye");
+  p.check(max_abs(view) > 0, "target", "expected a target different from the eye");
   const double distance = scaled_length(view);
   p.check(distance >= 1 / kMaxDistance && distance <= kMaxDistance, "target",
           "expected a target between 1e-150 and 1e150 from the eye");
-  p.check(largest_component(up) > 0, "up", "expected a non-zero up vector");
+  p.check(max_abs(up) > 0, "up", "expected a non-zero up vector");
   c.up = unit(up);  // the camera's and the default light's cross products cannot overflow
   p.check(length(cross(unit(view), c.up)) > 1e-9, "up",
           "expected an up vector not parallel to the viewing direction");
@@ -111,7 +108,7 @@ Light load_light(const Params& p) {
   if (type == "directional") {
     l.type = Light::Type::Directional;
     l.direction = p.vec3("direction");
-    p.check(largest_component(l.direction) > 0, "direction", "expected a non-zero direction");
+    p.check(max_abs(l.direction) > 0, "direction", "expected a non-zero direction");
     l.direction = unit(l.direction);
     l.shadows = p.boolean("shadows", true);
   } else if (type == "point") {
@@ -198,9 +195,8 @@ void check_point_light_distances(const Scene& s, const std::vector<Params>& ligh
   for (size_t i = 0; i < lights.size(); ++i) {
     if (s.lights[i].type != Light::Type::Point) continue;
     for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 c{corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
-                   corner & 4 ? box.hi.z : box.lo.z};
-      lights[i].check(scaled_length(c - s.lights[i].position) <= kMaxDistance, "position",
+      lights[i].check(scaled_length(box.corner(corner) - s.lights[i].position) <= kMaxDistance,
+                      "position",
                       "expected a point light within 1e150 of the objects (one farther away "
                       "is a directional light)");
     }

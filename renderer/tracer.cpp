@@ -68,8 +68,7 @@ ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
   if (mode == LipschitzMode::Local && object.inside_sign > 0 && object.iso > 0)
     blobs_ = BlobSum::of(program_);
   const Box& b = object.bounds;
-  scale_ = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
-                     std::abs(b.hi.y), std::abs(b.hi.z)});
+  scale_ = std::max(max_abs(b.lo), max_abs(b.hi));
 }
 
 double ObjectTracer::eval(const Vec3& p, Vec3* grad) const {
@@ -118,15 +117,13 @@ double ObjectTracer::footprint(const Ray& ray, double t) const {
   // Points o + t d are only known to a few ulps of the coordinates' magnitude: a tolerance below
   // that would be decided by rounding.
   const double resolvable =
-      64 * std::numeric_limits<double>::epsilon() *
-      (scale_ + std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)}) + std::abs(t));
+      64 * std::numeric_limits<double>::epsilon() * (scale_ + max_abs(ray.o) + std::abs(t));
   return std::max(f > 0 ? f : default_footprint_, resolvable);
 }
 
 Segment ObjectTracer::segment(const Ray& ray, double a, double b) const {
   // The points o + t d the tracer evaluates are rounded to a few ulps of |o| + |t|.
-  const double pad = 1e-12 * (std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)}) +
-                              std::max(std::abs(a), std::abs(b)));
+  const double pad = 1e-12 * (max_abs(ray.o) + std::max(std::abs(a), std::abs(b)));
   // The global mode steps by the global bound only: no slopes to derive.
   return {ray.o + ray.d * a, ray.o + ray.d * b, pad, mode_ == LipschitzMode::Local};
 }
@@ -260,7 +257,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   // 80x60, 4.08 evaluations per shadow ray against 4.75 with a quarter). A sixteenth would save
   // camera rays 8 % of their evaluations, but its other segmentation brackets a thin sliver with
   // the surface behind it in one short piece that refinement may settle past (the pinched_segment
-  // hit mask, 0.4 of a tolerance deep): a first-crossing scan should come with it.
+  // hit mask, 0.4 of a tolerance deep), so a camera ray keeps the quarter.
   double s = query == Query::Any ? t1 - t0 : (t1 - t0) / 4;
   double probe = 0;  // how far ahead to probe near the surface
   // Whether s was halved because the last segment's bound was too loose to decide it: its first

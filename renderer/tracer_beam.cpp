@@ -27,9 +27,7 @@ double ObjectTracer::clear_depth(const Frustum& f, double from, TraceCounters& w
   // The box's range of forward depths (depth is linear: its extremes are at corners).
   double near = std::numeric_limits<double>::infinity(), far = -near;
   for (int c = 0; c < 8; ++c) {
-    const Vec3 p{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
-                 c & 4 ? box.hi.z : box.lo.z};
-    const double d = dot(p - f.eye, f.forward);
+    const double d = dot(box.corner(c) - f.eye, f.forward);
     near = std::min(near, d);
     far = std::max(far, d);
   }
@@ -48,7 +46,7 @@ double ObjectTracer::clear_depth(const Frustum& f, double from, TraceCounters& w
     }
     spread = std::max(spread, hi - lo);
   }
-  const double eye = std::max({std::abs(f.eye.x), std::abs(f.eye.y), std::abs(f.eye.z)});
+  const double eye = max_abs(f.eye);
   // The frustum between depths a and b lies in the box of its eight corners (it is their convex
   // hull); only its part inside the object's box can hold the solid.
   const auto slice = [&](double a, double b) {
