@@ -89,7 +89,7 @@ class LpMetric final : public FieldNode {
   void terms(const Box& b, Interval* u) const {
     for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(a_[i]);
   }
-  LpMetricParams params() const { return {a_, n_, global_L_}; }
+  LpMetricParams params() const { return LpMetricParams::make(a_, n_, global_L_); }
 
   Vec3 a_;
   double n_, global_L_;

@@ -202,11 +202,11 @@ class Walker {
           } else if (slopes_) {
             Interval rate[3];
             axis_rates(in.in, rate);
-            lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out],
+            lp_metric_bounds(LpMetricParams::load(k), box(in.in), &I[in.out], &L[in.out],
                              rate, &D[in.out]);
             gauge_segment_facts(in.out);
           } else {
-            lp_metric_bounds({{k[0], k[1], k[2]}, k[3], k[4]}, box(in.in), &I[in.out], &L[in.out]);
+            lp_metric_bounds(LpMetricParams::load(k), box(in.in), &I[in.out], &L[in.out]);
             segment_facts_from_box(in.out);
           }
         }

@@ -101,7 +101,7 @@ void gradient_range(const Code& c, int begin, int end, Workspace::Dual* S, Works
       case Op::LpMetric: {
         const double* k = K + in.a;
         local(in, [&](const Vec3& q, Vec3* g) {
-          return lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, q, g);
+          return lp_metric(LpMetricParams::load(k), q, g);
         });
         break;
       }

@@ -85,7 +85,7 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
       }
       case Op::LpMetric: {
         const double* k = K + in.a;
-        const LpMetricParams m{{k[0], k[1], k[2]}, k[3], k[4]};
+        const LpMetricParams m = LpMetricParams::load(k);
         const double *px = reg(in.in, 0), *py = reg(in.in, 1), *pz = reg(in.in, 2);
         if (m.n != 2) {
           // lp_metric's general path: the terms |p_i / a_i|, then the power sum over the lanes.
@@ -347,7 +347,7 @@ void point_range(const Code& c, int begin, int end, double* S, Vec3* R, int32_t*
         break;
       case Op::LpMetric: {
         const double* k = K + in.a;
-        out = lp_metric({{k[0], k[1], k[2]}, k[3], k[4]}, R[in.in], nullptr);
+        out = lp_metric(LpMetricParams::load(k), R[in.in], nullptr);
         break;
       }
       case Op::SphericalProduct:

@@ -18,6 +18,15 @@ namespace softtrace {
 struct LpMetricParams {
   Vec3 a;
   double n, global_L;
+  Vec3 ia;  // 1/a
+
+  // From the program's constants (a, n, global_L, 1/a) and from the node's radii and exponent.
+  static LpMetricParams load(const double* k) {
+    return {{k[0], k[1], k[2]}, k[3], k[4], {k[5], k[6], k[7]}};
+  }
+  static LpMetricParams make(const Vec3& a, double n, double global_L) {
+    return {a, n, global_L, {1 / a.x, 1 / a.y, 1 / a.z}};
+  }
 };
 
 inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
@@ -47,8 +56,14 @@ inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
 inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* value,
                              double* lipschitz, const Interval* rate = nullptr,
                              Interval* slope = nullptr) {
+  // u_i = |x_i| · fl(1/a_i): two roundings of at most 2^-53 relative each, so 2^-51 relative
+  // (and 2^-1074 for underflow) holds the exact |x_i|/a_i.
   Interval u[3];
-  for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(m.a[i]);
+  for (int i = 0; i < 3; ++i) {
+    const Interval x = abs(b.axis(i));
+    const double lo = x.lo * m.ia[i], hi = x.hi * m.ia[i];
+    u[i] = {std::max(0.0, lo - (lo * 0x1p-51 + 0x1p-1074)), hi + (hi * 0x1p-51 + 0x1p-1074)};
+  }
   Interval f;
   const double hi2 = u[0].hi * u[0].hi + u[1].hi * u[1].hi + u[2].hi * u[2].hi;
   if (m.n == 2 && hi2 < 1e280) {
@@ -62,12 +77,17 @@ inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* va
   }
   *value = f;
   if (!lipschitz) return;
-  double s = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double g = power_sum_partial_bound(u[i], f, m.n) / m.a[i];
-    s += g * g;
+  if (m.n == 2 && m.a.x == m.a.y && m.a.y == m.a.z) {
+    // A ball: |∇(|x|/a)| = 1/a everywhere, the global bound.
+    *lipschitz = m.global_L;
+  } else {
+    double s = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double g = power_sum_partial_bound(u[i], f, m.n) / m.a[i];
+      s += g * g;
+    }
+    *lipschitz = std::min(m.global_L, std::sqrt(s) * (1 + 1e-13));
   }
-  *lipschitz = std::min(m.global_L, std::sqrt(s) * (1 + 1e-13));
   if (!rate) return;
   Interval du[3];
   for (int i = 0; i < 3; ++i) du[i] = OneSidedTerm{m.a[i], m.a[i], 0}.rate(b.axis(i), rate[i]);
