@@ -374,6 +374,44 @@ TEST(DistanceBounds, FiniteOverBoxesAwayFromSingularPlanes) {  // docs/math.md Â
   }
 }
 
+// The LP metric's interval over a box holds the exact value at every point of it (long double,
+// 11 more bits): radii whose reciprocals are not doubles, tiny and huge magnitudes, point boxes
+// (where only the widening of each rounding separates the ends from the value), n = 2 (the square
+// root's path) and not.
+TEST(DistanceBounds, LpMetricIntervalHoldsTheExactValue) {
+  const struct {
+    Vec3 a;
+    double n;
+  } cases[] = {{{3, 0.1, 7}, 2},
+               {{3, 3, 3}, 2},
+               {{0.3, 1e-3, 11}, 3},
+               {{3, 0.7, 1.3}, 20},
+               {{1e-6, 1e6, 0.9}, 2.5}};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1), mag(-8, 8);
+  for (const auto& [a, n] : cases) {
+    char json[160];
+    std::snprintf(json, sizeof json,
+                  R"({"type":"lp_metric","radii":[%.17g,%.17g,%.17g],"n":%.17g})", a.x, a.y, a.z,
+                  n);
+    const NodePtr f = build_from_json(json);
+    for (int i = 0; i < 2000; ++i) {
+      const double scale = std::pow(10.0, mag(rng));
+      const Vec3 p = Vec3{unit(rng), unit(rng), unit(rng)} * scale;
+      const Vec3 h = i % 2 ? Vec3{}
+                           : Vec3{std::abs(unit(rng)), std::abs(unit(rng)), std::abs(unit(rng))} *
+                                 (0.1 * scale);
+      const Interval I = f->interval(Box(p - h, p + h));
+      long double s = 0;
+      for (int k = 0; k < 3; ++k)
+        s += std::pow(std::abs(static_cast<long double>(p[k])) / a[k], static_cast<long double>(n));
+      const long double exact = std::pow(s, 1 / static_cast<long double>(n));
+      ASSERT_LE(I.lo, exact) << json << " at " << p.x << ", " << p.y << ", " << p.z;
+      ASSERT_GE(I.hi, exact) << json << " at " << p.x << ", " << p.y << ", " << p.z;
+    }
+  }
+}
+
 void expect_error(const std::string& json, const std::string& where, const std::string& what) {
   try {
     build_from_json(json);
