@@ -28,6 +28,7 @@ class LpMetric final : public FieldNode {
   LpMetric(const Vec3& radii, double n) : a_(radii), n_(n) {
     const double w[3] = {1 / a_.x, 1 / a_.y, 1 / a_.z};
     global_L_ = gauge_lipschitz(w, 3, n_);
+    params_ = LpMetricParams::make(a_, n_, global_L_);
   }
 
   double eval(const Vec3& p, Vec3* grad) const override { return lp_metric(params(), p, grad); }
@@ -51,7 +52,7 @@ class LpMetric final : public FieldNode {
     Instr i{Op::LpMetric};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({a_.x, a_.y, a_.z, n_, global_L_, 1 / a_.x, 1 / a_.y, 1 / a_.z});
+    i.a = b.consts({a_.x, a_.y, a_.z, n_, global_L_, params_.ia.x, params_.ia.y, params_.ia.z});
     return b.emit(i);
   }
   Box region(double level, Side side) const override {
@@ -89,10 +90,11 @@ class LpMetric final : public FieldNode {
   void terms(const Box& b, Interval* u) const {
     for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(a_[i]);
   }
-  LpMetricParams params() const { return LpMetricParams::make(a_, n_, global_L_); }
+  const LpMetricParams& params() const { return params_; }
 
   Vec3 a_;
   double n_, global_L_;
+  LpMetricParams params_;  // the kernels' form of the above
 };
 
 // m(h(x,y), ζ_L(z)) with h = (u_x^n1 + u_y^n1)^(1/n1), m = (h^n2 + u_z^n2)^(1/n2) and the
