@@ -25,46 +25,45 @@ Box scaled_box(const Vec3& half, double c) {
 // (|x/a|^n + |y/b|^n + |z/c|^n)^(1/n)   — 000 Eq. 2
 class LpMetric final : public FieldNode {
  public:
-  LpMetric(const Vec3& radii, double n) : a_(radii), n_(n) {
-    const double w[3] = {1 / a_.x, 1 / a_.y, 1 / a_.z};
-    global_L_ = gauge_lipschitz(w, 3, n_);
-    params_ = LpMetricParams::make(a_, n_, global_L_);
+  LpMetric(const Vec3& radii, double n) {
+    const double w[3] = {1 / radii.x, 1 / radii.y, 1 / radii.z};
+    m_ = LpMetricParams::make(radii, n, gauge_lipschitz(w, 3, n));
   }
 
-  double eval(const Vec3& p, Vec3* grad) const override { return lp_metric(params(), p, grad); }
+  double eval(const Vec3& p, Vec3* grad) const override { return lp_metric(m_, p, grad); }
   Interval interval(const Box& b) const override {
     Interval f;
-    lp_metric_bounds(params(), b, &f, nullptr);
+    lp_metric_bounds(m_, b, &f, nullptr);
     return f;
   }
-  double lipschitz() const override { return global_L_; }
+  double lipschitz() const override { return m_.global_L; }
   double lipschitz(const Box& b) const override {
     Interval f;
     double L;
-    lp_metric_bounds(params(), b, &f, &L);
+    lp_metric_bounds(m_, b, &f, &L);
     return L;
   }
   void bounds(const Box& b, Interval* value, double* L) const override {
-    lp_metric_bounds(params(), b, value, L);
+    lp_metric_bounds(m_, b, value, L);
   }
-  // One instruction with the parameters inline.
+  // One instruction with the parameters inline (LpMetricParams::load reads them).
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LpMetric};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({a_.x, a_.y, a_.z, n_, global_L_, params_.ia.x, params_.ia.y, params_.ia.z});
+    i.a = b.consts({m_.a.x, m_.a.y, m_.a.z, m_.n, m_.global_L, m_.ia.x, m_.ia.y, m_.ia.z});
     return b.emit(i);
   }
   Box region(double level, Side side) const override {
-    return side == Side::Below ? scaled_box(a_, level) : Box::unbounded();
+    return side == Side::Below ? scaled_box(m_.a, level) : Box::unbounded();
   }
   // For n = 2, f = |Ax| with A = diag(1/a): ∇f = A v with v = Ax/f a unit vector, so
   // |∇f|^2 = Σ w_i/a_i^2 / Σ w_i with w_i = (x_i/a_i)^2 — a linear-fractional function of w,
   // smallest at a corner of w's box — and Hf = A(I - vv^T)A/f, of norm <= max(1/a_i^2)/f.
   double gradient_floor(const Box& b) const override {
-    if (n_ != 2) return 0;
+    if (m_.n != 2) return 0;
     Interval w[3];
-    terms(b, w);
+    lp_metric_terms(m_, b, w);
     for (Interval& wi : w) wi = sqr(wi);
     if (w[0].lo + w[1].lo + w[2].lo <= 0) return 0;  // the box may hold the centre
     double g2 = std::numeric_limits<double>::infinity();
@@ -72,7 +71,7 @@ class LpMetric final : public FieldNode {
       double num = 0, den = 0;
       for (int i = 0; i < 3; ++i) {
         const double wi = (corner >> i) & 1 ? w[i].hi : w[i].lo;
-        num += wi / (a_[i] * a_[i]);
+        num += wi / (m_.a[i] * m_.a[i]);
         den += wi;
       }
       g2 = std::min(g2, num / den);
@@ -80,21 +79,14 @@ class LpMetric final : public FieldNode {
     return std::sqrt(g2) * (1 - 1e-12);
   }
   double hessian_bound(const Box& b) const override {
-    const double f = n_ == 2 ? interval(b).lo : 0;
+    const double f = m_.n == 2 ? interval(b).lo : 0;
     if (!(f > 0)) return std::numeric_limits<double>::infinity();
-    const double amin = std::min({a_.x, a_.y, a_.z});
+    const double amin = std::min({m_.a.x, m_.a.y, m_.a.z});
     return iv::up(1 / iv::down(amin * amin * f));
   }
 
  private:
-  void terms(const Box& b, Interval* u) const {
-    for (int i = 0; i < 3; ++i) u[i] = abs(b.axis(i)) / Interval(a_[i]);
-  }
-  const LpMetricParams& params() const { return params_; }
-
-  Vec3 a_;
-  double n_, global_L_;
-  LpMetricParams params_;  // the kernels' form of the above
+  LpMetricParams m_;
 };
 
 // m(h(x,y), ζ_L(z)) with h = (u_x^n1 + u_y^n1)^(1/n1), m = (h^n2 + u_z^n2)^(1/n2) and the

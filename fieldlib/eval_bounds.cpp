@@ -192,21 +192,20 @@ class Walker {
         break;
       case Op::LpMetric:
         if (bounds_) {
-          const double* k = K_ + in.a;
-          if (segment_ && k[3] == 2) {
+          const LpMetricParams m = LpMetricParams::load(K_ + in.a);
+          if (segment_ && m.n == 2) {
             // Along a segment the ellipsoid's range and slope are exact; 1/min(a) bounds |∇d|.
             const Vec3* S = ws_.segs.data() + 2 * in.in;
-            ellipsoid_on_segment({k[0], k[1], k[2]}, {k[5], k[6], k[7]}, S[0], S[1],
-                                 ws_.seg_pads[in.in], length_, &I[in.out], &D[in.out], &Q[in.out]);
-            L[in.out] = k[4];
+            ellipsoid_on_segment(m.a, m.ia, S[0], S[1], ws_.seg_pads[in.in], length_, &I[in.out],
+                                 &D[in.out], &Q[in.out]);
+            L[in.out] = m.global_L;
           } else if (slopes_) {
             Interval rate[3];
             axis_rates(in.in, rate);
-            lp_metric_bounds(LpMetricParams::load(k), box(in.in), &I[in.out], &L[in.out],
-                             rate, &D[in.out]);
+            lp_metric_bounds(m, box(in.in), &I[in.out], &L[in.out], rate, &D[in.out]);
             gauge_segment_facts(in.out);
           } else {
-            lp_metric_bounds(LpMetricParams::load(k), box(in.in), &I[in.out], &L[in.out]);
+            lp_metric_bounds(m, box(in.in), &I[in.out], &L[in.out]);
             segment_facts_from_box(in.out);
           }
         }

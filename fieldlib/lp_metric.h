@@ -49,6 +49,16 @@ inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
   return f;
 }
 
+// The terms u_i = |x_i|/a_i over `b`: |x_i| · fl(1/a_i), two roundings of at most 2^-53 relative
+// each, so widened by 2^-51 relative (and 2^-1074 for underflow) they hold the exact quotients.
+inline void lp_metric_terms(const LpMetricParams& m, const Box& b, Interval* u) {
+  for (int i = 0; i < 3; ++i) {
+    const Interval x = abs(b.axis(i));
+    const double lo = x.lo * m.ia[i], hi = x.hi * m.ia[i];
+    u[i] = {std::max(0.0, lo - (lo * 0x1p-51 + 0x1p-1074)), hi + (hi * 0x1p-51 + 0x1p-1074)};
+  }
+}
+
 // The value interval and the Lipschitz bound over `b` in one pass. With `rate` (the local
 // coordinates' rates along a segment in `b`), also the range of df/dt along it into *slope:
 // u_i = |x_i|/a_i is a one-sided term of x_i with both radii a_i, so power_sum_slope over them
@@ -56,14 +66,8 @@ inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
 inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* value,
                              double* lipschitz, const Interval* rate = nullptr,
                              Interval* slope = nullptr) {
-  // u_i = |x_i| · fl(1/a_i): two roundings of at most 2^-53 relative each, so 2^-51 relative
-  // (and 2^-1074 for underflow) holds the exact |x_i|/a_i.
   Interval u[3];
-  for (int i = 0; i < 3; ++i) {
-    const Interval x = abs(b.axis(i));
-    const double lo = x.lo * m.ia[i], hi = x.hi * m.ia[i];
-    u[i] = {std::max(0.0, lo - (lo * 0x1p-51 + 0x1p-1074)), hi + (hi * 0x1p-51 + 0x1p-1074)};
-  }
+  lp_metric_terms(m, b, u);
   Interval f;
   const double hi2 = u[0].hi * u[0].hi + u[1].hi * u[1].hi + u[2].hi * u[2].hi;
   if (m.n == 2 && hi2 < 1e280) {
