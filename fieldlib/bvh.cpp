@@ -299,12 +299,19 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
     const int mask = test(n) & ((1 << n.size) - 1);
     // Nodes pushed last to first are visited left to right; items are reported as their node is
     // (last to first). That order, the same for every query, is tree_order().
+    // Each slot is written and counted only where it passed: whether a slot holds a node or an item
+    // is the same for every query (predictable), whether it passed is not. An item slot that did
+    // not pass is written where the next item will go, never past the room for all items: it is
+    // itself one not yet reported.
     for (int c = n.size - 1; c >= 0; --c) {
-      if (!(mask >> c & 1)) continue;
-      if (n.ref[c] < 0) {
-        out[count++] = ~n.ref[c];
+      const int32_t ref = n.ref[c];
+      const int passed = mask >> c & 1;
+      if (ref < 0) {
+        out[count] = ~ref;
+        count += passed;
       } else {
-        stack[top++] = n.ref[c];
+        stack[top] = ref;
+        top += passed;
       }
     }
   }

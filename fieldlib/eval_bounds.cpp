@@ -624,6 +624,7 @@ class Walker {
       I[out.out] =
           std::isnan(lo) || std::isnan(hi) ? Interval::entire() : Interval(lo - pad, hi + pad);
       L[out.out] = Ls;
+      if (!segment_) return;  // slopes and quiet starts are the segments' (and scattered reads)
       // The derivative of a sum is the sum of the derivatives, rounded as the values are.
       double dlo = 0, dhi = 0, dmag = 0;
       for (int j = first; j < first + n; ++j) {

@@ -147,6 +147,7 @@ Program ProgramBuilder::finish(int result) {
     prog_.children += static_cast<int32_t>(g.children.size());
     prog_.has_pruning = prog_.has_pruning || !g.bvh.empty();
   }
+  share_storage(prog_);
   return std::move(prog_);
 }
 

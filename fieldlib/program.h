@@ -162,4 +162,8 @@ class ProgramBuilder {
 
 Program compile(const FieldNode& root);
 
+// Renumbers p's slots and registers so that values whose lifetimes do not overlap share one
+// (program_storage.cpp); compile() calls it last.
+void share_storage(Program& p);
+
 }  // namespace softtrace

@@ -1,6 +1,7 @@
 // Compiled programs (fieldlib/program.h): what compile emits and what pruning keeps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -1206,6 +1207,43 @@ TEST(Program, EvaluatingAPointIsEvaluatingTheViewPrunedToIt) {
     inside += count_ops(ws.view.code, Op::LpMetric) > 1;
   }
   EXPECT_GT(inside, 100) << "too few points in a blob to judge";
+}
+
+// Values share storage where their lifetimes do not overlap: a sum of 1000 translated blobs keeps
+// its 1000 terms, one slot for every blob's distance and then the sum, and one register for every
+// blob's local point beside the evaluation point. The blobs' pruned views (every child range
+// dropped or kept, around shared storage) are evaluated against the model in the test above and in
+// the sweeps' ProgramBoxPassEnclosesSamplesAndPrunesExactly.
+TEST(Program, ValuesShareStorageWhereTheirLifetimesDoNotOverlap) {
+  const Blobs blobs(1000, 3);
+  EXPECT_EQ(blobs.prog.slots, 1000 + 1);
+  EXPECT_EQ(blobs.prog.regs, 2);
+  const Group& g = blobs.prog.groups[0];
+  for (size_t k = 0; k < g.children.size(); ++k)
+    ASSERT_EQ(g.children[k].slot, g.children[0].slot + static_cast<int32_t>(k))
+        << "the terms' slots lie side by side, in the children's order";
+  // A modulated radius transform reads its distance, its modulation and its register at once:
+  // none of them may share storage with another live value, nor with the result it writes.
+  const NodePtr m = build_from_json(
+      R"({"type":"soft_blend","children":[{"type":"soft_object","potential":{"type":"wyvill"},)"
+      R"("distance":{"type":"lp_metric","radii":[1,1,1],"n":2},"translate":[0.5,0,0],)"
+      R"("radii":{"type":"T_an","modulation":{"type":"lp_metric","radii":[2,1.5,1],"n":3}}},)"
+      R"({"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[1,1,1],"n":2}}]})");
+  const Program p = compile(*m);
+  const auto rt = std::find_if(p.code.begin(), p.code.end(),
+                               [](const Instr& i) { return i.op == Op::RadiusTransform; });
+  ASSERT_NE(rt, p.code.end());
+  EXPECT_NE(rt->in, rt->n);
+  EXPECT_NE(rt->out, rt->in);
+  EXPECT_NE(rt->out, rt->n);
+  Workspace ws;
+  ws.fit(p);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 q{u(rng), u(rng), u(rng)};
+    ASSERT_EQ(value(p, q, ws), m->value(q)) << i;
+  }
 }
 
 // Along a segment, the pass reports how far from its start no support has begun (POV-Ray's first
