@@ -272,7 +272,7 @@ std::vector<int32_t> BoxBvh::tree_order() const {
   for (const Node& n : nodes_)
     items += std::count_if(n.ref, n.ref + n.size, [](int32_t r) { return r < 0; });
   std::vector<int32_t> out(items);
-  walk([](const Node&) { return (1 << kWidth) - 1; }, out.data(), 0);
+  walk<false>([](const Node&) { return (1 << kWidth) - 1; }, out.data(), 0);
   return out;
 }
 
@@ -288,7 +288,7 @@ void BoxBvh::note_order() {
   ascending_ = std::is_sorted(order.begin(), order.end());
 }
 
-template <class Test>
+template <bool kScattered, class Test>
 int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
   if (nodes_.empty()) return count;
   int32_t stack[kStack];
@@ -299,19 +299,26 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
     const int mask = test(n) & ((1 << n.size) - 1);
     // Nodes pushed last to first are visited left to right; items are reported as their node is
     // (last to first). That order, the same for every query, is tree_order().
-    // Each slot is written and counted only where it passed: whether a slot holds a node or an item
-    // is the same for every query (predictable), whether it passed is not. An item slot that did
-    // not pass is written where the next item will go, never past the room for all items: it is
-    // itself one not yet reported.
     for (int c = n.size - 1; c >= 0; --c) {
       const int32_t ref = n.ref[c];
       const int passed = mask >> c & 1;
-      if (ref < 0) {
-        out[count] = ~ref;
-        count += passed;
-      } else {
-        stack[top] = ref;
-        top += passed;
+      if (kScattered) {
+        // Which slots pass a scattered query is no pattern a branch predicts, so each is written
+        // and counted only where it passed. An item slot that did not pass is written where the
+        // next item will go, never past the room for all items: it is one not yet reported.
+        if (ref < 0) {
+          out[count] = ~ref;
+          count += passed;
+        } else {
+          stack[top] = ref;
+          top += passed;
+        }
+      } else if (passed) {
+        if (ref < 0) {
+          out[count++] = ~ref;
+        } else {
+          stack[top++] = ref;
+        }
       }
     }
   }
@@ -319,7 +326,7 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
 }
 
 int BoxBvh::query(const Box& q, int32_t* out, int count) const {
-  const int end = walk([&](const Node& n) { return overlaps(n, q); }, out, count);
+  const int end = walk<true>([&](const Node& n) { return overlaps(n, q); }, out, count);
   // Children are combined in their compiled order, so results do not depend on the query.
   if (!ascending_) std::sort(out + count, out + end);
   return end;
@@ -329,14 +336,14 @@ int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_
                   int count) const {
   const SegmentTest segment(a, b, pad);
   const int end =
-      walk([&](const Node& n) { return overlaps(n, q) & segment.meets(n); }, out, count);
+      walk<false>([&](const Node& n) { return overlaps(n, q) & segment.meets(n); }, out, count);
   if (!ascending_) std::sort(out + count, out + end);
   return end;
 }
 
 int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const {
   const SegmentTest segment(a, b, pad);
-  return walk([&](const Node& n) { return segment.meets(n); }, out, 0);
+  return walk<false>([&](const Node& n) { return segment.meets(n); }, out, 0);
 }
 
 }  // namespace softtrace

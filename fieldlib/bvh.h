@@ -49,7 +49,9 @@ class BoxBvh {
   };
 
  private:
-  template <class Test>
+  // kScattered: for queries in no order (boxes anywhere); the rays' stretches, one after another
+  // along a ray and from ray to ray, pass the same slots often enough for branches to pay.
+  template <bool kScattered, class Test>
   int walk(const Test& test, int32_t* out, int count) const;
 
   void note_order();
