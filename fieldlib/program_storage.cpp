@@ -130,20 +130,8 @@ void share_storage(Program& p) {
   }
 
   const auto rename = [&](Space s, int32_t& id) { id = to[s][id]; };
-  for (int k = 0; k < n; ++k) {
-    // Group's register and the n-ary instructions' arguments are renamed once, below.
-    const Op op = p.code[k].op;
-    if (op == Op::Group) continue;
-    Instr& in = p.code[k];
-    const bool nary = op == Op::Sum || op == Op::Min || op == Op::Max || op == Op::SuperUnion ||
-                      op == Op::SuperIntersect || op == Op::Perlin || op == Op::Ricci;
-    if (nary) {
-      rename(kSlot, in.out);
-      continue;
-    }
-    operands(p, k, rename, rename);
-  }
-  for (int32_t& a : p.args) rename(kSlot, a);
+  for (int k = 0; k < n; ++k)
+    if (p.code[k].op != Op::Group) operands(p, k, rename, rename);  // a group's register: below
   for (Group& g : p.groups) {
     rename(kReg, g.reg);
     for (Group::Child& c : g.children) rename(kSlot, c.slot);
