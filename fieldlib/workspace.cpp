@@ -12,6 +12,12 @@ void grow(std::vector<T>& v, size_t n) {
 }  // namespace
 
 void Workspace::fit(const Program& p) {
+  if (p.slots <= fitted_.slots && p.regs <= fitted_.regs && p.children <= fitted_.children &&
+      p.code.size() <= fitted_.code && p.args.size() <= fitted_.args)
+    return;
+  fitted_ = {std::max(fitted_.slots, p.slots), std::max(fitted_.regs, p.regs),
+             std::max(fitted_.children, p.children), std::max(fitted_.code, p.code.size()),
+             std::max(fitted_.args, p.args.size())};
   const size_t slots_n = std::max<int32_t>(p.slots, 1), regs_n = p.regs;
   grow(slots, slots_n * kBatch);
   grow(regs, regs_n * 3 * kBatch);

@@ -1246,6 +1246,23 @@ TEST(Program, ValuesShareStorageWhereTheirLifetimesDoNotOverlap) {
   }
 }
 
+// A workspace fitted to a small program grows for a larger one (fit() skips only programs within
+// what it has fitted before), and then serves both.
+TEST(Program, AWorkspaceGrowsForALargerProgram) {
+  const Blobs small(10, 3), large(1000, 3);
+  Workspace ws;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-20, 20);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    ASSERT_EQ(evaluate(small.prog, p, nullptr, ws), small.node->value(p)) << i;
+    ASSERT_NEAR(evaluate(large.prog, p, nullptr, ws), large.node->value(p), 1e-12) << i;
+    ASSERT_EQ(evaluate(small.prog, p, nullptr, ws), small.node->value(p)) << i;
+  }
+  EXPECT_GE(ws.slots.size(), static_cast<size_t>(large.prog.slots) * kBatch);
+  EXPECT_GE(ws.kept.size(), static_cast<size_t>(large.prog.children) + 1);
+}
+
 // Along a segment, the pass reports how far from its start no support has begun (POV-Ray's first
 // support entry): the field is exactly 0 there, entry included (the tracer takes g there as known),
 // and for spheres the bound is tight: just past it the field is positive.
