@@ -302,23 +302,16 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
     for (int c = n.size - 1; c >= 0; --c) {
       const int32_t ref = n.ref[c];
       const int passed = mask >> c & 1;
-      if (kScattered) {
-        // Which slots pass a scattered query is no pattern a branch predicts, so each is written
-        // and counted only where it passed. An item slot that did not pass is written where the
-        // next item will go, never past the room for all items: it is one not yet reported.
-        if (ref < 0) {
-          out[count] = ~ref;
-          count += passed;
-        } else {
-          stack[top] = ref;
-          top += passed;
-        }
-      } else if (passed) {
-        if (ref < 0) {
-          out[count++] = ~ref;
-        } else {
-          stack[top++] = ref;
-        }
+      // Which slots pass a scattered query is no pattern a branch predicts, so there each slot is
+      // written and counted only where it passed. An item slot that did not pass is written where
+      // the next item will go, never past the room for all items: it is one not yet reported.
+      if (!kScattered && !passed) continue;
+      if (ref < 0) {
+        out[count] = ~ref;
+        count += passed;
+      } else {
+        stack[top] = ref;
+        top += passed;
       }
     }
   }
