@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "lp_metric.h"
+
 namespace softtrace {
 
 namespace {
@@ -55,19 +57,21 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   if (c.end - i != 2) return false;
   const Instr& metric = p.code[i];
   const Instr& potential = p.code[i + 1];
-  if (metric.op != Op::LpMetric || metric.in != reg || K[metric.a + 3] != 2) return false;
+  if (metric.op != Op::LpMetric || metric.in != reg) return false;
+  const LpMetricParams m = LpMetricParams::load(K + metric.a);
+  if (m.n != 2) return false;
   if (potential.in != metric.out || potential.out != c.slot) return false;
   if (!potential_in_r(potential.op, &blob->c2, &blob->c3)) return false;
   for (int r = 0; r < 3; ++r) {
-    const double a = K[metric.a + r];
+    const double a = m.a[r];
     // The squares of |L x + k| must neither overflow nor vanish for any point a ray reaches (the
     // kernel rescales those; these sums would lose the blob): such radii keep the segment tracer.
     if (!(a > 1e-100 && a < 1e100 && std::abs(off[r]) < 1e100)) return false;
     frame->L.r[r] = M.r[r] / a;
     frame->k[r] = off[r] / a;
   }
-  const double a = K[metric.a];
-  const bool ball_like = !rotated && a == K[metric.a + 1] && a == K[metric.a + 2];
+  const double a = m.a.x;
+  const bool ball_like = !rotated && a == m.a.y && a == m.a.z;
   blob->centre = -off;
   blob->inv_r2 = ball_like ? 1 / (a * a) : 0.0;
   return true;

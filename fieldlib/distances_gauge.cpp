@@ -46,12 +46,12 @@ class LpMetric final : public FieldNode {
   void bounds(const Box& b, Interval* value, double* L) const override {
     lp_metric_bounds(m_, b, value, L);
   }
-  // One instruction with the parameters inline (LpMetricParams::load reads them).
+  // One instruction with the parameters inline.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LpMetric};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.a.x, m_.a.y, m_.a.z, m_.n, m_.global_L, m_.ia.x, m_.ia.y, m_.ia.z});
+    i.a = b.consts(m_.constants());
     return b.emit(i);
   }
   Box region(double level, Side side) const override {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "box.h"
 #include "gauge.h"
@@ -27,6 +28,8 @@ struct LpMetricParams {
   static LpMetricParams make(const Vec3& a, double n, double global_L) {
     return {a, n, global_L, {1 / a.x, 1 / a.y, 1 / a.z}};
   }
+  // The program's constants, in load()'s order.
+  std::vector<double> constants() const { return {a.x, a.y, a.z, n, global_L, ia.x, ia.y, ia.z}; }
 };
 
 inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
