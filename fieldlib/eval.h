@@ -76,13 +76,6 @@ class Workspace {
   std::vector<int32_t> kept;   // pruning's stack of chosen children
   std::vector<int32_t> marks;  // where each kept child's code starts in the view
   ProgramView view;            // the last pruned program (bounds, prune)
-
- private:
-  // The largest needs fit() has grown the buffers to (the vectors above are never shrunk).
-  struct Fitted {
-    int32_t slots = 0, regs = 0, children = -1;
-    size_t code = 0, args = 0;
-  } fitted_;
 };
 
 // f at points (x[i], y[i], z[i]), i < n <= kBatch, into f[i].

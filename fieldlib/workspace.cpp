@@ -12,13 +12,13 @@ void grow(std::vector<T>& v, size_t n) {
 }  // namespace
 
 void Workspace::fit(const Program& p) {
-  if (p.slots <= fitted_.slots && p.regs <= fitted_.regs && p.children <= fitted_.children &&
-      p.code.size() <= fitted_.code && p.args.size() <= fitted_.args)
-    return;
-  fitted_ = {std::max(fitted_.slots, p.slots), std::max(fitted_.regs, p.regs),
-             std::max(fitted_.children, p.children), std::max(fitted_.code, p.code.size()),
-             std::max(fitted_.args, p.args.size())};
   const size_t slots_n = std::max<int32_t>(p.slots, 1), regs_n = p.regs;
+  // The buffers grow here only, each with the others of its size: one of each size stands for
+  // all (so a program within what was fitted before costs five comparisons).
+  if (slots.size() >= slots_n * kBatch && regs.size() >= regs_n * 3 * kBatch &&
+      kept.size() >= size_t(p.children) + 1 && view.code.capacity() >= p.code.size() &&
+      view.args.capacity() >= p.args.size())
+    return;
   grow(slots, slots_n * kBatch);
   grow(regs, regs_n * 3 * kBatch);
   grow(points, regs_n);
