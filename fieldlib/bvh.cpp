@@ -15,10 +15,15 @@ constexpr int kSahDepth = 32;
 constexpr int kBins = 16;
 constexpr int kStack = 256;  // at most (kWidth - 1) per level of the collapsed tree, plus one
 
-// The binary tree the build makes first: one item per leaf.
+// The binary tree the build makes first, one item per leaf; a node's subtree holds items
+// [first, first + count) of the builder's (reordered) arrays. The collapsed tree's leaves are the
+// subtrees of at most kLeafItems items, their items in the binary tree's order: nearby items stay
+// next to each other in it, and so do the children a sum compiles in that order.
 struct Binary {
   Box box;
-  int32_t left = -1, right = -1, item = -1;
+  int32_t left = -1, right = -1;
+  int32_t first = 0, count = 0;
+  bool leaf() const { return count <= BoxBvh::kLeafItems; }
 };
 
 double half_area(const Box& b) {
@@ -32,6 +37,8 @@ class BinaryBuilder {
       : boxes_(std::move(boxes)), ids_(std::move(ids)) {}
 
   std::vector<Binary> nodes;
+  const std::vector<Box>& boxes() const { return boxes_; }
+  const std::vector<int32_t>& ids() const { return ids_; }
 
   int32_t build(int32_t first, int32_t count, int depth) {
     const int32_t index = static_cast<int32_t>(nodes.size());
@@ -42,10 +49,9 @@ class BinaryBuilder {
       centres.extend(boxes_[i].center());
     }
     nodes[index].box = box;
-    if (count == 1) {
-      nodes[index].item = ids_[first];
-      return index;
-    }
+    nodes[index].first = first;
+    nodes[index].count = count;
+    if (count == 1) return index;
     int32_t half = depth < kSahDepth ? sah_split(first, count, centres) : 0;
     if (half <= 0 || half >= count) half = median_split(first, count, centres);
     const int32_t left = build(first, half, depth + 1);
@@ -137,11 +143,36 @@ class BinaryBuilder {
   std::vector<int32_t> ids_;
 };
 
-// Binary node b's subtree as nodes of four: the two children, then the largest inner slot
-// replaced by its two children until there are four (the order of the tree kept).
-int32_t collapse(const std::vector<Binary>& bin, int32_t b, std::vector<BoxBvh::Node>& out) {
+// A leaf's items as blocks of four at the end of `blocks`; returns the slot's reference to them.
+int32_t add_leaf(const Binary& leaf, const BinaryBuilder& builder,
+                 std::vector<BoxBvh::Node>& blocks) {
+  const int32_t first_block = static_cast<int32_t>(blocks.size());
+  for (int32_t at = 0; at < leaf.count; at += BoxBvh::kWidth) {
+    BoxBvh::Node block{};
+    block.size = std::min(BoxBvh::kWidth, leaf.count - at);
+    for (int c = 0; c < BoxBvh::kWidth; ++c) {
+      const int32_t i = leaf.first + at + c;
+      const Box box = c < block.size ? builder.boxes()[i] : Box();
+      for (int axis = 0; axis < 3; ++axis) {
+        block.lo[axis][c] = box.lo[axis];
+        block.hi[axis][c] = box.hi[axis];
+      }
+      block.ref[c] = c < block.size ? builder.ids()[i] : 0;
+    }
+    blocks.push_back(block);
+  }
+  const int32_t count = static_cast<int32_t>(blocks.size()) - first_block;
+  return ~(first_block << BoxBvh::kBlockBits | (count - 1));
+}
+
+// Binary node b's subtree as nodes of four: the two children, then the largest slot of more than
+// one item replaced by its two children until there are four (the order of the tree kept). A
+// slot of at most kLeafItems items is then a leaf: splitting such slots while a node has room
+// keeps the small trees' walks (a few blobs, long stretches of rays) as selective as before.
+int32_t collapse(const std::vector<Binary>& bin, int32_t b, const BinaryBuilder& builder,
+                 std::vector<BoxBvh::Node>& out, std::vector<BoxBvh::Node>& blocks) {
   std::vector<int32_t> slots;
-  if (bin[b].item >= 0) {
+  if (bin[b].count == 1) {
     slots = {b};  // a tree of one item
   } else {
     slots = {bin[b].left, bin[b].right};
@@ -152,7 +183,7 @@ int32_t collapse(const std::vector<Binary>& bin, int32_t b, std::vector<BoxBvh::
     for (int i = 0; i < static_cast<int>(slots.size()); ++i) {
       const Binary& s = bin[slots[i]];
       const double a = half_area(s.box);
-      if (s.item < 0 && (widest < 0 || a > area || std::isnan(a))) {
+      if (s.count > 1 && (widest < 0 || a > area || std::isnan(a))) {
         widest = i;
         area = a;
       }
@@ -175,7 +206,8 @@ int32_t collapse(const std::vector<Binary>& bin, int32_t b, std::vector<BoxBvh::
   }
   for (int c = 0; c < node.size; ++c) {
     const Binary& s = bin[slots[c]];
-    node.ref[c] = s.item >= 0 ? ~s.item : collapse(bin, slots[c], out);
+    node.ref[c] =
+        s.leaf() ? add_leaf(s, builder, blocks) : collapse(bin, slots[c], builder, out, blocks);
   }
   out[index] = node;
   return index;
@@ -252,6 +284,7 @@ class SegmentTest {
 
 void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
   nodes_.clear();
+  blocks_.clear();
   std::vector<Box> kept_boxes;
   std::vector<int32_t> kept_ids;
   for (size_t i = 0; i < boxes.size(); ++i)
@@ -263,23 +296,21 @@ void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& id
   const int32_t count = static_cast<int32_t>(kept_ids.size());
   BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
   builder.build(0, count, 0);
-  collapse(builder.nodes, 0, nodes_);
+  collapse(builder.nodes, 0, builder, nodes_, blocks_);
   note_order();
 }
 
 std::vector<int32_t> BoxBvh::tree_order() const {
   size_t items = 0;
-  for (const Node& n : nodes_)
-    items += std::count_if(n.ref, n.ref + n.size, [](int32_t r) { return r < 0; });
+  for (const Node& b : blocks_) items += b.size;
   std::vector<int32_t> out(items);
   walk<false>([](const Node&) { return (1 << kWidth) - 1; }, out.data(), 0);
   return out;
 }
 
 void BoxBvh::relabel(const std::vector<int32_t>& to) {
-  for (Node& n : nodes_)
-    for (int c = 0; c < n.size; ++c)
-      if (n.ref[c] < 0) n.ref[c] = ~to[~n.ref[c]];
+  for (Node& b : blocks_)
+    for (int c = 0; c < b.size; ++c) b.ref[c] = to[b.ref[c]];
   note_order();
 }
 
@@ -297,21 +328,29 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
     const int mask = test(n) & ((1 << n.size) - 1);
-    // Nodes pushed last to first are visited left to right; items are reported as their node is
+    // Nodes pushed last to first are visited left to right; leaves are reported as their node is
     // (last to first). That order, the same for every query, is tree_order().
     for (int c = n.size - 1; c >= 0; --c) {
       const int32_t ref = n.ref[c];
       const int passed = mask >> c & 1;
-      // Which slots pass a scattered query is no pattern a branch predicts, so there each slot is
-      // written and counted only where it passed. An item slot that did not pass is written where
-      // the next item will go, never past the room for all items: it is one not yet reported.
-      if (!kScattered && !passed) continue;
-      if (ref < 0) {
-        out[count] = ~ref;
-        count += passed;
-      } else {
+      // Which slots pass a scattered query is no pattern a branch predicts, so there a node is
+      // pushed, and an item written, but counted only where it passed. An item that did not pass
+      // is written where the next item will go, never past the room for all items: it is one not
+      // yet reported.
+      if (ref >= 0) {
+        if (!kScattered && !passed) continue;
         stack[top] = ref;
         top += passed;
+        continue;
+      }
+      if (!passed) continue;
+      const Node* block = &blocks_[~ref >> kBlockBits];
+      for (const Node* end = block + (~ref & ((1 << kBlockBits) - 1)) + 1; block != end; ++block) {
+        const int items = test(*block) & ((1 << block->size) - 1);
+        for (int i = 0; i < block->size; ++i) {
+          out[count] = block->ref[i];
+          count += items >> i & 1;
+        }
       }
     }
   }

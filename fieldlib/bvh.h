@@ -5,7 +5,9 @@
 //
 // Four children per node, their boxes stored axis by axis (Embree's BVH4 layout) and tested two at
 // a time in SSE2 registers, in double precision so the tests are exactly the scalar ones. The tree
-// is a binned surface-area-heuristic binary tree, one item per leaf, collapsed into nodes of four.
+// is a binned surface-area-heuristic binary tree, up to kLeafItems items per leaf, collapsed into
+// nodes of four. A leaf's items are tested block after block, four at a time: its blocks lie side
+// by side, so their loads do not wait on one another as a walk down more levels of nodes would.
 #pragma once
 
 #include <cstdint>
@@ -40,8 +42,12 @@ class BoxBvh {
   int segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const;
 
   static constexpr int kWidth = 4;
+  static constexpr int kLeafItems = 16;
+  static constexpr int kBlockBits = 2;  // a leaf's block count - 1 fits in these
+  static_assert(kLeafItems <= kWidth << kBlockBits);
   // A node: its children's boxes, axis by axis (lo[axis][child]); ref >= 0 is a child node's
-  // index, ref < 0 the item ~ref. Slots at and after `size` are unused.
+  // index, ref < 0 a leaf: blocks_[~ref >> kBlockBits] and the (~ref & 3) blocks after it. A
+  // block is laid out as a node, with ref the items' ids. Slots at and after `size` are unused.
   struct Node {
     double lo[3][kWidth], hi[3][kWidth];
     int32_t ref[kWidth];
@@ -56,8 +62,9 @@ class BoxBvh {
 
   void note_order();
 
-  std::vector<Node> nodes_;  // the root is nodes_[0]
-  bool ascending_ = false;   // ids ascend in the tree's order
+  std::vector<Node> nodes_;   // the root is nodes_[0]
+  std::vector<Node> blocks_;  // the leaves' items, four to a block
+  bool ascending_ = false;    // ids ascend in the tree's order
 };
 
 }  // namespace softtrace
