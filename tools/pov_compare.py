@@ -55,6 +55,16 @@ def install_missing():
                    check=True, env=env, stdout=subprocess.DEVNULL)
 
 
+def check_pil():
+    """Fails before any rendering if this interpreter cannot read the PNGs (python3-pil is
+    Debian's, for /usr/bin/python3: another python3 first on PATH does not see it)."""
+    try:
+        import PIL  # noqa: F401
+    except ImportError:
+        sys.exit("pov_compare: %s cannot import PIL (Debian's python3-pil); run the script "
+                 "itself (tools/pov_compare.py) or with /usr/bin/python3" % sys.executable)
+
+
 def timed(cmd):
     """Runs cmd; returns (wall seconds, user+system CPU seconds, stdout+stderr text)."""
     t0 = time.perf_counter()
@@ -176,6 +186,7 @@ def main():
     if not os.access(exe, os.X_OK):
         sys.exit("pov_compare: %s: no softtrace there (build first, or pass --build)" % exe)
     install_missing()
+    check_pil()
     os.makedirs(a.work, exist_ok=True)
     cases = a.cases.split(",")
     bases = {c: write_case(c, a, a.work) for c in cases}
