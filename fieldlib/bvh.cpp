@@ -334,9 +334,9 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
       const int32_t ref = n.ref[c];
       const int passed = mask >> c & 1;
       // Which slots pass a scattered query is no pattern a branch predicts, so there a node is
-      // pushed, and an item written, but counted only where it passed. An item that did not pass
-      // is written where the next item will go, never past the room for all items: it is one not
-      // yet reported.
+      // pushed but counted only where it passed. A passing leaf's items are written the same way
+      // in every walk: an item that did not pass is written where the next item will go, never
+      // past the room for all items (it is one not yet reported).
       if (ref >= 0) {
         if (!kScattered && !passed) continue;
         stack[top] = ref;
