@@ -5,6 +5,9 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 namespace softtrace {
 
@@ -222,21 +225,38 @@ V2 load(const double* p) {
   return v;
 }
 using M2 = decltype(V2{} < V2{});  // a lane all ones where a comparison holds
-int bits(M2 lanes_01, M2 lanes_23) {
+// Bit c set where lane c holds. SSE2's movemask takes a pair in one instruction; GCC otherwise
+// goes through memory lane by lane, a good part of a node's test.
+inline int bits(M2 lanes_01, M2 lanes_23) {
+#ifdef __SSE2__
+  return _mm_movemask_pd(reinterpret_cast<__m128d>(lanes_01)) |
+         _mm_movemask_pd(reinterpret_cast<__m128d>(lanes_23)) << 2;
+#else
   return (lanes_01[0] != 0) | (lanes_01[1] != 0) << 1 | (lanes_23[0] != 0) << 2 |
          (lanes_23[1] != 0) << 3;
+#endif
 }
 static_assert(BoxBvh::kWidth == 4, "the tests below take a node's slots two at a time");
 
-// Bit c set where slot c's box overlaps q (closed boxes).
-int overlaps(const BoxBvh::Node& n, const Box& q) {
-  M2 hit[2];
-  for (int h = 0; h < 2; ++h) {
-    hit[h] = (load(n.lo[0] + 2 * h) <= q.hi.x) & (load(n.hi[0] + 2 * h) >= q.lo.x) &
-             (load(n.lo[1] + 2 * h) <= q.hi.y) & (load(n.hi[1] + 2 * h) >= q.lo.y) &
-             (load(n.lo[2] + 2 * h) <= q.hi.z) & (load(n.hi[2] + 2 * h) >= q.lo.z);
+// The query box's bounds, each in both lanes, made once per query rather than once per node.
+struct QueryBox {
+  V2 lo[3], hi[3];
+  explicit QueryBox(const Box& q) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = V2{q.lo[i], q.lo[i]};
+      hi[i] = V2{q.hi[i], q.hi[i]};
+    }
   }
-  return bits(hit[0], hit[1]);
+};
+// Lane l set where slot 2h + l's box overlaps q (closed boxes).
+inline M2 overlaps_half(const BoxBvh::Node& n, const QueryBox& q, int h) {
+  return (load(n.lo[0] + 2 * h) <= q.hi[0]) & (load(n.hi[0] + 2 * h) >= q.lo[0]) &
+         (load(n.lo[1] + 2 * h) <= q.hi[1]) & (load(n.hi[1] + 2 * h) >= q.lo[1]) &
+         (load(n.lo[2] + 2 * h) <= q.hi[2]) & (load(n.hi[2] + 2 * h) >= q.lo[2]);
+}
+// Bit c set where slot c's box overlaps q.
+inline int overlaps(const BoxBvh::Node& n, const QueryBox& q) {
+  return bits(overlaps_half(n, q, 0), overlaps_half(n, q, 1));
 }
 
 // The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
@@ -358,7 +378,8 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
 }
 
 int BoxBvh::query(const Box& q, int32_t* out, int count) const {
-  const int end = walk<true>([&](const Node& n) { return overlaps(n, q); }, out, count);
+  const QueryBox box(q);
+  const int end = walk<true>([&](const Node& n) { return overlaps(n, box); }, out, count);
   // Children are combined in their compiled order, so results do not depend on the query.
   if (!ascending_) std::sort(out + count, out + end);
   return end;
@@ -367,8 +388,9 @@ int BoxBvh::query(const Box& q, int32_t* out, int count) const {
 int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
                   int count) const {
   const SegmentTest segment(a, b, pad);
+  const QueryBox box(q);
   const int end =
-      walk<false>([&](const Node& n) { return overlaps(n, q) & segment.meets(n); }, out, count);
+      walk<false>([&](const Node& n) { return overlaps(n, box) & segment.meets(n); }, out, count);
   if (!ascending_) std::sort(out + count, out + end);
   return end;
 }
