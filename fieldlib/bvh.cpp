@@ -146,6 +146,14 @@ class BinaryBuilder {
   std::vector<int32_t> ids_;
 };
 
+// Slot c of a node or block: its box, axis by axis. An unused slot gets the empty box.
+void set_box(BoxBvh::Node& n, int c, const Box& box) {
+  for (int axis = 0; axis < 3; ++axis) {
+    n.lo[axis][c] = box.lo[axis];
+    n.hi[axis][c] = box.hi[axis];
+  }
+}
+
 // A leaf's items as blocks of four at the end of `blocks`; returns the slot's reference to them.
 int32_t add_leaf(const Binary& leaf, const BinaryBuilder& builder,
                  std::vector<BoxBvh::Node>& blocks) {
@@ -155,11 +163,7 @@ int32_t add_leaf(const Binary& leaf, const BinaryBuilder& builder,
     block.size = std::min(BoxBvh::kWidth, leaf.count - at);
     for (int c = 0; c < BoxBvh::kWidth; ++c) {
       const int32_t i = leaf.first + at + c;
-      const Box box = c < block.size ? builder.boxes()[i] : Box();
-      for (int axis = 0; axis < 3; ++axis) {
-        block.lo[axis][c] = box.lo[axis];
-        block.hi[axis][c] = box.hi[axis];
-      }
+      set_box(block, c, c < block.size ? builder.boxes()[i] : Box());
       block.ref[c] = c < block.size ? builder.ids()[i] : 0;
     }
     blocks.push_back(block);
@@ -200,13 +204,8 @@ int32_t collapse(const std::vector<Binary>& bin, int32_t b, const BinaryBuilder&
   out.emplace_back();
   BoxBvh::Node node{};
   node.size = static_cast<int32_t>(slots.size());
-  for (int c = 0; c < BoxBvh::kWidth; ++c) {
-    const Box box = c < node.size ? bin[slots[c]].box : Box();
-    for (int axis = 0; axis < 3; ++axis) {
-      node.lo[axis][c] = box.lo[axis];
-      node.hi[axis][c] = box.hi[axis];
-    }
-  }
+  for (int c = 0; c < BoxBvh::kWidth; ++c)
+    set_box(node, c, c < node.size ? bin[slots[c]].box : Box());
   for (int c = 0; c < node.size; ++c) {
     const Binary& s = bin[slots[c]];
     node.ref[c] =
