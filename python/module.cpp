@@ -106,7 +106,7 @@ py::array_t<float> render(const Scene& loaded, int width, int height, int spp,
   if (height) scene.image.height = height;
   if (spp) scene.image.spp = spp;
   const int w = scene.image.width, h = scene.image.height;
-  Film film(w, h);
+  Film film(w, h, AovSelection{});
   try {
     for (const auto& o : outputs) check_image_output_path(o);  // before the work, as the CLI
     py::gil_scoped_release release;

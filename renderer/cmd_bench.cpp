@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cmd_common.h"
-#include "commit.h"
 #include "commands.h"
+#include "commit.h"
 #include "frame.h"
 
 namespace softtrace {
@@ -69,7 +69,7 @@ int run_bench(const BenchArgs& a) {
     Progress progress("bench", long(a.repeat) * scene.image.width * scene.image.height,
                       !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
     for (int i = 0; i < a.repeat; ++i) {
-      Film film(scene.image.width, scene.image.height);
+      Film film(scene.image.width, scene.image.height, AovSelection{});
       const double c0 = process_cpu_seconds();
       const auto t0 = std::chrono::steady_clock::now();
       render_frame(scene, rt, opt, film, &progress, &stats);

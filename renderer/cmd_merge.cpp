@@ -226,7 +226,7 @@ int run_merge(const MergeArgs& a) {
                                missing_tiles(tile_attrs));
     }
 
-    Film film(first.full_width, first.full_height);
+    Film film(first.full_width, first.full_height, channels.aovs);
     for (const char* name : {kHash, "softtrace/render", "softtrace/frame"})
       if (first.attributes.count(name)) film.attributes[name] = first.attributes.at(name);
     for (const ImageFile& t : tiles) paste(t, channels, film);

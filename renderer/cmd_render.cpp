@@ -114,7 +114,7 @@ int run_render(const RenderArgs& a) {
     int loading = kLoading;
     if (!g_phase.compare_exchange_strong(loading, kRendering))
       for (;;) ::pause();  // the watcher is exiting
-    Film film(window.width(), window.height());
+    Film film(window.width(), window.height(), aovs);
     film.full_width = scene.image.width;
     film.full_height = scene.image.height;
     film.x0 = window.x0;

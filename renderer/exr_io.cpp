@@ -131,29 +131,30 @@ void write_exr(const std::string& path, const ImageFile& img, const ExrExtras& e
   for (const auto& [name, v] : extras.floats) header.insert(name, Imf::FloatAttribute(v));
   for (const auto& [name, v] : extras.ints) header.insert(name, Imf::IntAttribute(v));
 
-  // One plane per channel in the stored type.
-  std::vector<std::vector<float>> floats(nc);
+  // Float channels are read where they lie, interleaved (a copy would be fresh memory: a page
+  // fault per 4 KiB); half channels are converted into planes of their own.
   std::vector<std::vector<half>> halves(nc);
   Imf::FrameBuffer fb;
   for (size_t c = 0; c < nc; ++c) {
     const bool as_half = c < extras.half.size() && extras.half[c];
     header.channels().insert(img.channels[c], Imf::Channel(as_half ? Imf::HALF : Imf::FLOAT));
-    char* plane;
-    size_t size;
+    char* first;  // pixel (x0, y0)
+    size_t xstride;
     if (as_half) {
       halves[c].resize(npix);
       for (size_t i = 0; i < npix; ++i) halves[c][i] = half(img.pixels[i * nc + c]);
-      plane = reinterpret_cast<char*>(halves[c].data());
-      size = sizeof(half);
+      first = reinterpret_cast<char*>(halves[c].data());
+      xstride = sizeof(half);
     } else {
-      floats[c].resize(npix);
-      for (size_t i = 0; i < npix; ++i) floats[c][i] = img.pixels[i * nc + c];
-      plane = reinterpret_cast<char*>(floats[c].data());
-      size = sizeof(float);
+      // OpenEXR's Slice takes a char* for reading and writing alike; writing only reads it.
+      first = reinterpret_cast<char*>(const_cast<float*>(img.pixels.data() + c));
+      xstride = nc * sizeof(float);
     }
-    char* origin = plane - (ptrdiff_t(img.x0) + ptrdiff_t(img.y0) * img.width) * ptrdiff_t(size);
+    const size_t ystride = xstride * img.width;
+    char* origin =
+        first - ptrdiff_t(img.x0) * ptrdiff_t(xstride) - ptrdiff_t(img.y0) * ptrdiff_t(ystride);
     fb.insert(img.channels[c],
-              Imf::Slice(as_half ? Imf::HALF : Imf::FLOAT, origin, size, size * img.width));
+              Imf::Slice(as_half ? Imf::HALF : Imf::FLOAT, origin, xstride, ystride));
   }
   try {
     Imf::OutputFile file(path.c_str(), header);

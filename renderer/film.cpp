@@ -63,25 +63,22 @@ ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo&
   return img;
 }
 
-ImageFile png_image(const Film& film, const OutputOptions& opt, const FrameInfo& info) {
-  ImageFile img;
-  img.full_width = img.width = film.width;
-  img.full_height = img.height = film.height;
-  img.channels = {"R", "G", "B"};
-  if (opt.png_alpha) img.channels.push_back("A");
-  const size_t nc = img.channels.size(), npix = size_t(film.width) * film.height;
-  img.pixels.resize(npix * nc);
+PngPixels png_pixels(const Film& film, const OutputOptions& opt, const FrameInfo& info) {
+  const int nc = opt.png_alpha ? 4 : 3;
+  PngPixels png{film.width, film.height, nc, {}};
+  const size_t npix = size_t(film.width) * film.height;
+  png.bytes.resize(npix * nc);
   for (size_t i = 0; i < npix; ++i) {
-    float* out = &img.pixels[i * nc];
+    uint8_t* out = &png.bytes[i * nc];
     const float* in = &film.rgba[i * 4];
     // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
     for (int k = 0; k < 3; ++k)
-      out[k] = srgb_encode(opt.png_alpha && !opt.flatten
-                               ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
-                               : in[k] + float(info.background[k]) * (1 - in[3]));
-    if (opt.png_alpha) out[3] = opt.flatten ? 1.0f : in[3];
+      out[k] = png_sample(srgb_encode(opt.png_alpha && !opt.flatten
+                                          ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
+                                          : in[k] + float(info.background[k]) * (1 - in[3])));
+    if (opt.png_alpha) out[3] = png_sample(opt.flatten ? 1.0f : in[3]);
   }
-  return img;
+  return png;
 }
 
 }  // namespace
@@ -124,7 +121,7 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ou
       ExrExtras extras;
       write_exr(tmp, exr_image(film, opt, info, extras), extras);
     } else {
-      write_png(tmp, png_image(film, opt, info), true);
+      write_png(tmp, png_pixels(film, opt, info), true);
     }
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": " + e.what());  // the caller abandons the pending file

@@ -17,7 +17,9 @@ struct AovSelection {
 };
 
 // A data window of width x height pixels at (x0, y0) inside a display window of
-// full_width x full_height (the whole frame; a crop or tile renders part of it).
+// full_width x full_height (the whole frame; a crop or tile renders part of it). The AOV planes
+// not asked for stay empty: a process's fresh memory costs a page fault per 4 KiB (about 10 µs
+// on a virtual machine), and at 640x480 the three planes were 6 MB, 15 ms of a 0.2 s render.
 struct Film {
   int full_width = 0, full_height = 0;
   int x0 = 0, y0 = 0;
@@ -28,15 +30,15 @@ struct Film {
   std::vector<float> steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
   std::map<std::string, std::string> attributes;  // more string attributes for EXR headers
 
-  Film(int w, int h)
+  Film(int w, int h, AovSelection aovs = {true, true, true})
       : full_width(w),
         full_height(h),
         width(w),
         height(h),
         rgba(size_t(w) * h * 4),
-        depth(size_t(w) * h),
-        normal(size_t(w) * h * 3),
-        steps(size_t(w) * h) {}
+        depth(aovs.depth ? size_t(w) * h : 0),
+        normal(aovs.normal ? size_t(w) * h * 3 : 0),
+        steps(aovs.steps ? size_t(w) * h : 0) {}
 };
 
 struct OutputOptions {

@@ -96,23 +96,29 @@ class FrameTracer {
           rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), &certified);
       work.primary.add(hit.work);
       RayWork shadow;
+      Vec3 normal{0, 0, 0};  // the background's
       if (hit.hit) {
         const Shaded sh = shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow);
         sum += sh.color;
         ++covered;
-        if (s == 0) {
-          film_.depth[i] = static_cast<float>(hit.t);
-          for (int k = 0; k < 3; ++k) film_.normal[i * 3 + k] = static_cast<float>(sh.normal[k]);
-        }
-      } else if (s == 0) {  // the background adds nothing: film.rgba is premultiplied
-        film_.depth[i] = std::numeric_limits<float>::infinity();
+        normal = sh.normal;
       }
-      if (s == 0)
-        film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
+      if (s == 0) aovs(i, hit, normal, shadow);
       work.shadow += shadow;
     }
     for (int k = 0; k < 3; ++k) film_.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
     film_.rgba[i * 4 + 3] = static_cast<float>(covered) / spp;
+  }
+
+  // The pixel-centre ray's AOVs, into the planes the film has. The background adds nothing to
+  // rgba (premultiplied); its depth is +inf.
+  void aovs(size_t i, const TraceHit& hit, const Vec3& normal, const RayWork& shadow) const {
+    if (!film_.depth.empty())
+      film_.depth[i] = hit.hit ? static_cast<float>(hit.t) : std::numeric_limits<float>::infinity();
+    if (!film_.normal.empty())
+      for (int k = 0; k < 3; ++k) film_.normal[i * 3 + k] = static_cast<float>(normal[k]);
+    if (!film_.steps.empty())
+      film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
   }
 
   const Scene& scene_;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -44,5 +45,15 @@ void write_exr(const std::string& path, const ImageFile& image, const ExrExtras&
 // Writes the data window as an 8-bit PNG: channels R,G,B(,A) or Y(,A), values in [0,1] already
 // encoded as they should be stored (sRGB for colour). With `srgb` the file says so (sRGB chunk).
 void write_png(const std::string& path, const ImageFile& image, bool srgb);
+
+// An 8-bit PNG's samples as stored, interleaved: width * height * channels bytes, channels
+// R,G,B(,A) or Y(,A). A render's film goes straight to these, with no float image between.
+struct PngPixels {
+  int width = 0, height = 0, channels = 0;
+  std::vector<uint8_t> bytes;
+};
+// The byte that stores v (clamped to [0,1], NaN as 0), as write_png stores every value.
+uint8_t png_sample(float v);
+void write_png(const std::string& path, const PngPixels& image, bool srgb);
 
 }  // namespace softtrace

@@ -45,8 +45,20 @@ ImageFile read_png(const std::string& path) {
   return img;
 }
 
+uint8_t png_sample(float v) {
+  v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+  return uint8_t(std::lround(v * 255.0f));
+}
+
 void write_png(const std::string& path, const ImageFile& img, bool srgb) {
-  const size_t nc = img.channels.size();
+  PngPixels png{img.width, img.height, int(img.channels.size()), {}};
+  png.bytes.resize(img.pixels.size());
+  for (size_t i = 0; i < png.bytes.size(); ++i) png.bytes[i] = png_sample(img.pixels[i]);
+  write_png(path, png, srgb);
+}
+
+void write_png(const std::string& path, const PngPixels& img, bool srgb) {
+  const int nc = img.channels;
   if (nc < 1 || nc > 4) throw std::runtime_error("a PNG holds 1 to 4 channels");
   PngImage p;
   p.image.width = png_uint_32(img.width);
@@ -58,14 +70,9 @@ void write_png(const std::string& path, const ImageFile& img, bool srgb) {
   // Speed over size (libpng then filters less and deflates faster): a render writes its image
   // after the frame, on one thread.
   p.image.flags |= PNG_IMAGE_FLAG_FAST;
-  std::vector<png_byte> bytes(img.pixels.size());
-  for (size_t i = 0; i < bytes.size(); ++i) {
-    const float v = std::isnan(img.pixels[i]) ? 0.0f : std::clamp(img.pixels[i], 0.0f, 1.0f);
-    bytes[i] = png_byte(std::lround(v * 255.0f));
-  }
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw std::runtime_error("cannot open the file for writing");
-  const bool written = png_image_write_to_stdio(&p.image, f, 0, bytes.data(), 0, nullptr);
+  const bool written = png_image_write_to_stdio(&p.image, f, 0, img.bytes.data(), 0, nullptr);
   const bool closed = std::fclose(f) == 0;  // a full disk may show only here
   if (!written) throw std::runtime_error(p.image.message);
   if (!closed) throw std::runtime_error("cannot write the file");

@@ -24,6 +24,7 @@
 #include "camera.h"
 #include "cli_util.h"
 #include "film.h"
+#include "frame.h"
 #include "frame_metadata.h"
 #include "image_file.h"
 #include "scene.h"
@@ -208,6 +209,29 @@ TEST(Outputs, PngSaysSrgbAndKeepsStraightAlpha) {
           << i;
     }
   }
+}
+
+// A film holds only the AOV planes asked for, and the frame fills what it holds: the same colour
+// and depth whichever planes are there.
+TEST(Outputs, FilmHoldsOnlyTheAovPlanesAskedFor) {
+  Scene scene = load_scene(source_path(kScene));
+  scene.image.width = kW;
+  scene.image.height = kH;
+  const TracedScene rt(scene, LipschitzMode::Local);
+  Film all(kW, kH), depth_only(kW, kH, AovSelection{true, false, false}),
+      none(kW, kH, AovSelection{});
+  for (Film* f : {&all, &depth_only, &none})
+    ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, *f, nullptr, nullptr));
+  const size_t n = size_t(kW) * kH;
+  EXPECT_EQ(all.normal.size(), n * 3);
+  EXPECT_EQ(all.steps.size(), n);
+  EXPECT_EQ(depth_only.depth.size(), n);
+  EXPECT_TRUE(depth_only.normal.empty() && depth_only.steps.empty());
+  EXPECT_TRUE(none.depth.empty() && none.normal.empty() && none.steps.empty());
+  EXPECT_EQ(none.rgba, all.rgba);
+  EXPECT_EQ(depth_only.rgba, all.rgba);
+  EXPECT_EQ(depth_only.depth, all.depth);
+  EXPECT_GT(std::count(all.depth.begin(), all.depth.end(), INFINITY), 100);  // background
 }
 
 // A crop's pixels go to the data window inside the whole frame's display window.
