@@ -315,7 +315,8 @@ void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& id
   const int32_t count = static_cast<int32_t>(kept_ids.size());
   BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
   builder.build(0, count, 0);
-  collapse(builder.nodes, 0, builder, nodes_, blocks_);
+  root_ = count <= kWidth ? add_leaf(builder.nodes[0], builder, blocks_)
+                          : collapse(builder.nodes, 0, builder, nodes_, blocks_);
   note_order();
 }
 
@@ -340,7 +341,8 @@ void BoxBvh::note_order() {
 
 template <bool kScattered, class Test>
 int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
-  if (nodes_.empty()) return count;
+  if (empty()) return count;
+  if (root_ < 0) return leaf_items(root_, test, out, count);
   int32_t stack[kStack];
   int top = 0;
   stack[top++] = 0;
@@ -362,15 +364,20 @@ int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
         top += passed;
         continue;
       }
-      if (!passed) continue;
-      const Node* block = &blocks_[~ref >> kBlockBits];
-      for (const Node* end = block + (~ref & ((1 << kBlockBits) - 1)) + 1; block != end; ++block) {
-        const int items = test(*block) & ((1 << block->size) - 1);
-        for (int i = 0; i < block->size; ++i) {
-          out[count] = block->ref[i];
-          count += items >> i & 1;
-        }
-      }
+      if (passed) count = leaf_items(ref, test, out, count);
+    }
+  }
+  return count;
+}
+
+template <class Test>
+int BoxBvh::leaf_items(int32_t ref, const Test& test, int32_t* out, int count) const {
+  const Node* block = &blocks_[~ref >> kBlockBits];
+  for (const Node* end = block + (~ref & ((1 << kBlockBits) - 1)) + 1; block != end; ++block) {
+    const int items = test(*block) & ((1 << block->size) - 1);
+    for (int i = 0; i < block->size; ++i) {
+      out[count] = block->ref[i];
+      count += items >> i & 1;
     }
   }
   return count;

@@ -21,7 +21,7 @@ class BoxBvh {
  public:
   // `boxes[i]` is item `ids[i]`'s box; empty boxes are never reported.
   void build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids);
-  bool empty() const { return nodes_.empty(); }
+  bool empty() const { return blocks_.empty(); }  // every item lies in a block
   // The items' ids in the order every query reports them (the walk's, the same for any query).
   std::vector<int32_t> tree_order() const;
   // Renames item `id` to `to[id]`. Where that makes the tree's order ascending, the queries below
@@ -59,10 +59,16 @@ class BoxBvh {
   // along a ray and from ray to ray, pass the same slots often enough for branches to pay.
   template <bool kScattered, class Test>
   int walk(const Test& test, int32_t* out, int count) const;
+  // A leaf's items (a slot's ref < 0) that pass `test`, appended to out[count..].
+  template <class Test>
+  int leaf_items(int32_t ref, const Test& test, int32_t* out, int count) const;
 
   void note_order();
 
-  std::vector<Node> nodes_;   // the root is nodes_[0]
+  // The root: nodes_[0], or for at most kWidth items one leaf (ref < 0), tested as one block
+  // with no node above it (a blend of two soft objects paid three tests for two items).
+  int32_t root_ = 0;
+  std::vector<Node> nodes_;
   std::vector<Node> blocks_;  // the leaves' items, four to a block
   bool ascending_ = false;    // ids ascend in the tree's order
 };
