@@ -315,8 +315,10 @@ void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& id
   const int32_t count = static_cast<int32_t>(kept_ids.size());
   BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
   builder.build(0, count, 0);
-  root_ = count <= kWidth ? add_leaf(builder.nodes[0], builder, blocks_)
-                          : collapse(builder.nodes, 0, builder, nodes_, blocks_);
+  if (count <= kWidth)
+    add_leaf(builder.nodes[0], builder, blocks_);
+  else
+    collapse(builder.nodes, 0, builder, nodes_, blocks_);
   note_order();
 }
 
@@ -342,7 +344,7 @@ void BoxBvh::note_order() {
 template <bool kScattered, class Test>
 int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
   if (empty()) return count;
-  if (root_ < 0) return leaf_items(root_, test, out, count);
+  if (nodes_.empty()) return leaf_items(~0, test, out, count);  // one block: blocks_[0]
   int32_t stack[kStack];
   int top = 0;
   stack[top++] = 0;

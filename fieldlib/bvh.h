@@ -65,9 +65,8 @@ class BoxBvh {
 
   void note_order();
 
-  // The root: nodes_[0], or for at most kWidth items one leaf (ref < 0), tested as one block
-  // with no node above it (a blend of two soft objects paid three tests for two items).
-  int32_t root_ = 0;
+  // The root is nodes_[0]. At most kWidth items make no node: the tree is then blocks_[0] alone,
+  // tested with no node above it (a blend of two soft objects paid three tests for two items).
   std::vector<Node> nodes_;
   std::vector<Node> blocks_;  // the leaves' items, four to a block
   bool ascending_ = false;    // ids ascend in the tree's order

@@ -541,21 +541,21 @@ class Walker {
     }
     const int last = top_;
     int32_t* marks = ws_.marks.data();
-    // A large sum's children kept in a box lie in runs far apart in a program too large for the
-    // cache (10,000 blobs: 2 MB of code, constants and slots). Their addresses are known from the
-    // kept list, so their loads start a few children ahead: the code four ahead, the constants
-    // (found from that code; 24 doubles hold a placement's and a distance's) two ahead.
-    // blob_box_pass at N = 10,000: 0.95x the time; N = 100 unchanged. (Written here, not as a
-    // function: GCC drops a call whose only effect is prefetching.)
-    const bool large = !g.bvh.empty();
+    // A sum with a BVH may be large: its children kept in a box then lie in runs far apart in a
+    // program too large for the cache (10,000 blobs: 2 MB of code, constants and slots). Their
+    // addresses are known from the kept list, so their loads start a few children ahead: the code
+    // four ahead, the constants (found from that code; 24 doubles hold a placement's and a
+    // distance's) two ahead. blob_box_pass at N = 10,000: 0.95x the time; N = 100 unchanged.
+    // (Written here, not as a function: GCC drops a call whose only effect is prefetching.)
+    const bool indexed = !g.bvh.empty();
     for (int j = first; j < last; ++j) {
       const Group::Child& c = g.children[kept[j]];
-      if (large && j + 4 < last) {
+      if (indexed && j + 4 < last) {
         const Group::Child& ahead = g.children[kept[j + 4]];
         __builtin_prefetch(&p_.code[ahead.begin]);
         __builtin_prefetch(&p_.code[ahead.end - 1]);
       }
-      if (large && j + 2 < last) {
+      if (indexed && j + 2 < last) {
         const double* k = K_ + p_.code[g.children[kept[j + 2]].begin].a;
         for (int line = 0; line < 3; ++line) __builtin_prefetch(k + 8 * line);
       }
