@@ -13,14 +13,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "batch.h"
-#include "build.h"
-#include "film.h"
-#include "frame.h"
-#include "frame_metadata.h"
-#include "json_text.h"
-#include "kinds.h"
-#include "scene.h"
+#include "eval/batch.h"
+#include "film/film.h"
+#include "loader/build.h"
+#include "loader/kinds.h"
+#include "model/program_builder.h"
+#include "render/frame.h"
+#include "render/frame_metadata.h"
+#include "scene/json_text.h"
+#include "scene/scene.h"
 
 namespace py = pybind11;
 using namespace softtrace;

@@ -9,8 +9,8 @@
 #include <random>
 #include <string>
 
-#include "bt_base.h"
-#include "params.h"
+#include "describe/params.h"
+#include "kernels/bt_base.h"
 #include "sweep.h"
 
 namespace softtrace::test {
@@ -323,9 +323,9 @@ TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
   EXPECT_GT(blending, 100);
 }
 
-// The exact gradient needs the children's Hessians (docs/math.md §7.6), so the shading normal is the
-// partial gradient. Near the zero surface of the crossing cylinders it stays within a few degrees
-// of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
+// The exact gradient needs the children's Hessians (docs/math.md §7.6), so the shading normal is
+// the partial gradient. Near the zero surface of the crossing cylinders it stays within a few
+// degrees of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
 TEST(BulgeElimination, PartialGradientIsCloseToTheNormalNearTheSurface) {
   for (const std::string& base : kBulgeBases) {
     const NodePtr n = build_from_json(blend("bt_union", base, {kCylZ, kCylX}), kZero);

@@ -17,8 +17,8 @@ fail() {
 rm -rf "$work"
 mkdir -p "$work"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log"
-for f in bin/softtrace bin/softtrace-core include/softtrace/eval.h include/softtrace/build.h \
-  include/softtrace/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
+for f in bin/softtrace bin/softtrace-core include/softtrace/eval/eval.h include/softtrace/loader/build.h \
+  include/softtrace/scene/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
   lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc; do
   [ -e "$prefix/$f" ] || fail "the install has no $f"
 done

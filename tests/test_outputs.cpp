@@ -21,13 +21,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "camera.h"
 #include "cli_util.h"
-#include "film.h"
-#include "frame.h"
-#include "frame_metadata.h"
-#include "image_file.h"
-#include "scene.h"
+#include "film/film.h"
+#include "io/image_file.h"
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/frame_metadata.h"
+#include "scene/scene.h"
 
 namespace softtrace::test {
 namespace {

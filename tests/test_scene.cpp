@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "json_location.h"
-#include "json_nesting.h"
-#include "scene.h"
+#include "scene/json_location.h"
+#include "scene/json_nesting.h"
+#include "scene/scene.h"
 
 namespace softtrace {
 namespace {

@@ -1,0 +1,185 @@
+// softtrace: render, evaluate, compare and benchmark implicit soft-object scenes.
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli/cli_spelling.h"
+#include "cli/commands.h"
+#include "cli/signals.h"
+#include "commit.h"
+
+using namespace softtrace;
+
+int main(int argc, char** argv) {
+  block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
+  CLI::App app{
+      "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
+      "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command "
+      "line: docs/cli.md."};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Print help for every subcommand");
+  app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
+                       "Print the version and the commit it was built from");
+  const std::map<std::string, LipschitzMode> modes = {{"local", LipschitzMode::Local},
+                                                      {"global", LipschitzMode::Global}};
+
+  RenderArgs r;
+  auto* render = app.add_subcommand("render", "Render a scene to EXR and/or PNG");
+  render->add_option("scene", r.scene, "Scene file (JSON with comments)")->required();
+  render->add_option("-o,--output", r.outputs,
+                     "Output image(s), .exr or .png; repeat for several (default: <scene>.exr)");
+  render->add_option("--width", r.width, "Image width (overrides the scene)")
+      ->check(CLI::Range(1, 16384));
+  render->add_option("--height", r.height, "Image height (overrides the scene)")
+      ->check(CLI::Range(1, 16384));
+  render->add_option("--spp", r.spp, "Samples per pixel (overrides the scene)")
+      ->check(CLI::Range(1, 4096));
+  render->add_option("--threads", r.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps");
+  render
+      ->add_option("--lipschitz", r.lipschitz,
+                   "Sphere-tracing bound: local (per stretch) or global")
+      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+  render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
+      ->excludes(render_quiet);
+  render->add_flag("--flatten", r.flatten,
+                   "EXR: RGB over the scene's background with A = 1 (default: premultiplied RGBA "
+                   "over transparency)");
+  render->add_flag("--half", r.half, "EXR: half-float R,G,B,A and normals (Z, steps stay float)");
+  render->add_flag("--png-alpha", r.png_alpha,
+                   "PNG: RGBA with straight alpha (default: RGB over the background)");
+  auto* crop = render->add_option("--crop", r.crop,
+                                  "Render fractions X0,X1,Y0,Y1 of the image (pbrt's cropwindow)");
+  auto* bounds = render->add_option("--pixel-bounds", r.pixel_bounds,
+                                    "Render pixels [X0,X1) x [Y0,Y1), given as X0,X1,Y0,Y1");
+  auto* tile = render->add_option("--tile", r.tile,
+                                  "Render tile I of N (I/N, 0 <= I < N) of a balanced split");
+  crop->excludes(bounds, tile);
+  bounds->excludes(tile);
+  render
+      ->add_option("--frame", r.frame,
+                   "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
+      ->check(CLI::Range(0, 999999));
+
+  EvalArgs e;
+  auto* eval = app.add_subcommand(
+      "eval", "Print 'value gx gy gz' (%.17g) of an object's field for 'x y z' lines");
+  eval->add_option("scene", e.scene, "Scene file")->required();
+  eval->add_option("--object", e.object, "Object name (default: the first object)");
+  eval->add_option("--points", e.points, "File of 'x y z' lines (default: standard input)");
+
+  DiffArgs d;
+  // CLI::NonNegativeNumber would print the largest double in its message.
+  const CLI::Validator threshold(
+      [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return end != text.c_str() && *end == '\0' && v >= 0
+                   ? std::string()
+                   : "'" + text + "' is not a number >= 0";
+      },
+      "T>=0");
+  auto* diff = app.add_subcommand(
+      "diff",
+      "Compare two images as OpenImageIO's idiff does (its single-dash options work too); exit 0 "
+      "pass, 1 warning, 2 failure, 4 a file it cannot read or write");
+  diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
+  diff->add_option("b", d.b, "Second image")->required();
+  diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)")
+      ->check(threshold);
+  diff->add_option("--failpercent", d.failpercent,
+                   "Allow this percentage of failing pixels (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--failrelative", d.failrelative,
+                   "...and by more than this fraction of the mean magnitude (default 0)")
+      ->check(threshold);
+  diff->add_option("--hardfail", d.hardfail,
+                   "Fail if a pixel differs by more than this (default inf)")
+      ->check(threshold);
+  diff->add_option("--allowfailures", d.allowfailures,
+                   "Pass with up to this many failing pixels (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
+      ->check(threshold);
+  diff->add_option("--warnpercent", d.warnpercent,
+                   "Allow this percentage of warning pixels (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  diff->add_option("--warnrelative", d.warnrelative,
+                   "...and by more than this fraction of the mean magnitude (default 0)")
+      ->check(threshold);
+  diff->add_option("--hardwarn", d.hardwarn,
+                   "Warn if a pixel differs by more than this (default inf)")
+      ->check(threshold);
+  diff->add_option("-o,--out", d.out,
+                   "Write the difference A-B here: .exr (float) or .png (8-bit RGB)");
+  diff->add_flag("--abs", d.abs, "The difference image holds |A-B|");
+  diff->add_option("--scale", d.scale, "Multiply the difference image by this (default 1)");
+  diff->add_flag("--od", d.out_only_if_different, "Write the difference image only if nonzero");
+  diff->add_option("--channels", d.channels,
+                   "Compare only these channels, e.g. R,G,B (default: those both images have)");
+  diff->add_flag("-q,--quiet", d.quiet, "No report; FAILURE on stderr");
+  // idiff's -v (its report is always printed here) and -a (all subimages: our files have one).
+  diff->add_flag("-v,-a", "Accepted for idiff scripts; no effect");
+
+  BenchArgs b;
+  auto* bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
+  bench->add_option("scene", b.scene, "Scene file")->required();
+  bench->add_option("--width", b.width, "Image width (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  bench->add_option("--height", b.height, "Image height (default: the scene's)")
+      ->check(CLI::Range(1, 16384));
+  bench->add_option("--threads", b.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(CLI::Range(1, 1000));
+  bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
+      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  bench->add_flag("--json", b.json, "Print the results as JSON");
+  auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
+  bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
+      ->excludes(bench_quiet);
+
+  MergeArgs m;
+  auto* merge = app.add_subcommand(
+      "merge", "Put tiles (render --tile/--crop EXRs of one frame) together into one image");
+  merge->add_option("tiles", m.tiles, "Tile images (.exr)")->required();
+  merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
+  merge->add_flag("-q,--quiet", m.quiet, "No summary line");
+
+  bool dict = false;
+  auto* nodes = app.add_subcommand(
+      "nodes", "List the node types, potentials and radius transforms with their parameters");
+  nodes->add_flag("--dict", dict, "Print a libFuzzer dictionary of their names instead");
+
+  // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
+  std::vector<std::string> args(argv, argv + argc);
+  if (argc > 1 && args[1] == "diff") args = idiff_style_arguments(args);
+  std::vector<char*> arg_pointers;
+  for (auto& arg : args) arg_pointers.push_back(arg.data());
+  try {
+    app.parse(int(arg_pointers.size()), arg_pointers.data());
+  } catch (const CLI::CallForHelp& ex) {
+    return app.exit(ex);
+  } catch (const CLI::CallForAllHelp& ex) {
+    return app.exit(ex);
+  } catch (const CLI::CallForVersion& ex) {
+    return app.exit(ex);
+  } catch (const CLI::ParseError& ex) {
+    const std::string unknown = unknown_word(app, argc, argv);
+    report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
+    return 2;
+  }
+  // The watcher runs before any command starts to work: a signal that came while the libraries
+  // were loading is taken now.
+  watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
+  if (*render) return run_render(r);
+  if (*eval) return run_eval(e);
+  if (*diff) return run_diff(d);
+  if (*bench) return run_bench(b);
+  if (*merge) return run_merge(m);
+  if (*nodes) return run_nodes(dict);
+  return 2;
+}

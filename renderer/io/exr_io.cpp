@@ -1,0 +1,168 @@
+// EXR reading and writing with OpenEXR 3 (Imf::InputFile / Imf::OutputFile).
+#include <ImfChannelList.h>
+#include <ImfFloatAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <half.h>
+#include <strings.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "io/image_file.h"
+#include "io/image_io.h"
+
+namespace softtrace {
+
+namespace {
+
+// OpenImageIO's canonical channel order (its OpenEXR reader): by layer, then by these names
+// (case-insensitive), then by name. A layer with X and Y or Z (a position or normal) puts X,Y,Z
+// right after the colours.
+int special_rank(const std::string& suffix, bool xyz_layer) {
+  static const char* const plain[] = {"R",    "Red",  "G",  "Green", "B",     "Blue",  "Y",
+                                      "real", "imag", "A",  "Alpha", "AR",    "RA",    "AG",
+                                      "GA",   "AB",   "BA", "Z",     "Depth", "Zback", nullptr};
+  static const char* const xyz[] = {"R",  "Red",  "G",    "Green", "B",     "Blue", "X",  "Y",
+                                    "Z",  "real", "imag", "A",     "Alpha", "AR",   "RA", "AG",
+                                    "GA", "AB",   "BA",   "Depth", "Zback", nullptr};
+  const char* const* names = xyz_layer ? xyz : plain;
+  for (int i = 0; names[i]; ++i)
+    if (::strcasecmp(suffix.c_str(), names[i]) == 0) return i;
+  return 10000;
+}
+
+struct ChannelKey {
+  std::string name, layer, suffix;
+  int rank = 0;
+};
+
+std::vector<std::string> canonical_order(std::vector<std::string> names) {
+  std::vector<ChannelKey> keys;
+  for (const auto& n : names) {
+    const size_t dot = n.find_last_of('.');
+    keys.push_back({n, dot == std::string::npos ? "" : n.substr(0, dot),
+                    dot == std::string::npos ? n : n.substr(dot + 1), 0});
+  }
+  const auto has = [&](const std::string& layer, const char* suffix) {
+    return std::any_of(keys.begin(), keys.end(), [&](const ChannelKey& k) {
+      return k.layer == layer && ::strcasecmp(k.suffix.c_str(), suffix) == 0;
+    });
+  };
+  for (auto& k : keys)
+    k.rank = special_rank(k.suffix, has(k.layer, "X") && (has(k.layer, "Y") || has(k.layer, "Z")));
+  std::sort(keys.begin(), keys.end(), [](const ChannelKey& a, const ChannelKey& b) {
+    if (a.layer != b.layer) return a.layer < b.layer;
+    if (a.rank != b.rank) return a.rank < b.rank;
+    return a.suffix < b.suffix;
+  });
+  for (size_t i = 0; i < keys.size(); ++i) names[i] = keys[i].name;
+  return names;
+}
+
+}  // namespace
+
+ImageFile read_exr(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imath::Box2i dw = header.dataWindow(), disp = header.displayWindow();
+    ImageFile img;
+    img.full_width = disp.max.x - disp.min.x + 1;
+    img.full_height = disp.max.y - disp.min.y + 1;
+    img.x0 = dw.min.x - disp.min.x;
+    img.y0 = dw.min.y - disp.min.y;
+    img.width = dw.max.x - dw.min.x + 1;
+    img.height = dw.max.y - dw.min.y + 1;
+    std::vector<std::string> names;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+      if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
+        throw std::runtime_error(std::string("subsampled channel '") + it.name() +
+                                 "' is not supported");
+      names.push_back(it.name());
+    }
+    if (names.empty()) throw std::runtime_error("no channels");
+    img.channels = canonical_order(names);
+    if (img.width <= 0 || img.height <= 0 || size_t(img.width) * img.height > (size_t(1) << 28))
+      throw std::runtime_error("unsupported data window");
+    const size_t nc = img.channels.size();
+    img.pixels.assign(size_t(img.width) * img.height * nc, 0.0f);
+
+    // OpenEXR addresses the buffer by absolute pixel coordinates: point each slice at where
+    // pixel (0, 0) would be.
+    const size_t xstride = nc * sizeof(float), ystride = size_t(img.width) * xstride;
+    char* origin =
+        reinterpret_cast<char*>(img.pixels.data()) -
+        (ptrdiff_t(dw.min.x) * ptrdiff_t(xstride) + ptrdiff_t(dw.min.y) * ptrdiff_t(ystride));
+    Imf::FrameBuffer fb;
+    for (size_t c = 0; c < nc; ++c)
+      fb.insert(img.channels[c],
+                Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xstride, ystride));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+
+    for (auto it = header.begin(); it != header.end(); ++it)
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        img.attributes[it.name()] = s->value();
+    return img;
+  } catch (const std::runtime_error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+void write_exr(const std::string& path, const ImageFile& img, const ExrExtras& extras) {
+  const size_t nc = img.channels.size(), npix = size_t(img.width) * img.height;
+  Imf::Header header(
+      Imath::Box2i({0, 0}, {img.full_width - 1, img.full_height - 1}),
+      Imath::Box2i({img.x0, img.y0}, {img.x0 + img.width - 1, img.y0 + img.height - 1}));
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const auto& [name, value] : img.attributes) header.insert(name, Imf::StringAttribute(value));
+  for (const auto& [name, m] : extras.matrices)
+    header.insert(
+        name, Imf::M44fAttribute(Imath::M44f(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8],
+                                             m[9], m[10], m[11], m[12], m[13], m[14], m[15])));
+  for (const auto& [name, v] : extras.floats) header.insert(name, Imf::FloatAttribute(v));
+  for (const auto& [name, v] : extras.ints) header.insert(name, Imf::IntAttribute(v));
+
+  // Float channels are read where they lie, interleaved (a copy would be fresh memory: a page
+  // fault per 4 KiB); half channels are converted into planes of their own.
+  std::vector<std::vector<half>> halves(nc);
+  Imf::FrameBuffer fb;
+  for (size_t c = 0; c < nc; ++c) {
+    const bool as_half = c < extras.half.size() && extras.half[c];
+    header.channels().insert(img.channels[c], Imf::Channel(as_half ? Imf::HALF : Imf::FLOAT));
+    char* first;  // pixel (x0, y0)
+    size_t xstride;
+    if (as_half) {
+      halves[c].resize(npix);
+      for (size_t i = 0; i < npix; ++i) halves[c][i] = half(img.pixels[i * nc + c]);
+      first = reinterpret_cast<char*>(halves[c].data());
+      xstride = sizeof(half);
+    } else {
+      // OpenEXR's Slice takes a char* for reading and writing alike; writing only reads it.
+      first = reinterpret_cast<char*>(const_cast<float*>(img.pixels.data() + c));
+      xstride = nc * sizeof(float);
+    }
+    const size_t ystride = xstride * img.width;
+    char* origin =
+        first - ptrdiff_t(img.x0) * ptrdiff_t(xstride) - ptrdiff_t(img.y0) * ptrdiff_t(ystride);
+    fb.insert(img.channels[c],
+              Imf::Slice(as_half ? Imf::HALF : Imf::FLOAT, origin, xstride, ystride));
+  }
+  try {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(img.height);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+}  // namespace softtrace
