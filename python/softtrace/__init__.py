@@ -10,7 +10,7 @@
 >>> softtrace.render(scene)["rgba"].shape
 (24, 32, 4)
 >>> round(float(softtrace.Field(scene).eval([0, 0, 0])), 6)
-0.614626
+0.635039
 """
 import os
 from typing import Any, Callable, Dict, Iterable, Mapping, Optional, Sequence, Union
@@ -75,9 +75,9 @@ class Scene(_native.Scene):
 class Field(_native.Field):
     """A compiled field: an object's field of a scene, or a node from JSON text or a dict.
 
-    >>> f = Field(lp_metric([2, 2, 2], 2))          # a distance node: no convention of its own
-    >>> f.eval([[0, 0, 2], [1, 0, 0]]).tolist()
-    [1.0, 0.5]
+    >>> f = Field(soft_object(lp_metric([2, 2, 2], 2)))    # radius 2, Blanc's potential
+    >>> f.eval([[0, 0, 1], [1, 0, 0], [0, 0, 2]]).tolist()
+    [0.5, 0.5, 0.0]
 
     Fields pickle as their node's JSON text and convention.
     """
@@ -101,7 +101,7 @@ class Field(_native.Field):
     def eval(self, points: Any) -> np.ndarray:
         """Values at `points`, an array of shape (..., 3): an array of shape (...).
 
-        >>> Field(lp_metric([2, 2, 2], 2)).eval(np.zeros((4, 5, 3))).shape
+        >>> Field(soft_object(lp_metric([2, 2, 2], 2))).eval(np.zeros((4, 5, 3))).shape
         (4, 5)
         """
         return self._eval(points)
@@ -109,9 +109,9 @@ class Field(_native.Field):
     def gradient(self, points: Any) -> "tuple[np.ndarray, np.ndarray]":
         """(values of shape (...), gradients of shape (..., 3)) at `points` of shape (..., 3).
 
-        >>> v, g = Field(lp_metric([2, 2, 2], 2)).gradient([0, 0, 1])
-        >>> g.tolist()
-        [0.0, 0.0, 0.5]
+        >>> values, gradients = Field(soft_object(lp_metric([2, 2, 2], 2))).gradient([0, 0, 1])
+        >>> float(values), gradients.shape, float(gradients[2])
+        (0.5, (3,), -1.0)
         """
         return self._gradient(points)
 
@@ -144,7 +144,7 @@ def parse_scene(text: Union[str, bytes], name: str = "<scene>") -> Scene:
     >>> parse_scene('{"camera": {"eye": [0, -9, 0], "target": [0, 0, 0]}, "objects": []}')
     Traceback (most recent call last):
     ...
-    softtrace._native.SceneError: <scene>: /objects: expected at least one object
+    softtrace.SceneError: <scene>: /objects: expected at least one object
     """
     return Scene(text, name)
 

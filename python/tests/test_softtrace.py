@@ -2,17 +2,13 @@
 import json
 import os
 import subprocess
-import sys
 import time
 
 import numpy as np
 import pytest
+from conftest import BIN, TWO_BLOBS
 
 import softtrace
-
-BIN = os.environ["SOFTTRACE_BIN"]
-SRC = os.environ["SOFTTRACE_SOURCE_DIR"]
-TWO_BLOBS = os.path.join(SRC, "examples", "consumer", "two_blobs.json")
 
 
 def cli_eval(scene, points):
@@ -21,14 +17,6 @@ def cli_eval(scene, points):
                          check=True).stdout
     rows = np.array([[float(v) for v in line.split()] for line in out.splitlines()])
     return rows[:, 0], rows[:, 1:]
-
-
-@pytest.fixture(scope="module")
-def blob_scene(tmp_path_factory):
-    path = tmp_path_factory.mktemp("blobs") / "blobs1000.json"
-    subprocess.run([sys.executable, os.path.join(SRC, "tools", "blob_scene.py"), "1000",
-                    "-o", str(path)], check=True)
-    return str(path)
 
 
 def test_values_and_gradients_match_softtrace_eval(blob_scene):
