@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -144,8 +145,15 @@ py::dict render(const PyScene& shared, const Request& r) {
   const std::shared_ptr<const Scene> held = shared.scene;
   const Scene& scene = *held;
   ImageSettings image = scene.image;  // this render's own
+  // One of width and height alone keeps the scene's aspect, as --width or --height alone does.
   if (r.width) image.width = r.width;
   if (r.height) image.height = r.height;
+  if (r.width && !r.height)
+    image.height =
+        int(std::max(1L, std::lround(double(r.width) * scene.image.height / scene.image.width)));
+  if (r.height && !r.width)
+    image.width =
+        int(std::max(1L, std::lround(double(r.height) * scene.image.width / scene.image.height)));
   if (r.spp) image.spp = r.spp;
   check_pixel_count(image, scene.path);
   OutputOptions opt;

@@ -165,7 +165,8 @@ def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
     `flatten`, RGB over the background and A = 1); `aovs` adds any of "depth" (height, width:
     distance along the pixel-centre ray, inf for the background), "normal" (height, width, 3)
     and "steps" (height, width: field evaluations of that ray). width, height and spp of 0 keep
-    the scene's; frames above 2^26 pixels are refused as the command line refuses them.
+    the scene's, and one of width and height alone keeps the scene's aspect; frames above 2^26
+    pixels are refused as the command line refuses them.
 
     `threads` caps the cores used (0: all); the picture is the same bits for any number.
     `progress(done, total)` is called with pixels done, about 50 times a second, on the calling

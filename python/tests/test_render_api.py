@@ -113,6 +113,14 @@ def test_the_cli_pixel_limit_with_the_cli_message():
         softtrace.render(scene, threads=-1)
 
 
+def test_width_or_height_alone_keeps_the_aspect():
+    scene = softtrace.load_scene(TWO_BLOBS)  # 64x48
+    assert softtrace.render(scene, width=32)["rgba"].shape == (24, 32, 4)
+    assert softtrace.render(scene, height=12)["rgba"].shape == (12, 16, 4)
+    assert softtrace.render(scene, width=1)["rgba"].shape == (1, 1, 4)
+    assert softtrace.render(scene, width=10, height=30)["rgba"].shape == (30, 10, 4)
+
+
 def test_any_thread_count_gives_the_same_bits():
     scene = softtrace.load_scene(TWO_BLOBS)
     one = softtrace.render(scene, width=48, height=36, spp=4, threads=1, aovs=["steps"])
