@@ -23,6 +23,7 @@ from ._native import SceneError, __version__
 SceneError.__module__ = __name__
 
 PathLike = Union[str, "os.PathLike[str]"]
+Node = Dict[str, Any]  # what a builder returns: the node as a scene file holds it
 
 __all__ = ["Scene", "Field", "SceneError", "load_scene", "parse_scene", "load_dict", "render",
            "write_exr", "read_exr", "exr_attributes", "nodes", "__version__"]
