@@ -12,8 +12,9 @@
 >>> round(float(softtrace.Field(scene).eval([0, 0, 0])), 6)
 0.635039
 """
+import builtins
 import os
-from typing import Any, Callable, Dict, Iterable, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Iterable, Mapping, Optional, Union
 
 import numpy as np
 
@@ -229,4 +230,6 @@ def nodes() -> list:
 
 
 globals().update(_builders.builders(nodes()))
-__all__ += [k["name"] for k in nodes()]
+# `from softtrace import *` brings every builder but those named as Python's builtins (min, max),
+# which it would hide; softtrace.min and softtrace.max are there all the same.
+__all__ += [k["name"] for k in nodes() if k["name"] not in dir(builtins)]
