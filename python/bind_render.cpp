@@ -35,6 +35,7 @@ constexpr auto kPoll = 20ms;
 
 struct Request {
   int width = 0, height = 0, spp = 0, threads = 0;
+  int frame = -1;  // an animation's frame; -1: the scene's camera
   std::vector<std::string> aovs, outputs;
   py::object progress;
   bool flatten = false;
@@ -142,7 +143,14 @@ py::dict render(const PyScene& shared, const Request& r) {
     throw std::invalid_argument("width and height must be in [1, 16384] and spp in [1, 4096]");
   if (r.threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all cores)");
   // This render's reference: a setting changed meanwhile replaces shared.scene, not this one.
-  const std::shared_ptr<const Scene> held = shared.scene;
+  std::shared_ptr<const Scene> held = shared.scene;
+  if (r.frame >= 0) {
+    // The frame's camera (and default lights) go into a scene of this render's own, parsed from
+    // the same text: the shared one is never set to a frame, and the hash stays the text's.
+    auto own = std::make_shared<Scene>(parse_scene(shared.text, held->path));
+    set_frame(*own, r.frame);
+    held = std::move(own);
+  }
   const Scene& scene = *held;
   ImageSettings image = scene.image;  // this render's own
   // One of width and height alone keeps the scene's aspect, as --width or --height alone does.
@@ -163,6 +171,7 @@ py::dict render(const PyScene& shared, const Request& r) {
 
   const auto start = std::chrono::steady_clock::now();
   Film film(image.width, image.height, opt.aovs);
+  if (r.frame >= 0) film.attributes["softtrace/frame"] = std::to_string(r.frame);
   trace(scene, film, image.spp, r);
   {
     // The files as `softtrace render -o` writes them: all or nothing. The pending files are
@@ -203,9 +212,11 @@ py::dict render(const PyScene& shared, const Request& r) {
 void bind_render(py::module_& m) {
   m.def(
       "render",
-      [](const PyScene& scene, int width, int height, int spp, std::vector<std::string> aovs,
-         int threads, py::object progress, bool flatten, std::vector<std::string> outputs) {
+      [](const PyScene& scene, int width, int height, int spp, int frame,
+         std::vector<std::string> aovs, int threads, py::object progress, bool flatten,
+         std::vector<std::string> outputs) {
         Request r;
+        r.frame = frame;
         r.width = width;
         r.height = height;
         r.spp = spp;
@@ -216,8 +227,9 @@ void bind_render(py::module_& m) {
         r.outputs = std::move(outputs);
         return render(scene, r);
       },
-      py::arg("scene"), py::arg("width"), py::arg("height"), py::arg("spp"), py::arg("aovs"),
-      py::arg("threads"), py::arg("progress"), py::arg("flatten"), py::arg("outputs"));
+      py::arg("scene"), py::arg("width"), py::arg("height"), py::arg("spp"), py::arg("frame"),
+      py::arg("aovs"), py::arg("threads"), py::arg("progress"), py::arg("flatten"),
+      py::arg("outputs"));
 }
 
 }  // namespace softtrace::python

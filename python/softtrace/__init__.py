@@ -158,7 +158,7 @@ def load_dict(scene: Mapping[str, Any], name: str = "<dict>") -> Scene:
 
 
 def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
-           aovs: Iterable[str] = (), threads: int = 0,
+           frame: Optional[int] = None, aovs: Iterable[str] = (), threads: int = 0,
            progress: Optional[Callable[[int, int], Any]] = None, flatten: bool = False,
            outputs: Iterable[PathLike] = ()) -> Dict[str, np.ndarray]:
     """Renders the scene's camera view to a dict of float32 arrays.
@@ -168,7 +168,8 @@ def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
     distance along the pixel-centre ray, inf for the background), "normal" (height, width, 3)
     and "steps" (height, width: field evaluations of that ray). width, height and spp of 0 keep
     the scene's, and one of width and height alone keeps the scene's aspect; frames above 2^26
-    pixels are refused as the command line refuses them.
+    pixels are refused as the command line refuses them. `frame` renders that frame of the
+    scene's animation (scene.frames of them), as `softtrace render --frame` does.
 
     `threads` caps the cores used (0: all); the picture is the same bits for any number.
     `progress(done, total)` is called with pixels done, about 50 times a second, on the calling
@@ -184,7 +185,10 @@ def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
     """
     if isinstance(aovs, str):
         raise TypeError("aovs is a list of names, e.g. ['depth', 'normal']")
-    return _native.render(scene, width, height, spp, list(aovs), threads, progress, flatten,
+    if frame is not None and frame < 0:
+        raise ValueError("frame must be >= 0 (frames are numbered from 0)")
+    return _native.render(scene, width, height, spp, -1 if frame is None else frame, list(aovs),
+                          threads, progress, flatten,
                           [os.fspath(o) for o in outputs])
 
 

@@ -45,7 +45,8 @@ class Field:
     @property
     def convention(self) -> str: ...
 
-def render(scene: Scene, width: int, height: int, spp: int, aovs: List[str], threads: int,
+def render(scene: Scene, width: int, height: int, spp: int, frame: int, aovs: List[str],
+           threads: int,
            progress: Optional[Callable[[int, int], Any]], flatten: bool,
            outputs: List[str]) -> Dict[str, np.ndarray]: ...
 def write_exr(path: str, arrays: Dict[str, Any], attributes: Dict[str, str]) -> None: ...

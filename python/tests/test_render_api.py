@@ -1,6 +1,7 @@
 """render(): arrays and AOVs, files, the scene hash, limits, threads, progress, Ctrl-C, and two
 threads rendering one scene."""
 import _thread
+import json
 import os
 import subprocess
 import threading
@@ -119,6 +120,31 @@ def test_width_or_height_alone_keeps_the_aspect():
     assert softtrace.render(scene, height=12)["rgba"].shape == (12, 16, 4)
     assert softtrace.render(scene, width=1)["rgba"].shape == (1, 1, 4)
     assert softtrace.render(scene, width=10, height=30)["rgba"].shape == (30, 10, 4)
+
+
+def test_animation_frames_as_the_cli_renders_them(tmp_path):
+    turntable = dict(softtrace.load_scene(TWO_BLOBS).to_dict(),
+                     animation={"frames": 8, "turntable": {"degrees": 360}})
+    path = tmp_path / "turn.json"
+    path.write_text(json.dumps(turntable))
+    scene = softtrace.load_scene(path)
+    assert scene.frames == 8
+    still = softtrace.render(scene, width=32, height=24)["rgba"]
+    third = softtrace.render(scene, width=32, height=24, frame=3, outputs=[tmp_path / "f3.exr"])
+    assert not np.array_equal(third["rgba"], still)
+    assert scene.camera == softtrace.load_scene(path).camera  # the shared scene is not moved
+    cli = tmp_path / "cli.exr"
+    subprocess.run([BIN, "render", str(path), "--width", "32", "--height", "24", "--frame", "3",
+                    "-o", str(cli), "--quiet"], check=True)
+    ours = softtrace.read_exr(tmp_path / "f3.exr")
+    assert np.array_equal(np.stack([ours[c] for c in "RGBA"], -1), third["rgba"])
+    theirs = softtrace.read_exr(cli)
+    assert all(np.array_equal(ours[c], theirs[c]) for c in "RGBA")
+    assert softtrace.exr_attributes(tmp_path / "f3.exr")["softtrace/frame"] == "3"
+    with pytest.raises(softtrace.SceneError, match="there is no frame 8"):
+        softtrace.render(scene, frame=8)
+    with pytest.raises(ValueError, match="frame must be >= 0"):
+        softtrace.render(scene, frame=-1)
 
 
 def test_any_thread_count_gives_the_same_bits():
