@@ -58,7 +58,7 @@ c++ -std=c++17 -O1 "$src/examples/consumer/field_value.cpp" -o "$work/field_valu
 got=$("$work/field_value_pc" $point)
 [ "$got" = "$expected" ] || fail "field_value (pkg-config) printed $got, softtrace eval $expected"
 
-python_dir=$(find "$prefix" -name 'softtrace*.so' -printf '%h\n' | head -n1)
+python_dir=$(find "$prefix" -path '*/softtrace/__init__.py' -printf '%h/..\n' | head -n1)
 if [ -n "$python_dir" ]; then
   got=$(PYTHONPATH=$python_dir "$python" "$src/examples/python/example.py" "$scene" $point)
   [ "$got" = "$expected" ] || fail "example.py printed $got, softtrace eval $expected"

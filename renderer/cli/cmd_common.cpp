@@ -5,8 +5,7 @@ namespace softtrace {
 void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height) {
   if (width) scene.image.width = width;
   if (height) scene.image.height = height;
-  if (static_cast<long long>(scene.image.width) * scene.image.height > (1LL << 26))
-    throw SceneError(scene_path + ": /image: more than 2^26 pixels requested");
+  check_pixel_count(scene.image, scene_path);
 }
 
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {

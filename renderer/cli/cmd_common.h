@@ -12,7 +12,7 @@
 namespace softtrace {
 
 // The image size from --width/--height (0 keeps the scene's). Frames above 2^26 pixels are
-// refused with a SceneError naming /image: their film alone would need gigabytes.
+// refused (check_pixel_count, scene.h).
 void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height);
 
 // Caps TBB's parallelism at `threads` (0: all cores) for as long as the result lives.

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace softtrace {
@@ -32,11 +33,14 @@ const double g_process_start = now_seconds();
 
 struct Pending {
   std::string tmp;
-  int fd;  // holds the flock until the file is renamed or removed
+  int fd;                 // holds the flock until the file is renamed or removed
+  std::thread::id owner;  // the thread writing it: only its own forget or abandon touches it
 };
 
 // The lock is held from creating a file to recording it, so whoever abandons the writes (the
-// signal watcher) sees every file that exists.
+// signal watcher) sees every file that exists. The list is process-wide for the signal watcher;
+// each thread's writes are its own, so that threads writing at once (Python renders) never
+// remove or forget each other's files.
 std::mutex g_pending_mutex;
 std::vector<Pending> g_pending;
 
@@ -137,7 +141,7 @@ std::string create_pending_temp(const std::string& target, const std::string& di
     throw std::runtime_error(display + ": cannot create a file in '" + dir.string() +
                              "': " + std::strerror(errno));
   ::flock(fd, LOCK_EX);  // new and private: cannot block
-  g_pending.push_back({tmp, fd});
+  g_pending.push_back({tmp, fd, std::this_thread::get_id()});
   return tmp;
 }
 
@@ -154,19 +158,29 @@ void commit_temp(const std::string& tmp, const std::string& target, const std::s
   }
 }
 
-void forget_pending_writes() {
+namespace {
+
+// Closes (and with `remove`, first removes) the calling thread's pending files and forgets them.
+void release_own_pending(bool remove) {
   const std::lock_guard<std::mutex> lock(g_pending_mutex);
-  for (const auto& p : g_pending) ::close(p.fd);
-  g_pending.clear();
+  const std::thread::id self = std::this_thread::get_id();
+  const auto own = std::stable_partition(g_pending.begin(), g_pending.end(),
+                                         [&](const Pending& p) { return p.owner != self; });
+  for (auto p = own; p != g_pending.end(); ++p) {
+    if (remove) ::unlink(p->tmp.c_str());  // renamed ones are gone: ENOENT
+    ::close(p->fd);
+  }
+  g_pending.erase(own, g_pending.end());
+}
+
+}  // namespace
+
+void forget_pending_writes() {
+  release_own_pending(false);
 }
 
 void abandon_pending_writes() {
-  const std::lock_guard<std::mutex> lock(g_pending_mutex);
-  for (const auto& p : g_pending) {
-    ::unlink(p.tmp.c_str());  // renamed ones are gone: ENOENT
-    ::close(p.fd);
-  }
-  g_pending.clear();
+  release_own_pending(true);
 }
 
 void abandon_pending_writes_and_exit(int status) {

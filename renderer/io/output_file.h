@@ -33,12 +33,15 @@ std::string create_pending_temp(const std::string& target, const std::string& di
 // Throws std::runtime_error naming `display`; the temporary file is then removed.
 void commit_temp(const std::string& tmp, const std::string& target, const std::string& display);
 
-// Forgets the pending files (after committing them): closes their locks.
+// Pending files belong to the thread that created them: a write is one thread's work, and
+// threads writing at once (Python renders) must never remove each other's files.
+// Forgets the calling thread's pending files (after committing them): closes their locks.
 void forget_pending_writes();
-// Removes the pending temporary files (renamed ones are gone already) and forgets them.
+// Removes the calling thread's pending temporary files (renamed ones are gone already) and
+// forgets them.
 void abandon_pending_writes();
-// The same, then _exit(status), with no temporary file created in between (the signal
-// watcher's way out while writing, cmd_render.cpp).
+// Removes every thread's pending temporary files, then _exit(status), with no temporary file
+// created in between (the signal watcher's way out while writing, cmd_render.cpp).
 [[noreturn]] void abandon_pending_writes_and_exit(int status);
 
 // This process's start (seconds since the epoch), for remove_stale_temporaries.

@@ -42,10 +42,12 @@ struct Work {
 // to the data window, so a pixel's rays start where they would in any crop of the frame.
 class FrameTracer {
  public:
-  FrameTracer(const Scene& scene, const TracedScene& rt, Film& film)
+  FrameTracer(const Scene& scene, const TracedScene& rt, Film& film, const RenderOptions& opt)
       : scene_(scene),
         rt_(rt),
         film_(film),
+        cancel_(opt.cancel),
+        spp_(opt.spp ? opt.spp : scene.image.spp),
         camera_(scene.camera, film.full_width, film.full_height),
         objects_(rt.tracers.size()) {}
 
@@ -61,7 +63,7 @@ class FrameTracer {
   void beam(int x, int y, int level, const double* from, Work& work) const {
     const int size = kTile >> level;
     if (x >= film_.x0 + film_.width || x + size <= film_.x0 || y >= film_.y0 + film_.height ||
-        y + size <= film_.y0)
+        y + size <= film_.y0 || cancelled())
       return;
     const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
                                        std::min(y + size, film_.full_height));
@@ -82,13 +84,19 @@ class FrameTracer {
         pixel(px, py, certified, work);
   }
 
+  // A tile of a slow field (a blend of thousands of children at many samples) takes minutes:
+  // a cancel is noticed before every sample, so it acts within one sample's time. The pixels
+  // left are garbage, but a cancelled frame is never written.
+  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+
   // The full-frame pixel (x, y), inside the data window.
   void pixel(int x, int y, const BeamClear& certified, Work& work) const {
     const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);
-    const int spp = scene_.image.spp;
+    const int spp = spp_;
     Vec3 sum{0, 0, 0};
     int covered = 0;
     for (int s = 0; s < spp; ++s) {
+      if (cancelled()) return;
       double dx, dy;
       sample_offset(s, dx, dy);
       const Ray ray = camera_.generate(x + dx, y + dy);
@@ -124,6 +132,8 @@ class FrameTracer {
   const Scene& scene_;
   const TracedScene& rt_;
   Film& film_;
+  const std::atomic<bool>* cancel_;
+  const int spp_;
   const PinholeCamera camera_;
   const int objects_;
 };
@@ -132,7 +142,7 @@ class FrameTracer {
 
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats) {
-  const FrameTracer tracer(scene, rt, film);
+  const FrameTracer tracer(scene, rt, film, opt);
   // The full frame's tiles that meet the data window [x0, x0 + width) x [y0, y0 + height).
   const int x1 = film.x0 + film.width, y1 = film.y0 + film.height;
   const int gx0 = film.x0 / kTile, gy0 = film.y0 / kTile;
@@ -160,7 +170,8 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
 
   if (stats) {
     *stats = FrameStats{};
-    stats->primary_rays = static_cast<long long>(film.width) * film.height * scene.image.spp;
+    stats->primary_rays =
+        static_cast<long long>(film.width) * film.height * (opt.spp ? opt.spp : scene.image.spp);
     work_total.combine_each([&](const Work& w) {
       stats->primary += w.primary;
       stats->shadow += w.shadow;

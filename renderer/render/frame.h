@@ -15,7 +15,10 @@ namespace softtrace {
 
 struct RenderOptions {
   LipschitzMode lipschitz = LipschitzMode::Local;
-  const std::atomic<bool>* cancel = nullptr;  // stops the frame early when set (checked per tile)
+  const std::atomic<bool>* cancel = nullptr;  // stops the frame early when set (checked per sample)
+  // Samples per pixel; 0: the scene's. A caller sharing the scene between threads (Python)
+  // passes its own here rather than writing it into the scene.
+  int spp = 0;
 };
 
 // What a frame is traced with: every object's tracer and the Embree scene over them.
@@ -31,8 +34,8 @@ struct FrameStats {
   RayWork primary, shadow;
 };
 
-// Renders the film's data window of its full_width x full_height frame at scene.image.spp;
-// returns false if cancelled.
+// Renders the film's data window of its full_width x full_height frame at opt.spp (or
+// scene.image.spp); never changes the scene. Returns false if cancelled.
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats);
 

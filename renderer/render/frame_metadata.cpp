@@ -4,9 +4,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 
 namespace softtrace {
 
@@ -30,25 +27,20 @@ std::array<float, 16> to_floats(const Matrix m) {
 
 }  // namespace
 
-std::string fnv1a64_hex(const std::string& bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
+std::string hex64(uint64_t value) {
   char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(value));
   return buf;
+}
+
+std::string fnv1a64_hex(const std::string& bytes) {
+  return hex64(fnv1a(bytes));
 }
 
 FrameInfo frame_info(const Scene& scene, int full_width, int full_height) {
   FrameInfo info;
-  std::ifstream in(scene.path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw std::runtime_error(scene.path + ": cannot read the scene file again");
   info.scene_name = std::filesystem::path(scene.path).stem().string();
-  info.scene_hash = fnv1a64_hex(text.str());
+  info.scene_hash = hex64(scene.file_hash);
   info.spp = scene.image.spp;
   info.background = scene.background;
 

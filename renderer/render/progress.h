@@ -15,7 +15,8 @@ class Progress {
   // `total` units of work (pixels) of `rays_per_unit` primary rays each (samples per pixel).
   Progress(std::string label, long total, bool enabled, double rays_per_unit = 1);
   void advance(long n = 1);
-  void finish();  // ends the bar's line
+  void finish();                       // ends the bar's line
+  long done() const { return done_; }  // units advanced so far, from any thread
 
   // "0.4s", "12.0s", "3m07s", "2h05m".
   static std::string duration(double seconds);

@@ -271,7 +271,15 @@ uint64_t fnv1a(const std::string& bytes, uint64_t hash) {
   return hash;
 }
 
+void check_pixel_count(const ImageSettings& image, const std::string& name) {
+  if (static_cast<long long>(image.width) * image.height > (1LL << 26))
+    throw SceneError(name + ": /image: more than 2^26 pixels requested");
+}
+
 Scene load_scene(const std::string& path) {
+  // A C string would end at the NUL: "x.json\0junk" must not load x.json.
+  if (path.find('\0') != std::string::npos)
+    throw SceneError(path.substr(0, path.find('\0')) + "...: a path with a NUL byte");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::ostringstream ss;

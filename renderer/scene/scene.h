@@ -53,7 +53,7 @@ struct SceneObject {
 
 struct Scene {
   std::string path;
-  uint64_t file_hash = 0;  // 64-bit FNV-1a of the scene file's bytes
+  uint64_t file_hash = 0;  // 64-bit FNV-1a of the bytes parsed (the file's, or the text's)
   Camera camera;
   Animation animation;
   bool default_lights = false;  // the lights follow the camera (no "lights" in the file)
@@ -65,6 +65,11 @@ struct Scene {
   Box bounds() const;  // union of the objects' boxes
 };
 
+// Frames above 2^26 pixels are refused with a SceneError naming `name`'s /image: their film
+// alone would need gigabytes. The command line's --width/--height and Python's render() both
+// check here, so that they refuse the same frames with the same words.
+void check_pixel_count(const ImageSettings& image, const std::string& name);
+
 // Makes frame `frame` (0 <= frame < animation.frames) the scene's camera, once, from the loaded
 // scene; default lights move with it. Throws SceneError naming /animation when the frame does not
 // exist.
@@ -73,7 +78,8 @@ void set_frame(Scene& scene, int frame);
 // 64-bit FNV-1a of `bytes`, continuing from `hash`.
 uint64_t fnv1a(const std::string& bytes, uint64_t hash = 0xcbf29ce484222325ULL);
 
-// Throws SceneError with "file:line:col: ..." for syntax and "file: /pointer: ..." for meaning.
+// Throws SceneError with "file:line:col: ..." for syntax and "file: /pointer: ..." for meaning
+// (and "path: ..." for a path with a NUL byte or a file that cannot be opened).
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& text, const std::string& name);
 
