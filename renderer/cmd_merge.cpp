@@ -248,6 +248,7 @@ int run_merge(const MergeArgs& a) {
                    a.output.c_str());
     return 0;
   } catch (const std::exception& e) {
+    abandon_pending_writes();  // a failed write leaves no temporary file behind
     report_error(e.what());
     return 2;
   }

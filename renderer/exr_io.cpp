@@ -8,10 +8,14 @@
 #include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <fcntl.h>
 #include <half.h>
 #include <strings.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 #include "image_file.h"
@@ -64,6 +68,37 @@ std::vector<std::string> canonical_order(std::vector<std::string> names) {
   for (size_t i = 0; i < keys.size(); ++i) names[i] = keys[i].name;
   return names;
 }
+
+// An EXR written straight to a file descriptor, every write checked. OpenEXR's own file stream
+// reports a failed write (a full disk) only from OutputFile's destructor, which swallows it: a
+// small image then came out as a 0-byte file. The destructor still writes (the line offset
+// table), so an error is also recorded, for write_exr to check once the file is closed.
+class FdOStream : public Imf::OStream {
+ public:
+  FdOStream(const char* path, int fd) : Imf::OStream(path), fd_(fd) {}
+
+  void write(const char c[], int n) override {
+    for (int done = 0; done < n;) {
+      const ssize_t w = ::pwrite(fd_, c + done, size_t(n - done), off_t(pos_));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        if (error_.empty()) error_ = w < 0 ? std::strerror(errno) : "nothing written";
+        throw std::runtime_error("cannot write the file: " + error_);
+      }
+      done += int(w);
+      pos_ += uint64_t(w);
+    }
+  }
+  uint64_t tellp() override { return pos_; }
+  void seekp(uint64_t pos) override { pos_ = pos; }
+
+  const std::string& error() const { return error_; }
+
+ private:
+  int fd_;
+  uint64_t pos_ = 0;
+  std::string error_;  // the first failed write's reason
+};
 
 }  // namespace
 
@@ -156,13 +191,25 @@ void write_exr(const std::string& path, const ImageFile& img, const ExrExtras& e
     fb.insert(img.channels[c],
               Imf::Slice(as_half ? Imf::HALF : Imf::FLOAT, origin, xstride, ystride));
   }
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd < 0)
+    throw std::runtime_error(std::string("cannot open the file: ") + std::strerror(errno));
+  FdOStream stream(path.c_str(), fd);
+  std::string error;
   try {
-    Imf::OutputFile file(path.c_str(), header);
+    Imf::OutputFile file(stream, header);
     file.setFrameBuffer(fb);
     file.writePixels(img.height);
   } catch (const std::exception& e) {
-    throw std::runtime_error(e.what());
+    error = e.what();
   }
+  // The destructor above wrote the offset table: only now is the file complete, or not.
+  if (error.empty() && !stream.error().empty()) error = "cannot write the file: " + stream.error();
+  if (error.empty() && ::fsync(fd) != 0)
+    error = std::string("cannot write the file: ") + std::strerror(errno);
+  if (::close(fd) != 0 && error.empty())
+    error = std::string("cannot write the file: ") + std::strerror(errno);
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 }  // namespace softtrace

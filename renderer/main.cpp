@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/standard_output.h"
 #include "cli_spelling.h"
 #include "commands.h"
 #include "commit.h"
@@ -175,10 +176,10 @@ int main(int argc, char** argv) {
   // were loading is taken now.
   watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
   if (*render) return run_render(r);
-  if (*eval) return run_eval(e);
-  if (*diff) return run_diff(d);
-  if (*bench) return run_bench(b);
+  if (*eval) return checked_standard_output(run_eval(e), 2);
+  if (*diff) return checked_standard_output(run_diff(d), 4);  // idiff's "cannot write"
+  if (*bench) return checked_standard_output(run_bench(b), 2);
   if (*merge) return run_merge(m);
-  if (*nodes) return run_nodes(dict);
+  if (*nodes) return checked_standard_output(run_nodes(dict), 2);
   return 2;
 }
