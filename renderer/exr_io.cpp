@@ -107,13 +107,24 @@ ImageFile read_exr(const std::string& path) {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dw = header.dataWindow(), disp = header.displayWindow();
+    // In 64 bits: a tampered header's windows may span more than int holds.
+    const auto span = [](int lo, int hi) { return static_cast<long long>(hi) - lo + 1; };
+    const auto offset = [](int a, int b) { return static_cast<long long>(a) - b; };
+    const long long full_width = span(disp.min.x, disp.max.x),
+                    full_height = span(disp.min.y, disp.max.y), x0 = offset(dw.min.x, disp.min.x),
+                    y0 = offset(dw.min.y, disp.min.y);
+    const long long width = span(dw.min.x, dw.max.x), height = span(dw.min.y, dw.max.y);
+    constexpr long long kLimit = 1LL << 30;
+    for (const long long v : {full_width, full_height, x0, y0, width, height})
+      if (v <= -kLimit || v >= kLimit)
+        throw std::runtime_error("unsupported data or display window");
     ImageFile img;
-    img.full_width = disp.max.x - disp.min.x + 1;
-    img.full_height = disp.max.y - disp.min.y + 1;
-    img.x0 = dw.min.x - disp.min.x;
-    img.y0 = dw.min.y - disp.min.y;
-    img.width = dw.max.x - dw.min.x + 1;
-    img.height = dw.max.y - dw.min.y + 1;
+    img.full_width = int(full_width);
+    img.full_height = int(full_height);
+    img.x0 = int(x0);
+    img.y0 = int(y0);
+    img.width = int(width);
+    img.height = int(height);
     std::vector<std::string> names;
     for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
       if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
@@ -123,7 +134,9 @@ ImageFile read_exr(const std::string& path) {
     }
     if (names.empty()) throw std::runtime_error("no channels");
     img.channels = canonical_order(names);
-    if (img.width <= 0 || img.height <= 0 || size_t(img.width) * img.height > (size_t(1) << 28))
+    // What is allocated is bounded, whatever the header claims: 2^28 pixels, 2^28 values (1 GiB).
+    if (img.width <= 0 || img.height <= 0 || size_t(img.width) * img.height > (size_t(1) << 28) ||
+        size_t(img.width) * img.height * names.size() > (size_t(1) << 28))
       throw std::runtime_error("unsupported data window");
     const size_t nc = img.channels.size();
     img.pixels.assign(size_t(img.width) * img.height * nc, 0.0f);

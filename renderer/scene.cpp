@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unordered_set>
+#include <vector>
 
 #include "json_text.h"
 
@@ -272,11 +274,28 @@ uint64_t fnv1a(const std::string& bytes, uint64_t hash) {
 }
 
 Scene load_scene(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path + ": is a folder, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path);
+  // Read in blocks, so that an endless input (/dev/zero, a pipe) is bounded: the read stops at
+  // the first block with a NUL byte (the parser then names its LINE:COL) or past the size limit.
+  std::string text;
+  std::vector<char> block(1 << 16);
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    const size_t got = size_t(in.gcount());
+    text.append(block.data(), got);
+    if (std::find(block.begin(), block.begin() + std::ptrdiff_t(got), '\0') !=
+        block.begin() + std::ptrdiff_t(got))
+      break;
+    if (text.size() > kMaxSceneBytes)
+      throw SceneError(path + ": larger than " + std::to_string(kMaxSceneBytes >> 20) +
+                       " MiB; a scene file may be at most that");
+  }
+  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+  return parse_scene(text, path);
 }
 
 }  // namespace softtrace

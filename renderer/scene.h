@@ -74,6 +74,9 @@ void set_frame(Scene& scene, int frame);
 uint64_t fnv1a(const std::string& bytes, uint64_t hash = 0xcbf29ce484222325ULL);
 
 // Throws SceneError with "file:line:col: ..." for syntax and "file: /pointer: ..." for meaning.
+// Scene files are read up to kMaxSceneBytes (a 100,000-child scene is 7.7 MB); a folder, a larger
+// or endless input is refused.
+constexpr size_t kMaxSceneBytes = size_t(256) << 20;
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& text, const std::string& name);
 
