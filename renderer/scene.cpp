@@ -36,9 +36,19 @@ Vec3 unit(const Vec3& v) {  // v non-zero and finite
 // and above its inverse, so that their squares are normal doubles.
 constexpr double kMaxDistance = 1e150;
 
+// Where rays start: the eye, and shading points inside the objects' boxes. Embree takes ray
+// origins in float and (Debian's build) asserts |origin| <= 1.8e18; well before that, float's
+// rounding of the origin (6e-8 of it) misplaces the rays it culls with, and the tracer's steps
+// stop advancing along t. An eye at 1e12 from a 30-unit object renders its picture from 1e7;
+// one at 1e15 already changes pixels, one at 1e17 does not finish.
+constexpr double kMaxPosition = 1e12;
+const char* const kPositionRule = "within 1e12 of the origin in every coordinate";
+
 Camera load_camera(const Params& p) {
   Camera c;
   c.eye = p.vec3("eye");
+  p.check(max_abs(c.eye) <= kMaxPosition, "eye",
+          std::string("expected an eye ") + kPositionRule + " (rays start there)");
   c.target = p.vec3("target");
   const Vec3 up = p.vec3("up", c.up);
   c.fov = p.number("fov", c.fov);
@@ -75,8 +85,8 @@ Animation load_animation(const Params& p) {
     a.frames = p.integer("frames", 1, kMaxFrames);
     const Params t = p.object("turntable");
     a.axis = t.vec3("axis", a.axis);
-    t.check(length(a.axis) > 0 && std::isfinite(length(a.axis)), "axis",
-            "expected a non-zero, finite axis");
+    t.check(max_abs(a.axis) > 0, "axis", "expected a non-zero, finite axis");
+    a.axis = unit(a.axis);  // [3e-162, 4e-162, 0] is [0.6, 0.8, 0]: its squares would underflow
     a.degrees = t.number("degrees", a.degrees);
     t.check(std::isfinite(a.degrees), "degrees", "expected a finite angle");
     t.finish();
@@ -180,12 +190,24 @@ SceneObject load_object(const Params& p, size_t index) {
     for (int i = 0; i < 3; ++i)
       p.check(lo[i] < hi[i], "bounds", "expected each minimum below its maximum");
     o.bounds = Box(lo, hi);
+    // Nothing is drawn outside the field's own region: a box of +-1e9 around a 30-unit object
+    // once changed the picture (+-1e12 filled the frame, +-1e20 emptied it), the tracer's steps
+    // and Embree's float culling working at the box's scale. Only cuts inside the region stay.
+    const Box region = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
+    if (region.bounded()) {
+      const Box inside = o.bounds.intersected(region);
+      if (!inside.empty()) o.bounds = inside;
+    }
   } else {
     o.bounds = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
     if (!o.bounds.bounded())
       p.fail("field",
              "the field has no finite support box at this iso level; give the object 'bounds'");
   }
+  if (!(std::max(max_abs(o.bounds.lo), max_abs(o.bounds.hi)) <= kMaxPosition))
+    p.fail(p.has("bounds") ? "bounds" : "field",
+           std::string("expected the object's box (bounds, or the field's own region) ") +
+               kPositionRule + " (shading rays start there)");
   p.finish();
   return o;
 }
@@ -260,10 +282,17 @@ void set_frame(Scene& scene, int frame) {
     scene.camera = a.cameras[frame];
   } else {
     // Rotations keep the angle between the view and `up`, so every frame's camera is valid.
-    const Mat3 r = Mat3::rotation(a.axis, a.degrees * frame / a.frames);
+    // degrees * F / N, reduced modulo 360 before it is multiplied (1e308 * 2 overflowed to inf and
+    // made the camera NaN): fmod is exact, so (d mod 360N) * F is d * F modulo 360N to rounding.
+    const double turn = 360.0 * a.frames;
+    const double angle = std::fmod(std::fmod(a.degrees, turn) * frame, turn) / a.frames;
+    const Mat3 r = Mat3::rotation(a.axis, angle);
     Camera& c = scene.camera;
     c.eye = c.target + r * (c.eye - c.target);
     c.up = r * c.up;
+    if (!(max_abs(c.eye) <= kMaxPosition))
+      throw SceneError(scene.path + ": /animation/turntable: frame " + std::to_string(frame) +
+                       " puts the eye beyond 1e12 of the origin (rays start there)");
   }
   if (scene.default_lights) scene.lights = default_lights(scene.camera);
 }
