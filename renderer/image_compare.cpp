@@ -44,10 +44,14 @@ CompareResults compare_images(const ImageFile& A, const ImageFile& B, const Chan
   long long in_batch = 0;
   for (int y = w.y0; y < w.y1; ++y)
     for (int x = w.x0; x < w.x1; ++x) {
-      bool warned = false, failed = false;
+      bool warned = false, failed = false, nonfinite = false;
       for (int c = 0; c < nc; ++c) {
         const float a = value(A, x, y, pairs.a[c]), b = value(B, x, y, pairs.b[c]);
         if (!std::isfinite(a) || !std::isfinite(b)) {
+          if (!nonfinite && !(a == b)) {  // NaN anywhere, or not the same infinity
+            ++r.nonfinite;
+            nonfinite = true;
+          }
           if (same_non_finite(a, b)) continue;
           if (std::isfinite(r.maxerror)) {  // non-finite errors trump finite ones
             r.maxerror = std::numeric_limits<float>::infinity();
