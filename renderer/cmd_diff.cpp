@@ -190,6 +190,11 @@ int run_diff(const DiffArgs& a) {
     return kFail;
   }
 
+  // Data windows far apart (a tampered header) would make the union, and the work, unbounded.
+  if (union_pixels(A, B) > (1LL << 28)) {
+    report_error(a.a + " and " + a.b + ": their data windows span more than 2^28 pixels together");
+    return kFileError;
+  }
   if (!a.quiet) std::printf("Comparing \"%s\" and \"%s\"\n", a.a.c_str(), a.b.c_str());
   std::vector<std::string> compared;
   for (int c : pairs.a) compared.push_back(A.channels[c]);

@@ -30,6 +30,14 @@ bool same_non_finite(float a, float b) {
 
 }  // namespace
 
+long long union_pixels(const ImageFile& A, const ImageFile& B) {
+  // In 64 bits: read_image bounds each window's corners by 2^30, not their distance.
+  using L = long long;
+  const L w = std::max(L(A.x0) + A.width, L(B.x0) + B.width) - std::min(L(A.x0), L(B.x0));
+  const L h = std::max(L(A.y0) + A.height, L(B.y0) + B.height) - std::min(L(A.y0), L(B.y0));
+  return w * h;
+}
+
 CompareResults compare_images(const ImageFile& A, const ImageFile& B, const ChannelPairs& pairs,
                               const CompareThresholds& t) {
   CompareResults r;

@@ -27,6 +27,9 @@ struct ChannelPairs {
   std::vector<int> a, b;
 };
 
+// The pixels of the union of both data windows (what compare_images visits).
+long long union_pixels(const ImageFile& A, const ImageFile& B);
+
 // Compares the channels `pairs` over the union of both data windows (a pixel outside one image's
 // window is black there). A pixel warns (fails) when some channel differs by more than the
 // threshold and, if a relative threshold is set, by more than that fraction of the channel's
