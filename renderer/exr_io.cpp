@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include "image_file.h"
@@ -134,9 +135,15 @@ ImageFile read_exr(const std::string& path) {
     }
     if (names.empty()) throw std::runtime_error("no channels");
     img.channels = canonical_order(names);
-    // What is allocated is bounded, whatever the header claims: 2^28 pixels, 2^28 values (1 GiB).
+    // What is allocated is bounded, whatever the header claims: 2^28 pixels, 2^28 values (1 GiB),
+    // and 1024 values per byte of the file, or 2^20 for a small file (zip, which softtrace
+    // writes, compresses at most about 1032 to 1: 516 half values per byte).
+    std::error_code ec;
+    const uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+    const size_t values = size_t(img.width) * img.height * names.size();
     if (img.width <= 0 || img.height <= 0 || size_t(img.width) * img.height > (size_t(1) << 28) ||
-        size_t(img.width) * img.height * names.size() > (size_t(1) << 28))
+        values > (size_t(1) << 28) ||
+        (!ec && values > std::max<uintmax_t>(uintmax_t(1) << 20, file_bytes << 10)))
       throw std::runtime_error("unsupported data window");
     const size_t nc = img.channels.size();
     img.pixels.assign(size_t(img.width) * img.height * nc, 0.0f);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include "image_io.h"
@@ -82,10 +83,15 @@ ImageFile read_png(const std::string& path) {
   bool ok = r.info && read_png_header(r, f, width, height, channels, bit_depth, row_bytes);
   ImageFile img;
   std::vector<png_byte> bytes;
+  // Deflate expands at most about 1032 times: a header claiming more than the file can hold
+  // is refused before the rows are allocated (bounding what any input makes us allocate).
+  std::error_code ec;
+  const uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  const uintmax_t most = std::max<uintmax_t>(uintmax_t(1) << 22, ec ? 0 : file_bytes * 1100);
   if (ok) {
     if (width == 0 || height == 0 || size_t(width) * height > (size_t(1) << 28) ||
-        (bit_depth != 8 && bit_depth != 16) || channels < 1 || channels > 4 ||
-        row_bytes != size_t(width) * channels * (bit_depth / 8)) {
+        uintmax_t(row_bytes + 1) * height > most || (bit_depth != 8 && bit_depth != 16) ||
+        channels < 1 || channels > 4 || row_bytes != size_t(width) * channels * (bit_depth / 8)) {
       std::snprintf(r.message, sizeof r.message, "image too large or of an unsupported kind");
       ok = false;
     } else {
