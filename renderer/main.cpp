@@ -170,8 +170,7 @@ int main(int argc, char** argv) {
     return app.exit(ex);
   } catch (const CLI::ParseError& ex) {
     // The arguments as parsed: diff's -failpercent is --failpercent there, not an unknown word.
-    const std::string unknown =
-        unknown_word(app, int(arg_pointers.size()), arg_pointers.data());
+    const std::string unknown = unknown_word(app, int(arg_pointers.size()), arg_pointers.data());
     report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
     return 2;
   }

@@ -109,7 +109,8 @@ TEST(ExtremeScenes, TinyTurntableAxisIsNormalisedExactly) {
 TEST(ExtremeScenes, FrameWhoseEyeLeavesTheRangeIsRefused) {
   const std::string dir = temp_dir("extreme_frame_eye");
   const std::string scene = dir + "/far.json";
-  std::ofstream(scene) << R"({"camera": {"eye": [0, 0, 9e11], "target": [0, 0, -9e11], "up": [0, 1, 0]},
+  std::ofstream(scene)
+      << R"({"camera": {"eye": [0, 0, 9e11], "target": [0, 0, -9e11], "up": [0, 1, 0]},
     "animation": {"frames": 4, "turntable": {"axis": [1, 0, 0]}},
     "objects": [{"field": {"type": "soft_object", "distance": {"type": "lp_metric", "radii": [30, 30, 30], "n": 2}}}]})";
   fs::create_directories(dir + "/out");
