@@ -3,8 +3,9 @@
 // that cannot be read or written). Deliberate differences: images of different sizes always fail
 // (idiff pads the smaller with black and may pass); channels are matched by name and only those
 // both images have are compared, with a note (idiff compares by index, a missing channel as 0);
-// the report is printed on a pass too; bad usage exits 2 (idiff: 1, its warning code, which
-// would let a mistyped command pass a script that accepts warnings).
+// the report is printed on a pass too; a pixel with NaN, or an infinity against anything but the
+// same infinity, fails the comparison (idiff passes NaN against NaN); bad usage exits 2 (idiff: 1,
+// its warning code, which would let a mistyped command pass a script that accepts warnings).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -93,12 +94,16 @@ void print_report(const CompareResults& cr, const ImageFile& A, const ImageFile&
   std::printf("\n  %lld pixels (%.3g%%) over %s\n  %lld pixels (%.3g%%) over %s\n", cr.nwarn,
               100.0 * cr.nwarn / npels, shortest(a.warn).c_str(), cr.nfail,
               100.0 * cr.nfail / npels, shortest(a.fail).c_str());
+  if (cr.nonfinite > 0)
+    std::printf("  %lld pixels (%.3g%%) with NaN or infinite values (a failure)\n", cr.nonfinite,
+                100.0 * cr.nonfinite / npels);
 }
 
 // idiff 2.4's verdict: up to -allowfailures failing pixels pass whatever else is true; beyond
 // that, too many failing pixels or one beyond -hardfail fail, and too many warning pixels or one
 // beyond -hardwarn warn. Percentages are float, as there.
 DiffStatus verdict(const CompareResults& cr, long long npels, const DiffArgs& a) {
+  if (cr.nonfinite > 0) return kFail;  // not idiff's: NaN or a lone infinity is never a match
   if (cr.nfail <= a.allowfailures) return kPass;
   if (cr.nfail > a.failpercent / 100.0 * npels || cr.maxerror > a.hardfail) return kFail;
   if (cr.nwarn > a.warnpercent / 100.0 * npels || cr.maxerror > a.hardwarn) return kWarn;
@@ -185,6 +190,11 @@ int run_diff(const DiffArgs& a) {
     return kFail;
   }
 
+  // Data windows far apart (a tampered header) would make the union, and the work, unbounded.
+  if (union_pixels(A, B) > (1LL << 28)) {
+    report_error(a.a + " and " + a.b + ": their data windows span more than 2^28 pixels together");
+    return kFileError;
+  }
   if (!a.quiet) std::printf("Comparing \"%s\" and \"%s\"\n", a.a.c_str(), a.b.c_str());
   std::vector<std::string> compared;
   for (int c : pairs.a) compared.push_back(A.channels[c]);

@@ -1,7 +1,9 @@
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <vector>
 
 #include "cli/commands.h"
 #include "eval/eval.h"
@@ -9,6 +11,12 @@
 #include "scene/scene.h"
 
 namespace softtrace {
+
+namespace {
+
+constexpr size_t kMaxLine = 4096;
+
+}  // namespace
 
 int run_eval(const EvalArgs& a) {
   try {
@@ -25,14 +33,26 @@ int run_eval(const EvalArgs& a) {
     Workspace ws;
     std::ifstream file;
     if (!a.points.empty()) {
+      std::error_code ec;
+      if (std::filesystem::is_directory(a.points, ec))
+        throw SceneError(a.points + ": is a folder, not a points file");
       file.open(a.points);
       if (!file) throw SceneError(a.points + ": cannot open the points file");
     }
     std::istream& in = a.points.empty() ? std::cin : file;
     const std::string source = a.points.empty() ? "<stdin>" : a.points;
 
-    std::string line;
-    for (long n = 1; std::getline(in, line); ++n) {
+    // Lines are bounded (three %.17g numbers take under 80 bytes), so an endless line such as
+    // /dev/zero's is refused at once instead of read into memory.
+    std::vector<char> buffer(kMaxLine + 1);
+    for (long n = 1;; ++n) {
+      in.getline(buffer.data(), std::streamsize(buffer.size()));
+      if (in.fail() && !in.eof() && size_t(in.gcount()) == kMaxLine)
+        throw SceneError(source + ":" + std::to_string(n) + ": a line longer than " +
+                         std::to_string(kMaxLine) + " bytes; expected 'x y z'");
+      if (in.bad()) throw SceneError(source + ":" + std::to_string(n) + ": cannot read the file");
+      if (in.gcount() == 0 && (in.eof() || in.fail())) break;
+      const std::string line(buffer.data(), size_t(in.gcount()) - (in.eof() ? 0 : 1));
       std::istringstream ls(line);
       double x, y, z;
       std::string rest;
@@ -44,6 +64,7 @@ int run_eval(const EvalArgs& a) {
       Vec3 g;
       const double v = evaluate(program, {x, y, z}, &g, ws);
       std::printf("%.17g %.17g %.17g %.17g\n", v, g.x, g.y, g.z);
+      if (in.eof()) break;
     }
     return 0;
   } catch (const std::exception& e) {

@@ -73,9 +73,9 @@ std::string frame_path(const std::string& pattern, int frame) {
 
 // The part of the frame to render: --crop, --pixel-bounds or --tile (at most one), or all.
 PixelBounds window_of(const RenderArgs& a, int width, int height) {
-  if (!a.crop.empty()) return crop_window(a.crop, width, height);
-  if (!a.pixel_bounds.empty()) return pixel_bounds(a.pixel_bounds, width, height);
-  if (!a.tile.empty()) return tile_bounds(parse_tile(a.tile), width, height);
+  if (a.crop) return crop_window(*a.crop, width, height);
+  if (a.pixel_bounds) return pixel_bounds(*a.pixel_bounds, width, height);
+  if (a.tile) return tile_bounds(parse_tile(*a.tile), width, height);
   return {0, width, 0, height};
 }
 
@@ -121,11 +121,15 @@ int run_render(const RenderArgs& a) {
     film.y0 = window.y0;
     FrameInfo info = frame_info(scene, film.full_width, film.full_height);
     // What `merge` checks before it puts tiles together.
-    const std::string settings =
+    // --flatten and --half change the EXR's pixels: tiles rendered with and without them must not
+    // be merged.
+    std::string settings =
         render_settings(scene, a.lipschitz == LipschitzMode::Local ? "local" : "global", a.frame);
+    if (a.flatten) settings += " flatten";
+    if (a.half) settings += " half";
     film.attributes["softtrace/renderHash"] = render_hash(scene, settings);
     film.attributes["softtrace/render"] = settings;
-    if (!a.tile.empty()) film.attributes["softtrace/tile"] = a.tile;
+    if (a.tile) film.attributes["softtrace/tile"] = *a.tile;
     if (a.frame >= 0) film.attributes["softtrace/frame"] = std::to_string(a.frame);
     Progress progress("rendering", long(film.width) * film.height,
                       !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,9 @@ struct RenderArgs {
   bool quiet = false, progress = false;  // progress: the bar even when stderr is no terminal
   bool flatten = false, half = false, png_alpha = false;  // OutputOptions (film.h)
   LipschitzMode lipschitz = LipschitzMode::Local;
-  std::string crop, pixel_bounds, tile;  // at most one: the part of the frame to render
-  int frame = -1;                        // -1: the scene's camera, no animation frame
+  // At most one: the part of the frame to render. Given but empty is refused, not the whole frame.
+  std::optional<std::string> crop, pixel_bounds, tile;
+  int frame = -1;  // -1: the scene's camera, no animation frame
 };
 int run_render(const RenderArgs& a);
 // What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.

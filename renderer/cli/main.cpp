@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "cli/option_checks.h"
+#include "cli/signals.h"
+#include "cli/standard_output.h"
 #include "cli/cli_spelling.h"
 #include "cli/commands.h"
-#include "cli/signals.h"
 #include "commit.h"
 
 using namespace softtrace;
@@ -63,7 +65,7 @@ int main(int argc, char** argv) {
   render
       ->add_option("--frame", r.frame,
                    "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
-      ->check(CLI::Range(0, 999999));
+      ->check(whole_number_check(0, 999999));
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -93,7 +95,7 @@ int main(int argc, char** argv) {
       ->check(threshold);
   diff->add_option("--failpercent", d.failpercent,
                    "Allow this percentage of failing pixels (default 0)")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(percentage_check());
   diff->add_option("--failrelative", d.failrelative,
                    "...and by more than this fraction of the mean magnitude (default 0)")
       ->check(threshold);
@@ -102,12 +104,12 @@ int main(int argc, char** argv) {
       ->check(threshold);
   diff->add_option("--allowfailures", d.allowfailures,
                    "Pass with up to this many failing pixels (default 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(whole_number_check(0, 1LL << 62));
   diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
       ->check(threshold);
   diff->add_option("--warnpercent", d.warnpercent,
                    "Allow this percentage of warning pixels (default 0)")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(percentage_check());
   diff->add_option("--warnrelative", d.warnrelative,
                    "...and by more than this fraction of the mean magnitude (default 0)")
       ->check(threshold);
@@ -168,7 +170,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& ex) {
     return app.exit(ex);
   } catch (const CLI::ParseError& ex) {
-    const std::string unknown = unknown_word(app, argc, argv);
+    // The arguments as parsed: diff's -failpercent is --failpercent there, not an unknown word.
+    const std::string unknown = unknown_word(app, int(arg_pointers.size()), arg_pointers.data());
     report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
     return 2;
   }
@@ -176,10 +179,10 @@ int main(int argc, char** argv) {
   // were loading is taken now.
   watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
   if (*render) return run_render(r);
-  if (*eval) return run_eval(e);
-  if (*diff) return run_diff(d);
-  if (*bench) return run_bench(b);
+  if (*eval) return checked_standard_output(run_eval(e), 2);
+  if (*diff) return checked_standard_output(run_diff(d), 4);  // idiff's "cannot write"
+  if (*bench) return checked_standard_output(run_bench(b), 2);
   if (*merge) return run_merge(m);
-  if (*nodes) return run_nodes(dict);
+  if (*nodes) return checked_standard_output(run_nodes(dict), 2);
   return 2;
 }

@@ -8,10 +8,15 @@
 #include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <fcntl.h>
 #include <half.h>
 #include <strings.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include "io/image_file.h"
@@ -65,6 +70,37 @@ std::vector<std::string> canonical_order(std::vector<std::string> names) {
   return names;
 }
 
+// An EXR written straight to a file descriptor, every write checked. OpenEXR's own file stream
+// reports a failed write (a full disk) only from OutputFile's destructor, which swallows it: a
+// small image then came out as a 0-byte file. The destructor still writes (the line offset
+// table), so an error is also recorded, for write_exr to check once the file is closed.
+class FdOStream : public Imf::OStream {
+ public:
+  FdOStream(const char* path, int fd) : Imf::OStream(path), fd_(fd) {}
+
+  void write(const char c[], int n) override {
+    for (int done = 0; done < n;) {
+      const ssize_t w = ::pwrite(fd_, c + done, size_t(n - done), off_t(pos_));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        if (error_.empty()) error_ = w < 0 ? std::strerror(errno) : "nothing written";
+        throw std::runtime_error("cannot write the file: " + error_);
+      }
+      done += int(w);
+      pos_ += uint64_t(w);
+    }
+  }
+  uint64_t tellp() override { return pos_; }
+  void seekp(uint64_t pos) override { pos_ = pos; }
+
+  const std::string& error() const { return error_; }
+
+ private:
+  int fd_;
+  uint64_t pos_ = 0;
+  std::string error_;  // the first failed write's reason
+};
+
 }  // namespace
 
 ImageFile read_exr(const std::string& path) {
@@ -72,13 +108,24 @@ ImageFile read_exr(const std::string& path) {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dw = header.dataWindow(), disp = header.displayWindow();
+    // In 64 bits: a tampered header's windows may span more than int holds.
+    const auto span = [](int lo, int hi) { return static_cast<long long>(hi) - lo + 1; };
+    const auto offset = [](int a, int b) { return static_cast<long long>(a) - b; };
+    const long long full_width = span(disp.min.x, disp.max.x),
+                    full_height = span(disp.min.y, disp.max.y), x0 = offset(dw.min.x, disp.min.x),
+                    y0 = offset(dw.min.y, disp.min.y);
+    const long long width = span(dw.min.x, dw.max.x), height = span(dw.min.y, dw.max.y);
+    constexpr long long kLimit = 1LL << 30;
+    for (const long long v : {full_width, full_height, x0, y0, width, height})
+      if (v <= -kLimit || v >= kLimit)
+        throw std::runtime_error("unsupported data or display window");
     ImageFile img;
-    img.full_width = disp.max.x - disp.min.x + 1;
-    img.full_height = disp.max.y - disp.min.y + 1;
-    img.x0 = dw.min.x - disp.min.x;
-    img.y0 = dw.min.y - disp.min.y;
-    img.width = dw.max.x - dw.min.x + 1;
-    img.height = dw.max.y - dw.min.y + 1;
+    img.full_width = int(full_width);
+    img.full_height = int(full_height);
+    img.x0 = int(x0);
+    img.y0 = int(y0);
+    img.width = int(width);
+    img.height = int(height);
     std::vector<std::string> names;
     for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
       if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
@@ -88,7 +135,15 @@ ImageFile read_exr(const std::string& path) {
     }
     if (names.empty()) throw std::runtime_error("no channels");
     img.channels = canonical_order(names);
-    if (img.width <= 0 || img.height <= 0 || size_t(img.width) * img.height > (size_t(1) << 28))
+    // What is allocated is bounded, whatever the header claims: 2^28 pixels, 2^28 values (1 GiB),
+    // and 1024 values per byte of the file, or 2^20 for a small file (zip, which softtrace
+    // writes, compresses at most about 1032 to 1: 516 half values per byte).
+    std::error_code ec;
+    const uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+    const size_t values = size_t(img.width) * img.height * names.size();
+    if (img.width <= 0 || img.height <= 0 || size_t(img.width) * img.height > (size_t(1) << 28) ||
+        values > (size_t(1) << 28) ||
+        (!ec && values > std::max<uintmax_t>(uintmax_t(1) << 20, file_bytes << 10)))
       throw std::runtime_error("unsupported data window");
     const size_t nc = img.channels.size();
     img.pixels.assign(size_t(img.width) * img.height * nc, 0.0f);
@@ -156,13 +211,25 @@ void write_exr(const std::string& path, const ImageFile& img, const ExrExtras& e
     fb.insert(img.channels[c],
               Imf::Slice(as_half ? Imf::HALF : Imf::FLOAT, origin, xstride, ystride));
   }
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd < 0)
+    throw std::runtime_error(std::string("cannot open the file: ") + std::strerror(errno));
+  FdOStream stream(path.c_str(), fd);
+  std::string error;
   try {
-    Imf::OutputFile file(path.c_str(), header);
+    Imf::OutputFile file(stream, header);
     file.setFrameBuffer(fb);
     file.writePixels(img.height);
   } catch (const std::exception& e) {
-    throw std::runtime_error(e.what());
+    error = e.what();
   }
+  // The destructor above wrote the offset table: only now is the file complete, or not.
+  if (error.empty() && !stream.error().empty()) error = "cannot write the file: " + stream.error();
+  if (error.empty() && ::fsync(fd) != 0)
+    error = std::string("cannot write the file: ") + std::strerror(errno);
+  if (::close(fd) != 0 && error.empty())
+    error = std::string("cannot write the file: ") + std::strerror(errno);
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 }  // namespace softtrace

@@ -30,6 +30,14 @@ bool same_non_finite(float a, float b) {
 
 }  // namespace
 
+long long union_pixels(const ImageFile& A, const ImageFile& B) {
+  // In 64 bits: read_image bounds each window's corners by 2^30, not their distance.
+  using L = long long;
+  const L w = std::max(L(A.x0) + A.width, L(B.x0) + B.width) - std::min(L(A.x0), L(B.x0));
+  const L h = std::max(L(A.y0) + A.height, L(B.y0) + B.height) - std::min(L(A.y0), L(B.y0));
+  return w * h;
+}
+
 CompareResults compare_images(const ImageFile& A, const ImageFile& B, const ChannelPairs& pairs,
                               const CompareThresholds& t) {
   CompareResults r;
@@ -44,10 +52,14 @@ CompareResults compare_images(const ImageFile& A, const ImageFile& B, const Chan
   long long in_batch = 0;
   for (int y = w.y0; y < w.y1; ++y)
     for (int x = w.x0; x < w.x1; ++x) {
-      bool warned = false, failed = false;
+      bool warned = false, failed = false, nonfinite = false;
       for (int c = 0; c < nc; ++c) {
         const float a = value(A, x, y, pairs.a[c]), b = value(B, x, y, pairs.b[c]);
         if (!std::isfinite(a) || !std::isfinite(b)) {
+          if (!nonfinite && !(a == b)) {  // NaN anywhere, or not the same infinity
+            ++r.nonfinite;
+            nonfinite = true;
+          }
           if (same_non_finite(a, b)) continue;
           if (std::isfinite(r.maxerror)) {  // non-finite errors trump finite ones
             r.maxerror = std::numeric_limits<float>::infinity();

@@ -16,6 +16,10 @@ struct CompareResults {
   double meanerror = 0, rms_error = 0, PSNR = 0, maxerror = 0;
   int maxx = 0, maxy = 0, maxc = 0;  // maxc indexes the compared channels
   long long nwarn = 0, nfail = 0;
+  // Pixels with a NaN in either image, or an infinity against anything but the same infinity
+  // (a depth of +inf where nothing was hit matches +inf). Not in idiff: a failure whatever the
+  // thresholds (idiff passes NaN against NaN with a Max error of 0).
+  long long nonfinite = 0;
 };
 
 // The channels compared: index pairs into A's and B's channels.
@@ -23,11 +27,15 @@ struct ChannelPairs {
   std::vector<int> a, b;
 };
 
+// The pixels of the union of both data windows (what compare_images visits).
+long long union_pixels(const ImageFile& A, const ImageFile& B);
+
 // Compares the channels `pairs` over the union of both data windows (a pixel outside one image's
 // window is black there). A pixel warns (fails) when some channel differs by more than the
 // threshold and, if a relative threshold is set, by more than that fraction of the channel's
-// mean magnitude. Infinity against infinity and NaN against NaN are equal; the first other
-// non-finite mismatch only makes the largest error infinite (as OpenImageIO does).
+// mean magnitude. The same infinity in both is equal; otherwise the first non-finite mismatch
+// only makes the largest error infinite (as OpenImageIO does, which also calls NaN against NaN
+// equal), and every pixel with one counts in `nonfinite`.
 CompareResults compare_images(const ImageFile& A, const ImageFile& B, const ChannelPairs& pairs,
                               const CompareThresholds& t);
 

@@ -25,8 +25,9 @@ struct ImageFile {
   }
 };
 
-// Reads an EXR (first part; scanline or tiled, any pixel type, read as float) or an 8-bit PNG
-// (values / 255, as stored: sRGB-encoded, straight alpha), told apart by their first bytes.
+// Reads an EXR (first part; scanline or tiled, any pixel type, read as float) or a PNG of 8 or 16
+// bits (values / 255 or / 65535, as stored: sRGB-encoded, straight alpha), told apart by their
+// first bytes.
 // Throws std::runtime_error naming the file and the reason.
 ImageFile read_image(const std::string& path);
 

@@ -44,6 +44,26 @@ struct Pending {
 std::mutex g_pending_mutex;
 std::vector<Pending> g_pending;
 
+// What a non-regular file is, for the refusal: only regular files are replaced, since renaming
+// over a FIFO or a device node (through a link, /dev/null) would put a regular file in its place.
+const char* kind_of(const struct stat& st) {
+  if (S_ISFIFO(st.st_mode)) return "a FIFO";
+  if (S_ISCHR(st.st_mode)) return "a character device";
+  if (S_ISBLK(st.st_mode)) return "a block device";
+  if (S_ISSOCK(st.st_mode)) return "a socket";
+  if (S_ISDIR(st.st_mode)) return "a folder";
+  return "not a regular file";
+}
+
+// Throws `E` when `target` exists and is not a regular file.
+template <class E>
+void require_regular_or_absent(const std::string& target, const std::string& display) {
+  struct stat st {};
+  if (::lstat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw E(display + ": is " + std::string(kind_of(st)) +
+            "; outputs must be regular files or links to them");
+}
+
 bool is_temp_suffix(const char* s) {
   if (std::strlen(s) != 6) return false;
   return std::all_of(s, s + 6, [](char c) {
@@ -96,6 +116,7 @@ void check_output_path(const std::string& path, const char* const* extensions) {
   if (::access(dir.c_str(), W_OK) != 0)
     throw std::invalid_argument(path + ": the folder '" + dir.string() + "' is not writable");
   if (fs::is_directory(target, ec)) throw std::invalid_argument(path + ": is a folder");
+  require_regular_or_absent<std::invalid_argument>(target.string(), path);
 }
 
 int remove_stale_temporaries(const std::string& target, double started) {
@@ -146,6 +167,22 @@ std::string create_pending_temp(const std::string& target, const std::string& di
 }
 
 void commit_temp(const std::string& tmp, const std::string& target, const std::string& display) {
+  try {
+    // The target may have become a FIFO or a device since check_output_path.
+    require_regular_or_absent<std::runtime_error>(target, display);
+    // The writers checked every write and close; the data must also be on the disk before the
+    // rename makes it the output (a delayed write error shows in fsync).
+    const int fd = ::open(tmp.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    const bool synced = fd >= 0 && ::fsync(fd) == 0;
+    const int sync_errno = errno;
+    if (fd >= 0 && ::close(fd) != 0 && synced)
+      throw std::runtime_error(display + ": cannot write the file: " + std::strerror(errno));
+    if (!synced)
+      throw std::runtime_error(display + ": cannot write the file: " + std::strerror(sync_errno));
+  } catch (const std::exception&) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
   // mkstemp makes the file private; give it the usual permissions of a new file.
   const mode_t mask = ::umask(0);
   ::umask(mask);

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -96,6 +97,7 @@ class FrameTracer {
     Vec3 sum{0, 0, 0};
     int covered = 0;
     for (int s = 0; s < spp; ++s) {
+      // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
       if (cancelled()) return;
       double dx, dy;
       sample_offset(s, dx, dy);
@@ -129,6 +131,8 @@ class FrameTracer {
       film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
   }
 
+  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+
   const Scene& scene_;
   const TracedScene& rt_;
   Film& film_;
@@ -149,8 +153,7 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
   const int tiles_x = (x1 + kTile - 1) / kTile - gx0, tiles_y = (y1 + kTile - 1) / kTile - gy0;
   tbb::combinable<Work> work_total;
 
-  // One tile per task: a tile is a few hundred pixels at most, so a cancel is noticed soon
-  // whatever the image's width.
+  // One tile per task; a cancel is noticed before the next sample (FrameTracer::pixel).
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
       [&](const tbb::blocked_range<int>& tiles) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -55,12 +56,26 @@ PixelBounds pixel_bounds(const std::string& spec, int width, int height) {
 }
 
 TileIndex parse_tile(const std::string& spec) {
+  // Digits only, each number checked against int's range: sscanf's %d once wrapped
+  // 0/4294967297 to 0/1, the whole frame.
+  const auto whole = [&](size_t begin, size_t end, int& out) {
+    if (begin == end || end - begin > 10) return false;
+    long long v = 0;
+    for (size_t i = begin; i < end; ++i) {
+      if (spec[i] < '0' || spec[i] > '9') return false;
+      v = v * 10 + (spec[i] - '0');
+    }
+    if (v > std::numeric_limits<int>::max()) return false;
+    out = static_cast<int>(v);
+    return true;
+  };
   TileIndex t;
-  char tail = 0;
-  if (std::sscanf(spec.c_str(), "%d/%d%c", &t.index, &t.count, &tail) != 2 || t.count < 1 ||
-      t.index < 0 || t.index >= t.count || spec.find_first_of(" +-") != std::string::npos)
+  const size_t slash = spec.find('/');
+  if (slash == std::string::npos || !whole(0, slash, t.index) ||
+      !whole(slash + 1, spec.size(), t.count) || t.count < 1 || t.index >= t.count)
     throw std::invalid_argument("--tile '" + spec +
-                                "': expected I/N with 0 <= I < N (tiles are numbered from 0)");
+                                "': expected I/N, whole numbers with 0 <= I < N <= 2^31 - 1 "
+                                "(tiles are numbered from 0)");
   return t;
 }
 

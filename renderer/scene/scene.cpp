@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unordered_set>
+#include <vector>
 
 #include "scene/json_text.h"
 
@@ -34,9 +36,20 @@ Vec3 unit(const Vec3& v) {  // v non-zero and finite
 // and above its inverse, so that their squares are normal doubles.
 constexpr double kMaxDistance = 1e150;
 
+// Where rays start: the eye, and shading points inside the objects' boxes. Embree takes ray
+// origins in float and (Debian's build) asserts |origin| <= 1.8e18; well before that, float's
+// rounding of the origin (6e-8 of it) misplaces the rays it culls with, and the tracer's steps
+// stop advancing along t. Fig. 12(b)'s object at 64x48, seen from 1e7 and from farther along
+// the same line (the fov scaled): from 1e12, 1 pixel of 3072 differs; from 1e15, 33; from 1e17
+// the render does not finish.
+constexpr double kMaxPosition = 1e12;
+const char* const kPositionRule = "within 1e12 of the origin in every coordinate";
+
 Camera load_camera(const Params& p) {
   Camera c;
   c.eye = p.vec3("eye");
+  p.check(max_abs(c.eye) <= kMaxPosition, "eye",
+          std::string("expected an eye ") + kPositionRule + " (rays start there)");
   c.target = p.vec3("target");
   const Vec3 up = p.vec3("up", c.up);
   c.fov = p.number("fov", c.fov);
@@ -73,8 +86,8 @@ Animation load_animation(const Params& p) {
     a.frames = p.integer("frames", 1, kMaxFrames);
     const Params t = p.object("turntable");
     a.axis = t.vec3("axis", a.axis);
-    t.check(length(a.axis) > 0 && std::isfinite(length(a.axis)), "axis",
-            "expected a non-zero, finite axis");
+    t.check(max_abs(a.axis) > 0, "axis", "expected a non-zero, finite axis");
+    a.axis = unit(a.axis);  // [3e-162, 4e-162, 0] is [0.6, 0.8, 0]: its squares would underflow
     a.degrees = t.number("degrees", a.degrees);
     t.check(std::isfinite(a.degrees), "degrees", "expected a finite angle");
     t.finish();
@@ -178,12 +191,24 @@ SceneObject load_object(const Params& p, size_t index) {
     for (int i = 0; i < 3; ++i)
       p.check(lo[i] < hi[i], "bounds", "expected each minimum below its maximum");
     o.bounds = Box(lo, hi);
+    // Nothing is drawn outside the field's own region: a box of +-1e9 around a 30-unit object
+    // once changed the picture (+-1e12 filled the frame, +-1e20 emptied it), the tracer's steps
+    // and Embree's float culling working at the box's scale. Only cuts inside the region stay.
+    const Box region = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
+    if (region.bounded()) {
+      const Box inside = o.bounds.intersected(region);
+      if (!inside.empty()) o.bounds = inside;
+    }
   } else {
     o.bounds = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
     if (!o.bounds.bounded())
       p.fail("field",
              "the field has no finite support box at this iso level; give the object 'bounds'");
   }
+  if (!(std::max(max_abs(o.bounds.lo), max_abs(o.bounds.hi)) <= kMaxPosition))
+    p.fail(p.has("bounds") ? "bounds" : "field",
+           std::string("expected the object's box (bounds, or the field's own region) ") +
+               kPositionRule + " (shading rays start there)");
   p.finish();
   return o;
 }
@@ -258,10 +283,17 @@ void set_frame(Scene& scene, int frame) {
     scene.camera = a.cameras[frame];
   } else {
     // Rotations keep the angle between the view and `up`, so every frame's camera is valid.
-    const Mat3 r = Mat3::rotation(a.axis, a.degrees * frame / a.frames);
+    // degrees * F / N, reduced modulo 360 before it is multiplied (1e308 * 2 overflowed to inf and
+    // made the camera NaN): fmod is exact, so (d mod 360N) * F is d * F modulo 360N to rounding.
+    const double turn = 360.0 * a.frames;
+    const double angle = std::fmod(std::fmod(a.degrees, turn) * frame, turn) / a.frames;
+    const Mat3 r = Mat3::rotation(a.axis, angle);
     Camera& c = scene.camera;
     c.eye = c.target + r * (c.eye - c.target);
     c.up = r * c.up;
+    if (!(max_abs(c.eye) <= kMaxPosition))
+      throw SceneError(scene.path + ": /animation/turntable: frame " + std::to_string(frame) +
+                       " puts the eye beyond 1e12 of the origin (rays start there)");
   }
   if (scene.default_lights) scene.lights = default_lights(scene.camera);
 }
@@ -280,11 +312,28 @@ Scene load_scene(const std::string& path) {
   // A C string would end at the NUL: "x.json\0junk" must not load x.json.
   if (path.find('\0') != std::string::npos)
     throw SceneError(path.substr(0, path.find('\0')) + "...: a path with a NUL byte");
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path + ": is a folder, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path);
+  // Read in blocks, so that an endless input (/dev/zero, a pipe) is bounded: the read stops at
+  // the first block with a NUL byte (the parser then names its LINE:COL) or past the size limit.
+  std::string text;
+  std::vector<char> block(1 << 16);
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    const size_t got = size_t(in.gcount());
+    text.append(block.data(), got);
+    if (std::find(block.begin(), block.begin() + std::ptrdiff_t(got), '\0') !=
+        block.begin() + std::ptrdiff_t(got))
+      break;
+    if (text.size() > kMaxSceneBytes)
+      throw SceneError(path + ": larger than " + std::to_string(kMaxSceneBytes >> 20) +
+                       " MiB; a scene file may be at most that");
+  }
+  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+  return parse_scene(text, path);
 }
 
 }  // namespace softtrace

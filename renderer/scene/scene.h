@@ -79,7 +79,10 @@ void set_frame(Scene& scene, int frame);
 uint64_t fnv1a(const std::string& bytes, uint64_t hash = 0xcbf29ce484222325ULL);
 
 // Throws SceneError with "file:line:col: ..." for syntax and "file: /pointer: ..." for meaning
-// (and "path: ..." for a path with a NUL byte or a file that cannot be opened).
+// (and "path: ..." for a path with a NUL byte or a file that cannot be opened). Scene files are
+// read up to kMaxSceneBytes (a 100,000-child scene is 7.7 MB); a folder, a larger or endless
+// input is refused.
+constexpr size_t kMaxSceneBytes = size_t(256) << 20;
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& text, const std::string& name);
 
