@@ -25,6 +25,8 @@
 namespace py = pybind11;
 using namespace softtrace;
 
+void bind_mesh(py::module_& m);  // bind_mesh.cpp
+
 namespace {
 
 using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -201,5 +203,6 @@ PYBIND11_MODULE(softtrace, m) {
         "files written as `softtrace render -o` writes them (all or nothing; `flatten` as "
         "--flatten).");
   m.def("nodes", &nodes, "Every kind a scene may name, with its parameters.");
+  bind_mesh(m);
   m.attr("__version__") = SOFTTRACE_VERSION;
 }
