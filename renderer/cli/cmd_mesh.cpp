@@ -78,7 +78,14 @@ int run_mesh(const MeshArgs& a) {
       if (now > shown) progress.advance(now - shown), shown = now;
     };
     const auto start = std::chrono::steady_clock::now();
-    const Mesh m = mesh({&program, obj.iso, obj.inside_sign}, region, opt);
+    Mesh m;
+    try {
+      m = mesh({&program, obj.iso, obj.inside_sign}, region, opt);
+    } catch (const std::invalid_argument& e) {  // the lattice the options ask for
+      throw std::invalid_argument((a.voxel > 0 ? "--voxel " + std::to_string(a.voxel)
+                                               : "--cells " + std::to_string(a.cells)) +
+                                  ": " + e.what());
+    }
     progress.finish();
     if (m.faces.empty())
       throw std::invalid_argument(a.scene + ": object '" + obj.name +
