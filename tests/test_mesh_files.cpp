@@ -5,9 +5,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "glb_read.h"
 #include "io/mesh_file.h"
 #include "mesh_scenes.h"
 
@@ -140,58 +140,11 @@ TEST(MeshFiles, BinaryPlyHoldsNormalsAndColours) {
   }
 }
 
-// The GLB's mesh, read back: positions in softtrace's frame again, and the index width.
-struct Glb {
-  std::vector<Vec3> positions, normals, colors;
-  std::vector<uint32_t> indices;
-  int index_type = 0;
-};
-
-Glb read_glb(const std::string& path) {
-  const std::string b = slurp(path);
-  Glb g;
-  EXPECT_EQ(at<uint32_t>(b, 0), 0x46546C67u);
-  EXPECT_EQ(at<uint32_t>(b, 4), 2u);
-  EXPECT_EQ(at<uint32_t>(b, 8), b.size());
-  const uint32_t json_size = at<uint32_t>(b, 12);
-  EXPECT_EQ(json_size % 4, 0u);
-  EXPECT_EQ(at<uint32_t>(b, 16), 0x4E4F534Au);
-  const auto doc = nlohmann::json::parse(b.substr(20, json_size));
-  const size_t bin = 20 + json_size + 8;
-  EXPECT_EQ(at<uint32_t>(b, bin - 4), 0x004E4942u);
-  EXPECT_EQ(doc["asset"]["version"], "2.0");
-  const auto& prim = doc["meshes"][0]["primitives"][0];
-  auto view_of = [&](int accessor) {
-    const auto& a = doc["accessors"][accessor];
-    const auto& v = doc["bufferViews"][a["bufferView"].get<int>()];
-    return std::make_pair(a, bin + v["byteOffset"].get<size_t>());
-  };
-  auto vectors = [&](const char* name, bool frame) {
-    const auto [a, offset] = view_of(prim["attributes"][name].get<int>());
-    std::vector<Vec3> out;
-    for (size_t i = 0; i < a["count"].get<size_t>(); ++i) {
-      const Vec3 v{at<float>(b, offset + 12 * i), at<float>(b, offset + 12 * i + 4),
-                   at<float>(b, offset + 12 * i + 8)};
-      out.push_back(frame ? Vec3{v.x, -v.z, v.y} : v);  // glTF y-up back to z-up
-    }
-    return out;
-  };
-  g.positions = vectors("POSITION", true);
-  g.normals = vectors("NORMAL", true);
-  g.colors = vectors("COLOR_0", false);
-  const auto [a, offset] = view_of(prim["indices"].get<int>());
-  g.index_type = a["componentType"];
-  for (size_t i = 0; i < a["count"].get<size_t>(); ++i)
-    g.indices.push_back(g.index_type == 5125 ? at<uint32_t>(b, offset + 4 * i)
-                                             : at<uint16_t>(b, offset + 2 * i));
-  return g;
-}
-
 TEST(MeshFiles, GlbIsYUpWithSixteenBitIndicesWhenTheyFit) {
   const Mesh& m = sample();
   ASSERT_LE(m.vertices.size(), 65535u);
   write_mesh(tmp("m.glb"), m);
-  const Glb g = read_glb(tmp("m.glb"));
+  const glb::Glb g = glb::read(tmp("m.glb"));
   EXPECT_EQ(g.index_type, 5123);
   ASSERT_EQ(g.positions.size(), m.vertices.size());
   ASSERT_EQ(g.indices.size(), 3 * m.faces.size());
@@ -216,7 +169,7 @@ TEST(MeshFiles, GlbIndicesAre32BitPast65535Vertices) {
     m.faces.push_back({i + 1, i + 2, i + 3});
   }
   write_mesh(tmp("wide.glb"), m);
-  const Glb g = read_glb(tmp("wide.glb"));
+  const glb::Glb g = glb::read(tmp("wide.glb"));
   EXPECT_EQ(g.index_type, 5125);
   ASSERT_EQ(g.indices.size(), 3 * m.faces.size());
   EXPECT_EQ(g.indices[g.indices.size() - 1], 69999u);
