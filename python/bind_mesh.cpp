@@ -34,8 +34,9 @@ py::array_t<double> vectors(const std::vector<Vec3>& v) {
 }
 
 std::tuple<py::array_t<double>, py::array_t<int64_t>, py::array_t<double>, py::array_t<double>>
-mesh_scene(const std::shared_ptr<Scene>& scene, const std::string& object, double voxel, int cells,
-           const std::optional<std::vector<double>>& bounds, int threads) {
+mesh_scene(const std::shared_ptr<Scene>& scene, const std::optional<std::string>& name,
+           double voxel, int cells, const std::optional<std::vector<double>>& bounds, int threads) {
+  const std::string object = name.value_or("");
   const SceneObject* obj = scene->objects.empty() ? nullptr : &scene->objects.front();
   if (!object.empty()) {
     obj = nullptr;
@@ -138,17 +139,19 @@ void bind_mesh(py::module_& m) {
       "colours (V, 3)). `voxel` > 0 sets the cell size, else `cells` cells span the region's "
       "longest side; `bounds` [x0, x1, y0, y1, z0, z1] replaces the object's bounds (the mesh "
       "is capped where it cuts the solid).";
-  m.def("mesh", &mesh_scene, py::arg("scene"), py::arg("object") = "", py::arg("voxel") = 0.0,
-        py::arg("cells") = 128, py::arg("bounds") = py::none(), py::arg("threads") = 0, doc);
+  m.def("mesh", &mesh_scene, py::arg("scene"), py::arg("object") = py::none(),
+        py::arg("voxel") = 0.0, py::arg("cells") = 128, py::arg("bounds") = py::none(),
+        py::arg("threads") = 0, doc);
   m.def(
       "mesh",
-      [](const std::string& path, const std::string& object, double voxel, int cells,
+      [](const std::string& path, const std::optional<std::string>& object, double voxel, int cells,
          const std::optional<std::vector<double>>& bounds, int threads) {
         return mesh_scene(std::make_shared<Scene>(load_scene(path)), object, voxel, cells, bounds,
                           threads);
       },
-      py::arg("scene"), py::arg("object") = "", py::arg("voxel") = 0.0, py::arg("cells") = 128,
-      py::arg("bounds") = py::none(), py::arg("threads") = 0, "The same from a scene file's path.");
+      py::arg("scene"), py::arg("object") = py::none(), py::arg("voxel") = 0.0,
+      py::arg("cells") = 128, py::arg("bounds") = py::none(), py::arg("threads") = 0,
+      "The same from a scene file's path.");
   m.def("write_mesh", &write_mesh_file, py::arg("path"), py::arg("vertices"), py::arg("faces"),
         py::arg("normals") = py::none(), py::arg("colors") = py::none(),
         "Writes a mesh as .obj, .ply, .stl or .glb (as `softtrace mesh -o`), all or nothing. "

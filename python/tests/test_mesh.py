@@ -38,7 +38,7 @@ def test_mesh_is_closed_oriented_and_on_the_surface():
 
 
 def test_path_and_scene_give_the_same_mesh():
-    v1, f1, _, _ = softtrace.mesh(FIG12B, cells=24, threads=1)
+    v1, f1, _, _ = softtrace.mesh(FIG12B, object=None, cells=24, threads=1)
     v2, f2, _, _ = softtrace.mesh(softtrace.load_scene(FIG12B), cells=24, threads=2)
     assert np.array_equal(v1, v2) and np.array_equal(f1, f2)
 
