@@ -1,7 +1,9 @@
 // The mesh files read back by readers written here from the formats' specifications (binary
 // STL, OBJ, binary little-endian PLY, glTF 2.0 GLB), and written all or nothing.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -185,6 +187,34 @@ TEST(MeshFiles, AFailedWriteLeavesTheOldFile) {
   EXPECT_THROW(write_mesh(tmp("m.fbx"), sample()), std::invalid_argument);
   for (const auto& e : fs::directory_iterator(SOFTTRACE_TEST_TMP))
     EXPECT_NE(e.path().filename().string().rfind(".keep.obj.", 0), 0u) << "temporary file left";
+}
+
+}  // namespace
+}  // namespace softtrace
+
+namespace softtrace {
+namespace {
+
+int run(const std::string& args) {
+  const int status =
+      std::system((std::string(SOFTTRACE_BIN) + " mesh " + args + " 2>/dev/null").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(MeshCli, WritesTheFileOrExitsTwoWritingNothing) {
+  const std::string scene = SOFTTRACE_SOURCE_DIR "/scenes/fig12b_soft_blend.json";
+  const std::string out = tmp("cli.obj");
+  fs::remove(out);
+  EXPECT_EQ(run(scene + " -o " + tmp("cli.fbx")), 2);
+  EXPECT_EQ(run(scene + " -o " + out + " --bounds 1,2,3"), 2);
+  EXPECT_EQ(run(scene + " -o " + out + " --bounds 0,1,0,1,1,0"), 2);
+  EXPECT_EQ(run(scene + " -o " + out + " --object nope"), 2);
+  EXPECT_EQ(run(scene + " -o " + out + " --voxel 1e-9"), 2);
+  EXPECT_EQ(run(scene + " -o " + out + " --bounds 100,101,0,1,0,1"), 2);  // no surface there
+  EXPECT_EQ(run(SOFTTRACE_SOURCE_DIR "/README.md -o " + out), 2);
+  EXPECT_FALSE(fs::exists(out));
+  ASSERT_EQ(run(scene + " -o " + out + " --cells 16 --threads 2 -q"), 0);
+  EXPECT_EQ(slurp(out).rfind("# softtrace mesh: ", 0), 0u);
 }
 
 }  // namespace
