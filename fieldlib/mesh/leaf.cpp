@@ -19,7 +19,8 @@ void LeafMesher::run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* 
   out->keys.clear();
   out->shared.clear();
   out->positions.clear();
-  out->normals.clear();
+  out->outward.clear();
+  out->capped.clear();
   out->faces.clear();
   edges_.clear();
   cuts_.clear();
@@ -198,24 +199,29 @@ void LeafMesher::solve_edges(Code code, Workspace& ws, LeafMesh* out) {
   }
 
   out->positions.resize(n);
-  out->normals.resize(n);
+  out->outward.resize(n);
+  out->capped.resize(n);
   for (size_t id = 0; id < n; ++id) {
     const double s = std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin);
     const Edge& e = edges_[id];
-    const Vec3 p = e.a + s * (e.b - e.a);
-    out->positions[id] = p;
-    // Outward is where inside_sign (f - iso) falls: -inside_sign grad f; on the cap, the face's.
-    Vec3 grad;
-    // The whole program pruned to the point: only the children that reach it (fewer than the
-    // block's), and the same bits whichever block asks.
-    const double fp = gradient_pruned(*field_.program, p, &grad, ws);
-    Vec3 nrm = grad * -field_.inside_sign;
-    if (e.capped && lattice_.inside_distance(p) < solved(fp, p, false))
-      nrm = lattice_.cap_normal(p);
-    const double len = length(nrm);
-    // A critical point on the surface has no normal: the edge's direction out stands in.
-    out->normals[id] = len > 0 && std::isfinite(len) ? nrm / len : normalize(e.b - e.a);
+    out->positions[id] = e.a + s * (e.b - e.a);
+    out->outward[id] = e.b - e.a;
+    out->capped[id] = e.capped;
   }
+}
+
+Vec3 vertex_normal(const MeshField& field, const Lattice& lattice, const Vec3& p, bool capped,
+                   const Vec3& out, Workspace& ws) {
+  // Outward is where inside_sign (f - iso) falls: -inside_sign grad f; on the cap, the face's.
+  // The whole program pruned to the point keeps only the children that reach it.
+  Vec3 grad;
+  const double f = gradient_pruned(*field.program, p, &grad, ws);
+  Vec3 nrm = grad * -field.inside_sign;
+  const double g = field.inside_sign > 0 ? f - field.iso : field.iso - f;
+  if (capped && lattice.inside_distance(p) < g) nrm = lattice.cap_normal(p);
+  const double len = length(nrm);
+  // A critical point on the surface has no normal: the edge's direction out stands in.
+  return len > 0 && std::isfinite(len) ? nrm / len : normalize(out);
 }
 
 }  // namespace softtrace

@@ -21,14 +21,23 @@ namespace softtrace {
 // vertex off the surface by at most this fraction of an edge (sqrt 3 cells at most).
 constexpr double kEdgeMargin = 1e-4;
 // The crossing is solved to this fraction of the edge (solve_edges in leaf.cpp).
-constexpr double kEdgeTolerance = 1e-5;
+constexpr double kEdgeTolerance = 1e-4;
 
 struct LeafMesh {
   std::vector<uint64_t> keys;   // each vertex's lattice edge
   std::vector<uint8_t> shared;  // 1: the edge lies on the block's boundary (a neighbour has it)
-  std::vector<Vec3> positions, normals;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> outward;                   // the edge from its inside end to its outside end
+  std::vector<uint8_t> capped;                 // 1: an end of the edge is a padding point
   std::vector<std::array<uint32_t, 3>> faces;  // indices into this leaf's vertices
 };
+
+// The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
+// the cap's face axis where the cap (`capped`: the vertex's edge reaches the padding) is what p
+// lies on, and the edge's direction `out` at a critical point of the field. Computed once per
+// welded vertex (mesh.cpp); `ws` fitted to the program.
+Vec3 vertex_normal(const MeshField& field, const Lattice& lattice, const Vec3& p, bool capped,
+                   const Vec3& out, Workspace& ws);
 
 class LeafMesher {
  public:

@@ -148,7 +148,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   std::atomic<size_t> leaves_done{0};
   parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
     LeafMesher(field, lattice).run(leaves[i].lo, leaves[i].hi, ws, &parts[i]);
-    report(0.1 + 0.85 * double(++leaves_done) / double(leaves.size()));
+    report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
   });
 
   // Pass 3: weld. A vertex on a leaf's boundary may be in the neighbours too, with the same key
@@ -177,6 +177,8 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   if (first.back() > size_t(UINT32_MAX) || faces > size_t(UINT32_MAX))
     throw std::length_error("the mesh would have more than 2^32 vertices or faces");
   m.faces.reserve(faces);
+  std::vector<Vec3> outward;    // each welded vertex's edge direction out (vertex_normal)
+  std::vector<uint8_t> capped;  // and whether its edge reaches the padding
   for (size_t i = 0; i < parts.size(); ++i) {
     LeafMesh& p = parts[i];
     for (size_t v = 0; v < p.keys.size(); ++v) {
@@ -187,12 +189,26 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
       }
       index[g] = uint32_t(m.vertices.size());
       m.vertices.push_back(p.positions[v]);
-      m.normals.push_back(p.normals[v]);
+      outward.push_back(p.outward[v]);
+      capped.push_back(p.capped[v]);
     }
     for (const auto& f : p.faces)
       m.faces.push_back({index[first[i] + f[0]], index[first[i] + f[1]], index[first[i] + f[2]]});
     p = LeafMesh();
   }
+  parts = {};
+
+  // Normals, once per welded vertex, in chunks over the threads.
+  constexpr size_t kChunk = 4096;
+  m.normals.resize(m.vertices.size());
+  const size_t chunks = (m.vertices.size() + kChunk - 1) / kChunk;
+  std::atomic<size_t> chunks_done{0};
+  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, Workspace& ws) {
+    ws.fit(*field.program);
+    for (size_t v = c * kChunk; v < std::min(m.vertices.size(), (c + 1) * kChunk); ++v)
+      m.normals[v] = vertex_normal(field, lattice, m.vertices[v], capped[v], outward[v], ws);
+    report(0.9 + 0.1 * double(++chunks_done) / double(chunks));
+  });
   m.colors.assign(m.vertices.size(), options.color);
   report(1);
   return m;
