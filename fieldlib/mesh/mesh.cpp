@@ -16,8 +16,9 @@
 namespace softtrace {
 namespace {
 
-constexpr int kLeafCells = 4;  // a leaf's side, in cells (4 evaluates fewer corners than 8)
-constexpr int kTopCells = 64;  // the side of the blocks the tree starts from
+constexpr int kLeafCells = 4;     // a leaf's side, in cells (4 evaluates fewer corners than 8)
+constexpr int kTopCells = 64;     // the side of the blocks the tree starts from, at least
+constexpr long kMaxTops = 32768;  // top blocks at most: a finer lattice starts from larger ones
 
 struct Block {
   int lo[3], hi[3];  // cells [lo, hi) per axis
@@ -124,15 +125,22 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     if (options.progress) options.progress(fraction);
   };
 
-  // Pass 1: the tree of blocks, from top blocks of kTopCells (cells 0..n along each axis).
+  // Pass 1: the tree of blocks, from top blocks of `top` cells (cells 0..n along each axis).
   std::vector<Block> tops;
   const int cells[3] = {lattice.n[0] + 1, lattice.n[1] + 1, lattice.n[2] + 1};
-  for (int k = 0; k < cells[2]; k += kTopCells)
-    for (int j = 0; j < cells[1]; j += kTopCells)
-      for (int i = 0; i < cells[0]; i += kTopCells)
+  int top = kTopCells;
+  auto count = [&](int t) {
+    long c = 1;
+    for (int a = 0; a < 3; ++a) c *= (cells[a] + t - 1) / t;
+    return c;
+  };
+  while (count(top) > kMaxTops) top *= 2;
+  for (int k = 0; k < cells[2]; k += top)
+    for (int j = 0; j < cells[1]; j += top)
+      for (int i = 0; i < cells[0]; i += top)
         tops.push_back({{i, j, k},
-                        {std::min(i + kTopCells, cells[0]), std::min(j + kTopCells, cells[1]),
-                         std::min(k + kTopCells, cells[2])}});
+                        {std::min(i + top, cells[0]), std::min(j + top, cells[1]),
+                         std::min(k + top, cells[2])}});
   std::vector<std::vector<Block>> found(tops.size());
   std::atomic<size_t> tops_done{0};
   parallel_for(tops.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
