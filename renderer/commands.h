@@ -1,6 +1,6 @@
-// The subcommands of the `softtrace` command line (docs/scene-format.md "Command line"). Each returns the
-// process exit status: 0 success, 2 bad usage or bad input; `diff` has idiff's codes (0 pass,
-// 1 warning, 2 failure, 4 a file it cannot read or write).
+// The subcommands of the `softtrace` command line (docs/scene-format.md "Command line"). Each
+// returns the process exit status: 0 success, 2 bad usage or bad input; `diff` has idiff's codes (0
+// pass, 1 warning, 2 failure, 4 a file it cannot read or write).
 #pragma once
 
 #include <limits>

@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   CLI::App app{
       "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
-      "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command line: docs/cli.md."};
+      "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command "
+      "line: docs/cli.md."};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
   app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
