@@ -30,6 +30,7 @@ void bind_scene(py::module_& m);
 void bind_field(py::module_& m);
 void bind_render(py::module_& m);
 void bind_exr(py::module_& m);
+void bind_mesh(py::module_& m);  // bind_mesh.cpp
 
 // `value` (dicts, lists, tuples, numbers, strings, numpy arrays) as the JSON text the loader
 // parses, through the package's softtrace._json.dumps; NaN and infinity are refused.

@@ -12,6 +12,7 @@
 namespace py = pybind11;
 using namespace softtrace;
 
+
 namespace {
 
 py::list nodes() {
@@ -39,5 +40,6 @@ PYBIND11_MODULE(_native, m) {
   python::bind_render(m);
   python::bind_exr(m);
   m.def("nodes", &nodes, "Every kind a scene may name, with its parameters.");
+  python::bind_mesh(m);
   m.attr("__version__") = SOFTTRACE_VERSION;
 }

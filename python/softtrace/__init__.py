@@ -27,7 +27,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 Node = Dict[str, Any]  # what a builder returns: the node as a scene file holds it
 
 __all__ = ["Scene", "Field", "SceneError", "load_scene", "parse_scene", "load_dict", "render",
-           "write_exr", "read_exr", "exr_attributes", "nodes", "__version__"]
+           "write_exr", "read_exr", "exr_attributes", "mesh", "write_mesh", "nodes", "__version__"]
 
 
 class Scene(_native.Scene):
@@ -219,6 +219,26 @@ def exr_attributes(path: PathLike) -> Dict[str, str]:
     with open(path, "rb"):
         pass
     return _native.exr_attributes(os.fspath(path))
+
+
+def mesh(scene: Union[Scene, PathLike], object: Optional[str] = None, *, voxel: float = 0.0,
+         cells: int = 128, bounds: Optional[Iterable[float]] = None, threads: int = 0):
+    """A closed, manifold, outward-oriented triangle mesh of an object's surface (docs/mesh.md).
+
+    Returns (vertices (V, 3) float64, faces (F, 3) int64, unit normals (V, 3), linear RGB colours
+    (V, 3)). `voxel` > 0 sets the cell size, else `cells` cells span the region's longest side;
+    `bounds` [x0, x1, y0, y1, z0, z1] replaces the object's bounds (the mesh is capped where it
+    cuts the solid). The same bits for any `threads`.
+    """
+    target = scene if isinstance(scene, _native.Scene) else os.fspath(scene)
+    return _native.mesh(target, object, voxel, cells, None if bounds is None else list(bounds),
+                        threads)
+
+
+def write_mesh(path: PathLike, vertices: Any, faces: Any, normals: Any = None,
+               colors: Any = None) -> None:
+    """Writes a mesh as .obj, .ply, .stl or .glb (as `softtrace mesh -o`), all or nothing."""
+    _native.write_mesh(os.fspath(path), vertices, faces, normals, colors)
 
 
 def nodes() -> list:

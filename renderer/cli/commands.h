@@ -40,6 +40,15 @@ struct EvalArgs {
 };
 int run_eval(const EvalArgs& a);
 
+// `softtrace mesh` (cli/cmd_mesh.cpp): voxel > 0 wins over cells; threads 0: all cores.
+struct MeshArgs {
+  std::string scene, output, object, bounds;
+  double voxel = 0;
+  int cells = 128, threads = 0;
+  bool quiet = false, progress = false;
+};
+int run_mesh(const MeshArgs& a);
+
 // Thresholds are float, as idiff's, so a percentage such as 0.3 counts exactly as it does there.
 struct DiffArgs {
   std::string a, b, out, channels;  // channels: "R,G,B" compares only those (default: shared)

@@ -74,6 +74,29 @@ int main(int argc, char** argv) {
   eval->add_option("--object", e.object, "Object name (default: the first object)");
   eval->add_option("--points", e.points, "File of 'x y z' lines (default: standard input)");
 
+  MeshArgs mesh_args;
+  auto* mesh = app.add_subcommand(
+      "mesh", "Write an object's surface as a triangle mesh (.obj .ply .stl .glb)");
+  mesh->add_option("scene", mesh_args.scene, "Scene file")->required();
+  mesh->add_option("-o,--output", mesh_args.output, "Output mesh: .obj, .ply, .stl or .glb")
+      ->required();
+  mesh->add_option("--object", mesh_args.object, "Object name (default: the first object)");
+  auto* voxel = mesh->add_option("--voxel", mesh_args.voxel, "Cell size in scene units")
+                    ->check(CLI::PositiveNumber);
+  mesh->add_option("--cells", mesh_args.cells,
+                   "Cells along the region's longest side (default 128)")
+      ->check(CLI::Range(1, 65536))
+      ->excludes(voxel);
+  mesh->add_option(
+      "--bounds", mesh_args.bounds,
+      "Region X0,X1,Y0,Y1,Z0,Z1 (default: the object's bounds); the mesh is capped on it");
+  mesh->add_option("--threads", mesh_args.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  auto* mesh_quiet = mesh->add_flag("-q,--quiet", mesh_args.quiet, "No progress bar or summary");
+  mesh->add_flag("--progress", mesh_args.progress,
+                 "Show the progress bar even when not on a terminal")
+      ->excludes(mesh_quiet);
+
   DiffArgs d;
   // CLI::NonNegativeNumber would print the largest double in its message.
   const CLI::Validator threshold(
@@ -180,6 +203,7 @@ int main(int argc, char** argv) {
   watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
   if (*render) return run_render(r);
   if (*eval) return checked_standard_output(run_eval(e), 2);
+  if (*mesh) return run_mesh(mesh_args);
   if (*diff) return checked_standard_output(run_diff(d), 4);  // idiff's "cannot write"
   if (*bench) return checked_standard_output(run_bench(b), 2);
   if (*merge) return run_merge(m);

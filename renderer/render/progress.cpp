@@ -5,8 +5,13 @@
 
 namespace softtrace {
 
-Progress::Progress(std::string label, long total, bool enabled, double rays_per_unit)
-    : label_(std::move(label)), total_(total), enabled_(enabled), rays_per_unit_(rays_per_unit) {
+Progress::Progress(std::string label, long total, bool enabled, double rays_per_unit,
+                   std::string rate_unit)
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(enabled),
+      rays_per_unit_(rays_per_unit),
+      rate_unit_(std::move(rate_unit)) {
   start_ = last_ = std::chrono::steady_clock::now();
   if (enabled_) draw(0);
 }
@@ -51,8 +56,8 @@ void Progress::draw(long done) {
   if (known) std::snprintf(rate, sizeof rate, "%7.2f", done * rays_per_unit_ / secs * 1e-6);
   const std::string left = known ? duration(secs * (total_ - done) / done) : "?";
   char line[256];
-  const int n = std::snprintf(line, sizeof line, "%s [%s] %3d%% %s Mrays/s (%s|%s)", label_.c_str(),
-                              bar.c_str(), static_cast<int>(frac * 100), rate,
+  const int n = std::snprintf(line, sizeof line, "%s [%s] %3d%% %s %s (%s|%s)", label_.c_str(),
+                              bar.c_str(), static_cast<int>(frac * 100), rate, rate_unit_.c_str(),
                               duration(secs).c_str(), left.c_str());
   const size_t len = n > 0 ? static_cast<size_t>(n) : 0;
   std::fprintf(stderr, "\r%s%*s", line, static_cast<int>(drawn_ > len ? drawn_ - len : 0), "");
