@@ -9,9 +9,10 @@
 
 #include <stdexcept>
 
-#include "eval/batch.h"
 #include "bindings.h"
+#include "eval/batch.h"
 #include "loader/build.h"
+#include "model/program_builder.h"
 #include "scene/json_text.h"
 
 namespace softtrace::python {

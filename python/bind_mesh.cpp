@@ -16,6 +16,7 @@
 #include "bindings.h"
 #include "io/mesh_file.h"
 #include "mesh/mesh.h"
+#include "model/program_builder.h"
 #include "scene/scene.h"
 
 namespace py = pybind11;
@@ -145,18 +146,16 @@ void bind_mesh(py::module_& m) {
   m.def(
       "mesh",
       [](const python::PyScene& scene, const std::optional<std::string>& object, double voxel,
-         int cells, const std::optional<std::vector<double>>& bounds, int threads) {
-        return mesh_scene(scene.scene, object, voxel, cells, bounds, threads);
-      },
-      py::arg("scene"), py::arg("object") = py::none(),
-        py::arg("voxel") = 0.0, py::arg("cells") = 128, py::arg("bounds") = py::none(),
-        py::arg("threads") = 0, doc);
+         int cells, const std::optional<std::vector<double>>& bounds,
+         int threads) { return mesh_scene(scene.scene, object, voxel, cells, bounds, threads); },
+      py::arg("scene"), py::arg("object") = py::none(), py::arg("voxel") = 0.0,
+      py::arg("cells") = 128, py::arg("bounds") = py::none(), py::arg("threads") = 0, doc);
   m.def(
       "mesh",
       [](const std::string& path, const std::optional<std::string>& object, double voxel, int cells,
          const std::optional<std::vector<double>>& bounds, int threads) {
-        return mesh_scene(std::make_shared<const Scene>(load_scene(path)), object, voxel, cells, bounds,
-                          threads);
+        return mesh_scene(std::make_shared<const Scene>(load_scene(path)), object, voxel, cells,
+                          bounds, threads);
       },
       py::arg("scene"), py::arg("object") = py::none(), py::arg("voxel") = 0.0,
       py::arg("cells") = 128, py::arg("bounds") = py::none(), py::arg("threads") = 0,

@@ -12,7 +12,6 @@
 namespace py = pybind11;
 using namespace softtrace;
 
-
 namespace {
 
 py::list nodes() {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "mesh/mesh.h"
+#include "model/program_builder.h"
 #include "scene/scene.h"
 
 namespace {

@@ -9,7 +9,7 @@ import os
 import re
 import sys
 
-FIELDLIB = ["math", "kernels", "program", "eval", "describe", "model", "loader"]
+FIELDLIB = ["math", "kernels", "program", "eval", "describe", "model", "loader", "mesh"]
 # What each layer may include besides itself (rooted includes: "math/vec.h").
 MAY_INCLUDE = {
     "fieldlib/math": [],
@@ -19,7 +19,9 @@ MAY_INCLUDE = {
     "fieldlib/describe": ["math"],
     "fieldlib/model": ["math", "kernels", "program", "describe"],
     "fieldlib/loader": ["math", "kernels", "program", "eval", "describe", "model"],
-    "renderer/io": ["math"],
+    # The mesher meshes a compiled program with the evaluators; it never sees the model.
+    "fieldlib/mesh": ["math", "kernels", "program", "eval"],
+    "renderer/io": ["math", "mesh"],
     "renderer/film": ["math", "io"],
     "renderer/scene": FIELDLIB + ["io"],
     # The tracer never sees the scene's loader or the JSON behind it. It still takes a whole
@@ -38,7 +40,8 @@ EXTERNAL = [
     (re.compile(r"^png\.h$"), ["renderer/io/png_io.cpp"]),
     (re.compile(r"^OpenImageIO/"), []),
     (re.compile(r"^nlohmann/"), ["fieldlib/describe/", "fieldlib/model/", "fieldlib/loader/",
-                                 "renderer/scene/", "renderer/cli/"]),
+                                 "renderer/scene/", "renderer/cli/",
+                                 "renderer/io/mesh_glb.cpp"]),  # glTF's JSON chunk
     (re.compile(r"^CLI/"), ["renderer/cli/"]),
 ]
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "film/tile_merge.h"
 #include "io/image_file.h"
+#include "render/tile_merge.h"
 
 using namespace softtrace;
 

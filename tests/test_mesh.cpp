@@ -9,6 +9,7 @@
 #include "mesh/mesh.h"
 #include "mesh_check.h"
 #include "mesh_scenes.h"
+#include "model/program_builder.h"
 
 namespace softtrace {
 namespace {
@@ -110,7 +111,9 @@ TEST_P(MeshVolume, WithinOnePercentOfMonteCarlo) {
 INSTANTIATE_TEST_SUITE_P(Scenes, MeshVolume,
                          ::testing::Values("fig12b_soft_blend.json#0", "tracer_2#0", "tracer_3#0",
                                            "fig003_9_wheel.json#0"),
-                         [](const auto& info) { return mesh_scenes::test_name({info.param}); });
+                         [](const auto& info) {
+                           return mesh_scenes::test_name({info.param, nullptr, 0});
+                         });
 
 const Case& blobs() {
   static const auto cases = mesh_scenes::all_cases();

@@ -10,6 +10,7 @@
 
 #include "mesh/mesh.h"
 #include "mesh_scenes.h"
+#include "model/program_builder.h"
 
 namespace softtrace {
 namespace {

@@ -12,6 +12,7 @@
 #include "glb_read.h"
 #include "io/mesh_file.h"
 #include "mesh_scenes.h"
+#include "model/program_builder.h"
 
 namespace softtrace {
 namespace {

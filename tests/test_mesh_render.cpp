@@ -10,12 +10,13 @@
 #include <cmath>
 #include <filesystem>
 
-#include "render/camera.h"
-#include "trace/embree_scene.h"
-#include "render/frame.h"
 #include "glb_read.h"
 #include "io/mesh_file.h"
 #include "mesh/mesh.h"
+#include "model/program_builder.h"
+#include "render/camera.h"
+#include "render/frame.h"
+#include "trace/embree_scene.h"
 
 namespace softtrace {
 namespace {

@@ -1,5 +1,5 @@
 // softtrace merge: tiles of one frame (render --tile/--crop/--pixel-bounds outputs) put back
-// together (film/tile_merge.h) and written all or nothing.
+// together (render/tile_merge.h) and written all or nothing.
 #include <pthread.h>
 
 #include <csignal>
@@ -11,8 +11,8 @@
 
 #include "cli/commands.h"
 #include "film/film.h"
-#include "film/tile_merge.h"
 #include "io/image_file.h"
+#include "render/tile_merge.h"
 
 namespace softtrace {
 

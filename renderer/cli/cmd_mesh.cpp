@@ -10,8 +10,9 @@
 
 #include "cli/commands.h"
 #include "io/mesh_file.h"
-#include "mesh/mesh.h"
 #include "io/output_file.h"
+#include "mesh/mesh.h"
+#include "model/program_builder.h"
 #include "render/progress.h"
 #include "scene/scene.h"
 

@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_spelling.h"
+#include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "cli/signals.h"
 #include "cli/standard_output.h"
-#include "cli/cli_spelling.h"
-#include "cli/commands.h"
 #include "commit.h"
 
 using namespace softtrace;

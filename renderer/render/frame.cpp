@@ -131,8 +131,6 @@ class FrameTracer {
       film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
   }
 
-  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
-
   const Scene& scene_;
   const TracedScene& rt_;
   Film& film_;

@@ -1,4 +1,4 @@
-#include "film/tile_merge.h"
+#include "render/tile_merge.h"
 
 #include <algorithm>
 #include <stdexcept>
