@@ -24,6 +24,7 @@ from ._native import SceneError, __version__
 SceneError.__module__ = __name__
 
 PathLike = Union[str, "os.PathLike[str]"]
+_MAX_SCENE_BYTES = 256 << 20  # renderer/scene/scene.h kMaxSceneBytes
 Node = Dict[str, Any]  # what a builder returns: the node as a scene file holds it
 
 __all__ = ["Scene", "Field", "SceneError", "load_scene", "parse_scene", "load_dict", "render",
@@ -135,9 +136,21 @@ def load_scene(path: PathLike) -> Scene:
     path with a NUL byte ValueError, a bad scene SceneError with the located line the command
     line prints (`scene.json:3:7: ...` or `scene.json: /objects/0/field/n: ...`).
     """
+    # Read as the command line reads (renderer/scene/scene.cpp): in blocks, stopping at the first
+    # block with a NUL byte (the parser then names its line and column) or past the size limit,
+    # so that an endless input (/dev/zero, a pipe) is bounded.
+    chunks, size = [], 0
     with open(path, "rb") as f:  # refuses "x.json\0junk" (ValueError: embedded null byte)
-        data = f.read()
-    return Scene(data, os.fsdecode(path))  # the file's bytes, as the command line reads them
+        while True:
+            block = f.read(1 << 16)
+            chunks.append(block)
+            size += len(block)
+            if not block or b"\0" in block:
+                break
+            if size > _MAX_SCENE_BYTES:
+                raise SceneError(f"{os.fsdecode(path)}: larger than {_MAX_SCENE_BYTES >> 20} MiB; "
+                                 "a scene file may be at most that")
+    return Scene(b"".join(chunks), os.fsdecode(path))  # the bytes, as the command line reads them
 
 
 def parse_scene(text: Union[str, bytes], name: str = "<scene>") -> Scene:

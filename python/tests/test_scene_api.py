@@ -28,6 +28,13 @@ def test_missing_files_and_nul_bytes_are_os_errors(tmp_path):
     assert softtrace.load_scene(TWO_BLOBS).objects == ["two_blobs"]  # a path-like works too
 
 
+def test_endless_input_is_bounded_and_located():
+    # /dev/zero never ends: the read stops at the first block with a NUL and the parser names it.
+    with pytest.raises(softtrace.SceneError) as e:
+        softtrace.load_scene("/dev/zero")
+    assert str(e.value).startswith("/dev/zero:1:1")
+
+
 def test_ill_formed_utf8_gives_the_cli_location(tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_bytes(b'{"camera": {"eye": [0, 0, 1],\n "fo\xffv": 30}}')
