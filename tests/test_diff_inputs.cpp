@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,27 @@ TEST(DiffPng16, SixteenBitPngIsReadAsStored) {
     write_image(p, 4, 3, nc, OIIO::TypeDesc::UINT16, ramp);
     EXPECT_EQ(read_image(p).channels.size(), size_t(nc));
   }
+}
+
+// OpenEXR allocates an attribute's declared size before reading it: a 1.5 KB file whose
+// pixelAspectRatio claimed 1.9 GB made the diff fuzzer run out of memory. The size is now checked
+// against what the file holds, and the file refused with the attribute named.
+TEST(DiffTamperedExr, AnAttributeLargerThanTheFileIsRefused) {
+  const std::string dir = temp_dir("diff_tampered_exr");
+  const std::string good = dir + "/good.exr", bad = dir + "/bad.exr";
+  write_image(good, 8, 6, 4, OIIO::TypeDesc::FLOAT, ramp, {"R", "G", "B", "A"});
+  std::string bytes = read_file(good);
+  const std::string key = std::string("pixelAspectRatio") + '\0' + "float" + '\0';
+  const size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const char size[4] = {0, 0, 0, 0x70};  // 1,879,048,192 bytes
+  bytes.replace(at + key.size(), 4, size, 4);
+  std::ofstream(bad, std::ios::binary) << bytes;
+  const RunResult r = run_softtrace("diff " + bad + " " + good);
+  EXPECT_EQ(r.status, 4) << r.out;
+  EXPECT_NE(r.err.find("attribute 'pixelAspectRatio' declares 1879048192 bytes"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(run_softtrace("diff " + good + " " + good).status, 0);
 }
 
 }  // namespace

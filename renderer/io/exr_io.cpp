@@ -17,6 +17,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "io/image_file.h"
@@ -101,10 +102,49 @@ class FdOStream : public Imf::OStream {
   std::string error_;  // the first failed write's reason
 };
 
+// OpenEXR 3.1 allocates an attribute's declared size before it reads the value, so a tampered
+// 12 KB header can ask for gigabytes. Walk the header(s) first: every attribute is
+// name\0 type\0 int32 size, value; a size beyond the bytes the file has left is refused here.
+void check_exr_attribute_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // OpenEXR reports it
+  in.seekg(0, std::ios::end);
+  const long long file_size = static_cast<long long>(in.tellg());
+  unsigned char version[8];  // the magic number, then the version field's flags
+  if (!in.seekg(0).read(reinterpret_cast<char*>(version), 8)) return;
+  const bool multipart = version[5] & 0x10;  // bit 12 of the version field
+  const auto read_name = [&](std::string& out) {
+    out.clear();
+    char c;
+    while (in.get(c) && c != 0)
+      if (out.size() < 256) out += c;
+    return bool(in);
+  };
+  std::string name, type;
+  for (int headers = 0; headers < 1024 && in; ++headers) {
+    if (!read_name(name) || name.empty()) return;  // the end of the headers (or of the file)
+    do {
+      if (!read_name(type)) return;
+      unsigned char b[4];
+      if (!in.read(reinterpret_cast<char*>(b), 4)) return;
+      const long long size = static_cast<long long>(int32_t(
+          uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24));
+      const long long left = file_size - static_cast<long long>(in.tellg());
+      if (size < 0 || size > left)
+        throw std::runtime_error("attribute '" + name + "' declares " + std::to_string(size) +
+                                 " bytes, but the file has " + std::to_string(left) + " left");
+      in.seekg(size, std::ios::cur);
+    } while (read_name(name) && !name.empty());
+    // A single-part file has one header; a multi-part file ends its list with an empty header.
+    if (!multipart || in.peek() == 0) return;
+  }
+}
+
 }  // namespace
 
 ImageFile read_exr(const std::string& path) {
   try {
+    check_exr_attribute_sizes(path);
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dw = header.dataWindow(), disp = header.displayWindow();
