@@ -1,6 +1,6 @@
-// The subcommands of the `softtrace` command line (docs/scene-format.md "Command line"). Each returns the
-// process exit status: 0 success, 2 bad usage or bad input; `diff` has idiff's codes (0 pass,
-// 1 warning, 2 failure, 4 a file it cannot read or write).
+// The subcommands of the `softtrace` command line (docs/scene-format.md "Command line"). Each
+// returns the process exit status: 0 success, 2 bad usage or bad input; `diff` has idiff's codes (0
+// pass, 1 warning, 2 failure, 4 a file it cannot read or write).
 #pragma once
 
 #include <limits>
@@ -15,6 +15,7 @@ struct RenderArgs {
   std::string scene;
   std::vector<std::string> outputs;
   int width = 0, height = 0, spp = 0, threads = 0;  // 0: the scene's value / all cores
+  double scale = 0;                                 // 0: none (cmd_common.h apply_image_size)
   std::string aovs;
   bool quiet = false, progress = false;  // progress: the bar even when stderr is no terminal
   bool flatten = false, half = false, png_alpha = false;  // OutputOptions (film.h)
@@ -57,6 +58,7 @@ std::vector<std::string> idiff_style_arguments(const std::vector<std::string>& a
 struct BenchArgs {
   std::string scene;
   int width = 0, height = 0, threads = 0, repeat = 3;
+  double scale = 0;
   bool json = false, quiet = false, progress = false;
   LipschitzMode lipschitz = LipschitzMode::Local;
 };

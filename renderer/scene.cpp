@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "json_text.h"
+#include "scene/scene_keys.h"
 
 namespace softtrace {
 
@@ -35,6 +36,7 @@ Vec3 unit(const Vec3& v) {  // v non-zero and finite
 constexpr double kMaxDistance = 1e150;
 
 Camera load_camera(const Params& p) {
+  p.check_keys(scene_keys("camera"));
   Camera c;
   c.eye = p.vec3("eye");
   c.target = p.vec3("target");
@@ -56,6 +58,7 @@ Camera load_camera(const Params& p) {
 
 Animation load_animation(const Params& p) {
   constexpr int kMaxFrames = 1000000;
+  p.check_keys(scene_keys("animation"));
   Animation a;
   const bool list = p.has("cameras"), turntable = p.has("turntable");
   if (list == turntable) p.fail("", "expected either 'cameras' (a list) or 'turntable'");
@@ -72,6 +75,7 @@ Animation load_animation(const Params& p) {
   } else {
     a.frames = p.integer("frames", 1, kMaxFrames);
     const Params t = p.object("turntable");
+    t.check_keys(scene_keys("turntable"));
     a.axis = t.vec3("axis", a.axis);
     t.check(length(a.axis) > 0 && std::isfinite(length(a.axis)), "axis",
             "expected a non-zero, finite axis");
@@ -84,6 +88,7 @@ Animation load_animation(const Params& p) {
 }
 
 ImageSettings load_image(const Params& p) {
+  p.check_keys(scene_keys("image"));
   ImageSettings s;
   s.width = p.integer("width", 1, 16384, s.width);
   s.height = p.integer("height", 1, 16384, s.height);
@@ -99,9 +104,24 @@ Vec3 load_color(const Params& p, const std::string& key, const Vec3& fallback) {
   return c;
 }
 
+// Every key some light type has: checked before the type is read, so that a misspelled key is
+// named before a missing or unknown type.
+std::vector<std::string> any_light_keys() {
+  std::vector<std::string> all;
+  for (const char* type : {"light: directional", "light: point", "light: ambient"})
+    for (const std::string& key : scene_keys(type))
+      if (std::find(all.begin(), all.end(), key) == all.end()) all.push_back(key);
+  return all;
+}
+
 Light load_light(const Params& p) {
+  static const std::vector<std::string> any_light = any_light_keys();
+  p.check_keys(any_light);
   Light l;
   const std::string type = p.string("type");
+  if (type == "directional" || type == "point" || type == "ambient")
+    p.check_keys(scene_keys("light: " + type),
+                 " for " + std::string(type == "ambient" ? "an " : "a ") + type + " light");
   l.intensity = p.number("intensity", 1.0);
   p.check(l.intensity >= 0, "intensity", "expected an intensity >= 0");
   l.color = load_color(p, "color", l.color);
@@ -144,10 +164,12 @@ Convention load_convention(const Params& p) {
 }
 
 SceneObject load_object(const Params& p, size_t index) {
+  p.check_keys(scene_keys("object"));
   SceneObject o;
   o.name = p.string("name", "object" + std::to_string(index));
   if (p.has("material")) {
     const Params m = p.object("material");
+    m.check_keys(scene_keys("material"));
     o.color = load_color(m, "color", o.color);
     m.finish();
   }
@@ -215,6 +237,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   const json doc = parse_json_text(text, name);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
+  root.check_keys(scene_keys("top level"));
 
   Scene s;
   s.path = name;
