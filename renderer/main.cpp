@@ -168,6 +168,9 @@ int main(int argc, char** argv) {
 
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
+  // Help names the program as users call it, wherever it lies (the launcher execs this one as
+  // softtrace-core): the man page is made from this help.
+  if (!args.empty()) args[0] = "softtrace";
   if (argc > 1 && args[1] == "diff") args = idiff_style_arguments(args);
   std::vector<char*> arg_pointers;
   for (auto& arg : args) arg_pointers.push_back(arg.data());

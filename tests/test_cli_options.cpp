@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "cli_util.h"
@@ -156,14 +155,7 @@ TEST(CliOptions, OneSideAloneKeepsTheScenesAspectAndScaleScalesBoth) {
 
 TEST(CliOptions, AFrameThatShowsNothingWarnsAndStillWrites) {
   const std::string dir = temp_dir("cli_empty");
-  const std::string away = dir + "/away.json";
-  {
-    std::ofstream f(away);
-    f << R"({"camera": {"eye": [100, 0, 0], "target": [200, 0, 0]},
-             "image": {"width": 16, "height": 12},
-             "objects": [{"field": {"type": "soft_object",
-               "distance": {"type": "lp_metric", "radii": [2, 2, 2], "n": 2}}}]})";
-  }
+  const std::string away = source_path("tests/scenes/nothing_in_view.json");
   const std::string warning =
       "softtrace: warning: no object is visible in the frame, the image shows only the "
       "background (check the camera's eye, target and fov against the objects)\n";

@@ -139,16 +139,30 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-// The "### <list>" sections of docs/scene-format.md's "## The scene" and the keys of their
-// table rows ("| `key` | ..."), in order.
-std::map<std::string, std::vector<std::string>> documented_keys(const std::string& text) {
-  std::map<std::string, std::vector<std::string>> doc;
+struct SceneChapter {
+  std::map<std::string, std::vector<std::string>> keys;  // "### <list>" -> its table's keys
+  std::vector<std::string> examples;                     // its ```json blocks: whole scenes
+};
+
+// docs/scene-format.md's "## The scene": the "### <list>" sections with the keys of their table
+// rows ("| `key` | ..."), in order, and the chapter's ```json examples.
+SceneChapter scene_chapter(const std::string& text) {
+  SceneChapter chapter;
+  auto& doc = chapter.keys;
   std::stringstream in(text);
   std::string line;
-  bool in_chapter = false;
+  bool in_chapter = false, in_example = false;
   std::vector<std::string>* current = nullptr;
   while (std::getline(in, line)) {
-    if (line.rfind("## ", 0) == 0) {
+    if (in_example) {
+      if (line.rfind("```", 0) == 0)
+        in_example = false;
+      else
+        chapter.examples.back() += line + "\n";
+    } else if (in_chapter && line.rfind("```json", 0) == 0) {
+      in_example = true;
+      chapter.examples.emplace_back();
+    } else if (line.rfind("## ", 0) == 0) {
       in_chapter = line == "## The scene";
       current = nullptr;
     } else if (in_chapter && line.rfind("### ", 0) == 0) {
@@ -159,12 +173,13 @@ std::map<std::string, std::vector<std::string>> documented_keys(const std::strin
       current->push_back(line.substr(3, line.find('`', 3) - 3));
     }
   }
-  return doc;
+  return chapter;
 }
 
 TEST(SceneKeys, SceneFormatDocHasOneTablePerListWithExactlyItsKeys) {
   const std::string path = std::string(SOFTTRACE_SOURCE_DIR) + "/docs/scene-format.md";
-  const auto doc = documented_keys(read_text(path));
+  const SceneChapter chapter = scene_chapter(read_text(path));
+  const auto& doc = chapter.keys;
   ASSERT_FALSE(doc.empty()) << path << " has no \"## The scene\" with \"### \" sections";
   for (const SceneKeyList& list : scene_key_lists()) {
     const auto it = doc.find(list.name);
@@ -179,6 +194,14 @@ TEST(SceneKeys, SceneFormatDocHasOneTablePerListWithExactlyItsKeys) {
     bool listed = false;
     for (const SceneKeyList& list : scene_key_lists()) listed = listed || list.name == name;
     EXPECT_TRUE(listed) << path << ": \"### " << name << "\" is no list of the loader";
+  }
+  ASSERT_FALSE(chapter.examples.empty()) << path << ": \"## The scene\" has no ```json example";
+  for (const std::string& example : chapter.examples) {
+    try {
+      parse_scene(example, "example.json");
+    } catch (const SceneError& e) {
+      ADD_FAILURE() << path << ": an example of \"## The scene\" does not load: " << e.what();
+    }
   }
 }
 
