@@ -89,9 +89,13 @@ TEST(BtNodes, ParameterRangesAreCheckedWithTheirLocation) {
       {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"omega":0})",
              {kBall1, kRod}),
        "/bulge_elimination/omega"},
-      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"w":1})",
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{})",
              {kBall1, kRod}),
        "/bulge_elimination/omega"},
+      // An unknown key is named before the missing one (as everywhere in a scene).
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"w":1})",
+             {kBall1, kRod}),
+       "/bulge_elimination/w"},
       {blend("bt_union", c2 + R"(,"p":0.01,"bulge_elimination":{"omega":0.1})", {kBall1, kRod}),
        "/p"},  // p >= omega² r1 r2
       {blend("displacement_union", c2 + R"(,"p":0,"m":[1,2])", {kBall1, kRod}), "/m"},
@@ -323,9 +327,9 @@ TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
   EXPECT_GT(blending, 100);
 }
 
-// The exact gradient needs the children's Hessians (docs/math.md §7.6), so the shading normal is the
-// partial gradient. Near the zero surface of the crossing cylinders it stays within a few degrees
-// of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
+// The exact gradient needs the children's Hessians (docs/math.md §7.6), so the shading normal is
+// the partial gradient. Near the zero surface of the crossing cylinders it stays within a few
+// degrees of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
 TEST(BulgeElimination, PartialGradientIsCloseToTheNormalNearTheSurface) {
   for (const std::string& base : kBulgeBases) {
     const NodePtr n = build_from_json(blend("bt_union", base, {kCylZ, kCylX}), kZero);
