@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
       "SIGINT, 143 SIGTERM); diff: 0 pass, 1 warning, 2 failure, 4 an image it cannot read or "
       "write.\nInstalled, the documentation is in share/doc/softtrace/ and example scenes in "
       "share/softtrace/scenes/ under the prefix.\n");
+  // A flag is on when given: "--flatten=0" or "--quiet=foo" are refused rather than read.
+  app.option_defaults()->disable_flag_override();
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
   app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",

@@ -71,6 +71,10 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"render SCENE --width", "--width: expected a value after it" + usage},
       {"render SCENE --width 3 --width 4", "--width: given more than once" + usage},
       {"render SCENE extra", "unexpected argument 'extra'" + usage},
+      {"render SCENE --flatten=0", "--flatten: a flag takes no value" + usage},
+      {"render SCENE --quiet=foo", "--quiet: a flag takes no value" + usage},
+      {"diff IMG IMG --abs=x", "--abs: a flag takes no value" + usage},
+      {"nodes --dict=2", "--dict: a flag takes no value" + usage},
       {"render", "scene is required" + usage},
       // eval
       {"eval SCENE --object nope", scene + ": no object named 'nope'"},

@@ -141,6 +141,12 @@ std::string usage_error_text(const CLI::ParseError& error) {
     const std::string name = what.substr(0, what.find(':'));
     if (what.find(" missing") != std::string::npos) return name + ": expected a value after it";
     if (what.find("At Most") != std::string::npos) return name + ": given more than once";
+    const std::string override = " was given a disallowed flag override";
+    if (what.size() > override.size() &&
+        what.compare(what.size() - override.size(), override.size(), override) == 0) {
+      const std::string flag = what.substr(0, what.size() - override.size());  // CLI11: "quiet"
+      return (flag[0] == '-' ? "" : "--") + flag + ": a flag takes no value";
+    }
   }
   if (dynamic_cast<const CLI::ExtrasError*>(&error)) {
     const std::string one = "The following argument was not expected: ";

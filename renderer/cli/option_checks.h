@@ -30,7 +30,8 @@ CLI::Validator finite_number();
 CLI::Validator lipschitz_mode();
 
 // The message of a CLI11 parse error in our words (without the "softtrace: " prefix): a value
-// missing after an option, an option given twice, arguments nobody expects, no subcommand.
+// missing after an option, an option given twice, a value given to a flag, arguments nobody
+// expects, no subcommand.
 std::string usage_error_text(const CLI::ParseError& error);
 
 }  // namespace softtrace
