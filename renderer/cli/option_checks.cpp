@@ -51,7 +51,7 @@ CLI::Validator integer_in(long long lo, long long hi) {
         long long v = 0;
         return parse_integer(text, v) && v >= lo && v <= hi ? std::string() : rule + got(text);
       },
-      "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
 CLI::Validator integer_at_least(long long lo) {
@@ -61,7 +61,7 @@ CLI::Validator integer_at_least(long long lo) {
         long long v = 0;
         return parse_integer(text, v) && v >= lo ? std::string() : rule + got(text);
       },
-      "INT >= " + std::to_string(lo));
+      ">= " + std::to_string(lo));
 }
 
 CLI::Validator number_in(double lo, double hi) {
@@ -71,7 +71,7 @@ CLI::Validator number_in(double lo, double hi) {
         double v = 0;
         return parse_number(text, v) && v >= lo && v <= hi ? std::string() : rule + got(text);
       },
-      "NUMBER in [" + number_text(lo) + ", " + number_text(hi) + "]");
+      "[" + number_text(lo) + ", " + number_text(hi) + "]");
 }
 
 CLI::Validator threshold_value() {
@@ -81,7 +81,7 @@ CLI::Validator threshold_value() {
         return parse_number(text, v, true) && v >= 0 ? std::string()
                                                      : "expected a number >= 0" + got(text);
       },
-      "NUMBER >= 0");
+      ">= 0");
 }
 
 CLI::Validator aov_list() {
@@ -104,7 +104,7 @@ CLI::Validator number_above_zero() {
         return parse_number(text, v) && v > 0 ? std::string()
                                               : "expected a finite number > 0" + got(text);
       },
-      "NUMBER > 0");
+      "> 0");
 }
 
 CLI::Validator finite_number() {
@@ -113,7 +113,7 @@ CLI::Validator finite_number() {
         double v = 0;
         return parse_number(text, v) ? std::string() : "expected a finite number" + got(text);
       },
-      "NUMBER");
+      "finite");
 }
 
 CLI::Validator lipschitz_mode() {
