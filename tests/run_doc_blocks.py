@@ -2,6 +2,7 @@
 """Runs the code blocks of Markdown files, so that their samples cannot go stale.
 
   run_doc_blocks.py --source SRC --build BUILD [--python-path DIR] [--python EXE] FILE.md|DIR...
+  run_doc_blocks.py --self-test      (the transcript matcher's own checks)
 
 Each file's blocks run in order in one fresh temporary folder (later blocks may use what earlier
 ones wrote, as a reader following the page would), which holds links to the source tree's
@@ -145,7 +146,30 @@ def run_file(path, args):
         shutil.rmtree(folder, ignore_errors=True)
 
 
+def self_test():
+    """The runner's own checks: a transcript that differs fails, wildcards match what they say."""
+    assert transcript_matches(["a", "b"], ["a", "b"])
+    assert not transcript_matches(["a", "b"], ["a", "c"])
+    assert not transcript_matches(["a"], ["a", "b"])
+    assert not transcript_matches(["a", "b"], ["a"])
+    assert transcript_matches(["in ... s (3.8 evaluations/ray)"], ["in 0.02 s (3.8 evaluations/ray)"])
+    assert not transcript_matches(["in ... s (3.8 evaluations/ray)"], ["in 0.02 s (25.1 evaluations/ray)"])
+    assert transcript_matches(["x", "...", "y"], ["x", "1", "2", "y"])
+    assert transcript_matches(["x", "...", "y"], ["x", "y"])
+    assert not transcript_matches(["x", "...", "y"], ["x", "1"])
+    assert transcript_matches(["a (b) [c]*"], ["a (b) [c]*"])  # regex characters are literal
+    env = dict(os.environ)
+    ok, _ = run_console("$ echo one\none\n$ false\n$ echo $?\n1\n", env, tempfile.gettempdir())
+    assert ok
+    ok, report = run_console("$ echo one\ntwo\n", env, tempfile.gettempdir())
+    assert not ok and "expected" in report
+    print("run_doc_blocks: self-test passed")
+    return 0
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--source", required=True)
     parser.add_argument("--build", required=True)
