@@ -4,8 +4,9 @@
 
 #include <random>
 
-#include "eval.h"
-#include "tracer.h"
+#include "eval/eval.h"
+#include "model/program_builder.h"
+#include "trace/tracer.h"
 
 namespace softtrace {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 using namespace softtrace;
 

@@ -16,7 +16,8 @@ would point BUILD at the temporary folder): such blocks are norun. By the fence'
                    "..." stands for any text, and a line that is only "..." for any lines.
   ```python        run with --python (PYTHONPATH: --python-path); it must exit 0. Without
                    --python-path (a build without the module) they are counted as skipped.
-  ```sh norun      not run: kept for commands that need a cluster or a long time.
+  ```sh norun      not run: kept for commands that need a cluster or a long time, or that install
+                   into the reader's environment (a venv, pip).
 
 Other blocks (```json, ```cpp, plain ``` synopses) are not run, but a plain block with a line
 starting "$ " is an error: a transcript must say ```console to be checked. Exit status 0 when

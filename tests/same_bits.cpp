@@ -5,7 +5,7 @@
 #include <cstring>
 #include <exception>
 
-#include "image_file.h"
+#include "io/image_file.h"
 
 using softtrace::ImageFile;
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <tuple>
 
-#include "tracer.h"
+#include "trace/tracer.h"
 
 namespace softtrace {
 

@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "registry.h"
+#include "describe/building.h"
+#include "math/box.h"
+#include "model/node.h"
 
 namespace softtrace::test {
 

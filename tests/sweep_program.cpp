@@ -4,7 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "eval.h"
+#include "eval/eval.h"
+#include "model/program_builder.h"
 #include "sweep.h"
 
 namespace softtrace::test {

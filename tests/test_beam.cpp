@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "camera.h"
+#include "render/camera.h"
 #include "tracer_scenes.h"
 
 namespace softtrace {

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include "blends.h"
-#include "params.h"
+#include "describe/params.h"
+#include "kernels/complement.h"
+#include "model/blends.h"
 #include "sweep.h"
 
 namespace softtrace {

@@ -8,8 +8,9 @@
 #include <random>
 #include <string>
 
-#include "blob_ray.h"
-#include "eval.h"
+#include "eval/blob_ray.h"
+#include "eval/eval.h"
+#include "model/program_builder.h"
 #include "sweep.h"
 
 namespace softtrace::test {

@@ -1,7 +1,8 @@
-// Properties of the scalar BT_k operators (docs/math.md §6.1, §6.2, §7): [BH-1], [BH-2], [BT-1]..[BT-5],
-// [BT2-1]..[BT2-4], [BTK-1], [BTK-2], [BD-1], [GR-1]..[GR-3], and "the level set BT = h is the
-// base surface translated by h·m". Random inputs use fixed seeds; parameter ranges follow
-// docs/math.md's verification scripts (verify/v4_bt.py), including hyperbolic conics and a < 0.
+// Properties of the scalar BT_k operators (docs/math.md §6.1, §6.2, §7): [BH-1], [BH-2],
+// [BT-1]..[BT-5], [BT2-1]..[BT2-4], [BTK-1], [BTK-2], [BD-1], [GR-1]..[GR-3], and "the level set BT
+// = h is the base surface translated by h·m". Random inputs use fixed seeds; parameter ranges
+// follow docs/math.md's verification scripts (verify/v4_bt.py), including hyperbolic conics and a <
+// 0.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "bt_base.h"
+#include "kernels/bt_base.h"
 
 namespace softtrace {
 namespace {

@@ -9,8 +9,8 @@
 #include <random>
 #include <string>
 
-#include "bt_base.h"
-#include "params.h"
+#include "describe/params.h"
+#include "kernels/bt_base.h"
 #include "sweep.h"
 
 namespace softtrace::test {

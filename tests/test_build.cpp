@@ -3,10 +3,11 @@
 
 #include <random>
 
-#include "batch.h"
-#include "build.h"
-#include "params.h"
-#include "registry.h"
+#include "describe/building.h"
+#include "describe/params.h"
+#include "eval/batch.h"
+#include "loader/build.h"
+#include "model/program_builder.h"
 
 namespace softtrace {
 namespace {

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "bvh.h"
+#include "math/bvh.h"
 
 namespace softtrace::test {
 

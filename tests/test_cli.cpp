@@ -10,9 +10,10 @@
 #include <regex>
 
 #include "cli_util.h"
-#include "eval.h"
-#include "progress.h"
-#include "scene.h"
+#include "eval/eval.h"
+#include "model/program_builder.h"
+#include "render/progress.h"
+#include "scene/scene.h"
 
 namespace softtrace::test {
 namespace {

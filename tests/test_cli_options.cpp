@@ -64,7 +64,8 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
        "--crop '0.5,0.2,0,1': expected 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1"},
       {"render SCENE --pixel-bounds 1,2 -o OUT", "--pixel-bounds '1,2': expected X0,X1,Y0,Y1"},
       {"render SCENE --tile 2/1 -o OUT",
-       "--tile '2/1': expected I/N with 0 <= I < N (tiles are numbered from 0)"},
+       "--tile '2/1': expected I/N, whole numbers with 0 <= I < N <= 2^31 - 1 (tiles are numbered "
+       "from 0)"},
       {"render SCENE -o DIR/x.jpg",
        "DIR/x.jpg: unsupported output format '.jpg' (expected .exr or .png)"},
       {"render SCENE --quiet --progress", "--quiet excludes --progress" + usage},
@@ -79,6 +80,18 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       // eval
       {"eval SCENE --object nope", scene + ": no object named 'nope'"},
       {"eval SCENE --points DIR/none.txt", dir + "/none.txt: cannot open the points file"},
+      // mesh
+      {"mesh SCENE -o DIR/m.obj --cells 0",
+       "--cells: expected an integer from 1 to 65536, got '0'" + usage},
+      {"mesh SCENE -o DIR/m.obj --cells 1e3",
+       "--cells: expected an integer from 1 to 65536, got '1e3'" + usage},
+      {"mesh SCENE -o DIR/m.obj --voxel -1",
+       "--voxel: expected a finite number > 0, got '-1'" + usage},
+      {"mesh SCENE -o DIR/m.obj --voxel nan",
+       "--voxel: expected a finite number > 0, got 'nan'" + usage},
+      {"mesh SCENE -o DIR/m.obj --threads 0",
+       "--threads: expected an integer from 1 to 1024, got '0'" + usage},
+      {"mesh SCENE", "--output is required" + usage},
       // diff
       {"diff IMG IMG --fail -1", "--fail: expected a number >= 0, got '-1'" + usage},
       {"diff IMG IMG --failpercent 101",
@@ -109,7 +122,7 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       // merge, nodes, no command
       {"merge IMG", "--output is required" + usage},
       {"nodes extra", "unexpected argument 'extra'" + usage},
-      {"", "expected a command: render, eval, diff, bench, merge or nodes" + usage},
+      {"", "expected a command: render, eval, mesh, diff, bench, merge or nodes" + usage},
   };
   for (const Refusal& c : cases) {
     std::string args = substitute(c.args, "SCENE", scene);

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <random>
 
-#include "params.h"
+#include "describe/params.h"
 #include "sweep.h"
 
 namespace softtrace::test {

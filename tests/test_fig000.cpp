@@ -18,8 +18,8 @@
 #include <sstream>
 #include <string>
 
-#include "scene.h"
-#include "tracer.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
 
 namespace softtrace {
 namespace {

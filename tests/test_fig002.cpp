@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 namespace softtrace {
 namespace {

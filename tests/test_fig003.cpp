@@ -11,9 +11,9 @@
 #include <sstream>
 #include <string>
 
-#include "bt_base.h"
-#include "params.h"
-#include "scene.h"
+#include "describe/params.h"
+#include "kernels/bt_base.h"
+#include "scene/scene.h"
 
 namespace softtrace {
 namespace {
@@ -307,8 +307,8 @@ TEST(Fig003, Fig9aBulgeEliminationFlattensTheCrossing) {
   const double rho = 0.5, r = 0.8, omega = 0.05, rise = 1 - 1 / std::sqrt(2.0);
   const Local plain = local(s, sj, "plain"), eliminated = local(s, sj, "bulge_eliminated");
   EXPECT_NEAR(crossing(plain, Vec3{0, 0, 0}, Vec3{0, 0, 2}).z, rho * (1 + r * rise), 1e-9);
-  EXPECT_NEAR(crossing(eliminated, Vec3{0, 0, 0}, Vec3{0, 0, 2}).z,
-              rho * (1 + r * omega * rise), 1e-9);
+  EXPECT_NEAR(crossing(eliminated, Vec3{0, 0, 0}, Vec3{0, 0, 2}).z, rho * (1 + r * omega * rise),
+              1e-9);
   EXPECT_NEAR(crossing(plain, Vec3{0, 0, 0}, Vec3{2, 2, 0}).x, rho * (1 + r * rise), 1e-9);
   EXPECT_NEAR(crossing(eliminated, Vec3{0, 0, 0}, Vec3{2, 2, 0}).x,
               rho * (1 + r * (1 + omega) * rise), 1e-9);
@@ -348,8 +348,8 @@ TEST(Fig003, Fig9BulgeGoneJointKeptOnlySpokeF1CornersChange) {
     };
     EXPECT_NEAR(top(inner).z, rho * (1 + r * omega * rise), 1e-9) << "bulge eliminated";
     EXPECT_NEAR(top(plain).z, rho * (1 + r * rise), 1e-9) << "the bulge of the plain blend";
-    const Vec3 diagonal = crossing([&](const Vec3& p) { return inner->value(p); }, Vec3{0, 0, 0},
-                                   Vec3{1, 1, 0});
+    const Vec3 diagonal =
+        crossing([&](const Vec3& p) { return inner->value(p); }, Vec3{0, 0, 0}, Vec3{1, 1, 0});
     EXPECT_NEAR(diagonal.x, rho * (1 + r * (1 + omega) * rise), 1e-9) << "the side fillet stays";
   }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "gauge.h"
+#include "kernels/gauge.h"
 
 namespace softtrace::test {
 

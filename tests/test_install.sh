@@ -17,8 +17,8 @@ fail() {
 rm -rf "$work"
 mkdir -p "$work"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log"
-for f in bin/softtrace bin/softtrace-core include/softtrace/eval.h include/softtrace/build.h \
-  include/softtrace/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
+for f in bin/softtrace bin/softtrace-core include/softtrace/eval/eval.h include/softtrace/loader/build.h \
+  include/softtrace/scene/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
   lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc \
   share/man/man1/softtrace.1 share/doc/softtrace/README.md; do
   [ -e "$prefix/$f" ] || fail "the install has no $f"
@@ -38,13 +38,16 @@ MANPATH=$prefix/share/man man -w softtrace | grep -qx "$prefix/share/man/man1/so
   -o "$work/installed_scene.png" || fail "the installed binary cannot render an installed scene"
 # Every fieldlib header is installed, and every installed header compiles on its own (an
 # installed header that includes one left out would not).
-for h in "$src"/fieldlib/*.h; do
-  [ -e "$prefix/include/softtrace/$(basename "$h")" ] || fail "the install has no $(basename "$h")"
+# Headers sit in their layer folders and include each other rooted there ("eval/eval.h").
+for h in "$src"/fieldlib/*/*.h; do
+  rel=${h#"$src"/fieldlib/}
+  [ -e "$prefix/include/softtrace/$rel" ] || fail "the install has no include/softtrace/$rel"
 done
-for h in "$prefix"/include/softtrace/*.h; do
-  echo "#include <softtrace/$(basename "$h")>" |
-    c++ -std=c++17 -fsyntax-only -I"$prefix/include" -x c++ - 2>"$work/header.log" ||
-    fail "$(basename "$h") does not compile alone: $(head -n 3 "$work/header.log")"
+for h in "$prefix"/include/softtrace/*/*.h; do
+  rel=${h#"$prefix"/include/softtrace/}
+  echo "#include \"$rel\"" |
+    c++ -std=c++17 -fsyntax-only -I"$prefix/include/softtrace" -x c++ - 2>"$work/header.log" ||
+    fail "$rel does not compile alone: $(head -n 3 "$work/header.log")"
 done
 "$prefix/bin/softtrace" --version | grep -q '^softtrace [0-9.]* (commit ' ||
   fail "softtrace --version: '$("$prefix/bin/softtrace" --version)'"
@@ -72,7 +75,7 @@ c++ -std=c++17 -O1 "$src/examples/consumer/field_value.cpp" -o "$work/field_valu
 got=$("$work/field_value_pc" $point)
 [ "$got" = "$expected" ] || fail "field_value (pkg-config) printed $got, softtrace eval $expected"
 
-python_dir=$(find "$prefix" -name 'softtrace*.so' -printf '%h\n' | head -n1)
+python_dir=$(find "$prefix" -path '*/softtrace/__init__.py' -printf '%h/..\n' | head -n1)
 if [ -n "$python_dir" ]; then
   got=$(PYTHONPATH=$python_dir "$python" "$src/examples/python/example.py" "$scene" $point)
   [ "$got" = "$expected" ] || fail "example.py printed $got, softtrace eval $expected"

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "eval.h"
-#include "node.h"
-#include "program.h"
-#include "scene.h"
+#include "eval/eval.h"
+#include "model/node.h"
+#include "model/program_builder.h"
+#include "scene/scene.h"
 #include "sweep.h"
 
 namespace {

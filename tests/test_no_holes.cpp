@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
-#include "frame.h"
+#include "render/camera.h"
+#include "render/frame.h"
 #include "scene_modes.h"
 
 namespace softtrace {

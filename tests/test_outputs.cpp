@@ -20,14 +20,16 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <thread>
 
-#include "camera.h"
 #include "cli_util.h"
-#include "film.h"
-#include "frame.h"
-#include "frame_metadata.h"
-#include "image_file.h"
-#include "scene.h"
+#include "film/film.h"
+#include "io/image_file.h"
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/frame_metadata.h"
+#include "scene/scene.h"
 
 namespace softtrace::test {
 namespace {
@@ -342,6 +344,44 @@ TEST(Outputs, StaleTemporariesOfTheSameOutputAreRemoved) {
                                       ".out.exr.ABC1234", ".out.exr.FRESH1", ".out.exr.LINK01",
                                       ".out.exr.LOCKED", "out.exr", "victim.txt"}));
   EXPECT_EQ(read_file(dir + "/victim.txt"), "partial");
+}
+
+// Threads writing at once (Python renders) each own their pending files: one thread's failure
+// (abandon) removes its own temporary files and never another thread's, which then commits.
+TEST(Outputs, PendingWritesBelongToTheirThread) {
+  const std::string dir = temp_dir("outputs_pending_threads");
+  std::promise<std::string> created;
+  std::promise<void> abandoned;
+  std::thread writer([&] {
+    const std::string tmp = create_pending_temp(dir + "/kept.exr", "kept.exr");
+    created.set_value(tmp);
+    abandoned.get_future().wait();
+    commit_temp(tmp, dir + "/kept.exr", "kept.exr");
+    forget_pending_writes();
+  });
+  const std::string kept = created.get_future().get();
+  const std::string own = create_pending_temp(dir + "/failed.exr", "failed.exr");
+  abandon_pending_writes();
+  EXPECT_FALSE(fs::exists(own));
+  EXPECT_TRUE(fs::exists(kept));
+  abandoned.set_value();
+  writer.join();
+  EXPECT_TRUE(fs::exists(dir + "/kept.exr"));
+  EXPECT_FALSE(fs::exists(kept));
+}
+
+// The header's scene hash is that of the text parsed: a scene parsed from text, named as no
+// file is, has one, and a file edited after loading does not change it.
+TEST(Outputs, SceneHashIsOfTheParsedText) {
+  const std::string text = read_file(source_path(kScene));
+  const Scene parsed = parse_scene(text, "no/such/scene.json");
+  EXPECT_EQ(frame_info(parsed, kW, kH).scene_hash, fnv1a64_hex(text));
+  const std::string dir = temp_dir("outputs_hash_edit");
+  const std::string path = dir + "/scene.json";
+  std::ofstream(path) << text;
+  const Scene loaded = load_scene(path);
+  std::ofstream(path) << "{}";
+  EXPECT_EQ(frame_info(loaded, kW, kH).scene_hash, fnv1a64_hex(text));
 }
 
 }  // namespace

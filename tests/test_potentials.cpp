@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "potentials.h"
+#include "model/potential.h"
 
 namespace softtrace {
 namespace {

@@ -10,9 +10,10 @@
 #include <random>
 #include <string>
 
-#include "eval.h"
+#include "eval/eval.h"
+#include "kernels/transformed_potential.h"
+#include "model/program_builder.h"
 #include "sweep.h"
-#include "transformed_potential.h"
 
 namespace softtrace::test {
 

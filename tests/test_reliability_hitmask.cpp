@@ -6,8 +6,8 @@
 // in the plane of a flat face, where the steps are shortest and a skip would be likeliest.
 #include <gtest/gtest.h>
 
-#include "camera.h"
-#include "frame.h"
+#include "render/camera.h"
+#include "render/frame.h"
 #include "scene_modes.h"
 
 namespace softtrace {

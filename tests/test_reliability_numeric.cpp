@@ -13,7 +13,7 @@
 #include <random>
 #include <set>
 
-#include "frame.h"
+#include "render/frame.h"
 
 namespace softtrace {
 namespace {

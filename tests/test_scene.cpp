@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "json_location.h"
-#include "json_nesting.h"
-#include "scene.h"
+#include "scene/json_location.h"
+#include "scene/json_nesting.h"
+#include "scene/scene.h"
 
 namespace softtrace {
 namespace {
@@ -41,6 +41,25 @@ TEST(SceneLoading, DefaultsFollowTheConvention) {
       R"({"convention":"constructive","iso":0.5,"field":{"type":"lp_metric","radii":[2,2,2],"n":2}})");
   EXPECT_EQ(c.objects[0].iso, 0.5);
   EXPECT_NEAR(c.objects[0].bounds.hi.y, 1, 1e-9) << "{d <= 0.5} for radius 2";
+}
+
+// A C++ string may hold a NUL that the file system would end the path at: "x.json\0junk" is
+// refused rather than loaded as x.json. The pixel limit is the command line's and Python's.
+TEST(SceneLoading, PathsWithNulAndThePixelLimit) {
+  const std::string path = std::string(SOFTTRACE_SOURCE_DIR "/scenes/fig12b_soft_blend.json");
+  EXPECT_NO_THROW(load_scene(path));
+  try {
+    load_scene(path + std::string("\0junk", 5));
+    FAIL() << "a path with a NUL byte was loaded";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("a path with a NUL byte"), std::string::npos);
+  }
+  ImageSettings image;
+  image.width = 16384;
+  image.height = 4096;
+  EXPECT_NO_THROW(check_pixel_count(image, "s.json"));
+  image.height = 4097;
+  EXPECT_THROW(check_pixel_count(image, "s.json"), SceneError);
 }
 
 TEST(SceneLoading, GivenBoundsReplaceTheRegionBox) {

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "scene.h"
+#include "scene/scene.h"
 #include "scene/scene_keys.h"
 
 namespace softtrace {

@@ -172,6 +172,47 @@ TEST_P(Signal, DuringRenderLeavesTheOldFileAndNoTemporaryFile) {
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << "the bar's line, then the message";
 }
 
+// One 16x16 tile of a 10,000-child blend at 64 spp takes minutes (each sample sums every
+// child): a signal checked only between tiles once went unheeded for 97 s. It is checked before
+// every sample now, a few tens of milliseconds apart here, so the process must end well within
+// the README's 0.5 s; the test allows 5 s for a loaded machine (and kills it after 10).
+TEST_P(Signal, WithinASlowTileStopsSoon) {
+  const int sig = GetParam();
+  const std::string dir = temp_dir("signal_slow_tile_" + std::to_string(sig));
+  const std::string scene = dir + "/../slow_tile_" + std::to_string(sig) + ".json";
+  {
+    std::ofstream f(scene);
+    f << R"({"camera":{"eye":[0,-60,0],"target":[0,0,0],"up":[0,0,1]},)"
+      << R"("image":{"width":16,"height":16,"spp":64},"objects":[{"field":)"
+      << R"({"type":"soft_blend","children":[)";
+    for (int i = 0; i < 10000; ++i)  // overlapping balls: every point is in every support
+      f << (i ? "," : "") << R"({"type":"soft_object","translate":[)" << (i % 10) - 4.5 << ","
+        << (i / 10 % 10) - 4.5 << "," << (i / 100 % 10) * 0.1
+        << R"(],"distance":{"type":"lp_metric","radii":[10,10,10],"n":2}})";
+    f << "]}}]}";
+  }
+  const std::string err = dir + "/../stderr_slow_tile_" + std::to_string(sig);
+  const pid_t pid =
+      spawn({"render", scene, "-o", dir + "/image.exr", "--threads", "1", "--progress"}, err);
+  ASSERT_TRUE(wait_until([&] { return read_file(err).rfind("\rrendering [", 0) == 0; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // inside the first tile
+  ASSERT_EQ(::kill(pid, sig), 0);
+  const auto sent = Clock::now();
+  int raw = 0;
+  while (::waitpid(pid, &raw, WNOHANG) != pid) {
+    if (Clock::now() - sent > std::chrono::seconds(10)) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &raw, 0);
+      FAIL() << "still rendering 10 s after the signal";
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - sent).count();
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 128 + sig);
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
 // A camera looking away from the object renders a large frame in a moment; writing its two EXRs
 // with every AOV then takes a good fraction of a second. The signal is sent as soon as the
 // second output's temporary file appears, so it lands while that file is being written, after

@@ -13,8 +13,8 @@
 #include <thread>
 
 #include "cli_util.h"
-#include "image_file.h"
-#include "tiles.h"
+#include "io/image_file.h"
+#include "render/tiles.h"
 
 namespace softtrace::test {
 namespace {

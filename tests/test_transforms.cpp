@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
-#include "params.h"
-#include "potentials.h"
-#include "radius_transforms.h"
+#include "describe/params.h"
+#include "kernels/radius_transforms.h"
+#include "model/potential.h"
 #include "sweep.h"
 
 namespace softtrace {

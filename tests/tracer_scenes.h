@@ -5,7 +5,7 @@
 #include <iterator>
 #include <limits>
 
-#include "tracer.h"
+#include "trace/tracer.h"
 
 namespace softtrace::tracer_scenes {
 

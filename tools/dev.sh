@@ -3,15 +3,16 @@
 #   tools/dev.sh demo   install what is missing, build, render the default scene to out/
 #   tools/dev.sh test   install what is missing, build, run the whole test suite (CTest), then
 #                       the same tests built with AddressSanitizer+UBSan (build-asan/) and the
-#                       scene-loader fuzzer for FUZZ_SECONDS (default 60; build-fuzz/)
+#                       fuzzers (build-fuzz/): the scene loader for FUZZ_SECONDS (default 60),
+#                       merge's tile headers and diff's image readers for half of it each
 #   tools/dev.sh build  install what is missing and build
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(g++ cmake ninja-build pkg-config libembree-dev libopenimageio-dev libopenexr-dev
   libpng-dev libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools
-  clang-14 libclang-rt-14-dev munge slurmctld slurmd slurm-client
-  pybind11-dev python3-pybind11 python3-numpy python3-pytest groff-base man-db)
+  clang-14 clang-format-14 libclang-rt-14-dev munge slurmctld slurmd slurm-client
+  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-mypy libcgal-dev groff-base man-db)
 BUILD_DIR=${BUILD_DIR:-build}
 
 install_missing() {
@@ -42,25 +43,52 @@ sanitize() {
     ctest --test-dir build-asan -j "$(nproc)" --output-on-failure
 }
 
-# libFuzzer on the scene loader and field evaluation (tests/fuzz_scene.cpp), seeded from scenes/
-# and tests/bad_scenes/, with a dictionary of every kind and parameter name (`softtrace nodes
-# --dict`, from the one list of kinds) plus tests/fuzz_scene.dict. A crash leaves its input in
-# build-fuzz/crash-*; make it a tests/bad_scenes/ file (or fix the loader) before going on.
+# libFuzzer, three targets: the scene loader and field evaluation (tests/fuzz_scene.cpp) for
+# FUZZ_SECONDS, seeded from scenes/ and tests/bad_scenes/, with a dictionary of every kind and
+# parameter name (`softtrace nodes --dict`, from the one list of kinds) plus
+# tests/fuzz_scene.dict; then merge's tile headers (tests/fuzz_merge_tiles.cpp) and diff's image
+# readers (tests/fuzz_diff_images.cpp) for half of FUZZ_SECONDS each, seeded with small EXR
+# tiles and PNGs the plain build renders (and reference_images/ for diff). A crash leaves its
+# input in build-fuzz/crash-*; make it a test (a tests/bad_scenes/ file, a tile or image case)
+# or fix the reader before going on.
+run_fuzzer() {  # NAME SECONDS MAX_LEN [libFuzzer options and corpus folders...]
+  local name=$1 seconds=$2 max_len=$3
+  shift 3
+  if ! ASAN_OPTIONS=detect_leaks=0 "build-fuzz/tests/$name" -max_total_time="$seconds" \
+    -max_len="$max_len" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix=build-fuzz/ "$@" >"build-fuzz/$name.log" 2>&1; then
+    tail -n 60 "build-fuzz/$name.log"
+    echo "$name failed: the input is in build-fuzz/ (crash-*, timeout-*, oom-*)" >&2
+    return 1
+  fi
+  grep -E '^(Done|stat::)' "build-fuzz/$name.log"
+}
+
+# Seeds for the tile and image fuzzers: tiles with and without AOVs, flattened and half, PNGs.
+fuzz_seeds() {
+  local seeds=build-fuzz/image-seeds scene=tests/scenes/turntable.json
+  mkdir -p "$seeds"
+  local core=("$BUILD_DIR/softtrace" render "$scene" --quiet --width 8 --height 6)
+  "${core[@]}" --tile 0/2 -o "$seeds/t0.exr" -o "$seeds/rgb.png"
+  "${core[@]}" --tile 1/2 --aov depth,normal,steps -o "$seeds/t1-aov.exr"
+  "${core[@]}" --crop 0,0.5,0,1 --flatten --half -o "$seeds/half.exr"
+  "${core[@]}" --png-alpha -o "$seeds/rgba.png"
+}
+
 fuzz() {
   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSOFTTRACE_SANITIZE=ON -DSOFTTRACE_FUZZ=ON >/dev/null
-  cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene
-  mkdir -p build-fuzz/corpus
+  cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene fuzz_merge_tiles fuzz_diff_images
+  mkdir -p build-fuzz/corpus build-fuzz/corpus-merge build-fuzz/corpus-diff
   "$BUILD_DIR/softtrace" nodes --dict >build-fuzz/scene.dict
   cat tests/fuzz_scene.dict >>build-fuzz/scene.dict
-  if ! ASAN_OPTIONS=detect_leaks=0 build-fuzz/tests/fuzz_scene -max_total_time="${FUZZ_SECONDS:-60}" \
-    -max_len=16384 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -dict=build-fuzz/scene.dict \
-    -artifact_prefix=build-fuzz/ build-fuzz/corpus scenes tests/bad_scenes >build-fuzz/fuzz.log 2>&1; then
-    tail -n 60 build-fuzz/fuzz.log
-    echo "fuzz_scene failed: the input is in build-fuzz/ (crash-*, timeout-*, oom-*)" >&2
-    return 1
-  fi
-  grep -E '^(Done|stat::)' build-fuzz/fuzz.log
+  fuzz_seeds
+  local seconds=${FUZZ_SECONDS:-60}
+  run_fuzzer fuzz_scene "$seconds" 16384 -dict=build-fuzz/scene.dict \
+    build-fuzz/corpus scenes tests/bad_scenes
+  run_fuzzer fuzz_merge_tiles $((seconds / 2)) 65536 build-fuzz/corpus-merge build-fuzz/image-seeds
+  run_fuzzer fuzz_diff_images $((seconds / 2)) 65536 build-fuzz/corpus-diff build-fuzz/image-seeds \
+    reference_images
 }
 
 case "${1:-}" in

@@ -1,7 +1,8 @@
 // Builds two blended soft objects in code (no JSON) and prints the field's value at the point
 // given on the command line, as `softtrace eval` prints it for two_blobs.json (the same field).
-#include <softtrace/build.h>
-#include <softtrace/eval.h>
+#include <softtrace/eval/eval.h>
+#include <softtrace/loader/build.h>
+#include <softtrace/model/program_builder.h>
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,7 +1,8 @@
 // Loads a scene file and prints its first object's field value at a point, through the renderer
 // library's loader: `scene_value SCENE X Y Z`.
-#include <softtrace/eval.h>
-#include <softtrace/scene.h>
+#include <softtrace/eval/eval.h>
+#include <softtrace/model/program_builder.h>
+#include <softtrace/scene/scene.h>
 
 #include <cstdio>
 #include <cstdlib>

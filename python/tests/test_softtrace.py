@@ -2,17 +2,13 @@
 import json
 import os
 import subprocess
-import sys
 import time
 
 import numpy as np
 import pytest
+from conftest import BIN, TWO_BLOBS
 
 import softtrace
-
-BIN = os.environ["SOFTTRACE_BIN"]
-SRC = os.environ["SOFTTRACE_SOURCE_DIR"]
-TWO_BLOBS = os.path.join(SRC, "examples", "consumer", "two_blobs.json")
 
 
 def cli_eval(scene, points):
@@ -21,14 +17,6 @@ def cli_eval(scene, points):
                          check=True).stdout
     rows = np.array([[float(v) for v in line.split()] for line in out.splitlines()])
     return rows[:, 0], rows[:, 1:]
-
-
-@pytest.fixture(scope="module")
-def blob_scene(tmp_path_factory):
-    path = tmp_path_factory.mktemp("blobs") / "blobs1000.json"
-    subprocess.run([sys.executable, os.path.join(SRC, "tools", "blob_scene.py"), "1000",
-                    "-o", str(path)], check=True)
-    return str(path)
 
 
 def test_values_and_gradients_match_softtrace_eval(blob_scene):
@@ -70,7 +58,7 @@ def test_errors_carry_the_located_message(tmp_path):
     with pytest.raises(softtrace.SceneError, match="no object named 'nope'"):
         softtrace.Field(softtrace.load_scene(TWO_BLOBS), "nope")
     field = softtrace.Field(softtrace.load_scene(TWO_BLOBS))
-    with pytest.raises(ValueError, match=r"shape \(N, 3\)"):
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 3\)"):
         field.eval(np.zeros((4, 2)))
     with pytest.raises(ValueError, match="point 1: expected three finite coordinates"):
         field.eval(np.array([[0.0, 0, 0], [np.nan, 0, 0]]))
@@ -94,11 +82,11 @@ def test_batch_is_much_faster_than_a_loop(blob_scene):
 
 def test_render_matches_the_image_size():
     scene = softtrace.load_scene(TWO_BLOBS)
-    image = softtrace.render(scene, width=32, height=24)
+    image = softtrace.render(scene, width=32, height=24)["rgba"]
     assert image.shape == (24, 32, 4) and image.dtype == np.float32
     assert 0 < image[..., 3].mean() < 1  # some coverage, some background
     assert np.all(image[..., :3] <= image[..., 3:] + 1e-6)  # premultiplied
-    assert softtrace.render(scene).shape == (scene.height, scene.width, 4)
+    assert softtrace.render(scene)["rgba"].shape == (scene.height, scene.width, 4)
     with pytest.raises(ValueError):
         softtrace.render(scene, width=-3)
 
@@ -106,7 +94,7 @@ def test_render_matches_the_image_size():
 def test_render_writes_the_files_the_cli_writes(tmp_path):
     scene = softtrace.load_scene(TWO_BLOBS)
     exr, png = str(tmp_path / "py.exr"), str(tmp_path / "py.png")
-    image = softtrace.render(scene, width=32, height=24, outputs=[exr, png])
+    image = softtrace.render(scene, width=32, height=24, outputs=[exr, png])["rgba"]
     assert image.shape == (24, 32, 4)
     cli = str(tmp_path / "cli.exr")
     subprocess.run([BIN, "render", TWO_BLOBS, "--width", "32", "--height", "24", "-o", cli,

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "film.h"
+#include "film/film.h"
 
 namespace softtrace {
 
@@ -155,7 +155,7 @@ std::string usage_error_text(const CLI::ParseError& error) {
     if (what.rfind(more, 0) == 0) return "unexpected arguments: " + after(more);
   }
   if (what == "A subcommand is required")
-    return "expected a command: render, eval, diff, bench, merge or nodes";
+    return "expected a command: render, eval, mesh, diff, bench, merge or nodes";
   return what;
 }
 

@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "tracer.h"
+#include "trace/tracer.h"
 
 namespace softtrace {
 

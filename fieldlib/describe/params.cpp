@@ -1,0 +1,225 @@
+#include "describe/params.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "describe/spelling.h"
+
+namespace softtrace {
+
+namespace {
+std::string describe(const nlohmann::json& v) {
+  std::string s = v.dump();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return s;
+}
+
+}  // namespace
+
+std::string json_excerpt(const nlohmann::json& v) {
+  return describe(v);
+}
+
+std::string unknown_key_message(const std::string& key, const std::vector<std::string>& known) {
+  std::string best;
+  size_t best_d = 3;
+  // Keys longer than 64 characters are no one's typo; skip the quadratic table for them.
+  if (key.size() <= 64)
+    for (const auto& k : known) {
+      // Case differences cost nothing; a key as short as the edits needed is no near miss.
+      std::string a = key, b = k;
+      for (auto& c : a) c = char(std::tolower(static_cast<unsigned char>(c)));
+      for (auto& c : b) c = char(std::tolower(static_cast<unsigned char>(c)));
+      const size_t d = edit_distance(a, b);
+      if (k != key && d < best_d && d < std::max(a.size(), b.size())) best = k, best_d = d;
+    }
+  std::string m = "unknown key '" + key + "'";
+  if (!best.empty()) m += " (did you mean '" + best + "'?)";
+  return m;
+}
+
+std::string json_pointer_escape(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+Params::Params(const json& j, std::string pointer, std::shared_ptr<const std::string> file)
+    : j_(&j), pointer_(std::move(pointer)), file_(std::move(file)) {
+  if (!j.is_object()) fail("", "expected an object, got " + describe(j));
+}
+
+std::string Params::where(const std::string& key) const {
+  std::string p = key.empty() ? pointer_ : pointer_ + "/" + key;
+  if (p.empty()) p = "/";
+  return *file_ + ": " + p;
+}
+
+void Params::fail(const std::string& key, const std::string& what) const {
+  throw SceneError(where(key) + ": " + what);
+}
+
+void Params::fail_at(const std::string& key, const std::string& index_path,
+                     const std::string& what) const {
+  throw SceneError(where(key) + "/" + index_path + ": " + what);
+}
+
+void Params::check_keys(const std::vector<std::string>& known, const std::string& context) const {
+  for (auto it = j_->begin(); it != j_->end(); ++it)
+    if (std::find(known.begin(), known.end(), it.key()) == known.end())
+      fail(json_pointer_escape(it.key()), unknown_key_message(it.key(), known) + context);
+  known_ = known;
+}
+
+void Params::note_wanted(const std::string& key) const {
+  if (!known_.empty() && std::find(known_.begin(), known_.end(), key) == known_.end())
+    throw std::logic_error("the loader reads '" + key + "' at " + where("") +
+                           ", which its list of keys does not have");
+  wanted_.insert(key);
+}
+
+bool Params::has(const std::string& key) const {
+  note_wanted(key);
+  return j_->contains(key);
+}
+
+const nlohmann::json& Params::at(const std::string& key) const {
+  note_wanted(key);
+  auto it = j_->find(key);
+  if (it == j_->end()) fail(key, "missing required parameter '" + key + "'");
+  used_.insert(key);
+  return *it;
+}
+
+double Params::number(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_number()) fail(key, "expected a number, got " + describe(v));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(key, "expected a finite number, got " + describe(v));
+  return d;
+}
+double Params::number(const std::string& key, double fallback) const {
+  return has(key) ? number(key) : fallback;
+}
+double Params::positive(const std::string& key) const {
+  const double d = number(key);
+  check(d > 0, key, "expected a number > 0, got " + describe(j_->at(key)));
+  return d;
+}
+double Params::positive(const std::string& key, double fallback) const {
+  return has(key) ? positive(key) : fallback;
+}
+
+int Params::integer(const std::string& key, int lo, int hi) const {
+  const json& v = at(key);
+  std::ostringstream range;
+  range << "expected an integer in [" << lo << ", " << hi << "], got " << describe(v);
+  if (!v.is_number_integer()) fail(key, range.str());
+  const auto i = v.get<long long>();
+  if (i < lo || i > hi) fail(key, range.str());
+  return static_cast<int>(i);
+}
+int Params::integer(const std::string& key, int lo, int hi, int fallback) const {
+  return has(key) ? integer(key, lo, hi) : fallback;
+}
+
+bool Params::boolean(const std::string& key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const json& v = at(key);
+  if (!v.is_boolean()) fail(key, "expected true or false, got " + describe(v));
+  return v.get<bool>();
+}
+
+std::string Params::string(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_string()) fail(key, "expected a string, got " + describe(v));
+  return v.get<std::string>();
+}
+std::string Params::string(const std::string& key, const std::string& fallback) const {
+  return has(key) ? string(key) : fallback;
+}
+
+std::vector<double> Params::numbers(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_array() || v.empty()) fail(key, "expected a non-empty array of numbers");
+  std::vector<double> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string sub = std::to_string(i);
+    if (!v[i].is_number()) fail_at(key, sub, "expected a number, got " + describe(v[i]));
+    const double d = v[i].get<double>();
+    if (!std::isfinite(d)) fail_at(key, sub, "expected a finite number, got " + describe(v[i]));
+    out.push_back(d);
+  }
+  return out;
+}
+
+std::vector<double> Params::numbers_or_scalar(const std::string& key, size_t count) const {
+  if (has(key) && j_->at(key).is_number()) return std::vector<double>(count, number(key));
+  std::vector<double> v = numbers(key);
+  if (v.size() != count)
+    fail(key, "expected a number or " + std::to_string(count) + " numbers, got " +
+                  std::to_string(v.size()));
+  return v;
+}
+
+Vec3 Params::vec3(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_array() || v.size() != 3) fail(key, "expected [x, y, z], got " + describe(v));
+  std::vector<double> n = numbers(key);
+  return {n[0], n[1], n[2]};
+}
+Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
+  return has(key) ? vec3(key) : fallback;
+}
+
+std::vector<Vec3> Params::vec3s(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_array() || v.empty()) fail(key, "expected a non-empty array of [x, y, z]");
+  std::vector<Vec3> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string sub = std::to_string(i);
+    if (!v[i].is_array() || v[i].size() != 3)
+      fail_at(key, sub, "expected [x, y, z], got " + describe(v[i]));
+    Vec3 e;
+    for (int c = 0; c < 3; ++c) {
+      const json& x = v[i][c];
+      if (!x.is_number() || !std::isfinite(x.get<double>()))
+        fail_at(key, sub + "/" + std::to_string(c), "expected a finite number, got " + describe(x));
+      e[c] = x.get<double>();
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+Params Params::object(const std::string& key) const {
+  return Params(at(key), pointer_ + "/" + json_pointer_escape(key), file_);
+}
+
+std::vector<Params> Params::objects(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_array()) fail(key, "expected an array, got " + describe(v));
+  std::vector<Params> out;
+  out.reserve(v.size());
+  const std::string base = pointer_ + "/" + json_pointer_escape(key) + "/";
+  for (size_t i = 0; i < v.size(); ++i) out.emplace_back(v[i], base + std::to_string(i), file_);
+  return out;
+}
+
+void Params::finish() const {
+  const std::vector<std::string> known(wanted_.begin(), wanted_.end());
+  for (auto it = j_->begin(); it != j_->end(); ++it)
+    if (!used_.count(it.key()))
+      fail(json_pointer_escape(it.key()), unknown_key_message(it.key(), known));
+}
+
+}  // namespace softtrace

@@ -1,0 +1,147 @@
+#include "kernels/gauge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "math/scratch.h"
+
+namespace softtrace {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The papers' exponents are mostly small integers (n = 20 for cubes and bars): squaring is several
+// times faster than std::pow there and within a few ulps of it.
+bool by_squaring(double n) {
+  return n >= 1 && n <= 64 && n == static_cast<int>(n);
+}
+
+// x^n for x >= 0.
+double pow_fast(double x, double n) {
+  if (by_squaring(n)) {
+    double r = 1, b = x;
+    for (int k = static_cast<int>(n); k; k >>= 1, b *= b)
+      if (k & 1) r *= b;
+    return r;
+  }
+  return std::pow(x, n);
+}
+
+// m s^(1/n), s a power sum relative to its largest term m: n = 2 (spheres, ellipsoids: most
+// blobs) takes the correctly rounded square root, and n = 1 (a superquadric's inner sum) none:
+// pow(s, 1) is s.
+double scale_root(double m, double s, double n) {
+  return m * (n == 2 ? std::sqrt(s) : n == 1 ? s : std::pow(s, 1 / n));
+}
+}  // namespace
+
+double power_sum(const double* u, int k, double n, double* dfdu) {
+  double m = 0;
+  for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
+  if (m == 0) {
+    if (dfdu) std::fill(dfdu, dfdu + k, 0.0);
+    return 0;
+  }
+  double s = 0;
+  for (int i = 0; i < k; ++i) s += pow_fast(u[i] / m, n);
+  const double f = scale_root(m, s, n);
+  if (dfdu)
+    for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? pow_fast(u[i] / f, n - 1) : 0.0;
+  return f;
+}
+
+void power_sum_lanes(const double* const* u, int k, double n, int lanes, double* f) {
+  // power_sum's operations in its order, one loop over the lanes at a time.
+  double m[16], s[16], b[16], r[16];
+  for (int l = 0; l < lanes; ++l) m[l] = 0;
+  for (int i = 0; i < k; ++i)
+    for (int l = 0; l < lanes; ++l) m[l] = std::max(m[l], u[i][l]);
+  for (int l = 0; l < lanes; ++l) s[l] = 0;
+  const bool squaring = by_squaring(n);  // as pow_fast
+  for (int i = 0; i < k; ++i) {
+    for (int l = 0; l < lanes; ++l) b[l] = u[i][l] / m[l];
+    if (!squaring) {
+      for (int l = 0; l < lanes; ++l) s[l] += std::pow(b[l], n);
+      continue;
+    }
+    for (int l = 0; l < lanes; ++l) r[l] = 1;
+    for (int e = static_cast<int>(n);; e >>= 1) {
+      if (e & 1)
+        for (int l = 0; l < lanes; ++l) r[l] *= b[l];
+      if (e == 1) break;
+      for (int l = 0; l < lanes; ++l) b[l] *= b[l];
+    }
+    for (int l = 0; l < lanes; ++l) s[l] += r[l];
+  }
+  for (int l = 0; l < lanes; ++l) f[l] = m[l] == 0 ? 0 : scale_root(m[l], s[l], n);
+}
+
+Interval power_sum(const Interval* u, int k, double n) {
+  Scratch<double> lo(k), hi(k);
+  for (int i = 0; i < k; ++i) {
+    lo[i] = std::max(0.0, u[i].lo);
+    hi[i] = std::max(0.0, u[i].hi);
+  }
+  // pow is faithfully but not correctly rounded: widen by a relative margin well above its error.
+  const double l = power_sum(lo.data(), k, n, nullptr), h = power_sum(hi.data(), k, n, nullptr);
+  // An infinite term (a box without bounds) makes the scaled sum inf/inf: the sum is infinite.
+  const bool unbounded = std::find(hi.data(), hi.data() + k, kInf) != hi.data() + k;
+  return {std::max(0.0, l * (1 - 1e-13)), unbounded ? kInf : h * (1 + 1e-13)};
+}
+
+double power_sum_partial_bound(Interval ui, Interval f_range, double n) {
+  if (n >= 1) {
+    // (u/f)^(n-1) <= min(1, (u_hi/f_lo)^(n-1)).
+    if (f_range.lo <= 0) return 1;
+    if (n == 2) return std::min(1.0, std::max(0.0, ui.hi) / f_range.lo * (1 + 1e-13));
+    // pow_fast errs by a few ulps where it squares (n - 1 <= 63 integer): far inside the margin.
+    return std::min(1.0, pow_fast(std::max(0.0, ui.hi) / f_range.lo, n - 1) * (1 + 1e-13));
+  }
+  if (ui.lo <= 0) return std::numeric_limits<double>::infinity();
+  return std::pow(std::max(f_range.hi, ui.lo) / ui.lo, 1 - n) * (1 + 1e-13);
+}
+
+Interval power_sum_partial(Interval ui, Interval f_range, double n) {
+  if (n < 1) return {0, kInf};
+  if (n == 1) return {1, 1};
+  const double hi = power_sum_partial_bound(ui, f_range, n);
+  // (u/f)^(n-1) rises with u/f; pow_fast errs by a few ulps, far inside the margin.
+  const double q = std::max(0.0, ui.lo) / f_range.hi;
+  const double lo = q > 0 ? pow_fast(std::min(1.0, q), n - 1) * (1 - 1e-13) : 0.0;
+  return {std::max(0.0, lo), hi};
+}
+
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n) {
+  if (n < 1) return Interval::entire();
+  double lo = 0, hi = 0, mag = 0;
+  for (int i = 0; i < k; ++i) {
+    if (du[i].lo == 0 && du[i].hi == 0) continue;  // a constant term (whatever its partial)
+    const Interval w = power_sum_partial(u[i], f_range, n);  // in [0, 1]
+    // w · du over the two ranges, w >= 0: each end of du takes the w that moves it outward.
+    const double l = du[i].lo * (du[i].lo < 0 ? w.hi : w.lo);
+    const double h = du[i].hi * (du[i].hi > 0 ? w.hi : w.lo);
+    lo += l;
+    hi += h;
+    mag += std::abs(l) + std::abs(h);
+  }
+  // k products and sums, each within a few ulps of at most mag.
+  const double grow = 1e-12 * mag + 1e-300;
+  if (!(std::isfinite(lo) && std::isfinite(hi))) return Interval::entire();
+  return {lo - grow, hi + grow};
+}
+
+double gauge_lipschitz(const double* w, int k, double n) {
+  if (n < 1) return std::numeric_limits<double>::infinity();
+  if (n >= 2) {
+    double m = 0;
+    for (int i = 0; i < k; ++i) m = std::max(m, std::abs(w[i]));
+    return m;
+  }
+  const double r = 2 * n / (2 - n);
+  double s = 0;
+  for (int i = 0; i < k; ++i) s += std::pow(std::abs(w[i]), r);
+  return std::pow(s, 1 / r) * (1 + 1e-13);
+}
+
+}  // namespace softtrace

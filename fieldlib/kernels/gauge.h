@@ -1,0 +1,42 @@
+// Weighted power sums (Σ u_i^n)^(1/n), u_i >= 0: the building block of every LP-type distance
+// function (docs/math.md §2.5–§2.10), with the derivative and bound facts of docs/math.md §8.
+#pragma once
+
+#include "math/interval.h"
+
+namespace softtrace {
+
+// f = (Σ u_i^n)^(1/n), evaluated relative to the largest u_i so n = 20 neither overflows nor
+// underflows. When dfdu is non-null it receives ∂f/∂u_i = (u_i/f)^(n-1) (0 where u_i = 0 and
+// n < 1, and 0 at f = 0, both elements of the subdifferential by symmetry).
+double power_sum(const double* u, int k, double n, double* dfdu);
+
+// power_sum without the derivative over `lanes` points at once (structure of arrays: term i of
+// lane l at u[i][l]) into f[l]; the same bits as power_sum lane by lane. lanes <= 16.
+void power_sum_lanes(const double* const* u, int k, double n, int lanes, double* f);
+
+// f is non-decreasing in every u_i, so its image over a box of u is [f(lo), f(hi)].
+Interval power_sum(const Interval* u, int k, double n);
+
+// Bound on ∂f/∂u_i = (u_i/f)^(n-1) where u_i ∈ ui and f ∈ f_range: at most 1 for n >= 1
+// (u_i <= f); (f_hi/u_lo)^(1-n) for n < 1, infinite when u_i can reach 0.
+double power_sum_partial_bound(Interval ui, Interval f_range, double n);
+
+// The range of ∂f/∂u_i = (u_i/f)^(n-1) where u_i ∈ ui and f ∈ f_range, for n >= 1: between
+// (u_lo/f_hi)^(n-1) and power_sum_partial_bound (both 1 for n = 1, where f = Σ u_i). n < 1: [0,
+// inf].
+Interval power_sum_partial(Interval ui, Interval f_range, double n);
+
+// The range of df/dt along a path where u_i ∈ u[i] and du_i/dt ∈ du[i], f ∈ f_range: f is
+// Lipschitz for n >= 1, so its difference quotients lie in Σ ∂f/∂u_i · du_i/dt over those ranges
+// (the chain rule wherever f is differentiable, which is almost everywhere). Widened for the
+// products' and the sum's rounding. Entire for n < 1 or where a rate is not finite.
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n);
+
+// The global Lipschitz constant of g(v) = (Σ |w_i v_i|^n)^(1/n) over R^k (Euclidean): the
+// l_q -> l_2 norm of diag(w) with 1/n + 1/q = 1, i.e. max_i w_i for n >= 2 and
+// ||w||_r with r = 2n/(2-n) for 1 <= n < 2 (Hölder, attained). Infinite for n < 1 (docs/math.md
+// §8).
+double gauge_lipschitz(const double* w, int k, double n);
+
+}  // namespace softtrace

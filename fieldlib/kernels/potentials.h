@@ -1,0 +1,162 @@
+// Potential functions P: R+ -> [0,1] (docs/math.md §3): P(0)=1, P(0.5)=0.5 (Blanc, Wyvill), P=0 for
+// d >= 1, non-increasing, P'(0)=P'(1)=0. Monotonicity makes the interval image exact:
+// [P(hi), P(lo)]; the Lipschitz constant max|P'| is derived per potential below and is 0 on
+// d >= 1.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "math/interval.h"
+
+namespace softtrace {
+
+// The kernels, shared by the model classes below and the program evaluators (eval_*.cpp), inline
+// so the evaluators' loops over a batch can vectorise them: P(max(d, 0)) with P' into *dP when
+// dP is non-null.
+
+// Blanc's potential, 002 Eq. 2 (signs of R1), docs/math.md §3.2
+inline double blanc(double d, double s, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double u = d * d;
+  double P, dPdu;
+  if (d <= 0.5) {
+    if (s == 0) {  // the first branch is 0/0 at d = 0; its closed form for s = 0 is 1 - 2d^2
+      P = 1 - 2 * u;
+      dPdu = -2;
+    } else {
+      const double N = 9 * u * u, D = s + (4.5 - 4 * s) * u;  // D >= min(s, 1.125) > 0
+      P = 1 - N / D;
+      dPdu = -(18 * u * D - N * (4.5 - 4 * s)) / (D * D);
+    }
+  } else {
+    const double N = (1 - u) * (1 - u), D = 0.75 - s + (1.5 + 4 * s) * u;  // D >= 1.125
+    P = N / D;
+    dPdu = (-2 * (1 - u) * D - N * (1.5 + 4 * s)) / (D * D);
+  }
+  if (dP) *dP = dPdu * 2 * d;
+  return P;
+}
+
+// blanc(d[l], s) for l < n into P[l], the same bits, as selects around one division per lane
+// (a loop GCC vectorises; blanc's branches, each with its own division, it does not):
+// d <= 1/2: 1 - N/D (for s = 0 its closed form 1 - 2d^2, as 2d^2 / 1), 1/2 < d < 1: N/D, d >= 1:
+// 0 / 1. NaN d takes the middle piece, as in blanc.
+inline void blanc_lanes(const double* d, double s, int n, double* P) {
+  for (int l = 0; l < n; ++l) {
+    const double x = std::max(d[l], 0.0), u = x * x;
+    const bool inner = x <= 0.5, outer = x >= 1;
+    const double n_in = s == 0 ? 2 * u : 9 * u * u, d_in = s == 0 ? 1.0 : s + (4.5 - 4 * s) * u;
+    const double n_mid = (1 - u) * (1 - u), d_mid = 0.75 - s + (1.5 + 4 * s) * u;
+    const double num = inner ? n_in : outer ? 0.0 : n_mid;
+    const double den = inner ? d_in : outer ? 1.0 : d_mid;
+    const double q = num / den;
+    P[l] = inner ? 1 - q : q;
+  }
+}
+
+// Wyvill et al.'s sextic, docs/math.md §3.3
+inline double wyvill(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double u = d * d;
+  if (dP) *dP = d * (-24.0 / 9 * u * u + 68.0 / 9 * u - 44.0 / 9);
+  return 1 + u * (-22.0 / 9 + u * (17.0 / 9 - 4.0 / 9 * u));
+}
+
+// (1 - d^2)^2, docs/math.md §3.3
+inline double murakami(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double v = 1 - d * d;
+  if (dP) *dP = -4 * d * v;
+  return v * v;
+}
+
+// max |P'| over d >= 0, each derived in potentials.cpp (rounded up by 1e-12 relative).
+double blanc_lipschitz(double s);  // [PB-5]
+double wyvill_lipschitz();
+inline double murakami_lipschitz() {
+  return 8 / (3 * 1.7320508075688772) * (1 + 1e-12);  // 8/(3 sqrt 3), sqrt 3 to within an ulp
+}
+// [min |P'|, max |P'|] over d in [lo, hi] for a potential whose |P'| rises from d = 0 to its peak
+// `peak` at d = `at` and falls after it to 0 at d = 1 (and is 0 beyond): the ends' values bound
+// it, and the peak where [lo, hi] holds `at`. Rounded by 1e-12 relative (|P'| is computed to a
+// few ulps; `at` is known to a few ulps, where |P'| is flat to second order).
+template <class AbsSlope>
+Interval unimodal_slope_range(AbsSlope abs_slope, double at, double peak, double lo, double hi) {
+  lo = std::clamp(lo, 0.0, 1.0);
+  hi = std::clamp(hi, 0.0, 1.0);
+  if (!(lo <= hi)) return {0, peak};
+  const double a = abs_slope(lo), b = abs_slope(hi);
+  const double top =
+      lo <= at && at <= hi ? peak : std::min(peak, std::max(a, b) * (1 + 1e-12) + 1e-300);
+  return {std::max(0.0, std::min(a, b) * (1 - 1e-12) - 1e-300), top};
+}
+// Murakami: |P'| = 4d(1 - d^2), peak 8/(3 sqrt 3) at d = 1/sqrt(3).
+inline Interval murakami_slope_range(Interval d) {
+  constexpr double kPeak = 0.57735026918962576;  // 1/sqrt(3), to within an ulp
+  return unimodal_slope_range([](double x) { return 4 * x * (1 - x * x); }, kPeak,
+                              murakami_lipschitz(), d.lo, d.hi);
+}
+// Blanc: unimodal with its peak [PB-5] at d = 0.5 for every s >= 0 (docs/math.md §3.2: P'' < 0
+// on (0, 0.5) and > 0 on (0.5, 1)).
+inline Interval blanc_slope_range(double s, Interval d) {
+  const auto abs_slope = [s](double x) {
+    double dP;
+    blanc(x, s, &dP);
+    return std::abs(dP);
+  };
+  return unimodal_slope_range(abs_slope, 0.5, blanc_lipschitz(s), d.lo, d.hi);
+}
+// Wyvill: P'' changes sign once on [0, 1], where u = d^2 = (204 - sqrt(20496)) / 240.
+double wyvill_peak();  // that d
+inline Interval wyvill_slope_range(Interval d) {
+  const auto abs_slope = [](double x) {
+    double dP;
+    wyvill(x, &dP);
+    return std::abs(dP);
+  };
+  return unimodal_slope_range(abs_slope, wyvill_peak(), wyvill_lipschitz(), d.lo, d.hi);
+}
+
+// The potentials by name, and one as a value (Blanc with softness s, Wyvill, Murakami) for a kernel
+// that applies it inside its own (RadiusTransform) without a virtual call.
+enum class PotentialType { Blanc, Wyvill, Murakami };
+
+struct PotentialKind {
+  PotentialType type;
+  double s = 0;  // Blanc's softness
+
+  double eval(double d, double* dP) const {
+    switch (type) {
+      case PotentialType::Blanc:
+        return blanc(d, s, dP);
+      case PotentialType::Wyvill:
+        return wyvill(d, dP);
+      case PotentialType::Murakami:
+        return murakami(d, dP);
+    }
+    return blanc(d, s, dP);  // not reached: the switch names every type
+  }
+  double lipschitz() const;  // max over d of |P'(d)|
+  // [P(hi), P(lo)] rounded outward: P is non-increasing.
+  Interval interval(Interval d) const {
+    return {std::max(0.0, iv::down(eval(d.hi, nullptr))),
+            std::min(1.0, iv::up(eval(std::max(0.0, d.lo), nullptr)))};
+  }
+  double lipschitz(Interval d) const { return d.lo >= 1 ? 0.0 : lipschitz(); }
+};
+
+}  // namespace softtrace

@@ -1,0 +1,94 @@
+// Distances about a skeleton as kernels shared by the model nodes and the program's instructions,
+// so both compute the same bits: the line segment's Euclidean distance over the radius
+// (distances_skeletal.cpp, Op::LineSegment) and the torus, the LP gauge about a circle in the
+// (ρ, z) plane (distances_polar.cpp, Op::Torus, whose bounds are derived above the node class).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/gauge.h"
+#include "math/bound_util.h"
+#include "math/box.h"
+
+namespace softtrace {
+
+struct LineSegmentParams {
+  Vec3 a, ab;   // the segment is a + t·ab, t in [0, 1]
+  double r;     // influential radius
+  double len2;  // |ab|^2
+};
+
+// The instruction's constants: a in c[0..2], ab in c[3..5], then r and len2.
+inline LineSegmentParams line_segment_params(const double* c) {
+  return {{c[0], c[1], c[2]}, {c[3], c[4], c[5]}, c[6], c[7]};
+}
+
+// The point of the segment nearest p.
+inline Vec3 line_segment_closest(const LineSegmentParams& m, const Vec3& p) {
+  const double t = m.len2 > 0 ? std::clamp(dot(p - m.a, m.ab) / m.len2, 0.0, 1.0) : 0.0;
+  return m.a + m.ab * t;
+}
+
+// |X - closest(X)|/r   — 000 Eq. 5, docs/math.md §2.8.
+inline double line_segment_distance(const LineSegmentParams& m, const Vec3& p, Vec3* grad) {
+  const Vec3 q = p - line_segment_closest(m, p);
+  const double dist = length(q);
+  if (grad) *grad = dist > 0 ? q / (dist * m.r) : Vec3{};
+  return dist / m.r;
+}
+
+// The value interval over `b`: the distance to a set is 1-Lipschitz, so over a box it is within
+// half a diagonal of the distance at the centre. (The Lipschitz bound is 1/r everywhere.)
+inline Interval line_segment_interval(const LineSegmentParams& m, const Box& b) {
+  const double c = length(b.center() - line_segment_closest(m, b.center())), h = 0.5 * b.diagonal();
+  return iv::out(std::max(0.0, c - h) / m.r, (c + h) / m.r);
+}
+
+// ρ = |(x, y)| over a box: exact image by interval arithmetic.
+inline Interval rho_range(const Box& b) {
+  return sqrt(sqr(b.axis(0)) + sqr(b.axis(1)));
+}
+
+// ∇ρ = (x, y, 0)/ρ; 0 on the axis (an element of the subdifferential, the unit disc).
+inline Vec3 rho_gradient(const Vec3& p, double rho) {
+  return rho > 0 ? Vec3{p.x / rho, p.y / rho, 0} : Vec3{};
+}
+
+struct TorusParams {
+  double R, a, b, n, global_L;  // major radius, radii in ρ and z, exponent, gauge_lipschitz
+};
+
+// The instruction's constants: R, a, b, n, global_L in c[0..4].
+inline TorusParams torus_params(const double* c) {
+  return {c[0], c[1], c[2], c[3], c[4]};
+}
+
+// ((|ρ - R|/a)^n + (|z|/b)^n)^(1/n)   — docs/scene-format.md torus, docs/math.md §2.1, §2.5.
+inline double torus(const TorusParams& m, const Vec3& p, Vec3* grad) {
+  const double rho = std::hypot(p.x, p.y), s = rho - m.R;
+  const double u[2] = {std::abs(s) / m.a, std::abs(p.z) / m.b};
+  double d[2];
+  const double f = power_sum(u, 2, m.n, grad ? d : nullptr);
+  if (grad) {
+    *grad = rho_gradient(p, rho) * (d[0] * sgn(s) / m.a);
+    grad->z = d[1] * sgn(p.z) / m.b;
+  }
+  return f;
+}
+
+// The value interval and the Lipschitz bound over `b` from one computation of the terms: ∇f has
+// the orthogonal parts ∂_1/a (along ∇ρ) and ∂_2/b (along z), each bounded from the intervals.
+inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, double* lipschitz) {
+  const Interval u[2] = {abs(rho_range(b) - Interval(m.R)) / Interval(m.a),
+                         abs(b.axis(2)) / Interval(m.b)};
+  const Interval f = power_sum(u, 2, m.n);
+  *value = f;
+  if (!lipschitz) return;
+  const double g1 = power_sum_partial_bound(u[0], f, m.n) / m.a;
+  const double g2 = power_sum_partial_bound(u[1], f, m.n) / m.b;
+  const double L = std::sqrt(g1 * g1 + g2 * g2) * (1 + 1e-13);
+  *lipschitz = std::isnan(L) ? m.global_L : std::min(m.global_L, L);
+}
+
+}  // namespace softtrace

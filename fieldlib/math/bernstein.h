@@ -1,0 +1,103 @@
+// The first rise of a polynomial through 0 on [0, 1], certified by its Bernstein form: over any
+// piece of [0, 1] the polynomial lies in the hull of its Bernstein coefficients there (de
+// Casteljau's halving gives the coefficients of each half), so a piece whose coefficients are all
+// below -err, err bounding the rounding of the coefficients, holds no root. A piece whose
+// derivative's coefficients are all positive rises through 0 at most once. This is how the tracer
+// decides a stretch of ray over which a sum of polynomial blobs is one polynomial (blob_ray.h).
+#pragma once
+
+#include <algorithm>
+
+#include "math/illinois.h"
+
+namespace softtrace {
+
+constexpr int kMaxDegree = 6;
+
+struct Rise {
+  enum Kind {
+    Clear,      // h < 0 on [0, 1]
+    AtStart,    // h(0) >= 0 as computed
+    Bracket,    // h(lo) < 0 <= h(hi) as computed, and no root before lo
+    Undecided,  // the hull straddles 0 down to pieces of `finest`: a near-tangency at lo
+  } kind;
+  double lo = 0, hi = 0;
+};
+
+// h(x) = Σ a[j] x^j by Horner's rule.
+inline double power_value(const double* a, int degree, double x) {
+  double v = a[degree];
+  for (int j = degree - 1; j >= 0; --j) v = v * x + a[j];
+  return v;
+}
+
+// The first x in [0, 1] where h = Σ a[j] x^j (degree <= kMaxDegree) reaches 0, to within `tol`
+// (a bracket no wider than tol, or one of any width over which h rises), halving down to
+// `finest`. `err` bounds |computed - exact| of the coefficients' hulls on every piece.
+inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
+  // b_i = Σ_{j<=i} C(i,j)/C(m,j) a_j.
+  static constexpr double binom[kMaxDegree + 1][kMaxDegree + 1] = {{1},
+                                                                   {1, 1},
+                                                                   {1, 2, 1},
+                                                                   {1, 3, 3, 1},
+                                                                   {1, 4, 6, 4, 1},
+                                                                   {1, 5, 10, 10, 5, 1},
+                                                                   {1, 6, 15, 20, 15, 6, 1}};
+  struct Piece {
+    double lo, hi, b[kMaxDegree + 1];
+  };
+  constexpr int kDepth = 64;
+  Piece stack[kDepth];
+  int top = 0;
+  Piece& whole = stack[top++];
+  whole.lo = 0;
+  whole.hi = 1;
+  for (int i = 0; i <= degree; ++i) {
+    double s = 0;
+    for (int j = 0; j <= i; ++j) s += binom[i][j] / binom[degree][j] * a[j];
+    whole.b[i] = s;
+  }
+  if (whole.b[0] >= 0) return {Rise::AtStart, 0, 0};
+  while (top > 0) {
+    const Piece p = stack[--top];
+    const double* b = p.b;
+    if (*std::max_element(b, b + degree + 1) + err < 0) continue;
+    bool rising = true;
+    for (int i = 0; i < degree && rising; ++i) rising = b[i + 1] - b[i] > 2 * err;
+    if (b[degree] >= 0 && (rising || p.hi - p.lo <= tol)) return {Rise::Bracket, p.lo, p.hi};
+    if (rising && b[degree] < 0) continue;  // rises to a negative end (and the hull allowed it)
+    if (p.hi - p.lo <= finest || top + 2 > kDepth) return {Rise::Undecided, p.lo, p.lo};
+    // de Casteljau at the middle: the left half's coefficients are the first of each row, the
+    // right half's the last.
+    Piece left{p.lo, 0.5 * (p.lo + p.hi), {}}, right{left.hi, p.hi, {}};
+    double row[kMaxDegree + 1];
+    std::copy(b, b + degree + 1, row);
+    for (int k = 0; k <= degree; ++k) {
+      left.b[k] = row[0];
+      right.b[degree - k] = row[degree - k];
+      for (int i = 0; i < degree - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
+    }
+    stack[top++] = right;
+    stack[top++] = left;
+  }
+  return {Rise::Clear, 1, 1};
+}
+
+// Narrows a Bracket of first_rise to at most `tol`: the Anderson-Bjorck variant of regula falsi
+// on h's values, each point kept half a tolerance inside the bracket, so that once one end sits at
+// the root (as false position leaves it on convex stretches) the next point lands past it and
+// closes the bracket from the other side. Adds its steps to *steps.
+inline Rise refine_rise(const double* a, int degree, Rise r, double tol, int* steps) {
+  IllinoisBracket br{r.lo, power_value(a, degree, r.lo), r.hi, power_value(a, degree, r.hi)};
+  br.anderson_bjorck = true;
+  for (int i = 0; i < 100 && br.hi - br.lo > tol; ++i) {
+    double m = std::clamp(br.false_position(), br.lo + 0.5 * tol, br.hi - 0.5 * tol);
+    if (!(m > br.lo && m < br.hi)) m = 0.5 * (br.lo + br.hi);  // 0/0 after the values vanished
+    ++*steps;
+    const double hm = power_value(a, degree, m);
+    br.update(m, hm, hm >= 0);
+  }
+  return {Rise::Bracket, br.lo, br.hi};
+}
+
+}  // namespace softtrace

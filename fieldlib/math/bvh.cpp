@@ -1,0 +1,411 @@
+#include "math/bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
+namespace softtrace {
+
+namespace {
+// Past this depth the binary tree splits at the median: the surface-area heuristic can cut one
+// item at a time off a badly graded set, and the walk's stack is sized for depth 32 + log2 n.
+constexpr int kSahDepth = 32;
+constexpr int kBins = 16;
+constexpr int kStack = 256;  // at most (kWidth - 1) per level of the collapsed tree, plus one
+
+// The binary tree the build makes first, one item per leaf; a node's subtree holds items
+// [first, first + count) of the builder's (reordered) arrays. The collapsed tree's leaves are the
+// subtrees of at most kLeafItems items, their items in the binary tree's order: nearby items stay
+// next to each other in it, and so do the children a sum compiles in that order.
+struct Binary {
+  Box box;
+  int32_t left = -1, right = -1;
+  int32_t first = 0, count = 0;
+  bool leaf() const { return count <= BoxBvh::kLeafItems; }
+};
+
+double half_area(const Box& b) {
+  const Vec3 e = b.extent();
+  return e.x * e.y + e.y * e.z + e.z * e.x;
+}
+
+class BinaryBuilder {
+ public:
+  BinaryBuilder(std::vector<Box> boxes, std::vector<int32_t> ids)
+      : boxes_(std::move(boxes)), ids_(std::move(ids)) {}
+
+  std::vector<Binary> nodes;
+  const std::vector<Box>& boxes() const { return boxes_; }
+  const std::vector<int32_t>& ids() const { return ids_; }
+
+  int32_t build(int32_t first, int32_t count, int depth) {
+    const int32_t index = static_cast<int32_t>(nodes.size());
+    nodes.emplace_back();
+    Box box, centres;
+    for (int32_t i = first; i < first + count; ++i) {
+      box = box.united(boxes_[i]);
+      centres.extend(boxes_[i].center());
+    }
+    nodes[index].box = box;
+    nodes[index].first = first;
+    nodes[index].count = count;
+    if (count == 1) return index;
+    int32_t half = depth < kSahDepth ? sah_split(first, count, centres) : 0;
+    if (half <= 0 || half >= count) half = median_split(first, count, centres);
+    const int32_t left = build(first, half, depth + 1);
+    const int32_t right = build(first + half, count - half, depth + 1);
+    nodes[index].left = left;
+    nodes[index].right = right;
+    return index;
+  }
+
+ private:
+  // An unbounded item's centre may be infinite or NaN: the last bin or the first.
+  static int bin_of(const Box& centres, int axis, const Box& b) {
+    const double x = (b.center()[axis] - centres.lo[axis]) / (centres.hi[axis] - centres.lo[axis]);
+    return x >= 1 ? kBins - 1 : x > 0 ? static_cast<int>(x * kBins) : 0;
+  }
+
+  // The binned surface-area heuristic: the split between bins along an axis that least
+  // increases A_left n_left + A_right n_right. Reorders the range so the first `half` go left;
+  // returns half, or 0 where no split is finite (unbounded boxes, equal centres).
+  int32_t sah_split(int32_t first, int32_t count, const Box& centres) {
+    double best = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double w = centres.hi[axis] - centres.lo[axis];
+      if (!(w > 0) || !std::isfinite(w)) continue;
+      Box bins[kBins];
+      int32_t n[kBins] = {};
+      for (int32_t i = first; i < first + count; ++i) {
+        const int k = bin_of(centres, axis, boxes_[i]);
+        bins[k] = bins[k].united(boxes_[i]);
+        ++n[k];
+      }
+      double right_area[kBins];
+      Box acc;
+      for (int k = kBins - 1; k > 0; --k) {
+        acc = acc.united(bins[k]);
+        right_area[k] = half_area(acc);
+      }
+      acc = Box();
+      int32_t left = 0;
+      for (int k = 0; k < kBins - 1; ++k) {
+        acc = acc.united(bins[k]);
+        left += n[k];
+        if (left == 0 || left == count) continue;
+        const double cost = half_area(acc) * left + right_area[k + 1] * (count - left);
+        if (cost < best) {
+          best = cost;
+          best_axis = axis;
+          best_bin = k;
+        }
+      }
+    }
+    if (best_axis < 0) return 0;
+    std::vector<int32_t> order(count);
+    std::iota(order.begin(), order.end(), 0);
+    const auto mid = std::stable_partition(order.begin(), order.end(), [&](int32_t i) {
+      return bin_of(centres, best_axis, boxes_[first + i]) <= best_bin;
+    });
+    permute(first, order);
+    return static_cast<int32_t>(mid - order.begin());
+  }
+
+  int32_t median_split(int32_t first, int32_t count, const Box& centres) {
+    const Vec3 e = centres.extent();
+    const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+    const int32_t half = count / 2;
+    std::vector<int32_t> order(count);
+    std::iota(order.begin(), order.end(), 0);
+    std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int32_t a, int32_t b) {
+      const double ca = boxes_[first + a].center()[axis], cb = boxes_[first + b].center()[axis];
+      return ca < cb || (ca == cb && ids_[first + a] < ids_[first + b]);
+    });
+    permute(first, order);
+    return half;
+  }
+
+  void permute(int32_t first, const std::vector<int32_t>& order) {
+    std::vector<int32_t> ids(order.size());
+    std::vector<Box> boxes(order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+      ids[i] = ids_[first + order[i]];
+      boxes[i] = boxes_[first + order[i]];
+    }
+    std::copy(ids.begin(), ids.end(), ids_.begin() + first);
+    std::copy(boxes.begin(), boxes.end(), boxes_.begin() + first);
+  }
+
+  std::vector<Box> boxes_;
+  std::vector<int32_t> ids_;
+};
+
+// Slot c of a node or block: its box, axis by axis. An unused slot gets the empty box.
+void set_box(BoxBvh::Node& n, int c, const Box& box) {
+  for (int axis = 0; axis < 3; ++axis) {
+    n.lo[axis][c] = box.lo[axis];
+    n.hi[axis][c] = box.hi[axis];
+  }
+}
+
+// A leaf's items as blocks of four at the end of `blocks`; returns the slot's reference to them.
+int32_t add_leaf(const Binary& leaf, const BinaryBuilder& builder,
+                 std::vector<BoxBvh::Node>& blocks) {
+  const int32_t first_block = static_cast<int32_t>(blocks.size());
+  for (int32_t at = 0; at < leaf.count; at += BoxBvh::kWidth) {
+    BoxBvh::Node block{};
+    block.size = std::min(BoxBvh::kWidth, leaf.count - at);
+    for (int c = 0; c < BoxBvh::kWidth; ++c) {
+      const int32_t i = leaf.first + at + c;
+      set_box(block, c, c < block.size ? builder.boxes()[i] : Box());
+      block.ref[c] = c < block.size ? builder.ids()[i] : 0;
+    }
+    blocks.push_back(block);
+  }
+  const int32_t count = static_cast<int32_t>(blocks.size()) - first_block;
+  return ~(first_block << BoxBvh::kBlockBits | (count - 1));
+}
+
+// Binary node b's subtree as nodes of four: the two children, then the largest slot of more than
+// one item replaced by its two children until there are four (the order of the tree kept). A
+// slot of at most kLeafItems items is then a leaf: splitting such slots while a node has room
+// keeps the small trees' walks (a few blobs, long stretches of rays) as selective as before.
+int32_t collapse(const std::vector<Binary>& bin, int32_t b, const BinaryBuilder& builder,
+                 std::vector<BoxBvh::Node>& out, std::vector<BoxBvh::Node>& blocks) {
+  std::vector<int32_t> slots;
+  if (bin[b].count == 1) {
+    slots = {b};  // a tree of one item
+  } else {
+    slots = {bin[b].left, bin[b].right};
+  }
+  while (static_cast<int>(slots.size()) < BoxBvh::kWidth) {
+    int widest = -1;
+    double area = -1;
+    for (int i = 0; i < static_cast<int>(slots.size()); ++i) {
+      const Binary& s = bin[slots[i]];
+      const double a = half_area(s.box);
+      if (s.count > 1 && (widest < 0 || a > area || std::isnan(a))) {
+        widest = i;
+        area = a;
+      }
+    }
+    if (widest < 0) break;
+    const int32_t w = slots[widest];
+    slots[widest] = bin[w].right;
+    slots.insert(slots.begin() + widest, bin[w].left);
+  }
+  const int32_t index = static_cast<int32_t>(out.size());
+  out.emplace_back();
+  BoxBvh::Node node{};
+  node.size = static_cast<int32_t>(slots.size());
+  for (int c = 0; c < BoxBvh::kWidth; ++c)
+    set_box(node, c, c < node.size ? bin[slots[c]].box : Box());
+  for (int c = 0; c < node.size; ++c) {
+    const Binary& s = bin[slots[c]];
+    node.ref[c] =
+        s.leaf() ? add_leaf(s, builder, blocks) : collapse(bin, slots[c], builder, out, blocks);
+  }
+  out[index] = node;
+  return index;
+}
+
+// Two slots' coordinates along one axis as one value (GCC's vector extension: one SSE2
+// register, the x86-64 baseline), so a node's four slots take two of each test's instructions.
+using V2 = double __attribute__((vector_size(2 * sizeof(double))));
+V2 load(const double* p) {
+  V2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+using M2 = decltype(V2{} < V2{});  // a lane all ones where a comparison holds
+// Bit c set where lane c holds. SSE2's movemask takes a pair in one instruction; GCC otherwise
+// goes through memory lane by lane, a good part of a node's test.
+inline int bits(M2 lanes_01, M2 lanes_23) {
+#ifdef __SSE2__
+  return _mm_movemask_pd(reinterpret_cast<__m128d>(lanes_01)) |
+         _mm_movemask_pd(reinterpret_cast<__m128d>(lanes_23)) << 2;
+#else
+  return (lanes_01[0] != 0) | (lanes_01[1] != 0) << 1 | (lanes_23[0] != 0) << 2 |
+         (lanes_23[1] != 0) << 3;
+#endif
+}
+static_assert(BoxBvh::kWidth == 4, "the tests below take a node's slots two at a time");
+
+// The query box's bounds, each in both lanes, made once per query rather than once per node.
+struct QueryBox {
+  V2 lo[3], hi[3];
+  explicit QueryBox(const Box& q) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = V2{q.lo[i], q.lo[i]};
+      hi[i] = V2{q.hi[i], q.hi[i]};
+    }
+  }
+};
+// Lane l set where slot 2h + l's box overlaps q (closed boxes).
+inline M2 overlaps_half(const BoxBvh::Node& n, const QueryBox& q, int h) {
+  return (load(n.lo[0] + 2 * h) <= q.hi[0]) & (load(n.hi[0] + 2 * h) >= q.lo[0]) &
+         (load(n.lo[1] + 2 * h) <= q.hi[1]) & (load(n.hi[1] + 2 * h) >= q.lo[1]) &
+         (load(n.lo[2] + 2 * h) <= q.hi[2]) & (load(n.hi[2] + 2 * h) >= q.lo[2]);
+}
+// Bit c set where slot c's box overlaps q.
+inline int overlaps(const BoxBvh::Node& n, const QueryBox& q) {
+  return bits(overlaps_half(n, q, 0), overlaps_half(n, q, 1));
+}
+
+// The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
+// reciprocals taken once per query. The slack on s covers the products' rounding, far below what
+// pad adds. An axis the segment does not move along compares a's coordinate with the slab
+// instead; a NaN (0 times an infinite reciprocal) constrains nothing, as std::min/max keep the
+// other operand.
+class SegmentTest {
+ public:
+  SegmentTest(const Vec3& a, const Vec3& b, double pad) : pad_(pad) {
+    for (int i = 0; i < 3; ++i) {
+      a_[i] = a[i];
+      flat_[i] = b[i] - a[i] == 0;
+      inv_[i] = flat_[i] ? 0 : 1 / (b[i] - a[i]);
+    }
+  }
+  // Bit c set where the segment meets slot c's box.
+  int meets(const BoxBvh::Node& n) const {
+    M2 hit[2];
+    for (int h = 0; h < 2; ++h) {
+      V2 s0 = {0, 0}, s1 = {1, 1};
+      M2 inside = {-1, -1};
+      for (int i = 0; i < 3; ++i) {
+        const V2 lo = load(n.lo[i] + 2 * h) - pad_, hi = load(n.hi[i] + 2 * h) + pad_;
+        if (flat_[i]) {
+          inside &= ~((a_[i] < lo) | (a_[i] > hi));
+          continue;
+        }
+        const V2 u = (lo - a_[i]) * inv_[i], v = (hi - a_[i]) * inv_[i];
+        // std::min(u, v) and std::max(u, v) lane by lane, keeping their NaN behaviour.
+        const V2 near = v < u ? v : u, far = u < v ? v : u;
+        s0 = s0 < near ? near : s0;
+        s1 = far < s1 ? far : s1;
+      }
+      hit[h] = inside & (s0 <= s1 + 1e-12);
+    }
+    return bits(hit[0], hit[1]);
+  }
+
+ private:
+  double a_[3], inv_[3], pad_;
+  bool flat_[3];
+};
+}  // namespace
+
+void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
+  nodes_.clear();
+  blocks_.clear();
+  std::vector<Box> kept_boxes;
+  std::vector<int32_t> kept_ids;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (!boxes[i].empty()) {
+      kept_boxes.push_back(boxes[i]);
+      kept_ids.push_back(ids[i]);
+    }
+  if (kept_ids.empty()) return;
+  const int32_t count = static_cast<int32_t>(kept_ids.size());
+  BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
+  builder.build(0, count, 0);
+  if (count <= kWidth)
+    add_leaf(builder.nodes[0], builder, blocks_);
+  else
+    collapse(builder.nodes, 0, builder, nodes_, blocks_);
+  note_order();
+}
+
+std::vector<int32_t> BoxBvh::tree_order() const {
+  size_t items = 0;
+  for (const Node& b : blocks_) items += b.size;
+  std::vector<int32_t> out(items);
+  walk<false>([](const Node&) { return (1 << kWidth) - 1; }, out.data(), 0);
+  return out;
+}
+
+void BoxBvh::relabel(const std::vector<int32_t>& to) {
+  for (Node& b : blocks_)
+    for (int c = 0; c < b.size; ++c) b.ref[c] = to[b.ref[c]];
+  note_order();
+}
+
+void BoxBvh::note_order() {
+  const std::vector<int32_t> order = tree_order();
+  ascending_ = std::is_sorted(order.begin(), order.end());
+}
+
+template <bool kScattered, class Test>
+int BoxBvh::walk(const Test& test, int32_t* out, int count) const {
+  if (empty()) return count;
+  if (nodes_.empty()) return leaf_items(~0, test, out, count);  // one block: blocks_[0]
+  int32_t stack[kStack];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    const int mask = test(n) & ((1 << n.size) - 1);
+    // Nodes pushed last to first are visited left to right; leaves are reported as their node is
+    // (last to first). That order, the same for every query, is tree_order().
+    for (int c = n.size - 1; c >= 0; --c) {
+      const int32_t ref = n.ref[c];
+      const int passed = mask >> c & 1;
+      // Which slots pass a scattered query is no pattern a branch predicts, so there a node is
+      // pushed but counted only where it passed. A passing leaf's items are written the same way
+      // in every walk: an item that did not pass is written where the next item will go, never
+      // past the room for all items (it is one not yet reported).
+      if (ref >= 0) {
+        if (!kScattered && !passed) continue;
+        stack[top] = ref;
+        top += passed;
+        continue;
+      }
+      if (passed) count = leaf_items(ref, test, out, count);
+    }
+  }
+  return count;
+}
+
+template <class Test>
+int BoxBvh::leaf_items(int32_t ref, const Test& test, int32_t* out, int count) const {
+  const Node* block = &blocks_[~ref >> kBlockBits];
+  for (const Node* end = block + (~ref & ((1 << kBlockBits) - 1)) + 1; block != end; ++block) {
+    const int items = test(*block) & ((1 << block->size) - 1);
+    for (int i = 0; i < block->size; ++i) {
+      out[count] = block->ref[i];
+      count += items >> i & 1;
+    }
+  }
+  return count;
+}
+
+int BoxBvh::query(const Box& q, int32_t* out, int count) const {
+  const QueryBox box(q);
+  const int end = walk<true>([&](const Node& n) { return overlaps(n, box); }, out, count);
+  // Children are combined in their compiled order, so results do not depend on the query.
+  if (!ascending_) std::sort(out + count, out + end);
+  return end;
+}
+
+int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_t* out,
+                  int count) const {
+  const SegmentTest segment(a, b, pad);
+  const QueryBox box(q);
+  const int end =
+      walk<false>([&](const Node& n) { return overlaps(n, box) & segment.meets(n); }, out, count);
+  if (!ascending_) std::sort(out + count, out + end);
+  return end;
+}
+
+int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const {
+  const SegmentTest segment(a, b, pad);
+  return walk<false>([&](const Node& n) { return segment.meets(n); }, out, 0);
+}
+
+}  // namespace softtrace

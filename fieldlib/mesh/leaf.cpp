@@ -1,0 +1,227 @@
+#include "mesh/leaf.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/illinois.h"
+#include "mesh/tetra.h"
+
+namespace softtrace {
+
+double LeafMesher::solved(double f, const Vec3& p, bool capped) const {
+  const double g = field_.inside_sign > 0 ? f - field_.iso : field_.iso - f;
+  if (!capped) return g;
+  const double d = lattice_.inside_distance(p);
+  return g < d ? g : d;  // a value that is not a number is outside the box's part
+}
+
+void LeafMesher::run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* out) {
+  out->keys.clear();
+  out->shared.clear();
+  out->positions.clear();
+  out->outward.clear();
+  out->capped.clear();
+  out->faces.clear();
+  edges_.clear();
+  cuts_.clear();
+  for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
+  const int stride[3] = {1, m_[0], m_[0] * m_[1]};
+  const int points = m_[0] * m_[1] * m_[2];
+
+  const Program& program = *field_.program;
+  ws.fit(program);
+  prune(program, lattice_.span(c0, c1), ws);
+  const Code code(ws.view);
+
+  // The corners' values, a batch at a time, in the order of the local points.
+  values_.resize(points);
+  inside_.resize(points);
+  double x[kBatch], y[kBatch], z[kBatch];
+  for (int first = 0; first < points; first += kBatch) {
+    const int n = std::min(kBatch, points - first);
+    for (int l = 0; l < n; ++l) {
+      const int p = first + l;
+      x[l] = lattice_.coordinate(0, c0[0] + p % m_[0]);
+      y[l] = lattice_.coordinate(1, c0[1] + p / m_[0] % m_[1]);
+      z[l] = lattice_.coordinate(2, c0[2] + p / stride[2]);
+    }
+    values(code, x, y, z, n, values_.data() + first, ws);
+  }
+  for (int p = 0; p < points; ++p) {
+    const int i = c0[0] + p % m_[0], j = c0[1] + p / m_[0] % m_[1], k = c0[2] + p / stride[2];
+    inside_[p] = !lattice_.padding(i, j, k) && inside(values_[p]);
+  }
+
+  slot_.assign(size_t(points) * 8, -1);
+  auto local = [&](int base, int corner) {
+    return base + (corner & 1) * stride[0] + (corner >> 1 & 1) * stride[1] +
+           (corner >> 2 & 1) * stride[2];
+  };
+  auto vertex = [&](int base, int in, int outside) -> uint32_t {
+    const int lo = in & outside, d = in ^ outside;
+    const int p = local(base, lo);
+    int32_t& s = slot_[size_t(p) * 8 + d];
+    if (s >= 0) return uint32_t(s);
+    s = int32_t(edges_.size());
+    const int q[3] = {p % m_[0], p / m_[0] % m_[1], p / stride[2]};
+    const int g[3] = {c0[0] + q[0], c0[1] + q[1], c0[2] + q[2]};
+    bool shared = false;
+    for (int a = 0; a < 3; ++a)
+      if (!(d >> a & 1) && (q[a] == 0 || q[a] == m_[a] - 1)) shared = true;
+    out->keys.push_back(lattice_.edge_key(g[0], g[1], g[2], d));
+    out->shared.push_back(shared);
+    const int pa = local(base, in), pb = local(base, outside);
+    auto at = [&](int lp) {
+      return lattice_.point(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1], c0[2] + lp / stride[2]);
+    };
+    auto padded = [&](int lp) {
+      return lattice_.padding(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1],
+                              c0[2] + lp / stride[2]);
+    };
+    Edge e;
+    e.a = at(pa);
+    e.b = at(pb);
+    e.capped = padded(pa) || padded(pb);
+    e.ga = solved(values_[pa], e.a, e.capped);
+    e.gb = solved(values_[pb], e.b, e.capped);
+    edges_.push_back(e);
+    return uint32_t(s);
+  };
+
+  for (int k = 0; k + 1 < m_[2]; ++k)
+    for (int j = 0; j + 1 < m_[1]; ++j)
+      for (int i = 0; i + 1 < m_[0]; ++i) {
+        const int base = i + j * stride[1] + k * stride[2];
+        int mask = 0;
+        for (int c = 0; c < 8; ++c) mask |= inside_[local(base, c)] << c;
+        if (mask == 0 || mask == 255) continue;
+        for (int t = 0; t < 6; ++t) {
+          int in = 0;
+          for (int v = 0; v < 4; ++v) in |= (mask >> kKuhnTetrahedra[t][v] & 1) << v;
+          const TetCut& cut = tet_cut(t, in);
+          if (cut.count == 0) continue;
+          Cut c;
+          c.quad = cut.count == 4;
+          for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(base, cut.in[e], cut.out[e]);
+          cuts_.push_back(c);
+        }
+      }
+
+  solve_edges(code, ws, out);
+
+  // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
+  const auto& pos = out->positions;
+  for (const Cut& c : cuts_) {
+    if (!c.quad) {
+      out->faces.push_back({c.v[0], c.v[1], c.v[2]});
+      continue;
+    }
+    const Vec3 d02 = pos[c.v[2]] - pos[c.v[0]], d13 = pos[c.v[3]] - pos[c.v[1]];
+    if (dot(d02, d02) <= dot(d13, d13)) {
+      out->faces.push_back({c.v[0], c.v[1], c.v[2]});
+      out->faces.push_back({c.v[0], c.v[2], c.v[3]});
+    } else {
+      out->faces.push_back({c.v[0], c.v[1], c.v[3]});
+      out->faces.push_back({c.v[1], c.v[2], c.v[3]});
+    }
+  }
+}
+
+// Each edge's crossing by the Illinois method on its bracket [inside end, outside end], with a
+// bisection after two steps in a row that did not halve the bracket, kBatch edges per call of the
+// values evaluator. An edge is done when its bracket is kEdgeTolerance of the edge, or when the
+// secant through its last two values says the crossing is within that of the last point (the
+// error estimate of a superlinear method). Each edge's steps depend on its own values only, so a
+// vertex has the same bits whichever block solves it.
+void LeafMesher::solve_edges(Code code, Workspace& ws, LeafMesh* out) {
+  const size_t n = edges_.size();
+  struct State {
+    IllinoisBracket bracket;
+    double px, pg;     // the previous evaluation (an end, at first)
+    double t = -1;     // the solution, once found
+    uint8_t slow = 0;  // steps in a row that did not halve the bracket
+  };
+  std::vector<State> state(n);
+  std::vector<uint32_t> active;
+  for (size_t e = 0; e < n; ++e) {
+    State& st = state[e];
+    st.bracket = {1, edges_[e].gb, 0, edges_[e].ga};
+    st.px = 1;
+    st.pg = edges_[e].gb;
+    if (edges_[e].ga > 0)
+      active.push_back(uint32_t(e));
+    else
+      st.t = 0;  // ga == 0: the inside end is on the surface
+  }
+  double x[kBatch], y[kBatch], z[kBatch], f[kBatch], at[kBatch];
+  for (int step = 0; !active.empty(); ++step) {
+    size_t kept = 0;
+    for (size_t first = 0; first < active.size(); first += kBatch) {
+      const int m = int(std::min<size_t>(kBatch, active.size() - first));
+      for (int l = 0; l < m; ++l) {
+        const State& st = state[active[first + l]];
+        const IllinoisBracket& b = st.bracket;
+        double s = b.false_position();
+        if (st.slow >= 2 || !(s > b.hi && s < b.lo)) s = 0.5 * (b.lo + b.hi);
+        at[l] = s;
+        const Edge& e = edges_[active[first + l]];
+        const Vec3 p = e.a + s * (e.b - e.a);
+        x[l] = p.x, y[l] = p.y, z[l] = p.z;
+      }
+      values(code, x, y, z, m, f, ws);
+      for (int l = 0; l < m; ++l) {
+        const uint32_t id = active[first + l];
+        State& st = state[id];
+        IllinoisBracket& b = st.bracket;
+        const double g = solved(f[l], {x[l], y[l], z[l]}, edges_[id].capped);
+        const double width = b.lo - b.hi;
+        if (g == 0) {
+          st.t = at[l];
+          continue;
+        }
+        b.update(at[l], g, g > 0);
+        st.slow = b.lo - b.hi > 0.5 * width && st.slow < 2 ? st.slow + 1 : 0;
+        const double secant = g * (at[l] - st.px) / (g - st.pg);  // the secant's next step
+        st.px = at[l];
+        st.pg = g;
+        if (b.lo - b.hi <= kEdgeTolerance || step >= 200) {
+          st.t = b.false_position();
+        } else if (std::abs(secant) <= kEdgeTolerance) {
+          st.t = at[l] - secant;
+        } else {
+          active[kept++] = id;
+          continue;
+        }
+        if (!(st.t >= b.hi && st.t <= b.lo)) st.t = 0.5 * (b.lo + b.hi);
+      }
+    }
+    active.resize(kept);
+  }
+
+  out->positions.resize(n);
+  out->outward.resize(n);
+  out->capped.resize(n);
+  for (size_t id = 0; id < n; ++id) {
+    const double s = std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin);
+    const Edge& e = edges_[id];
+    out->positions[id] = e.a + s * (e.b - e.a);
+    out->outward[id] = e.b - e.a;
+    out->capped[id] = e.capped;
+  }
+}
+
+Vec3 vertex_normal(const MeshField& field, const Lattice& lattice, const Vec3& p, bool capped,
+                   const Vec3& out, Workspace& ws) {
+  // Outward is where inside_sign (f - iso) falls: -inside_sign grad f; on the cap, the face's.
+  // The whole program pruned to the point keeps only the children that reach it.
+  Vec3 grad;
+  const double f = gradient_pruned(*field.program, p, &grad, ws);
+  Vec3 nrm = grad * -field.inside_sign;
+  const double g = field.inside_sign > 0 ? f - field.iso : field.iso - f;
+  if (capped && lattice.inside_distance(p) < g) nrm = lattice.cap_normal(p);
+  const double len = length(nrm);
+  // A critical point on the surface has no normal: the edge's direction out stands in.
+  return len > 0 && std::isfinite(len) ? nrm / len : normalize(out);
+}
+
+}  // namespace softtrace

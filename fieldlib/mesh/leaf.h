@@ -1,0 +1,76 @@
+// One leaf block of the mesher: the cells [c0, c1) of the lattice, meshed on their own. Corner
+// values come from the batched values evaluator on the program pruned to the block; each edge
+// crossing is solved on the exact field. A vertex on the block's faces is found again, with the
+// same bits, by the neighbour that shares the face (the pruned program's value at a point does
+// not depend on the box it was pruned to: only children that are exactly 0 there are dropped),
+// and the mesher welds the two by their edge key.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "eval/eval.h"
+#include "mesh/lattice.h"
+#include "mesh/mesh.h"
+
+namespace softtrace {
+
+// A vertex sits at least this fraction of its edge's length from either end, so that no face
+// is degenerate (a vertex at a lattice point would collapse the faces around it). It moves a
+// vertex off the surface by at most this fraction of an edge (sqrt 3 cells at most).
+constexpr double kEdgeMargin = 1e-4;
+// The crossing is solved to this fraction of the edge (solve_edges in leaf.cpp).
+constexpr double kEdgeTolerance = 1e-4;
+
+struct LeafMesh {
+  std::vector<uint64_t> keys;   // each vertex's lattice edge
+  std::vector<uint8_t> shared;  // 1: the edge lies on the block's boundary (a neighbour has it)
+  std::vector<Vec3> positions;
+  std::vector<Vec3> outward;                   // the edge from its inside end to its outside end
+  std::vector<uint8_t> capped;                 // 1: an end of the edge is a padding point
+  std::vector<std::array<uint32_t, 3>> faces;  // indices into this leaf's vertices
+};
+
+// The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
+// the cap's face axis where the cap (`capped`: the vertex's edge reaches the padding) is what p
+// lies on, and the edge's direction `out` at a critical point of the field. Computed once per
+// welded vertex (mesh.cpp); `ws` fitted to the program.
+Vec3 vertex_normal(const MeshField& field, const Lattice& lattice, const Vec3& p, bool capped,
+                   const Vec3& out, Workspace& ws);
+
+class LeafMesher {
+ public:
+  LeafMesher(const MeshField& field, const Lattice& lattice) : field_(field), lattice_(lattice) {}
+
+  // Meshes cells c0..c1-1 (per axis) into *out (cleared first).
+  void run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* out);
+
+ private:
+  bool inside(double f) const { return field_.inside_sign > 0 ? f >= field_.iso : f <= field_.iso; }
+  // The function whose zero the vertex is: g = inside_sign (f - iso), >= 0 inside, and on an
+  // edge from a padding point the solid cut by the lattice box, min(g, inside distance).
+  double solved(double f, const Vec3& p, bool capped) const;
+  void solve_edges(Code code, Workspace& ws, LeafMesh* out);
+
+  const MeshField& field_;
+  const Lattice& lattice_;
+  int m_[3] = {0, 0, 0};  // points per axis in the block
+  std::vector<double> values_;
+  std::vector<uint8_t> inside_;
+  std::vector<int32_t> slot_;  // local point * 8 + direction -> vertex, or -1
+  std::vector<int32_t> touched_;
+  struct Edge {
+    Vec3 a, b;  // inside end, outside end
+    double ga, gb;
+    bool capped;  // an end is a padding point
+  };
+  std::vector<Edge> edges_;
+  struct Cut {
+    uint32_t v[4];
+    bool quad;
+  };
+  std::vector<Cut> cuts_;
+};
+
+}  // namespace softtrace

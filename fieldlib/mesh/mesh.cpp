@@ -1,0 +1,234 @@
+// The mesher's three passes: find the leaf blocks that may hold the surface (intervals over a
+// tree of blocks), mesh each leaf (leaf.cpp), weld the vertices that neighbouring leaves share.
+// Work is handed out in a fixed order and gathered by index, so the mesh does not depend on the
+// number of threads.
+#include "mesh/mesh.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "mesh/leaf.h"
+
+namespace softtrace {
+namespace {
+
+constexpr int kLeafCells = 4;     // a leaf's side, in cells (4 evaluates fewer corners than 8)
+constexpr int kTopCells = 64;     // the side of the blocks the tree starts from, at least
+constexpr long kMaxTops = 32768;  // top blocks at most: a finer lattice starts from larger ones
+
+struct Block {
+  int lo[3], hi[3];  // cells [lo, hi) per axis
+};
+
+// Runs job(i, workspace) for i < count on `threads` threads; rethrows the first exception.
+template <class Job>
+void parallel_for(size_t count, int threads, const std::atomic<bool>* cancel, Job job) {
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&] {
+    Workspace ws;
+    try {
+      for (size_t i; (i = next++) < count;) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) throw MeshCancelled();
+        job(i, ws);
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = count;
+    }
+  };
+  std::vector<std::thread> pool;
+  const size_t extra = std::min<size_t>(size_t(std::max(threads, 1)) - 1, count);
+  for (size_t t = 1; t <= extra; ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+Lattice make_lattice(const Box& region, const MeshOptions& o) {
+  if (!region.bounded()) throw std::invalid_argument("the region to mesh is not a bounded box");
+  const Vec3 ext = region.extent();
+  const double longest = std::max({ext.x, ext.y, ext.z});
+  if (!(o.voxel > 0) && !(o.cells > 0))
+    throw std::invalid_argument("the voxel size or the number of cells must be positive");
+  const double h = o.voxel > 0 ? o.voxel : longest / o.cells;
+  if (!(h > 0) || !std::isfinite(h))
+    throw std::invalid_argument("the voxel size must be positive and finite (the region is " +
+                                std::string(longest > 0 ? "too large)" : "flat)"));
+  Lattice l;
+  l.h = h;
+  for (int a = 0; a < 3; ++a) {
+    const double cells = std::ceil(ext[a] / h * (1 - 1e-12));
+    if (!(cells <= kMaxCells))
+      throw std::invalid_argument("the lattice would have more than " + std::to_string(kMaxCells) +
+                                  " cells along an axis; choose a larger voxel");
+    l.n[a] = std::max(1, int(cells));
+  }
+  const Vec3 half{l.n[0] * h * 0.5, l.n[1] * h * 0.5, l.n[2] * h * 0.5};
+  l.box = {region.center() - half, region.center() + half};
+  return l;
+}
+
+// The leaves of `b` that may hold the surface, in a fixed order. A block whose interval lies
+// wholly on one side holds none, unless it is inside and reaches the padding, where the cap is.
+// The interval is widened by a relative 1e-9 so that the rounding of the points' values cannot
+// contradict a block that was skipped.
+void find_leaves(const MeshField& field, const Lattice& l, const Block& b, Workspace& ws,
+                 std::vector<Block>* leaves) {
+  const int pmax[3] = {b.hi[0], b.hi[1], b.hi[2]};  // the block's last points
+  const Box box = l.span(b.lo, pmax);
+  ws.fit(*field.program);
+  const Interval v = bounds(*field.program, box, ws).value;
+  const double margin = 1e-9 * (1 + std::abs(field.iso) + std::max(std::abs(v.lo), std::abs(v.hi)));
+  const bool above = v.lo > field.iso + margin, below = v.hi < field.iso - margin;
+  const bool in = field.inside_sign > 0 ? above : below;
+  const bool out = field.inside_sign > 0 ? below : above;
+  bool padding = false;
+  for (int a = 0; a < 3; ++a) padding |= b.lo[a] == 0 || b.hi[a] == l.n[a] + 1;
+  if (out || (in && !padding)) return;
+  bool leaf = true;
+  for (int a = 0; a < 3; ++a) leaf &= b.hi[a] - b.lo[a] <= kLeafCells;
+  if (leaf) {
+    leaves->push_back(b);
+    return;
+  }
+  // Halves on leaf boundaries, so that every leaf is a cell of the kLeafCells grid.
+  int mid[3];
+  for (int a = 0; a < 3; ++a) {
+    const int size = b.hi[a] - b.lo[a];
+    mid[a] = size <= kLeafCells ? b.hi[a]
+                                : b.lo[a] + (size / 2 + kLeafCells - 1) / kLeafCells * kLeafCells;
+  }
+  for (int c = 0; c < 8; ++c) {
+    Block child;
+    bool empty = false;
+    for (int a = 0; a < 3; ++a) {
+      child.lo[a] = c >> a & 1 ? mid[a] : b.lo[a];
+      child.hi[a] = c >> a & 1 ? b.hi[a] : mid[a];
+      empty |= child.lo[a] >= child.hi[a];
+    }
+    if (!empty) find_leaves(field, l, child, ws, leaves);
+  }
+}
+
+}  // namespace
+
+Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options) {
+  const Lattice lattice = make_lattice(region, options);
+  auto report = [&](double fraction) {
+    if (options.progress) options.progress(fraction);
+  };
+
+  // Pass 1: the tree of blocks, from top blocks of `top` cells (cells 0..n along each axis).
+  std::vector<Block> tops;
+  const int cells[3] = {lattice.n[0] + 1, lattice.n[1] + 1, lattice.n[2] + 1};
+  int top = kTopCells;
+  auto count = [&](int t) {
+    long c = 1;
+    for (int a = 0; a < 3; ++a) c *= (cells[a] + t - 1) / t;
+    return c;
+  };
+  while (count(top) > kMaxTops) top *= 2;
+  for (int k = 0; k < cells[2]; k += top)
+    for (int j = 0; j < cells[1]; j += top)
+      for (int i = 0; i < cells[0]; i += top)
+        tops.push_back({{i, j, k},
+                        {std::min(i + top, cells[0]), std::min(j + top, cells[1]),
+                         std::min(k + top, cells[2])}});
+  std::vector<std::vector<Block>> found(tops.size());
+  std::atomic<size_t> tops_done{0};
+  parallel_for(tops.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
+    find_leaves(field, lattice, tops[i], ws, &found[i]);
+    report(0.1 * double(++tops_done) / double(tops.size()));
+  });
+  std::vector<Block> leaves;
+  for (const auto& f : found) leaves.insert(leaves.end(), f.begin(), f.end());
+  found = {};
+
+  // Pass 2: the leaves, each on its own.
+  std::vector<LeafMesh> parts(leaves.size());
+  std::atomic<size_t> leaves_done{0};
+  parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
+    LeafMesher(field, lattice).run(leaves[i].lo, leaves[i].hi, ws, &parts[i]);
+    report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
+  });
+
+  // Pass 3: weld. A vertex on a leaf's boundary may be in the neighbours too, with the same key
+  // (and position); the first in leaf order keeps it. Interior vertices are unique already.
+  std::vector<size_t> first(parts.size() + 1, 0);
+  for (size_t i = 0; i < parts.size(); ++i) first[i + 1] = first[i] + parts[i].keys.size();
+  std::vector<std::pair<uint64_t, uint64_t>> boundary;  // (key, vertex before welding)
+  for (size_t i = 0; i < parts.size(); ++i)
+    for (size_t v = 0; v < parts[i].keys.size(); ++v)
+      if (parts[i].shared[v]) boundary.emplace_back(parts[i].keys[v], first[i] + v);
+  std::sort(boundary.begin(), boundary.end());
+  constexpr uint64_t kKeep = ~uint64_t(0);
+  std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
+  for (size_t b = 1; b < boundary.size(); ++b)
+    if (boundary[b].first == boundary[b - 1].first)
+      same[boundary[b].second] = same[boundary[b - 1].second] == kKeep
+                                     ? boundary[b - 1].second
+                                     : same[boundary[b - 1].second];
+  boundary = {};
+  std::vector<uint32_t> index(first.back());
+  Mesh m;
+  m.lattice = lattice.box;
+  m.voxel = lattice.h;
+  size_t faces = 0;
+  for (const auto& p : parts) faces += p.faces.size();
+  if (first.back() > size_t(UINT32_MAX) || faces > size_t(UINT32_MAX))
+    throw std::length_error("the mesh would have more than 2^32 vertices or faces");
+  m.faces.reserve(faces);
+  std::vector<Vec3> outward;    // each welded vertex's edge direction out (vertex_normal)
+  std::vector<uint8_t> capped;  // and whether its edge reaches the padding
+  for (size_t i = 0; i < parts.size(); ++i) {
+    LeafMesh& p = parts[i];
+    for (size_t v = 0; v < p.keys.size(); ++v) {
+      const size_t g = first[i] + v;
+      if (same[g] != kKeep) {
+        index[g] = index[same[g]];
+        continue;
+      }
+      index[g] = uint32_t(m.vertices.size());
+      m.vertices.push_back(p.positions[v]);
+      outward.push_back(p.outward[v]);
+      capped.push_back(p.capped[v]);
+    }
+    for (const auto& f : p.faces)
+      m.faces.push_back({index[first[i] + f[0]], index[first[i] + f[1]], index[first[i] + f[2]]});
+    p = LeafMesh();
+  }
+  parts = {};
+
+  // Normals, once per welded vertex, in chunks over the threads.
+  constexpr size_t kChunk = 4096;
+  m.normals.resize(m.vertices.size());
+  const size_t chunks = (m.vertices.size() + kChunk - 1) / kChunk;
+  std::atomic<size_t> chunks_done{0};
+  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, Workspace& ws) {
+    ws.fit(*field.program);
+    for (size_t v = c * kChunk; v < std::min(m.vertices.size(), (c + 1) * kChunk); ++v)
+      m.normals[v] = vertex_normal(field, lattice, m.vertices[v], capped[v], outward[v], ws);
+    report(0.9 + 0.1 * double(++chunks_done) / double(chunks));
+  });
+  m.colors.assign(m.vertices.size(), options.color);
+  report(1);
+  return m;
+}
+
+double enclosed_volume(const Mesh& m) {
+  // Σ det(a, b, c) / 6 over the faces, relative to the lattice's centre (less cancellation).
+  const Vec3 o = m.lattice.empty() ? Vec3{} : m.lattice.center();
+  double sum = 0;
+  for (const auto& f : m.faces)
+    sum += dot(m.vertices[f[0]] - o, cross(m.vertices[f[1]] - o, m.vertices[f[2]] - o));
+  return sum / 6;
+}
+
+}  // namespace softtrace

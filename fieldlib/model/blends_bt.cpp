@@ -1,0 +1,356 @@
+#include "model/blends_bt.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "describe/building.h"
+#include "kernels/bt_base.h"
+#include "math/bound_util.h"
+#include "math/scratch.h"
+
+namespace softtrace {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTiny = std::numeric_limits<double>::denorm_min();
+
+Interval signed_interval(int sigma, Interval a) {
+  return sigma > 0 ? a : -a;
+}
+
+// R = τ·BT_k(σ_1 f_1, ..., σ_k f_k) — 003 Eqs. 2–5 and §3.3, docs/math.md §7.1–§7.4 (§7.6 with
+// bulge)
+class BtBlend final : public FieldNode {
+ public:
+  BtBlend(std::vector<NodePtr> children, BtOperator op, int tau, std::vector<int> sigma,
+          double omega)
+      : c_(std::move(children)),
+        op_(std::move(op)),
+        tau_(tau),
+        sigma_(std::move(sigma)),
+        omega_(omega) {
+    for (int i = 0; i < op_.k(); ++i)  // r_i(2 + ω) rounded as P_i is, so P_i <= r_max_[i]
+      r_max_.push_back(bulge() ? op_.r()[i] * (2 + omega_) : op_.r()[i]);
+  }
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const int k = op_.k();
+    const bool need_g = grad || bulge();
+    Scratch<double> x(k), dx(k);
+    Scratch<Vec3> g(k);
+    for (int i = 0; i < k; ++i) {
+      x[i] = sigma_[i] * c_[i]->eval(p, need_g ? &g[i] : nullptr);
+      if (need_g) g[i] = g[i] * sigma_[i];
+    }
+    double v;
+    if (bulge()) {
+      const BulgeParameters b =
+          bulge_parameters(g[0], g[1], op_.r().data(), op_.m().data(), omega_);
+      v = op_.eval(x.data(), b.P, b.M, grad ? dx.data() : nullptr);
+    } else {
+      v = op_(x.data(), grad ? dx.data() : nullptr);
+    }
+    if (grad) {
+      Vec3 s;
+      for (int i = 0; i < k; ++i) s += g[i] * (dx[i] * tau_);
+      *grad = s;
+    }
+    return tau_ * v;
+  }
+
+  Interval interval(const Box& b) const override {
+    const int k = op_.k();
+    Scratch<double> lo(k), hi(k);
+    for (int i = 0; i < k; ++i) {
+      const Interval X = signed_interval(sigma_[i], c_[i]->interval(b));
+      lo[i] = X.lo;
+      hi[i] = X.hi;
+    }
+    BulgeOperand g[2];
+    const Interval bt = bulge() ? bulge_enclosure(lo.data(), hi.data(), bulge_bounds(b, g))
+                                : monotone_enclosure(lo.data(), hi.data());
+    return tau_ > 0 ? bt : -bt;
+  }
+
+  double lipschitz() const override {
+    if (bulge()) return kInf;
+    double L = 0;
+    for (int i = 0; i < op_.k(); ++i) L = std::max(L, iv::up(c_[i]->lipschitz() / op_.m()[i]));
+    return L;
+  }
+
+  double lipschitz(const Box& b) const override {
+    if (bulge()) return bulge_lipschitz(b);
+    Interval I;
+    double L;
+    bounds(b, &I, &L);
+    return L;
+  }
+
+  // Without bulge elimination, the children's intervals and bounds in one call each; the bound
+  // is the largest L_i/m_i among the children that can be active in the box.
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    if (bulge()) return FieldNode::bounds(b, value, L);
+    const int k = op_.k();
+    Scratch<Interval> X(k);
+    Scratch<double> Lc(k), lo(k), hi(k);
+    for (int i = 0; i < k; ++i) {
+      Interval f;
+      c_[i]->bounds(b, &f, &Lc[i]);
+      X[i] = signed_interval(sigma_[i], f);
+      lo[i] = X[i].lo;
+      hi[i] = X[i].hi;
+    }
+    const Interval bt = monotone_enclosure(lo.data(), hi.data());
+    *value = tau_ > 0 ? bt : -bt;
+    *L = 0;
+    for (int i = 0; i < k; ++i)
+      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
+        *L = std::max(*L, iv::up(Lc[i] / op_.m()[i]));
+  }
+
+  Box region(double level, Side side) const override {
+    // R <= c  ⇔  BT <= c (τ = 1) or BT >= -c (τ = -1); R >= c likewise with the sides swapped.
+    const bool bt_below = (side == Side::Below) == (tau_ > 0);
+    const double c = tau_ > 0 ? level : -level;
+    return bt_below ? region_below(c) : region_above(c);
+  }
+
+ private:
+  bool bulge() const { return omega_ > 0; }
+
+  // A box containing {σ_i f_i <= t} (below) or {σ_i f_i >= t} (!below).
+  Box child_region(int i, double t, bool below) const {
+    const bool child_below = below == (sigma_[i] > 0);
+    return c_[i]->region(sigma_[i] > 0 ? t : -t, child_below ? Side::Below : Side::Above);
+  }
+  // {BT <= c} ⊂ ∪_i {x_i <= r_i + m_i c}; with bulge elimination only for c <= 0.
+  Box region_below(double c) const {
+    if (bulge() && c > 0) return Box::unbounded();
+    Box out;
+    for (int i = 0; i < op_.k(); ++i)
+      out = out.united(child_region(i, iv::up(r_max_[i] + iv::up(op_.m()[i] * c)), true));
+    return out;
+  }
+  // {BT >= c} ⊂ ∩_i {x_i >= m_i c}; with bulge elimination only for c >= 0.
+  Box region_above(double c) const {
+    if (bulge() && c < 0) return Box::unbounded();
+    Box out = Box::unbounded();
+    for (int i = 0; i < op_.k(); ++i)
+      out = out.intersected(child_region(i, iv::down(op_.m()[i] * c), false));
+    return out;
+  }
+
+  Interval monotone_enclosure(const double* lo, const double* hi) const {
+    const double* r = op_.r().data();
+    const double* m = op_.m().data();
+    const double vlo = op_(lo, nullptr), vhi = op_(hi, nullptr);
+    return iv::out(vlo - 2 * op_.value_tolerance(lo, vlo, r, m),
+                   vhi + 2 * op_.value_tolerance(hi, vhi, r, m));
+  }
+
+  // The position functions' ranges and slopes over the box, from the operands' gradient
+  // floors and Hessian bounds (bt_base.h, bulge_box); `g` receives the operands' bounds.
+  BulgeBox bulge_bounds(const Box& b, BulgeOperand g[2]) const {
+    bool known = true;
+    for (int i = 0; i < 2; ++i) {
+      g[i].grad_lo = c_[i]->gradient_floor(b);
+      g[i].grad_hi = c_[i]->lipschitz(b);
+      g[i].hessian = c_[i]->hessian_bound(b);
+      known = known && g[i].grad_lo > 0 && std::isfinite(g[i].hessian);
+    }
+    if (known)  // the centre anchors cosθ's range; without slope bounds it is [-1, 1] anyway
+      for (int i = 0; i < 2; ++i) {
+        c_[i]->eval(b.center(), &g[i].centre_gradient);
+        g[i].centre_gradient = g[i].centre_gradient * sigma_[i];
+      }
+    return bulge_box(g, 0.5 * b.diagonal(), op_.r().data(), op_.m().data(), omega_);
+  }
+
+  // Where the base is homogeneous in its ranges, BT is non-decreasing in x, non-increasing in
+  // the ranges' factor c and monotone in each M_i with the sign of -BT, a sign M cannot change
+  // ([BT-1]): its extremes over the box are at corners. Otherwise (or with M unbounded) the
+  // bracket min_i (x_i - P_i)/M_i <= BT <= min_i x_i/M_i, of which M_hi = inf keeps the sign only.
+  Interval bulge_enclosure(const double* lo, const double* hi, const BulgeBox& B) const {
+    const bool corners = homogeneous() && std::isfinite(B.M_hi[0]) && std::isfinite(B.M_hi[1]);
+    const Interval v = corners ? bulge_corners(lo, hi, B) : bulge_bracket(lo, hi, B);
+    if (std::isnan(v.lo) || std::isnan(v.hi)) return Interval::entire();
+    return v;
+  }
+
+  Interval bulge_corners(const double* lo, const double* hi, const BulgeBox& B) const {
+    const double* m = op_.m().data();
+    const auto padded = [&](const double* x, const double* P, const double* M, double side) {
+      const double v = op_.eval(x, P, M, nullptr);
+      return v + side * 2 * op_.value_tolerance(x, v, P, M);
+    };
+    return iv::out(std::min(padded(lo, B.P_hi, m, -1), padded(lo, B.P_hi, B.M_hi, -1)),
+                   std::max(padded(hi, B.P_lo, m, 1), padded(hi, B.P_lo, B.M_hi, 1)));
+  }
+
+  Interval bulge_bracket(const double* lo, const double* hi, const BulgeBox& B) const {
+    double L = kInf, U = kInf;
+    for (int i = 0; i < op_.k(); ++i) {
+      const double m = op_.m()[i], M = B.M_hi[i];
+      const double n = iv::down(lo[i] - B.P_hi[i]);  // lower end of x_i - P_i
+      const double tn = 1e-9 * (std::abs(lo[i]) + B.P_hi[i]);
+      if (n > tn)
+        L = std::min(L, std::isfinite(M) ? iv::down((n - tn) / M) : kTiny);
+      else
+        L = std::min(L, iv::down((n - tn) / m));
+      const double th = 1e-9 * (std::abs(hi[i]) + B.P_hi[i]);
+      if (hi[i] < -th)
+        U = std::min(U, std::isfinite(M) ? iv::up((hi[i] + th) / M) : -kTiny);
+      else
+        U = std::min(U, iv::up((hi[i] + th) / m));
+    }
+    return {L, U};
+  }
+
+  // The base scales with its ranges: BT(x; c·r) = c·BT(x/c; r) (blends_bt.h).
+  bool homogeneous() const { return !op_.is_conic() || op_.conic_p() == 0; }
+
+  // |∇BT| <= max_i L_i/m_i + max_i (r_i/m_i)|∇cosθ| + |BT| max_i |∇M_i|/m_i (blends_bt.h), the
+  // first two maxima over the children that can be active in the box.
+  double bulge_lipschitz(const Box& b) const {
+    if (!homogeneous()) return kInf;
+    Interval X[2];
+    double lo[2], hi[2];
+    for (int i = 0; i < 2; ++i) {
+      X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
+      lo[i] = X[i].lo;
+      hi[i] = X[i].hi;
+    }
+    BulgeOperand g[2];  // their grad_hi are the children's box Lipschitz bounds
+    const BulgeBox B = bulge_bounds(b, g);
+    double slope = 0, range = 0, weight = 0;
+    int active = 0;
+    for (int i = 0; i < 2; ++i) {
+      const double m = op_.m()[i];
+      weight = std::max(weight, iv::up(B.dM[i] / m));
+      if (!can_be_active(i, X, B.P_hi, B.M_hi)) continue;
+      ++active;
+      slope = std::max(slope, iv::up(g[i].grad_hi / m));
+      range = std::max(range, iv::up(op_.r()[i] / m));
+    }
+    if (active < 2) range = 0;  // one term: BT = x_j/M_j does not depend on the ranges
+    const double h = magnitude(bulge_enclosure(lo, hi, B));
+    return iv::up(slope + iv::up(flat_product(range, B.dcos)) + iv::up(flat_product(h, weight)));
+  }
+
+  // Whether ∂_iBT can be non-zero in the box: it is zero wherever x_i - M_i·min_{j≠i} x_j/M_j >=
+  // P_i (the hyper-ellipsoid term i is 0 since h <= min_j x_j/M_j; for the conic, x is outside
+  // region II with another arg-min), checked with interval ends, P_i <= P_hi, M_i ∈ [m_i, M_hi].
+  bool can_be_active(int i, const Interval* X, const double* P_hi, const double* M_hi) const {
+    const double* m = op_.m().data();
+    double others = kInf;  // an upper bound of min_{j≠i} x_j/M_j over the box
+    for (int j = 0; j < op_.k(); ++j)
+      if (j != i) others = std::min(others, iv::up(X[j].hi / (X[j].hi >= 0 ? m[j] : M_hi[j])));
+    const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
+    return !(iv::down(X[i].lo - reach) > P_hi[i]);
+  }
+
+  std::vector<NodePtr> c_;
+  BtOperator op_;
+  int tau_;
+  std::vector<int> sigma_;
+  double omega_;               // 0: no bulge elimination
+  std::vector<double> r_max_;  // r_i(2 + ω): the largest P_i, for region()
+};
+
+enum class BtKind { Union, Intersection, Difference, Displacement };
+
+const char* kind_name(BtKind kind) {
+  switch (kind) {
+    case BtKind::Union:
+      return "bt_union";
+    case BtKind::Intersection:
+      return "bt_intersection";
+    case BtKind::Difference:
+      return "bt_difference";
+    case BtKind::Displacement:
+      return "displacement_union";
+  }
+  return "";
+}
+
+NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
+  const std::string name = kind_name(kind);
+  p.check(ctx.convention == Convention::Zero, "type",
+          name +
+              " is defined in the zero convention only (inside f <= 0, docs/math.md §7.4); set the "
+              "object's \"convention\" to \"zero\"");
+  std::vector<NodePtr> children = build_children(p, "children", ctx);
+  const size_t k = children.size();
+
+  std::vector<double> m(k, 1.0);
+  if (kind != BtKind::Displacement && p.has("m")) m = p.numbers_or_scalar("m", k);
+
+  const std::string base = p.string("base");  // "conic" or "hyperellipsoid" (the table)
+  BtOperator op;
+  double conic_p = 0, r1 = 0, r2 = 0;
+  if (base == "conic") {
+    p.check(k == 2, "children",
+            "the conic base blends exactly 2 children (docs/math.md §7.2); use \"hyperellipsoid\" "
+            "for more");
+    r1 = p.positive("r1");  // required with the conic base: the table cannot say so
+    r2 = p.positive("r2");
+    conic_p = p.number("p");
+    p.check(conic_p < r1 * r2, "p",
+            "expected p < r1*r2 (docs/math.md §6.1: p = r1*r2 degenerates to the chord)");
+    op = BtOperator::conic(r1, r2, conic_p, m);
+  } else {
+    std::vector<double> r = p.numbers_or_scalar("r", k), pe = p.numbers_or_scalar("p", k);
+    for (double pi : pe)
+      p.check(pi > 1, "p", "expected every p_i > 1 (docs/math.md §7.3: T is C^1, its root unique)");
+    op = BtOperator::hyperellipsoid(std::move(r), std::move(pe), m);
+  }
+
+  double omega = 0;
+  if (p.has("bulge_elimination")) {
+    const Params be = p.object("bulge_elimination");
+    be.check_keys({"omega"});  // a misspelled key before a missing one, as everywhere
+    omega = be.positive("omega");
+    be.check(omega <= kMaxMagnitude, "omega", "expected a number of magnitude at most 1e150");
+    be.finish();
+    p.check(k == 2, "bulge_elimination",
+            "bulge elimination takes exactly 2 children (003 §5, docs/math.md §7.6)");
+    if (op.is_conic())
+      p.check(conic_p < omega * omega * r1 * r2, "p",
+              "with bulge elimination the ranges shrink to r_i*omega, so a conic base needs "
+              "p < omega^2*r1*r2 (docs/math.md §6.1, §7.6)");
+  }
+
+  int tau = 1;
+  std::vector<int> sigma(k, 1);
+  if (kind == BtKind::Intersection) {
+    tau = -1;
+    std::fill(sigma.begin(), sigma.end(), -1);
+  } else if (kind == BtKind::Difference) {
+    tau = -1;
+    sigma[0] = -1;
+  }
+  return std::make_unique<BtBlend>(std::move(children), std::move(op), tau, std::move(sigma),
+                                   omega);
+}
+
+}  // namespace
+
+NodePtr create_bt_union(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Union);
+}
+NodePtr create_bt_intersection(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Intersection);
+}
+NodePtr create_bt_difference(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Difference);
+}
+NodePtr create_displacement_union(const Params& p, const BuildContext& ctx) {
+  return create_bt(p, ctx, BtKind::Displacement);
+}
+
+}  // namespace softtrace

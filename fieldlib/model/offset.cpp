@@ -1,0 +1,77 @@
+#include "kernels/offset.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "describe/building.h"
+#include "model/blends.h"
+#include "model/program_builder.h"
+
+namespace softtrace {
+
+namespace {
+
+// s·(f - c)   — zero-surface function from a distance function, 003 §2.1, docs/scene-format.md
+// "offset"
+class Offset final : public FieldNode {
+ public:
+  Offset(NodePtr child, double s, double c) : child_(std::move(child)), s_(s), c_(c) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const double v = child_->eval(p, grad);
+    if (grad) *grad = offset_gradient(s_, *grad);
+    return offset_value(s_, c_, v);
+  }
+  Interval interval(const Box& b) const override {
+    return offset_interval(s_, c_, child_->interval(b));
+  }
+  double lipschitz() const override { return offset_lipschitz(s_, child_->lipschitz()); }
+  double lipschitz(const Box& b) const override {
+    return offset_lipschitz(s_, child_->lipschitz(b));
+  }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    Interval f;
+    double Lf;
+    child_->bounds(b, &f, &Lf);
+    *value = offset_interval(s_, c_, f);
+    *L = offset_lipschitz(s_, Lf);
+  }
+  double gradient_floor(const Box& b) const override {
+    return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
+  }
+  double hessian_bound(const Box& b) const override {
+    return iv::up(std::abs(s_) * child_->hessian_bound(b));
+  }
+  Box region(double level, Side side) const override {
+    // The child's side flips with the sign of s; its level c + level/s is rounded away from
+    // the side enclosed (up for Below, down for Above) so no point is lost to rounding.
+    const Side child_side = (s_ > 0) == (side == Side::Below) ? Side::Below : Side::Above;
+    const double t = child_side == Side::Below ? iv::up(c_ + iv::up(level / s_))
+                                               : iv::down(c_ + iv::down(level / s_));
+    return child_->region(t, child_side);
+  }
+  // The child's code, then one instruction with s and c inline.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{Op::Offset};
+    i.in = b.compile(*child_, reg);
+    i.out = b.new_slot();
+    i.a = b.consts({s_, c_});
+    return b.emit(i);
+  }
+
+ private:
+  NodePtr child_;
+  double s_, c_;
+};
+
+}  // namespace
+
+NodePtr create_offset(const Params& p, const BuildContext& ctx) {
+  std::vector<NodePtr> children = build_children(p, "children", ctx);
+  const double s = p.number("scale", 1.0);
+  p.check(s != 0, "scale", "expected scale != 0 (s = 0 gives a constant field)");
+  const double c = p.number("level", 1.0);
+  return std::make_unique<Offset>(std::move(children[0]), s, c);
+}
+
+}  // namespace softtrace

@@ -1,0 +1,94 @@
+#include "model/placement.h"
+
+#include <cmath>
+
+#include "model/program_builder.h"
+
+namespace softtrace {
+
+namespace {
+
+Mat3 transpose(const Mat3& m) {
+  Mat3 t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) t.r[i][j] = m.r[j][i];
+  return t;
+}
+
+class Placed final : public FieldNode {
+ public:
+  Placed(NodePtr child, const Mat3& R, const Vec3& t)
+      : child_(std::move(child)), R_(R), Rt_(transpose(R)), t_(t), rotated_(!is_identity(R)) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const double v = child_->eval(Rt_ * (p - t_), grad);
+    if (grad) *grad = R_ * *grad;
+    return v;
+  }
+  Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
+  double lipschitz() const override { return child_->lipschitz(); }
+  double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    child_->bounds(to_local(b), value, L);
+  }
+  // A rigid motion keeps gradient lengths and Hessian norms.
+  double gradient_floor(const Box& b) const override { return child_->gradient_floor(to_local(b)); }
+  double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }
+  // A pure translation is three subtractions; a rotation one matrix.
+  int compile(ProgramBuilder& b, int reg) const override {
+    Instr i{rotated_ ? Op::Place : Op::Translate};
+    i.in = reg;
+    i.out = b.new_reg();
+    i.a = rotated_ ? b.consts({t_.x, t_.y, t_.z, Rt_.r[0].x, Rt_.r[0].y, Rt_.r[0].z, Rt_.r[1].x,
+                               Rt_.r[1].y, Rt_.r[1].z, Rt_.r[2].x, Rt_.r[2].y, Rt_.r[2].z})
+                   : b.consts({t_.x, t_.y, t_.z});
+    b.emit(i);
+    return b.compile(*child_, i.out);
+  }
+  Box region(double level, Side side) const override {
+    const Box local = child_->region(level, side);
+    return local.bounded() ? transform_box(local, R_, t_) : local;
+  }
+
+ private:
+  Box to_local(const Box& b) const {
+    return b.bounded() ? transform_box(b, Rt_, Rt_ * (-t_)) : Box::unbounded();
+  }
+
+  static bool is_identity(const Mat3& m) {
+    const Mat3 I;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (m.r[i][j] != I.r[i][j]) return false;
+    return true;
+  }
+
+  NodePtr child_;
+  Mat3 R_, Rt_;
+  Vec3 t_;
+  bool rotated_;
+};
+
+}  // namespace
+
+Box transform_box(const Box& b, const Mat3& R, const Vec3& t) {
+  Box out;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y,
+                      (c & 4) ? b.hi.z : b.lo.z};
+    out.extend(R * corner + t);
+  }
+  // Pad by a few ulps of the coordinates so rounding in R·p + t cannot drop a point.
+  for (int i = 0; i < 3; ++i) {
+    const double pad = 1e-12 * std::max(std::abs(out.lo[i]), std::abs(out.hi[i]));
+    out.lo[i] -= pad;
+    out.hi[i] += pad;
+  }
+  return out;
+}
+
+NodePtr place(NodePtr child, const Mat3& rotation, const Vec3& translate) {
+  return std::make_unique<Placed>(std::move(child), rotation, translate);
+}
+
+}  // namespace softtrace

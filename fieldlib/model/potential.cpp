@@ -1,0 +1,64 @@
+#include "model/potential.h"
+
+namespace softtrace {
+
+Op Potential::op() const {
+  switch (type()) {
+    case PotentialType::Blanc:
+      return Op::Blanc;
+    case PotentialType::Wyvill:
+      return Op::Wyvill;
+    case PotentialType::Murakami:
+      return Op::Murakami;
+  }
+  return Op::Blanc;  // not reached: the switch names every type
+}
+
+namespace {
+
+// Blanc's potential with softness s >= 0   — 002 Eq. 2 (signs of R1), docs/math.md §3.2
+class Blanc final : public Potential {
+ public:
+  explicit Blanc(double s) : s_(s) {}
+  double eval(double d, double* dP) const override { return blanc(d, s_, dP); }
+  double lipschitz() const override { return blanc_lipschitz(s_); }
+  PotentialType type() const override { return PotentialType::Blanc; }
+  double parameter() const override { return s_; }
+
+ private:
+  double s_;
+};
+
+// 1 - 4/9 d^6 + 17/9 d^4 - 22/9 d^2   — Wyvill et al., docs/math.md §3.3
+class Wyvill final : public Potential {
+ public:
+  double eval(double d, double* dP) const override { return wyvill(d, dP); }
+  double lipschitz() const override { return wyvill_lipschitz(); }
+  PotentialType type() const override { return PotentialType::Wyvill; }
+};
+
+// (1 - d^2)^2, POV-Ray's blob density   — docs/math.md §3.3; its 0.5 level is d = 0.5412
+class Murakami final : public Potential {
+ public:
+  double eval(double d, double* dP) const override { return murakami(d, dP); }
+  double lipschitz() const override { return murakami_lipschitz(); }
+  PotentialType type() const override { return PotentialType::Murakami; }
+};
+
+}  // namespace
+
+std::unique_ptr<Potential> create_blanc(const Params& p) {
+  const double s = p.number("s", 0.0);  // >= 0 (the table; docs/math.md §3.2)
+  return make_blanc(s);
+}
+PotentialPtr make_blanc(double s) {
+  return std::make_unique<Blanc>(s);
+}
+std::unique_ptr<Potential> create_wyvill(const Params&) {
+  return std::make_unique<Wyvill>();
+}
+std::unique_ptr<Potential> create_murakami(const Params&) {
+  return std::make_unique<Murakami>();
+}
+
+}  // namespace softtrace

@@ -1,0 +1,51 @@
+// Compiling the model to a flat program (program/program.h): each node emits its own instructions
+// through ProgramBuilder (FieldNode::compile), or one oracle instruction that calls it back.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
+#include <vector>
+
+#include "model/node.h"
+#include "program/program.h"
+
+namespace softtrace {
+
+// Builds a program from a model node; FieldNode::compile calls back into it.
+class ProgramBuilder {
+ public:
+  // Emits the subtree of `node` reading point register `reg`; returns its result slot.
+  int compile(const FieldNode& node, int reg);
+
+  int new_slot() { return prog_.slots++; }
+  int new_reg() { return prog_.regs++; }
+  int consts(std::initializer_list<double> c);
+  int consts(const std::vector<double>& c);
+  int emit(const Instr& i);
+
+  // An oracle instruction: `node` evaluates its own subtree at register `reg`.
+  int oracle(const FieldNode& node, int reg);
+  // Emits `children` as a group combined by `op` (Sum, Min, Max, SuperUnion, SuperIntersect,
+  // Perlin, Ricci), whose `in` is `consts_at`; for Sum, children whose value is exactly 0 outside
+  // their support are made prunable.
+  int nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg,
+           int consts_at = 0);
+
+  Program finish(int result);
+
+ private:
+  // The order `nary` compiles the children in, given their supports (unbounded where a child is
+  // never dropped): a large sum's in the order of the leaves of a BVH over their supports (its
+  // value changes only by the rounding of the sum's order), which is then left in *tree with the
+  // children's compiled positions as ids; the scene's order, and *tree empty, otherwise.
+  static std::vector<int32_t> compile_order(Op op, const std::vector<Box>& supports, BoxBvh* tree);
+  // The number of children from which a sum is compiled in spatial order.
+  static constexpr size_t kSpatialOrder = 32;
+
+  Program prog_;
+};
+
+Program compile(const FieldNode& root);
+
+}  // namespace softtrace

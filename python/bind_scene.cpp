@@ -1,0 +1,125 @@
+// softtrace._native.Scene: a scene parsed from JSON text, its settings read as plain values and
+// set by replacing the scene (PyScene, bindings.h): a setting changes the JSON text and the
+// whole text is parsed again, so that a set value is checked exactly as in a file, with the same
+// located errors, and the scene hash is always that of the text rendered.
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "scene/json_text.h"
+
+namespace softtrace::python {
+
+namespace {
+
+using json = nlohmann::json;
+
+py::list vec(const Vec3& v) {
+  return py::cast(std::vector<double>{v[0], v[1], v[2]});
+}
+
+py::dict camera_of(const Camera& c) {
+  return py::dict(py::arg("eye") = vec(c.eye), py::arg("target") = vec(c.target),
+                  py::arg("up") = vec(c.up), py::arg("fov") = c.fov);
+}
+
+py::dict light_of(const Light& l) {
+  py::dict d;
+  switch (l.type) {
+    case Light::Type::Directional:
+      d["type"] = "directional";
+      d["direction"] = vec(l.direction);
+      d["shadows"] = l.shadows;
+      break;
+    case Light::Type::Point:
+      d["type"] = "point";
+      d["position"] = vec(l.position);
+      d["shadows"] = l.shadows;
+      break;
+    case Light::Type::Ambient:
+      d["type"] = "ambient";
+      break;
+  }
+  d["color"] = vec(l.color);
+  d["intensity"] = l.intensity;
+  return d;
+}
+
+// The scene with `key` of its JSON replaced by `value` (removed when None), parsed again.
+void replace_key(PyScene& s, const std::string& key, const py::handle& value) {
+  json doc = parse_json_text(s.text, s.scene->path);
+  if (value.is_none())
+    doc.erase(key);
+  else
+    doc[key] = json::parse(json_text_of(value));
+  std::string text = doc.dump(1);
+  auto scene = std::make_shared<const Scene>(parse_scene(text, s.scene->path));
+  s.scene = std::move(scene);  // only now: a refused value leaves the scene as it was
+  s.text = std::move(text);
+}
+
+// One entry of "image", the others kept.
+void replace_image_entry(PyScene& s, const char* entry, int value) {
+  const json doc = parse_json_text(s.text, s.scene->path);
+  json image = doc.contains("image") ? doc["image"] : json::object();
+  image[entry] = value;
+  replace_key(s, "image", py::module_::import("json").attr("loads")(image.dump()));
+}
+
+}  // namespace
+
+void bind_scene(py::module_& m) {
+  py::class_<PyScene, std::shared_ptr<PyScene>>(m, "Scene")
+      .def(py::init([](std::string text, const std::string& name) {
+             auto s = std::make_shared<PyScene>();
+             s->scene = std::make_shared<const Scene>(parse_scene(text, name));
+             s->text = std::move(text);
+             return s;
+           }),
+           py::arg("text"), py::arg("name"))
+      .def_property_readonly("path", [](const PyScene& s) { return s.scene->path; })
+      .def_property_readonly("_bytes", [](const PyScene& s) { return py::bytes(s.text); })
+      .def_property_readonly("hash", [](const PyScene& s) { return s.scene->file_hash; })
+      .def_property_readonly("objects",
+                             [](const PyScene& s) {
+                               std::vector<std::string> names;
+                               for (const SceneObject& o : s.scene->objects)
+                                 names.push_back(o.name);
+                               return names;
+                             })
+      .def_property_readonly("frames", [](const PyScene& s) { return s.scene->animation.frames; })
+      .def_property(
+          "width", [](const PyScene& s) { return s.scene->image.width; },
+          [](PyScene& s, int v) { replace_image_entry(s, "width", v); })
+      .def_property(
+          "height", [](const PyScene& s) { return s.scene->image.height; },
+          [](PyScene& s, int v) { replace_image_entry(s, "height", v); })
+      .def_property(
+          "spp", [](const PyScene& s) { return s.scene->image.spp; },
+          [](PyScene& s, int v) { replace_image_entry(s, "spp", v); })
+      .def_property(
+          "camera", [](const PyScene& s) { return camera_of(s.scene->camera); },
+          [](PyScene& s, const py::object& v) { replace_key(s, "camera", v); })
+      .def_property(
+          "image",
+          [](const PyScene& s) {
+            const ImageSettings& i = s.scene->image;
+            return py::dict(py::arg("width") = i.width, py::arg("height") = i.height,
+                            py::arg("spp") = i.spp);
+          },
+          [](PyScene& s, const py::object& v) { replace_key(s, "image", v); })
+      .def_property(
+          "background", [](const PyScene& s) { return vec(s.scene->background); },
+          [](PyScene& s, const py::object& v) { replace_key(s, "background", v); })
+      .def_property(
+          "lights",
+          [](const PyScene& s) {
+            py::list out;
+            for (const Light& l : s.scene->lights) out.append(light_of(l));
+            return out;
+          },
+          [](PyScene& s, const py::object& v) { replace_key(s, "lights", v); })
+      .def_property_readonly("default_lights",
+                             [](const PyScene& s) { return s.scene->default_lights; });
+}
+
+}  // namespace softtrace::python

@@ -1,0 +1,224 @@
+"""Scenes and fields from Python: files and their errors, dicts and builders, settings copied on
+write, pickling, the Jupyter picture, signatures, stubs and the docstrings' examples."""
+import ast
+import copy
+import doctest
+import inspect
+import json
+import os
+import pickle
+import struct
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from conftest import BIN, SRC, TWO_BLOBS
+
+import softtrace
+
+
+def test_missing_files_and_nul_bytes_are_os_errors(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        softtrace.load_scene(tmp_path / "missing.json")
+    with pytest.raises(IsADirectoryError):
+        softtrace.load_scene(tmp_path)
+    with pytest.raises(ValueError, match="null byte"):
+        softtrace.load_scene(TWO_BLOBS + "\0junk")
+    assert softtrace.load_scene(TWO_BLOBS).objects == ["two_blobs"]  # a path-like works too
+
+
+def test_ill_formed_utf8_gives_the_cli_location(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_bytes(b'{"camera": {"eye": [0, 0, 1],\n "fo\xffv": 30}}')
+    cli = subprocess.run([BIN, "render", str(bad)], capture_output=True)
+    assert cli.returncode == 2
+    with pytest.raises(softtrace.SceneError) as e:
+        softtrace.load_scene(bad)
+    assert (e.value.file, e.value.line, e.value.column) == (str(bad), 2, 5)
+    assert cli.stderr.startswith(b"softtrace: %s:2:5: " % str(bad).encode())
+    assert "\\xff" in str(e.value) and "ill-formed UTF-8" in e.value.message
+
+
+def test_scene_error_attributes():
+    text = open(TWO_BLOBS).read()
+    with pytest.raises(softtrace.SceneError) as e:
+        softtrace.parse_scene(text.replace('"n": 20', '"n": -20'), "mine")
+    assert e.value.file == "mine" and e.value.line is None
+    assert e.value.pointer == "/objects/0/field/children/0/distance/n"
+    assert str(e.value) == "mine: %s: %s" % (e.value.pointer, e.value.message)
+    with pytest.raises(softtrace.SceneError) as e:
+        softtrace.parse_scene('{"camera": [', "broken")
+    assert (e.value.file, e.value.line, e.value.column, e.value.pointer) == ("broken", 1, 13, None)
+    assert isinstance(e.value, ValueError)
+
+
+def two_blobs_with_builders():
+    st = softtrace
+    return {
+        "camera": {"eye": [0, -150, 40], "target": np.array([10, 0, 0]), "fov": 40},
+        "image": {"width": 64, "height": 48},
+        "objects": [{"name": "two_blobs", "field": st.soft_blend([
+            st.soft_object(st.lp_metric([30, 30, 12], 20), st.wyvill()),
+            st.soft_object(st.lp_metric([10, 10, 10], 2), st.murakami(), translate=[25, 0, 0]),
+        ])}]}
+
+
+def test_dicts_and_builders_make_the_file_scene():
+    scene = softtrace.load_dict(two_blobs_with_builders())
+    from_file = softtrace.load_scene(TWO_BLOBS)
+    points = np.random.default_rng(2).uniform(-40, 40, (500, 3))
+    assert np.array_equal(softtrace.Field(scene).eval(points),
+                          softtrace.Field(from_file).eval(points))
+    assert np.array_equal(softtrace.render(scene)["rgba"], softtrace.render(from_file)["rgba"])
+    assert softtrace.soft_blend([1, 2]) == {"type": "soft_blend", "children": [1, 2]}
+    assert softtrace.ricci_union(4, []) == {"type": "ricci_union", "n": 4, "children": []}
+    with pytest.raises(TypeError, match=r"lp_metric\(\) has no parameter 'radius'"):
+        softtrace.lp_metric(radius=3)
+    with pytest.raises(TypeError, match="got 'n' twice"):
+        softtrace.lp_metric([1, 1, 1], 2, n=3)
+    with pytest.raises(TypeError, match="has no parameter 'translate'"):
+        softtrace.wyvill(translate=[1, 0, 0])  # potentials are not placed
+    with pytest.raises(softtrace.SceneError, match=r"<dict>: /objects/0/field/children"):
+        softtrace.load_dict({**two_blobs_with_builders(), "objects": [
+            {"field": softtrace.soft_blend(3)}]})
+    with pytest.raises(ValueError, match="no NaN or infinity"):
+        softtrace.load_dict({**two_blobs_with_builders(), "background": [np.nan, 0, 0]})
+    with pytest.raises(TypeError, match="not a scene value"):
+        softtrace.load_dict({**two_blobs_with_builders(), "background": {1, 2, 3}})
+
+
+def test_a_builder_per_kind_with_the_tables_parameters():
+    for kind in softtrace.nodes():
+        build = getattr(softtrace, kind["name"])
+        params = [p["name"] for p in kind["params"]]
+        assert list(inspect.signature(build).parameters)[:len(params)] == params
+        assert kind["summary"] in build.__doc__
+        node = build(**{p: 1 for p in params})
+        assert node == {"type": kind["name"], **{p: 1 for p in params}}
+
+
+def test_settings_are_checked_and_copied_on_write():
+    scene = softtrace.load_scene(TWO_BLOBS)
+    other = copy.copy(scene)
+    camera = scene.camera
+    assert camera == {"eye": [0, -150, 40], "target": [10, 0, 0], "up": [0, 0, 1], "fov": 40}
+    scene.camera = dict(camera, fov=30)
+    assert scene.camera["fov"] == 30 and other.camera["fov"] == 40  # other keeps its own
+    with pytest.raises(softtrace.SceneError) as e:
+        scene.camera = dict(camera, fov=200)
+    assert e.value.pointer == "/camera/fov"
+    assert scene.camera["fov"] == 30  # a refused value changes nothing
+    scene.width, scene.height, scene.spp = 20, 10, 2
+    assert scene.image == {"width": 20, "height": 10, "spp": 2}
+    assert softtrace.render(scene)["rgba"].shape == (10, 20, 4)
+    with pytest.raises(softtrace.SceneError, match="/image/width"):
+        scene.width = 0
+    assert scene.default_lights and len(scene.lights) == 2
+    scene.lights = [{"type": "point", "position": [0, -100, 100], "intensity": 2}]
+    assert not scene.default_lights
+    assert scene.lights[0]["position"] == [0, -100, 100] and scene.lights[0]["shadows"]
+    with pytest.raises(softtrace.SceneError, match=r"/lights/0/position"):
+        scene.lights = [{"type": "point"}]
+    scene.lights = None
+    assert scene.default_lights
+    scene.background = [0.1, 0.2, 0.3]
+    assert scene.background == [0.1, 0.2, 0.3]
+    assert json.loads(scene.text)["background"] == [0.1, 0.2, 0.3]
+    assert other.background == [0, 0, 0] and other.image["width"] == 64
+
+
+def test_scenes_and_fields_pickle_as_their_json():
+    scene = softtrace.load_scene(TWO_BLOBS)
+    scene.spp = 2
+    again = pickle.loads(pickle.dumps(scene))
+    assert isinstance(again, softtrace.Scene) and again.text == scene.text
+    assert again.path == scene.path and again.hash == scene.hash
+    assert np.array_equal(softtrace.render(again)["rgba"], softtrace.render(scene)["rgba"])
+    points = np.random.default_rng(4).uniform(-40, 40, (100, 3))
+    node = softtrace.soft_object(softtrace.lp_metric([20, 30, 40], 2), softtrace.wyvill())
+    for field in (softtrace.Field(scene), softtrace.Field(node, name="mine")):
+        back = pickle.loads(pickle.dumps(field))
+        assert back.convention == field.convention
+        assert np.array_equal(back.eval(points), field.eval(points))
+
+
+def test_points_of_any_shape():
+    field = softtrace.Field(softtrace.load_scene(TWO_BLOBS))
+    points = np.random.default_rng(6).uniform(-40, 40, (4, 5, 6, 3))
+    flat_v, flat_g = field.gradient(points.reshape(-1, 3))
+    v, g = field.gradient(points)
+    assert v.shape == (4, 5, 6) and g.shape == (4, 5, 6, 3)
+    assert np.array_equal(v.reshape(-1), flat_v) and np.array_equal(g.reshape(-1, 3), flat_g)
+    assert field.eval([20.0, 1.0, 2.0]).shape == ()
+    assert field.eval(points[..., ::2, :]).shape == (4, 5, 3)  # a strided view is copied
+    assert field.eval(np.zeros((0, 3))).shape == (0,)
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 3\)"):
+        field.eval(np.zeros((3, 2)))
+
+
+def test_jupyter_picture_is_a_small_png():
+    scene = softtrace.load_scene(os.path.join(SRC, "scenes", "fig12b_soft_blend.json"))
+    png = scene._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = struct.unpack(">II", png[16:24])
+    assert max(width, height) == 320 and abs(width / height - scene.width / scene.height) < 0.01
+
+
+def public_callables():
+    for name in softtrace.__all__:
+        value = getattr(softtrace, name)
+        if callable(value) and not isinstance(value, type):
+            yield name, value
+    for cls in (softtrace.Scene, softtrace.Field):
+        for name, value in vars(cls).items():
+            if callable(value) and (not name.startswith("_") or name == "__init__"):
+                yield cls.__name__ + "." + name, value
+
+
+def test_every_public_callable_has_a_signature_and_a_docstring():
+    checked = 0
+    for name, value in public_callables():
+        inspect.signature(value)  # raises ValueError for a bare native function
+        assert value.__doc__ and len(value.__doc__) > 20, name
+        checked += 1
+    assert checked > 40
+
+
+def test_the_stub_lists_what_the_package_has():
+    stub = ast.parse(open(os.path.join(os.path.dirname(softtrace.__file__),
+                                       "__init__.pyi")).read())
+    functions = {n.name: n for n in stub.body if isinstance(n, ast.FunctionDef)}
+    classes = {n.name for n in stub.body if isinstance(n, ast.ClassDef)}
+    exported = set(softtrace.__all__) - {"SceneError", "__version__"}
+    assert exported | {"min", "max"} == set(functions) | classes
+    assert "min" not in softtrace.__all__ and softtrace.min([])["type"] == "min"
+    assert os.path.exists(os.path.join(os.path.dirname(softtrace.__file__), "py.typed"))
+    for kind in softtrace.nodes():
+        args = functions[kind["name"]].args
+        assert [a.arg for a in args.args] == [p["name"] for p in kind["params"]]
+    for name in ("load_scene", "render", "write_exr", "Field"):
+        value = getattr(softtrace, name)
+        real = inspect.signature(value.__init__ if isinstance(value, type) else value)
+        node = functions.get(name) or next(
+            f for c in stub.body if isinstance(c, ast.ClassDef) and c.name == name
+            for f in c.body if isinstance(f, ast.FunctionDef) and f.name == "__init__")
+        stubbed = [a.arg for a in node.args.args + node.args.kwonlyargs]
+        assert stubbed == list(real.parameters), name
+
+
+def test_stubtest_finds_the_stubs_match_the_module(tmp_path):
+    pytest.importorskip("mypy", reason="mypy (Debian's python3-mypy) checks the stubs")
+    # pybind11 classes have their own metaclass, which stubs cannot spell.
+    allow = tmp_path / "allow.txt"
+    allow.write_text("".join("softtrace.%s\n" % c for c in
+                             ("Scene", "Field", "_native.Scene", "_native.Field")))
+    run = subprocess.run([sys.executable, "-m", "mypy.stubtest", "softtrace", "--allowlist",
+                          str(allow)], capture_output=True, text=True,
+                         cwd=os.path.dirname(os.path.dirname(softtrace.__file__)))
+    assert run.returncode == 0, run.stdout + run.stderr
+
+
+def test_the_docstring_examples_run():
+    failed, attempted = doctest.testmod(softtrace, optionflags=doctest.ELLIPSIS)
+    assert attempted > 8 and failed == 0

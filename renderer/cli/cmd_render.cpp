@@ -1,0 +1,200 @@
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/cmd_common.h"
+#include "cli/commands.h"
+#include "film/film.h"
+#include "render/frame.h"
+#include "render/frame_metadata.h"
+#include "render/tiles.h"
+
+namespace softtrace {
+
+void report_error(const std::string& message) {
+  std::fprintf(stderr, "softtrace: %s\n", message.c_str());
+}
+
+namespace {
+
+std::atomic<bool> g_cancel{false};
+std::atomic<int> g_signal{0};
+
+// What a signal does depends on the phase. Loading (until the frame starts): nothing exists
+// yet, so exit at once, even in the middle of a long load. Rendering: stop the frame (g_cancel)
+// and write nothing. Writing temporary files: remove them and exit at once. Committing (renaming
+// the finished files over the outputs): nothing, so that all outputs are replaced or none is.
+// The compare-exchanges decide between the watcher and the main thread who owns a transition.
+enum Phase : int { kLoading, kRendering, kWriting, kCommitting, kAborting };
+std::atomic<int> g_phase{kLoading};
+
+}  // namespace
+
+void on_render_interrupt(int sig) {
+  int none = 0;
+  g_signal.compare_exchange_strong(none, sig);
+  g_cancel = true;
+  int phase = kLoading;
+  if (g_phase.compare_exchange_strong(phase, kAborting)) {
+    report_error("interrupted; no image written");
+    abandon_pending_writes_and_exit(128 + sig);
+  }
+  phase = kWriting;
+  if (g_phase.compare_exchange_strong(phase, kAborting)) abandon_pending_writes_and_exit(128 + sig);
+}
+
+namespace {
+
+int interrupted_status() {
+  return 128 + g_signal.load();
+}
+
+// `pattern` with its last run of '#' replaced by the frame number, zero-padded to the run's
+// length: "turn.####.exr" -> "turn.0007.exr". Without --frame a '#' is refused rather than kept,
+// since it almost always means a frame was forgotten.
+std::string frame_path(const std::string& pattern, int frame) {
+  const size_t end = pattern.find_last_of('#');
+  if (end == std::string::npos) return pattern;
+  if (frame < 0) throw std::invalid_argument(pattern + ": '#' stands for the frame: give --frame");
+  size_t begin = end;
+  while (begin > 0 && pattern[begin - 1] == '#') --begin;
+  std::string number = std::to_string(frame);
+  if (number.size() < end + 1 - begin) number.insert(0, end + 1 - begin - number.size(), '0');
+  return pattern.substr(0, begin) + number + pattern.substr(end + 1);
+}
+
+// Whether any pixel of the film shows an object (coverage A > 0 anywhere).
+bool shows_an_object(const Film& film) {
+  for (size_t i = 3; i < film.rgba.size(); i += 4)
+    if (film.rgba[i] > 0) return true;
+  return false;
+}
+
+// The part of the frame to render: --crop, --pixel-bounds or --tile (at most one), or all.
+PixelBounds window_of(const RenderArgs& a, int width, int height) {
+  if (a.crop) return crop_window(*a.crop, width, height);
+  if (a.pixel_bounds) return pixel_bounds(*a.pixel_bounds, width, height);
+  if (a.tile) return tile_bounds(parse_tile(*a.tile), width, height);
+  return {0, width, 0, height};
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& a) {
+  // main() has started the signal watcher with on_render_interrupt.
+  try {
+    Scene scene = load_scene(a.scene);
+    apply_image_size(scene, a.scene, a.width, a.height, a.scale);
+    if (a.spp) scene.image.spp = a.spp;
+    if (a.frame >= 0) set_frame(scene, a.frame);
+    const PixelBounds window = window_of(a, scene.image.width, scene.image.height);
+
+    OutputOptions out_opt;
+    out_opt.aovs = parse_aovs(a.aovs);
+    out_opt.flatten = a.flatten;
+    out_opt.half = a.half;
+    out_opt.png_alpha = a.png_alpha;
+    const AovSelection& aovs = out_opt.aovs;
+    std::vector<std::string> outputs;
+    for (const auto& o : a.outputs) outputs.push_back(frame_path(o, a.frame));
+    if (outputs.empty())
+      outputs.push_back(frame_path(
+          std::filesystem::path(a.scene).stem().string() + (a.frame >= 0 ? ".####.exr" : ".exr"),
+          a.frame));
+    for (const auto& o : outputs) check_image_output_path(o);  // fail before the work, not after
+    if ((aovs.depth || aovs.normal || aovs.steps) &&
+        std::none_of(outputs.begin(), outputs.end(), is_exr_path))
+      throw std::invalid_argument("--aov needs an .exr output");
+
+    const auto threads = limit_threads(a.threads);
+
+    const auto start = std::chrono::steady_clock::now();
+    const TracedScene rt(scene, a.lipschitz);
+    int loading = kLoading;
+    if (!g_phase.compare_exchange_strong(loading, kRendering))
+      for (;;) ::pause();  // the watcher is exiting
+    Film film(window.width(), window.height(), aovs);
+    film.full_width = scene.image.width;
+    film.full_height = scene.image.height;
+    film.x0 = window.x0;
+    film.y0 = window.y0;
+    FrameInfo info = frame_info(scene, film.full_width, film.full_height);
+    // What `merge` checks before it puts tiles together.
+    // --flatten and --half change the EXR's pixels: tiles rendered with and without them must not
+    // be merged.
+    std::string settings =
+        render_settings(scene, a.lipschitz == LipschitzMode::Local ? "local" : "global", a.frame);
+    if (a.flatten) settings += " flatten";
+    if (a.half) settings += " half";
+    film.attributes["softtrace/renderHash"] = render_hash(scene, settings);
+    film.attributes["softtrace/render"] = settings;
+    if (a.tile) film.attributes["softtrace/tile"] = *a.tile;
+    if (a.frame >= 0) film.attributes["softtrace/frame"] = std::to_string(a.frame);
+    Progress progress("rendering", long(film.width) * film.height,
+                      !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
+    RenderOptions opt;
+    opt.lipschitz = a.lipschitz;
+    opt.cancel = &g_cancel;
+    FrameStats stats;
+    const bool complete = render_frame(scene, rt, opt, film, &progress, &stats);
+    progress.finish();
+    if (!complete) {
+      report_error("interrupted; no image written");
+      return interrupted_status();
+    }
+    // A whole frame with nothing in it is almost always a camera that looks away or a scene in
+    // other units: say so (a warning, as the loader's; --quiet silences only progress and the
+    // summary). A part of a frame may well show only background.
+    const bool whole_frame = film.width == film.full_width && film.height == film.full_height;
+    if (whole_frame && !shows_an_object(film))
+      std::fprintf(stderr,
+                   "softtrace: warning: no object is visible in the frame, the image shows only "
+                   "the background (check the camera's eye, target and fov against the "
+                   "objects)\n");
+    g_phase = kWriting;
+    if (g_cancel) {  // the signal came after the last pixel but before the phase changed
+      report_error("interrupted; no image written");
+      return interrupted_status();
+    }
+    info.render_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<std::string> temps;
+    for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, out_opt, info));
+    int writing = kWriting;
+    if (!g_phase.compare_exchange_strong(writing, kCommitting))
+      for (;;) ::pause();  // the watcher is removing the temporary files and exiting
+    for (size_t i = 0; i < outputs.size(); ++i) commit_image(temps[i], outputs[i]);
+    forget_pending_writes();
+    // A signal from here on is too late to matter: every output is complete.
+
+    if (!a.quiet) {
+      const double secs =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::fprintf(stderr, "%dx%d", film.width, film.height);
+      if (film.width != film.full_width || film.height != film.full_height)
+        std::fprintf(stderr, " (x %d..%d, y %d..%d of %dx%d)", window.x0, window.x1 - 1, window.y0,
+                     window.y1 - 1, film.full_width, film.full_height);
+      std::fprintf(stderr, ", %d spp in %.2f s (%.2f M primary rays/s, %.1f evaluations/ray)",
+                   scene.image.spp, secs, stats.primary_rays / secs * 1e-6,
+                   static_cast<double>(stats.steps) / std::max(1LL, stats.primary_rays));
+      for (const auto& o : outputs) std::fprintf(stderr, " -> %s", o.c_str());
+      std::fprintf(stderr, "\n");
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    abandon_pending_writes();  // a failed write leaves no temporary file behind
+    forget_pending_writes();
+    report_error(e.what());
+    return 2;
+  }
+}
+
+}  // namespace softtrace

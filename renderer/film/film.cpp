@@ -1,0 +1,136 @@
+#include "film/film.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "io/image_file.h"
+
+#ifndef SOFTTRACE_VERSION
+#error "SOFTTRACE_VERSION comes from the project's version (renderer/CMakeLists.txt)"
+#endif
+
+namespace softtrace {
+
+namespace {
+
+const char* const kImageExtensions[] = {".exr", ".png", nullptr};
+
+float srgb_encode(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+}
+
+ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo& info,
+                    ExrExtras& extras) {
+  ImageFile img;
+  img.full_width = film.full_width;
+  img.full_height = film.full_height;
+  img.x0 = film.x0;
+  img.y0 = film.y0;
+  img.width = film.width;
+  img.height = film.height;
+  img.channels = {"R", "G", "B", "A"};
+  if (opt.aovs.depth) img.channels.push_back("Z");
+  if (opt.aovs.normal) img.channels.insert(img.channels.end(), {"N.X", "N.Y", "N.Z"});
+  if (opt.aovs.steps) img.channels.push_back("steps");
+  const size_t nc = img.channels.size(), npix = size_t(film.width) * film.height;
+  img.pixels.resize(npix * nc);
+  for (size_t i = 0; i < npix; ++i) {
+    float* out = &img.pixels[i * nc];
+    const float* in = &film.rgba[i * 4];
+    for (int k = 0; k < 3; ++k)
+      out[k] = opt.flatten ? in[k] + float(info.background[k]) * (1 - in[3]) : in[k];
+    out[3] = opt.flatten ? 1.0f : in[3];
+    size_t c = 4;
+    if (opt.aovs.depth) out[c++] = film.depth[i];
+    if (opt.aovs.normal)
+      for (int k = 0; k < 3; ++k) out[c++] = film.normal[i * 3 + k];
+    if (opt.aovs.steps) out[c++] = film.steps[i];
+  }
+  // Depth needs float's precision, and step counts above 2048 are not exact in half.
+  for (const auto& name : img.channels)
+    extras.half.push_back(opt.half && name != "Z" && name != "steps");
+
+  img.attributes["software"] = "softtrace " SOFTTRACE_VERSION;
+  img.attributes["softtrace/scene"] = info.scene_name;
+  img.attributes["softtrace/sceneHash"] = info.scene_hash;
+  for (const auto& [name, value] : film.attributes) img.attributes[name] = value;
+  extras.matrices["worldToCamera"] = info.world_to_camera;
+  extras.matrices["worldToNDC"] = info.world_to_ndc;
+  extras.floats["renderTimeSeconds"] = float(info.render_seconds);
+  extras.ints["softtrace/spp"] = info.spp;
+  return img;
+}
+
+PngPixels png_pixels(const Film& film, const OutputOptions& opt, const FrameInfo& info) {
+  const int nc = opt.png_alpha ? 4 : 3;
+  PngPixels png{film.width, film.height, nc, {}};
+  const size_t npix = size_t(film.width) * film.height;
+  png.bytes.resize(npix * nc);
+  for (size_t i = 0; i < npix; ++i) {
+    uint8_t* out = &png.bytes[i * nc];
+    const float* in = &film.rgba[i * 4];
+    // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
+    for (int k = 0; k < 3; ++k)
+      out[k] = png_sample(srgb_encode(opt.png_alpha && !opt.flatten
+                                          ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
+                                          : in[k] + float(info.background[k]) * (1 - in[3])));
+    if (opt.png_alpha) out[3] = png_sample(opt.flatten ? 1.0f : in[3]);
+  }
+  return png;
+}
+
+}  // namespace
+
+bool is_exr_path(const std::string& path) {
+  return output_extension(path) == ".exr";
+}
+
+void check_image_output_path(const std::string& path) {
+  check_output_path(path, kImageExtensions);
+}
+
+AovSelection parse_aovs(const std::string& list) {
+  AovSelection a;
+  size_t start = 0;
+  while (start <= list.size() && !list.empty()) {
+    const size_t comma = list.find(',', start);
+    const std::string item = list.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (item == "depth")
+      a.depth = true;
+    else if (item == "normal")
+      a.normal = true;
+    else if (item == "steps")
+      a.steps = true;
+    else
+      throw std::invalid_argument("unknown AOV '" + item + "' (expected depth, normal, steps)");
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return a;
+}
+
+std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
+                             const FrameInfo& info) {
+  const std::string target = resolve_output_target(path);
+  remove_stale_temporaries(target, process_start_time());
+  const std::string tmp = create_pending_temp(target, path);
+  try {
+    if (is_exr_path(path)) {
+      ExrExtras extras;
+      write_exr(tmp, exr_image(film, opt, info, extras), extras);
+    } else {
+      write_png(tmp, png_pixels(film, opt, info), true);
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());  // the caller abandons the pending file
+  }
+  return tmp;
+}
+
+void commit_image(const std::string& tmp, const std::string& path) {
+  commit_temp(tmp, resolve_output_target(path), path);
+}
+
+}  // namespace softtrace

@@ -1,0 +1,164 @@
+// 8-bit PNG through libpng's simplified API (png_image).
+#include <png.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "io/image_io.h"
+
+namespace softtrace {
+
+namespace {
+
+struct PngImage {
+  png_image image{};
+  PngImage() { image.version = PNG_IMAGE_VERSION; }
+  ~PngImage() { png_image_free(&image); }
+};
+
+// libpng reports errors by longjmp: the two functions that call it hold nothing with a
+// destructor, and the message goes to a buffer the caller owns.
+struct PngReader {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  char message[200] = "not a readable PNG";
+};
+
+void on_png_error(png_structp png, png_const_charp text) {
+  auto* reader = static_cast<PngReader*>(png_get_error_ptr(png));
+  std::snprintf(reader->message, sizeof reader->message, "%s", text);
+  png_longjmp(png, 1);
+}
+
+void on_png_warning(png_structp, png_const_charp) {}
+
+// The header, with the transforms that give 8 or 16 bits per sample of grey or RGB, with alpha
+// where the file has it (a palette expanded, tRNS as alpha), and no gamma conversion.
+bool read_png_header(PngReader& r, FILE* f, png_uint_32& width, png_uint_32& height, int& channels,
+                     int& bit_depth, size_t& row_bytes) {
+  if (setjmp(png_jmpbuf(r.png))) return false;
+  png_init_io(r.png, f);
+  png_read_info(r.png, r.info);
+  const int type = png_get_color_type(r.png, r.info);
+  if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(r.png);
+  if (type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(r.png, r.info) < 8)
+    png_set_expand_gray_1_2_4_to_8(r.png);
+  if (png_get_valid(r.png, r.info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(r.png);
+  png_set_interlace_handling(r.png);
+  png_read_update_info(r.png, r.info);
+  width = png_get_image_width(r.png, r.info);
+  height = png_get_image_height(r.png, r.info);
+  channels = png_get_channels(r.png, r.info);
+  bit_depth = png_get_bit_depth(r.png, r.info);
+  row_bytes = png_get_rowbytes(r.png, r.info);
+  return true;
+}
+
+bool read_png_rows(PngReader& r, png_bytep* rows) {
+  if (setjmp(png_jmpbuf(r.png))) return false;
+  png_read_image(r.png, rows);
+  png_read_end(r.png, nullptr);
+  return true;
+}
+
+}  // namespace
+
+// Samples as stored, 8 or 16 bits, divided by 255 or 65535 as OpenImageIO converts them: a
+// 16-bit PNG is as sRGB-encoded as an 8-bit one (libpng's simplified reader took it for linear
+// and encoded it again).
+ImageFile read_png(const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw std::runtime_error("cannot open the file");
+  PngReader r;
+  r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r, on_png_error, on_png_warning);
+  if (r.png) r.info = png_create_info_struct(r.png);
+  png_uint_32 width = 0, height = 0;
+  int channels = 0, bit_depth = 0;
+  size_t row_bytes = 0;
+  bool ok = r.info && read_png_header(r, f, width, height, channels, bit_depth, row_bytes);
+  ImageFile img;
+  std::vector<png_byte> bytes;
+  // Deflate expands at most about 1032 times: a header claiming more than the file can hold
+  // is refused before the rows are allocated (bounding what any input makes us allocate).
+  std::error_code ec;
+  const uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  const uintmax_t most = std::max<uintmax_t>(uintmax_t(1) << 22, ec ? 0 : file_bytes * 1100);
+  if (ok) {
+    if (width == 0 || height == 0 || size_t(width) * height > (size_t(1) << 28) ||
+        uintmax_t(row_bytes + 1) * height > most || (bit_depth != 8 && bit_depth != 16) ||
+        channels < 1 || channels > 4 || row_bytes != size_t(width) * channels * (bit_depth / 8)) {
+      std::snprintf(r.message, sizeof r.message, "image too large or of an unsupported kind");
+      ok = false;
+    } else {
+      bytes.resize(row_bytes * height);
+      std::vector<png_bytep> rows(height);
+      for (png_uint_32 y = 0; y < height; ++y) rows[y] = bytes.data() + y * row_bytes;
+      ok = read_png_rows(r, rows.data());
+    }
+  }
+  png_destroy_read_struct(r.png ? &r.png : nullptr, r.info ? &r.info : nullptr, nullptr);
+  std::fclose(f);
+  if (!ok) throw std::runtime_error(r.message);
+  img.full_width = img.width = int(width);
+  img.full_height = img.height = int(height);
+  img.channels =
+      channels >= 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
+  if (channels == 2 || channels == 4) img.channels.push_back("A");
+  const size_t n = size_t(width) * height * channels;
+  img.pixels.resize(n);
+  // Times the float reciprocal, as OpenImageIO converts, so idiff and diff see the same values.
+  if (bit_depth == 8) {
+    constexpr float kScale = 1.0f / 255.0f;
+    for (size_t i = 0; i < n; ++i) img.pixels[i] = bytes[i] * kScale;
+  } else {
+    constexpr float kScale = 1.0f / 65535.0f;
+    for (size_t i = 0; i < n; ++i)  // big-endian samples
+      img.pixels[i] = float((unsigned(bytes[2 * i]) << 8) | bytes[2 * i + 1]) * kScale;
+  }
+  return img;
+}
+
+uint8_t png_sample(float v) {
+  v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+  return uint8_t(std::lround(v * 255.0f));
+}
+
+void write_png(const std::string& path, const ImageFile& img, bool srgb) {
+  PngPixels png{img.width, img.height, int(img.channels.size()), {}};
+  png.bytes.resize(img.pixels.size());
+  for (size_t i = 0; i < png.bytes.size(); ++i) png.bytes[i] = png_sample(img.pixels[i]);
+  write_png(path, png, srgb);
+}
+
+void write_png(const std::string& path, const PngPixels& img, bool srgb) {
+  const int nc = img.channels;
+  if (nc < 1 || nc > 4) throw std::runtime_error("a PNG holds 1 to 4 channels");
+  PngImage p;
+  p.image.width = png_uint_32(img.width);
+  p.image.height = png_uint_32(img.height);
+  p.image.format =
+      (nc >= 3 ? PNG_FORMAT_FLAG_COLOR : 0) | (nc == 2 || nc == 4 ? PNG_FORMAT_FLAG_ALPHA : 0);
+  // Without this flag libpng writes the sRGB chunk for 8-bit data (png_image_write_main).
+  if (!srgb) p.image.flags |= PNG_IMAGE_FLAG_COLORSPACE_NOT_sRGB;
+  // Speed over size (libpng then filters less and deflates faster): a render writes its image
+  // after the frame, on one thread.
+  p.image.flags |= PNG_IMAGE_FLAG_FAST;
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw std::runtime_error("cannot open the file for writing");
+  const bool written = png_image_write_to_stdio(&p.image, f, 0, img.bytes.data(), 0, nullptr);
+  // A full disk may show only when the buffer is flushed, or when the data reaches the disk.
+  const bool flushed = written && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+  const int flush_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written) throw std::runtime_error(p.image.message);
+  if (!flushed || !closed)
+    throw std::runtime_error(std::string("cannot write the file: ") +
+                             std::strerror(flushed ? errno : flush_errno));
+}
+
+}  // namespace softtrace

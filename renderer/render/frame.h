@@ -1,0 +1,44 @@
+// Pixel -> beam -> tile -> frame: the frame is a TBB parallel loop over tiles, each tile a nest of
+// beams (blocks of pixels whose approach to each object is certified together). Every pixel
+// depends only on its own rays and its blocks, which are placed in the full frame, so the result
+// is the same bits for any thread count, and a crop of the frame has the same bits as those
+// pixels of the whole frame.
+#pragma once
+
+#include <atomic>
+
+#include "film/film.h"
+#include "render/progress.h"
+#include "trace/embree_scene.h"
+
+namespace softtrace {
+
+struct RenderOptions {
+  LipschitzMode lipschitz = LipschitzMode::Local;
+  // Stops the frame early when set: checked before every sample, so that even a pixel of a
+  // 10,000-child blend at 64 spp (about 0.4 s) is no longer than one sample's wait.
+  const std::atomic<bool>* cancel = nullptr;
+  // Samples per pixel; 0: the scene's. A caller sharing the scene between threads (Python)
+  // passes its own here rather than writing it into the scene.
+  int spp = 0;
+};
+
+// What a frame is traced with: every object's tracer and the Embree scene over them.
+struct TracedScene {
+  TracedScene(const Scene& scene, LipschitzMode mode) : tracers(scene, mode), embree(tracers) {}
+  SceneTracers tracers;
+  EmbreeScene embree;
+};
+
+struct FrameStats {
+  long long primary_rays = 0;
+  long long steps = 0;  // all field/interval evaluations, shadow rays included
+  RayWork primary, shadow;
+};
+
+// Renders the film's data window of its full_width x full_height frame at opt.spp (or
+// scene.image.spp); never changes the scene. Returns false if cancelled.
+bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
+                  Progress* progress, FrameStats* stats);
+
+}  // namespace softtrace

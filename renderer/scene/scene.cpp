@@ -1,0 +1,362 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unordered_set>
+#include <vector>
+
+#include "scene/json_text.h"
+#include "scene/scene_keys.h"
+
+namespace softtrace {
+
+namespace {
+
+using json = nlohmann::json;
+
+// Every light and object costs work at every shaded point or ray; beyond these a scene is
+// hostile rather than ambitious.
+constexpr size_t kMaxLights = 1000;
+constexpr size_t kMaxObjects = 10000;
+
+// Lengths and directions of vectors from the scene without overflow or underflow: a component
+// of 1e308 squares to inf, one of 1e-200 to 0. Scaling by the largest component first keeps
+// |v| and v / |v| exact to rounding for every finite v.
+double scaled_length(const Vec3& v) {
+  const double m = max_abs(v);
+  return m > 0 ? m * length(v / m) : 0;
+}
+Vec3 unit(const Vec3& v) {  // v non-zero and finite
+  return normalize(v / max_abs(v));
+}
+
+// Distances the renderer squares (camera to target, point light to objects) stay within this,
+// and above its inverse, so that their squares are normal doubles.
+constexpr double kMaxDistance = 1e150;
+
+// Where rays start: the eye, and shading points inside the objects' boxes. Embree takes ray
+// origins in float and (Debian's build) asserts |origin| <= 1.8e18; well before that, float's
+// rounding of the origin (6e-8 of it) misplaces the rays it culls with, and the tracer's steps
+// stop advancing along t. Fig. 12(b)'s object at 64x48, seen from 1e7 and from farther along
+// the same line (the fov scaled): from 1e12, 1 pixel of 3072 differs; from 1e15, 33; from 1e17
+// the render does not finish.
+constexpr double kMaxPosition = 1e12;
+const char* const kPositionRule = "within 1e12 of the origin in every coordinate";
+
+Camera load_camera(const Params& p) {
+  p.check_keys(scene_keys("camera"));
+  Camera c;
+  c.eye = p.vec3("eye");
+  p.check(max_abs(c.eye) <= kMaxPosition, "eye",
+          std::string("expected an eye ") + kPositionRule + " (rays start there)");
+  c.target = p.vec3("target");
+  const Vec3 up = p.vec3("up", c.up);
+  c.fov = p.number("fov", c.fov);
+  p.check(c.fov > 0 && c.fov < 180, "fov", "expected a vertical field of view in (0, 180) degrees");
+  const Vec3 view = c.target - c.eye;
+  p.check(max_abs(view) > 0, "target", "expected a target different from the eye");
+  const double distance = scaled_length(view);
+  p.check(distance >= 1 / kMaxDistance && distance <= kMaxDistance, "target",
+          "expected a target between 1e-150 and 1e150 from the eye");
+  p.check(max_abs(up) > 0, "up", "expected a non-zero up vector");
+  c.up = unit(up);  // the camera's and the default light's cross products cannot overflow
+  p.check(length(cross(unit(view), c.up)) > 1e-9, "up",
+          "expected an up vector not parallel to the viewing direction");
+  p.finish();
+  return c;
+}
+
+Animation load_animation(const Params& p) {
+  constexpr int kMaxFrames = 1000000;
+  p.check_keys(scene_keys("animation"));
+  Animation a;
+  const bool list = p.has("cameras"), turntable = p.has("turntable");
+  if (list == turntable) p.fail("", "expected either 'cameras' (a list) or 'turntable'");
+  if (list) {
+    const std::vector<Params> cameras = p.objects("cameras");
+    p.check(!cameras.empty(), "cameras", "expected at least one camera");
+    if (cameras.size() > size_t(kMaxFrames))
+      p.fail("cameras", "expected at most " + std::to_string(kMaxFrames) + " cameras");
+    for (const Params& c : cameras) a.cameras.push_back(load_camera(c));
+    a.frames = static_cast<int>(a.cameras.size());
+    if (p.has("frames"))
+      p.check(p.integer("frames", 1, kMaxFrames) == a.frames, "frames",
+              "expected the number of cameras (" + std::to_string(a.frames) + ")");
+  } else {
+    a.frames = p.integer("frames", 1, kMaxFrames);
+    const Params t = p.object("turntable");
+    t.check_keys(scene_keys("turntable"));
+    a.axis = t.vec3("axis", a.axis);
+    t.check(max_abs(a.axis) > 0, "axis", "expected a non-zero, finite axis");
+    a.axis = unit(a.axis);  // [3e-162, 4e-162, 0] is [0.6, 0.8, 0]: its squares would underflow
+    a.degrees = t.number("degrees", a.degrees);
+    t.check(std::isfinite(a.degrees), "degrees", "expected a finite angle");
+    t.finish();
+  }
+  p.finish();
+  return a;
+}
+
+ImageSettings load_image(const Params& p) {
+  p.check_keys(scene_keys("image"));
+  ImageSettings s;
+  s.width = p.integer("width", 1, 16384, s.width);
+  s.height = p.integer("height", 1, 16384, s.height);
+  s.spp = p.integer("spp", 1, 4096, s.spp);
+  p.finish();
+  return s;
+}
+
+Vec3 load_color(const Params& p, const std::string& key, const Vec3& fallback) {
+  const Vec3 c = p.vec3(key, fallback);
+  for (int i = 0; i < 3; ++i)
+    p.check(c[i] >= 0, key + "/" + std::to_string(i), "expected a colour component >= 0");
+  return c;
+}
+
+// Every key some light type has: checked before the type is read, so that a misspelled key is
+// named before a missing or unknown type.
+std::vector<std::string> any_light_keys() {
+  std::vector<std::string> all;
+  for (const char* type : {"light: directional", "light: point", "light: ambient"})
+    for (const std::string& key : scene_keys(type))
+      if (std::find(all.begin(), all.end(), key) == all.end()) all.push_back(key);
+  return all;
+}
+
+Light load_light(const Params& p) {
+  static const std::vector<std::string> any_light = any_light_keys();
+  p.check_keys(any_light);
+  Light l;
+  const std::string type = p.string("type");
+  if (type == "directional" || type == "point" || type == "ambient")
+    p.check_keys(scene_keys("light: " + type),
+                 " for " + std::string(type == "ambient" ? "an " : "a ") + type + " light");
+  l.intensity = p.number("intensity", 1.0);
+  p.check(l.intensity >= 0, "intensity", "expected an intensity >= 0");
+  l.color = load_color(p, "color", l.color);
+  if (type == "directional") {
+    l.type = Light::Type::Directional;
+    l.direction = p.vec3("direction");
+    p.check(max_abs(l.direction) > 0, "direction", "expected a non-zero direction");
+    l.direction = unit(l.direction);
+    l.shadows = p.boolean("shadows", true);
+  } else if (type == "point") {
+    l.type = Light::Type::Point;
+    l.position = p.vec3("position");
+    l.shadows = p.boolean("shadows", true);
+  } else if (type == "ambient") {
+    l.type = Light::Type::Ambient;
+  } else {
+    p.fail("type", "unknown light type '" + type + "' (expected directional, point or ambient)");
+  }
+  p.finish();
+  return l;
+}
+
+// With no "lights" the scene gets a key light from over the camera's shoulder and some ambient.
+std::vector<Light> default_lights(const Camera& c) {
+  const Vec3 forward = unit(c.target - c.eye), right = unit(cross(forward, c.up));
+  Light key;
+  key.direction = unit(forward - right * 0.5 - c.up * 0.5);
+  Light ambient;
+  ambient.type = Light::Type::Ambient;
+  ambient.intensity = 0.15;
+  return {key, ambient};
+}
+
+Convention load_convention(const Params& p) {
+  const std::string c = p.string("convention", "soft");
+  if (c == "soft") return Convention::Soft;
+  if (c == "zero") return Convention::Zero;
+  if (c == "constructive") return Convention::Constructive;
+  p.fail("convention", "unknown convention '" + c + "' (expected soft, zero or constructive)");
+}
+
+SceneObject load_object(const Params& p, size_t index) {
+  p.check_keys(scene_keys("object"));
+  SceneObject o;
+  o.name = p.string("name", "object" + std::to_string(index));
+  if (p.has("material")) {
+    const Params m = p.object("material");
+    m.check_keys(scene_keys("material"));
+    o.color = load_color(m, "color", o.color);
+    m.finish();
+  }
+  o.convention = load_convention(p);
+  const double default_iso = o.convention == Convention::Soft   ? 0.5
+                             : o.convention == Convention::Zero ? 0.0
+                                                                : 1.0;
+  o.iso = p.number("iso", default_iso);
+  o.inside_sign = o.convention == Convention::Soft ? 1 : -1;
+
+  BuildContext ctx;
+  ctx.slot = Family::ConventionField;  // the field must be of the object's convention
+  ctx.convention = o.convention;
+  o.field = build_field(p.object("field"), ctx);
+
+  if (p.has("bounds")) {
+    const json& raw = p.get("bounds");
+    const auto corner = [&](size_t k) {
+      const bool ok = raw.is_array() && raw.size() == 2 && raw[k].is_array() &&
+                      raw[k].size() == 3 &&
+                      std::all_of(raw[k].begin(), raw[k].end(), [](const json& v) {
+                        return v.is_number() && std::isfinite(v.get<double>());
+                      });
+      if (!ok) p.fail("bounds", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+      return Vec3{raw[k][0].get<double>(), raw[k][1].get<double>(), raw[k][2].get<double>()};
+    };
+    const Vec3 lo = corner(0), hi = corner(1);
+    for (int i = 0; i < 3; ++i)
+      p.check(lo[i] < hi[i], "bounds", "expected each minimum below its maximum");
+    o.bounds = Box(lo, hi);
+    // Nothing is drawn outside the field's own region: a box of +-1e9 around a 30-unit object
+    // once changed the picture (+-1e12 filled the frame, +-1e20 emptied it), the tracer's steps
+    // and Embree's float culling working at the box's scale. Only cuts inside the region stay.
+    const Box region = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
+    if (region.bounded()) {
+      const Box inside = o.bounds.intersected(region);
+      if (!inside.empty()) o.bounds = inside;
+    }
+  } else {
+    o.bounds = o.field->region(o.iso, o.inside_sign > 0 ? Side::Above : Side::Below);
+    if (!o.bounds.bounded())
+      p.fail("field",
+             "the field has no finite support box at this iso level; give the object 'bounds'");
+  }
+  if (!(std::max(max_abs(o.bounds.lo), max_abs(o.bounds.hi)) <= kMaxPosition))
+    p.fail(p.has("bounds") ? "bounds" : "field",
+           std::string("expected the object's box (bounds, or the field's own region) ") +
+               kPositionRule + " (shading rays start there)");
+  p.finish();
+  return o;
+}
+
+// Shading divides by the distance from a shaded point to each point light: it must not overflow
+// anywhere in the objects' boxes (distance is convex, so checking the corners suffices).
+void check_point_light_distances(const Scene& s, const std::vector<Params>& lights) {
+  const Box box = s.bounds();
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (s.lights[i].type != Light::Type::Point) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      lights[i].check(scaled_length(box.corner(corner) - s.lights[i].position) <= kMaxDistance,
+                      "position",
+                      "expected a point light within 1e150 of the objects (one farther away "
+                      "is a directional light)");
+    }
+  }
+}
+
+}  // namespace
+
+Box Scene::bounds() const {
+  Box b;
+  for (const auto& o : objects) b = b.united(o.bounds);
+  return b;
+}
+
+Scene parse_scene(const std::string& text, const std::string& name) {
+  const json doc = parse_json_text(text, name);
+  const auto file = std::make_shared<const std::string>(name);
+  const Params root(doc, "", file);
+  root.check_keys(scene_keys("top level"));
+
+  Scene s;
+  s.path = name;
+  s.file_hash = fnv1a(text);
+  s.camera = load_camera(root.object("camera"));
+  if (root.has("animation")) s.animation = load_animation(root.object("animation"));
+  if (root.has("image")) s.image = load_image(root.object("image"));
+  s.background = load_color(root, "background", s.background);
+  std::vector<Params> lights;
+  if (root.has("lights")) {
+    lights = root.objects("lights");
+    if (lights.size() > kMaxLights)
+      root.fail("lights", "expected at most " + std::to_string(kMaxLights) + " lights");
+    for (const Params& l : lights) s.lights.push_back(load_light(l));
+  } else {
+    s.lights = default_lights(s.camera);
+    s.default_lights = true;
+  }
+  const std::vector<Params> objects = root.objects("objects");
+  if (objects.empty()) root.fail("objects", "expected at least one object");
+  if (objects.size() > kMaxObjects)
+    root.fail("objects", "expected at most " + std::to_string(kMaxObjects) + " objects");
+  std::unordered_set<std::string> names;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    s.objects.push_back(load_object(objects[i], i));
+    if (!names.insert(s.objects[i].name).second)
+      objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
+  }
+  check_point_light_distances(s, lights);
+  root.finish();
+  return s;
+}
+
+void set_frame(Scene& scene, int frame) {
+  const Animation& a = scene.animation;
+  if (a.frames == 0) throw SceneError(scene.path + ": the scene has no /animation");
+  if (frame < 0 || frame >= a.frames)
+    throw SceneError(scene.path + ": /animation: there is no frame " + std::to_string(frame) +
+                     " (frames 0 to " + std::to_string(a.frames - 1) + ")");
+  if (!a.cameras.empty()) {
+    scene.camera = a.cameras[frame];
+  } else {
+    // Rotations keep the angle between the view and `up`, so every frame's camera is valid.
+    // degrees * F / N, reduced modulo 360 before it is multiplied (1e308 * 2 overflowed to inf and
+    // made the camera NaN): fmod is exact, so (d mod 360N) * F is d * F modulo 360N to rounding.
+    const double turn = 360.0 * a.frames;
+    const double angle = std::fmod(std::fmod(a.degrees, turn) * frame, turn) / a.frames;
+    const Mat3 r = Mat3::rotation(a.axis, angle);
+    Camera& c = scene.camera;
+    c.eye = c.target + r * (c.eye - c.target);
+    c.up = r * c.up;
+    if (!(max_abs(c.eye) <= kMaxPosition))
+      throw SceneError(scene.path + ": /animation/turntable: frame " + std::to_string(frame) +
+                       " puts the eye beyond 1e12 of the origin (rays start there)");
+  }
+  if (scene.default_lights) scene.lights = default_lights(scene.camera);
+}
+
+uint64_t fnv1a(const std::string& bytes, uint64_t hash) {
+  for (const unsigned char b : bytes) hash = (hash ^ b) * 0x100000001b3ULL;
+  return hash;
+}
+
+void check_pixel_count(const ImageSettings& image, const std::string& name) {
+  if (static_cast<long long>(image.width) * image.height > (1LL << 26))
+    throw SceneError(name + ": /image: more than 2^26 pixels requested");
+}
+
+Scene load_scene(const std::string& path) {
+  // A C string would end at the NUL: "x.json\0junk" must not load x.json.
+  if (path.find('\0') != std::string::npos)
+    throw SceneError(path.substr(0, path.find('\0')) + "...: a path with a NUL byte");
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path + ": is a folder, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  // Read in blocks, so that an endless input (/dev/zero, a pipe) is bounded: the read stops at
+  // the first block with a NUL byte (the parser then names its LINE:COL) or past the size limit.
+  std::string text;
+  std::vector<char> block(1 << 16);
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    const size_t got = size_t(in.gcount());
+    text.append(block.data(), got);
+    if (std::find(block.begin(), block.begin() + std::ptrdiff_t(got), '\0') !=
+        block.begin() + std::ptrdiff_t(got))
+      break;
+    if (text.size() > kMaxSceneBytes)
+      throw SceneError(path + ": larger than " + std::to_string(kMaxSceneBytes >> 20) +
+                       " MiB; a scene file may be at most that");
+  }
+  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+  return parse_scene(text, path);
+}
+
+}  // namespace softtrace

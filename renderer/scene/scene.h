@@ -1,0 +1,89 @@
+// A loaded scene (docs/scene-format.md): camera, image settings, lights and objects whose fields
+// are built by fieldlib's registry. Loading validates everything; rendering never sees bad input.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "describe/building.h"
+#include "model/node.h"
+
+namespace softtrace {
+
+struct Camera {
+  Vec3 eye, target, up{0, 0, 1};
+  double fov = 30;  // vertical, degrees
+};
+
+// A camera path (scene "animation"): `frames` frames numbered from 0, each a camera from
+// `cameras` or, with no list, the scene's camera turned about `axis` (through the target) by
+// degrees * frame / frames, so that a 360-degree turntable loops without repeating a frame.
+struct Animation {
+  int frames = 0;  // 0: no animation
+  std::vector<Camera> cameras;
+  Vec3 axis{0, 0, 1};
+  double degrees = 360;
+};
+
+struct ImageSettings {
+  int width = 640, height = 480, spp = 1;
+};
+
+struct Light {
+  enum class Type { Directional, Point, Ambient };
+  Type type = Type::Directional;
+  Vec3 direction;  // directional: the direction light travels
+  Vec3 position;   // point
+  Vec3 color{1, 1, 1};
+  double intensity = 1;
+  bool shadows = true;
+};
+
+struct SceneObject {
+  std::string name;
+  Vec3 color{0.8, 0.8, 0.8};
+  Convention convention = Convention::Soft;
+  double iso = 0.5;
+  // +1 where inside means f >= iso (soft), -1 where it means f <= iso (zero, constructive).
+  double inside_sign = 1;
+  Box bounds;  // where the renderer looks for the surface: "bounds" or the field's region box
+  NodePtr field;
+};
+
+struct Scene {
+  std::string path;
+  uint64_t file_hash = 0;  // 64-bit FNV-1a of the bytes parsed (the file's, or the text's)
+  Camera camera;
+  Animation animation;
+  bool default_lights = false;  // the lights follow the camera (no "lights" in the file)
+  ImageSettings image;
+  Vec3 background{0, 0, 0};
+  std::vector<Light> lights;
+  std::vector<SceneObject> objects;
+
+  Box bounds() const;  // union of the objects' boxes
+};
+
+// Frames above 2^26 pixels are refused with a SceneError naming `name`'s /image: their film
+// alone would need gigabytes. The command line's --width/--height and Python's render() both
+// check here, so that they refuse the same frames with the same words.
+void check_pixel_count(const ImageSettings& image, const std::string& name);
+
+// Makes frame `frame` (0 <= frame < animation.frames) the scene's camera, once, from the loaded
+// scene; default lights move with it. Throws SceneError naming /animation when the frame does not
+// exist.
+void set_frame(Scene& scene, int frame);
+
+// 64-bit FNV-1a of `bytes`, continuing from `hash`.
+uint64_t fnv1a(const std::string& bytes, uint64_t hash = 0xcbf29ce484222325ULL);
+
+// Throws SceneError with "file:line:col: ..." for syntax and "file: /pointer: ..." for meaning
+// (and "path: ..." for a path with a NUL byte or a file that cannot be opened). Scene files are
+// read up to kMaxSceneBytes (a 100,000-child scene is 7.7 MB); a folder, a larger or endless
+// input is refused.
+constexpr size_t kMaxSceneBytes = size_t(256) << 20;
+Scene load_scene(const std::string& path);
+Scene parse_scene(const std::string& text, const std::string& name);
+
+}  // namespace softtrace

@@ -1,0 +1,173 @@
+#include "trace/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace softtrace {
+
+namespace {
+
+// Extends Embree's context with what our callbacks report back; Embree passes the pointer to
+// the callbacks unchanged, so the context must be the first member.
+// The callbacks trace the double-precision ray kept here; Embree's float copy only culls.
+struct RayContext {
+  RTCIntersectContext rtc;
+  Ray ray;
+  double tnear = 0;
+  double t = std::numeric_limits<double>::infinity();  // tfar, then the closest hit so far
+  TraceCounters work;
+  const BeamClear* beam = nullptr;
+  double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
+  int object = -1;
+  bool on_box_face = false;
+};
+
+struct GeometryData {
+  const ObjectTracer* tracer;
+  int object;
+};
+
+void bounds_callback(const RTCBoundsFunctionArguments* args) {
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  const Box& b = data->tracer->object().bounds;
+  // Round outward so the float box contains the double one.
+  args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lo.x), -INFINITY);
+  args->bounds_o->lower_y = std::nextafter(static_cast<float>(b.lo.y), -INFINITY);
+  args->bounds_o->lower_z = std::nextafter(static_cast<float>(b.lo.z), -INFINITY);
+  args->bounds_o->upper_x = std::nextafter(static_cast<float>(b.hi.x), INFINITY);
+  args->bounds_o->upper_y = std::nextafter(static_cast<float>(b.hi.y), INFINITY);
+  args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.hi.z), INFINITY);
+}
+
+void intersect_callback(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
+  // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
+  // The beam's depth along its axis is depth / cos along the ray.
+  const double clear_to = ctx->beam ? ctx->beam->depth[data->object] / ctx->beam_cos : 0;
+  const MarchResult m =
+      data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Nearest, clear_to);
+  if (!m.hit || m.t >= ctx->t) return;
+  ctx->t = m.t;
+  ctx->object = data->object;
+  ctx->on_box_face = m.on_box_face;
+  rh->ray.tfar = static_cast<float>(m.t);
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z =
+      0;  // the normal is computed once, for the closest hit
+}
+
+void occluded_callback(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Any).hit)
+    r->tfar = -INFINITY;
+}
+
+}  // namespace
+
+struct EmbreeScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<GeometryData> data;
+};
+
+EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<Impl>()) {
+  impl_->data.reserve(tracers.size());  // the callbacks hold pointers into it
+
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
+  impl_->scene = rtcNewScene(impl_->device);
+  for (int i = 0; i < tracers.size(); ++i) {
+    impl_->data.push_back({&tracers[i], i});
+    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, &impl_->data.back());
+    rtcSetGeometryBoundsFunction(geom, bounds_callback, nullptr);
+    rtcSetGeometryIntersectFunction(geom, intersect_callback);
+    rtcSetGeometryOccludedFunction(geom, occluded_callback);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);  // the scene holds the reference now
+  }
+  rtcCommitScene(impl_->scene);
+}
+
+EmbreeScene::~EmbreeScene() {
+  rtcReleaseScene(impl_->scene);
+  rtcReleaseDevice(impl_->device);
+}
+
+namespace {
+RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
+  RTCRay r{};
+  r.org_x = static_cast<float>(ray.o.x);
+  r.org_y = static_cast<float>(ray.o.y);
+  r.org_z = static_cast<float>(ray.o.z);
+  r.dir_x = static_cast<float>(ray.d.x);
+  r.dir_y = static_cast<float>(ray.d.y);
+  r.dir_z = static_cast<float>(ray.d.z);
+  r.tnear = static_cast<float>(tnear);
+  r.tfar = std::isinf(tfar) ? INFINITY : static_cast<float>(tfar);
+  r.mask = 0xFFFFFFFF;
+  r.flags = 0;
+  return r;
+}
+}  // namespace
+
+TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
+                                const BeamClear* beam) const {
+  RayContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = ray;
+  // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
+  if (beam) {
+    const double cos = dot(ray.d, beam->forward);
+    if (cos > 0) {
+      ctx.beam = beam;
+      ctx.beam_cos = cos;
+    }
+  }
+  ctx.tnear = tnear;
+  ctx.t = tfar;
+  RTCRayHit rh{};
+  rh.ray = make_ray(ray, tnear, tfar);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx.rtc, &rh);
+  TraceHit h;
+  h.work = ctx.work;
+  if (ctx.object >= 0) {
+    h.hit = true;
+    h.t = ctx.t;
+    h.object = ctx.object;
+    h.on_box_face = ctx.on_box_face;
+  }
+  return h;
+}
+
+bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const {
+  RayContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = ray;
+  ctx.tnear = tnear;
+  ctx.t = tfar;
+  RTCRay r = make_ray(ray, tnear, tfar);
+  rtcOccluded1(impl_->scene, &ctx.rtc, &r);
+  work.point_evals += ctx.work.point_evals;
+  work.box_evals += ctx.work.box_evals;
+  work.refine_iterations += ctx.work.refine_iterations;
+  work.give_ups += ctx.work.give_ups;
+  work.entered_box = work.entered_box || ctx.work.entered_box;
+  return r.tfar < 0;
+}
+
+}  // namespace softtrace

@@ -1,0 +1,49 @@
+// The only code that sees Embree: one user geometry per scene object, whose bounds callback
+// returns the object's box and whose intersect/occluded callbacks call the object's tracer
+// (Mitsuba's thin adapter; the objects never see Embree).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "trace/tracer.h"
+
+namespace softtrace {
+
+struct TraceHit {
+  bool hit = false;
+  double t = std::numeric_limits<double>::infinity();
+  int object = -1;           // index into Scene::objects
+  bool on_box_face = false;  // see MarchResult
+  TraceCounters work;        // what the ray cost, over every object it met
+};
+
+// What a beam certified for the rays through its block of pixels: per object, the forward depth
+// before which they meet no solid (ObjectTracer::clear_depth).
+struct BeamClear {
+  Vec3 forward;         // the camera's, unit length
+  const double* depth;  // one per object
+};
+
+class EmbreeScene {
+ public:
+  // The tracers must outlive this object.
+  explicit EmbreeScene(const SceneTracers& tracers);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Closest hit along the ray in [tnear, tfar]; thread-safe. `beam`, if given, holds for this ray:
+  // each object's search starts where it certified.
+  TraceHit intersect(const Ray& ray, double tnear, double tfar,
+                     const BeamClear* beam = nullptr) const;
+  // Whether anything lies along the ray in [tnear, tfar]; thread-safe. The ray's work is added to
+  // `work`.
+  bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace softtrace

@@ -1,0 +1,208 @@
+// Finding the first point of an object's solid along a ray: certified segment tracing.
+// Pure fieldlib maths, no Embree: the Embree adapter only calls in here.
+//
+// The object's field is compiled once to a flat program (fieldlib/program.h). The ray is cut into
+// segments; one bounds pass over a segment gives g's interval, its Lipschitz bound and its
+// derivative along the segment, and the program pruned to the children the segment passes
+// through, which every point of the segment then evaluates. Every advance is certified, never
+// sampled:
+// - a segment whose interval shows the solid cannot be reached is skipped whole (and the next
+//   segment is twice as long); one where g cannot fall is decided by its end value;
+// - otherwise the tracer steps by -g / rise, how fast g can rise along the ray, which cannot cross
+//   the surface (a segment that needs many such steps is cut shorter: its bounds are loose);
+// - once the step is below the ray's tolerance (a pixel's footprint there), probes ahead
+//   decide: a sign change is a bracket; what the points clear, or intervals on halvings down to
+//   1/1024 of the tolerance, certify the gap; otherwise the tracer gives up explicitly and reports
+//   a hit there (never a silent skip).
+// A bracket is refined by regula falsi (Anderson-Bjorck) to 1/1000 of the footprint, the slope
+// bounds narrowing it from both sides (docs/math.md, "How the tracer uses them").
+#pragma once
+
+#include <optional>
+
+#include "eval/blob_ray.h"
+#include "eval/eval.h"
+#include "scene/scene.h"
+
+namespace softtrace {
+
+enum class LipschitzMode { Local, Global };
+
+struct Ray {
+  Vec3 o, d;  // d has unit length, so t is a distance
+  // The radius of the pixel's cone at distance t is cone0 + cone * t: how precisely a hit must be
+  // placed. Zero for rays that come from no camera: the tracer then uses 1e-5 of the object box.
+  double cone0 = 0, cone = 0;
+};
+
+// The rays from one eye through a rectangle of the image (a block of pixels): at forward depth s
+// (the distance along `forward`), they pass through the quadrilateral eye + s * corner[0..3].
+struct Frustum {
+  Vec3 eye, forward;  // forward has unit length
+  Vec3 corner[4];     // directions through the rectangle's corners, with forward component 1
+};
+
+// A camera ray wants the nearest hit; a shadow ray only whether there is any.
+enum class Query { Nearest, Any };
+
+// The work one ray costs one object or the whole scene, counted as it is done. `steps` (the AOV
+// and the ray limit) is their sum: point and box evaluations.
+struct TraceCounters {
+  int point_evals = 0;  // field values at a point (refinement's included)
+  // Bounds or pruning passes over a box around a stretch of the ray; for polynomial blobs, the
+  // query of a stretch's blobs and each piece whose polynomial is read.
+  int box_evals = 0;
+  // Root refinement steps after a sign change: one point evaluation each, or for polynomial
+  // blobs one value of the piece's polynomial (not counted as a point evaluation).
+  int refine_iterations = 0;
+  int give_ups = 0;          // searches ended without a certificate (reported as hits)
+  bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
+  int evaluations() const { return point_evals + box_evals; }
+};
+
+// TraceCounters summed over many rays of one kind (primary or shadow), for `softtrace bench`.
+struct RayWork {
+  long long rays = 0, entered_box = 0, point_evals = 0, box_evals = 0, refine_iterations = 0,
+            give_ups = 0;
+  void add(const TraceCounters& c) {
+    ++rays;
+    entered_box += c.entered_box;
+    point_evals += c.point_evals;
+    box_evals += c.box_evals;
+    refine_iterations += c.refine_iterations;
+    give_ups += c.give_ups;
+  }
+  RayWork& operator+=(const RayWork& o) {
+    rays += o.rays;
+    entered_box += o.entered_box;
+    point_evals += o.point_evals;
+    box_evals += o.box_evals;
+    refine_iterations += o.refine_iterations;
+    give_ups += o.give_ups;
+    return *this;
+  }
+  long long evaluations() const { return point_evals + box_evals; }
+};
+
+struct MarchResult {
+  bool hit = false;
+  double t = 0;
+  // The ray entered the object's box already inside the solid: the box cuts the solid, and the
+  // surface seen is the box face, not a level set of the field.
+  bool on_box_face = false;
+  // No certificate could decide within the tolerance (or the evaluation limit was reached): the
+  // surface may pass within a tolerance of the ray here, and it is reported as a hit.
+  bool gave_up = false;
+};
+
+class ObjectTracer {
+ public:
+  ObjectTracer(const SceneObject& object, LipschitzMode mode);
+
+  // The first t in [tnear, tfar] where the ray is inside the solid, if any (for Query::Any, some
+  // t where it is: the search stops at the first sign change, unrefined). The work is added to
+  // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
+  // `clear_to`: the caller has certified that the ray meets no solid before it (clear_depth).
+  MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
+                        Query query = Query::Nearest, double clear_to = 0) const;
+
+  // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
+  // certified by the interval of g over boxes around slices of the frustum: the work of the
+  // approach, shared by every ray of a block of pixels. 0 where nothing is certified; +inf where
+  // no ray of it meets the solid at all.
+  // `from`: a depth already certified (by a beam holding this one); the search starts there.
+  double clear_depth(const Frustum& f, double from, TraceCounters& work) const;
+
+  const SceneObject& object() const { return *object_; }
+  // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
+  Vec3 normal(const Vec3& p) const;
+  // The outward normal of the object box's face nearest to p (for hits on_box_face).
+  Vec3 box_face_normal(const Vec3& p) const;
+  // Whether p is inside the solid.
+  bool inside(const Vec3& p) const { return g(p) >= 0; }
+  // f(p) and ∇f(p), evaluated on the program pruned to p.
+  double eval(const Vec3& p, Vec3* grad) const;
+
+  const Program& program() const { return program_; }
+
+ private:
+  // How far a computed g may be from the true one: the program's rounding, a few ulps of the
+  // field's terms, far inside this. Every certificate takes the true value anywhere within it
+  // (where slope bounds are tiny, as along a flat face, rounding would otherwise carry a step).
+  double value_error(double g) const;
+  // How far along the ray from a point with computed g < 0 the solid cannot be, where g rises at
+  // most `rate` per unit (0 where g may be >= 0).
+  double reach(double g, double rate) const;
+  // This thread's workspace, fitted to the program.
+  Workspace& workspace() const;
+  // g = inside_sign (f - iso): the solid is g >= 0.
+  double g(const Vec3& p) const;       // anywhere (prunes to p first)
+  double g_view(const Vec3& p) const;  // inside the box of the last bounds/prune pass
+  Segment segment(const Ray& ray, double a, double b) const;
+  // g's interval and Lipschitz bound over the segment [a, b] of the ray; prunes ws.view to it.
+  // Over the segment: g's interval, and how fast g can rise along the ray and fall back against
+  // it, from the slope bounds (the Lipschitz bound and the derivative along the segment): for
+  // t <= u in it, g(u) <= g(t) + rise (u - t) and g(t) <= g(u) + fall (u - t). A point with
+  // g < 0 thus clears -g/rise ahead of it and -g/fall behind it (all of it where the rate is <= 0).
+  // `quiet`: from a, the stretch where the ray has entered no support, so that g is the empty
+  // field's value there, known < 0 (0 where not known).
+  struct SegmentBounds {
+    Interval g;
+    double rise, fall;
+    double quiet = 0;
+  };
+  SegmentBounds segment_bounds(const Ray& ray, double a, double b, TraceCounters& work) const;
+  // The radius of the ray's footprint at t (never below what rounding of t can resolve).
+  double footprint(const Ray& ray, double t) const;
+  // Decides [a, c] (g(a) = ga < 0, g(c) = gc; either NaN where not known yet) by intervals and
+  // spheres over halvings down to `finest`: clear, the first sign change's bracket, or undecided
+  // where the halving stopped.
+  struct Scan {
+    enum Kind { Clear, Bracket, Undecided } kind;
+    // Bracket: g(lo) = glo < 0 <= g(hi) = ghi (glo NaN: not known), ws.view holds [lo, hi].
+    // Undecided: at lo.
+    double lo, glo, hi, ghi;
+  };
+  Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest,
+            TraceCounters& work) const;
+  // A root of g in [a, b] to within 1/1000 of the footprint there, given g(a) = ga < 0 <= g(b) =
+  // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b]. `rates` bound g's
+  // slope over [a, b] (infinite where not known): each value then narrows the root's range from
+  // both sides. Returns the range's far end, no nearer than the first root in [a, b].
+  double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
+                TraceCounters& work) const;
+  // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
+  // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
+  MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
+                              Query query) const;
+  // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
+  Vec3 blob_gradient(const Vec3& p) const;
+
+  const SceneObject* object_;
+  Program program_;
+  LipschitzMode mode_;
+  double global_L_;
+  double default_footprint_;  // for rays without a cone: 1e-5 of the object's box diagonal
+  double scale_;              // the magnitude of coordinates near the object (for rounding)
+  double g_empty_;            // g where f = 0: outside every support of a soft field
+  // Set where the field is a sum of polynomial blobs and the solid is where it reaches iso > 0
+  // (in the local mode; the global one keeps the segment tracer as the baseline).
+  std::optional<BlobSum> blobs_;
+};
+
+// Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading
+// (shading.h) both use them and neither owns them, so shading never goes through Embree.
+class SceneTracers {
+ public:
+  SceneTracers(const Scene& scene, LipschitzMode mode);
+  const ObjectTracer& operator[](int object) const { return tracers_[object]; }
+  int size() const { return static_cast<int>(tracers_.size()); }
+
+ private:
+  std::vector<ObjectTracer> tracers_;
+};
+
+// [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
+bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1);
+
+}  // namespace softtrace

@@ -1,0 +1,144 @@
+// first_hit for a sum of polynomial blobs (blob_ray.h): the ray is taken a stretch at a time.
+// One query of the sum's BVH gives the blobs whose supports the stretch passes through, and
+// their entries and exits cut it into pieces over which the field is one polynomial, walked
+// front to back. A piece whose blobs' peaks cannot reach iso is skipped unread; any other is
+// decided by its Bernstein form (bernstein.h), and a crossing refined on the polynomial itself,
+// with no evaluation of the field. So every skip is certified by the hull of the exact
+// polynomial, not by a Lipschitz bound.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "trace/tracer.h"
+#include "trace/tracer_limits.h"
+
+namespace softtrace {
+
+using namespace tracer_limits;
+
+namespace {
+// The first stretch is this fraction of the ray's way through the box, or at most kFirstRadii
+// typical blob radii (a stretch meets about as many blobs whatever their number). Measured at
+// 320x240 on one thread: on 1000 blobs 1/4 took 0.16 s, 1/2 0.19 s, 1/8 0.17 s, the whole box at
+// once 0.26 s; the cap of 2 radii took 10,000 blobs from 0.235 to 0.200 s (4 radii: no change).
+constexpr double kFirstStretch = 4;
+constexpr double kFirstRadii = 2;
+// A stretch whose query finds more blobs than this makes the next one half as long, and one that
+// finds fewer than kFewTerms twice as long: each query then costs about the same.
+constexpr int kManyTerms = 16;
+constexpr int kFewTerms = 4;
+
+// Where the ray enters (+) or leaves (-) term `index`'s support.
+struct Event {
+  double u;
+  int32_t index;
+  bool enters;
+  bool operator<(const Event& o) const { return u < o.u || (u == o.u && enters < o.enters); }
+};
+
+// One thread's buffers, grown to the largest sum traced (no allocation per ray after that).
+struct BlobScratch {
+  std::vector<BlobSum::Term> terms;
+  std::vector<int32_t> ids;
+  std::vector<Event> events;
+  std::vector<int> active;
+  void fit(int n) {
+    if (static_cast<int>(terms.size()) >= n) return;
+    terms.resize(n);
+    ids.resize(n);
+    events.resize(2 * n);
+    active.resize(n);
+  }
+};
+
+BlobScratch& blob_scratch(int n) {
+  thread_local BlobScratch scratch;
+  scratch.fit(n);
+  return scratch;
+}
+}  // namespace
+
+Vec3 ObjectTracer::blob_gradient(const Vec3& p) const {
+  Vec3 grad;
+  blobs_->gradient(program_, p, &grad, blob_scratch(blobs_->size()).ids.data());
+  return grad;
+}
+
+MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
+                                          TraceCounters& work, Query query) const {
+  BlobScratch& scratch = blob_scratch(blobs_->size());
+  BlobSum::Term* terms = scratch.terms.data();
+  Event* events = scratch.events.data();
+  int* active = scratch.active.data();
+  const double iso = object_->iso;
+
+  // The piece [u0, u0 + S] of the stretch from t, where terms[active[0..n)] are the blobs: the
+  // first crossing in it, if any (a hit that is no crossing: a give-up, or the box's face).
+  const auto piece = [&](double t, double u0, double S, int n) -> std::optional<MarchResult> {
+    double peak = 0;  // rounded to a few ulps of each term's (r to a few ulps of 1)
+    for (int i = 0; i < n; ++i) peak += terms[active[i]].peak;
+    if (peak * (1 + 1e-12) + n * 1e-15 < iso) return std::nullopt;
+    ++work.box_evals;
+    const StretchPolynomial sp = stretch_polynomial(terms, active, n, u0, S, iso);
+    const double tol = kDecide * footprint(ray, t + u0) / S;
+    const Rise rise = first_rise(sp.a, sp.degree, sp.err, tol, kFinest * tol);
+    const auto at = [&](double x) { return t + u0 + x * S; };
+    switch (rise.kind) {
+      case Rise::Clear:
+        return std::nullopt;
+      case Rise::AtStart:  // where the ray enters the box: the box cuts the solid (its face)
+        return MarchResult{true, at(0), face && u0 == 0 && t == t0};
+      case Rise::Undecided:
+        ++work.give_ups;
+        return MarchResult{true, at(rise.lo), false, true};
+      case Rise::Bracket:
+        break;
+    }
+    if (query == Query::Any) return MarchResult{true, at(rise.hi)};
+    // On the polynomial, whose values cost a few multiplications, to the footprint at the
+    // bracket's near end (the nearest the root can be).
+    const double close = kRefine * footprint(ray, at(rise.lo)) / S;
+    return MarchResult{true,
+                       at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
+  };
+
+  double t = t0, s = std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
+  while (t < t1) {
+    if (work.evaluations() >= kMaxSteps) {
+      ++work.give_ups;
+      return {true, t, false, true};
+    }
+    const double len = std::min(t + s, t1) - t;
+    ++work.box_evals;
+    const Segment seg = segment(ray, t, t + len);
+    const int n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
+    for (int i = 0; i < n; ++i) {
+      events[2 * i] = {terms[i].enter, i, true};
+      events[2 * i + 1] = {terms[i].exit, i, false};
+    }
+    std::sort(events, events + 2 * n);
+    // Between consecutive events the active terms are fixed: one polynomial.
+    int n_active = 0;
+    double u0 = 0;
+    for (int e = 0; e < 2 * n; ++e) {
+      const double u1 = events[e].u;
+      if (u1 > u0 && n_active > 0)
+        if (const auto hit = piece(t, u0, u1 - u0, n_active)) return *hit;
+      u0 = std::max(u0, u1);
+      const int32_t k = events[e].index;
+      if (events[e].enters) {
+        active[n_active++] = k;
+        continue;
+      }
+      *std::find(active, active + n_active, k) = active[n_active - 1];
+      --n_active;
+    }
+    t += len;
+    if (n > kManyTerms) s = 0.5 * len;
+    if (n < kFewTerms) s = 2 * len;
+  }
+  return {};
+}
+
+}  // namespace softtrace

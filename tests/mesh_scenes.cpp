@@ -1,0 +1,34 @@
+#include "mesh_scenes.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "tracer_scenes.h"
+
+namespace softtrace::mesh_scenes {
+
+std::vector<Case> all_cases() {
+  std::vector<Case> cases;
+  auto add = [&](const std::string& name, Scene s) {
+    auto scene = std::make_shared<Scene>(std::move(s));
+    for (size_t i = 0; i < scene->objects.size(); ++i)
+      cases.push_back({name + "#" + std::to_string(i), scene, int(i)});
+  };
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(SOFTTRACE_SOURCE_DIR "/scenes"))
+    if (e.path().extension() == ".json") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) add(std::filesystem::path(f).filename().string(), load_scene(f));
+  for (int i = 0; i < tracer_scenes::kCount; ++i)
+    add("tracer_" + std::to_string(i), parse_scene(tracer_scenes::kScenes[i], "tracer"));
+  return cases;
+}
+
+std::string test_name(const Case& c) {
+  std::string s = c.name;
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return s;
+}
+
+}  // namespace softtrace::mesh_scenes
