@@ -89,9 +89,13 @@ TEST(BtNodes, ParameterRangesAreCheckedWithTheirLocation) {
       {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"omega":0})",
              {kBall1, kRod}),
        "/bulge_elimination/omega"},
-      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"w":1})",
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{})",
              {kBall1, kRod}),
        "/bulge_elimination/omega"},
+      // An unknown key is named before the missing one (as everywhere in a scene).
+      {blend("bt_union", R"("base":"hyperellipsoid","r":0.2,"p":2,"bulge_elimination":{"w":1})",
+             {kBall1, kRod}),
+       "/bulge_elimination/w"},
       {blend("bt_union", c2 + R"(,"p":0.01,"bulge_elimination":{"omega":0.1})", {kBall1, kRod}),
        "/p"},  // p >= omega² r1 r2
       {blend("displacement_union", c2 + R"(,"p":0,"m":[1,2])", {kBall1, kRod}), "/m"},

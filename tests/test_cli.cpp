@@ -112,10 +112,11 @@ TEST(Usage, MisspellingsAreNamedWithTheNearestKnownWord) {
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_EQ(r.err, expected) << args;
   }
-  // Known words keep CLI11's own message.
+  // Known words with a bad value get the value's rule (test_cli_options.cpp has every option).
   const RunResult range = run_softtrace("render" + scene + " --width 0");
   EXPECT_EQ(range.err,
-            "softtrace: --width: Value 0 not in range 1 to 16384 (see softtrace --help)\n");
+            "softtrace: --width: expected an integer from 1 to 16384, got '0' (see softtrace "
+            "--help)\n");
 }
 
 // The Fig. 12(b) field written out independently of fieldlib (docs/math.md §3.2, 000 Eqs. 19-20).

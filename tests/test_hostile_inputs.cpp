@@ -52,18 +52,20 @@ TEST(HostileOptions, RefusalsNameTheValueAndTheRule) {
   const std::string dir = temp_dir("hostile_options");
   const std::string diff = "diff " + kScene + " " + kScene;
   expect_refused(diff + " -failpercent 101",
-                 "--failpercent: '101' is not a percentage from 0 to 100", dir);
-  expect_refused(diff + " -failpercent nan", "--failpercent: 'nan' is not a percentage", dir);
-  expect_refused(diff + " -warnpercent -1", "--warnpercent: '-1' is not a percentage", dir);
-  expect_refused(diff + " -allowfailures -1", "--allowfailures: '-1' is not a whole number from 0",
+                 "--failpercent: expected a number from 0 to 100, got '101'", dir);
+  expect_refused(diff + " -failpercent nan",
+                 "--failpercent: expected a number from 0 to 100, got 'nan'", dir);
+  expect_refused(diff + " -warnpercent -1",
+                 "--warnpercent: expected a number from 0 to 100, got '-1'", dir);
+  expect_refused(diff + " -allowfailures -1", "--allowfailures: expected an integer >= 0, got '-1'",
                  dir);
   const RunResult digits = run_softtrace(diff + " -allowfailures -1");
   EXPECT_LT(digits.err.size(), 160u) << digits.err;
-  expect_refused(diff + " -fail nan", "--fail: 'nan' is not a number >= 0", dir);
+  expect_refused(diff + " -fail nan", "--fail: expected a number >= 0, got 'nan'", dir);
   expect_refused("render " + kScene + " --frame 1e3",
-                 "--frame: '1e3' is not a whole number from 0 to 999999", dir);
+                 "--frame: expected an integer from 0 to 999999, got '1e3'", dir);
   expect_refused("render " + kScene + " --frame 1000000",
-                 "--frame: '1000000' is not a whole number from 0 to 999999", dir);
+                 "--frame: expected an integer from 0 to 999999, got '1000000'", dir);
 }
 
 // A folder once read as an empty scene ("1:1: invalid JSON"); /dev/zero was read until memory

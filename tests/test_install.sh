@@ -19,18 +19,35 @@ mkdir -p "$work"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log"
 for f in bin/softtrace bin/softtrace-core include/softtrace/eval/eval.h include/softtrace/loader/build.h \
   include/softtrace/scene/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
-  lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc; do
+  lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc \
+  share/man/man1/softtrace.1 share/doc/softtrace/README.md; do
   [ -e "$prefix/$f" ] || fail "the install has no $f"
 done
+# What --help points to: every page of docs/ and every scene of scenes/, under share/.
+for f in "$src"/docs/*.md; do
+  [ -e "$prefix/share/doc/softtrace/$(basename "$f")" ] || fail "the install has no docs/$(basename "$f")"
+done
+for f in "$src"/scenes/*.json; do
+  [ -e "$prefix/share/softtrace/scenes/$(basename "$f")" ] ||
+    fail "the install has no share/softtrace/scenes/$(basename "$f")"
+done
+"$prefix/bin/softtrace" --help | grep -q 'share/doc/softtrace/' || fail "--help does not point to the installed docs"
+MANPATH=$prefix/share/man man -w softtrace | grep -qx "$prefix/share/man/man1/softtrace.1" ||
+  fail "man does not find softtrace.1 under the prefix"
+"$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig12b_soft_blend.json" --scale 0.1 -q \
+  -o "$work/installed_scene.png" || fail "the installed binary cannot render an installed scene"
 # Every fieldlib header is installed, and every installed header compiles on its own (an
 # installed header that includes one left out would not).
-for h in "$src"/fieldlib/*.h; do
-  [ -e "$prefix/include/softtrace/$(basename "$h")" ] || fail "the install has no $(basename "$h")"
+# Headers sit in their layer folders and include each other rooted there ("eval/eval.h").
+for h in "$src"/fieldlib/*/*.h; do
+  rel=${h#"$src"/fieldlib/}
+  [ -e "$prefix/include/softtrace/$rel" ] || fail "the install has no include/softtrace/$rel"
 done
-for h in "$prefix"/include/softtrace/*.h; do
-  echo "#include <softtrace/$(basename "$h")>" |
-    c++ -std=c++17 -fsyntax-only -I"$prefix/include" -x c++ - 2>"$work/header.log" ||
-    fail "$(basename "$h") does not compile alone: $(head -n 3 "$work/header.log")"
+for h in "$prefix"/include/softtrace/*/*.h; do
+  rel=${h#"$prefix"/include/softtrace/}
+  echo "#include \"$rel\"" |
+    c++ -std=c++17 -fsyntax-only -I"$prefix/include/softtrace" -x c++ - 2>"$work/header.log" ||
+    fail "$rel does not compile alone: $(head -n 3 "$work/header.log")"
 done
 "$prefix/bin/softtrace" --version | grep -q '^softtrace [0-9.]* (commit ' ||
   fail "softtrace --version: '$("$prefix/bin/softtrace" --version)'"

@@ -188,7 +188,7 @@ TEST(Merge, RefusesGapsOverlapsAndMismatches) {
           "overlap");
   refused(t[0] + " " + t[1] + " " + t[2] + " " + render("--tile 3/4 --spp 1", dir + "/spp.exr"),
           "are from different scenes or render settings");
-  refused(t[0] + " " + render("--tile 1/4 --width 50", dir + "/w.exr"),
+  refused(t[0] + " " + render("--tile 1/4 --width 50 --height 36", dir + "/w.exr"),
           "is a tile of a 50x36 image");
   refused(t[0] + " " + render("--tile 1/4 --aov depth", dir + "/z.exr"), "different channels");
   refused(t[0] + " " + render("--tile 1/4 --frame 1", dir + "/f1.exr"), "different scenes");

@@ -73,13 +73,27 @@ void Params::fail_at(const std::string& key, const std::string& index_path,
   throw SceneError(where(key) + "/" + index_path + ": " + what);
 }
 
-bool Params::has(const std::string& key) const {
+void Params::check_keys(const std::vector<std::string>& known, const std::string& context) const {
+  for (auto it = j_->begin(); it != j_->end(); ++it)
+    if (std::find(known.begin(), known.end(), it.key()) == known.end())
+      fail(json_pointer_escape(it.key()), unknown_key_message(it.key(), known) + context);
+  known_ = known;
+}
+
+void Params::note_wanted(const std::string& key) const {
+  if (!known_.empty() && std::find(known_.begin(), known_.end(), key) == known_.end())
+    throw std::logic_error("the loader reads '" + key + "' at " + where("") +
+                           ", which its list of keys does not have");
   wanted_.insert(key);
+}
+
+bool Params::has(const std::string& key) const {
+  note_wanted(key);
   return j_->contains(key);
 }
 
 const nlohmann::json& Params::at(const std::string& key) const {
-  wanted_.insert(key);
+  note_wanted(key);
   auto it = j_->find(key);
   if (it == j_->end()) fail(key, "missing required parameter '" + key + "'");
   used_.insert(key);

@@ -68,17 +68,25 @@ class Params {
   }
   // Reports the first key that no one read, naming the nearest key that was asked for.
   void finish() const;
+  // Declares every key this object may have and reports the first other one at once, naming the
+  // nearest of `known` and ending with `context` (e.g. " for an ambient light"), so that a
+  // misspelled key is reported before a missing one, as the kinds table does for nodes. From
+  // then on, reading a key outside `known` is a bug of the loader (std::logic_error): the
+  // list is the whole truth, which lets documentation be checked against it.
+  void check_keys(const std::vector<std::string>& known, const std::string& context = "") const;
 
   std::string where(const std::string& key) const;  // "file: /pointer/key"
 
  private:
-  const json& at(const std::string& key) const;  // marks the key used; fails if missing
+  const json& at(const std::string& key) const;    // marks the key used; fails if missing
+  void note_wanted(const std::string& key) const;  // records a key asked for (check_keys' rule)
 
   const json* j_;
   std::string pointer_;
   std::shared_ptr<const std::string> file_;
   mutable std::set<std::string> used_;
-  mutable std::set<std::string> wanted_;  // every key asked for, present or not
+  mutable std::set<std::string> wanted_;    // every key asked for, present or not
+  mutable std::vector<std::string> known_;  // check_keys' list; empty: any key may be read
 };
 
 std::string json_pointer_escape(const std::string& key);

@@ -34,6 +34,7 @@ const ParamSpec& slot_of(const BuildContext& ctx, const std::string& key) {
 
 // Rotations are periodic: reduce the angle before it meets π, so that no finite angle overflows.
 Mat3 rotation_of(const Params& r) {
+  r.check_keys({"axis", "deg"});  // a misspelled key before a missing one, as everywhere
   const Vec3 axis = r.vec3("axis");
   r.check(length(axis) > 0 && std::isfinite(length(axis)), "axis", "expected a non-zero axis");
   return Mat3::rotation(axis, std::fmod(r.number("deg"), 360.0));

@@ -313,6 +313,7 @@ NodePtr create_bt(const Params& p, const BuildContext& ctx, BtKind kind) {
   double omega = 0;
   if (p.has("bulge_elimination")) {
     const Params be = p.object("bulge_elimination");
+    be.check_keys({"omega"});  // a misspelled key before a missing one, as everywhere
     omega = be.positive("omega");
     be.check(omega <= kMaxMagnitude, "omega", "expected a number of magnitude at most 1e150");
     be.finish();

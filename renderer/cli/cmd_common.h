@@ -11,9 +11,14 @@
 
 namespace softtrace {
 
-// The image size from --width/--height (0 keeps the scene's). Frames above 2^26 pixels are
-// refused (check_pixel_count, scene.h).
-void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height);
+// The image size from --width, --height (0: not given) or --scale (0: not given; excludes the
+// others). Both sides given are taken as they are; one alone keeps the scene's aspect, the other
+// side rounded to the nearest pixel, since a camera's `fov` is vertical and a width alone would
+// widen the view; --scale multiplies both sides, rounded. A derived side is at least 1. A side
+// outside [1, 16384] is refused naming the option, and frames above 2^26 pixels
+// with a SceneError naming /image (check_pixel_count, scene.h).
+void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height,
+                      double scale);
 
 // Caps TBB's parallelism at `threads` (0: all cores) for as long as the result lives.
 std::unique_ptr<tbb::global_control> limit_threads(int threads);

@@ -71,6 +71,13 @@ std::string frame_path(const std::string& pattern, int frame) {
   return pattern.substr(0, begin) + number + pattern.substr(end + 1);
 }
 
+// Whether any pixel of the film shows an object (coverage A > 0 anywhere).
+bool shows_an_object(const Film& film) {
+  for (size_t i = 3; i < film.rgba.size(); i += 4)
+    if (film.rgba[i] > 0) return true;
+  return false;
+}
+
 // The part of the frame to render: --crop, --pixel-bounds or --tile (at most one), or all.
 PixelBounds window_of(const RenderArgs& a, int width, int height) {
   if (a.crop) return crop_window(*a.crop, width, height);
@@ -85,7 +92,7 @@ int run_render(const RenderArgs& a) {
   // main() has started the signal watcher with on_render_interrupt.
   try {
     Scene scene = load_scene(a.scene);
-    apply_image_size(scene, a.scene, a.width, a.height);
+    apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
     if (a.frame >= 0) set_frame(scene, a.frame);
     const PixelBounds window = window_of(a, scene.image.width, scene.image.height);
@@ -143,6 +150,15 @@ int run_render(const RenderArgs& a) {
       report_error("interrupted; no image written");
       return interrupted_status();
     }
+    // A whole frame with nothing in it is almost always a camera that looks away or a scene in
+    // other units: say so (a warning, as the loader's; --quiet silences only progress and the
+    // summary). A part of a frame may well show only background.
+    const bool whole_frame = film.width == film.full_width && film.height == film.full_height;
+    if (whole_frame && !shows_an_object(film))
+      std::fprintf(stderr,
+                   "softtrace: warning: no object is visible in the frame, the image shows only "
+                   "the background (check the camera's eye, target and fov against the "
+                   "objects)\n");
     g_phase = kWriting;
     if (g_cancel) {  // the signal came after the last pixel but before the phase changed
       report_error("interrupted; no image written");

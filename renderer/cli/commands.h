@@ -16,6 +16,7 @@ struct RenderArgs {
   std::string scene;
   std::vector<std::string> outputs;
   int width = 0, height = 0, spp = 0, threads = 0;  // 0: the scene's value / all cores
+  double scale = 0;                                 // 0: none (cmd_common.h apply_image_size)
   std::string aovs;
   bool quiet = false, progress = false;  // progress: the bar even when stderr is no terminal
   bool flatten = false, half = false, png_alpha = false;  // OutputOptions (film.h)
@@ -68,6 +69,7 @@ std::vector<std::string> idiff_style_arguments(const std::vector<std::string>& a
 struct BenchArgs {
   std::string scene;
   int width = 0, height = 0, threads = 0, repeat = 3;
+  double scale = 0;
   bool json = false, quiet = false, progress = false;
   LipschitzMode lipschitz = LipschitzMode::Local;
 };

@@ -20,31 +20,45 @@ int main(int argc, char** argv) {
       "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
       "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command "
       "line: docs/cli.md."};
+  app.footer(
+      "Exit status: 0 success; 2 bad usage or bad input; 128 + the signal when interrupted (130 "
+      "SIGINT, 143 SIGTERM); diff: 0 pass, 1 warning, 2 failure, 4 an image it cannot read or "
+      "write.\nInstalled, the documentation is in share/doc/softtrace/ and example scenes in "
+      "share/softtrace/scenes/ under the prefix.\n");
+  // A flag is on when given: "--flatten=0" or "--quiet=foo" are refused rather than read.
+  app.option_defaults()->disable_flag_override();
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
   app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
                        "Print the version and the commit it was built from");
-  const std::map<std::string, LipschitzMode> modes = {{"local", LipschitzMode::Local},
-                                                      {"global", LipschitzMode::Global}};
 
   RenderArgs r;
   auto* render = app.add_subcommand("render", "Render a scene to EXR and/or PNG");
   render->add_option("scene", r.scene, "Scene file (JSON with comments)")->required();
   render->add_option("-o,--output", r.outputs,
                      "Output image(s), .exr or .png; repeat for several (default: <scene>.exr)");
-  render->add_option("--width", r.width, "Image width (overrides the scene)")
-      ->check(CLI::Range(1, 16384));
-  render->add_option("--height", r.height, "Image height (overrides the scene)")
-      ->check(CLI::Range(1, 16384));
+  auto* render_width = render
+                           ->add_option("--width", r.width,
+                                        "Image width; alone, the height follows the scene's aspect")
+                           ->check(integer_in(1, 16384));
+  auto* render_height =
+      render
+          ->add_option("--height", r.height,
+                       "Image height; alone, the width follows the scene's aspect")
+          ->check(integer_in(1, 16384));
+  render->add_option("--scale", r.scale, "Scale the scene's width and height by F")
+      ->check(number_above_zero())
+      ->excludes(render_width, render_height);
   render->add_option("--spp", r.spp, "Samples per pixel (overrides the scene)")
-      ->check(CLI::Range(1, 4096));
+      ->check(integer_in(1, 4096));
   render->add_option("--threads", r.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps");
+      ->check(integer_in(1, 1024));
+  render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps")
+      ->check(aov_list());
   render
       ->add_option("--lipschitz", r.lipschitz,
                    "Sphere-tracing bound: local (per stretch) or global")
-      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+      ->transform(lipschitz_mode());
   auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
   render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
       ->excludes(render_quiet);
@@ -65,7 +79,7 @@ int main(int argc, char** argv) {
   render
       ->add_option("--frame", r.frame,
                    "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
-      ->check(whole_number_check(0, 999999));
+      ->check(integer_in(0, 999999));
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -82,32 +96,23 @@ int main(int argc, char** argv) {
       ->required();
   mesh->add_option("--object", mesh_args.object, "Object name (default: the first object)");
   auto* voxel = mesh->add_option("--voxel", mesh_args.voxel, "Cell size in scene units")
-                    ->check(CLI::PositiveNumber);
+                    ->check(number_above_zero());
   mesh->add_option("--cells", mesh_args.cells,
                    "Cells along the region's longest side (default 128)")
-      ->check(CLI::Range(1, 65536))
+      ->check(integer_in(1, 65536))
       ->excludes(voxel);
   mesh->add_option(
       "--bounds", mesh_args.bounds,
       "Region X0,X1,Y0,Y1,Z0,Z1 (default: the object's bounds); the mesh is capped on it");
   mesh->add_option("--threads", mesh_args.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
+      ->check(integer_in(1, 1024));
   auto* mesh_quiet = mesh->add_flag("-q,--quiet", mesh_args.quiet, "No progress bar or summary");
   mesh->add_flag("--progress", mesh_args.progress,
                  "Show the progress bar even when not on a terminal")
       ->excludes(mesh_quiet);
 
   DiffArgs d;
-  // CLI::NonNegativeNumber would print the largest double in its message.
-  const CLI::Validator threshold(
-      [](std::string& text) {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        return end != text.c_str() && *end == '\0' && v >= 0
-                   ? std::string()
-                   : "'" + text + "' is not a number >= 0";
-      },
-      "T>=0");
+  const CLI::Validator threshold = threshold_value();
   auto* diff = app.add_subcommand(
       "diff",
       "Compare two images as OpenImageIO's idiff does (its single-dash options work too); exit 0 "
@@ -118,7 +123,7 @@ int main(int argc, char** argv) {
       ->check(threshold);
   diff->add_option("--failpercent", d.failpercent,
                    "Allow this percentage of failing pixels (default 0)")
-      ->check(percentage_check());
+      ->check(number_in(0, 100));
   diff->add_option("--failrelative", d.failrelative,
                    "...and by more than this fraction of the mean magnitude (default 0)")
       ->check(threshold);
@@ -127,12 +132,12 @@ int main(int argc, char** argv) {
       ->check(threshold);
   diff->add_option("--allowfailures", d.allowfailures,
                    "Pass with up to this many failing pixels (default 0)")
-      ->check(whole_number_check(0, 1LL << 62));
+      ->check(integer_at_least(0));
   diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
       ->check(threshold);
   diff->add_option("--warnpercent", d.warnpercent,
                    "Allow this percentage of warning pixels (default 0)")
-      ->check(percentage_check());
+      ->check(number_in(0, 100));
   diff->add_option("--warnrelative", d.warnrelative,
                    "...and by more than this fraction of the mean magnitude (default 0)")
       ->check(threshold);
@@ -142,7 +147,8 @@ int main(int argc, char** argv) {
   diff->add_option("-o,--out", d.out,
                    "Write the difference A-B here: .exr (float) or .png (8-bit RGB)");
   diff->add_flag("--abs", d.abs, "The difference image holds |A-B|");
-  diff->add_option("--scale", d.scale, "Multiply the difference image by this (default 1)");
+  diff->add_option("--scale", d.scale, "Multiply the difference image by this (default 1)")
+      ->check(finite_number());
   diff->add_flag("--od", d.out_only_if_different, "Write the difference image only if nonzero");
   diff->add_option("--channels", d.channels,
                    "Compare only these channels, e.g. R,G,B (default: those both images have)");
@@ -153,15 +159,22 @@ int main(int argc, char** argv) {
   BenchArgs b;
   auto* bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
   bench->add_option("scene", b.scene, "Scene file")->required();
-  bench->add_option("--width", b.width, "Image width (default: the scene's)")
-      ->check(CLI::Range(1, 16384));
-  bench->add_option("--height", b.height, "Image height (default: the scene's)")
-      ->check(CLI::Range(1, 16384));
+  auto* bench_width = bench
+                          ->add_option("--width", b.width,
+                                       "Image width; alone, the height follows the scene's aspect")
+                          ->check(integer_in(1, 16384));
+  auto* bench_height = bench
+                           ->add_option("--height", b.height,
+                                        "Image height; alone, the width follows the scene's aspect")
+                           ->check(integer_in(1, 16384));
+  bench->add_option("--scale", b.scale, "Scale the scene's width and height by F")
+      ->check(number_above_zero())
+      ->excludes(bench_width, bench_height);
   bench->add_option("--threads", b.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(CLI::Range(1, 1000));
+      ->check(integer_in(1, 1024));
+  bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(integer_in(1, 1000));
   bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
-      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+      ->transform(lipschitz_mode());
   bench->add_flag("--json", b.json, "Print the results as JSON");
   auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
   bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
@@ -181,6 +194,9 @@ int main(int argc, char** argv) {
 
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
+  // Help names the program as users call it, wherever it lies (the launcher execs this one as
+  // softtrace-core): the man page is made from this help.
+  if (!args.empty()) args[0] = "softtrace";
   if (argc > 1 && args[1] == "diff") args = idiff_style_arguments(args);
   std::vector<char*> arg_pointers;
   for (auto& arg : args) arg_pointers.push_back(arg.data());
@@ -195,7 +211,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& ex) {
     // The arguments as parsed: diff's -failpercent is --failpercent there, not an unknown word.
     const std::string unknown = unknown_word(app, int(arg_pointers.size()), arg_pointers.data());
-    report_error(unknown.empty() ? ex.what() + std::string(" (see softtrace --help)") : unknown);
+    report_error(unknown.empty() ? usage_error_text(ex) + " (see softtrace --help)" : unknown);
     return 2;
   }
   // The watcher runs before any command starts to work: a signal that came while the libraries

@@ -1,15 +1,37 @@
-// Option checks whose refusals name the value and the rule in our words (CLI11's own ranges say
-// "Value -1 not in range 0 to 1.797...e308" with all 309 digits, or let NaN through).
+// The command line's checks of option values, in our words: each refusal names the value and the
+// rule ("--width: expected an integer from 1 to 16384, got '0'"; CLI11 prefixes the option's
+// name), where CLI11's own validators print their internals ("Check foo value in
+// {global->1,local->0} OR {1,0} FAILED") or the largest double. A value is checked as text,
+// before CLI11 converts it, so no conversion error can follow a passed check.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
+
+#include "trace/tracer.h"
 
 namespace softtrace {
 
-// A finite number from 0 to 100 (NaN is refused: it once turned every mismatch into a pass).
-CLI::Validator percentage_check();
+// A decimal integer (no exponent, no fraction) in [lo, hi].
+CLI::Validator integer_in(long long lo, long long hi);
+// A decimal integer >= lo, any size that fits a long long.
+CLI::Validator integer_at_least(long long lo);
+// A finite number in [lo, hi].
+CLI::Validator number_in(double lo, double hi);
+// A number >= 0, "inf" included (idiff's thresholds; -hardfail's default is infinite).
+CLI::Validator threshold_value();
+// A comma-separated subset of depth, normal, steps (film.h parse_aovs).
+CLI::Validator aov_list();
+// A finite number > 0.
+CLI::Validator number_above_zero();
+// A finite number.
+CLI::Validator finite_number();
+// "local" or "global", any case, turned into the LipschitzMode's number for CLI11 to store.
+CLI::Validator lipschitz_mode();
 
-// A whole number from `lo` to `hi`, written as digits (no exponent, no fraction).
-CLI::Validator whole_number_check(long long lo, long long hi);
+// The message of a CLI11 parse error in our words (without the "softtrace: " prefix): a value
+// missing after an option, an option given twice, a value given to a flag, arguments nobody
+// expects, no subcommand.
+std::string usage_error_text(const CLI::ParseError& error);
 
 }  // namespace softtrace

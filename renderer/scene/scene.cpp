@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/json_text.h"
+#include "scene/scene_keys.h"
 
 namespace softtrace {
 
@@ -46,6 +47,7 @@ constexpr double kMaxPosition = 1e12;
 const char* const kPositionRule = "within 1e12 of the origin in every coordinate";
 
 Camera load_camera(const Params& p) {
+  p.check_keys(scene_keys("camera"));
   Camera c;
   c.eye = p.vec3("eye");
   p.check(max_abs(c.eye) <= kMaxPosition, "eye",
@@ -69,6 +71,7 @@ Camera load_camera(const Params& p) {
 
 Animation load_animation(const Params& p) {
   constexpr int kMaxFrames = 1000000;
+  p.check_keys(scene_keys("animation"));
   Animation a;
   const bool list = p.has("cameras"), turntable = p.has("turntable");
   if (list == turntable) p.fail("", "expected either 'cameras' (a list) or 'turntable'");
@@ -85,6 +88,7 @@ Animation load_animation(const Params& p) {
   } else {
     a.frames = p.integer("frames", 1, kMaxFrames);
     const Params t = p.object("turntable");
+    t.check_keys(scene_keys("turntable"));
     a.axis = t.vec3("axis", a.axis);
     t.check(max_abs(a.axis) > 0, "axis", "expected a non-zero, finite axis");
     a.axis = unit(a.axis);  // [3e-162, 4e-162, 0] is [0.6, 0.8, 0]: its squares would underflow
@@ -97,6 +101,7 @@ Animation load_animation(const Params& p) {
 }
 
 ImageSettings load_image(const Params& p) {
+  p.check_keys(scene_keys("image"));
   ImageSettings s;
   s.width = p.integer("width", 1, 16384, s.width);
   s.height = p.integer("height", 1, 16384, s.height);
@@ -112,9 +117,24 @@ Vec3 load_color(const Params& p, const std::string& key, const Vec3& fallback) {
   return c;
 }
 
+// Every key some light type has: checked before the type is read, so that a misspelled key is
+// named before a missing or unknown type.
+std::vector<std::string> any_light_keys() {
+  std::vector<std::string> all;
+  for (const char* type : {"light: directional", "light: point", "light: ambient"})
+    for (const std::string& key : scene_keys(type))
+      if (std::find(all.begin(), all.end(), key) == all.end()) all.push_back(key);
+  return all;
+}
+
 Light load_light(const Params& p) {
+  static const std::vector<std::string> any_light = any_light_keys();
+  p.check_keys(any_light);
   Light l;
   const std::string type = p.string("type");
+  if (type == "directional" || type == "point" || type == "ambient")
+    p.check_keys(scene_keys("light: " + type),
+                 " for " + std::string(type == "ambient" ? "an " : "a ") + type + " light");
   l.intensity = p.number("intensity", 1.0);
   p.check(l.intensity >= 0, "intensity", "expected an intensity >= 0");
   l.color = load_color(p, "color", l.color);
@@ -157,10 +177,12 @@ Convention load_convention(const Params& p) {
 }
 
 SceneObject load_object(const Params& p, size_t index) {
+  p.check_keys(scene_keys("object"));
   SceneObject o;
   o.name = p.string("name", "object" + std::to_string(index));
   if (p.has("material")) {
     const Params m = p.object("material");
+    m.check_keys(scene_keys("material"));
     o.color = load_color(m, "color", o.color);
     m.finish();
   }
@@ -240,6 +262,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   const json doc = parse_json_text(text, name);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
+  root.check_keys(scene_keys("top level"));
 
   Scene s;
   s.path = name;

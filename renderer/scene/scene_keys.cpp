@@ -1,0 +1,29 @@
+#include "scene/scene_keys.h"
+
+#include <stdexcept>
+
+namespace softtrace {
+
+const std::vector<SceneKeyList>& scene_key_lists() {
+  static const std::vector<SceneKeyList> lists = {
+      {"top level", {"camera", "image", "background", "lights", "objects", "animation"}},
+      {"camera", {"eye", "target", "up", "fov"}},
+      {"image", {"width", "height", "spp"}},
+      {"light: directional", {"type", "direction", "intensity", "color", "shadows"}},
+      {"light: point", {"type", "position", "intensity", "color", "shadows"}},
+      {"light: ambient", {"type", "intensity", "color"}},
+      {"object", {"name", "material", "convention", "iso", "bounds", "field"}},
+      {"material", {"color"}},
+      {"animation", {"frames", "cameras", "turntable"}},
+      {"turntable", {"axis", "degrees"}},
+  };
+  return lists;
+}
+
+const std::vector<std::string>& scene_keys(const std::string& name) {
+  for (const SceneKeyList& list : scene_key_lists())
+    if (list.name == name) return list.keys;
+  throw std::logic_error("no scene key list '" + name + "'");
+}
+
+}  // namespace softtrace

@@ -1,0 +1,196 @@
+// Every option's refusal in our words: one line naming the option, the value and the rule, exit
+// status 2, nothing written; CLI11's internals ("Check foo value in {global->1,local->0} OR
+// {1,0} FAILED", "Value 0 not in range", "1 required INT missing") never reach the user. And
+// the image size options: --width or --height alone keeps the scene's aspect, --scale scales
+// both, and a frame that shows nothing warns.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_util.h"
+
+namespace softtrace::test {
+namespace {
+
+const char* kScene = "scenes/fig12b_soft_blend.json";  // 640x480
+
+struct Refusal {
+  std::string args;      // after "softtrace "; SCENE, IMG and OUT are replaced
+  std::string expected;  // the whole stderr line after "softtrace: "
+};
+
+std::string substitute(std::string text, const std::string& word, const std::string& by) {
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + by.size()))
+    text.replace(at, word.size(), by);
+  return text;
+}
+
+TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
+  const std::string dir = temp_dir("cli_options");
+  const std::string scene = source_path(kScene), img = dir + "/img.png";
+  ASSERT_EQ(run_softtrace("render " + scene + " --width 8 --height 6 -q -o " + img).status, 0);
+  const std::string usage = " (see softtrace --help)";
+  const Refusal cases[] = {
+      // render
+      {"render SCENE --width 0", "--width: expected an integer from 1 to 16384, got '0'" + usage},
+      {"render SCENE --width 16385",
+       "--width: expected an integer from 1 to 16384, got '16385'" + usage},
+      {"render SCENE --width 8.5",
+       "--width: expected an integer from 1 to 16384, got '8.5'" + usage},
+      {"render SCENE --height x", "--height: expected an integer from 1 to 16384, got 'x'" + usage},
+      {"render SCENE --scale 0", "--scale: expected a finite number > 0, got '0'" + usage},
+      {"render SCENE --scale inf", "--scale: expected a finite number > 0, got 'inf'" + usage},
+      {"render SCENE --scale 100 -o OUT",
+       "--scale 100: keeping the scene's aspect gives an image width of 64000 pixels (expected 1 "
+       "to 16384)"},
+      {"render SCENE --height 16000 -o OUT",
+       "--height 16000: keeping the scene's aspect gives an image width of 21333 pixels"
+       " (expected 1 to 16384)"},
+      {"render SCENE --scale 2 --width 8", "--width excludes --scale" + usage},
+      {"render SCENE --spp 0", "--spp: expected an integer from 1 to 4096, got '0'" + usage},
+      {"render SCENE --threads 1025",
+       "--threads: expected an integer from 1 to 1024, got '1025'" + usage},
+      {"render SCENE --lipschitz foo", "--lipschitz: expected local or global, got 'foo'" + usage},
+      {"render SCENE --lipschitz 1", "--lipschitz: expected local or global, got '1'" + usage},
+      {"render SCENE --frame 1e3",
+       "--frame: expected an integer from 0 to 999999, got '1e3'" + usage},
+      {"render SCENE --frame -1",
+       "--frame: expected an integer from 0 to 999999, got '-1'" + usage},
+      {"render SCENE --aov depth,colour",
+       "--aov: unknown AOV 'colour' (expected depth, normal, steps)" + usage},
+      {"render SCENE --crop 0.5,0.2,0,1 -o OUT",
+       "--crop '0.5,0.2,0,1': expected 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1"},
+      {"render SCENE --pixel-bounds 1,2 -o OUT", "--pixel-bounds '1,2': expected X0,X1,Y0,Y1"},
+      {"render SCENE --tile 2/1 -o OUT",
+       "--tile '2/1': expected I/N, whole numbers with 0 <= I < N <= 2^31 - 1 (tiles are numbered "
+       "from 0)"},
+      {"render SCENE -o DIR/x.jpg",
+       "DIR/x.jpg: unsupported output format '.jpg' (expected .exr or .png)"},
+      {"render SCENE --quiet --progress", "--quiet excludes --progress" + usage},
+      {"render SCENE --width", "--width: expected a value after it" + usage},
+      {"render SCENE --width 3 --width 4", "--width: given more than once" + usage},
+      {"render SCENE extra", "unexpected argument 'extra'" + usage},
+      {"render SCENE --flatten=0", "--flatten: a flag takes no value" + usage},
+      {"render SCENE --quiet=foo", "--quiet: a flag takes no value" + usage},
+      {"diff IMG IMG --abs=x", "--abs: a flag takes no value" + usage},
+      {"nodes --dict=2", "--dict: a flag takes no value" + usage},
+      {"render", "scene is required" + usage},
+      // eval
+      {"eval SCENE --object nope", scene + ": no object named 'nope'"},
+      {"eval SCENE --points DIR/none.txt", dir + "/none.txt: cannot open the points file"},
+      // mesh
+      {"mesh SCENE -o DIR/m.obj --cells 0",
+       "--cells: expected an integer from 1 to 65536, got '0'" + usage},
+      {"mesh SCENE -o DIR/m.obj --cells 1e3",
+       "--cells: expected an integer from 1 to 65536, got '1e3'" + usage},
+      {"mesh SCENE -o DIR/m.obj --voxel -1",
+       "--voxel: expected a finite number > 0, got '-1'" + usage},
+      {"mesh SCENE -o DIR/m.obj --voxel nan",
+       "--voxel: expected a finite number > 0, got 'nan'" + usage},
+      {"mesh SCENE -o DIR/m.obj --threads 0",
+       "--threads: expected an integer from 1 to 1024, got '0'" + usage},
+      {"mesh SCENE", "--output is required" + usage},
+      // diff
+      {"diff IMG IMG --fail -1", "--fail: expected a number >= 0, got '-1'" + usage},
+      {"diff IMG IMG --failpercent 101",
+       "--failpercent: expected a number from 0 to 100, got '101'" + usage},
+      {"diff IMG IMG --failrelative nan",
+       "--failrelative: expected a number >= 0, got 'nan'" + usage},
+      {"diff IMG IMG --hardfail x", "--hardfail: expected a number >= 0, got 'x'" + usage},
+      {"diff IMG IMG --allowfailures -1",
+       "--allowfailures: expected an integer >= 0, got '-1'" + usage},
+      {"diff IMG IMG --warn -0.5", "--warn: expected a number >= 0, got '-0.5'" + usage},
+      {"diff IMG IMG --warnpercent -1",
+       "--warnpercent: expected a number from 0 to 100, got '-1'" + usage},
+      {"diff IMG IMG --warnrelative y", "--warnrelative: expected a number >= 0, got 'y'" + usage},
+      {"diff IMG IMG --hardwarn -1", "--hardwarn: expected a number >= 0, got '-1'" + usage},
+      {"diff IMG IMG --scale nan", "--scale: expected a finite number, got 'nan'" + usage},
+      {"diff IMG IMG --channels Q", "--channels: 'Q' is not in both images (R,G,B vs R,G,B)"},
+      {"diff IMG IMG -o DIR/d.tif",
+       "DIR/d.tif: unsupported output format '.tif' (expected .exr or .png)"},
+      {"diff IMG", "b is required" + usage},
+      // bench
+      {"bench SCENE --width 0", "--width: expected an integer from 1 to 16384, got '0'" + usage},
+      {"bench SCENE --height 0", "--height: expected an integer from 1 to 16384, got '0'" + usage},
+      {"bench SCENE --scale -1", "--scale: expected a finite number > 0, got '-1'" + usage},
+      {"bench SCENE --threads 0", "--threads: expected an integer from 1 to 1024, got '0'" + usage},
+      {"bench SCENE --repeat 0", "--repeat: expected an integer from 1 to 1000, got '0'" + usage},
+      {"bench SCENE --lipschitz Global2",
+       "--lipschitz: expected local or global, got 'Global2'" + usage},
+      // merge, nodes, no command
+      {"merge IMG", "--output is required" + usage},
+      {"nodes extra", "unexpected argument 'extra'" + usage},
+      {"", "expected a command: render, eval, mesh, diff, bench, merge or nodes" + usage},
+  };
+  for (const Refusal& c : cases) {
+    std::string args = substitute(c.args, "SCENE", scene);
+    args = substitute(substitute(args, "IMG", img), "OUT", dir + "/out.exr");
+    args = substitute(args, "DIR", dir);
+    const std::string expected = substitute(c.expected, "DIR", dir);
+    const RunResult r = run_softtrace(args + " </dev/null");
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.err, "softtrace: " + expected + "\n") << args;
+    EXPECT_EQ(r.out, "") << args;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
+}
+
+// The size of a written PNG.
+std::pair<int, int> png_size(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {0, 0};
+  return {in->spec().width, in->spec().height};
+}
+
+// The scene is 640x480, its camera's fov vertical: a width alone must not widen the view.
+TEST(CliOptions, OneSideAloneKeepsTheScenesAspectAndScaleScalesBoth) {
+  const std::string dir = temp_dir("cli_size");
+  const std::string render = "render " + source_path(kScene) + " -q --spp 1 -o " + dir;
+  const struct {
+    std::string options;
+    int width, height;
+  } cases[] = {
+      {"--width 64", 64, 48},
+      {"--height 30", 40, 30},
+      {"--width 65", 65, 49},
+      {"--scale 0.1", 64, 48},
+      {"--width 50 --height 10", 50, 10},
+      {"--scale 0.001", 1, 1},
+  };
+  for (const auto& c : cases) {
+    const RunResult r = run_softtrace(render + "/x.png " + c.options);
+    ASSERT_EQ(r.status, 0) << c.options << ": " << r.err;
+    EXPECT_EQ(png_size(dir + "/x.png"), std::make_pair(c.width, c.height)) << c.options;
+  }
+  const RunResult bench =
+      run_softtrace("bench " + source_path(kScene) + " -q --repeat 1 --width 32");
+  ASSERT_EQ(bench.status, 0) << bench.err;
+  EXPECT_NE(bench.out.find(": 32x24,"), std::string::npos) << bench.out;
+}
+
+TEST(CliOptions, AFrameThatShowsNothingWarnsAndStillWrites) {
+  const std::string dir = temp_dir("cli_empty");
+  const std::string away = source_path("tests/scenes/nothing_in_view.json");
+  const std::string warning =
+      "softtrace: warning: no object is visible in the frame, the image shows only the "
+      "background (check the camera's eye, target and fov against the objects)\n";
+  for (const std::string quiet : {"", " -q"}) {
+    const RunResult r = run_softtrace("render " + away + quiet + " -o " + dir + "/away.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.rfind(warning, 0), 0u) << quiet << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/away.png"));
+  }
+  // A picture with something in it, or a part of the frame, says nothing of the kind.
+  const RunResult seen =
+      run_softtrace("render " + source_path(kScene) + " -q --width 16 -o " + dir + "/seen.png");
+  EXPECT_EQ(seen.status, 0);
+  EXPECT_EQ(seen.err, "");
+  const RunResult part = run_softtrace("render " + away + " -q --tile 0/2 -o " + dir + "/part.exr");
+  EXPECT_EQ(part.status, 0);
+  EXPECT_EQ(part.err, "");
+}
+
+}  // namespace
+}  // namespace softtrace::test
