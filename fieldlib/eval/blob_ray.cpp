@@ -34,8 +34,31 @@ bool potential_in_r(Op op, double* c2, double* c3) {
 // One child of the sum: placements from register 0, an ellipsoidal lp_metric of the last one,
 // a polynomial potential of that, and optionally its strength s (which scales c2 and c3). The
 // frame x -> M x + k is the placements' composition.
+// An affinely placed blob (scale, matrix) compiles to one oracle instruction; its node says
+// which blob it is. Its frame's rows must neither overflow nor vanish when squared (as below).
+bool read_oracle_blob(const Instr& in, BlobSum::Frame* frame, BlobSum::Blob* blob) {
+  PolynomialBlob b;
+  if (!in.node->polynomial_blob(&b) || (b.c2 == 0 && b.c3 == 0)) return false;
+  for (int r = 0; r < 3; ++r) {
+    const Vec3& row = b.L.r[r];
+    const double most = std::max({std::abs(row.x), std::abs(row.y), std::abs(row.z)});
+    if (!(most > 1e-100 && most < 1e100 && std::abs(b.k[r]) < 1e100)) return false;
+  }
+  frame->L = b.L;
+  frame->k = b.k;
+  blob->centre = {};
+  blob->inv_r2 = 0;  // no ball: terms() takes the frame
+  blob->c2 = b.c2;
+  blob->c3 = b.c3;
+  return true;
+}
+
 bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::Frame* frame,
                BlobSum::Blob* blob) {
+  if (c.end - c.begin == 1 && p.code[c.begin].op == Op::Oracle) {
+    const Instr& in = p.code[c.begin];
+    return in.in == reg0 && in.out == c.slot && read_oracle_blob(in, frame, blob);
+  }
   Mat3 M;
   bool rotated = false;
   Vec3 off;

@@ -188,4 +188,27 @@ struct PotentialKind {
   double lipschitz(Interval d) const { return d.lo >= 1 ? 0.0 : lipschitz(); }
 };
 
+// A potential as c2 r^2 + c3 r^3 in r = 1 - d^2 (docs/math.md §8, "Sums of polynomial blobs"):
+// Murakami's r^2, Wyvill's (5 r^2 + 4 r^3)/9 (its constant and linear terms cancel), the cubic
+// r^3. Blanc's is no polynomial in r.
+inline bool potential_in_r(PotentialType t, double* c2, double* c3) {
+  switch (t) {
+    case PotentialType::Murakami:
+      *c2 = 1;
+      *c3 = 0;
+      return true;
+    case PotentialType::Wyvill:
+      *c2 = 5.0 / 9;
+      *c3 = 4.0 / 9;
+      return true;
+    case PotentialType::Cubic:
+      *c2 = 0;
+      *c3 = 1;
+      return true;
+    case PotentialType::Blanc:
+      return false;
+  }
+  return false;
+}
+
 }  // namespace softtrace

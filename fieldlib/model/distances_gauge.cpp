@@ -31,6 +31,15 @@ class LpMetric final : public FieldNode {
   }
 
   double eval(const Vec3& p, Vec3* grad) const override { return lp_metric(m_, p, grad); }
+  // With n = 2, |diag(1/a) x|: an ellipsoid's distance.
+  bool polynomial_blob(PolynomialBlob* b) const override {
+    if (m_.n != 2) return false;
+    b->L.r[0] = {m_.ia.x, 0, 0};
+    b->L.r[1] = {0, m_.ia.y, 0};
+    b->L.r[2] = {0, 0, m_.ia.z};
+    b->k = {};
+    return true;
+  }
   Interval interval(const Box& b) const override {
     Interval f;
     lp_metric_bounds(m_, b, &f, nullptr);

@@ -9,6 +9,12 @@ namespace softtrace {
 
 namespace {
 
+// The child's blob |L q + k| at q = M (x - t): |(L M) x + k - (L M) t|.
+void compose(PolynomialBlob* b, const Mat3& M, const Vec3& t) {
+  b->L = times(b->L, M);
+  b->k = b->k - b->L * t;
+}
+
 Mat3 transpose(const Mat3& m) {
   Mat3 t;
   for (int i = 0; i < 3; ++i)
@@ -27,6 +33,9 @@ class Placed final : public FieldNode {
     return v;
   }
   Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
+  bool polynomial_blob(PolynomialBlob* b) const override {
+    return child_->polynomial_blob(b) && (compose(b, Rt_, t_), true);
+  }
   double lipschitz() const override { return child_->lipschitz(); }
   double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
   void bounds(const Box& b, Interval* value, double* L) const override {
@@ -110,6 +119,9 @@ class AffinePlaced final : public FieldNode {
     return v;
   }
   Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
+  bool polynomial_blob(PolynomialBlob* b) const override {
+    return child_->polynomial_blob(b) && (compose(b, M_, t_), true);
+  }
   double lipschitz() const override { return scaled(child_->lipschitz()); }
   double lipschitz(const Box& b) const override { return scaled(child_->lipschitz(to_local(b))); }
   void bounds(const Box& b, Interval* value, double* L) const override {

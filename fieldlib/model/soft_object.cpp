@@ -34,6 +34,10 @@ class SoftObject final : public FieldNode {
     return v;
   }
   Interval interval(const Box& b) const override { return P_->interval(d_->interval(b)); }
+  // A polynomial potential of an ellipsoid's distance is a polynomial blob.
+  bool polynomial_blob(PolynomialBlob* b) const override {
+    return potential_in_r(P_->type(), &b->c2, &b->c3) && d_->polynomial_blob(b);
+  }
   double lipschitz() const override { return flat_product(P_->lipschitz(), d_->lipschitz()); }
   double lipschitz(const Box& b) const override {
     return flat_product(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));

@@ -24,6 +24,12 @@ class Strength final : public FieldNode {
     return strength_interval(s_, child_->interval(b));
   }
   double lipschitz() const override { return strength_lipschitz(s_, child_->lipschitz()); }
+  bool polynomial_blob(PolynomialBlob* b) const override {
+    if (!child_->polynomial_blob(b)) return false;
+    b->c2 *= s_;
+    b->c3 *= s_;
+    return true;
+  }
   double lipschitz(const Box& b) const override {
     return strength_lipschitz(s_, child_->lipschitz(b));
   }

@@ -10,6 +10,15 @@
 
 namespace softtrace {
 
+// What a node is when it is a polynomial blob (eval/blob_ray.h): a distance function that is
+// |L x + k| (an ellipsoid's, c2 = c3 = 0), or a soft field that is c2 r^2 + c3 r^3 with
+// r = 1 - |L x + k|^2 where r > 0, and 0 elsewhere.
+struct PolynomialBlob {
+  Mat3 L;
+  Vec3 k;
+  double c2 = 0, c3 = 0;
+};
+
 class Oracle {
  public:
   virtual ~Oracle() = default;
@@ -17,6 +26,9 @@ class Oracle {
   virtual double eval(const Vec3& p, Vec3* grad) const = 0;
   // A sound enclosure of f over the box and a Lipschitz bound there, together.
   virtual void bounds(const Box& b, Interval* value, double* lipschitz) const = 0;
+  // Whether the node is a polynomial blob, and which (into *b): what lets the blob ray path read
+  // an affinely placed blob, which compiles to one oracle instruction. No by default.
+  virtual bool polynomial_blob(PolynomialBlob* b) const { return false; }
 };
 
 }  // namespace softtrace
