@@ -250,6 +250,16 @@ const char* const kShearedField = R"({"type":"soft_blend","children":[
     {"type":"soft_object","potential":{"type":"cubic"},"strength":1.4,"matrix":[[0.1,0,0,1],[0.5,1,0,0.5],[0,0.6,0.08,0.4]],
      "distance":{"type":"segment","p0":[0,-3,0],"p1":[0,3,0],"radius":1}}]})";
 
+// Flattened and sheared ellipsoids (scale after rotate, a matrix), one of them negative: the
+// polynomial blob path reads their affine frames.
+const char* const kShearedBlobsField = R"({"type":"soft_blend","children":[
+    {"type":"soft_object","potential":{"type":"murakami"},"scale":[3,1,0.15],"rotate":{"axis":[1,1,0],"deg":30},
+     "distance":{"type":"lp_metric","radii":[1,1,1],"n":2}},
+    {"type":"soft_object","potential":{"type":"cubic"},"strength":1.8,"matrix":[[0.3,1.5,0,1.2],[0,0.4,0,0.5],[0,0.9,0.1,0]],
+     "distance":{"type":"lp_metric","radii":[1,1,1],"n":2}},
+    {"type":"soft_object","potential":{"type":"wyvill"},"strength":-1,"scale":[0.8,0.8,0.8],"translate":[0.6,0.2,0],
+     "distance":{"type":"lp_metric","radii":[1,1,1],"n":2}}]})";
+
 // Camera: eye, target, up, vertical fov in degrees.
 const MarchCase kMarchCases[] = {
     {"hole", {{9, -4, 3}, {2, 0, 0}, {0, 0, 1}, 40}, kHoleField},
@@ -258,6 +268,9 @@ const MarchCase kMarchCases[] = {
     {"sheared_capsules", {{2, -9, 5}, {0.5, 0, 0.3}, {0, 0, 1}, 40}, kShearedField},
     // Nearly in the plane of the thin sheared sheet (its normal is about y).
     {"sheared_capsules_grazing", {{1, -7, 0.25}, {0, 0, 0}, {0, 0, 1}, 30}, kShearedField},
+    {"sheared_blobs", {{3, -6, 4}, {0.5, 0, 0}, {0, 0, 1}, 40}, kShearedBlobsField},
+    // Almost edge-on to the flattened one's plane.
+    {"sheared_blobs_grazing", {{5, -5, 0.6}, {0, 0, 0}, {0, 0, 1}, 35}, kShearedBlobsField},
 };
 
 std::string march_scene_json(const MarchCase& c) {
