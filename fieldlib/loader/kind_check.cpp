@@ -110,8 +110,8 @@ void check_value(const Params& p, const ParamSpec& spec, const json& v) {
         p.fail(spec.name, "expected exactly " + std::to_string(lo) +
                               (lo == 1 ? " child, got " : " children, got ") + std::to_string(n));
       if (n < lo)
-        p.fail(spec.name,
-               "expected at least " + std::to_string(lo) + " children, got " + std::to_string(n));
+        p.fail(spec.name, "expected at least " + std::to_string(lo) +
+                              (lo == 1 ? " child, got " : " children, got ") + std::to_string(n));
       if (n > hi)
         p.fail(spec.name,
                "expected at most " + std::to_string(hi) + " children, got " + std::to_string(n));

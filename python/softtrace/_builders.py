@@ -5,7 +5,7 @@ import inspect
 from typing import Any, Callable, Dict, List
 
 # Keys any node may carry besides its kind's parameters (docs/scene-format.md, "Placement").
-PLACEMENT = ("translate", "rotate")
+PLACEMENT = ("translate", "rotate", "scale", "matrix")
 
 
 def _doc(kind: Dict[str, Any]) -> str:
@@ -16,7 +16,7 @@ def _doc(kind: Dict[str, Any]) -> str:
             text += ", " + p["range"]
         lines.append(text + " (default: %s)" % p["default"])
     if kind["group"] == "node":
-        lines.append("    translate, rotate: where the node is placed")
+        lines.append("    translate, rotate, scale, matrix: where the node is placed")
     lines += ["", "Returns the node as a dict, e.g. %s(...)[\"type\"] == %r." % (kind["name"],
                                                                              kind["name"])]
     return "\n".join(lines)
@@ -25,7 +25,8 @@ def _doc(kind: Dict[str, Any]) -> str:
 def _builder(kind: Dict[str, Any]) -> Callable[..., Dict[str, Any]]:
     name = kind["name"]
     params = [p["name"] for p in kind["params"]]
-    keywords = params + (list(PLACEMENT) if kind["group"] == "node" else [])
+    keywords = params + ([k for k in PLACEMENT if k not in params] if kind["group"] == "node"
+                         else [])
 
     def build(*args: Any, **kwargs: Any) -> Dict[str, Any]:
         if len(args) > len(params):
