@@ -152,9 +152,8 @@ std::vector<float> pixels(const std::string& path) {
   return p;
 }
 
-// Every listed scene at its regression size, all AOVs (12 channels): --threads 1, --threads 2 and a
-// second
-// --threads 2 run give the same bits.
+// Every listed scene at its regression size, all AOVs (12 channels): --threads 1, --threads 2
+// and a second --threads 2 run give the same bits.
 TEST(Regression, SameBitsForAnyThreadCount) {
   const std::string dir = temp_dir("regression_threads");
   for (const Entry& e : regression_list()) {
