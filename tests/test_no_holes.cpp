@@ -6,6 +6,8 @@
 // blobs as polynomials; with Blanc's, by segments, after the frame's beams. The cases are where a
 // marcher with a shortest step or a loose bound goes wrong: a 1e-3 sphere beside a 1e3 one in the
 // same object, a thin sheet and needles seen edge-on and end-on, and rays grazing a large sphere.
+// A second suite (NoHolesMarch) takes solids with no closed-form hit (negative strengths, sheared
+// capsules) against a dense reference march instead.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -224,6 +226,90 @@ TEST_P(NoHoles, HitMaskIsExact) {
 INSTANTIATE_TEST_SUITE_P(Scenes, NoHoles, scene_modes(kCases),
                          [](const testing::TestParamInfo<SceneMode>& i) {
                            return scene_mode_name(kCases, i);
+                         });
+
+// Solids with no closed-form first hit, against a dense sampling march of the model tree along
+// the same pixel-centre rays: a large blob with a small hole punched into it by a negative
+// strength (the polynomial blob path in the local mode), and thin capsules sheared by a matrix
+// (an affine placement), each also seen at grazing incidence. No pixel may differ: every
+// reference hit is hit, no later than the reference's first inside sample, and every hit the
+// reference misses (a sliver between its samples) lies inside the solid.
+struct MarchCase {
+  const char* name;
+  Camera camera;
+  const char* field;
+};
+
+const char* const kHoleField = R"({"type":"soft_blend","children":[
+    {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},
+    {"type":"soft_object","potential":{"type":"murakami"},"strength":-1.5,"translate":[2.1,0.3,0],
+     "distance":{"type":"lp_metric","radii":[0.9,0.9,0.9],"n":2}}]})";
+const char* const kShearedField = R"({"type":"soft_blend","children":[
+    {"type":"soft_object","potential":{"type":"murakami"},"matrix":[[1,0.9,0,0],[0,0.12,0,0],[0.3,0,1,0]],
+     "distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":1}},
+    {"type":"soft_object","potential":{"type":"cubic"},"strength":1.4,"matrix":[[0.1,0,0,1],[0.5,1,0,0.5],[0,0.6,0.08,0.4]],
+     "distance":{"type":"segment","p0":[0,-3,0],"p1":[0,3,0],"radius":1}}]})";
+
+// Camera: eye, target, up, vertical fov in degrees.
+const MarchCase kMarchCases[] = {
+    {"hole", {{9, -4, 3}, {2, 0, 0}, {0, 0, 1}, 40}, kHoleField},
+    // Just above the tangent plane at the hole's rim, looking across it.
+    {"hole_grazing", {{2.3, -7, 0.9}, {2.0, 0, 0.75}, {0, 0, 1}, 20}, kHoleField},
+    {"sheared_capsules", {{2, -9, 5}, {0.5, 0, 0.3}, {0, 0, 1}, 40}, kShearedField},
+    // Nearly in the plane of the thin sheared sheet (its normal is about y).
+    {"sheared_capsules_grazing", {{1, -7, 0.25}, {0, 0, 0}, {0, 0, 1}, 30}, kShearedField},
+};
+
+std::string march_scene_json(const MarchCase& c) {
+  return R"({"camera":{"eye":)" + json_vec(c.camera.eye) + R"(,"target":)" +
+         json_vec(c.camera.target) + R"(,"up":)" + json_vec(c.camera.up) + R"(,"fov":)" +
+         json_num(c.camera.fov) + R"(},"objects":[{"field":)" + c.field + "}]}";
+}
+
+class NoHolesMarch : public testing::TestWithParam<SceneMode> {};
+
+TEST_P(NoHolesMarch, HitMaskMatchesADenseReferenceMarch) {
+  const Scene scene = parse_scene(march_scene_json(kMarchCases[std::get<0>(GetParam())]), "<test>");
+  const TracedScene rt(scene, std::get<1>(GetParam()));
+  const SceneObject& obj = scene.objects[0];
+  const auto inside = [&](const Vec3& p) {
+    return obj.inside_sign * (obj.field->value(p) - obj.iso) >= 0;
+  };
+  const PinholeCamera camera(scene.camera, W, H);
+  constexpr int kSamples = 8000;
+  int ref_hits = 0, ref_misses = 0, differ = 0;
+  std::string first;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const Ray ray = camera.generate(x + 0.5, y + 0.5);
+      const TraceHit hit = rt.embree.intersect(ray, 0, kInf);
+      double t0 = 0, t1 = kInf, ref = kInf;
+      if (clip_to_box(ray, obj.bounds, t0, t1))
+        for (int i = 0; i <= kSamples && !std::isfinite(ref); ++i) {
+          const double t = t0 + (t1 - t0) * i / kSamples;
+          if (inside(ray.o + ray.d * t)) ref = t;
+        }
+      const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+      bool bad = false;
+      if (std::isfinite(ref)) {
+        ++ref_hits;
+        bad = !hit.hit || hit.t > ref + 2e-3 * ray.cone * ref;
+      } else {
+        ++ref_misses;
+        bad = hit.hit && hit.work.give_ups == 0 && !inside(ray.o + ray.d * hit.t);
+      }
+      if (bad && differ++ == 0)
+        first = where + ": reference t = " + std::to_string(ref) + ", tracer " +
+                (hit.hit ? "t = " + std::to_string(hit.t) : std::string("none"));
+    }
+  EXPECT_EQ(differ, 0) << differ << " pixels differ from the reference march; the first, " << first;
+  EXPECT_GE(ref_hits, W * H / 20) << "the object should be in view";
+  EXPECT_GE(ref_misses, W * H / 20) << "the background should be in view";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, NoHolesMarch, scene_modes(kMarchCases),
+                         [](const testing::TestParamInfo<SceneMode>& i) {
+                           return scene_mode_name(kMarchCases, i);
                          });
 
 }  // namespace

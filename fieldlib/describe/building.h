@@ -5,7 +5,8 @@
 // potentials and radius transforms (pbrt's "parse → describe → create"). The kind comes from the
 // table in loader/kinds.h, its parameters are checked against the table (unknown keys with a near
 // miss first, then presence, types and ranges), the slot's family is checked, and only then does
-// the kind's `create` read them. Placement (`translate`, `rotate`) is read there for every node.
+// the kind's `create` read them. Placement (`translate`, `rotate`, `scale`, `matrix`) is read there
+// for every node.
 #pragma once
 
 #include <memory>
@@ -40,8 +41,8 @@ PotentialPtr build_potential(const Params& p);
 NodePtr build_radius_transform(const Params& r, NodePtr d, PotentialPtr P, const BuildContext& ctx);
 
 // Checks `p` against `kind`'s parameters: unknown keys (with the nearest known name), then
-// missing required ones, then each present one's type and range. `placement` allows translate
-// and rotate.
+// missing required ones, then each present one's type and range. `placement` allows the placement
+// keys (translate, rotate, scale, matrix).
 void check_params(const KindInfo& kind, const Params& p, bool placement);
 
 // Reports a warning line through ctx.warn (or on stderr).

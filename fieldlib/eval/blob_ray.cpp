@@ -18,6 +18,11 @@ bool potential_in_r(Op op, double* c2, double* c3) {
     *c3 = 0;
     return true;
   }
+  if (op == Op::Cubic) {  // r^3
+    *c2 = 0;
+    *c3 = 1;
+    return true;
+  }
   if (op == Op::Wyvill) {
     *c2 = 5.0 / 9;
     *c3 = 4.0 / 9;
@@ -27,7 +32,8 @@ bool potential_in_r(Op op, double* c2, double* c3) {
 }
 
 // One child of the sum: placements from register 0, an ellipsoidal lp_metric of the last one,
-// a polynomial potential of that. The frame x -> M x + k is the placements' composition.
+// a polynomial potential of that, and optionally its strength s (which scales c2 and c3). The
+// frame x -> M x + k is the placements' composition.
 bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::Frame* frame,
                BlobSum::Blob* blob) {
   Mat3 M;
@@ -54,14 +60,23 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
     }
     reg = in.out;
   }
-  if (c.end - i != 2) return false;
+  if (c.end - i != 2 && c.end - i != 3) return false;
   const Instr& metric = p.code[i];
   const Instr& potential = p.code[i + 1];
   if (metric.op != Op::LpMetric || metric.in != reg) return false;
   const LpMetricParams m = LpMetricParams::load(K + metric.a);
   if (m.n != 2) return false;
-  if (potential.in != metric.out || potential.out != c.slot) return false;
+  if (potential.in != metric.out) return false;
   if (!potential_in_r(potential.op, &blob->c2, &blob->c3)) return false;
+  if (c.end - i == 3) {
+    const Instr& strength = p.code[i + 2];
+    if (strength.op != Op::Strength || strength.in != potential.out || strength.out != c.slot)
+      return false;
+    blob->c2 *= K[strength.a];
+    blob->c3 *= K[strength.a];
+  } else if (potential.out != c.slot) {
+    return false;
+  }
   for (int r = 0; r < 3; ++r) {
     const double a = m.a[r];
     // The squares of |L x + k| must neither overflow nor vanish for any point a ray reaches (the
@@ -141,7 +156,9 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
     if (!(enter < exit)) continue;
     const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
     const double r = std::max(h2 - alpha * gap * gap, 0.0);
-    out[n++] = {enter, exit, mid, alpha, h2, b.c2, b.c3, r * r * (b.c2 + b.c3 * r)};
+    // The largest value over the stretch: at the largest r for a positive strength, at most 0
+    // for a negative one.
+    out[n++] = {enter, exit, mid, alpha, h2, b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
   }
   return n;
 }
@@ -178,7 +195,7 @@ StretchPolynomial stretch_polynomial(const BlobSum::Term* terms, const int* acti
     const double r2[5] = {R0 * R0, 2 * R0 * R1, R1 * R1 + 2 * R0 * R2, 2 * R1 * R2, R2 * R2};
     for (int j = 0; j < 5; ++j) sp.a[j] += t.c2 * r2[j];
     const double m = std::abs(R0) + std::abs(R1) + std::abs(R2);
-    magnitude += m * m * (t.c2 + t.c3 * m);
+    magnitude += m * m * (std::abs(t.c2) + std::abs(t.c3) * m);
     if (t.c3 == 0) continue;
     sp.degree = 6;
     for (int j = 0; j < 5; ++j) {

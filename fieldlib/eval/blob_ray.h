@@ -1,5 +1,6 @@
-// A sum of polynomial blobs along a ray, as POV-Ray's blob solves it. Murakami's and Wyvill's
-// potentials are polynomials in r = 1 - d^2 (r^2, and (5 r^2 + 4 r^3)/9, docs/math.md §3.3), and
+// A sum of polynomial blobs along a ray, as POV-Ray's blob solves it. Murakami's, Wyvill's and the
+// cubic potentials are polynomials in r = 1 - d^2 (r^2, (5 r^2 + 4 r^3)/9 and r^3, docs/math.md
+// §3.3-§3.4), and
 // an ellipsoidal distance's d^2 is quadratic along a line. So between the points where a ray
 // enters and leaves the blobs' supports, a soft_blend of such soft objects is one polynomial of
 // degree at most 6 in t, which bernstein.h decides exactly, with no Lipschitz bound and no step.
@@ -19,8 +20,9 @@ namespace softtrace {
 
 class BlobSum {
  public:
-  // The blobs of `p` if its field is exactly a sum of soft objects, each Murakami's or Wyvill's
-  // potential of an lp_metric with n = 2 under translations and rotations; nullopt otherwise.
+  // The blobs of `p` if its field is exactly a sum of soft objects, each Murakami's, Wyvill's or
+  // the cubic potential of an lp_metric with n = 2 under translations and rotations, of any
+  // strength; nullopt otherwise.
   static std::optional<BlobSum> of(const Program& p);
 
   // One blob's part of a stretch of ray: its potential is P(r(u)) over [enter, exit] (the
@@ -29,7 +31,7 @@ class BlobSum {
     double enter, exit;
     double mid, alpha, h2;
     double c2, c3;
-    double peak;  // P's largest value over [enter, exit]
+    double peak;  // an upper bound of P's values over [enter, exit] (0 for a negative strength)
   };
   // The terms of the blobs whose supports the stretch o + u d, u in [0, len], passes through (d a
   // unit vector; `pad` the rounding of the points the caller will take along it), in out[];

@@ -29,6 +29,7 @@
 #include "kernels/ricci.h"
 #include "kernels/skeletal.h"
 #include "kernels/spherical_product.h"
+#include "kernels/strength.h"
 #include "kernels/super_ellipsoidal.h"
 #include "kernels/transformed_potential.h"
 #include "math/bound_util.h"
@@ -124,7 +125,7 @@ void ellipsoid_on_segment(const Vec3& a, const Vec3& ia, const Vec3& A, const Ve
 // potential's (transformed or not) or a sum's, not a distance's (>= 1).
 bool zero_when_quiet(Op op) {
   return op == Op::Sum || op == Op::Blanc || op == Op::Wyvill || op == Op::Murakami ||
-         op == Op::RadiusTransform;
+         op == Op::Cubic || op == Op::RadiusTransform || op == Op::Strength;
 }
 
 // P over [d] for a non-increasing potential, and its slope bound (0 where d >= 1).
@@ -289,6 +290,22 @@ class Walker {
         if (bounds_)
           potential(
               in, [](double d) { return murakami(d, nullptr); }, murakami_slope_range(I[in.in]));
+        break;
+      case Op::Cubic:  // a polynomial, as Murakami's
+        if (bounds_)
+          potential(
+              in, [](double d) { return cubic(d, nullptr); }, cubic_slope_range(I[in.in]));
+        break;
+      case Op::Strength:
+        if (bounds_) {
+          // s·f of a soft object f: 0 exactly where f is, so f's quiet start is its own
+          // (zero_when_quiet); d/dt (s f) = s df/dt, the ends swapped for s < 0.
+          const double s = K_[in.a];
+          I[in.out] = strength_interval(s, I[in.in]);
+          L[in.out] = strength_lipschitz(s, L[in.in]);
+          D[in.out] = Interval(s) * D[in.in];
+          Q[in.out] = Q[in.in];
+        }
         break;
       case Op::Offset:
         if (bounds_) {

@@ -13,6 +13,7 @@
 #include "kernels/ricci.h"
 #include "kernels/skeletal.h"
 #include "kernels/spherical_product.h"
+#include "kernels/strength.h"
 #include "kernels/super_ellipsoidal.h"
 #include "kernels/transformed_potential.h"
 #include "math/scratch.h"
@@ -151,6 +152,17 @@ void gradient_range(const Code& c, int begin, int end, Workspace::Dual* S, Works
         double dP;
         const double v = murakami(S[in.in].v, &dP);
         S[in.out] = chain(v, dP, S[in.in]);
+        break;
+      }
+      case Op::Cubic: {
+        double dP;
+        const double v = cubic(S[in.in].v, &dP);
+        S[in.out] = chain(v, dP, S[in.in]);
+        break;
+      }
+      case Op::Strength: {
+        const Workspace::Dual& d = S[in.in];
+        S[in.out] = {strength_value(K[in.a], d.v), strength_gradient(K[in.a], d.g)};
         break;
       }
       case Op::Offset: {

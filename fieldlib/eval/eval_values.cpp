@@ -18,6 +18,7 @@
 #include "kernels/ricci.h"
 #include "kernels/skeletal.h"
 #include "kernels/spherical_product.h"
+#include "kernels/strength.h"
 #include "kernels/super_ellipsoidal.h"
 #include "kernels/transformed_potential.h"
 #include "math/scratch.h"
@@ -230,6 +231,17 @@ void values(Code c, const double* x, const double* y, const double* z, int n, do
         for (int l = 0; l < n; ++l) out[l] = murakami(d[l], nullptr);
         break;
       }
+      case Op::Cubic: {
+        const double* d = S + in.in * kBatch;
+        for (int l = 0; l < n; ++l) out[l] = cubic(d[l], nullptr);
+        break;
+      }
+      case Op::Strength: {
+        const double* d = S + in.in * kBatch;
+        const double s = K[in.a];
+        for (int l = 0; l < n; ++l) out[l] = strength_value(s, d[l]);
+        break;
+      }
       case Op::Offset: {
         const double* d = S + in.in * kBatch;
         const double sc = K[in.a], lv = K[in.a + 1];
@@ -381,6 +393,12 @@ void point_range(const Code& c, int begin, int end, double* S, Vec3* R, int32_t*
         break;
       case Op::Murakami:
         out = murakami(S[in.in], nullptr);
+        break;
+      case Op::Cubic:
+        out = cubic(S[in.in], nullptr);
+        break;
+      case Op::Strength:
+        out = strength_value(K[in.a], S[in.in]);
         break;
       case Op::Offset:
         out = offset_value(K[in.a], K[in.a + 1], S[in.in]);

@@ -13,6 +13,8 @@ double PotentialKind::lipschitz() const {
       return wyvill_lipschitz();
     case PotentialType::Murakami:
       return murakami_lipschitz();
+    case PotentialType::Cubic:
+      return cubic_lipschitz();
   }
   return blanc_lipschitz(s);  // not reached: the switch names every type
 }

@@ -84,11 +84,28 @@ inline double murakami(double d, double* dP) {
   return v * v;
 }
 
+// (1 - d^2)^3, Galin et al. 2020's kernel (Segment Tracing), docs/math.md §3.4
+inline double cubic(double d, double* dP) {
+  d = std::max(d, 0.0);
+  if (d >= 1) {
+    if (dP) *dP = 0;
+    return 0;
+  }
+  const double v = 1 - d * d;
+  if (dP) *dP = -6 * d * v * v;
+  return v * v * v;
+}
+
 // max |P'| over d >= 0, each derived in potentials.cpp (rounded up by 1e-12 relative).
 double blanc_lipschitz(double s);  // [PB-5]
 double wyvill_lipschitz();
 inline double murakami_lipschitz() {
   return 8 / (3 * 1.7320508075688772) * (1 + 1e-12);  // 8/(3 sqrt 3), sqrt 3 to within an ulp
+}
+// Cubic: |P'| = 6d(1 - d^2)^2 peaks where (1 - d^2)(1 - 5d^2) = 0, d = 1/sqrt(5): 96/(25 sqrt 5)
+// ([PC-2]).
+inline double cubic_lipschitz() {
+  return 96 / (25 * 2.2360679774997897) * (1 + 1e-12);  // sqrt 5 to within an ulp
 }
 // [min |P'|, max |P'|] over d in [lo, hi] for a potential whose |P'| rises from d = 0 to its peak
 // `peak` at d = `at` and falls after it to 0 at d = 1 (and is 0 beyond): the ends' values bound
@@ -109,6 +126,16 @@ inline Interval murakami_slope_range(Interval d) {
   constexpr double kPeak = 0.57735026918962576;  // 1/sqrt(3), to within an ulp
   return unimodal_slope_range([](double x) { return 4 * x * (1 - x * x); }, kPeak,
                               murakami_lipschitz(), d.lo, d.hi);
+}
+// Cubic: |P'| = 6d(1 - d^2)^2, unimodal with its peak at d = 1/sqrt(5) ([PC-2]).
+inline Interval cubic_slope_range(Interval d) {
+  constexpr double kPeak = 0.44721359549995794;  // 1/sqrt(5), to within an ulp
+  return unimodal_slope_range(
+      [](double x) {
+        const double v = 1 - x * x;
+        return 6 * x * v * v;
+      },
+      kPeak, cubic_lipschitz(), d.lo, d.hi);
 }
 // Blanc: unimodal with its peak [PB-5] at d = 0.5 for every s >= 0 (docs/math.md §3.2: P'' < 0
 // on (0, 0.5) and > 0 on (0.5, 1)).
@@ -133,7 +160,7 @@ inline Interval wyvill_slope_range(Interval d) {
 
 // The potentials by name, and one as a value (Blanc with softness s, Wyvill, Murakami) for a kernel
 // that applies it inside its own (RadiusTransform) without a virtual call.
-enum class PotentialType { Blanc, Wyvill, Murakami };
+enum class PotentialType { Blanc, Wyvill, Murakami, Cubic };
 
 struct PotentialKind {
   PotentialType type;
@@ -147,6 +174,8 @@ struct PotentialKind {
         return wyvill(d, dP);
       case PotentialType::Murakami:
         return murakami(d, dP);
+      case PotentialType::Cubic:
+        return cubic(d, dP);
     }
     return blanc(d, s, dP);  // not reached: the switch names every type
   }

@@ -131,7 +131,7 @@ void check_value(const Params& p, const ParamSpec& spec, const json& v) {
 
 void check_params(const KindInfo& kind, const Params& p, bool placement) {
   std::vector<std::string> known = {"type"};
-  if (placement) known.insert(known.end(), {"translate", "rotate"});
+  if (placement) known.insert(known.end(), {"translate", "rotate", "scale", "matrix"});
   for (const auto& spec : kind.params) known.push_back(spec.name);
   const json& j = p.raw();
   for (auto it = j.begin(); it != j.end(); ++it) {

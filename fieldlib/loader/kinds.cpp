@@ -223,10 +223,14 @@ std::vector<KindInfo> make_kinds() {
       node("soft_object", S,
            {Spec("distance", T::Node).takes(D, 1, 1),
             Spec("potential", T::Potential).optional("blanc, s = 0"),
-            Spec("radii", T::RadiusTransform).optional("none: P(d)")},
-           "P(T(d)): a soft object (000 Eq. 9, 002 Eq. 1)", create_soft_object),
+            Spec("radii", T::RadiusTransform).optional("none: P(d)"),
+            Spec("strength", T::Number)
+                .optional("1")
+                .noted("s != 0; the field is s*P(T(d)); negative subtracts (soft_blend, min, "
+                       "max, complement)")},
+           "s*P(T(d)): a soft object (000 Eq. 9, 002 Eq. 1)", create_soft_object),
       // Blends, docs/math.md §5-§7.
-      node("soft_blend", S, {children(S, 2)}, "Σ f_i (000 Eq. 12, 002 Eq. 3)", create_soft_blend),
+      node("soft_blend", S, {children(S, 1)}, "Σ f_i (000 Eq. 12, 002 Eq. 3)", create_soft_blend),
       node("perlin_union", S, {children(S, 2)}, "1 - Π(1 - f_i) (002 Eq. 4)", create_perlin_union),
       node("perlin_intersection", S, {children(S, 2)}, "Π f_i (002 Eq. 5)",
            create_perlin_intersection),
@@ -280,6 +284,10 @@ std::vector<KindInfo> make_kinds() {
       potential("murakami", {},
                 "(1 - d^2)^2, POV-Ray's blob; 0.5 level at d = 0.5412 (docs/math.md §3.3)",
                 create_murakami),
+      potential("cubic", {},
+                "(1 - d^2)^3, Galin et al. 2020's kernel; 0.5 level at d = 0.4542 (docs/math.md "
+                "§3.4)",
+                create_cubic),
       // Radius transforms, docs/math.md §4.2-§4.8.
       transform("T_n",
                 {Spec("w1", T::Number).above(0).called("an outer radius factor w1"),
@@ -370,7 +378,8 @@ std::string fuzz_dictionary() {
       }
     }
   }
-  for (const char* placement : {"translate", "rotate", "axis", "deg", "omega"}) add(placement);
+  for (const char* placement : {"translate", "rotate", "scale", "matrix", "axis", "deg", "omega"})
+    add(placement);
   return out.str();
 }
 

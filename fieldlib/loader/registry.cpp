@@ -2,8 +2,8 @@
 #include <cstdio>
 
 #include "describe/building.h"
+#include "loader/placement_keys.h"
 #include "model/node.h"
-#include "model/placement.h"
 #include "model/potential.h"
 
 namespace softtrace {
@@ -30,14 +30,6 @@ const ParamSpec& slot_of(const BuildContext& ctx, const std::string& key) {
   const ParamSpec* spec = ctx.kind ? find_param(*ctx.kind, key) : nullptr;
   if (!spec) throw std::logic_error("no slot '" + key + "' in the kind being built");
   return *spec;
-}
-
-// Rotations are periodic: reduce the angle before it meets π, so that no finite angle overflows.
-Mat3 rotation_of(const Params& r) {
-  r.check_keys({"axis", "deg"});  // a misspelled key before a missing one, as everywhere
-  const Vec3 axis = r.vec3("axis");
-  r.check(length(axis) > 0 && std::isfinite(length(axis)), "axis", "expected a non-zero axis");
-  return Mat3::rotation(axis, std::fmod(r.number("deg"), 360.0));
 }
 
 }  // namespace
@@ -81,24 +73,8 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   BuildContext inner = ctx;
   ++inner.depth;
   inner.kind = &kind;
-  NodePtr node = kind.create_node(p, inner);
-
-  const Vec3 translate = p.vec3("translate", {});
-  if (p.has("translate"))
-    for (int i = 0; i < 3; ++i)
-      p.check(std::abs(translate[i]) <= kMaxMagnitude, "translate/" + std::to_string(i),
-              "expected a number of magnitude at most 1e150 (docs/scene-format.md)");
-  Mat3 rotation;
-  bool rotated = false;
-  if (p.has("rotate")) {
-    const Params r = p.object("rotate");
-    rotation = rotation_of(r);
-    r.finish();
-    rotated = true;
-  }
+  NodePtr node = apply_placement(kind.create_node(p, inner), p, kind);
   p.finish();
-  if (rotated || translate.x != 0 || translate.y != 0 || translate.z != 0)
-    node = place(std::move(node), rotation, translate);
   return node;
 }
 

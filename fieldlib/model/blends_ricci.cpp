@@ -10,6 +10,7 @@
 #include "model/blends.h"
 #include "model/node_util.h"
 #include "model/program_builder.h"
+#include "model/strength.h"
 
 namespace softtrace {
 
@@ -110,6 +111,7 @@ NodePtr create_ricci(const Params& p, const BuildContext& ctx, SetOp op) {
     p.fail("type", "ricci_* applies to soft or constructive objects (docs/math.md §5.3, §5.4)");
   const double n = p.number("n");
   std::vector<NodePtr> c = build_children(p, "children", ctx);
+  refuse_negative_strength(p, ctx.kind->name);
   const bool soft = ctx.convention == Convention::Soft;
   const RicciArg rest = op != SetOp::Difference ? RicciArg::Same
                         : soft                  ? RicciArg::SoftComplement

@@ -20,6 +20,7 @@
 
 #include "describe/building.h"
 #include "model/blends.h"
+#include "model/strength.h"
 
 namespace softtrace {
 
@@ -138,6 +139,7 @@ NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
     p.check(r2 < 1, "r2", "expected 0 < r2 < 1 for BSS2 (docs/math.md §6.3.3, R24)");
   }
   std::vector<NodePtr> c = build_children(p, "children", ctx);
+  refuse_negative_strength(p, ctx.kind->name);
   return std::make_unique<Scale>(std::move(c[0]), std::move(c[1]), r1, r2, pp, bsa);
 }
 

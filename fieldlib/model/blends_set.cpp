@@ -10,6 +10,7 @@
 #include "model/blends.h"
 #include "model/node_util.h"
 #include "model/program_builder.h"
+#include "model/strength.h"
 
 namespace softtrace {
 
@@ -185,13 +186,19 @@ class Complement final : public FieldNode {
 }  // namespace
 
 NodePtr create_perlin_union(const Params& p, const BuildContext& ctx) {
-  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Mode::Union);
+  std::vector<NodePtr> c = build_children(p, "children", ctx);
+  refuse_negative_strength(p, ctx.kind->name);
+  return std::make_unique<Perlin>(std::move(c), Perlin::Mode::Union);
 }
 NodePtr create_perlin_intersection(const Params& p, const BuildContext& ctx) {
-  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Mode::Intersection);
+  std::vector<NodePtr> c = build_children(p, "children", ctx);
+  refuse_negative_strength(p, ctx.kind->name);
+  return std::make_unique<Perlin>(std::move(c), Perlin::Mode::Intersection);
 }
 NodePtr create_perlin_difference(const Params& p, const BuildContext& ctx) {
-  return std::make_unique<Perlin>(build_children(p, "children", ctx), Perlin::Mode::Difference);
+  std::vector<NodePtr> c = build_children(p, "children", ctx);
+  refuse_negative_strength(p, ctx.kind->name);
+  return std::make_unique<Perlin>(std::move(c), Perlin::Mode::Difference);
 }
 NodePtr create_min(const Params& p, const BuildContext& ctx) {
   return std::make_unique<MinMax>(build_children(p, "children", ctx), true);

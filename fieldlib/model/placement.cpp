@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "math/affine.h"
 #include "model/program_builder.h"
 
 namespace softtrace {
@@ -69,7 +70,80 @@ class Placed final : public FieldNode {
   bool rotated_;
 };
 
+// The box around M (b - t) (centre through M, half extent through |M|), or around M b + t
+// (`after`), padded by 1e-12 of the magnitudes that entered each coordinate: the few products
+// and sums err by far less, and the subtraction first keeps a box far from the origin exact.
+Box affine_box(const Box& b, const Mat3& M, const Vec3& t, bool after) {
+  if (!b.bounded()) return Box::unbounded();
+  const Vec3 c = after ? b.center() : b.center() - t, h = b.extent() * 0.5;
+  Box o;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3& m = M.r[i];
+    const Vec3 am{std::abs(m.x), std::abs(m.y), std::abs(m.z)};
+    const double shift = after ? t[i] : 0.0;
+    const double ci = dot(m, c) + shift;
+    const double hi = dot(am, h);
+    const double pad = 1e-12 * (dot(am, Vec3{std::abs(c.x), std::abs(c.y), std::abs(c.z)}) +
+                                std::abs(shift) + hi) +
+                       1e-300;
+    o.lo[i] = ci - hi - pad;
+    o.hi[i] = ci + hi + pad;
+  }
+  return o;
+}
+
+// f(A^-1 (p - t)) for an invertible A   — docs/math.md §2.15
+class AffinePlaced final : public FieldNode {
+ public:
+  AffinePlaced(NodePtr child, const Mat3& A, const Vec3& t)
+      : child_(std::move(child)),
+        A_(A),
+        M_(inverse(A)),
+        Mt_(transposed(M_)),
+        t_(t),
+        norm_M_(operator_norm_bound(M_)),
+        floor_M_(std::max(0.0, iv::down(1 / operator_norm_bound(A)))) {}
+
+  double eval(const Vec3& p, Vec3* grad) const override {
+    const double v = child_->eval(M_ * (p - t_), grad);
+    if (grad) *grad = Mt_ * *grad;  // ∇(f∘g) = M^T ∇f
+    return v;
+  }
+  Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
+  double lipschitz() const override { return scaled(child_->lipschitz()); }
+  double lipschitz(const Box& b) const override { return scaled(child_->lipschitz(to_local(b))); }
+  void bounds(const Box& b, Interval* value, double* L) const override {
+    child_->bounds(to_local(b), value, L);
+    *L = scaled(*L);
+  }
+  // |M^T g| >= σ_min(M) |g| = |g| / |A|_2; the Hessian is M^T H M, of norm <= |M|^2 |H|.
+  double gradient_floor(const Box& b) const override {
+    return std::max(0.0, iv::down(child_->gradient_floor(to_local(b)) * floor_M_));
+  }
+  double hessian_bound(const Box& b) const override {
+    return iv::up(iv::up(child_->hessian_bound(to_local(b)) * norm_M_) * norm_M_);
+  }
+  Box region(double level, Side side) const override {
+    const Box local = child_->region(level, side);
+    return local.bounded() ? affine_box(local, A_, t_, true) : local;
+  }
+
+ private:
+  Box to_local(const Box& b) const { return affine_box(b, M_, t_, false); }
+  double scaled(double L) const { return L == 0 ? 0.0 : iv::up(L * norm_M_); }
+
+  NodePtr child_;
+  Mat3 A_, M_, Mt_;  // object to world, its inverse, and the inverse's transpose
+  Vec3 t_;
+  double norm_M_;   // >= |M|_2
+  double floor_M_;  // <= σ_min(M) = 1 / |A|_2
+};
+
 }  // namespace
+
+NodePtr place_affine(NodePtr child, const Mat3& A, const Vec3& t) {
+  return std::make_unique<AffinePlaced>(std::move(child), A, t);
+}
 
 Box transform_box(const Box& b, const Mat3& R, const Vec3& t) {
   Box out;

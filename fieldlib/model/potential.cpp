@@ -10,6 +10,8 @@ Op Potential::op() const {
       return Op::Wyvill;
     case PotentialType::Murakami:
       return Op::Murakami;
+    case PotentialType::Cubic:
+      return Op::Cubic;
   }
   return Op::Blanc;  // not reached: the switch names every type
 }
@@ -45,6 +47,14 @@ class Murakami final : public Potential {
   PotentialType type() const override { return PotentialType::Murakami; }
 };
 
+// (1 - d^2)^3   — Galin et al. 2020 (Segment Tracing), docs/math.md §3.4
+class Cubic final : public Potential {
+ public:
+  double eval(double d, double* dP) const override { return cubic(d, dP); }
+  double lipschitz() const override { return cubic_lipschitz(); }
+  PotentialType type() const override { return PotentialType::Cubic; }
+};
+
 }  // namespace
 
 std::unique_ptr<Potential> create_blanc(const Params& p) {
@@ -59,6 +69,9 @@ std::unique_ptr<Potential> create_wyvill(const Params&) {
 }
 std::unique_ptr<Potential> create_murakami(const Params&) {
   return std::make_unique<Murakami>();
+}
+std::unique_ptr<Potential> create_cubic(const Params&) {
+  return std::make_unique<Cubic>();
 }
 
 }  // namespace softtrace

@@ -35,6 +35,7 @@ std::unique_ptr<Potential> create_blanc(const Params& p);  // 002 Eq. 2, §3.2
 PotentialPtr make_blanc(double s);                         // the default potential is make_blanc(0)
 std::unique_ptr<Potential> create_wyvill(const Params& p);    // Wyvill's sextic, §3.3
 std::unique_ptr<Potential> create_murakami(const Params& p);  // quartic (1-d^2)^2, §3.3
+std::unique_ptr<Potential> create_cubic(const Params& p);     // (1-d^2)^3, Galin et al., §3.4
 
 // The potential named by p["type"] (registry.cpp holds the table).
 PotentialPtr build_potential(const Params& p);

@@ -39,10 +39,14 @@ int ProgramBuilder::oracle(const FieldNode& node, int reg) {
 
 namespace {
 // A sum's term is exactly 0 outside its support box if it is a field that is never negative
-// ({f > 0} lies in region(min, Above), and f >= 0 everywhere); unbounded for any other term.
+// ({f > 0} lies in region(min, Above), and f >= 0 everywhere) or never positive ({f < 0} lies in
+// region(-min, Below): a soft object of negative strength); unbounded for any other term.
 Box sum_support(const FieldNode& c) {
-  return global_range(c).lo >= 0 ? c.region(std::numeric_limits<double>::min(), Side::Above)
-                                 : Box::unbounded();
+  const double tiny = std::numeric_limits<double>::min();
+  const Interval range = global_range(c);
+  if (range.lo >= 0) return c.region(tiny, Side::Above);
+  if (range.hi <= 0) return c.region(-tiny, Side::Below);
+  return Box::unbounded();
 }
 }  // namespace
 

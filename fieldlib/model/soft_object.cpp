@@ -12,6 +12,7 @@
 #include "model/modulation_check.h"
 #include "model/potential.h"
 #include "model/program_builder.h"
+#include "model/strength.h"
 
 namespace softtrace {
 
@@ -270,12 +271,16 @@ NodePtr create_contour(const Params& r, NodePtr d, PotentialPtr P, const BuildCo
 }
 
 NodePtr create_soft_object(const Params& p, const BuildContext& ctx) {
+  const double s = p.number("strength", 1.0);
+  p.check(s != 0, "strength", "expected strength != 0 (s = 0 gives no field)");
   NodePtr d = build_node(p, "distance", ctx);
   PotentialPtr P = p.has("potential") ? build_potential(p.object("potential")) : make_blanc(0);
-  if (!p.has("radii")) return std::make_unique<SoftObject>(std::move(d), std::move(P));
+  if (!p.has("radii"))
+    return with_strength(std::make_unique<SoftObject>(std::move(d), std::move(P)), s);
   BuildContext inner = ctx;
   inner.skeleton = skeleton_of(p.raw().at("distance"));
-  return build_radius_transform(p.object("radii"), std::move(d), std::move(P), inner);
+  return with_strength(build_radius_transform(p.object("radii"), std::move(d), std::move(P), inner),
+                       s);
 }
 
 }  // namespace softtrace

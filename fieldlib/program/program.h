@@ -44,6 +44,8 @@ namespace softtrace {
   X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
   X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
   X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
+  X(Cubic)            /* slot out = (1 - d^2)^3 (d < 1), Galin et al. 2020              */  \
+  X(Strength)         /* slot out = s · slot in (s = c[0]): a soft object's strength  */   \
   X(Offset)           /* slot out = s (slot in - c) (s = c[0], c = c[1]), 003 §2.1      */ \
   X(Complement)       /* slot out = 1 - f, -f or 1/f of slot in (convention = c[0])     */  \
   X(RadiusTransform)  /* slot out = P(T(d, w)), d = slot in, w constant or from f =     */  \

@@ -48,6 +48,8 @@ void operands(Program& p, int k, const Use& use, const Def& def) {
     case Op::Blanc:
     case Op::Wyvill:
     case Op::Murakami:
+    case Op::Cubic:
+    case Op::Strength:
     case Op::Offset:
     case Op::Complement:
       use(kSlot, in.in);
