@@ -228,3 +228,15 @@ def test_silhouette_matches_povray(pov, tmp_path):
     either = sum(1 for x, y in zip(a, b) if x or y)
     assert either > 0.01 * w * h, "nothing drawn"
     assert both / either >= 0.999, "IoU %.5f" % (both / either)
+
+
+def test_a_stretched_camera_is_converted_with_a_warning():
+    warnings = []
+    body = "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }"
+    convert("t.pov", "camera { location -5*z look_at 0 angle 40 }\n" + body, 320, 240, warnings)
+    assert len(warnings) == 1 and warnings[0][:2] == (1, 1)
+    assert "right/up is 1.33 but the image is 320 x 240" in warnings[0][2]
+    warnings = []
+    convert("t.pov", "camera { location -5*z right x*image_width/image_height look_at 0 }\n" +
+            body, 320, 240, warnings)
+    assert warnings == []

@@ -10,7 +10,9 @@ components and on the blob, and the blob's pigment and finish. POV-Ray's y-up le
 becomes softtrace's z-up right-handed one by swapping y and z, which keeps the picture unmirrored
 (tools/povsdl/affine.py). POV-Ray's `angle` is horizontal, softtrace's `fov` vertical.
 
-Anything it cannot carry is refused with one line, `SCENE.pov:LINE:COL: what`, and exit status 2;
+What it carries only approximately (a camera whose right/up ratio is not the image's aspect:
+POV-Ray's default right, 1.33, on a 4:3 image) is converted with a warning, `SCENE.pov:LINE:COL:
+warning: ...`. Anything it cannot carry is refused with one line, `SCENE.pov:LINE:COL: what`, and exit status 2;
 the output file is then left as it was.
 
 usage: tools/pov2softtrace.py SCENE.pov [-o SCENE.json] [--width 320] [--height 240]
@@ -67,11 +69,14 @@ def main(argv=None):
     except OSError as e:
         print("%s: cannot read: %s" % (a.scene, e.strerror), file=sys.stderr)
         return 2
+    warnings = []
     try:
-        scene = convert(a.scene, text, a.width, a.height)
+        scene = convert(a.scene, text, a.width, a.height, warnings)
     except PovError as e:
         print("%s:%d:%d: %s" % (a.scene, e.line, e.col, e.message), file=sys.stderr)
         return 2
+    for line, col, message in warnings:
+        print("%s:%d:%d: warning: %s" % (a.scene, line, col, message), file=sys.stderr)
     out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (
         os.path.basename(a.scene), dumps(scene))
     if a.output:

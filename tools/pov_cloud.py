@@ -19,7 +19,7 @@ def scene(n, seed=1):
     size = 2.2 * (1000.0 / n) ** (1.0 / 3.0)
     out = ["// %d mixed blob components (tools/pov_cloud.py, seed %d)" % (n, seed),
            "#version 3.7;", "global_settings { assumed_gamma 1.0 }",
-           "camera { location <34, 38, -54> look_at <0, 0, 0> angle 34 }",
+           "camera { location <34, 38, -54> look_at <0, 0, 0> right x*4/3 angle 34 }",
            "light_source { <-30, 60, -40> color rgb 1 }",
            "light_source { <40, 20, -30> color rgb 0.35 shadowless }",
            "background { color rgb <0.4, 0.5, 0.65> }", "blob {", "  threshold 0.6"]

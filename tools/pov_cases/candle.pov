@@ -3,7 +3,7 @@
 // negative strengths, a component scaled after it is placed.
 #version 3.7;
 global_settings { assumed_gamma 1.0 ambient_light rgb <1, 0.95, 0.9> }
-camera { location <0, 5.5, -9> look_at <0, 2.2, 0> angle 42 }
+camera { location <0, 5.5, -9> look_at <0, 2.2, 0> right x*image_width/image_height angle 42 }
 light_source { <-6, 12, -8> color rgb <1.0, 0.95, 0.85> }
 background { color rgb <0.05, 0.04, 0.06> }
 blob {

@@ -3,7 +3,7 @@
 // people paste generated components). Exercises: many cylinder components, whole-blob transform.
 #version 3.7;
 global_settings { assumed_gamma 1.0 }
-camera { location <0, 9, -12> look_at <0, 0, 0> angle 40 }
+camera { location <0, 9, -12> look_at <0, 0, 0> right x*image_width/image_height angle 40 }
 light_source { <5, 20, -10> color rgb 1 }
 background { color rgb <0.15, 0.15, 0.18> }
 blob {

@@ -2,7 +2,7 @@
 // of two cylinders. Exercises: many negative components inside one large positive one.
 #version 3.7;
 global_settings { assumed_gamma 1.0 }
-camera { location <0, 2.5, -7> look_at <0, 0.2, 0> angle 38 }
+camera { location <0, 2.5, -7> look_at <0, 0.2, 0> right x*image_width/image_height angle 38 }
 light_source { <-8, 10, -10> color rgb 1 }
 light_source { <9, 3, -6> color rgb 0.4 }
 background { color rgb <0.3, 0.5, 0.3> }

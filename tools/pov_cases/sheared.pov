@@ -3,7 +3,7 @@
 // any order on components and on the whole blob.
 #version 3.7;
 global_settings { assumed_gamma 1.0 }
-camera { location <0, 6, -11> look_at <0, 0.5, 0> angle 45 }
+camera { location <0, 6, -11> look_at <0, 0.5, 0> right x*image_width/image_height angle 45 }
 light_source { <8, 14, -12> color rgb 1 }
 light_source { <-10, 4, -6> color rgb 0.3 }
 background { color rgb <0.35, 0.4, 0.5> }

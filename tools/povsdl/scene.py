@@ -49,6 +49,7 @@ class Converter:
         self.ambient_light = (1.0, 1.0, 1.0)
         self.objects = []
         self.names = {}
+        self.warnings = []  # (line, col, message): carried across, but not exactly
 
     # ---- top level -----------------------------------------------------------------------
     def run(self, text):
@@ -247,6 +248,17 @@ class Converter:
         if right[0] < 0:
             raise s.error(at, "camera: a right vector along -x (a mirrored, right-handed view) "
                           "is not supported")
+        # softtrace's pixels are square: POV-Ray stretches the picture when right/up is not the
+        # image's aspect (the default right, 1.33, against a 4:3 image: 0.25%). The vertical
+        # field of view is kept.
+        aspect = self.width / self.height
+        if abs(norm(right) / norm(up) - aspect) > 1e-6 * aspect:
+            self.warnings.append((at.line, at.col, "right/up is %.6g but the image is %d x %d "
+                                  "(%.6g): POV-Ray stretches the picture %.3g%% across, softtrace "
+                                  "keeps square pixels and the vertical angle (write right "
+                                  "x*image_width/image_height)" % (
+                                      norm(right) / norm(up), self.width, self.height, aspect,
+                                      100 * abs(norm(right) / norm(up) / aspect - 1))))
         dist = norm(direction) if angle is None else norm(right) / 2 / math.tan(math.radians(angle) / 2)
         vfov = math.degrees(2 * math.atan(norm(up) / 2 / dist))
         if look_at is None:
@@ -532,5 +544,11 @@ class Converter:
         return node
 
 
-def convert(path, text, width, height):
-    return Converter(path, width, height).run(text)
+def convert(path, text, width, height, warnings=None):
+    """The scene as a dict; `warnings`, a list, receives (line, col, message) of what is carried
+    across only approximately."""
+    c = Converter(path, width, height)
+    scene = c.run(text)
+    if warnings is not None:
+        warnings.extend(c.warnings)
+    return scene
