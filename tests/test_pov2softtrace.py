@@ -228,6 +228,42 @@ def test_silhouette_matches_povray(pov, tmp_path):
     either = sum(1 for x, y in zip(a, b) if x or y)
     assert either > 0.01 * w * h, "nothing drawn"
     assert both / either >= 0.999, "IoU %.5f" % (both / either)
+    # The colours, linear RGB over the whole frame (both backgrounds transparent black):
+    # POV-Ray's finish and lights carried across (docs/pov.md). Mean <= 1/255, and off the
+    # edges (pixels whose 3x3 neighbourhood in POV-Ray's picture spans more than 16/255:
+    # silhouettes and shadow edges, where a sub-pixel shift shows) 99% within 4/255.
+    diffs, edges = colour_differences(tmp_path / "st.png", tmp_path / "pov.png", w)
+    mean = sum(diffs) / len(diffs)
+    smooth = sorted(d for d, e in zip(diffs, edges) if not e)
+    p99 = smooth[int(0.99 * (len(smooth) - 1))]
+    assert mean <= 1 / 255 and p99 <= 4 / 255, "mean %.2f/255, 99%% off edges %.2f/255" % (
+        mean * 255, p99 * 255)
+
+
+def colour_differences(ours, theirs, width):
+    """Per pixel: the largest difference of premultiplied linear RGB, and whether the pixel is on
+    an edge of `theirs` (its 3x3 neighbourhood spans more than 16/255 in some channel)."""
+    from PIL import Image
+
+    def linear(c):
+        c /= 255
+        return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+    def premultiplied(px):
+        return [linear(px[i]) * px[3] / 255 for i in range(3)]
+
+    a = [premultiplied(px) for px in Image.open(ours).convert("RGBA").getdata()]
+    b = [premultiplied(px) for px in Image.open(theirs).convert("RGBA").getdata()]
+    diffs = [max(abs(p - q) for p, q in zip(x, y)) for x, y in zip(a, b)]
+    height = len(b) // width
+    edges = []
+    for k in range(len(b)):
+        i, j = k % width, k // width
+        near = [b[jj * width + ii] for jj in range(max(0, j - 1), min(height, j + 2))
+                for ii in range(max(0, i - 1), min(width, i + 2))]
+        edges.append(any(max(px[c] for px in near) - min(px[c] for px in near) > 16 / 255
+                         for c in range(3)))
+    return diffs, edges
 
 
 def test_a_stretched_camera_is_converted_with_a_warning():
@@ -240,3 +276,20 @@ def test_a_stretched_camera_is_converted_with_a_warning():
     convert("t.pov", "camera { location -5*z right x*image_width/image_height look_at 0 }\n" +
             body, 320, 240, warnings)
     assert warnings == []
+
+
+def test_spot_area_and_fading_lights():
+    lights = scene_of("light_source { <0, 10, 0> rgb 1 spotlight point_at <0, 0, 2> radius 10 "
+                      "falloff 20 tightness 5 fade_distance 4 fade_power 1 }\n"
+                      "light_source { <1, 2, 3> rgb 1 area_light <2, 0, 0>, <0, 0, 2>, 4, 3 "
+                      "adaptive 1 jitter translate <0, 1, 0> }\n"
+                      "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }")["lights"]
+    spot, area = lights[0], lights[1]
+    assert spot["type"] == "spot" and close(spot["point_at"], [0, 2, 0])
+    assert (spot["radius"], spot["falloff"], spot["tightness"]) == (10, 20, 5)
+    assert (spot["fade_distance"], spot["fade_power"]) == (4, 1)
+    assert area["type"] == "point" and close(area["position"], [1, 3, 3])
+    assert area["area"] == {"axis1": [2, 0, 0], "axis2": [0, 2, 0], "size1": 4, "size2": 3,
+                            "adaptive": 1, "jitter": True}
+    with pytest.raises(PovError, match="circular"):
+        scene_of("light_source { 0, 1 area_light x, y, 2, 2 circular }")

@@ -1,7 +1,7 @@
 """POV-Ray 3.7 statements as a softtrace scene (a JSON-ready dict).
 
 Carried across: `camera` (location, look_at, angle, direction, up, right, sky), `light_source`
-(point and `parallel`, `shadowless`), `background`, `global_settings` (ambient_light,
+(point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, `global_settings` (ambient_light,
 assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
 and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, and `blob` objects:
 sphere and cylinder components (and the old `component` form) with strength, threshold,
@@ -274,21 +274,42 @@ class Converter:
         position = ex.vector("the light's location")
         s.accept(",")
         color = parse_color(ex, "the light's colour")[:3]
-        parallel, point_at, shadows = False, (0.0, 0.0, 0.0), True
+        parallel, spot, point_at, shadows = False, None, None, True
+        fade, area = {}, None
         m = affine.IDENTITY
         while not s.closes("light_source"):
             t = s.next()
             w = t.text
             if w == "parallel":
-                parallel = True
+                parallel = t
+            elif w == "spotlight":
+                spot = {}
+            elif w in ("radius", "falloff", "tightness"):
+                if spot is None:
+                    raise s.error(t, "'%s' belongs to a spotlight: write spotlight first" % w)
+                spot[w] = ex.number(w)
             elif w == "point_at":
                 point_at = ex.vector("point_at")
             elif w == "shadowless":
                 shadows = False
+            elif w in ("fade_distance", "fade_power"):
+                fade[w] = ex.number(w)
+            elif w == "area_light":
+                area = self._area_light(s, ex, t)
+            elif w in ("adaptive", "jitter") and area is not None:
+                if w == "adaptive":
+                    area["adaptive"] = int(ex.number("adaptive"))
+                else:
+                    area["jitter"] = True
             elif w in TRANSFORMS:
                 m = affine.mul(self._transform_step(s, ex, t), m)
             else:
                 raise s.error(t, "light_source { %s } is not supported" % w)
+        if parallel and (spot is not None or area is not None):
+            raise s.error(parallel, "a parallel spotlight or area light is not supported")
+        # POV-Ray's point_at defaults: <0, 0, 0> for parallel lights, <0, 0, 1> for spotlights.
+        if point_at is None:
+            point_at = (0.0, 0.0, 1.0) if spot is not None else (0.0, 0.0, 0.0)
         position = affine.apply(m, position)
         point_at = affine.apply(m, point_at)
         light = {"color": list(color), "shadows": shadows}
@@ -297,9 +318,36 @@ class Converter:
             if not any(d):
                 raise s.error(tok, "a parallel light needs point_at away from its location")
             light.update(type="directional", direction=list(affine.to_softtrace_point(d)))
-        else:
-            light.update(type="point", position=list(affine.to_softtrace_point(position)))
+            return light
+        light.update(type="point", position=list(affine.to_softtrace_point(position)))
+        if spot is not None:
+            if point_at == position:
+                raise s.error(tok, "a spotlight needs point_at away from its location")
+            light.update(type="spot", point_at=list(affine.to_softtrace_point(point_at)))
+            light.update(spot)
+        light.update(fade)
+        if area is not None:
+            lin = affine.linear(m)
+            for key in ("axis1", "axis2"):
+                v = [sum(lin[i][j] * area[key][j] for j in range(3)) for i in range(3)]
+                area[key] = list(affine.to_softtrace_point(v))
+            light["area"] = area
         return light
+
+    def _area_light(self, s, ex, tok):
+        axis1 = ex.vector("area_light's first axis")
+        s.expect(",")
+        axis2 = ex.vector("area_light's second axis")
+        s.expect(",")
+        size1 = ex.number("area_light's first size")
+        s.expect(",")
+        size2 = ex.number("area_light's second size")
+        for w in ("circular", "orient", "area_illumination"):
+            if s.at(w, "name"):
+                raise s.error(s.peek(), "area_light's '%s' is not supported" % w)
+        if size1 != int(size1) or size2 != int(size2) or not (1 <= size1 <= 64 and 1 <= size2 <= 64):
+            raise s.error(tok, "area_light sizes must be whole numbers from 1 to 64")
+        return {"axis1": axis1, "axis2": axis2, "size1": int(size1), "size2": int(size2)}
 
     # ---- appearance ----------------------------------------------------------------------
     def _pigment(self, s, ex):
