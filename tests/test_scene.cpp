@@ -198,3 +198,14 @@ TEST(SceneText, DuplicateKeysAreComparedDecoded) {
 
 }  // namespace
 }  // namespace softtrace
+
+// The scene's file hash names tiles and frames (tiles.cpp, frame_metadata.cpp): it must be the
+// published 64-bit FNV-1a, or two builds would name the same scene differently. Vectors from the
+// FNV reference test suite (Fowler, Noll, Vo).
+TEST(SceneHash, IsThePublishedFnv1a64) {
+  EXPECT_EQ(softtrace::fnv1a(""), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(softtrace::fnv1a("a"), 0xaf63dc4c8601ec8cULL);
+  EXPECT_EQ(softtrace::fnv1a("foobar"), 0x85944171f73967e8ULL);
+  // Continuing from a hash is hashing the concatenation.
+  EXPECT_EQ(softtrace::fnv1a("bar", softtrace::fnv1a("foo")), softtrace::fnv1a("foobar"));
+}

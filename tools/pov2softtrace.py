@@ -1,0 +1,90 @@
+#!/usr/bin/python3
+"""Converts a POV-Ray 3.7 scene of blobs into a softtrace scene (JSON).
+
+The scene must be written out literally: numbers, vectors and colours may be `#declare`d, but
+loops, macros, conditionals and rand() are refused. Carried across: `camera` (location, look_at,
+angle, direction, up, right, sky), `light_source` (point or `parallel`, `shadowless`),
+`background`, `global_settings { ambient_light }`, and `blob` objects: sphere and cylinder
+components with their strengths, the threshold, translate/rotate/scale/matrix/transform on
+components and on the blob, and the blob's pigment and finish. POV-Ray's y-up left-handed frame
+becomes softtrace's z-up right-handed one by swapping y and z, which keeps the picture unmirrored
+(tools/povsdl/affine.py). POV-Ray's `angle` is horizontal, softtrace's `fov` vertical.
+
+What it carries only approximately (a camera whose right/up ratio is not the image's aspect:
+POV-Ray's default right, 1.33, on a 4:3 image) is converted with a warning, `SCENE.pov:LINE:COL:
+warning: ...`. Anything it cannot carry is refused with one line, `SCENE.pov:LINE:COL: what`, and exit status 2;
+the output file is then left as it was.
+
+usage: tools/pov2softtrace.py SCENE.pov [-o SCENE.json] [--width 320] [--height 240]
+"""
+import argparse
+import json
+import os
+import re
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from povsdl.lexer import PovError  # noqa: E402
+from povsdl.scene import convert  # noqa: E402
+
+
+def write_atomically(path, text):
+    """The whole file or nothing: written beside the target, then renamed over it."""
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".pov2softtrace-", dir=folder)
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def dumps(scene):
+    """Indented JSON with each list of numbers on one line."""
+    text = json.dumps(scene, indent=1)
+    return re.sub(r"\[[^\[\]{}\"]*\]", lambda m: re.sub(r"\s+", " ", m.group(0))
+                  .replace("[ ", "[").replace(" ]", "]"), text)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(
+        prog="pov2softtrace.py", description=__doc__.split("\n\n")[0],
+        epilog="Exit status: 0 converted, 2 refused (one located line on standard error).")
+    ap.add_argument("scene", help="the POV-Ray scene (.pov)")
+    ap.add_argument("-o", "--output", help="the softtrace scene to write (default: standard output)")
+    ap.add_argument("--width", type=int, default=320,
+                    help="image width: the scene's image size and POV-Ray's image_width (320)")
+    ap.add_argument("--height", type=int, default=240,
+                    help="image height, and POV-Ray's image_height (240)")
+    a = ap.parse_args(argv)
+    if not (1 <= a.width <= 16384 and 1 <= a.height <= 16384):
+        print("pov2softtrace.py: --width and --height must be 1 to 16384", file=sys.stderr)
+        return 2
+    try:
+        with open(a.scene, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+    except OSError as e:
+        print("%s: cannot read: %s" % (a.scene, e.strerror), file=sys.stderr)
+        return 2
+    warnings = []
+    try:
+        scene = convert(a.scene, text, a.width, a.height, warnings)
+    except PovError as e:
+        print("%s:%d:%d: %s" % (a.scene, e.line, e.col, e.message), file=sys.stderr)
+        return 2
+    for line, col, message in warnings:
+        print("%s:%d:%d: warning: %s" % (a.scene, line, col, message), file=sys.stderr)
+    out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (
+        os.path.basename(a.scene), dumps(scene))
+    if a.output:
+        write_atomically(a.output, out)
+    else:
+        sys.stdout.write(out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

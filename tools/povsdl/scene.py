@@ -1,0 +1,602 @@
+"""POV-Ray 3.7 statements as a softtrace scene (a JSON-ready dict).
+
+Carried across: `camera` (location, look_at, angle, direction, up, right, sky), `light_source`
+(point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, `global_settings` (ambient_light,
+assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
+and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, and `blob` objects:
+sphere and cylinder components (and the old `component` form) with strength, threshold,
+per-component and whole-blob translate/rotate/scale/matrix/transform, pigment and finish.
+Everything else is refused with its line and column.
+"""
+import math
+import os
+
+from . import affine
+from .lexer import PovError, Stream, describe, tokenize
+from .values import Expressions, Symbols, parse_color
+
+POV_INCLUDE_DIRS = ["/usr/share/povray-3.7/include"]
+
+# POV-Ray 3.7's finish defaults (the manual's "finish" section).
+FINISH_DEFAULTS = {"ambient": 0.1, "diffuse": 0.6, "brilliance": 1.0, "phong": 0.0,
+                   "phong_size": 40.0, "specular": 0.0, "roughness": 0.05, "metallic": 0.0,
+                   "reflection": 0.0}
+FINISH_KEYS = ("ambient", "diffuse", "brilliance", "phong", "phong_size", "specular",
+               "roughness", "metallic")
+# Modifiers that change nothing softtrace draws: root-solver and bounding hints.
+HARMLESS = {"sturm", "hierarchy", "hollow", "double_illuminate"}
+REFUSED_DIRECTIVES = {
+    "while": "loops are not supported; write the objects out literally",
+    "for": "loops are not supported; write the objects out literally",
+    "macro": "macros are not supported; write the objects out literally",
+    "if": "conditionals are not supported", "ifdef": "conditionals are not supported",
+    "ifndef": "conditionals are not supported", "switch": "conditionals are not supported",
+    "fopen": "file input is not supported", "read": "file input is not supported",
+}
+TRANSFORMS = ("translate", "rotate", "scale", "matrix", "transform")
+
+
+class Converter:
+    def __init__(self, path, width, height):
+        self.path = path
+        self.width = width
+        self.height = height
+        self.symbols = Symbols(width, height)
+        self.default_finish = dict(FINISH_DEFAULTS)
+        self.camera = None
+        self.lights = []
+        self.background = None
+        self.ambient_light = (1.0, 1.0, 1.0)
+        self.objects = []
+        self.names = {}
+        self.warnings = []  # (line, col, message): carried across, but not exactly
+
+    # ---- top level -----------------------------------------------------------------------
+    def run(self, text):
+        self._statements(Stream(tokenize(text)), os.path.dirname(os.path.abspath(self.path)))
+        if self.camera is None:
+            raise PovError(1, 1, "the scene has no camera")
+        if not self.objects:
+            raise PovError(1, 1, "the scene has no blob objects")
+        lights = list(self.lights)
+        if any(c > 0 for c in self.ambient_light):
+            lights.append({"type": "ambient", "color": list(self.ambient_light)})
+        scene = {"camera": self.camera, "image": {"width": self.width, "height": self.height},
+                 "background": list(self.background or (0.0, 0.0, 0.0)), "lights": lights,
+                 "objects": self.objects}
+        return scene
+
+    def _statements(self, s, folder):
+        ex = Expressions(s, self.symbols)
+        while s.peek().kind != "end":
+            tok = s.peek()
+            if tok.kind == "directive":
+                self._directive(s, ex, folder)
+            elif tok.kind == "name":
+                self._item(s, ex, tok)
+            else:
+                raise s.error(tok, "expected a statement, found %s" % describe(tok))
+
+    def _directive(self, s, ex, folder):
+        tok = s.next()
+        d = tok.text
+        if d == "version":
+            ex.number("#version")
+            s.accept(";")
+        elif d in ("declare", "local"):
+            self._declare(s, ex)
+        elif d == "include":
+            name = s.next()
+            if name.kind != "string":
+                raise s.error(name, "#include needs a file name in quotes")
+            self._include(name, folder)
+        elif d == "default":
+            self._default(s, ex)
+        elif d in REFUSED_DIRECTIVES:
+            raise s.error(tok, "#%s: %s" % (d, REFUSED_DIRECTIVES[d]))
+        else:
+            raise s.error(tok, "#%s is not supported" % d)
+
+    def _include(self, tok, folder):
+        for base in [folder] + POV_INCLUDE_DIRS:
+            path = os.path.join(base, tok.text)
+            if os.path.isfile(path):
+                break
+        else:
+            raise PovError(tok.line, tok.col, '#include "%s": not found next to the scene or in '
+                           "POV-Ray's include folder" % tok.text)
+        with open(path, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+        if os.path.dirname(os.path.abspath(path)) in POV_INCLUDE_DIRS:
+            self._library_names(text)
+        else:
+            try:
+                self._statements(Stream(tokenize(text)), os.path.dirname(path))
+            except PovError as e:
+                raise PovError(tok.line, tok.col, '#include "%s": %s:%d:%d: %s' % (
+                    tok.text, path, e.line, e.col, e.message))
+
+    def _library_names(self, text):
+        """POV-Ray's own include files (colors.inc, finish.inc, ...) are full of macros and
+        conditionals; only their top-level `#declare`s of values we understand are taken. A name
+        that is not taken stays unknown and is refused where the scene uses it."""
+        try:
+            s = Stream(tokenize(text))
+        except PovError:
+            return
+        ex = Expressions(s, self.symbols)
+        while s.peek().kind != "end":
+            tok = s.next()
+            if tok.kind == "directive" and tok.text == "declare" and s.peek().kind == "name":
+                start = s.pos
+                try:
+                    self._declare(s, ex)
+                except PovError:
+                    s.pos = start
+                    while s.peek().kind != "end" and not s.accept(";"):
+                        s.next()
+
+    def _declare(self, s, ex):
+        name = s.next()
+        if name.kind != "name":
+            raise s.error(name, "expected a name after #declare")
+        s.expect("=")
+        word = s.peek().text if s.peek().kind == "name" else None
+        if word in ("pigment", "finish", "texture", "transform"):
+            s.next()
+            value = getattr(self, "_" + word)(s, ex)
+        elif word in ("color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb", "red", "green",
+                      "blue"):
+            value = parse_color(ex)
+        elif word in ("blob", "sphere", "box", "plane", "cylinder", "union", "merge",
+                      "difference", "intersection", "object", "camera", "light_source"):
+            raise s.error(s.peek(), "#declare of a %s is not supported; write it out where it "
+                          "is used" % word)
+        else:
+            value = ex.expr()
+        self.symbols.declared[name.text] = value
+        s.accept(";")
+
+    def _default(self, s, ex):
+        s.expect("{")
+        while not s.closes("#default"):
+            tok = s.next()
+            if tok.text == "finish":
+                self.default_finish.update(self._finish(s, ex))
+            elif tok.text == "texture":
+                t = self._texture(s, ex)
+                self.default_finish.update(t.get("finish", {}))
+                if "color" in t:
+                    raise s.error(tok, "#default pigments are not supported")
+            else:
+                raise s.error(tok, "#default { %s } is not supported" % tok.text)
+
+    def _item(self, s, ex, tok):
+        word = tok.text
+        s.next()
+        if word == "camera":
+            self.camera = self._camera(s, ex, tok)
+        elif word == "light_source":
+            self.lights.append(self._light(s, ex))
+        elif word == "background":
+            s.expect("{")
+            c = parse_color(ex, "the background")
+            s.expect("}")
+            self.background = c[:3]
+        elif word == "global_settings":
+            self._global_settings(s, ex)
+        elif word == "blob":
+            self.objects.append(self._blob(s, ex, tok))
+        else:
+            raise s.error(tok, "'%s' is not supported (this converter takes blob objects, "
+                          "camera, light_source, background and global_settings)" % word)
+
+    def _global_settings(self, s, ex):
+        s.expect("{")
+        while not s.closes("global_settings"):
+            tok = s.next()
+            if tok.text == "assumed_gamma":
+                g = ex.number("assumed_gamma")
+                if abs(g - 1.0) > 1e-9:
+                    raise s.error(tok, "assumed_gamma %g: only 1.0 (linear colours, POV-Ray "
+                                  "3.7's own) is supported" % g)
+            elif tok.text == "ambient_light":
+                self.ambient_light = parse_color(ex, "ambient_light")[:3]
+            elif tok.text in ("max_trace_level", "adc_bailout", "number_of_waves", "noise_generator"):
+                ex.number(tok.text)
+            else:
+                raise s.error(tok, "global_settings { %s } is not supported" % tok.text)
+
+    # ---- camera and lights ---------------------------------------------------------------
+    def _camera(self, s, ex, at):
+        s.expect("{")
+        location, look_at = (0.0, 0.0, 0.0), None
+        direction, up, right, sky = (0.0, 0.0, 1.0), (0.0, 1.0, 0.0), (1.33, 0.0, 0.0), None
+        angle = None
+        while not s.closes("camera"):
+            tok = s.next()
+            w = tok.text
+            if w == "perspective":
+                continue
+            if w == "location":
+                location = ex.vector("location")
+            elif w == "look_at":
+                look_at = ex.vector("look_at")
+            elif w == "direction":
+                direction = ex.vector("direction")
+            elif w == "up":
+                up = ex.vector("up")
+            elif w == "right":
+                right = ex.vector("right")
+            elif w == "sky":
+                sky = ex.vector("sky")
+            elif w == "angle":
+                angle = ex.number("angle")
+                if not 0 < angle < 180:
+                    raise s.error(tok, "angle %g: must be in (0, 180) degrees" % angle)
+            elif w in TRANSFORMS:
+                raise s.error(tok, "camera transformations are not supported; use location and "
+                              "look_at")
+            else:
+                raise s.error(tok, "camera { %s } is not supported" % w)
+        norm = lambda v: math.sqrt(sum(c * c for c in v))  # noqa: E731
+        if norm(right) == 0 or norm(up) == 0 or norm(direction) == 0:
+            raise s.error(at, "camera: right, up and direction must be non-zero")
+        # POV-Ray's image plane: `right` spans the width, `up` the height, at `direction`'s
+        # distance; `angle` sets that distance from the width. A negative x component of `right`
+        # is the right-handed trick, which mirrors the picture.
+        if right[0] < 0:
+            raise s.error(at, "camera: a right vector along -x (a mirrored, right-handed view) "
+                          "is not supported")
+        # softtrace's pixels are square: POV-Ray stretches the picture when right/up is not the
+        # image's aspect (the default right, 1.33, against a 4:3 image: 0.25%). The vertical
+        # field of view is kept.
+        aspect = self.width / self.height
+        if abs(norm(right) / norm(up) - aspect) > 1e-6 * aspect:
+            self.warnings.append((at.line, at.col, "right/up is %.6g but the image is %d x %d "
+                                  "(%.6g): POV-Ray stretches the picture %.3g%% across, softtrace "
+                                  "keeps square pixels and the vertical angle (write right "
+                                  "x*image_width/image_height)" % (
+                                      norm(right) / norm(up), self.width, self.height, aspect,
+                                      100 * abs(norm(right) / norm(up) / aspect - 1))))
+        dist = norm(direction) if angle is None else norm(right) / 2 / math.tan(math.radians(angle) / 2)
+        vfov = math.degrees(2 * math.atan(norm(up) / 2 / dist))
+        if look_at is None:
+            look_at = tuple(l + d for l, d in zip(location, direction))
+        sky = sky or up
+        return {"eye": list(affine.to_softtrace_point(location)),
+                "target": list(affine.to_softtrace_point(look_at)),
+                "up": list(affine.to_softtrace_point(sky)), "fov": vfov}
+
+    def _light(self, s, ex):
+        s.expect("{")
+        tok = s.peek()
+        position = ex.vector("the light's location")
+        s.accept(",")
+        color = parse_color(ex, "the light's colour")[:3]
+        parallel, spot, point_at, shadows = False, None, None, True
+        fade, area = {}, None
+        m = affine.IDENTITY
+        while not s.closes("light_source"):
+            t = s.next()
+            w = t.text
+            if w == "parallel":
+                parallel = t
+            elif w == "spotlight":
+                spot = {}
+            elif w in ("radius", "falloff", "tightness"):
+                if spot is None:
+                    raise s.error(t, "'%s' belongs to a spotlight: write spotlight first" % w)
+                spot[w] = ex.number(w)
+            elif w == "point_at":
+                point_at = ex.vector("point_at")
+            elif w == "shadowless":
+                shadows = False
+            elif w in ("fade_distance", "fade_power"):
+                fade[w] = ex.number(w)
+            elif w == "area_light":
+                area = self._area_light(s, ex, t)
+            elif w in ("adaptive", "jitter") and area is not None:
+                if w == "adaptive":
+                    area["adaptive"] = int(ex.number("adaptive"))
+                else:
+                    area["jitter"] = True
+            elif w in TRANSFORMS:
+                m = affine.mul(self._transform_step(s, ex, t), m)
+            else:
+                raise s.error(t, "light_source { %s } is not supported" % w)
+        if parallel and (spot is not None or area is not None):
+            raise s.error(parallel, "a parallel spotlight or area light is not supported")
+        # POV-Ray's point_at defaults: <0, 0, 0> for parallel lights, <0, 0, 1> for spotlights.
+        if point_at is None:
+            point_at = (0.0, 0.0, 1.0) if spot is not None else (0.0, 0.0, 0.0)
+        position = affine.apply(m, position)
+        point_at = affine.apply(m, point_at)
+        light = {"color": list(color), "shadows": shadows}
+        if parallel:
+            d = tuple(p - q for p, q in zip(point_at, position))
+            if not any(d):
+                raise s.error(tok, "a parallel light needs point_at away from its location")
+            light.update(type="directional", direction=list(affine.to_softtrace_point(d)))
+            return light
+        light.update(type="point", position=list(affine.to_softtrace_point(position)))
+        if spot is not None:
+            if point_at == position:
+                raise s.error(tok, "a spotlight needs point_at away from its location")
+            light.update(type="spot", point_at=list(affine.to_softtrace_point(point_at)))
+            light.update(spot)
+        light.update(fade)
+        if area is not None:
+            lin = affine.linear(m)
+            for key in ("axis1", "axis2"):
+                v = [sum(lin[i][j] * area[key][j] for j in range(3)) for i in range(3)]
+                area[key] = list(affine.to_softtrace_point(v))
+            light["area"] = area
+        return light
+
+    def _area_light(self, s, ex, tok):
+        axis1 = ex.vector("area_light's first axis")
+        s.expect(",")
+        axis2 = ex.vector("area_light's second axis")
+        s.expect(",")
+        size1 = ex.number("area_light's first size")
+        s.expect(",")
+        size2 = ex.number("area_light's second size")
+        for w in ("circular", "orient", "area_illumination"):
+            if s.at(w, "name"):
+                raise s.error(s.peek(), "area_light's '%s' is not supported" % w)
+        if size1 != int(size1) or size2 != int(size2) or not (1 <= size1 <= 64 and 1 <= size2 <= 64):
+            raise s.error(tok, "area_light sizes must be whole numbers from 1 to 64")
+        return {"axis1": axis1, "axis2": axis2, "size1": int(size1), "size2": int(size2)}
+
+    # ---- appearance ----------------------------------------------------------------------
+    def _pigment(self, s, ex):
+        tok = s.expect("{")
+        if s.peek().kind == "name" and isinstance(self.symbols.get(s.peek().text), dict):
+            ref = self._reference(s, "pigment")
+            s.expect("}")
+            return dict(ref)
+        c = parse_color(ex, "the pigment")
+        if c[3] or c[4]:
+            raise s.error(tok, "filter and transmit (transparent pigments) are not supported")
+        s.expect("}", "(only a plain colour pigment is supported)")
+        return {"kind": "pigment", "color": c[:3]}
+
+    def _finish(self, s, ex):
+        s.expect("{")
+        f = {"kind": "finish"}
+        while not s.closes("finish"):
+            tok = s.next()
+            w = tok.text
+            if tok.kind == "name" and isinstance(self.symbols.get(w), dict):
+                s.pos -= 1
+                f.update(self._reference(s, "finish"))
+            elif w in FINISH_KEYS:
+                f[w] = ex.number(w) if w != "metallic" or self._number_follows(s) else 1.0
+            elif w == "reflection":
+                if s.accept("{"):
+                    f[w] = parse_color(ex, "reflection")[0]
+                    s.expect("}", "(only a constant reflection is supported)")
+                else:
+                    f[w] = parse_color(ex, "reflection")[0]
+            else:
+                raise s.error(tok, "finish { %s } is not supported" % w)
+        return f
+
+    @staticmethod
+    def _number_follows(s):
+        t = s.peek()
+        return t.kind == "number" or (t.kind == "punct" and t.text in "(-+<")
+
+    def _texture(self, s, ex):
+        s.expect("{")
+        t = {"kind": "texture"}
+        while not s.closes("texture"):
+            tok = s.next()
+            if tok.kind == "name" and isinstance(self.symbols.get(tok.text), dict):
+                s.pos -= 1
+                t.update(self._reference(s, "texture"))
+            elif tok.text == "pigment":
+                t["color"] = self._pigment(s, ex)["color"]
+            elif tok.text == "finish":
+                t.setdefault("finish", {}).update(self._finish(s, ex))
+            else:
+                raise s.error(tok, "texture { %s } is not supported" % tok.text)
+        return t
+
+    def _reference(self, s, kind):
+        tok = s.next()
+        value = self.symbols.get(tok.text)
+        if value.get("kind") != kind:
+            raise s.error(tok, "'%s' is a %s, not a %s" % (tok.text, value.get("kind"), kind))
+        return {k: v for k, v in value.items() if k != "kind"}
+
+    def _transform(self, s, ex):
+        s.expect("{")
+        m = affine.IDENTITY
+        while not s.closes("transform"):
+            tok = s.next()
+            if tok.text not in TRANSFORMS:
+                raise s.error(tok, "transform { %s } is not supported" % tok.text)
+            m = affine.mul(self._transform_step(s, ex, tok), m)
+        return {"kind": "transform", "matrix": m}
+
+    def _transform_step(self, s, ex, tok):
+        w = tok.text
+        if w == "translate":
+            return affine.translate(ex.vector("translate"))
+        if w == "rotate":
+            return affine.rotate(ex.vector("rotate"))
+        if w == "scale":
+            v = ex.vector("scale")
+            if any(c == 0 for c in v):
+                raise s.error(tok, "scale by zero")
+            return affine.scale(v)
+        if w == "matrix":
+            s.expect("<", "after matrix")
+            m = [ex.number("a matrix entry")]
+            while s.accept(","):
+                m.append(ex.number("a matrix entry"))
+            s.expect(">", "to close the matrix")
+            if len(m) != 12:
+                raise s.error(tok, "matrix needs 12 numbers, found %d" % len(m))
+            t = affine.pov_matrix(m)
+            if abs(affine.det3(affine.linear(t))) < 1e-12:
+                raise s.error(tok, "the matrix is singular")
+            return t
+        # transform { ... } or transform NAME
+        if s.at("{"):
+            return self._transform(s, ex)["matrix"]
+        return self._reference(s, "transform")["matrix"]
+
+    def _material(self, pigment, finish, at, s):
+        if pigment is None:
+            raise s.error(at, "the blob has no pigment")
+        f = dict(self.default_finish)
+        f.update({k: v for k, v in finish.items() if k != "kind"})
+        material = {"color": [float(c) for c in pigment]}
+        for key in FINISH_KEYS + ("reflection",):
+            value = f[key]
+            if key in ("ambient", "diffuse") or value != FINISH_DEFAULTS[key]:
+                material[key] = value
+        return material
+
+    # ---- blob ----------------------------------------------------------------------------
+    def _blob(self, s, ex, at):
+        s.expect("{")
+        threshold = 1.0
+        components = []
+        m = affine.IDENTITY
+        pigment, finish = None, {}
+        while not s.closes("blob"):
+            tok = s.next()
+            w = tok.text
+            if w == "threshold":
+                threshold = ex.number("threshold")
+                if threshold <= 0:
+                    raise s.error(tok, "threshold %g: must be positive" % threshold)
+            elif w in ("sphere", "cylinder", "component"):
+                components.append(self._component(s, ex, tok))
+            elif w in TRANSFORMS:
+                m = affine.mul(self._transform_step(s, ex, tok), m)
+            elif w == "pigment":
+                pigment = self._pigment(s, ex)["color"]
+            elif w == "finish":
+                finish.update(self._finish(s, ex))
+            elif w == "texture":
+                t = self._texture(s, ex)
+                pigment = t.get("color", pigment)
+                finish.update(t.get("finish", {}))
+            elif w in HARMLESS:
+                if w == "hierarchy" and s.peek().kind == "name" and s.peek().text in (
+                        "on", "off", "true", "false", "yes", "no"):
+                    s.next()
+            else:
+                raise s.error(tok, "blob { %s } is not supported" % w)
+        children = []
+        for comp in components:
+            child = self._soft_object(comp, m)
+            if child is not None:
+                children.append(child)
+        if not any(c.get("strength", 1.0) > 0 for c in children):
+            raise s.error(at, "the blob has no component of positive strength, so no surface")
+        field = children[0] if len(children) == 1 else {"type": "soft_blend",
+                                                          "children": children}
+        n = self.names.get("blob", 0) + 1
+        self.names["blob"] = n
+        return {"name": "blob%d" % n, "material": self._material(pigment, finish, at, s),
+                "convention": "soft", "iso": threshold, "field": field}
+
+    def _component(self, s, ex, tok):
+        w = tok.text
+        c = {"at": tok}
+        if w == "component":
+            c["strength"] = ex.number("strength")
+            s.expect(",")
+            c["radius"] = ex.number("radius")
+            s.expect(",")
+            c["center"] = ex.vector("centre")
+            c["kind"] = "sphere"
+            c["matrix"] = affine.IDENTITY
+            return c
+        s.expect("{")
+        c["kind"] = w
+        if w == "sphere":
+            c["center"] = ex.vector("centre")
+        else:
+            c["p0"] = ex.vector("base point")
+            s.expect(",")
+            c["p1"] = ex.vector("cap point")
+        s.expect(",")
+        c["radius"] = ex.number("radius")
+        s.accept(",")
+        s.accept("strength")
+        c["strength"] = ex.number("strength")
+        m = affine.IDENTITY
+        while not s.closes("a component"):
+            t = s.next()
+            if t.text in TRANSFORMS:
+                m = affine.mul(self._transform_step(s, ex, t), m)
+            elif t.text in ("pigment", "texture", "finish"):
+                raise s.error(t, "per-component %s is not supported: give the blob one texture"
+                              % t.text)
+            else:
+                raise s.error(t, "%s component { %s } is not supported" % (w, t.text))
+        if c["radius"] <= 0:
+            raise s.error(tok, "a %s component's radius must be positive" % w)
+        if w == "cylinder" and c["p0"] == c["p1"]:
+            raise s.error(tok, "a cylinder component's two points are the same")
+        c["matrix"] = m
+        return c
+
+    def _soft_object(self, c, blob_matrix):
+        """One component as a murakami soft object: (1 - (d/r)^2)^2 inside r, POV-Ray's density,
+        times its strength. Placement is kept as plain as it can be: a sphere or segment moved
+        and turned (and uniformly scaled) is written in world coordinates, an axis-aligned
+        stretch as an ellipsoid's radii, anything else as an affine `matrix`."""
+        if c["strength"] == 0:
+            return None  # POV-Ray: a component of strength 0 adds nothing
+        full = affine.to_softtrace(affine.mul(blob_matrix, c["matrix"]))
+        a = affine.linear(full)
+        k = affine.column_scales(a)
+        r = c["radius"]
+        node = {"type": "soft_object", "potential": {"type": "murakami"}}
+        if c["strength"] != 1:
+            node["strength"] = c["strength"]
+        uniform = k is not None and max(k) - min(k) <= 1e-12 * max(k)
+        if c["kind"] == "sphere":
+            center = affine.apply(full, affine.to_softtrace_point(c["center"]))
+            if uniform:
+                node["distance"] = {"type": "lp_metric", "radii": [r * k[0]] * 3, "n": 2}
+                node["translate"] = list(center)
+                return node
+            if k is not None:
+                rot = tuple(tuple(a[i][j] / k[j] for j in range(3)) for i in range(3))
+                node["distance"] = {"type": "lp_metric", "radii": [r * kk for kk in k], "n": 2}
+                axis, deg = affine.axis_angle(rot)
+                node["translate"] = list(center)
+                if axis is not None:
+                    node["rotate"] = {"axis": list(axis), "deg": deg}
+                return node
+            node["distance"] = {"type": "lp_metric", "radii": [r, r, r], "n": 2}
+            full = affine.mul(full, affine.translate(affine.to_softtrace_point(c["center"])))
+        else:
+            p0 = affine.to_softtrace_point(c["p0"])
+            p1 = affine.to_softtrace_point(c["p1"])
+            if uniform:
+                node["distance"] = {"type": "segment", "p0": list(affine.apply(full, p0)),
+                                    "p1": list(affine.apply(full, p1)), "radius": r * k[0]}
+                return node
+            node["distance"] = {"type": "segment", "p0": list(p0), "p1": list(p1), "radius": r}
+        node["matrix"] = [list(full[i]) for i in range(3)]
+        return node
+
+
+def convert(path, text, width, height, warnings=None):
+    """The scene as a dict; `warnings`, a list, receives (line, col, message) of what is carried
+    across only approximately."""
+    c = Converter(path, width, height)
+    scene = c.run(text)
+    if warnings is not None:
+        warnings.extend(c.warnings)
+    return scene
