@@ -147,7 +147,7 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
 }
 
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
-                                      double finest, TraceCounters& work) const {
+                                      double finest, int budget, TraceCounters& work) const {
   // Pieces of [a, c], leftmost first, so that a bracket is the first sign change. A piece is
   // cleared by its interval or by what its ends clear (reach, from the piece's rates); otherwise it
   // is halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
@@ -172,14 +172,37 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
     if (!(q.glo < 0))
       return {Scan::Bracket, q.lo, NAN, q.lo, q.glo};  // on the surface, to rounding
     if (reach(q.glo, sb.rise) + reach(q.ghi, sb.fall) >= q.hi - q.lo) continue;
-    if (q.hi - q.lo <= finest || top + 2 > kDepth)
-      return {Scan::Undecided, q.lo, q.glo, q.lo, q.glo};
+    if (q.hi - q.lo <= finest || top + 2 > kDepth || work.evaluations() >= budget)
+      return {Scan::Undecided, q.lo, q.glo, q.hi, q.ghi};
     const double m = 0.5 * (q.lo + q.hi), gm = g_at(m);
     if (gm >= 0) return {Scan::Bracket, q.lo, q.glo, m, gm};
     stack[top++] = {m, gm, q.hi, q.ghi};
     stack[top++] = {q.lo, q.glo, m, gm};
   }
   return {Scan::Clear, c, NAN, c, NAN};
+}
+
+ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, double c, double gc,
+                                        double tol, TraceCounters& work) const {
+  for (;;) {
+    const Scan sc = scan(ray, a, ga, c, gc, kFinest * tol, kMaxSteps, work);
+    if (sc.kind != Scan::Undecided) return sc;
+    // A piece kFinest of the tolerance long that neither its interval nor its ends' spheres
+    // clear: the surface passes close to the ray there, or the bounds are loose at this scale.
+    // Halving on shrinks the bounds' excess with the piece, so a ray that only grazes the surface
+    // is decided a few levels down (never finer than the points' rounding, which pads every
+    // segment). The budget caps a ray that runs along a face, g within rounding of 0.
+    const double deepest = std::max(kFinestDeep * tol, 4e-12 * (max_abs(ray.o) + std::abs(sc.hi)));
+    const Scan deep = scan(ray, sc.lo, sc.glo, sc.hi, sc.ghi, deepest,
+                           std::min(kMaxSteps, work.evaluations() + kDeepBudget), work);
+    if (deep.kind == Scan::Bracket) return deep;
+    // Clear, or undecided even there (counted): the surface may touch the ray in the piece but
+    // enters the solid nowhere a sign or an interval shows. Pass it, and go on from its end.
+    if (deep.kind == Scan::Undecided) ++work.undecided;
+    if (sc.hi >= c) return {Scan::Clear, c, NAN, c, NAN};
+    a = sc.hi;
+    ga = sc.ghi;
+  }
 }
 
 double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb,
@@ -227,6 +250,44 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   return hi;
 }
 
+double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double b, double gb,
+                                    SegmentBounds rates, TraceCounters& work) const {
+  // Regula falsi, and the narrowing from slope bounds, take the bracket's crossing to be its only
+  // one: a value g(m) < 0 moves the near end to m, past whatever [a, m] holds. Where g may fall
+  // in [a, b], a sliver of the solid thinner than the bracket may lie before the crossing that
+  // made it (a pinched or high-exponent shape seen across its thin part), so the bracket is
+  // halved and its left half decided first until the slope bounds prove one crossing.
+  const auto g_at = [&](double t) {
+    ++work.point_evals;
+    return g_view(ray.o + ray.d * t);
+  };
+  // Each pass halves [a, b] at least; 200 halvings of a double interval end in its rounding.
+  for (int i = 0; i < 200; ++i) {
+    if (rates.fall <= 0) return refine(ray, a, ga, b, gb, rates, work);
+    if (b - a <= kRefine * footprint(ray, a)) return b;
+    rates = segment_bounds(ray, a, b, work);  // prunes ws.view to [a, b]
+    if (rates.fall <= 0) continue;
+    if (std::isnan(ga)) ga = g_at(a);
+    if (!(ga < 0)) return a;  // a itself is on the surface, to rounding
+    const double m = 0.5 * (a + b), gm = g_at(m);
+    if (gm >= 0) {
+      b = m;
+      gb = gm;
+      continue;
+    }
+    const Scan sc = decide(ray, a, ga, m, gm, kDecide * footprint(ray, a), work);
+    rates = {{}, kInf, kInf};        // not known for the new bracket
+    if (sc.kind == Scan::Bracket) {  // the first crossing is in [a, m]
+      if (!(sc.lo < sc.hi)) return sc.hi;
+      a = sc.lo, ga = sc.glo, b = sc.hi, gb = sc.ghi;
+      continue;
+    }
+    a = m;  // [a, m] is clear
+    ga = gm;
+  }
+  return b;
+}
+
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                                     Query query, double clear_to) const {
   double t0 = tnear, t1 = tfar;
@@ -243,7 +304,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   const auto hit = [&](double a, double ga, double b, double gb,
                        SegmentBounds rates = {{}, kInf, kInf}) -> MarchResult {
     if (query == Query::Any) return {true, b};
-    return {true, refine(ray, a, ga, b, gb, rates, work)};
+    if (!(a < b)) return {true, b};  // on the surface, to rounding
+    return {true, first_crossing(ray, a, ga, b, gb, rates, work)};
   };
   const auto give_up = [&](double t) {
     ++work.give_ups;
@@ -326,9 +388,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         halved = true;
         continue;
       }
-      const Scan sc = scan(ray, t, gt, b, NAN, kFinest * tol, work);
+      const Scan sc = decide(ray, t, gt, b, NAN, tol, work);
       if (sc.kind == Scan::Bracket) return hit(sc.lo, sc.glo, sc.hi, sc.ghi);
-      if (sc.kind == Scan::Undecided) return give_up(sc.lo);
       t = b;
       gt_known = false;
       continue;
@@ -361,9 +422,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
           gt = gp;
           continue;
         }
-        const Scan sc = scan(ray, t, gt, p, gp, kFinest * tol, work);
+        const Scan sc = decide(ray, t, gt, p, gp, tol, work);
         if (sc.kind == Scan::Bracket) return hit(sc.lo, sc.glo, sc.hi, sc.ghi);
-        if (sc.kind == Scan::Undecided) return give_up(sc.lo);
         t = p;  // scan re-pruned ws.view: bound the next segment afresh
         gt = gp;
         s = 4 * tol;
