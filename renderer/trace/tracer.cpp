@@ -196,9 +196,24 @@ ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, dou
     const Scan deep = scan(ray, sc.lo, sc.glo, sc.hi, sc.ghi, deepest,
                            std::min(kMaxSteps, work.evaluations() + kDeepBudget), work);
     if (deep.kind == Scan::Bracket) return deep;
-    // Clear, or undecided even there (counted): the surface may touch the ray in the piece but
-    // enters the solid nowhere a sign or an interval shows. Pass it, and go on from its end.
-    if (deep.kind == Scan::Undecided) ++work.undecided;
+    if (deep.kind == Scan::Undecided) {
+      // Most often the piece ends within rounding of a crossing just past it, which every
+      // interval over it then holds: a sign change a little ahead (inside the object's box)
+      // certifies that crossing, and [deep.lo, there] brackets the first one.
+      for (double ahead = deep.hi - deep.lo; ahead <= kFinest * tol; ahead *= 4) {
+        const Vec3 q = ray.o + ray.d * (deep.hi + ahead);
+        if (!object_->bounds.contains(q)) break;
+        ++work.point_evals;
+        const double gq = g(q);
+        if (gq >= 0) {
+          segment_bounds(ray, deep.lo, deep.hi + ahead, work);  // ws.view holds the bracket
+          return {Scan::Bracket, deep.lo, deep.glo, deep.hi + ahead, gq};
+        }
+      }
+      // Undecided even there (counted): the surface may touch the ray in the piece but enters
+      // the solid nowhere a sign or an interval shows. Pass it, and go on from its end.
+      ++work.undecided;
+    }
     if (sc.hi >= c) return {Scan::Clear, c, NAN, c, NAN};
     a = sc.hi;
     ga = sc.ghi;
