@@ -221,7 +221,7 @@ ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, dou
 }
 
 double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb,
-                            SegmentBounds rates, TraceCounters& work) const {
+                            SegmentBounds rates, TraceCounters& work, Below* below) const {
   // The Anderson-Bjorck variant of regula falsi, on the program pruned to a box holding the
   // bracket (ws.view): superlinear on smooth roots, and a bracket always, so it never leaves
   // [a, b]. Beside the bracket, [lo, hi] holds the first root: a value g(m) < 0 puts it at least
@@ -239,6 +239,7 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   const auto narrow = [&](double m, double gm) {
     const double err = value_error(gm);
     if (gm < 0) {
+      if (below) below->add(m, gm);
       lo = std::max(lo, m + reach(gm, rates.rise));
       if (floor > 0) hi = std::min(hi, m - (gm - err) / floor);
     } else {
@@ -269,36 +270,48 @@ double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double 
                                     SegmentBounds rates, TraceCounters& work) const {
   // Regula falsi, and the narrowing from slope bounds, take the bracket's crossing to be its only
   // one: a value g(m) < 0 moves the near end to m, past whatever [a, m] holds. Where g may fall
-  // in [a, b], a sliver of the solid thinner than the bracket may lie before the crossing that
-  // made it (a pinched or high-exponent shape seen across its thin part), so the bracket is
-  // halved and its left half decided first until the slope bounds prove one crossing.
-  const auto g_at = [&](double t) {
-    ++work.point_evals;
-    return g_view(ray.o + ray.d * t);
-  };
-  // Each pass halves [a, b] at least; 200 halvings of a double interval end in its rounding.
-  for (int i = 0; i < 200; ++i) {
+  // in [a, b], a sliver of the solid thinner than the bracket may lie before the crossing found
+  // (a pinched or high-exponent shape seen across its thin part). Each point refinement found
+  // outside clears -g/fall behind it and -g/rise ahead (SegmentBounds): where those spheres
+  // chain from a to the root found, nothing precedes it; a gap between them is decided, and a
+  // sign change there is an earlier bracket, searched in turn. Each bracket is left of the last.
+  for (int round = 0; round < 64; ++round) {
+    // The bracket's own bounds, tighter than its segment's: most show g rising through it.
+    if (rates.fall > 0) rates = segment_bounds(ray, a, b, work);  // prunes ws.view to [a, b]
     if (rates.fall <= 0) return refine(ray, a, ga, b, gb, rates, work);
-    if (b - a <= kRefine * footprint(ray, a)) return b;
-    rates = segment_bounds(ray, a, b, work);  // prunes ws.view to [a, b]
-    if (rates.fall <= 0) continue;
-    if (std::isnan(ga)) ga = g_at(a);
-    if (!(ga < 0)) return a;  // a itself is on the surface, to rounding
-    const double m = 0.5 * (a + b), gm = g_at(m);
-    if (gm >= 0) {
-      b = m;
-      gb = gm;
-      continue;
+    Below below;
+    const double root = refine(ray, a, ga, b, gb, rates, work, &below);
+    if (below.n == 0) return root;  // a itself is on the surface, to rounding
+    // Sort the points (refinement visits them in no order; few, so insertion sort).
+    for (int i = 1; i < below.n; ++i)
+      for (int k = i; k > 0 && below.t[k] < below.t[k - 1]; --k) {
+        std::swap(below.t[k], below.t[k - 1]);
+        std::swap(below.g[k], below.g[k - 1]);
+      }
+    // Mostly g cannot fall on [a, m*], m* the last point found outside, short of the root: it
+    // stays below g(m*) < 0 there, and m*'s sphere reaches the root's range. One bounds pass.
+    const double last = below.t[below.n - 1];
+    if (last > a) {
+      const SegmentBounds before = segment_bounds(ray, a, last, work);
+      if (before.fall <= 0 || before.g.hi < 0) return root;
     }
-    const Scan sc = decide(ray, a, ga, m, gm, kDecide * footprint(ray, a), work);
-    rates = {{}, kInf, kInf};        // not known for the new bracket
-    if (sc.kind == Scan::Bracket) {  // the first crossing is in [a, m]
-      if (!(sc.lo < sc.hi)) return sc.hi;
-      a = sc.lo, ga = sc.glo, b = sc.hi, gb = sc.ghi;
-      continue;
+    double cover = below.t[0] + reach(below.g[0], rates.rise);  // below.t[0] is a
+    bool earlier = false;
+    for (int i = 1; i < below.n && !earlier; ++i) {
+      const double behind = below.t[i] - reach(below.g[i], rates.fall);
+      if (behind > cover) {  // a gap: decide it, leftmost first
+        const double tol = kDecide * footprint(ray, cover);
+        const Scan sc = decide(ray, cover, NAN, below.t[i], below.g[i], tol, work);
+        if (sc.kind == Scan::Bracket) {
+          if (!(sc.lo < sc.hi)) return sc.hi;
+          a = sc.lo, ga = sc.glo, b = sc.hi, gb = sc.ghi;
+          rates = {{}, kInf, kInf};
+          earlier = true;
+        }
+      }
+      cover = std::max(cover, below.t[i] + reach(below.g[i], rates.rise));
     }
-    a = m;  // [a, m] is clear
-    ga = gm;
+    if (!earlier) return root;
   }
   return b;
 }

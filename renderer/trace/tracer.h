@@ -181,17 +181,28 @@ class ObjectTracer {
   Scan decide(const Ray& ray, double a, double ga, double c, double gc, double tol,
               TraceCounters& work) const;
   // The first crossing in the bracket [a, b] (g(a) = ga < 0 <= g(b) = gb, ga NaN where not known;
-  // ws.view holds [a, b]; `rates` its slope bounds if known), to 1/1000 of the footprint: halved
-  // while it may hold more than one crossing, each left half decided before the right one, then
-  // refined. Returns a t no nearer than the first crossing and within that tolerance of it.
+  // ws.view holds [a, b]; `rates` its slope bounds if known), to 1/1000 of the footprint: refined,
+  // then, where the bounds allow more than one crossing, the stretch before the root found is
+  // certified clear by the spheres of the points refinement evaluated, and any gap between them
+  // decided (a sign change there is an earlier bracket, searched the same way). Returns a t no
+  // nearer than the first crossing and within that tolerance of it.
   double first_crossing(const Ray& ray, double a, double ga, double b, double gb,
                         SegmentBounds rates, TraceCounters& work) const;
   // The root of g in [a, b] to within 1/1000 of the footprint there, given g(a) = ga < 0 <= g(b) =
   // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b], where `rates` show g
   // cannot fall (fall <= 0: one crossing); each value then narrows the root's range from both
   // sides. Returns the range's far end.
+  // `below`, if given, receives the points it evaluated where g < 0, a's included.
+  struct Below {
+    static constexpr int kMax = 104;  // refine's 100 iterations, a, and room
+    int n = 0;
+    double t[kMax], g[kMax];
+    void add(double at, double value) {
+      if (n < kMax) t[n] = at, g[n++] = value;
+    }
+  };
   double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
-                TraceCounters& work) const;
+                TraceCounters& work, Below* below = nullptr) const;
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
   // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
