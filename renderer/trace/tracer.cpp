@@ -295,13 +295,18 @@ double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double 
       const SegmentBounds before = segment_bounds(ray, a, last, work);
       if (before.fall <= 0 || before.g.hi < 0) return root;
     }
+    // A crossing within refinement's tolerance before the root is as good as the root: only
+    // [a, target] must be certified (refinement's points cluster past it, each sphere tiny).
+    const double target = root - kRefine * footprint(ray, a);
     double cover = below.t[0] + reach(below.g[0], rates.rise);  // below.t[0] is a
     bool earlier = false;
-    for (int i = 1; i < below.n && !earlier; ++i) {
+    for (int i = 1; i < below.n && !earlier && cover < target; ++i) {
       const double behind = below.t[i] - reach(below.g[i], rates.fall);
-      if (behind > cover) {  // a gap: decide it, leftmost first
+      if (behind > cover) {  // a gap: decide it (up to the target), leftmost first
         const double tol = kDecide * footprint(ray, cover);
-        const Scan sc = decide(ray, cover, NAN, below.t[i], below.g[i], tol, work);
+        const bool whole = below.t[i] <= target;
+        const Scan sc = decide(ray, cover, NAN, whole ? below.t[i] : target,
+                               whole ? below.g[i] : NAN, tol, work);
         if (sc.kind == Scan::Bracket) {
           if (!(sc.lo < sc.hi)) return sc.hi;
           a = sc.lo, ga = sc.glo, b = sc.hi, gb = sc.ghi;
