@@ -23,13 +23,20 @@ const char* kBall =
 // Between them, every key of every list, at the places `kWhere` names.
 const std::string kEveryKeyCameras = std::string(R"({
   "camera": {"eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40},
-  "image": {"width": 8, "height": 6, "spp": 2},
+  "image": {"width": 8, "height": 6, "spp": 2, "max_trace_level": 3},
   "background": [0.1, 0.2, 0.3],
   "lights": [
     {"type": "directional", "direction": [-1, 0, 0], "intensity": 1, "color": [1, 1, 1], "shadows": false},
-    {"type": "point", "position": [5, 5, 5], "intensity": 2, "color": [1, 0.5, 1], "shadows": true},
-    {"type": "ambient", "intensity": 0.1, "color": [1, 1, 1]}],
-  "objects": [{"name": "ball", "material": {"color": [1, 0, 0]}, "convention": "soft", "iso": 0.4,
+    {"type": "point", "position": [5, 5, 5], "intensity": 2, "color": [1, 0.5, 1], "shadows": true,
+     "fade_distance": 3, "fade_power": 2,
+     "area": {"axis1": [1, 0, 0], "axis2": [0, 1, 0], "size1": 3, "size2": 2, "adaptive": 1, "jitter": true}},
+    {"type": "ambient", "intensity": 0.1, "color": [1, 1, 1]},
+    {"type": "spot", "position": [0, 0, 9], "point_at": [0, 0, 0], "radius": 10, "falloff": 20,
+     "tightness": 5, "intensity": 1, "color": [1, 1, 1], "shadows": true, "fade_distance": 9,
+     "fade_power": 1, "area": {"axis1": [1, 0, 0], "axis2": [0, 1, 0], "size1": 2, "size2": 2}}],
+  "objects": [{"name": "ball", "material": {"color": [1, 0, 0], "ambient": 0.1, "diffuse": 0.6,
+               "brilliance": 2, "phong": 0.5, "phong_size": 60, "specular": 0.3, "roughness": 0.02,
+               "metallic": 0.5, "reflection": [0.1, 0.2, 0.3]}, "convention": "soft", "iso": 0.4,
                "bounds": [[-3, -3, -3], [3, 3, 3]], "field": )") +
                                      kBall + R"(}],
   "animation": {"frames": 1, "cameras": [{"eye": [0, 10, 0], "target": [0, 0, 0]}]}
@@ -46,6 +53,8 @@ const std::map<std::string, std::vector<std::string>> kWhere = {
     {"light: directional", {"/lights/0"}},
     {"light: point", {"/lights/1"}},
     {"light: ambient", {"/lights/2"}},
+    {"light: spot", {"/lights/3"}},
+    {"area light", {"/lights/1/area", "/lights/3/area"}},
     {"object", {"/objects/0"}},
     {"material", {"/objects/0/material"}},
     {"animation", {"/animation"}},
