@@ -40,6 +40,7 @@ nlohmann::json work_json(const RayWork& w) {
           {"box_evals", w.box_evals / n},
           {"refine_iterations", w.refine_iterations / n},
           {"give_ups", w.give_ups},
+          {"undecided", w.undecided},
           {"evaluations", w.evaluations() / n}};
 }
 
@@ -47,9 +48,9 @@ void print_work(const char* kind, const RayWork& w) {
   const double n = static_cast<double>(std::max(1LL, w.entered_box));
   std::printf(
       "  %s rays: %lld, %lld enter a box; per such ray %.2f point + %.2f box = %.2f evaluations, "
-      "%.2f refinement iterations, %lld gave up\n",
+      "%.2f refinement iterations, %lld gave up, %lld undecided\n",
       kind, w.rays, w.entered_box, w.point_evals / n, w.box_evals / n, w.evaluations() / n,
-      w.refine_iterations / n, w.give_ups);
+      w.refine_iterations / n, w.give_ups, w.undecided);
 }
 
 }  // namespace

@@ -166,6 +166,7 @@ bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCount
   work.box_evals += ctx.work.box_evals;
   work.refine_iterations += ctx.work.refine_iterations;
   work.give_ups += ctx.work.give_ups;
+  work.undecided += ctx.work.undecided;
   work.entered_box = work.entered_box || ctx.work.entered_box;
   return r.tfar < 0;
 }

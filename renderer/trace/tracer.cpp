@@ -147,7 +147,7 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
 }
 
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
-                                      double finest, TraceCounters& work) const {
+                                      double finest, int budget, TraceCounters& work) const {
   // Pieces of [a, c], leftmost first, so that a bracket is the first sign change. A piece is
   // cleared by its interval or by what its ends clear (reach, from the piece's rates); otherwise it
   // is halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
@@ -172,8 +172,8 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
     if (!(q.glo < 0))
       return {Scan::Bracket, q.lo, NAN, q.lo, q.glo};  // on the surface, to rounding
     if (reach(q.glo, sb.rise) + reach(q.ghi, sb.fall) >= q.hi - q.lo) continue;
-    if (q.hi - q.lo <= finest || top + 2 > kDepth)
-      return {Scan::Undecided, q.lo, q.glo, q.lo, q.glo};
+    if (q.hi - q.lo <= finest || top + 2 > kDepth || work.evaluations() >= budget)
+      return {Scan::Undecided, q.lo, q.glo, q.hi, q.ghi};
     const double m = 0.5 * (q.lo + q.hi), gm = g_at(m);
     if (gm >= 0) return {Scan::Bracket, q.lo, q.glo, m, gm};
     stack[top++] = {m, gm, q.hi, q.ghi};
@@ -182,8 +182,46 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
   return {Scan::Clear, c, NAN, c, NAN};
 }
 
+ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, double c, double gc,
+                                        double tol, TraceCounters& work) const {
+  for (;;) {
+    const Scan sc = scan(ray, a, ga, c, gc, kFinest * tol, kMaxSteps, work);
+    if (sc.kind != Scan::Undecided) return sc;
+    // A piece kFinest of the tolerance long that neither its interval nor its ends' spheres
+    // clear: the surface passes close to the ray there, or the bounds are loose at this scale.
+    // Halving on shrinks the bounds' excess with the piece, so a ray that only grazes the surface
+    // is decided a few levels down (never finer than the points' rounding, which pads every
+    // segment). The budget caps a ray that runs along a face, g within rounding of 0.
+    const double deepest = std::max(kFinestDeep * tol, 4e-12 * (max_abs(ray.o) + std::abs(sc.hi)));
+    const Scan deep = scan(ray, sc.lo, sc.glo, sc.hi, sc.ghi, deepest,
+                           std::min(kMaxSteps, work.evaluations() + kDeepBudget), work);
+    if (deep.kind == Scan::Bracket) return deep;
+    if (deep.kind == Scan::Undecided) {
+      // Most often the piece ends within rounding of a crossing just past it, which every
+      // interval over it then holds: a sign change a little ahead (inside the object's box)
+      // certifies that crossing, and [deep.lo, there] brackets the first one.
+      for (double ahead = deep.hi - deep.lo; ahead <= kFinest * tol; ahead *= 4) {
+        const Vec3 q = ray.o + ray.d * (deep.hi + ahead);
+        if (!object_->bounds.contains(q)) break;
+        ++work.point_evals;
+        const double gq = g(q);
+        if (gq >= 0) {
+          segment_bounds(ray, deep.lo, deep.hi + ahead, work);  // ws.view holds the bracket
+          return {Scan::Bracket, deep.lo, deep.glo, deep.hi + ahead, gq};
+        }
+      }
+      // Undecided even there (counted): the surface may touch the ray in the piece but enters
+      // the solid nowhere a sign or an interval shows. Pass it, and go on from its end.
+      ++work.undecided;
+    }
+    if (sc.hi >= c) return {Scan::Clear, c, NAN, c, NAN};
+    a = sc.hi;
+    ga = sc.ghi;
+  }
+}
+
 double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, double gb,
-                            SegmentBounds rates, TraceCounters& work) const {
+                            SegmentBounds rates, TraceCounters& work, Below* below) const {
   // The Anderson-Bjorck variant of regula falsi, on the program pruned to a box holding the
   // bracket (ws.view): superlinear on smooth roots, and a bracket always, so it never leaves
   // [a, b]. Beside the bracket, [lo, hi] holds the first root: a value g(m) < 0 puts it at least
@@ -201,6 +239,7 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   const auto narrow = [&](double m, double gm) {
     const double err = value_error(gm);
     if (gm < 0) {
+      if (below) below->add(m, gm);
       lo = std::max(lo, m + reach(gm, rates.rise));
       if (floor > 0) hi = std::min(hi, m - (gm - err) / floor);
     } else {
@@ -227,6 +266,61 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
   return hi;
 }
 
+double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double b, double gb,
+                                    SegmentBounds rates, TraceCounters& work) const {
+  // Regula falsi, and the narrowing from slope bounds, take the bracket's crossing to be its only
+  // one: a value g(m) < 0 moves the near end to m, past whatever [a, m] holds. Where g may fall
+  // in [a, b], a sliver of the solid thinner than the bracket may lie before the crossing found
+  // (a pinched or high-exponent shape seen across its thin part). Each point refinement found
+  // outside clears -g/fall behind it and -g/rise ahead (SegmentBounds): where those spheres
+  // chain from a to the root found, nothing precedes it; a gap between them is decided, and a
+  // sign change there is an earlier bracket, searched in turn. Each bracket is left of the last.
+  for (int round = 0; round < 64; ++round) {
+    // The bracket's own bounds, tighter than its segment's: most show g rising through it.
+    if (rates.fall > 0) rates = segment_bounds(ray, a, b, work);  // prunes ws.view to [a, b]
+    if (rates.fall <= 0) return refine(ray, a, ga, b, gb, rates, work);
+    Below below;
+    const double root = refine(ray, a, ga, b, gb, rates, work, &below);
+    if (below.n == 0) return root;  // a itself is on the surface, to rounding
+    // Sort the points (refinement visits them in no order; few, so insertion sort).
+    for (int i = 1; i < below.n; ++i)
+      for (int k = i; k > 0 && below.t[k] < below.t[k - 1]; --k) {
+        std::swap(below.t[k], below.t[k - 1]);
+        std::swap(below.g[k], below.g[k - 1]);
+      }
+    // Mostly g cannot fall on [a, m*], m* the last point found outside, short of the root: it
+    // stays below g(m*) < 0 there, and m*'s sphere reaches the root's range. One bounds pass.
+    const double last = below.t[below.n - 1];
+    if (last > a) {
+      const SegmentBounds before = segment_bounds(ray, a, last, work);
+      if (before.fall <= 0 || before.g.hi < 0) return root;
+    }
+    // A crossing within refinement's tolerance before the root is as good as the root: only
+    // [a, target] must be certified (refinement's points cluster past it, each sphere tiny).
+    const double target = root - kRefine * footprint(ray, a);
+    double cover = below.t[0] + reach(below.g[0], rates.rise);  // below.t[0] is a
+    bool earlier = false;
+    for (int i = 1; i < below.n && !earlier && cover < target; ++i) {
+      const double behind = below.t[i] - reach(below.g[i], rates.fall);
+      if (behind > cover) {  // a gap: decide it (up to the target), leftmost first
+        const double tol = kDecide * footprint(ray, cover);
+        const bool whole = below.t[i] <= target;
+        const Scan sc = decide(ray, cover, NAN, whole ? below.t[i] : target,
+                               whole ? below.g[i] : NAN, tol, work);
+        if (sc.kind == Scan::Bracket) {
+          if (!(sc.lo < sc.hi)) return sc.hi;
+          a = sc.lo, ga = sc.glo, b = sc.hi, gb = sc.ghi;
+          rates = {{}, kInf, kInf};
+          earlier = true;
+        }
+      }
+      cover = std::max(cover, below.t[i] + reach(below.g[i], rates.rise));
+    }
+    if (!earlier) return root;
+  }
+  return b;
+}
+
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                                     Query query, double clear_to) const {
   double t0 = tnear, t1 = tfar;
@@ -243,7 +337,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   const auto hit = [&](double a, double ga, double b, double gb,
                        SegmentBounds rates = {{}, kInf, kInf}) -> MarchResult {
     if (query == Query::Any) return {true, b};
-    return {true, refine(ray, a, ga, b, gb, rates, work)};
+    if (!(a < b)) return {true, b};  // on the surface, to rounding
+    return {true, first_crossing(ray, a, ga, b, gb, rates, work)};
   };
   const auto give_up = [&](double t) {
     ++work.give_ups;
@@ -326,9 +421,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
         halved = true;
         continue;
       }
-      const Scan sc = scan(ray, t, gt, b, NAN, kFinest * tol, work);
+      const Scan sc = decide(ray, t, gt, b, NAN, tol, work);
       if (sc.kind == Scan::Bracket) return hit(sc.lo, sc.glo, sc.hi, sc.ghi);
-      if (sc.kind == Scan::Undecided) return give_up(sc.lo);
       t = b;
       gt_known = false;
       continue;
@@ -361,9 +455,8 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
           gt = gp;
           continue;
         }
-        const Scan sc = scan(ray, t, gt, p, gp, kFinest * tol, work);
+        const Scan sc = decide(ray, t, gt, p, gp, tol, work);
         if (sc.kind == Scan::Bracket) return hit(sc.lo, sc.glo, sc.hi, sc.ghi);
-        if (sc.kind == Scan::Undecided) return give_up(sc.lo);
         t = p;  // scan re-pruned ws.view: bound the next segment afresh
         gt = gp;
         s = 4 * tol;

@@ -12,10 +12,13 @@
 //   the surface (a segment that needs many such steps is cut shorter: its bounds are loose);
 // - once the step is below the ray's tolerance (a pixel's footprint there), probes ahead
 //   decide: a sign change is a bracket; what the points clear, or intervals on halvings down to
-//   1/1024 of the tolerance, certify the gap; otherwise the tracer gives up explicitly and reports
-//   a hit there (never a silent skip).
-// A bracket is refined by regula falsi (Anderson-Bjorck) to 1/1000 of the footprint, the slope
-// bounds narrowing it from both sides (docs/math.md, "How the tracer uses them").
+//   1/1024 of the tolerance, certify the gap; a piece still undecided there is halved on, to
+//   1e-9 of the tolerance, and what even that leaves is counted (`undecided`) and passed: no
+//   surface is ever invented where none was certified.
+// A bracket is narrowed to the first crossing in it: halved, each left half cleared or bracketed
+// the same way, until its slope bounds show g rising through it (one crossing); then refined by
+// regula falsi (Anderson-Bjorck) to 1/1000 of the footprint, the slope bounds narrowing it from
+// both sides (docs/math.md, "How the tracer uses them").
 #pragma once
 
 #include <optional>
@@ -55,7 +58,12 @@ struct TraceCounters {
   // Root refinement steps after a sign change: one point evaluation each, or for polynomial
   // blobs one value of the piece's polynomial (not counted as a point evaluation).
   int refine_iterations = 0;
-  int give_ups = 0;          // searches ended without a certificate (reported as hits)
+  // Searches that reported a hit without a certificate: cut short by the evaluation limit, or (sums
+  // of polynomial blobs, tracer_blobs.cpp) a piece undecided at kFinest of the tolerance.
+  int give_ups = 0;
+  // Pieces of the ray no interval could decide down to 1e-9 of the tolerance: the surface may
+  // touch the ray there without entering. Passed, not reported as hits.
+  int undecided = 0;
   bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
   int evaluations() const { return point_evals + box_evals; }
 };
@@ -63,7 +71,7 @@ struct TraceCounters {
 // TraceCounters summed over many rays of one kind (primary or shadow), for `softtrace bench`.
 struct RayWork {
   long long rays = 0, entered_box = 0, point_evals = 0, box_evals = 0, refine_iterations = 0,
-            give_ups = 0;
+            give_ups = 0, undecided = 0;
   void add(const TraceCounters& c) {
     ++rays;
     entered_box += c.entered_box;
@@ -71,6 +79,7 @@ struct RayWork {
     box_evals += c.box_evals;
     refine_iterations += c.refine_iterations;
     give_ups += c.give_ups;
+    undecided += c.undecided;
   }
   RayWork& operator+=(const RayWork& o) {
     rays += o.rays;
@@ -79,6 +88,7 @@ struct RayWork {
     box_evals += o.box_evals;
     refine_iterations += o.refine_iterations;
     give_ups += o.give_ups;
+    undecided += o.undecided;
     return *this;
   }
   long long evaluations() const { return point_evals + box_evals; }
@@ -90,8 +100,7 @@ struct MarchResult {
   // The ray entered the object's box already inside the solid: the box cuts the solid, and the
   // surface seen is the box face, not a level set of the field.
   bool on_box_face = false;
-  // No certificate could decide within the tolerance (or the evaluation limit was reached): the
-  // surface may pass within a tolerance of the ray here, and it is reported as a hit.
+  // A search that reported a hit without a certificate (see TraceCounters::give_ups).
   bool gave_up = false;
 };
 
@@ -155,22 +164,45 @@ class ObjectTracer {
   // The radius of the ray's footprint at t (never below what rounding of t can resolve).
   double footprint(const Ray& ray, double t) const;
   // Decides [a, c] (g(a) = ga < 0, g(c) = gc; either NaN where not known yet) by intervals and
-  // spheres over halvings down to `finest`: clear, the first sign change's bracket, or undecided
-  // where the halving stopped.
+  // spheres over halvings down to `finest` (and while the ray's work is below `budget`): clear,
+  // the first sign change's bracket, or undecided where the halving stopped.
   struct Scan {
     enum Kind { Clear, Bracket, Undecided } kind;
     // Bracket: g(lo) = glo < 0 <= g(hi) = ghi (glo NaN: not known), ws.view holds [lo, hi].
-    // Undecided: at lo.
+    // Undecided: the piece [lo, hi], g < 0 at both ends (known), [a, lo] clear.
     double lo, glo, hi, ghi;
   };
-  Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest,
+  Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest, int budget,
             TraceCounters& work) const;
-  // A root of g in [a, b] to within 1/1000 of the footprint there, given g(a) = ga < 0 <= g(b) =
-  // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b]. `rates` bound g's
-  // slope over [a, b] (infinite where not known): each value then narrows the root's range from
-  // both sides. Returns the range's far end, no nearer than the first root in [a, b].
+  // scan down to kFinest of the tolerance `tol`, a piece undecided there once more down to
+  // kFinestDeep of it, and on past it: Clear or Bracket. A piece that stays undecided is passed
+  // (the surface may touch the ray there but no sign change shows it enters) and counted in
+  // work.undecided.
+  Scan decide(const Ray& ray, double a, double ga, double c, double gc, double tol,
+              TraceCounters& work) const;
+  // The first crossing in the bracket [a, b] (g(a) = ga < 0 <= g(b) = gb, ga NaN where not known;
+  // ws.view holds [a, b]; `rates` its slope bounds if known), to 1/1000 of the footprint: refined,
+  // then, where the bounds allow more than one crossing, the stretch before the root found is
+  // certified clear by the spheres of the points refinement evaluated, and any gap between them
+  // decided (a sign change there is an earlier bracket, searched the same way). Returns a t no
+  // nearer than the first crossing and within that tolerance of it.
+  double first_crossing(const Ray& ray, double a, double ga, double b, double gb,
+                        SegmentBounds rates, TraceCounters& work) const;
+  // The root of g in [a, b] to within 1/1000 of the footprint there, given g(a) = ga < 0 <= g(b) =
+  // gb (ga NaN: not known yet), on ws.view pruned to a box holding [a, b], where `rates` show g
+  // cannot fall (fall <= 0: one crossing); each value then narrows the root's range from both
+  // sides. Returns the range's far end.
+  // `below`, if given, receives the points it evaluated where g < 0, a's included.
+  struct Below {
+    static constexpr int kMax = 104;  // refine's 100 iterations, a, and room
+    int n = 0;
+    double t[kMax], g[kMax];
+    void add(double at, double value) {
+      if (n < kMax) t[n] = at, g[n++] = value;
+    }
+  };
   double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
-                TraceCounters& work) const;
+                TraceCounters& work, Below* below = nullptr) const;
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
   // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,

@@ -13,9 +13,12 @@ constexpr int kMaxSteps = 200000;
 // the 1000 blobs and six figure scenes at 80x60: 2 and 4 take 4-13 % fewer evaluations than 1
 // and 8, 0.7 more.
 constexpr double kDecide = 2;
-// The shortest piece the halving looks at, in tolerances: a surface must pass within about this
-// of the ray for a search to give up there.
+// The shortest piece the halving looks at, in tolerances, before a piece it could not decide is
+// halved on to kFinestDeep (within kDeepBudget evaluations): a surface must pass within about
+// that of the ray, without a sign change seen, for a piece to stay undecided.
 constexpr double kFinest = 1.0 / 1024;
+constexpr double kFinestDeep = 1e-9;
+constexpr int kDeepBudget = 2000;
 // Root refinement stops when the bracket is this fraction of the footprint radius.
 constexpr double kRefine = 1e-3;
 
