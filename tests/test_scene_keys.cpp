@@ -22,7 +22,8 @@ const char* kBall =
 
 // Between them, every key of every list, at the places `kWhere` names.
 const std::string kEveryKeyCameras = std::string(R"({
-  "camera": {"eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40},
+  "camera": {"projection": "perspective", "eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40,
+             "aperture": 0.1, "focal_distance": 9, "blur_samples": 2},
   "image": {"width": 8, "height": 6, "spp": 2},
   "background": [0.1, 0.2, 0.3],
   "lights": [

@@ -7,7 +7,8 @@ namespace softtrace {
 const std::vector<SceneKeyList>& scene_key_lists() {
   static const std::vector<SceneKeyList> lists = {
       {"top level", {"camera", "image", "background", "lights", "objects", "animation"}},
-      {"camera", {"eye", "target", "up", "fov"}},
+      {"camera",
+       {"projection", "eye", "target", "up", "fov", "aperture", "focal_distance", "blur_samples"}},
       {"image", {"width", "height", "spp"}},
       {"light: directional", {"type", "direction", "intensity", "color", "shadows"}},
       {"light: point", {"type", "position", "intensity", "color", "shadows"}},
