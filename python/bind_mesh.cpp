@@ -47,6 +47,9 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
     if (!obj) throw SceneError(scene->path + ": no object named '" + object + "'");
   }
   if (!obj) throw SceneError(scene->path + ": the scene has no object");
+  if (obj->shape)
+    throw SceneError(scene->path + ": object '" + obj->name + "' is a " +
+                     shape_name(obj->shape->shape) + " shape, not a field");
   Box region = obj->bounds;
   if (bounds) {
     const auto& b = *bounds;

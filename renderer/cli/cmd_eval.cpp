@@ -28,6 +28,10 @@ int run_eval(const EvalArgs& a) {
         if (o.name == a.object) obj = &o;
       if (!obj) throw SceneError(a.scene + ": no object named '" + a.object + "'");
     }
+    if (obj->shape)
+      throw SceneError(a.scene + ": object '" + obj->name + "' is a " +
+                       shape_name(obj->shape->shape) +
+                       " shape, not a field: there is nothing to evaluate");
     // The library's evaluators on the object's compiled program, pruned to each point.
     const Program program = compile(*obj->field);
     Workspace ws;

@@ -52,6 +52,9 @@ int run_mesh(const MeshArgs& a) {
         throw SceneError(a.scene + ": no object named '" + a.object + "'");
     }
     const SceneObject& obj = scene.objects[index];
+    if (obj.shape)
+      throw SceneError(a.scene + ": /objects/" + std::to_string(index) + ": a " +
+                       shape_name(obj.shape->shape) + " shape, not a field: mesh a field object");
     const Box region = a.bounds.empty() ? obj.bounds : parse_bounds(a.bounds);
     if (!region.bounded())
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) +

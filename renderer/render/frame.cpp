@@ -78,8 +78,10 @@ class FrameTracer {
                                        std::min(y + size, film_.full_height));
     double* clear = work.clear.data() + size_t(level) * objects_;
     TraceCounters beam_work;
-    for (int o = 0; o < objects_; ++o)
-      clear[o] = rt_.tracers[o].clear_depth(fr, from ? from[o] : 0, beam_work);
+    for (int o = 0; o < objects_; ++o) {
+      const ObjectTracer* tracer = rt_.tracers.tracer(o);  // a primitive's hit costs no approach
+      clear[o] = tracer ? tracer->clear_depth(fr, from ? from[o] : 0, beam_work) : 0;
+    }
     // The beam's work is the primary rays' (its passes are counted, not its rays).
     work.primary.box_evals += beam_work.box_evals;
     if (level + 1 < kBeamLevels) {

@@ -163,6 +163,16 @@ SceneObject load_object(const Params& p, size_t index) {
     o.color = load_color(m, "color", o.color);
     m.finish();
   }
+  if (p.has("shape")) {
+    for (const char* key : {"field", "convention", "iso", "bounds"})
+      if (p.has(key))
+        p.fail(key,
+               std::string("an object with a 'shape' has no '") + key + "' (that is a field's)");
+    o.shape = load_primitive(p.object("shape"));
+    o.bounds = o.shape->world_box;
+    p.finish();
+    return o;
+  }
   o.convention = load_convention(p);
   const double default_iso = o.convention == Convention::Soft   ? 0.5
                              : o.convention == Convention::Zero ? 0.0
@@ -271,9 +281,9 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   if (!has_camera) {
     Box framed;
     for (const SceneObject& o : s.objects)
-      if (o.bounds.bounded()) framed = framed.united(o.bounds);
+      if (!(o.shape && o.shape->shape == Primitive::Shape::Plane)) framed = framed.united(o.bounds);
     if (framed.empty())
-      root.fail("camera", "expected a camera: no object has a bounded box to frame");
+      root.fail("camera", "expected a camera: there is nothing but infinite planes to frame");
     s.camera = camera_framing(framed, double(s.image.width) / s.image.height);
     s.default_camera = true;
   }

@@ -9,6 +9,7 @@
 
 #include "describe/building.h"
 #include "model/node.h"
+#include "scene/primitive.h"
 
 namespace softtrace {
 
@@ -74,6 +75,8 @@ struct SceneObject {
   double inside_sign = 1;
   Box bounds;  // where the renderer looks for the surface: "bounds" or the field's region box
   NodePtr field;
+  // A plain primitive ("shape") instead of a field: then `field` is null and `bounds` its box.
+  std::optional<Primitive> shape;
 };
 
 struct Scene {
