@@ -112,7 +112,8 @@ TEST(Camera, BadCameraKeysAreRefusedAtTheirPointers) {
       {R"("aperture": -1)", "/camera/aperture: expected an aperture >= 0"},
       {R"("focal_distance": -2)", "/camera/focal_distance: expected a focal distance >= 0"},
       {R"("blur_samples": 0)", "/camera/blur_samples"},
-      {R"("projection": "orthographic", "fov": 179.9999999)", "/camera/fov: expected an orthographic"},
+      {R"("projection": "orthographic", "fov": 179.9999999)",
+       "/camera/fov: expected an orthographic"},
   };
   for (const auto& [keys, expected] : cases) {
     try {
