@@ -21,7 +21,12 @@ constexpr size_t kMaxLine = 4096;
 int run_eval(const EvalArgs& a) {
   try {
     const Scene scene = load_scene(a.scene);
-    const SceneObject* obj = &scene.objects.front();
+    // By default the first object with a field (a shape has none).
+    const SceneObject* obj = nullptr;
+    for (const auto& o : scene.objects)
+      if (!obj && !o.shape) obj = &o;
+    if (!obj && a.object.empty())
+      throw SceneError(a.scene + ": no object has a field: there is nothing to evaluate");
     if (!a.object.empty()) {
       obj = nullptr;
       for (const auto& o : scene.objects)

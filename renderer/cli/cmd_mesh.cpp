@@ -43,7 +43,8 @@ int run_mesh(const MeshArgs& a) {
   try {
     check_output_path(a.output, kMeshExtensions);  // fail before the work, not after
     const Scene scene = load_scene(a.scene);
-    size_t index = 0;
+    size_t index = 0;  // by default the first object with a field (a shape has none)
+    while (index + 1 < scene.objects.size() && scene.objects[index].shape) ++index;
     if (!a.object.empty()) {
       index = scene.objects.size();
       for (size_t i = 0; i < scene.objects.size(); ++i)
