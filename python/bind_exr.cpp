@@ -23,6 +23,7 @@ std::vector<std::string> render_channels(const std::string& key) {
   if (key == "depth") return {"Z"};
   if (key == "normal") return {"N.X", "N.Y", "N.Z"};
   if (key == "steps") return {"steps"};
+  if (key == "albedo") return {"albedo.R", "albedo.G", "albedo.B"};
   return {};
 }
 

@@ -73,7 +73,7 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
   opt.voxel = voxel;
   opt.cells = cells;
   opt.threads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  opt.color = obj->color;
+  opt.color = obj->material.color;
   Mesh m;
   {
     py::gil_scoped_release release;

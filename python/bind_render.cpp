@@ -44,11 +44,13 @@ struct Request {
 AovSelection aovs_named(const std::vector<std::string>& names) {
   AovSelection a;
   for (const std::string& name : names) {
-    if (name.empty()) throw std::invalid_argument("unknown AOV '' (expected depth, normal, steps)");
+    if (name.empty())
+      throw std::invalid_argument("unknown AOV '' (expected depth, normal, steps, albedo)");
     const AovSelection one = parse_aovs(name);
     a.depth |= one.depth;
     a.normal |= one.normal;
     a.steps |= one.steps;
+    a.albedo |= one.albedo;
   }
   return a;
 }
@@ -204,6 +206,7 @@ py::dict render(const PyScene& shared, const Request& r) {
   if (opt.aovs.depth) out["depth"] = array_of(film.depth, film, 1);
   if (opt.aovs.normal) out["normal"] = array_of(film.normal, film, 3);
   if (opt.aovs.steps) out["steps"] = array_of(film.steps, film, 1);
+  if (opt.aovs.albedo) out["albedo"] = array_of(film.albedo, film, 3);
   return out;
 }
 

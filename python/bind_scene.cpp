@@ -4,6 +4,8 @@
 // located errors, and the scene hash is always that of the text rendered.
 #include <pybind11/stl.h>
 
+#include <cmath>
+
 #include "bindings.h"
 #include "scene/json_text.h"
 
@@ -35,9 +37,30 @@ py::dict light_of(const Light& l) {
       d["position"] = vec(l.position);
       d["shadows"] = l.shadows;
       break;
+    case Light::Type::Spot:
+      // The loaded spot keeps its unit axis, not the point_at it was given.
+      d["type"] = "spot";
+      d["position"] = vec(l.position);
+      d["direction"] = vec(l.direction);
+      d["radius"] = std::acos(l.cos_radius) * 180 / M_PI;
+      d["falloff"] = std::acos(l.cos_falloff) * 180 / M_PI;
+      d["tightness"] = l.tightness;
+      d["shadows"] = l.shadows;
+      break;
     case Light::Type::Ambient:
       d["type"] = "ambient";
       break;
+  }
+  if (l.fade_power > 0) {
+    d["fade_distance"] = l.fade_distance;
+    d["fade_power"] = l.fade_power;
+  }
+  if (l.has_area) {
+    py::dict a(py::arg("axis1") = vec(l.area.axis1), py::arg("axis2") = vec(l.area.axis2),
+               py::arg("size1") = l.area.size1, py::arg("size2") = l.area.size2,
+               py::arg("jitter") = l.area.jitter);
+    if (l.area.adaptive >= 0) a["adaptive"] = l.area.adaptive;
+    d["area"] = a;
   }
   d["color"] = vec(l.color);
   d["intensity"] = l.intensity;

@@ -59,7 +59,7 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"render SCENE --frame -1",
        "--frame: expected an integer from 0 to 999999, got '-1'" + usage},
       {"render SCENE --aov depth,colour",
-       "--aov: unknown AOV 'colour' (expected depth, normal, steps)" + usage},
+       "--aov: unknown AOV 'colour' (expected depth, normal, steps, albedo)" + usage},
       {"render SCENE --crop 0.5,0.2,0,1 -o OUT",
        "--crop '0.5,0.2,0,1': expected 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1"},
       {"render SCENE --pixel-bounds 1,2 -o OUT", "--pixel-bounds '1,2': expected X0,X1,Y0,Y1"},

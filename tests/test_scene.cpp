@@ -86,13 +86,13 @@ TEST(SceneLoading, DuplicateNamesAndUnknownLights) {
     EXPECT_STREQ(e.what(), "s.json: /objects/1/name: duplicate object name 'a'");
   }
   try {
-    parse_scene(R"({"camera":{"eye":[10,0,0],"target":[0,0,0]},"lights":[{"type":"spot"}],
+    parse_scene(R"({"camera":{"eye":[10,0,0],"target":[0,0,0]},"lights":[{"type":"cylinder"}],
                    "objects":[{"field":)" +
                     std::string(kBall) + "}]}",
                 "s.json");
     FAIL();
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("s.json: /lights/0/type: unknown light type 'spot'"),
+    EXPECT_NE(std::string(e.what()).find("s.json: /lights/0/type: unknown light type 'cylinder'"),
               std::string::npos);
   }
 }

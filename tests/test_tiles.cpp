@@ -112,7 +112,7 @@ TEST(CropWindow, PbrtConvention) {
 // The heart of it: tiles rendered apart, merged, give the single-process render's bits.
 TEST(Merge, TilesGiveTheSingleProcessBitsInEveryChannel) {
   const std::string dir = temp_dir("merge_tiles");
-  const std::string aov = " --aov depth,normal,steps ";
+  const std::string aov = " --aov depth,normal,steps,albedo ";
   const std::string full = render(aov, dir + "/full.exr");
   std::string tiles;
   for (int i = 0; i < 5; ++i)

@@ -12,8 +12,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(g++ cmake ninja-build pkg-config libembree-dev libopenimageio-dev libopenexr-dev
   libpng-dev libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools
   clang-14 clang-format-14 libclang-rt-14-dev munge slurmctld slurmd slurm-client
-  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-mypy libcgal-dev groff-base man-db
-  povray)
+  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-mypy libcgal-dev groff-base man-db povray)
 BUILD_DIR=${BUILD_DIR:-build}
 
 install_missing() {

@@ -20,16 +20,20 @@ def pov_vec(v):
     return "<%.9g, %.9g, %.9g>" % (v[0], v[2], v[1])
 
 
-def header(scene, width, height):
-    """Camera, lights and background of a softtrace scene (a parsed JSON object)."""
+def header(scene, width, height, alpha=True):
+    """Camera, lights and background of a softtrace scene (a parsed JSON object).
+
+    With alpha the background is transparent (POV's +UA alpha is then the coverage mask);
+    without, it is the scene's colour, which reflections see too (tools/pov_finish.py)."""
     cam = scene["camera"]
     vfov = math.radians(cam.get("fov", 40.0))
     hfov = math.degrees(2 * math.atan(math.tan(vfov / 2) * width / height))
     bg = scene.get("background", [0, 0, 0])
+    level = scene.get("image", {}).get("max_trace_level", 5)
     out = ["#version 3.7;",
-           "global_settings { assumed_gamma 1.0 ambient_light rgb 1 }",
-           # Transparent where nothing is hit: with +UA the alpha is the coverage mask.
-           "background { rgbt <%g, %g, %g, 1> }" % tuple(bg),
+           "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level %d }" % level,
+           ("background { rgbt <%g, %g, %g, 1> }" if alpha else
+            "background { rgb <%g, %g, %g> }") % tuple(bg),
            "camera { perspective location %s look_at %s sky %s" % (
                pov_vec(cam["eye"]), pov_vec(cam["target"]), pov_vec(cam.get("up", [0, 0, 1]))),
            "  right x*%d/%d up y angle %.9g }" % (width, height, hfov)]
@@ -40,23 +44,53 @@ def header(scene, width, height):
         if kind == "ambient":
             ambient += light.get("intensity", 1.0)
             continue
-        shadow = "" if light.get("shadows", False) else " shadowless"
+        shadow = "" if light.get("shadows", True) else " shadowless"
         if kind == "directional":
             d = light["direction"]
             far = [-1e5 * c for c in d]
             out.append("light_source { %s rgb <%g, %g, %g> parallel point_at <0, 0, 0>%s }" % (
                 pov_vec(far), *power, shadow))
-        else:
-            out.append("light_source { %s rgb <%g, %g, %g>%s }" % (
-                pov_vec(light["position"]), *power, shadow))
+            continue
+        items = [pov_vec(light["position"]), "rgb <%g, %g, %g>" % tuple(power)]
+        if kind == "spot":
+            items.append("spotlight point_at %s radius %.9g falloff %.9g tightness %.9g" % (
+                pov_vec(light["point_at"]), light.get("radius", 30), light.get("falloff", 45),
+                light.get("tightness", 0)))
+        if "fade_distance" in light:
+            items.append("fade_distance %.9g fade_power %.9g" % (
+                light["fade_distance"], light.get("fade_power", 2)))
+        area = light.get("area")
+        if area:
+            items.append("area_light %s, %s, %d, %d" % (
+                pov_vec(area["axis1"]), pov_vec(area["axis2"]), area["size1"], area["size2"]))
+            if "adaptive" in area:
+                items.append("adaptive %d" % area["adaptive"])
+        out.append("light_source { %s%s }" % (" ".join(items), shadow))
     out.append("#declare Ambient = %g;" % ambient)
     return "\n".join(out) + "\n"
 
 
+def grey_or_rgb(v):
+    return ("rgb <%g, %g, %g>" % tuple(v)) if isinstance(v, list) else "%g" % v
+
+
 def material(obj):
-    c = obj.get("material", {}).get("color", [0.8, 0.8, 0.8])
-    return ("  pigment { rgb <%g, %g, %g> } finish { ambient Ambient diffuse 1 specular 0 }"
-            % tuple(c))
+    """The object's material as POV's pigment and finish: the keys are POV's, with softtrace's
+    defaults (ambient 1, diffuse 1) written out; ambient scales the scene's ambient lights."""
+    m = obj.get("material", {})
+    c = m.get("color", [0.8, 0.8, 0.8])
+    amb = m.get("ambient", 1.0)
+    amb = amb if isinstance(amb, list) else [amb] * 3
+    finish = ["ambient rgb <%g, %g, %g>*Ambient" % tuple(amb),
+              "diffuse %g" % m.get("diffuse", 1.0),
+              "brilliance %g" % m.get("brilliance", 1.0),
+              "phong %g phong_size %g" % (m.get("phong", 0.0), m.get("phong_size", 40.0)),
+              "specular %g roughness %g" % (m.get("specular", 0.0), m.get("roughness", 0.05))]
+    if m.get("metallic", 0):
+        finish.append("metallic %g" % m["metallic"])
+    if m.get("reflection", 0):
+        finish.append("reflection { %s }" % grey_or_rgb(m["reflection"]))
+    return "  pigment { rgb <%g, %g, %g> } finish { %s }" % (*c, " ".join(finish))
 
 
 def blob(scene):

@@ -179,7 +179,8 @@ def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
     "rgba" (height, width, 4) is premultiplied linear RGBA as the EXR output holds it (with
     `flatten`, RGB over the background and A = 1); `aovs` adds any of "depth" (height, width:
     distance along the pixel-centre ray, inf for the background), "normal" (height, width, 3)
-    and "steps" (height, width: field evaluations of that ray). width, height and spp of 0 keep
+    "steps" (height, width: field evaluations of that ray) and "albedo" (height, width, 3: the
+    hit material's colour, 0 for the background). width, height and spp of 0 keep
     the scene's, and one of width and height alone keeps the scene's aspect; frames above 2^26
     pixels are refused as the command line refuses them. `frame` renders that frame of the
     scene's animation (scene.frames of them), as `softtrace render --frame` does.

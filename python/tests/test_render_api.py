@@ -16,25 +16,28 @@ import softtrace
 
 def test_aovs_are_the_cli_exr_channels(tmp_path):
     scene = softtrace.load_scene(TWO_BLOBS)
-    out = softtrace.render(scene, width=40, height=30, aovs=["depth", "normal", "steps"])
-    assert sorted(out) == ["depth", "normal", "rgba", "steps"]
+    out = softtrace.render(scene, width=40, height=30, aovs=["depth", "normal", "steps", "albedo"])
+    assert sorted(out) == ["albedo", "depth", "normal", "rgba", "steps"]
     assert out["rgba"].shape == (30, 40, 4) and out["normal"].shape == (30, 40, 3)
     assert out["depth"].shape == (30, 40) and out["steps"].shape == (30, 40)
     hit = out["rgba"][..., 3] > 0
     assert 0 < hit.sum() < hit.size
     assert np.all(np.isinf(out["depth"][~hit])) and np.all(np.isfinite(out["depth"][hit]))
     assert np.allclose(np.linalg.norm(out["normal"][hit], axis=-1), 1, atol=1e-5)
+    assert out["albedo"].shape == (30, 40, 3) and np.all(out["albedo"][~hit] == 0)
     cli = tmp_path / "cli.exr"
     subprocess.run([BIN, "render", TWO_BLOBS, "--width", "40", "--height", "30", "--aov",
-                    "depth,normal,steps", "-o", str(cli), "--quiet"], check=True)
+                    "depth,normal,steps,albedo", "-o", str(cli), "--quiet"], check=True)
     channels = softtrace.read_exr(cli)
-    assert list(channels) == ["R", "G", "B", "A", "Z", "steps", "N.X", "N.Y", "N.Z"]
+    assert list(channels) == ["R", "G", "B", "A", "Z", "steps", "N.X", "N.Y", "N.Z",
+                              "albedo.R", "albedo.G", "albedo.B"]
     assert np.array_equal(np.stack([channels[c] for c in "RGBA"], -1), out["rgba"])
     assert np.array_equal(channels["Z"], out["depth"])
     assert np.array_equal(np.stack([channels["N." + c] for c in "XYZ"], -1), out["normal"])
     assert np.array_equal(channels["steps"], out["steps"])
-    with pytest.raises(ValueError, match="unknown AOV 'albedo'"):
-        softtrace.render(scene, width=8, height=8, aovs=["albedo"])
+    assert np.array_equal(np.stack([channels["albedo." + c] for c in "RGB"], -1), out["albedo"])
+    with pytest.raises(ValueError, match="unknown AOV 'emission'"):
+        softtrace.render(scene, width=8, height=8, aovs=["emission"])
     with pytest.raises(TypeError, match="list of names"):
         softtrace.render(scene, width=8, height=8, aovs="depth")
 

@@ -50,7 +50,8 @@ int run_merge(const MergeArgs& a) {
     // The tiles' pixels go out as they came in (already premultiplied or flattened), with the
     // header facts the tiles carry as strings.
     OutputOptions opt;
-    opt.aovs = {!film.depth.empty(), !film.normal.empty(), !film.steps.empty()};
+    opt.aovs = {!film.depth.empty(), !film.normal.empty(), !film.steps.empty(),
+                !film.albedo.empty()};
     FrameInfo info;
     info.scene_name = attribute("softtrace/scene");
     info.scene_hash = attribute("softtrace/sceneHash");

@@ -67,7 +67,7 @@ int run_mesh(const MeshArgs& a) {
     opt.cells = a.cells;
     opt.threads =
         a.threads > 0 ? a.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    opt.color = obj.color;
+    opt.color = obj.material.color;
     // The bar counts the lattice's cells (millions per second as the rate).
     const double longest = std::max({region.extent().x, region.extent().y, region.extent().z});
     const double h = a.voxel > 0 ? a.voxel : longest / a.cells;

@@ -116,7 +116,7 @@ int run_render(const RenderArgs& a) {
           std::filesystem::path(a.scene).stem().string() + (a.frame >= 0 ? ".####.exr" : ".exr"),
           a.frame));
     for (const auto& o : outputs) check_image_output_path(o);  // fail before the work, not after
-    if ((aovs.depth || aovs.normal || aovs.steps) &&
+    if ((aovs.depth || aovs.normal || aovs.steps || aovs.albedo) &&
         std::none_of(outputs.begin(), outputs.end(), is_exr_path))
       throw std::invalid_argument("--aov needs an .exr output");
 

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
       ->check(integer_in(1, 4096));
   render->add_option("--threads", r.threads, "Worker threads (default: all cores)")
       ->check(integer_in(1, 1024));
-  render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps")
+  render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps,albedo")
       ->check(aov_list());
   render
       ->add_option("--lipschitz", r.lipschitz,

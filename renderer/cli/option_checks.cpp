@@ -125,7 +125,7 @@ CLI::Validator aov_list() {
         }
         return std::string();
       },
-      "depth,normal,steps");
+      "depth,normal,steps,albedo");
 }
 
 CLI::Validator number_above_zero() {

@@ -34,6 +34,8 @@ ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo&
   if (opt.aovs.depth) img.channels.push_back("Z");
   if (opt.aovs.normal) img.channels.insert(img.channels.end(), {"N.X", "N.Y", "N.Z"});
   if (opt.aovs.steps) img.channels.push_back("steps");
+  if (opt.aovs.albedo)
+    img.channels.insert(img.channels.end(), {"albedo.R", "albedo.G", "albedo.B"});
   const size_t nc = img.channels.size(), npix = size_t(film.width) * film.height;
   img.pixels.resize(npix * nc);
   for (size_t i = 0; i < npix; ++i) {
@@ -47,6 +49,8 @@ ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo&
     if (opt.aovs.normal)
       for (int k = 0; k < 3; ++k) out[c++] = film.normal[i * 3 + k];
     if (opt.aovs.steps) out[c++] = film.steps[i];
+    if (opt.aovs.albedo)
+      for (int k = 0; k < 3; ++k) out[c++] = film.albedo[i * 3 + k];
   }
   // Depth needs float's precision, and step counts above 2048 are not exact in half.
   for (const auto& name : img.channels)
@@ -103,8 +107,11 @@ AovSelection parse_aovs(const std::string& list) {
       a.normal = true;
     else if (item == "steps")
       a.steps = true;
+    else if (item == "albedo")
+      a.albedo = true;
     else
-      throw std::invalid_argument("unknown AOV '" + item + "' (expected depth, normal, steps)");
+      throw std::invalid_argument("unknown AOV '" + item +
+                                  "' (expected depth, normal, steps, albedo)");
     if (comma == std::string::npos) break;
     start = comma + 1;
   }

@@ -13,7 +13,7 @@
 namespace softtrace {
 
 struct AovSelection {
-  bool depth = false, normal = false, steps = false;
+  bool depth = false, normal = false, steps = false, albedo = false;
 };
 
 // A data window of width x height pixels at (x0, y0) inside a display window of
@@ -28,6 +28,7 @@ struct Film {
   std::vector<float> depth;   // ray distance of the pixel-centre ray, +inf for background
   std::vector<float> normal;  // unit normal (x,y,z) at that hit, 0 for background
   std::vector<float> steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
+  std::vector<float> albedo;  // the material's colour (r,g,b) at that hit, 0 for background
   std::map<std::string, std::string> attributes;  // more string attributes for EXR headers
 
   Film(int w, int h, AovSelection aovs = {true, true, true})
@@ -38,7 +39,8 @@ struct Film {
         rgba(size_t(w) * h * 4),
         depth(aovs.depth ? size_t(w) * h : 0),
         normal(aovs.normal ? size_t(w) * h * 3 : 0),
-        steps(aovs.steps ? size_t(w) * h : 0) {}
+        steps(aovs.steps ? size_t(w) * h : 0),
+        albedo(aovs.albedo ? size_t(w) * h * 3 : 0) {}
 };
 
 struct OutputOptions {
@@ -57,7 +59,7 @@ struct FrameInfo {
   Vec3 background{0, 0, 0};
 };
 
-// Parses "depth,normal,steps" (any subset); throws std::invalid_argument naming a bad entry.
+// Parses "depth,normal,steps,albedo" (any subset); throws std::invalid_argument naming a bad entry.
 AovSelection parse_aovs(const std::string& list);
 
 // check_output_path (output_file.h) for images: .exr or .png.
@@ -66,9 +68,9 @@ bool is_exr_path(const std::string& path);
 
 // Writes the film to a pending temporary file beside `path`'s target (stale temporary files of
 // that target are removed first) and returns the temporary file's path; commit_image renames it
-// over the target. EXR: R,G,B,A (+ Z, N.X,N.Y,N.Z, steps as selected) with the standard and
-// softtrace header attributes (README "Usage"). PNG: 8-bit sRGB, RGB over the background or,
-// with png_alpha, RGBA. Throws std::runtime_error.
+// over the target. EXR: R,G,B,A (+ Z, N.X,N.Y,N.Z, steps, albedo.R,albedo.G,albedo.B as selected)
+// with the standard and softtrace header attributes (README "Usage"). PNG: 8-bit sRGB, RGB over the
+// background or, with png_alpha, RGBA. Throws std::runtime_error.
 std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
                              const FrameInfo& info);
 void commit_image(const std::string& tmp, const std::string& path);

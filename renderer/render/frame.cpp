@@ -119,14 +119,15 @@ class FrameTracer {
           rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
       work.primary.add(hit.work);
       RayWork shadow;
-      Vec3 normal{0, 0, 0};  // the background's
+      Vec3 normal{0, 0, 0}, albedo{0, 0, 0};  // the background's
       if (hit.hit) {
         const Shaded sh = shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow);
         sum += sh.color;
         ++covered;
         normal = sh.normal;
+        albedo = sh.albedo;
       }
-      if (s == 0) aovs(i, hit, normal, shadow);
+      if (s == 0) aovs(i, hit, normal, albedo, shadow);
       work.shadow += shadow;
     }
     for (int k = 0; k < 3; ++k) film_.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
@@ -135,13 +136,16 @@ class FrameTracer {
 
   // The pixel-centre ray's AOVs, into the planes the film has. The background adds nothing to
   // rgba (premultiplied); its depth is +inf.
-  void aovs(size_t i, const TraceHit& hit, const Vec3& normal, const RayWork& shadow) const {
+  void aovs(size_t i, const TraceHit& hit, const Vec3& normal, const Vec3& albedo,
+            const RayWork& shadow) const {
     if (!film_.depth.empty())
       film_.depth[i] = hit.hit ? static_cast<float>(hit.t) : std::numeric_limits<float>::infinity();
     if (!film_.normal.empty())
       for (int k = 0; k < 3; ++k) film_.normal[i * 3 + k] = static_cast<float>(normal[k]);
     if (!film_.steps.empty())
       film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
+    if (!film_.albedo.empty())
+      for (int k = 0; k < 3; ++k) film_.albedo[i * 3 + k] = static_cast<float>(albedo[k]);
   }
 
   const Scene& scene_;

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/finish.h"
+#include "render/lights.h"
+
 namespace softtrace {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& shadow) {
+             const TraceHit& hit, RayWork& secondary, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   const SceneObject& obj = tracers.object(hit.object);
+  const Material& m = obj.material;
   const Vec3 p = ray.o + ray.d * hit.t;
   // A primitive's normal came with its exact hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
@@ -25,34 +29,37 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       std::max(tracer ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
   const Vec3 origin = p + n * offset;
 
-  Vec3 light{0, 0, 0};
+  // `light` is what the pigment multiplies (ambient and diffuse, summed in the lights' order);
+  // `shine` the highlights, which it does not.
+  Vec3 light{0, 0, 0}, shine{0, 0, 0};
   for (const Light& l : scene.lights) {
-    const Vec3 power = l.color * l.intensity;
     if (l.type == Light::Type::Ambient) {
-      light += power;
+      light += mul(m.ambient, l.color * l.intensity);
       continue;
     }
-    Vec3 to_light;
-    double distance = std::numeric_limits<double>::infinity();
-    if (l.type == Light::Type::Directional) {
-      to_light = -l.direction;
-    } else {
-      const Vec3 v = l.position - origin;
-      distance = length(v);
-      if (distance == 0) continue;
-      to_light = v / distance;
-    }
-    const double cosine = dot(n, to_light);
+    LightArrival at;
+    if (!light_arrival(l, p, origin, at)) continue;
+    const double cosine = dot(n, at.to_light);
     if (cosine <= 0) continue;
-    if (l.shadows) {
-      TraceCounters work;
-      const bool blocked = rt.occluded({origin, to_light, cone0, ray.cone}, 0, distance, work);
-      shadow.add(work);
-      if (blocked) continue;
-    }
-    light += power * cosine;
+    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary);
+    if (seen == 0) continue;
+    const Vec3 arrived = seen == 1 ? at.light : at.light * seen;
+    light += diffuse_light(m, cosine, arrived);
+    // As in POV-Ray, lights without shadows (its fill lights) make no highlights.
+    if (l.shadows) shine += highlights(m, n, ray.d, at.to_light, arrived);
   }
-  return {{obj.color.x * light.x, obj.color.y * light.y, obj.color.z * light.z}, n};
+  Vec3 color = mul(m.color, light);
+  if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
+
+  if (m.reflects() && level < scene.image.max_trace_level) {
+    const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
+    const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
+    secondary.add(next.work);
+    const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, level + 1).color
+                               : scene.background;
+    color += mul(m.reflection, seen);
+  }
+  return {color, n, m.color};
 }
 
 }  // namespace softtrace

@@ -1,4 +1,6 @@
-// Lambertian shading of a hit from the field gradient, with shadow rays and ambient light.
+// Shading a hit with its object's material (POV-Ray 3.7's finish, docs/math.md "Finishes"):
+// ambient, diffuse with brilliance, phong and specular highlights from each light past the
+// shadows, and mirror reflection traced up to the scene's max_trace_level.
 #pragma once
 
 #include "trace/embree_scene.h"
@@ -9,11 +11,12 @@ namespace softtrace {
 struct Shaded {
   Vec3 color;
   Vec3 normal;  // unit, facing the viewer
+  Vec3 albedo;  // the material's colour
 };
 
-// The normal comes from the hit object's tracer; shadow rays go through `rt`, each one's work
-// added to `shadow`.
+// The normal comes from the hit object's tracer; shadow and reflected rays go through `rt`, each
+// one's work added to `secondary`. `level` is POV-Ray's trace level: 1 for a camera ray.
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& shadow);
+             const TraceHit& hit, RayWork& secondary, int level = 1);
 
 }  // namespace softtrace

@@ -115,8 +115,8 @@ struct Channels {
 
 // Maps the channel names `render` writes (film.h) to the film; anything else is refused.
 Channels channels_of(const std::vector<std::string>& names, const std::string& path) {
-  static const std::vector<std::string> order = {"R",   "G",   "B",   "A",    "Z",
-                                                 "N.X", "N.Y", "N.Z", "steps"};
+  static const std::vector<std::string> order = {
+      "R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "steps", "albedo.R", "albedo.G", "albedo.B"};
   Channels c;
   for (const std::string& n : names) {
     const auto it = std::find(order.begin(), order.end(), n);
@@ -125,15 +125,17 @@ Channels channels_of(const std::vector<std::string>& names, const std::string& p
     c.index.push_back(static_cast<int>(it - order.begin()));
   }
   const auto has = [&](int k) { return std::count(c.index.begin(), c.index.end(), k) == 1; };
-  const int normals = has(5) + has(6) + has(7);
+  const int normals = has(5) + has(6) + has(7), albedos = has(9) + has(10) + has(11);
   if (!has(0) || !has(1) || !has(2) || !has(3) || (normals != 0 && normals != 3) ||
-      static_cast<size_t>(has(4) + normals + has(8) + 4) != names.size())
+      (albedos != 0 && albedos != 3) ||
+      static_cast<size_t>(has(4) + normals + has(8) + albedos + 4) != names.size())
     throw std::runtime_error(path +
                              ": expected channels R,G,B,A and optionally Z, N.X,N.Y,N.Z, "
-                             "steps, each once");
+                             "steps, albedo.R,albedo.G,albedo.B, each once");
   c.aovs.depth = has(4);
   c.aovs.normal = normals == 3;
   c.aovs.steps = has(8);
+  c.aovs.albedo = albedos == 3;
   return c;
 }
 
@@ -151,8 +153,10 @@ void paste(const ImageFile& tile, const Channels& c, Film& film) {
           film.depth[i] = in[k];
         else if (v < 8)
           film.normal[i * 3 + (v - 5)] = in[k];
-        else
+        else if (v == 8)
           film.steps[i] = in[k];
+        else
+          film.albedo[i * 3 + (v - 9)] = in[k];
       }
     }
 }

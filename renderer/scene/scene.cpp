@@ -83,6 +83,7 @@ ImageSettings load_image(const Params& p) {
   s.width = p.integer("width", 1, 16384, s.width);
   s.height = p.integer("height", 1, 16384, s.height);
   s.spp = p.integer("spp", 1, 4096, s.spp);
+  s.max_trace_level = p.integer("max_trace_level", 1, 256, s.max_trace_level);
   p.finish();
   return s;
 }
@@ -92,57 +93,6 @@ Vec3 load_color(const Params& p, const std::string& key, const Vec3& fallback) {
   for (int i = 0; i < 3; ++i)
     p.check(c[i] >= 0, key + "/" + std::to_string(i), "expected a colour component >= 0");
   return c;
-}
-
-// Every key some light type has: checked before the type is read, so that a misspelled key is
-// named before a missing or unknown type.
-std::vector<std::string> any_light_keys() {
-  std::vector<std::string> all;
-  for (const char* type : {"light: directional", "light: point", "light: ambient"})
-    for (const std::string& key : scene_keys(type))
-      if (std::find(all.begin(), all.end(), key) == all.end()) all.push_back(key);
-  return all;
-}
-
-Light load_light(const Params& p) {
-  static const std::vector<std::string> any_light = any_light_keys();
-  p.check_keys(any_light);
-  Light l;
-  const std::string type = p.string("type");
-  if (type == "directional" || type == "point" || type == "ambient")
-    p.check_keys(scene_keys("light: " + type),
-                 " for " + std::string(type == "ambient" ? "an " : "a ") + type + " light");
-  l.intensity = p.number("intensity", 1.0);
-  p.check(l.intensity >= 0, "intensity", "expected an intensity >= 0");
-  l.color = load_color(p, "color", l.color);
-  if (type == "directional") {
-    l.type = Light::Type::Directional;
-    l.direction = p.vec3("direction");
-    p.check(max_abs(l.direction) > 0, "direction", "expected a non-zero direction");
-    l.direction = unit(l.direction);
-    l.shadows = p.boolean("shadows", true);
-  } else if (type == "point") {
-    l.type = Light::Type::Point;
-    l.position = p.vec3("position");
-    l.shadows = p.boolean("shadows", true);
-  } else if (type == "ambient") {
-    l.type = Light::Type::Ambient;
-  } else {
-    p.fail("type", "unknown light type '" + type + "' (expected directional, point or ambient)");
-  }
-  p.finish();
-  return l;
-}
-
-// With no "lights" the scene gets a key light from over the camera's shoulder and some ambient.
-std::vector<Light> default_lights(const Camera& c) {
-  const Vec3 forward = unit(c.target - c.eye), right = unit(cross(forward, c.up));
-  Light key;
-  key.direction = unit(forward - right * 0.5 - c.up * 0.5);
-  Light ambient;
-  ambient.type = Light::Type::Ambient;
-  ambient.intensity = 0.15;
-  return {key, ambient};
 }
 
 Convention load_convention(const Params& p) {
@@ -157,12 +107,7 @@ SceneObject load_object(const Params& p, size_t index) {
   p.check_keys(scene_keys("object"));
   SceneObject o;
   o.name = p.string("name", "object" + std::to_string(index));
-  if (p.has("material")) {
-    const Params m = p.object("material");
-    m.check_keys(scene_keys("material"));
-    o.color = load_color(m, "color", o.color);
-    m.finish();
-  }
+  if (p.has("material")) o.material = load_material(p.object("material"));
   if (p.has("shape")) {
     for (const char* key : {"field", "convention", "iso", "bounds"})
       if (p.has(key))
@@ -227,7 +172,7 @@ SceneObject load_object(const Params& p, size_t index) {
 void check_point_light_distances(const Scene& s, const std::vector<Params>& lights) {
   const Box box = s.bounds();
   for (size_t i = 0; i < lights.size(); ++i) {
-    if (s.lights[i].type != Light::Type::Point) continue;
+    if (s.lights[i].type != Light::Type::Point && s.lights[i].type != Light::Type::Spot) continue;
     for (int corner = 0; corner < 8; ++corner) {
       lights[i].check(scaled_length(box.corner(corner) - s.lights[i].position) <= kMaxDistance,
                       "position",

@@ -9,6 +9,8 @@
 
 #include "describe/building.h"
 #include "model/node.h"
+#include "scene/light.h"
+#include "scene/material.h"
 #include "scene/primitive.h"
 
 namespace softtrace {
@@ -54,21 +56,13 @@ struct Animation {
 
 struct ImageSettings {
   int width = 640, height = 480, spp = 1;
-};
-
-struct Light {
-  enum class Type { Directional, Point, Ambient };
-  Type type = Type::Directional;
-  Vec3 direction;  // directional: the direction light travels
-  Vec3 position;   // point
-  Vec3 color{1, 1, 1};
-  double intensity = 1;
-  bool shadows = true;
+  // POV-Ray's max_trace_level: the camera ray is level 1, each mirror reflection one more.
+  int max_trace_level = 5;
 };
 
 struct SceneObject {
   std::string name;
-  Vec3 color{0.8, 0.8, 0.8};
+  Material material;
   Convention convention = Convention::Soft;
   double iso = 0.5;
   // +1 where inside means f >= iso (soft), -1 where it means f <= iso (zero, constructive).

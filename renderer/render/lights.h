@@ -1,0 +1,27 @@
+// What a light source brings to a shading point, POV-Ray 3.7's way (docs/math.md, "Lights"):
+// its direction and distance, the spot cone and fading, and the fraction of it that shadows let
+// through (0 or 1, or an area light's grid of samples, adaptively).
+#pragma once
+
+#include "trace/embree_scene.h"
+
+namespace softtrace {
+
+struct LightArrival {
+  Vec3 to_light;    // unit, from the point towards the light (its centre)
+  double distance;  // to the light's centre; +inf for a directional light
+  Vec3 light;       // colour * intensity * spot * fading, before shadows
+};
+
+// The light `l` (not ambient) at the surface point `p`, whose shadow rays start at `origin`: the
+// direction and distance are taken from `origin`, the spot's cone and the fading at `p`. False
+// when none of it can arrive (outside a spot's cone, or at the light's very position).
+bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out);
+
+// The fraction of `l` that reaches `origin` past the scene's objects. Shadow rays keep the
+// footprint (cone0, cone) of the ray being shaded; their work is added to `shadow`. Jittered
+// area samples depend only on `origin`, so a pixel's result is the same in any tile or thread.
+double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
+                        double cone, const EmbreeScene& rt, RayWork& shadow);
+
+}  // namespace softtrace

@@ -1,0 +1,30 @@
+// A surface's material: its colour and POV-Ray 3.7's finish terms (docs/math.md, "Finishes"),
+// under the keys POV-Ray uses. Plain data, read by the scene loader and by any kind of object
+// (soft objects, primitives) that carries a "material"; render/finish.* evaluates it.
+#pragma once
+
+#include "describe/params.h"
+#include "math/vec.h"
+
+namespace softtrace {
+
+struct Material {
+  Vec3 color{0.8, 0.8, 0.8};  // linear RGB: POV's pigment
+  // Multiplies the scene's ambient lights (POV's ambient_light). 1, not POV's 0.1, and diffuse 1,
+  // not POV's 0.6, so that a scene without these keys keeps its Lambert look.
+  Vec3 ambient{1, 1, 1};
+  double diffuse = 1;
+  double brilliance = 1;  // the diffuse cosine's exponent
+  double phong = 0, phong_size = 40;
+  double specular = 0, roughness = 0.05;  // the specular exponent is 1 / roughness
+  double metallic = 0;                    // 0: highlights take the light's colour; 1: the surface's
+  Vec3 reflection{0, 0, 0};               // mirror reflection, per channel
+
+  bool reflects() const { return reflection.x > 0 || reflection.y > 0 || reflection.z > 0; }
+};
+
+// The "material" object at `m` (its keys are scene_keys("material")); throws SceneError naming
+// the key for a value out of range.
+Material load_material(const Params& m);
+
+}  // namespace softtrace

@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Renders finish and light cases with softtrace and POV-Ray 3.7 and compares linear RGB.
+
+Each case is three blended spheres (tools/pov_scene.py's `blob`: murakami soft objects over
+spheres at iso 0.5, POV's blob of the same spheres, strength 1, threshold 0.5) under the same
+camera and lights, with one finish term or one kind of light set. Both renderers write linear
+EXR (POV-Ray with assumed_gamma 1.0, +FE): softtrace `render --flatten --spp 1`, POV-Ray
+without anti-aliasing. `softtrace diff` compares R,G,B. A case passes when the mean absolute
+difference is at most 1/255 and at most 1% of the pixels differ by more than 4/255 in a channel
+(those are silhouette and shadow-edge pixels, where the two root finders or shadow rays part).
+
+Installs povray when missing (apt-get, as tools/pov_compare.py does). Exit status: 0 every case
+passed, 1 a case failed, 77 POV-Ray is missing and cannot be installed (--no-install: missing).
+
+usage: tools/pov_finish.py [--build build] [--work DIR] [--cases a,b] [--width 160]
+           [--height 120] [--no-install] [--list]
+"""
+import argparse
+import copy
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+TOOLS = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(TOOLS)
+sys.path.insert(0, TOOLS)
+import pov_scene  # noqa: E402
+
+MEAN_LIMIT = 1.0 / 255
+PIXEL_LIMIT = 4.0 / 255
+PERCENT_LIMIT = 1.0
+
+SPHERES = [([-1.0, 0.0, 0.0], 1.9), ([1.0, 0.2, 0.1], 1.8), ([0.1, -0.3, 1.3], 1.6)]
+KEY = {"type": "point", "position": [6, -7, 8], "intensity": 0.9}
+AMBIENT = {"type": "ambient", "intensity": 0.15}
+
+# name: (material keys, lights, image keys)
+CASES = {
+    "lambert": ({}, [KEY, AMBIENT], {}),
+    "pov_defaults": ({"ambient": 0.1, "diffuse": 0.6},
+                     [KEY, {"type": "ambient", "intensity": 1.0}], {}),
+    "brilliance": ({"brilliance": 4}, [KEY, AMBIENT], {}),
+    "phong": ({"diffuse": 0.7, "phong": 0.8, "phong_size": 40}, [KEY, AMBIENT], {}),
+    "phong_sharp": ({"diffuse": 0.7, "phong": 1.0, "phong_size": 200}, [KEY, AMBIENT], {}),
+    "specular": ({"diffuse": 0.7, "specular": 0.6, "roughness": 0.02}, [KEY, AMBIENT], {}),
+    "metallic": ({"color": [0.9, 0.6, 0.2], "phong": 0.9, "phong_size": 30, "specular": 0.5,
+                  "metallic": 1}, [KEY, AMBIENT], {}),
+    "reflection": ({"diffuse": 0.6, "reflection": 0.4}, [KEY, AMBIENT], {"max_trace_level": 3}),
+    "spot": ({}, [{"type": "spot", "position": [3, -6, 7], "point_at": [0, 0, 0.3],
+                   "radius": 4, "falloff": 9, "tightness": 5}, AMBIENT], {}),
+    "fade": ({}, [dict(KEY, fade_distance=6, fade_power=2), AMBIENT], {}),
+    "area": ({}, [dict(KEY, position=[2, -3, 9],
+                       area={"axis1": [2, 0, 0], "axis2": [0, 2, 0], "size1": 4, "size2": 4}),
+                  AMBIENT], {}),
+    "area_adaptive": ({}, [dict(KEY, position=[2, -3, 9],
+                                area={"axis1": [2, 0, 0], "axis2": [0, 2, 0], "size1": 5,
+                                      "size2": 5, "adaptive": 1}), AMBIENT], {}),
+}
+
+
+def scene(case, width, height):
+    material, lights, image = CASES[case]
+    children = [{"type": "soft_object", "potential": {"type": "murakami"},
+                 "distance": {"type": "lp_metric", "radii": [r, r, r], "n": 2},
+                 "translate": c} for c, r in SPHERES]
+    return {
+        "camera": {"eye": [1.5, -9, 4], "target": [0, 0, 0.4], "up": [0, 0, 1], "fov": 30},
+        "image": dict({"width": width, "height": height, "spp": 1}, **image),
+        "background": [0.2, 0.3, 0.45],
+        "lights": copy.deepcopy(lights),
+        "objects": [{"name": case, "material": dict({"color": [0.8, 0.3, 0.25]}, **material),
+                     "convention": "soft", "iso": 0.5,
+                     "field": {"type": "soft_blend", "children": children}}],
+    }
+
+
+def install_povray(allowed):
+    if shutil.which("povray"):
+        return True
+    if not allowed:
+        return False
+    sudo = [] if os.geteuid() == 0 else ["sudo", "-n"]
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    print("installing: povray", file=sys.stderr)
+    ok = subprocess.run(sudo + ["apt-get", "install", "-y", "-qq", "--no-install-recommends",
+                                "povray"], env=env, stdout=subprocess.DEVNULL).returncode == 0
+    return ok and shutil.which("povray") is not None
+
+
+def run(cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit("pov_finish: %s failed (%d):\n%s" % (cmd[0], p.returncode, p.stderr[-2000:]))
+    return p.stdout + p.stderr
+
+
+def compare(softtrace, a, b):
+    """Mean error and the percentage of pixels over PIXEL_LIMIT, from `softtrace diff`."""
+    p = subprocess.run([softtrace, "diff", a, b, "--channels", "R,G,B",
+                        "--fail", repr(PIXEL_LIMIT), "--failpercent", "100"],
+                       capture_output=True, text=True)
+    text = p.stdout + p.stderr
+    mean = re.search(r"Mean error = ([0-9.eE+-]+)", text)
+    # The last "over" line is the --fail threshold's (the first is --warn's).
+    over = (re.findall(r"(\d+) pixels \(([0-9.eE+-]+)%\) over", text) or [None])[-1]
+    peak = re.search(r"Max error\s+= ([0-9.eE+-]+)", text)
+    if not (mean and over and peak):
+        sys.exit("pov_finish: cannot read softtrace diff's report:\n" + text)
+    return float(mean.group(1)), float(over[1]), float(peak.group(1))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--work", help="keep the scenes and images here")
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--width", type=int, default=160)
+    ap.add_argument("--height", type=int, default=120)
+    ap.add_argument("--no-install", action="store_true")
+    ap.add_argument("--list", action="store_true", help="print the case names and stop")
+    a = ap.parse_args()
+    if a.list:
+        print("\n".join(CASES))
+        return 0
+    cases = a.cases.split(",")
+    for c in cases:
+        if c not in CASES:
+            ap.error("unknown case %r (known: %s)" % (c, ", ".join(CASES)))
+    if not install_povray(not a.no_install):
+        print("pov_finish: povray is not installed; skipping", file=sys.stderr)
+        return 77
+    softtrace = os.path.join(a.build, "softtrace")
+    work = a.work or tempfile.mkdtemp(prefix="pov_finish.")
+    os.makedirs(work, exist_ok=True)
+    print("case            mean*255  >4/255 %%  max*255  result")
+    failed = 0
+    for c in cases:
+        sc = scene(c, a.width, a.height)
+        base = os.path.join(work, c)
+        with open(base + ".json", "w") as f:
+            json.dump(sc, f, indent=1)
+        with open(base + ".pov", "w") as f:
+            f.write(pov_scene.header(sc, a.width, a.height, alpha=False) + pov_scene.blob(sc))
+        run([softtrace, "render", base + ".json", "-o", base + ".exr", "--flatten", "--quiet"])
+        run(["povray", "+I" + base + ".pov", "+O" + base + "_pov.exr", "+FE",
+             "+W%d" % a.width, "+H%d" % a.height, "-D", "-A", "-P", "+WT2"])
+        mean, over, peak = compare(softtrace, base + "_pov.exr", base + ".exr")
+        ok = mean <= MEAN_LIMIT and over <= PERCENT_LIMIT
+        failed += not ok
+        print("%-14s %9.3f %9.2f %8.2f  %s" % (c, mean * 255, over, peak * 255,
+                                               "ok" if ok else "FAILED"))
+    print("limits: mean <= 1/255, at most %g%% of pixels over 4/255; images in %s" % (
+        PERCENT_LIMIT, work))
+    if not a.work and not failed:
+        shutil.rmtree(work)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
