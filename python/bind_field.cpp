@@ -82,6 +82,9 @@ std::unique_ptr<Field> field_of_scene(const PyScene& s, const std::string& objec
   size_t i = 0;
   while (i < objects.size() && !object.empty() && objects[i].name != object) ++i;
   if (i == objects.size()) throw SceneError(s.scene->path + ": no object named '" + object + "'");
+  if (objects[i].shape)
+    throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) + ": a " +
+                     shape_name(objects[i].shape->shape) + " shape, not a field");
   f->scene = s.scene;
   f->root = objects[i].field.get();
   f->program = compile(*f->root);

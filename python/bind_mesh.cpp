@@ -39,7 +39,11 @@ std::tuple<py::array_t<double>, py::array_t<int64_t>, py::array_t<double>, py::a
 mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::string>& name,
            double voxel, int cells, const std::optional<std::vector<double>>& bounds, int threads) {
   const std::string object = name.value_or("");
-  const SceneObject* obj = scene->objects.empty() ? nullptr : &scene->objects.front();
+  // By default the first object with a field (a shape has none).
+  const SceneObject* obj = nullptr;
+  for (const auto& o : scene->objects)
+    if (!obj && !o.shape) obj = &o;
+  if (!obj && !scene->objects.empty()) obj = &scene->objects.front();
   if (!object.empty()) {
     obj = nullptr;
     for (const auto& o : scene->objects)
@@ -47,6 +51,9 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
     if (!obj) throw SceneError(scene->path + ": no object named '" + object + "'");
   }
   if (!obj) throw SceneError(scene->path + ": the scene has no object");
+  if (obj->shape)
+    throw SceneError(scene->path + ": object '" + obj->name + "' is a " +
+                     shape_name(obj->shape->shape) + " shape, not a field");
   Box region = obj->bounds;
   if (bounds) {
     const auto& b = *bounds;

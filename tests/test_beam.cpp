@@ -33,7 +33,7 @@ TEST_P(Beams, NoRayMeetsTheSolidBeforeItsBeamsDepth) {
     const Vec3 e = b.extent();
     const Vec3 target = b.lo + Vec3{u(rng) * e.x, u(rng) * e.y, u(rng) * e.z};
     const Camera cam{b.center() + dir * (0.6 + u(rng)) * b.diagonal(), target, {0, 0, 1}, 40};
-    const PinholeCamera camera(cam, kW, kH);
+    const ViewCamera camera(cam, kW, kH);
     for (int block = 0; block < 12; ++block) {
       // A 16-pixel block, one of its quarters, and one of that one's (as the frame nests them).
       int x = int(u(rng) * (kW / 16)) * 16, y = int(u(rng) * (kH / 16)) * 16, size = 16;
@@ -96,7 +96,7 @@ TEST(Beams, NotForTheGlobalModeNorForPolynomialBlobs) {
         {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[5,5,5],"n":2}},
         {"type":"soft_object","potential":{"type":"murakami"},"translate":[4,1,0],"distance":{"type":"lp_metric","radii":[3,6,2],"n":2}}]}}]})",
       "<test>");
-  const PinholeCamera camera(fig.camera, 64, 48);
+  const ViewCamera camera(fig.camera, 64, 48);
   const Frustum fr = camera.frustum(0, 0, 16, 16);  // a corner: the background
   TraceCounters work;
   EXPECT_GT(ObjectTracer(fig.objects[0], LipschitzMode::Local).clear_depth(fr, 0, work), 0);

@@ -56,7 +56,7 @@ TEST(MeshRender, Fig12bGlbThroughEmbreeMatchesTheFieldsRender) {
 
   const TracedScene field(scene, LipschitzMode::Local);
   constexpr int kW = 160, kH = 120;
-  const PinholeCamera camera(scene.camera, kW, kH);
+  const ViewCamera camera(scene.camera, kW, kH);
   const Vec3 light = normalize(Vec3{1, -1, 2});
   std::vector<int> field_hit(kW * kH), mesh_hit(kW * kH);
   std::vector<double> field_t(kW * kH), mesh_t(kW * kH), field_shade(kW * kH), mesh_shade(kW * kH);

@@ -131,7 +131,7 @@ RefHit ellipsoid_hit(const Ray& ray, const Ellipsoid& e) {
 // Every pixel-centre ray's first hit, from `traced` (x, y -> t, inf for none), against the
 // ellipsoids' exact one.
 template <class Traced>
-void check_hit_mask(const HoleCase& c, const SceneObject& obj, const PinholeCamera& camera,
+void check_hit_mask(const HoleCase& c, const SceneObject& obj, const ViewCamera& camera,
                     const char* path, const Traced& traced) {
   // A pixel's width at unit depth; the t tolerance is 1e-3 of it at the hit's depth.
   const double footprint = 2 * std::tan(0.5 * c.camera.fov * M_PI / 180) / H;
@@ -208,7 +208,7 @@ TEST_P(NoHoles, HitMaskIsExact) {
     for (const Ellipsoid& e : c.parts)  // which ellipsoid_hit assumes
       ASSERT_GT(length(unit_space(e, c.camera.eye - e.centre)), 1 + kTangentBand)
           << "the eye must be outside every ellipsoid";
-    const PinholeCamera camera(scene.camera, W, H);
+    const ViewCamera camera(scene.camera, W, H);
     // A pixel-centre ray's first hit (t, or inf where it hits nothing), on its own and in the
     // whole frame (beams and all).
     const auto ray_alone = [&](int x, int y) {

@@ -22,7 +22,8 @@ std::set<std::string> types_in_scenes() {
   for (const auto& entry : fs::directory_iterator(source_path("scenes"))) {
     const nlohmann::json j =
         nlohmann::json::parse(read_file(entry.path().string()), nullptr, true, true);
-    for (const auto& o : j.at("objects")) collect_types(o.at("field"), types);
+    for (const auto& o : j.at("objects"))
+      if (o.contains("field")) collect_types(o.at("field"), types);  // not a shape
   }
   return types;
 }

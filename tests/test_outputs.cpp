@@ -142,7 +142,7 @@ TEST(Outputs, ExrHeaderHasStandardAndSofttraceAttributes) {
   // top-left corner and (1,1) the bottom-right one.
   const Pixels z = oiio_read(dir + "/h.exr");
   ASSERT_EQ(z.channels[4], "Z");
-  const PinholeCamera camera(scene.camera, kW, kH);
+  const ViewCamera camera(scene.camera, kW, kH);
   int checked = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {

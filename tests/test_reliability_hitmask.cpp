@@ -59,7 +59,7 @@ TEST_P(HitMask, MatchesADenseReferenceMarch) {
   };
   const Box& b = scene.objects[0].bounds;
   const int W = 40, H = 30, kSamples = 8000;
-  const PinholeCamera camera(scene.camera, W, H);
+  const ViewCamera camera(scene.camera, W, H);
   int ref_hits = 0, tracer_only = 0;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {

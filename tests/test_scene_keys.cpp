@@ -22,7 +22,8 @@ const char* kBall =
 
 // Between them, every key of every list, at the places `kWhere` names.
 const std::string kEveryKeyCameras = std::string(R"({
-  "camera": {"eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40},
+  "camera": {"projection": "perspective", "eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40,
+             "aperture": 0.1, "focal_distance": 9, "blur_samples": 2},
   "image": {"width": 8, "height": 6, "spp": 2, "max_trace_level": 3},
   "background": [0.1, 0.2, 0.3],
   "lights": [
@@ -38,7 +39,22 @@ const std::string kEveryKeyCameras = std::string(R"({
                "brilliance": 2, "phong": 0.5, "phong_size": 60, "specular": 0.3, "roughness": 0.02,
                "metallic": 0.5, "reflection": [0.1, 0.2, 0.3]}, "convention": "soft", "iso": 0.4,
                "bounds": [[-3, -3, -3], [3, 3, 3]], "field": )") +
-                                     kBall + R"(}],
+                                     kBall + R"(},
+    {"name": "floor", "material": {"color": [1, 1, 1]}, "shape": {"type": "plane", "normal": [0, 0, 1],
+     "distance": -3, "scale": [1, 1, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 0],
+     "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
+    {"shape": {"type": "box", "corner1": [0, 0, 0], "corner2": [1, 1, 1], "scale": [1, 2, 1],
+     "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1], "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
+    {"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1, "scale": [1, 2, 1],
+     "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1], "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
+    {"shape": {"type": "cylinder", "base": [0, 0, 0], "cap": [0, 0, 1], "radius": 1, "scale": [1, 2, 1],
+     "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1], "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
+    {"shape": {"type": "cone", "base": [0, 0, 0], "base_radius": 1, "cap": [0, 0, 1], "cap_radius": 0.5,
+     "scale": [1, 2, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
+     "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
+    {"shape": {"type": "disc", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 1, "hole_radius": 0.5,
+     "scale": [1, 2, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
+     "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}}],
   "animation": {"frames": 1, "cameras": [{"eye": [0, 10, 0], "target": [0, 0, 0]}]}
 })";
 const std::string kEveryKeyTurntable =
@@ -55,8 +71,14 @@ const std::map<std::string, std::vector<std::string>> kWhere = {
     {"light: ambient", {"/lights/2"}},
     {"light: spot", {"/lights/3"}},
     {"area light", {"/lights/1/area", "/lights/3/area"}},
-    {"object", {"/objects/0"}},
+    {"object", {"/objects/0", "/objects/1"}},
     {"material", {"/objects/0/material"}},
+    {"shape: plane", {"/objects/1/shape"}},
+    {"shape: box", {"/objects/2/shape"}},
+    {"shape: sphere", {"/objects/3/shape"}},
+    {"shape: cylinder", {"/objects/4/shape"}},
+    {"shape: cone", {"/objects/5/shape"}},
+    {"shape: disc", {"/objects/6/shape"}},
     {"animation", {"/animation"}},
     {"turntable", {"/animation/turntable"}},
 };

@@ -21,13 +21,22 @@ constexpr size_t kMaxLine = 4096;
 int run_eval(const EvalArgs& a) {
   try {
     const Scene scene = load_scene(a.scene);
-    const SceneObject* obj = &scene.objects.front();
+    // By default the first object with a field (a shape has none).
+    const SceneObject* obj = nullptr;
+    for (const auto& o : scene.objects)
+      if (!obj && !o.shape) obj = &o;
+    if (!obj && a.object.empty())
+      throw SceneError(a.scene + ": no object has a field: there is nothing to evaluate");
     if (!a.object.empty()) {
       obj = nullptr;
       for (const auto& o : scene.objects)
         if (o.name == a.object) obj = &o;
       if (!obj) throw SceneError(a.scene + ": no object named '" + a.object + "'");
     }
+    if (obj->shape)
+      throw SceneError(a.scene + ": object '" + obj->name + "' is a " +
+                       shape_name(obj->shape->shape) +
+                       " shape, not a field: there is nothing to evaluate");
     // The library's evaluators on the object's compiled program, pruned to each point.
     const Program program = compile(*obj->field);
     Workspace ws;

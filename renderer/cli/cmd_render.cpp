@@ -12,6 +12,7 @@
 
 #include "cli/cmd_common.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "film/film.h"
 #include "render/frame.h"
 #include "render/frame_metadata.h"
@@ -95,6 +96,11 @@ int run_render(const RenderArgs& a) {
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
     if (a.frame >= 0) set_frame(scene, a.frame);
+    CameraOverride view;
+    if (a.eye) view.eye = point_of(*a.eye);
+    if (a.target) view.target = point_of(*a.target);
+    view.fov = a.fov;
+    override_camera(scene, view);
     const PixelBounds window = window_of(a, scene.image.width, scene.image.height);
 
     OutputOptions out_opt;
@@ -133,6 +139,13 @@ int run_render(const RenderArgs& a) {
     std::string settings =
         render_settings(scene, a.lipschitz == LipschitzMode::Local ? "local" : "global", a.frame);
     if (a.flatten) settings += " flatten";
+    if (a.eye) settings += " eye=" + *a.eye;
+    if (a.target) settings += " target=" + *a.target;
+    if (a.fov) {
+      char fov[32];
+      std::snprintf(fov, sizeof fov, " fov=%.17g", *a.fov);
+      settings += fov;
+    }
     if (a.half) settings += " half";
     film.attributes["softtrace/renderHash"] = render_hash(scene, settings);
     film.attributes["softtrace/render"] = settings;

@@ -81,6 +81,13 @@ int main(int argc, char** argv) {
                    "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
       ->check(integer_in(0, 999999));
 
+  render->add_option("--eye", r.eye, "Camera eye X,Y,Z (overrides the scene's)")
+      ->check(point_xyz());
+  render->add_option("--target", r.target, "Camera target X,Y,Z (overrides the scene's)")
+      ->check(point_xyz());
+  render->add_option("--fov", r.fov, "Camera's vertical field of view in degrees (overrides)")
+      ->check(finite_number());
+
   EvalArgs e;
   auto* eval = app.add_subcommand(
       "eval", "Print 'value gx gy gz' (%.17g) of an object's field for 'x y z' lines");

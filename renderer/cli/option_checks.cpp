@@ -74,6 +74,37 @@ CLI::Validator number_in(double lo, double hi) {
       "[" + number_text(lo) + ", " + number_text(hi) + "]");
 }
 
+namespace {
+
+bool parse_point(const std::string& text, Vec3& p) {
+  size_t begin = 0;
+  for (int i = 0; i < 3; ++i) {
+    const size_t end = i < 2 ? text.find(',', begin) : text.size();
+    if (end == std::string::npos || !parse_number(text.substr(begin, end - begin), p[i]))
+      return false;
+    begin = end + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+CLI::Validator point_xyz() {
+  return CLI::Validator(
+      [](std::string& text) {
+        Vec3 p;
+        return parse_point(text, p) ? std::string()
+                                    : "expected X,Y,Z (three finite numbers)" + got(text);
+      },
+      "X,Y,Z");
+}
+
+Vec3 point_of(const std::string& text) {
+  Vec3 p;
+  parse_point(text, p);
+  return p;
+}
+
 CLI::Validator threshold_value() {
   return CLI::Validator(
       [](std::string& text) {

@@ -26,6 +26,10 @@ CLI::Validator aov_list();
 CLI::Validator number_above_zero();
 // A finite number.
 CLI::Validator finite_number();
+// "X,Y,Z": three finite numbers, comma-separated.
+CLI::Validator point_xyz();
+// The point of a text point_xyz() passed.
+Vec3 point_of(const std::string& text);
 // "local" or "global", any case, turned into the LipschitzMode's number for CLI11 to store.
 CLI::Validator lipschitz_mode();
 

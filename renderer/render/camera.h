@@ -1,32 +1,87 @@
-// Pinhole camera from eye/target/up and a vertical field of view (docs/scene-format.md "camera").
+// The camera's rays (docs/scene-format.md "camera"): perspective or orthographic, through a
+// pinhole or a thin lens.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "scene/scene.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
 
-class PinholeCamera {
+// A pixel's samples: the image's `spp`, at least the camera's blur_samples behind a lens.
+inline int samples_per_pixel(const Camera& c, int spp) {
+  return c.aperture > 0 ? std::max(spp, c.blur_samples) : spp;
+}
+
+// Where sample s of n of pixel (x, y) passes through the lens, on the unit disc: Vogel's spiral
+// (radius sqrt(s / n), s golden angles round), so sample 0 is the lens's centre and the n points
+// cover the disc evenly, turned by an angle hashed from the full-frame pixel, so that
+// neighbouring pixels' patterns differ (noise, not bands). It depends on nothing but (x, y, s, n):
+// the same bits for any thread count and any split of the frame.
+inline void lens_sample(int x, int y, int s, int n, double& lx, double& ly) {
+  uint32_t h = static_cast<uint32_t>(x) * 0x9E3779B1u ^ static_cast<uint32_t>(y) * 0x85EBCA77u;
+  h ^= h >> 15;
+  h *= 0x2C1B3C6Du;
+  h ^= h >> 12;
+  const double turn = h * (1.0 / 4294967296.0);
+  const double r = std::sqrt(static_cast<double>(s) / n);
+  const double angle = 2 * M_PI * (turn + s * 0.3819660112501051);  // the golden angle, in turns
+  lx = r * std::cos(angle);
+  ly = r * std::sin(angle);
+}
+
+class ViewCamera {
  public:
-  PinholeCamera(const Camera& c, int width, int height)
-      : eye_(c.eye), width_(width), height_(height) {
+  ViewCamera(const Camera& c, int width, int height)
+      : eye_(c.eye),
+        orthographic_(c.projection == Camera::Projection::Orthographic),
+        width_(width),
+        height_(height),
+        aperture_(c.aperture) {
     forward_ = normalize(c.target - c.eye);
     right_ = normalize(cross(forward_, c.up));
     up_ = cross(right_, forward_);
     tan_half_ = std::tan(0.5 * c.fov * M_PI / 180.0);
-    // Half a pixel's height on the image plane at distance 1: the footprint's radius grows by
-    // that per unit of distance (off-axis pixels are a little smaller seen along their rays).
-    cone_ = tan_half_ / height;
+    const double distance = length(c.target - c.eye);
+    focus_ = c.focal_distance > 0 ? c.focal_distance : distance;
+    // Orthographic: the perspective view's half height at the target, the same at every depth.
+    half_height_ = tan_half_ * distance;
+    // Half a pixel's height: on the image plane at distance 1 (the footprint's radius grows by
+    // that per unit of distance; off-axis pixels are a little smaller seen along their rays), or
+    // in scene units for parallel rays.
+    cone_ = orthographic_ ? 0 : tan_half_ / height;
+    cone0_ = orthographic_ ? half_height_ / height : 0;
   }
 
-  // (px, py) in pixel units: x to the right, y down from the top-left corner.
-  Ray generate(double px, double py) const {
-    return {eye_, normalize(direction(px, py)), 0, cone_};
+  // Whether every ray leaves the eye (a pinhole perspective camera): then frustum() holds them.
+  bool single_eye() const { return !orthographic_ && aperture_ == 0; }
+
+  // (px, py) in pixel units: x to the right, y down from the top-left corner. (lx, ly): a point
+  // of the unit disc, where on the lens the ray passes (ignored for a pinhole).
+  Ray generate(double px, double py, double lx = 0, double ly = 0) const {
+    Vec3 o = eye_, d;
+    if (orthographic_) {
+      const double aspect = static_cast<double>(width_) / height_;
+      const double sx = (2 * px / width_ - 1) * aspect, sy = 1 - 2 * py / height_;
+      o += right_ * (sx * half_height_) + up_ * (sy * half_height_);
+      d = forward_;
+    } else {
+      d = direction(px, py);
+    }
+    if (aperture_ > 0) {
+      // The pinhole ray meets the plane in focus at `focus` (d's forward component is 1).
+      const Vec3 focus = o + d * focus_;
+      o += right_ * (0.5 * aperture_ * lx) + up_ * (0.5 * aperture_ * ly);
+      d = focus - o;
+    }
+    return {o, normalize(d), cone0_, cone_};
   }
 
-  // The rays through the pixels [x0, x1) x [y0, y1), wherever in them their samples fall.
+  // The rays through the pixels [x0, x1) x [y0, y1), wherever in them their samples fall (valid
+  // only where single_eye()).
   Frustum frustum(int x0, int y0, int x1, int y1) const {
     return {eye_,
             forward_,
@@ -34,7 +89,7 @@ class PinholeCamera {
   }
 
  private:
-  // Through (px, py), with forward component 1.
+  // Through (px, py) from the eye, with forward component 1.
   Vec3 direction(double px, double py) const {
     const double aspect = static_cast<double>(width_) / height_;
     const double sx = (2 * px / width_ - 1) * tan_half_ * aspect;
@@ -43,8 +98,9 @@ class PinholeCamera {
   }
 
   Vec3 eye_, forward_, right_, up_;
+  bool orthographic_;
   int width_, height_;
-  double tan_half_, cone_;
+  double aperture_, focus_ = 0, tan_half_ = 0, half_height_ = 0, cone_ = 0, cone0_ = 0;
 };
 
 }  // namespace softtrace

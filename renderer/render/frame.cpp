@@ -48,7 +48,7 @@ class FrameTracer {
         rt_(rt),
         film_(film),
         cancel_(opt.cancel),
-        spp_(opt.spp ? opt.spp : scene.image.spp),
+        spp_(samples_per_pixel(scene.camera, opt.spp ? opt.spp : scene.image.spp)),
         camera_(scene.camera, film.full_width, film.full_height),
         objects_(rt.tracers.size()) {}
 
@@ -66,12 +66,22 @@ class FrameTracer {
     if (x >= film_.x0 + film_.width || x + size <= film_.x0 || y >= film_.y0 + film_.height ||
         y + size <= film_.y0 || cancelled())
       return;
+    // Rays from a lens or an orthographic plane leave no single eye: no frustum holds them, and
+    // each ray approaches the objects on its own.
+    if (!camera_.single_eye()) {
+      for (int py = std::max(y, film_.y0); py < std::min(y + size, film_.y0 + film_.height); ++py)
+        for (int px = std::max(x, film_.x0); px < std::min(x + size, film_.x0 + film_.width); ++px)
+          pixel(px, py, nullptr, work);
+      return;
+    }
     const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
                                        std::min(y + size, film_.full_height));
     double* clear = work.clear.data() + size_t(level) * objects_;
     TraceCounters beam_work;
-    for (int o = 0; o < objects_; ++o)
-      clear[o] = rt_.tracers[o].clear_depth(fr, from ? from[o] : 0, beam_work);
+    for (int o = 0; o < objects_; ++o) {
+      const ObjectTracer* tracer = rt_.tracers.tracer(o);  // a primitive's hit costs no approach
+      clear[o] = tracer ? tracer->clear_depth(fr, from ? from[o] : 0, beam_work) : 0;
+    }
     // The beam's work is the primary rays' (its passes are counted, not its rays).
     work.primary.box_evals += beam_work.box_evals;
     if (level + 1 < kBeamLevels) {
@@ -82,7 +92,7 @@ class FrameTracer {
     const BeamClear certified{fr.forward, clear};
     for (int py = std::max(y, film_.y0); py < std::min(y + size, film_.y0 + film_.height); ++py)
       for (int px = std::max(x, film_.x0); px < std::min(x + size, film_.x0 + film_.width); ++px)
-        pixel(px, py, certified, work);
+        pixel(px, py, &certified, work);
   }
 
   // A tile of a slow field (a blend of thousands of children at many samples) takes minutes:
@@ -91,7 +101,8 @@ class FrameTracer {
   bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
 
   // The full-frame pixel (x, y), inside the data window.
-  void pixel(int x, int y, const BeamClear& certified, Work& work) const {
+  // `certified`: what the pixel's beam certified (none for a camera without a single eye).
+  void pixel(int x, int y, const BeamClear* certified, Work& work) const {
     const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);
     const int spp = spp_;
     Vec3 sum{0, 0, 0};
@@ -101,9 +112,11 @@ class FrameTracer {
       if (cancelled()) return;
       double dx, dy;
       sample_offset(s, dx, dy);
-      const Ray ray = camera_.generate(x + dx, y + dy);
+      double lx, ly;
+      lens_sample(x, y, s, spp, lx, ly);
+      const Ray ray = camera_.generate(x + dx, y + dy, lx, ly);
       const TraceHit hit =
-          rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), &certified);
+          rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
       work.primary.add(hit.work);
       RayWork shadow;
       Vec3 normal{0, 0, 0}, albedo{0, 0, 0};  // the background's
@@ -140,7 +153,7 @@ class FrameTracer {
   Film& film_;
   const std::atomic<bool>* cancel_;
   const int spp_;
-  const PinholeCamera camera_;
+  const ViewCamera camera_;
   const int objects_;
 };
 
@@ -175,8 +188,8 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
 
   if (stats) {
     *stats = FrameStats{};
-    stats->primary_rays =
-        static_cast<long long>(film.width) * film.height * (opt.spp ? opt.spp : scene.image.spp);
+    stats->primary_rays = static_cast<long long>(film.width) * film.height *
+                          samples_per_pixel(scene.camera, opt.spp ? opt.spp : scene.image.spp);
     work_total.combine_each([&](const Work& w) {
       stats->primary += w.primary;
       stats->shadow += w.shadow;

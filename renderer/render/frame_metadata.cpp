@@ -44,7 +44,7 @@ FrameInfo frame_info(const Scene& scene, int full_width, int full_height) {
   info.spp = scene.image.spp;
   info.background = scene.background;
 
-  // The same frame as PinholeCamera (camera.h).
+  // The same frame as ViewCamera (camera.h).
   const Camera& c = scene.camera;
   const Vec3 f = normalize(c.target - c.eye), r = normalize(cross(f, c.up)), u = cross(r, f);
   const Matrix world_to_camera = {{r[0], u[0], f[0], 0},
@@ -54,10 +54,17 @@ FrameInfo frame_info(const Scene& scene, int full_width, int full_height) {
   const double t = std::tan(0.5 * c.fov * M_PI / 180.0);
   const double aspect = double(full_width) / full_height;
   // x_ndc = 0.5 + 0.5 x/(z t aspect), y_ndc = 0.5 - 0.5 y/(z t): homogeneous with w = z.
-  const Matrix camera_to_ndc = {
+  const Matrix perspective = {
       {0.5 / (t * aspect), 0, 0, 0}, {0, -0.5 / t, 0, 0}, {0.5, 0.5, 0, 1}, {0, 0, 1, 0}};
+  // Orthographic, h = |target - eye| t the view's half height: x_ndc = 0.5 + 0.5 x/(h aspect),
+  // y_ndc = 0.5 - 0.5 y/h, w = 1, NDC z = z.
+  const double h = t * length(c.target - c.eye);
+  const Matrix orthographic = {
+      {0.5 / (h * aspect), 0, 0, 0}, {0, -0.5 / h, 0, 0}, {0, 0, 1, 0}, {0.5, 0.5, 0, 1}};
   Matrix world_to_ndc;
-  multiply(world_to_camera, camera_to_ndc, world_to_ndc);
+  multiply(world_to_camera,
+           c.projection == Camera::Projection::Orthographic ? orthographic : perspective,
+           world_to_ndc);
   info.world_to_camera = to_floats(world_to_camera);
   info.world_to_ndc = to_floats(world_to_ndc);
   return info;

@@ -23,7 +23,7 @@ std::string hex64(uint64_t value);
 // OpenEXR's conventions (ImfStandardAttributes.h), as row vectors (p' = p * M, as pbrt and Mitsuba
 // write them): camera space is left-handed with x right, y up and z the viewing direction; NDC has
 // (0,0) at the display window's top-left corner and (1,1) at its bottom-right, after dividing by w
-// (= camera-space z). NDC z is 1/z.
+// (= camera-space z). NDC z is 1/z. For an orthographic camera w is 1 and NDC z is z.
 FrameInfo frame_info(const Scene& scene, int full_width, int full_height);
 
 }  // namespace softtrace

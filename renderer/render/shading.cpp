@@ -10,11 +10,12 @@ namespace softtrace {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, int level) {
-  const ObjectTracer& tracer = tracers[hit.object];
-  const SceneObject& obj = tracer.object();
+  const ObjectTracer* tracer = tracers.tracer(hit.object);
+  const SceneObject& obj = tracers.object(hit.object);
   const Material& m = obj.material;
   const Vec3 p = ray.o + ray.d * hit.t;
-  Vec3 n = hit.on_box_face ? tracer.box_face_normal(p) : tracer.normal(p);
+  // A primitive's normal came with its exact hit.
+  Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
 
@@ -22,7 +23,10 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // the surface by that footprint's radius (at least 1e-4 of the object's box), far more than the
   // hit's error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
   const double cone0 = ray.cone0 + ray.cone * hit.t;
-  const double offset = std::max(1e-4 * obj.bounds.diagonal(), cone0);
+  // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
+  // coordinates' magnitude (an infinite plane's box says nothing of the scale).
+  const double offset =
+      std::max(tracer ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
   const Vec3 origin = p + n * offset;
 
   // `light` is what the pigment multiplies (ambient and diffuse, summed in the lights' order);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/json_text.h"
+#include "scene/ranges.h"
 #include "scene/scene_keys.h"
 
 namespace softtrace {
@@ -22,49 +23,25 @@ using json = nlohmann::json;
 constexpr size_t kMaxLights = 1000;
 constexpr size_t kMaxObjects = 10000;
 
-// Lengths and directions of vectors from the scene without overflow or underflow: a component
-// of 1e308 squares to inf, one of 1e-200 to 0. Scaling by the largest component first keeps
-// |v| and v / |v| exact to rounding for every finite v.
-double scaled_length(const Vec3& v) {
-  const double m = max_abs(v);
-  return m > 0 ? m * length(v / m) : 0;
-}
-Vec3 unit(const Vec3& v) {  // v non-zero and finite
-  return normalize(v / max_abs(v));
-}
-
-// Distances the renderer squares (camera to target, point light to objects) stay within this,
-// and above its inverse, so that their squares are normal doubles.
-constexpr double kMaxDistance = 1e150;
-
-// Where rays start: the eye, and shading points inside the objects' boxes. Embree takes ray
-// origins in float and (Debian's build) asserts |origin| <= 1.8e18; well before that, float's
-// rounding of the origin (6e-8 of it) misplaces the rays it culls with, and the tracer's steps
-// stop advancing along t. Fig. 12(b)'s object at 64x48, seen from 1e7 and from farther along
-// the same line (the fov scaled): from 1e12, 1 pixel of 3072 differs; from 1e15, 33; from 1e17
-// the render does not finish.
-constexpr double kMaxPosition = 1e12;
-const char* const kPositionRule = "within 1e12 of the origin in every coordinate";
-
 Camera load_camera(const Params& p) {
   p.check_keys(scene_keys("camera"));
   Camera c;
+  const std::string projection = p.string("projection", "perspective");
+  if (projection == "orthographic")
+    c.projection = Camera::Projection::Orthographic;
+  else if (projection != "perspective")
+    p.fail("projection",
+           "unknown projection '" + projection + "' (expected perspective or orthographic)");
   c.eye = p.vec3("eye");
-  p.check(max_abs(c.eye) <= kMaxPosition, "eye",
-          std::string("expected an eye ") + kPositionRule + " (rays start there)");
   c.target = p.vec3("target");
-  const Vec3 up = p.vec3("up", c.up);
+  c.up = p.vec3("up", c.up);
   c.fov = p.number("fov", c.fov);
-  p.check(c.fov > 0 && c.fov < 180, "fov", "expected a vertical field of view in (0, 180) degrees");
-  const Vec3 view = c.target - c.eye;
-  p.check(max_abs(view) > 0, "target", "expected a target different from the eye");
-  const double distance = scaled_length(view);
-  p.check(distance >= 1 / kMaxDistance && distance <= kMaxDistance, "target",
-          "expected a target between 1e-150 and 1e150 from the eye");
-  p.check(max_abs(up) > 0, "up", "expected a non-zero up vector");
-  c.up = unit(up);  // the camera's and the default light's cross products cannot overflow
-  p.check(length(cross(unit(view), c.up)) > 1e-9, "up",
-          "expected an up vector not parallel to the viewing direction");
+  c.aperture = p.number("aperture", c.aperture);
+  c.focal_distance = p.number("focal_distance", c.focal_distance);
+  c.blur_samples = p.integer("blur_samples", 1, 4096, c.blur_samples);
+  const CameraProblem problem = camera_problem(c);
+  if (!problem.key.empty()) p.fail(problem.key, problem.message);
+  normalize_up(c);
   p.finish();
   return c;
 }
@@ -131,6 +108,16 @@ SceneObject load_object(const Params& p, size_t index) {
   SceneObject o;
   o.name = p.string("name", "object" + std::to_string(index));
   if (p.has("material")) o.material = load_material(p.object("material"));
+  if (p.has("shape")) {
+    for (const char* key : {"field", "convention", "iso", "bounds"})
+      if (p.has(key))
+        p.fail(key,
+               std::string("an object with a 'shape' has no '") + key + "' (that is a field's)");
+    o.shape = load_primitive(p.object("shape"));
+    o.bounds = o.shape->world_box;
+    p.finish();
+    return o;
+  }
   o.convention = load_convention(p);
   const double default_iso = o.convention == Convention::Soft   ? 0.5
                              : o.convention == Convention::Zero ? 0.0
@@ -212,7 +199,8 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   Scene s;
   s.path = name;
   s.file_hash = fnv1a(text);
-  s.camera = load_camera(root.object("camera"));
+  const bool has_camera = root.has("camera");
+  if (has_camera) s.camera = load_camera(root.object("camera"));
   if (root.has("animation")) s.animation = load_animation(root.object("animation"));
   if (root.has("image")) s.image = load_image(root.object("image"));
   s.background = load_color(root, "background", s.background);
@@ -223,8 +211,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
       root.fail("lights", "expected at most " + std::to_string(kMaxLights) + " lights");
     for (const Params& l : lights) s.lights.push_back(load_light(l));
   } else {
-    s.lights = default_lights(s.camera);
-    s.default_lights = true;
+    s.default_lights = true;  // set once the camera is known
   }
   const std::vector<Params> objects = root.objects("objects");
   if (objects.empty()) root.fail("objects", "expected at least one object");
@@ -236,6 +223,16 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     if (!names.insert(s.objects[i].name).second)
       objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
   }
+  if (!has_camera) {
+    Box framed;
+    for (const SceneObject& o : s.objects)
+      if (!(o.shape && o.shape->shape == Primitive::Shape::Plane)) framed = framed.united(o.bounds);
+    if (framed.empty())
+      root.fail("camera", "expected a camera: there is nothing but infinite planes to frame");
+    s.camera = camera_framing(framed, double(s.image.width) / s.image.height);
+    s.default_camera = true;
+  }
+  if (s.default_lights) s.lights = default_lights(s.camera);
   check_point_light_distances(s, lights);
   root.finish();
   return s;
@@ -263,6 +260,25 @@ void set_frame(Scene& scene, int frame) {
       throw SceneError(scene.path + ": /animation/turntable: frame " + std::to_string(frame) +
                        " puts the eye beyond 1e12 of the origin (rays start there)");
   }
+  if (scene.default_lights) scene.lights = default_lights(scene.camera);
+}
+
+void override_camera(Scene& scene, const CameraOverride& o) {
+  Camera c = scene.camera;
+  if (o.eye) c.eye = *o.eye;
+  if (o.target) c.target = *o.target;
+  if (o.fov) c.fov = *o.fov;
+  const CameraProblem problem = camera_problem(c);
+  if (!problem.key.empty()) {
+    // The camera's other keys were valid: what made them wrong is the view the options moved.
+    const std::string option =
+        problem.key == "eye" || problem.key == "target" || problem.key == "fov" ? problem.key
+        : o.eye                                                                 ? "eye"
+        : o.target                                                              ? "target"
+                                                                                : "fov";
+    throw std::invalid_argument("--" + option + ": " + problem.message);
+  }
+  scene.camera = c;
   if (scene.default_lights) scene.lights = default_lights(scene.camera);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,13 +11,38 @@
 #include "model/node.h"
 #include "scene/light.h"
 #include "scene/material.h"
+#include "scene/primitive.h"
 
 namespace softtrace {
 
+// docs/scene-format.md "camera". A perspective camera's rays leave the eye; an orthographic one's
+// leave the plane through the eye across the view, parallel, over the height the perspective
+// view has at the target (2 |target - eye| tan(fov / 2)), as POV-Ray's `orthographic` with an
+// `angle`. A thin lens (aperture > 0) moves each ray's origin across a disc of that diameter
+// about its pinhole origin and aims it at the point the pinhole ray meets the plane in focus,
+// `focal_distance` ahead along the view.
 struct Camera {
+  enum class Projection { Perspective, Orthographic };
   Vec3 eye, target, up{0, 0, 1};
   double fov = 30;  // vertical, degrees
+  Projection projection = Projection::Perspective;
+  double aperture = 0;        // the lens's diameter; 0: a pinhole
+  double focal_distance = 0;  // along the view; 0: the target's
+  int blur_samples = 16;      // with aperture > 0, a pixel takes at least this many samples
 };
+
+// Why `c` cannot be a camera, as {key, message} (the key "" when it is fine): the loader and the
+// command line's --eye/--target/--fov refuse the same cameras with the same words.
+struct CameraProblem {
+  std::string key, message;
+};
+CameraProblem camera_problem(const Camera& c);
+// `c.up` made unit length (a valid camera's cross products then cannot overflow).
+void normalize_up(Camera& c);
+// A camera that frames `box` (bounded, non-empty): looking at its centre from the front right,
+// above, at the distance where its bounding sphere fills the narrower of the image's two fields
+// of view (`aspect` = width / height).
+Camera camera_framing(const Box& box, double aspect);
 
 // A camera path (scene "animation"): `frames` frames numbered from 0, each a camera from
 // `cameras` or, with no list, the scene's camera turned about `axis` (through the target) by
@@ -43,6 +69,8 @@ struct SceneObject {
   double inside_sign = 1;
   Box bounds;  // where the renderer looks for the surface: "bounds" or the field's region box
   NodePtr field;
+  // A plain primitive ("shape") instead of a field: then `field` is null and `bounds` its box.
+  std::optional<Primitive> shape;
 };
 
 struct Scene {
@@ -57,6 +85,8 @@ struct Scene {
   std::vector<SceneObject> objects;
 
   Box bounds() const;  // union of the objects' boxes
+  // With no "camera" in the file: the camera is camera_framing(the objects' bounded boxes).
+  bool default_camera = false;
 };
 
 // Frames above 2^26 pixels are refused with a SceneError naming `name`'s /image: their film
@@ -68,6 +98,15 @@ void check_pixel_count(const ImageSettings& image, const std::string& name);
 // scene; default lights move with it. Throws SceneError naming /animation when the frame does not
 // exist.
 void set_frame(Scene& scene, int frame);
+
+// Replaces the camera's eye, target or fov (those given), as `softtrace render --eye --target
+// --fov` do after the frame is set; default lights follow. Throws std::invalid_argument naming the
+// option (`--eye: expected ...`) for a camera the loader would refuse.
+struct CameraOverride {
+  std::optional<Vec3> eye, target;
+  std::optional<double> fov;
+};
+void override_camera(Scene& scene, const CameraOverride& o);
 
 // 64-bit FNV-1a of `bytes`, continuing from `hash`.
 uint64_t fnv1a(const std::string& bytes, uint64_t hash = 0xcbf29ce484222325ULL);

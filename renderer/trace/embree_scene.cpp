@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "trace/primitive_trace.h"
+
 namespace softtrace {
 
 namespace {
@@ -22,16 +24,18 @@ struct RayContext {
   double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
   int object = -1;
   bool on_box_face = false;
+  Vec3 normal{0, 0, 0};
 };
 
 struct GeometryData {
-  const ObjectTracer* tracer;
+  const ObjectTracer* tracer;  // null for a primitive
+  const SceneObject* object_data;
   int object;
 };
 
 void bounds_callback(const RTCBoundsFunctionArguments* args) {
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  const Box& b = data->tracer->object().bounds;
+  const Box& b = data->object_data->bounds;
   // Round outward so the float box contains the double one.
   args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lo.x), -INFINITY);
   args->bounds_o->lower_y = std::nextafter(static_cast<float>(b.lo.y), -INFINITY);
@@ -73,6 +77,33 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
     r->tfar = -INFINITY;
 }
 
+void primitive_intersect_callback(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const PrimitiveHit h = first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t);
+  if (!h.hit || h.t >= ctx->t) return;
+  ctx->t = h.t;
+  ctx->object = data->object;
+  ctx->on_box_face = false;
+  ctx->normal = h.normal;
+  rh->ray.tfar = static_cast<float>(h.t);
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0;
+}
+
+void primitive_occluded_callback(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+  if (first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t).hit) r->tfar = -INFINITY;
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -88,13 +119,15 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
   if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
   impl_->scene = rtcNewScene(impl_->device);
   for (int i = 0; i < tracers.size(); ++i) {
-    impl_->data.push_back({&tracers[i], i});
+    const ObjectTracer* tracer = tracers.tracer(i);
+    impl_->data.push_back({tracer, &tracers.object(i), i});
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, &impl_->data.back());
     rtcSetGeometryBoundsFunction(geom, bounds_callback, nullptr);
-    rtcSetGeometryIntersectFunction(geom, intersect_callback);
-    rtcSetGeometryOccludedFunction(geom, occluded_callback);
+    rtcSetGeometryIntersectFunction(geom,
+                                    tracer ? intersect_callback : primitive_intersect_callback);
+    rtcSetGeometryOccludedFunction(geom, tracer ? occluded_callback : primitive_occluded_callback);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);  // the scene holds the reference now
@@ -150,6 +183,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
     h.t = ctx.t;
     h.object = ctx.object;
     h.on_box_face = ctx.on_box_face;
+    h.normal = ctx.normal;
   }
   return h;
 }

@@ -41,9 +41,12 @@ Workspace& ObjectTracer::workspace() const {
   return ws;
 }
 
-SceneTracers::SceneTracers(const Scene& scene, LipschitzMode mode) {
+SceneTracers::SceneTracers(const Scene& scene, LipschitzMode mode) : objects_(&scene.objects) {
   tracers_.reserve(scene.objects.size());
-  for (const auto& o : scene.objects) tracers_.emplace_back(o, mode);
+  for (const auto& o : scene.objects) {
+    index_.push_back(o.shape ? -1 : static_cast<int>(tracers_.size()));
+    if (!o.shape) tracers_.emplace_back(o, mode);
+  }
 }
 
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {

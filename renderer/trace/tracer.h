@@ -224,14 +224,24 @@ class ObjectTracer {
 
 // Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading
 // (shading.h) both use them and neither owns them, so shading never goes through Embree.
+// Objects with a `shape` (plain primitives) have no tracer: they are traced analytically
+// (primitive_trace.h).
 class SceneTracers {
  public:
   SceneTracers(const Scene& scene, LipschitzMode mode);
-  const ObjectTracer& operator[](int object) const { return tracers_[object]; }
-  int size() const { return static_cast<int>(tracers_.size()); }
+  // The tracer of object `object`, which must have a field (tracer() says).
+  const ObjectTracer& operator[](int object) const { return tracers_[index_[object]]; }
+  // The object's tracer, or null for a primitive.
+  const ObjectTracer* tracer(int object) const {
+    return index_[object] < 0 ? nullptr : &tracers_[index_[object]];
+  }
+  const SceneObject& object(int object) const { return (*objects_)[object]; }
+  int size() const { return static_cast<int>(index_.size()); }  // the number of objects
 
  private:
+  const std::vector<SceneObject>* objects_;
   std::vector<ObjectTracer> tracers_;
+  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive
 };
 
 // [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.

@@ -1,0 +1,45 @@
+// Plain primitives (docs/scene-format.md "shape"): POV-Ray's plane, box, sphere, cylinder, cone
+// and disc as exact solids, placed by an affine map. The renderer traces them analytically
+// (trace/primitive_trace.h), never as fields.
+#pragma once
+
+#include <string>
+
+#include "describe/params.h"
+#include "math/box.h"
+
+namespace softtrace {
+
+// p_world = linear * p_object + offset: scale, then rotate, then translate, then `matrix`.
+struct Affine {
+  Mat3 linear;
+  Vec3 offset{0, 0, 0};
+  Vec3 apply(const Vec3& p) const { return linear * p + offset; }
+};
+
+struct Primitive {
+  enum class Shape { Plane, Box, Sphere, Cylinder, Cone, Disc };
+  Shape shape = Shape::Sphere;
+  // In object space. Plane: inside is dot(normal, p) <= distance (normal unit). Box: lo..hi.
+  // Sphere: center, radius. Cylinder and cone: the solid between the base (at a, radius r0) and
+  // the cap (at b, radius r1), both capped (a cylinder has r0 = r1). Disc: center, normal (unit),
+  // radius and hole radius (no inside: a flat surface).
+  Vec3 a{0, 0, 0}, b{0, 0, 1};
+  Vec3 normal{0, 0, 1};
+  double distance = 0, r0 = 1, r1 = 1, hole = 0;
+  Affine to_world;
+  Mat3 to_object;  // the inverse of to_world.linear
+  // Where the renderer looks for it: its box in the world, an infinite plane's clipped to within
+  // kMaxPosition (the tracer drops hits beyond; seen from any eye within the scene's ranges, that
+  // edge lies far below a pixel from the horizon).
+  Box world_box;
+};
+
+// Reads the object's "shape" (its "type" and parameters, placement keys included). Throws
+// SceneError at the pointer of a bad value.
+Primitive load_primitive(const Params& p);
+
+// The name of each shape as the scene file writes it.
+const char* shape_name(Primitive::Shape s);
+
+}  // namespace softtrace

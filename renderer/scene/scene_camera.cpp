@@ -1,0 +1,63 @@
+// The camera's rules and the camera a scene gets without one (scene.h).
+#include <cmath>
+
+#include "scene/ranges.h"
+#include "scene/scene.h"
+
+namespace softtrace {
+
+namespace {
+
+// The widest image (16384 x 1) is 16384 times as wide as high: an orthographic view's plane, or a
+// lens's disc, reaches that far from the eye and rays start all over it.
+constexpr double kMaxAspect = 16384;
+
+}  // namespace
+
+CameraProblem camera_problem(const Camera& c) {
+  if (!(max_abs(c.eye) <= kMaxPosition))
+    return {"eye", std::string("expected an eye ") + kPositionRule + " (rays start there)"};
+  if (!(c.fov > 0 && c.fov < 180))
+    return {"fov", "expected a vertical field of view in (0, 180) degrees"};
+  const Vec3 view = c.target - c.eye;
+  if (!(max_abs(view) > 0)) return {"target", "expected a target different from the eye"};
+  const double distance = scaled_length(view);
+  if (!(distance >= 1 / kMaxDistance && distance <= kMaxDistance))
+    return {"target", "expected a target between 1e-150 and 1e150 from the eye"};
+  if (!(max_abs(c.up) > 0)) return {"up", "expected a non-zero up vector"};
+  if (!(length(cross(unit(view), unit(c.up))) > 1e-9))
+    return {"up", "expected an up vector not parallel to the viewing direction"};
+  if (c.projection == Camera::Projection::Orthographic) {
+    const double half_width = distance * std::tan(0.5 * c.fov * M_PI / 180.0) * kMaxAspect;
+    if (!(max_abs(c.eye) + half_width <= kMaxPosition))
+      return {"fov", std::string("expected an orthographic view whose plane (2 |target - eye| "
+                                 "tan(fov/2) high, up to 16384 times as wide) lies ") +
+                         kPositionRule + " (rays start there)"};
+  }
+  if (!(c.aperture >= 0 && max_abs(c.eye) + c.aperture <= kMaxPosition))
+    return {"aperture", std::string("expected an aperture >= 0 whose lens lies ") + kPositionRule +
+                            " (rays start there)"};
+  if (!(c.focal_distance >= 0 && c.focal_distance <= kMaxDistance))
+    return {"focal_distance", "expected a focal distance >= 0 and at most 1e150 (0: the target's)"};
+  return {};
+}
+
+void normalize_up(Camera& c) {
+  c.up = unit(c.up);
+}
+
+Camera camera_framing(const Box& box, double aspect) {
+  Camera c;
+  c.target = box.center();
+  // The bounding sphere fills the narrower field of view: vertical fov, or the horizontal one
+  // that the aspect gives.
+  const double half_v = 0.5 * c.fov * M_PI / 180.0;
+  const double half = std::min(half_v, std::atan(std::tan(half_v) * aspect));
+  const double radius = std::max(0.5 * scaled_length(box.extent()), 1e-9);
+  // From the front right and above, as the figures' scenes look (eye [40, -55, 32] at 0).
+  const Vec3 from = unit(Vec3{0.55, -0.75, 0.45});
+  c.eye = c.target + from * (radius / std::sin(half));
+  return c;
+}
+
+}  // namespace softtrace
