@@ -143,7 +143,7 @@ TEST_P(FirstRoot, EveryPixelHitsTheFirstRoot) {
   const Case& c = cases()[GetParam()];
   const Scene& scene = *c.scene;
   const TracedScene rt(scene, LipschitzMode::Local);
-  const PinholeCamera camera(scene.camera, c.width, c.height);
+  const ViewCamera camera(scene.camera, c.width, c.height);
   std::vector<PixelResult> results(size_t(c.width) * c.height);
   // Rows offset by a third of the stride each, so that the checked pixels do not line up in
   // columns.

@@ -288,7 +288,7 @@ TEST_P(NoHolesMarch, HitMaskMatchesADenseReferenceMarch) {
   const auto inside = [&](const Vec3& p) {
     return obj.inside_sign * (obj.field->value(p) - obj.iso) >= 0;
   };
-  const PinholeCamera camera(scene.camera, W, H);
+  const ViewCamera camera(scene.camera, W, H);
   constexpr int kSamples = 8000;
   int ref_hits = 0, ref_misses = 0, differ = 0;
   std::string first;
