@@ -20,6 +20,7 @@ void require(bool ok) {
 }
 
 void probe(const SceneObject& o) {
+  if (!o.field) return;  // a shape object: traced in closed form, nothing to evaluate
   const Box& b = o.bounds;
   const Vec3 c = b.center(), e = b.extent() * 0.5;
   const Vec3 points[] = {c,

@@ -142,6 +142,10 @@ class FirstRoot : public testing::TestWithParam<int> {};
 TEST_P(FirstRoot, EveryPixelHitsTheFirstRoot) {
   const Case& c = cases()[GetParam()];
   const Scene& scene = *c.scene;
+  // The reference marches fields; a shape object is traced in closed form instead, and checked
+  // against point membership in tests/test_primitives.cpp.
+  for (const SceneObject& o : scene.objects)
+    if (o.shape) GTEST_SKIP() << "the scene has shape objects, which the reference does not march";
   const TracedScene rt(scene, LipschitzMode::Local);
   const ViewCamera camera(scene.camera, c.width, c.height);
   std::vector<PixelResult> results(size_t(c.width) * c.height);
