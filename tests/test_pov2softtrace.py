@@ -141,7 +141,8 @@ REFUSALS = [
     ("blob { sphere { <rand(S), 0, 0>, 1, 1 } }", 2, 18, "unknown identifier 'rand'"),
     ("blob { sphere { 0, 1, 1 pigment { rgb 1 } } }", 2, 25, "per-component pigment"),
     ("global_settings { assumed_gamma 2.2 }", 2, 19, "only 1.0"),
-    ("plane { y, 0 }", 2, 1, "'plane' is not supported"),
+    ("torus { 1, 0.2 }", 2, 1, "'torus' is not supported"),
+    ("cylinder { 0, y, 1 open pigment { rgb 1 } }", 2, 20, "cylinder { open } is not supported"),
     ("blob { sphere { 0, 1, 1 } pigment { rgb 1 } inverse }", 2, 45, "blob { inverse }"),
     ("blob { sphere { 0, 1, -1 } pigment { rgb 1 } }", 2, 1, "no component of positive strength"),
     ("blob { sphere { 0, 1, 1 matrix <1,0,0, 0,0,0, 0,0,1, 0,0,0> } pigment { rgb 1 } }", 2, 25,
@@ -159,6 +160,22 @@ def test_refusals_are_located(body, line, col, phrase):
         scene_of(body)
     assert (e.value.line, e.value.col) == (line, col), e.value.message
     assert phrase in e.value.message
+
+
+def test_plain_shapes():
+    objs = scene_of("plane { y, -1 pigment { rgb 0.5 } }\n"
+                    "box { <0, 0, 0>, <1, 2, 3> rotate 90*y pigment { rgb 1 } }\n"
+                    "cone { 0, 1, <0, 2, 0>, 0 translate <1, 2, 3> pigment { rgb 1 } }\n"
+                    "disc { <0, 1, 0>, y, 2, 0.5 pigment { rgb 1 } finish { phong 1 } }")["objects"]
+    plane, box, cone, disc = (o["shape"] for o in objs)
+    assert plane == {"type": "plane", "normal": [0, 0, 1], "distance": -1}
+    assert box["corner2"] == [1, 3, 2] and len(box["matrix"]) == 3
+    # rotate 90 about y takes POV's x to -z: softtrace's x to -y.
+    assert close([row[0] for row in box["matrix"]], [0, -1, 0])
+    assert cone == {"type": "cone", "base": [0, 0, 0], "base_radius": 1, "cap": [0, 0, 2],
+                    "cap_radius": 0, "translate": [1, 3, 2]}
+    assert disc["hole_radius"] == 0.5 and disc["normal"] == [0, 0, 1]
+    assert objs[3]["material"]["phong"] == 1 and objs[0]["name"] == "plane1"
 
 
 def test_no_camera_is_refused():

@@ -1,14 +1,15 @@
 #!/usr/bin/python3
-"""Converts a POV-Ray 3.7 scene of blobs into a softtrace scene (JSON).
+"""Converts a POV-Ray 3.7 scene of blobs and plain shapes into a softtrace scene (JSON).
 
 The scene must be written out literally: numbers, vectors and colours may be `#declare`d, but
 loops, macros, conditionals and rand() are refused. Carried across: `camera` (location, look_at,
-angle, direction, up, right, sky), `light_source` (point or `parallel`, `shadowless`),
-`background`, `global_settings { ambient_light }`, and `blob` objects: sphere and cylinder
-components with their strengths, the threshold, translate/rotate/scale/matrix/transform on
-components and on the blob, and the blob's pigment and finish. POV-Ray's y-up left-handed frame
-becomes softtrace's z-up right-handed one by swapping y and z, which keeps the picture unmirrored
-(tools/povsdl/affine.py). POV-Ray's `angle` is horizontal, softtrace's `fov` vertical.
+angle, direction, up, right, sky), `light_source` (point, `parallel`, `spotlight`, `area_light`,
+fading, `shadowless`), `background`, `global_settings { ambient_light }`, `blob` objects (sphere
+and cylinder components with their strengths, the threshold, translate/rotate/scale/matrix/
+transform on components and on the blob, the blob's pigment and finish), and plane, box, sphere,
+cylinder, cone and disc objects. POV-Ray's y-up left-handed frame becomes softtrace's z-up
+right-handed one by swapping y and z, which keeps the picture unmirrored (tools/povsdl/affine.py).
+POV-Ray's `angle` is horizontal, softtrace's `fov` vertical. docs/pov.md has the details.
 
 What it carries only approximately (a camera whose right/up ratio is not the image's aspect:
 POV-Ray's default right, 1.33, on a 4:3 image) is converted with a warning, `SCENE.pov:LINE:COL:

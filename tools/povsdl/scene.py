@@ -1,7 +1,7 @@
 """POV-Ray 3.7 statements as a softtrace scene (a JSON-ready dict).
 
 Carried across: `camera` (location, look_at, angle, direction, up, right, sky), `light_source`
-(point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, `global_settings` (ambient_light,
+(point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, plane/box/sphere/cylinder/cone/disc objects, `global_settings` (ambient_light,
 assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
 and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, and `blob` objects:
 sphere and cylinder components (and the old `component` form) with strength, threshold,
@@ -34,6 +34,7 @@ REFUSED_DIRECTIVES = {
     "fopen": "file input is not supported", "read": "file input is not supported",
 }
 TRANSFORMS = ("translate", "rotate", "scale", "matrix", "transform")
+SHAPES = ("plane", "box", "sphere", "cylinder", "cone", "disc")
 
 
 class Converter:
@@ -57,7 +58,7 @@ class Converter:
         if self.camera is None:
             raise PovError(1, 1, "the scene has no camera")
         if not self.objects:
-            raise PovError(1, 1, "the scene has no blob objects")
+            raise PovError(1, 1, "the scene has no objects this converter takes")
         lights = list(self.lights)
         if any(c > 0 for c in self.ambient_light):
             lights.append({"type": "ambient", "color": list(self.ambient_light)})
@@ -187,9 +188,12 @@ class Converter:
             self._global_settings(s, ex)
         elif word == "blob":
             self.objects.append(self._blob(s, ex, tok))
+        elif word in SHAPES:
+            self.objects.append(self._shape(s, ex, tok))
         else:
-            raise s.error(tok, "'%s' is not supported (this converter takes blob objects, "
-                          "camera, light_source, background and global_settings)" % word)
+            raise s.error(tok, "'%s' is not supported (this converter takes blob, plane, box, "
+                          "sphere, cylinder, cone and disc objects, camera, light_source, "
+                          "background and global_settings)" % word)
 
     def _global_settings(self, s, ex):
         s.expect("{")
@@ -451,7 +455,7 @@ class Converter:
 
     def _material(self, pigment, finish, at, s):
         if pigment is None:
-            raise s.error(at, "the blob has no pigment")
+            raise s.error(at, "the %s has no pigment" % at.text)
         f = dict(self.default_finish)
         f.update({k: v for k, v in finish.items() if k != "kind"})
         material = {"color": [float(c) for c in pigment]}
@@ -460,6 +464,77 @@ class Converter:
             if key in ("ambient", "diffuse") or value != FINISH_DEFAULTS[key]:
                 material[key] = value
         return material
+
+    # ---- plain shapes ----------------------------------------------------------------------
+    def _shape(self, s, ex, at):
+        """POV-Ray's finite primitives and its plane as softtrace shape objects (docs/pov.md)."""
+        word = at.text
+        s.expect("{")
+        pt = lambda what: list(affine.to_softtrace_point(ex.vector(what)))  # noqa: E731
+        if word == "plane":
+            shape = {"normal": pt("the plane's normal")}
+            s.expect(",")
+            shape["distance"] = ex.number("the plane's distance")
+        elif word == "box":
+            shape = {"corner1": pt("the first corner")}
+            s.expect(",")
+            shape["corner2"] = pt("the second corner")
+        elif word == "sphere":
+            shape = {"center": pt("the centre")}
+            s.expect(",")
+            shape["radius"] = ex.number("the radius")
+        elif word == "cylinder":
+            shape = {"base": pt("the base point")}
+            s.expect(",")
+            shape["cap"] = pt("the cap point")
+            s.expect(",")
+            shape["radius"] = ex.number("the radius")
+        elif word == "cone":
+            shape = {"base": pt("the base point")}
+            s.expect(",")
+            shape["base_radius"] = ex.number("the base radius")
+            s.expect(",")
+            shape["cap"] = pt("the cap point")
+            s.expect(",")
+            shape["cap_radius"] = ex.number("the cap radius")
+        else:
+            shape = {"center": pt("the centre")}
+            s.expect(",")
+            shape["normal"] = pt("the normal")
+            s.expect(",")
+            shape["radius"] = ex.number("the radius")
+            if s.accept(","):
+                shape["hole_radius"] = ex.number("the hole radius")
+        shape = dict({"type": word}, **shape)
+        m = affine.IDENTITY
+        pigment, finish = None, {}
+        while not s.closes(word):
+            tok = s.next()
+            w = tok.text
+            if w in TRANSFORMS:
+                m = affine.mul(self._transform_step(s, ex, tok), m)
+            elif w == "pigment":
+                pigment = self._pigment(s, ex)["color"]
+            elif w == "finish":
+                finish.update(self._finish(s, ex))
+            elif w == "texture":
+                t = self._texture(s, ex)
+                pigment = t.get("color", pigment)
+                finish.update(t.get("finish", {}))
+            elif w in HARMLESS:
+                continue
+            else:
+                raise s.error(tok, "%s { %s } is not supported" % (word, w))
+        if m != affine.IDENTITY:
+            full = affine.to_softtrace(m)
+            if affine.linear(full) == affine.linear(affine.IDENTITY):
+                shape["translate"] = [full[i][3] for i in range(3)]
+            else:
+                shape["matrix"] = [list(full[i]) for i in range(3)]
+        n = self.names.get(word, 0) + 1
+        self.names[word] = n
+        return {"name": "%s%d" % (word, n), "material": self._material(pigment, finish, at, s),
+                "shape": shape}
 
     # ---- blob ----------------------------------------------------------------------------
     def _blob(self, s, ex, at):
