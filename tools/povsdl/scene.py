@@ -37,6 +37,16 @@ TRANSFORMS = ("translate", "rotate", "scale", "matrix", "transform")
 SHAPES = ("plane", "box", "sphere", "cylinder", "cone", "disc")
 
 
+class Modifiers:
+    """What an object's modifiers build up: its transformation (object to world, POV-Ray's
+    frame), pigment colour and finish values."""
+
+    def __init__(self):
+        self.matrix = affine.IDENTITY
+        self.pigment = None
+        self.finish = {}
+
+
 class Converter:
     def __init__(self, path, width, height):
         self.path = path
@@ -465,6 +475,24 @@ class Converter:
                 material[key] = value
         return material
 
+    def _modifier(self, s, ex, tok, mods):
+        """Takes an object's transformation, pigment, finish or texture into `mods` (blobs and
+        shapes share them); False for any other keyword, which the caller decides on."""
+        w = tok.text
+        if w in TRANSFORMS:
+            mods.matrix = affine.mul(self._transform_step(s, ex, tok), mods.matrix)
+        elif w == "pigment":
+            mods.pigment = self._pigment(s, ex)["color"]
+        elif w == "finish":
+            mods.finish.update(self._finish(s, ex))
+        elif w == "texture":
+            t = self._texture(s, ex)
+            mods.pigment = t.get("color", mods.pigment)
+            mods.finish.update(t.get("finish", {}))
+        else:
+            return False
+        return True
+
     # ---- plain shapes ----------------------------------------------------------------------
     def _shape(self, s, ex, at):
         """POV-Ray's finite primitives and its plane as softtrace shape objects (docs/pov.md)."""
@@ -506,62 +534,40 @@ class Converter:
             if s.accept(","):
                 shape["hole_radius"] = ex.number("the hole radius")
         shape = dict({"type": word}, **shape)
-        m = affine.IDENTITY
-        pigment, finish = None, {}
+        mods = Modifiers()
         while not s.closes(word):
             tok = s.next()
-            w = tok.text
-            if w in TRANSFORMS:
-                m = affine.mul(self._transform_step(s, ex, tok), m)
-            elif w == "pigment":
-                pigment = self._pigment(s, ex)["color"]
-            elif w == "finish":
-                finish.update(self._finish(s, ex))
-            elif w == "texture":
-                t = self._texture(s, ex)
-                pigment = t.get("color", pigment)
-                finish.update(t.get("finish", {}))
-            elif w in HARMLESS:
+            if self._modifier(s, ex, tok, mods) or tok.text in HARMLESS:
                 continue
-            else:
-                raise s.error(tok, "%s { %s } is not supported" % (word, w))
-        if m != affine.IDENTITY:
-            full = affine.to_softtrace(m)
+            raise s.error(tok, "%s { %s } is not supported" % (word, tok.text))
+        if mods.matrix != affine.IDENTITY:
+            full = affine.to_softtrace(mods.matrix)
             if affine.linear(full) == affine.linear(affine.IDENTITY):
                 shape["translate"] = [full[i][3] for i in range(3)]
             else:
                 shape["matrix"] = [list(full[i]) for i in range(3)]
         n = self.names.get(word, 0) + 1
         self.names[word] = n
-        return {"name": "%s%d" % (word, n), "material": self._material(pigment, finish, at, s),
-                "shape": shape}
+        return {"name": "%s%d" % (word, n),
+                "material": self._material(mods.pigment, mods.finish, at, s), "shape": shape}
 
     # ---- blob ----------------------------------------------------------------------------
     def _blob(self, s, ex, at):
         s.expect("{")
         threshold = 1.0
         components = []
-        m = affine.IDENTITY
-        pigment, finish = None, {}
+        mods = Modifiers()
         while not s.closes("blob"):
             tok = s.next()
             w = tok.text
+            if self._modifier(s, ex, tok, mods):
+                continue
             if w == "threshold":
                 threshold = ex.number("threshold")
                 if threshold <= 0:
                     raise s.error(tok, "threshold %g: must be positive" % threshold)
             elif w in ("sphere", "cylinder", "component"):
                 components.append(self._component(s, ex, tok))
-            elif w in TRANSFORMS:
-                m = affine.mul(self._transform_step(s, ex, tok), m)
-            elif w == "pigment":
-                pigment = self._pigment(s, ex)["color"]
-            elif w == "finish":
-                finish.update(self._finish(s, ex))
-            elif w == "texture":
-                t = self._texture(s, ex)
-                pigment = t.get("color", pigment)
-                finish.update(t.get("finish", {}))
             elif w in HARMLESS:
                 if w == "hierarchy" and s.peek().kind == "name" and s.peek().text in (
                         "on", "off", "true", "false", "yes", "no"):
@@ -570,7 +576,7 @@ class Converter:
                 raise s.error(tok, "blob { %s } is not supported" % w)
         children = []
         for comp in components:
-            child = self._soft_object(comp, m)
+            child = self._soft_object(comp, mods.matrix)
             if child is not None:
                 children.append(child)
         if not any(c.get("strength", 1.0) > 0 for c in children):
@@ -579,7 +585,7 @@ class Converter:
                                                           "children": children}
         n = self.names.get("blob", 0) + 1
         self.names["blob"] = n
-        return {"name": "blob%d" % n, "material": self._material(pigment, finish, at, s),
+        return {"name": "blob%d" % n, "material": self._material(mods.pigment, mods.finish, at, s),
                 "convention": "soft", "iso": threshold, "field": field}
 
     def _component(self, s, ex, tok):
