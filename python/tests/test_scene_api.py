@@ -346,3 +346,17 @@ def test_a_builder_per_scene_object_with_its_keys():
                                   if n.split(": ")[0] in ("shape", "light", "material",
                                                           "area light"))
     assert len(made) == 12 and not set(made.values()) & {k["name"] for k in softtrace.nodes()}
+
+
+def test_a_scenes_field_is_its_first_field_object_as_eval_takes_it():
+    scene = softtrace.load_scene(SHAPES_SCENE)  # its first object is the floor, a plane shape
+    field = softtrace.Field(scene)
+    cli = subprocess.run([BIN, "eval", SHAPES_SCENE], input="0 0 5\n", capture_output=True,
+                         text=True, check=True)
+    assert float(field.eval([0, 0, 5])) == float(cli.stdout.split()[0])
+    assert field.name.endswith("/objects/1/field")
+    with pytest.raises(softtrace.SceneError, match=r"/objects/0: a plane shape, not a field"):
+        softtrace.Field(scene, "floor")
+    shapes_only = softtrace.load_dict({"objects": [{"shape": softtrace.sphere([0, 0, 0], 1)}]})
+    with pytest.raises(softtrace.SceneError, match="no object has a field"):
+        softtrace.Field(shapes_only)
