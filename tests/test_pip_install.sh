@@ -16,8 +16,12 @@ fail() {
 
 rm -rf "$work"
 mkdir -p "$work/src"
-# The tracked files only: no build folders, as a fresh clone has them.
-git -C "$src" ls-files -z | tar -C "$src" --null -T - -cf - | tar -C "$work/src" -xf -
+# The tracked files only, as a fresh clone has them (outside git: all but the build folders).
+if git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  git -C "$src" ls-files -z | tar -C "$src" --null -T - -cf - | tar -C "$work/src" -xf -
+else
+  tar -C "$src" --exclude='./build*' --exclude='./out' -cf - . | tar -C "$work/src" -xf -
+fi
 "$python" -m venv --system-site-packages "$work/venv"
 SOFTTRACE_CMAKE_BUILD=$build "$work/venv/bin/python" -m pip install -q --no-build-isolation \
   --no-index "$work/src" >"$work/pip.log" 2>&1 || fail "pip install: $(tail -n 5 "$work/pip.log")"
