@@ -12,7 +12,8 @@ cd "$(dirname "$0")/.."
 PACKAGES=(g++ cmake ninja-build pkg-config libembree-dev libopenimageio-dev libopenexr-dev
   libpng-dev libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev openimageio-tools
   clang-14 clang-format-14 libclang-rt-14-dev munge slurmctld slurmd slurm-client
-  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-mypy libcgal-dev groff-base man-db
+  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-mypy python3-venv python3-pip
+  python3-setuptools python3-wheel libcgal-dev groff-base man-db
   povray python3-pil)
 BUILD_DIR=${BUILD_DIR:-build}
 
