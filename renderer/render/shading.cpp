@@ -4,13 +4,14 @@
 #include <cmath>
 #include <vector>
 
+#include "render/cancel.h"
 #include "render/finish.h"
 #include "render/lights.h"
 
 namespace softtrace {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& secondary, int level) {
+             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   const SceneObject& obj = tracers.object(hit.object);
   const Vec3 p = ray.o + ray.d * hit.t;
@@ -48,6 +49,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // `mixed` instead.
   Vec3 light{0, 0, 0}, shine{0, 0, 0}, mixed{0, 0, 0};
   for (const Light& l : scene.lights) {
+    if (cancel_requested(cancel)) break;  // up to 1,000 lights, each with its shadow rays
     if (l.type == Light::Type::Ambient) {
       const Vec3 c = l.color * l.intensity;
       if (!blended)
@@ -62,7 +64,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     if (!light_arrival(l, p, origin, at)) continue;
     const double cosine = dot(n, at.to_light);
     if (cosine <= 0) continue;
-    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary);
+    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
     if (seen == 0) continue;
     const Vec3 arrived = seen == 1 ? at.light : at.light * seen;
     // As in POV-Ray, lights without shadows (its fill lights) make no highlights.
@@ -91,12 +93,13 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   }
 
   if ((reflection.x > 0 || reflection.y > 0 || reflection.z > 0) &&
-      level < scene.image.max_trace_level) {
+      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
     secondary.add(next.work);
-    const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, level + 1).color
-                               : scene.background;
+    const Vec3 seen =
+        next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
+                 : scene.background;
     color += mul(reflection, seen);
   }
   return {color, n, albedo};
