@@ -261,7 +261,7 @@ TEST(Eval, EveryScenePrintsTheLibraryValues) {
     const std::string path = entry.path().string();
     const Scene scene = load_scene(path);
     const SceneObject& obj = *std::find_if(scene.objects.begin(), scene.objects.end(),
-                                           [](const SceneObject& o) { return !o.shape; });
+                                           [](const SceneObject& o) { return o.field != nullptr; });
     const std::string dir = temp_dir("eval_all");
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> u(0, 1);
