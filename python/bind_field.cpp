@@ -92,6 +92,9 @@ std::unique_ptr<Field> field_of_scene(const PyScene& s, const std::string& objec
   if (objects[i].shape)
     throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) + ": a " +
                      shape_name(objects[i].shape->shape) + " shape, not a field");
+  if (objects[i].csg)
+    throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) + ": a CSG (" +
+                     csg_name(objects[i].csg->op) + "), not a field");
   f->scene = s.scene;
   f->root = objects[i].field.get();
   f->program = compile(*f->root);
