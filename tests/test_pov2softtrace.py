@@ -139,7 +139,8 @@ def test_lights_background_and_finish():
 REFUSALS = [
     ("#while (I < 3) sphere { 0, 1 } #end", 2, 1, "#while: loops are not supported"),
     ("blob { sphere { <rand(S), 0, 0>, 1, 1 } }", 2, 18, "unknown identifier 'rand'"),
-    ("blob { sphere { 0, 1, 1 pigment { rgb 1 } } }", 2, 25, "per-component pigment"),
+    ("blob { sphere { 0, 1, 1 finish { phong 1 } } sphere { x, 1, 1 } pigment { rgb 1 } }", 2,
+     25, "a component's texture needs a pigment"),
     ("global_settings { assumed_gamma 2.2 }", 2, 19, "only 1.0"),
     ("torus { 1, 0.2 }", 2, 1, "'torus' is not supported"),
     ("cylinder { 0, y, 1 open pigment { rgb 1 } }", 2, 20, "cylinder { open } is not supported"),
@@ -169,6 +170,24 @@ def test_refusals_are_located(body, line, col, phrase):
         scene_of(body)
     assert (e.value.line, e.value.col) == (line, col), e.value.message
     assert phrase in e.value.message
+
+
+def test_component_textures_become_component_materials():
+    # POV-Ray: a component's own texture replaces the blob's; the others keep the blob's.
+    obj = scene_of("blob { sphere { 0, 1, 2 pigment { rgb <1, 0, 0> } finish { phong 0.5 } }\n"
+                   "       sphere { x, 1, 1 texture { pigment { rgb 1 } } }\n"
+                   "       sphere { -x, 1, 1 }\n"
+                   "       pigment { rgb <0, 0, 1> } }")["objects"][0]
+    red, white, plain = obj["field"]["children"]
+    assert red["material"]["color"] == [1, 0, 0] and red["material"]["phong"] == 0.5
+    assert white["material"]["color"] == [1, 1, 1] and "phong" not in white["material"]
+    assert "material" not in plain and obj["material"]["color"] == [0, 0, 1]
+    # Every component textured: the blob needs no pigment; a lone component's is the object's.
+    both = scene_of("blob { sphere { 0, 1, 1 pigment { rgb 1 } } "
+                    "sphere { x, 1, 1 pigment { rgb 0.5 } } }")["objects"][0]
+    assert "material" not in both
+    lone = scene_of("blob { sphere { 0, 1, 1 pigment { rgb <0, 1, 0> } } }")["objects"][0]
+    assert lone["material"]["color"] == [0, 1, 0] and "material" not in lone["field"]
 
 
 def test_plain_shapes():

@@ -5,7 +5,7 @@ Carried across: `camera` (location, look_at, angle, direction, up, right, sky), 
 assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
 and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, and `blob` objects:
 sphere and cylinder components (and the old `component` form) with strength, threshold,
-per-component and whole-blob translate/rotate/scale/matrix/transform, pigment and finish.
+per-component and whole-blob translate/rotate/scale/matrix/transform, pigment, finish and texture.
 Everything else is refused with its line and column.
 """
 import math
@@ -591,10 +591,18 @@ class Converter:
                 children.append(child)
         if not any(c.get("strength", 1.0) > 0 for c in children):
             raise s.error(at, "the blob has no component of positive strength, so no surface")
+        # Components with textures of their own (docs/scene-format.md "Component materials"):
+        # mixed at a hit by |strength * field| as POV-Ray mixes them. A lone component's is the
+        # object's; a blob whose every component has one needs none of its own.
+        if len(children) == 1 and "material" in children[0]:
+            material = children[0].pop("material")
+        elif mods.pigment is None and children and all("material" in c for c in children):
+            material = None
+        else:
+            material = self._material(mods.pigment, mods.finish, at, s)
         field = children[0] if len(children) == 1 else {"type": "soft_blend",
                                                           "children": children}
-        return self._named("blob", self._material(mods.pigment, mods.finish, at, s),
-                           convention="soft", iso=threshold, field=field)
+        return self._named("blob", material, convention="soft", iso=threshold, field=field)
 
     def _named(self, word, material, **keys):
         """An object named after its kind and count (blob1, box2, difference1), with its
@@ -675,15 +683,22 @@ class Converter:
         s.accept("strength")
         c["strength"] = ex.number("strength")
         m = affine.IDENTITY
+        own = Modifiers()  # the component's own texture (POV-Ray: it replaces the blob's)
+        textured_at = None
         while not s.closes("a component"):
             t = s.next()
             if t.text in TRANSFORMS:
                 m = affine.mul(self._transform_step(s, ex, t), m)
             elif t.text in ("pigment", "texture", "finish"):
-                raise s.error(t, "per-component %s is not supported: give the blob one texture"
-                              % t.text)
+                self._modifier(s, ex, t, own)
+                textured_at = textured_at or t
             else:
                 raise s.error(t, "%s component { %s } is not supported" % (w, t.text))
+        if textured_at is not None:
+            if own.pigment is None:
+                raise s.error(textured_at, "a component's texture needs a pigment: POV-Ray gives "
+                              "a component with a texture of its own nothing of the blob's")
+            c["material"] = self._material(own.pigment, own.finish, tok, s)
         if c["radius"] <= 0:
             raise s.error(tok, "a %s component's radius must be positive" % w)
         if w == "cylinder" and c["p0"] == c["p1"]:
@@ -703,6 +718,8 @@ class Converter:
         k = affine.column_scales(a)
         r = c["radius"]
         node = {"type": "soft_object", "potential": {"type": "murakami"}}
+        if "material" in c:
+            node["material"] = c["material"]
         if c["strength"] != 1:
             node["strength"] = c["strength"]
         uniform = k is not None and max(k) - min(k) <= 1e-12 * max(k)
