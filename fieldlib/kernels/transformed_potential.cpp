@@ -115,6 +115,14 @@ double TransformedPotential::slope_bound(const Bounds& B) const {
   return flat_product(LP, (dterm + wterm) * (1 + 1e-12));
 }
 
+Interval TransformedPotential::slope_along(const Bounds& B, Interval dd) const {
+  if (src != WSource::Constant) return Interval::entire();
+  if (B.T.hi <= 0) return Interval(0);  // T = 0: P(0) along the whole segment
+  const double k = flat_product(P.lipschitz(B.T), T.slope_d(B.d, B.w)) * (1 + 1e-12);
+  if (k == 0) return Interval(0);
+  return Interval(-k, 0) * dd;
+}
+
 TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld, Interval fm,
                                                           double Lf) const {
   Bounds B;

@@ -51,6 +51,11 @@ struct TransformedPotential {
   // The Lipschitz bound over the box B was taken on (with d's and f's bounds).
   double slope_bound(const Bounds& B) const;
   double lipschitz() const;  // global: +inf for a modulated w (no global bound on ∇w)
+  // For a constant w, over the box B was taken on: an interval holding d(P ∘ T ∘ d)/dt along a
+  // segment where d's own derivative lies in `dd`. P never rises and T never falls with d
+  // (radius_transforms.h), so it is P'(T) T_d d' with P'(T) T_d in [-|P'| sup T_d, 0]: where the
+  // segment nears the skeleton (d' < 0) the field cannot fall. Entire for a modulated w.
+  Interval slope_along(const Bounds& B, Interval dd) const;
 
   bool outside_support(const Box& b) const {
     return support.bounded() && support.intersected(b).empty();

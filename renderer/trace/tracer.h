@@ -174,6 +174,9 @@ class ObjectTracer {
   };
   Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest, int budget,
             TraceCounters& work) const;
+  // Where scan halves a piece [lo, hi] it could not decide (g(lo) = glo < 0, g(hi) = ghi < 0,
+  // sb its bounds): the middle, or nearer hi where the left part should clear by its ends.
+  static double split(double lo, double glo, double hi, double ghi, const SegmentBounds& sb);
   // scan down to kFinest of the tolerance `tol`, a piece undecided there once more down to
   // kFinestDeep of it, and on past it: Clear or Bracket. A piece that stays undecided is passed
   // (the surface may touch the ray there but no sign change shows it enters) and counted in
