@@ -58,11 +58,11 @@ struct TraceCounters {
   // Root refinement steps after a sign change: one point evaluation each, or for polynomial
   // blobs one value of the piece's polynomial (not counted as a point evaluation).
   int refine_iterations = 0;
-  // Searches that reported a hit without a certificate: cut short by the evaluation limit, or (sums
-  // of polynomial blobs, tracer_blobs.cpp) a piece undecided at kFinest of the tolerance.
+  // Searches that reported a hit without a certificate: cut short by the evaluation limit.
   int give_ups = 0;
-  // Pieces of the ray no interval could decide down to 1e-9 of the tolerance: the surface may
-  // touch the ray there without entering. Passed, not reported as hits.
+  // Pieces of the ray no interval (for sums of polynomial blobs: no Bernstein hull) could decide
+  // down to 1e-9 of the tolerance: the surface may touch the ray there without entering. Passed,
+  // not reported as hits.
   int undecided = 0;
   bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
   int evaluations() const { return point_evals + box_evals; }
