@@ -163,7 +163,8 @@ double ObjectTracer::split(double lo, double glo, double hi, double ghi, const S
 }
 
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
-                                      double finest, int budget, TraceCounters& work) const {
+                                      double finest, int budget, bool cut,
+                                      TraceCounters& work) const {
   // Pieces of [a, c], leftmost first, so that a bracket is the first sign change. A piece is
   // cleared by its interval or by what its ends clear (reach, from the piece's rates); otherwise it
   // is halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
@@ -197,7 +198,8 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
     if (reach(q.glo, sb.rise) + reach(q.ghi, sb.fall) >= q.hi - q.lo) continue;
     if (q.hi - q.lo <= finest || top + 2 > kDepth || work.evaluations() >= budget)
       return {Scan::Undecided, q.lo, q.glo, q.hi, q.ghi};
-    const double m = split(q.lo, q.glo, q.hi, q.ghi, sb), gm = g_at(m);
+    const double m = cut ? split(q.lo, q.glo, q.hi, q.ghi, sb) : 0.5 * (q.lo + q.hi);
+    const double gm = g_at(m);
     if (gm >= 0) return {Scan::Bracket, q.lo, q.glo, m, gm};
     stack[top++] = {m, gm, q.hi, q.ghi, sb.rise, sb.fall};
     stack[top++] = {q.lo, q.glo, m, gm, sb.rise, sb.fall};
@@ -208,7 +210,7 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
 ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, double c, double gc,
                                         double tol, TraceCounters& work) const {
   for (;;) {
-    const Scan sc = scan(ray, a, ga, c, gc, kFinest * tol, kMaxSteps, work);
+    const Scan sc = scan(ray, a, ga, c, gc, kFinest * tol, kMaxSteps, true, work);
     if (sc.kind != Scan::Undecided) return sc;
     // A piece kFinest of the tolerance long that neither its interval nor its ends' spheres
     // clear: the surface passes close to the ray there, or the bounds are loose at this scale.
@@ -217,7 +219,7 @@ ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, dou
     // segment). The budget caps a ray that runs along a face, g within rounding of 0.
     const double deepest = std::max(kFinestDeep * tol, 4e-12 * (max_abs(ray.o) + std::abs(sc.hi)));
     const Scan deep = scan(ray, sc.lo, sc.glo, sc.hi, sc.ghi, deepest,
-                           std::min(kMaxSteps, work.evaluations() + kDeepBudget), work);
+                           std::min(kMaxSteps, work.evaluations() + kDeepBudget), false, work);
     if (deep.kind == Scan::Bracket) return deep;
     if (deep.kind == Scan::Undecided) {
       // Most often the piece ends within rounding of a crossing just past it, which every

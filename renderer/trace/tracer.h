@@ -172,8 +172,10 @@ class ObjectTracer {
     // Undecided: the piece [lo, hi], g < 0 at both ends (known), [a, lo] clear.
     double lo, glo, hi, ghi;
   };
+  // `cut`: pieces are cut by split(), else halved (the deep halving of decide, whose pieces lie
+  // within rounding of the surface, where the chord says little).
   Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest, int budget,
-            TraceCounters& work) const;
+            bool cut, TraceCounters& work) const;
   // Where scan halves a piece [lo, hi] it could not decide (g(lo) = glo < 0, g(hi) = ghi < 0,
   // sb its bounds): the middle, or nearer hi where the left part should clear by its ends.
   static double split(double lo, double glo, double hi, double ghi, const SegmentBounds& sb);
