@@ -3,18 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/cancel.h"
 #include "render/finish.h"
 #include "render/lights.h"
 
 namespace softtrace {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& secondary, int level) {
+             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
-  const SceneObject& obj = tracers.object(hit.object);
+  // A CSG's hit is on one of its operands: the face's material is that operand's.
+  const SceneObject& obj = hit.face ? *hit.face : tracers.object(hit.object);
   const Material& m = obj.material;
   const Vec3 p = ray.o + ray.d * hit.t;
-  // A primitive's normal came with its exact hit.
+  // A primitive's or a CSG's normal came with its hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
@@ -26,13 +28,14 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
   // coordinates' magnitude (an infinite plane's box says nothing of the scale).
   const double offset =
-      std::max(tracer ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
+      std::max(obj.field ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
   const Vec3 origin = p + n * offset;
 
   // `light` is what the pigment multiplies (ambient and diffuse, summed in the lights' order);
   // `shine` the highlights, which it does not.
   Vec3 light{0, 0, 0}, shine{0, 0, 0};
   for (const Light& l : scene.lights) {
+    if (cancel_requested(cancel)) break;  // up to 1,000 lights, each with its shadow rays
     if (l.type == Light::Type::Ambient) {
       light += mul(m.ambient, l.color * l.intensity);
       continue;
@@ -41,7 +44,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     if (!light_arrival(l, p, origin, at)) continue;
     const double cosine = dot(n, at.to_light);
     if (cosine <= 0) continue;
-    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary);
+    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
     if (seen == 0) continue;
     const Vec3 arrived = seen == 1 ? at.light : at.light * seen;
     light += diffuse_light(m, cosine, arrived);
@@ -51,12 +54,13 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   Vec3 color = mul(m.color, light);
   if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
 
-  if (m.reflects() && level < scene.image.max_trace_level) {
+  if (m.reflects() && level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
     secondary.add(next.work);
-    const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, level + 1).color
-                               : scene.background;
+    const Vec3 seen =
+        next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
+                 : scene.background;
     color += mul(m.reflection, seen);
   }
   return {color, n, m.color};
