@@ -254,11 +254,20 @@ TEST(FirstRise, FindsTheFirstCrossingOnly) {
   // Stays below 0: -1e-6 - (x - 0.5)^2 touches -1e-6, well beyond err.
   const double below[3] = {-1e-6 - 0.25, 1, -1};
   EXPECT_EQ(first_rise(below, 2, 1e-15, 1e-6, 1e-9).kind, Rise::Clear);
-  // Touching 0 within err: no certificate either way, down to the finest pieces.
+  // Touching 0 within err: no certificate either way, down to the finest pieces. Passed and
+  // counted, not a bracket; a later crossing is still found ((x - 0.5)^2 (x - 0.8) - 1e-16, whose
+  // hull straddles 0 about 0.5 and which rises through 0 at 0.8).
   const double touch[3] = {-1e-16 - 0.25, 1, -1};
   r = first_rise(touch, 2, 1e-15, 1e-6, 1e-9);
-  EXPECT_EQ(r.kind, Rise::Undecided);
-  EXPECT_NEAR(r.lo, 0.5, 1e-6);
+  EXPECT_EQ(r.kind, Rise::Clear);
+  EXPECT_GE(r.undecided, 1);
+  const double later[4] = {-0.2 - 1e-16, 1.05, -1.8, 1};
+  r = first_rise(later, 3, 1e-15, 1e-6, 1e-9);
+  ASSERT_EQ(r.kind, Rise::Bracket);
+  EXPECT_GE(r.undecided, 1);
+  EXPECT_LE(r.lo, 0.8);
+  EXPECT_GE(r.hi, 0.8);
+  EXPECT_GT(r.lo, 0.5);
   const double start[2] = {0, 1};
   EXPECT_EQ(first_rise(start, 1, 1e-15, 1e-6, 1e-9).kind, Rise::AtStart);
 }

@@ -362,8 +362,9 @@ class Walker {
   // their slots cannot give; asking the model node for those instead was measured
   // (fig000_13d_star_contour at 80x60, one thread, medians of 3 benches of 3 frames each): 0.256 s
   // against 0.157 s unrefined, for 19.82 against 19.97 evaluations per ray, and within 0.8 % of
-  // the evaluations on every scene with radius transforms. Along a segment the slope is [-L, L],
-  // and the field is 0 until the segment may enter the support box, or while d >= 1 where that
+  // the evaluations on every scene with radius transforms. Along a segment the slope is the chain
+  // rule's on d's and f's slopes (TransformedPotential::slope_along) within [-L, L], and the field
+  // is 0 until the segment may enter the support box, or while d >= 1 where that
   // makes T = 1.
   void radius_transform(const Instr& in) {
     Interval* I = ws_.ivals.data();
@@ -381,6 +382,8 @@ class Walker {
     L[in.out] = t.slope_bound(B);
     ws_.slopes[in.out] = {-L[in.out], L[in.out]};
     if (!segment_) return;
+    if (slopes_)
+      ws_.slopes[in.out] = capped(t.slope_along(B, ws_.slopes[in.in], ws_.slopes[in.n]), L[in.out]);
     double q = box_entry(t.support, in.reg);
     if (t.src == WSource::Constant && t.T.outer_end(t.w) <= 1)
       q = std::max(q, quiet_potential(in.in));

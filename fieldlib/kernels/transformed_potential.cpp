@@ -115,6 +115,25 @@ double TransformedPotential::slope_bound(const Bounds& B) const {
   return flat_product(LP, (dterm + wterm) * (1 + 1e-12));
 }
 
+Interval TransformedPotential::slope_along(const Bounds& B, Interval dd, Interval dfm) const {
+  // T constant over the box (0, or 1 by [TA-1]): so is the field.
+  if (B.T.hi <= 0 || B.T.lo == B.T.hi) return Interval(0);
+  const double LP = P.lipschitz(B.T);
+  if (LP == 0) return Interval(0);
+  Interval dT = Interval(0, T.slope_d(B.d, B.w)) * dd;
+  if (src != WSource::Constant) {
+    if (!(B.f.lo > 0)) return Interval::entire();
+    const Interval dr = (dd - B.r * (dfm * Interval(scale))) / B.f;  // (d/f)' = (d' - r f')/f
+    const Interval dw = hull(src == WSource::Outer ? dr : -dr, Interval(0));
+    const double sw = T.slope_w(B.d, B.w);
+    const Interval Tw = B.d.hi <= 0.5   ? Interval(0, sw)
+                        : B.d.lo >= 0.5 ? Interval(-sw, 0)
+                                        : Interval(-sw, sw);
+    dT = dT + Tw * dw;
+  }
+  return Interval(-LP, 0) * dT * Interval(1, 1 + 1e-12);
+}
+
 TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld, Interval fm,
                                                           double Lf) const {
   Bounds B;

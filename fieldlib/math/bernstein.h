@@ -16,12 +16,14 @@ constexpr int kMaxDegree = 6;
 
 struct Rise {
   enum Kind {
-    Clear,      // h < 0 on [0, 1]
-    AtStart,    // h(0) >= 0 as computed
-    Bracket,    // h(lo) < 0 <= h(hi) as computed, and no root before lo
-    Undecided,  // the hull straddles 0 down to pieces of `finest`: a near-tangency at lo
+    Clear,    // h < 0 on [0, 1]
+    AtStart,  // h(0) >= 0 as computed
+    Bracket,  // h(lo) < 0 <= h(hi) as computed, and no root before lo
   } kind;
   double lo = 0, hi = 0;
+  // Pieces passed undecided: their hull straddles 0 (within err) down to `finest`, a tangency
+  // within rounding, and no value >= 0 shows h reaching 0 there. They are passed, not reported.
+  int undecided = 0;
 };
 
 // h(x) = Σ a[j] x^j by Horner's rule.
@@ -33,7 +35,9 @@ inline double power_value(const double* a, int degree, double x) {
 
 // The first x in [0, 1] where h = Σ a[j] x^j (degree <= kMaxDegree) reaches 0, to within `tol`
 // (a bracket no wider than tol, or one of any width over which h rises), halving down to
-// `finest`. `err` bounds |computed - exact| of the coefficients' hulls on every piece.
+// `finest`; a piece still undecided there is passed and counted (Rise::undecided), and the
+// search goes on past it. `err` bounds |computed - exact| of the coefficients' hulls on every
+// piece.
 inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
   // b_i = Σ_{j<=i} C(i,j)/C(m,j) a_j.
   static constexpr double binom[kMaxDegree + 1][kMaxDegree + 1] = {{1},
@@ -48,7 +52,7 @@ inline Rise first_rise(const double* a, int degree, double err, double tol, doub
   };
   constexpr int kDepth = 64;
   Piece stack[kDepth];
-  int top = 0;
+  int top = 0, undecided = 0;
   Piece& whole = stack[top++];
   whole.lo = 0;
   whole.hi = 1;
@@ -64,9 +68,13 @@ inline Rise first_rise(const double* a, int degree, double err, double tol, doub
     if (*std::max_element(b, b + degree + 1) + err < 0) continue;
     bool rising = true;
     for (int i = 0; i < degree && rising; ++i) rising = b[i + 1] - b[i] > 2 * err;
-    if (b[degree] >= 0 && (rising || p.hi - p.lo <= tol)) return {Rise::Bracket, p.lo, p.hi};
+    if (b[degree] >= 0 && (rising || p.hi - p.lo <= tol))
+      return {Rise::Bracket, p.lo, p.hi, undecided};
     if (rising && b[degree] < 0) continue;  // rises to a negative end (and the hull allowed it)
-    if (p.hi - p.lo <= finest || top + 2 > kDepth) return {Rise::Undecided, p.lo, p.lo};
+    if (p.hi - p.lo <= finest || top + 2 > kDepth) {
+      ++undecided;
+      continue;
+    }
     // de Casteljau at the middle: the left half's coefficients are the first of each row, the
     // right half's the last.
     Piece left{p.lo, 0.5 * (p.lo + p.hi), {}}, right{left.hi, p.hi, {}};
@@ -80,7 +88,7 @@ inline Rise first_rise(const double* a, int degree, double err, double tol, doub
     stack[top++] = right;
     stack[top++] = left;
   }
-  return {Rise::Clear, 1, 1};
+  return {Rise::Clear, 1, 1, undecided};
 }
 
 // Narrows a Bracket of first_rise to at most `tol`: the Anderson-Bjorck variant of regula falsi

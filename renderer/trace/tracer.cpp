@@ -154,26 +154,47 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
           g_empty_ < 0 ? bb.quiet * (b - a) : 0.0};
 }
 
+double ObjectTracer::split(double lo, double glo, double hi, double ghi, const SegmentBounds& sb) {
+  // Where g rises through the piece (as its ends' values say), a point x with g(x) ~ glo + s (x -
+  // lo) clears -g(x)/fall behind it: the left part [lo, x] is cleared by the spheres of its ends
+  // when -glo/rise - g(x)/fall >= x - lo, that is up to d below; 0.9 of it leaves room for g's
+  // bend. Next to a crossing, where both spheres are a fraction k of the distance to it, that
+  // takes the distance down by (1 - k)/(1 + k) a step instead of 1/2. Elsewhere, the middle.
+  const double len = hi - lo, mid = lo + 0.5 * len;
+  const double s = (ghi - glo) / len;
+  if (!(s > 0) || !(sb.rise > 0) || !(sb.fall > 0) || !std::isfinite(sb.rise)) return mid;
+  const double d = 0.9 * -glo * (1 / sb.rise + 1 / sb.fall) / (1 + s / sb.fall);
+  return d > 0.5 * len && d < 0.95 * len ? lo + d : mid;
+}
+
 ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, double c, double gc,
-                                      double finest, int budget, TraceCounters& work) const {
+                                      double finest, int budget, bool cut,
+                                      TraceCounters& work) const {
   // Pieces of [a, c], leftmost first, so that a bracket is the first sign change. A piece is
   // cleared by its interval or by what its ends clear (reach, from the piece's rates); otherwise it
   // is halved, its middle's sign checked. g at a piece's ends: known < 0, or NaN until evaluated.
+  // A half inherits its parent's rates, which hold on it too: most halves beside a crossing are
+  // cleared by those alone, without a bounds pass of their own.
   struct Piece {
     double lo, glo, hi, ghi;
+    double rise, fall;  // bounds on g's slope over a piece holding this one (kInf: none yet)
   };
   constexpr int kDepth = 128;
   Piece stack[kDepth];
   int top = 0;
-  stack[top++] = {a, ga, c, gc};
+  stack[top++] = {a, ga, c, gc, kInf, kInf};
   const auto g_at = [&](double t) {
     ++work.point_evals;
     return g_view(ray.o + ray.d * t);
   };
   while (top > 0) {
     Piece q = stack[--top];
-    const SegmentBounds sb = segment_bounds(ray, q.lo, q.hi, work);
+    if (q.glo < 0 && q.ghi < 0 && reach(q.glo, q.rise) + reach(q.ghi, q.fall) >= q.hi - q.lo)
+      continue;
+    SegmentBounds sb = segment_bounds(ray, q.lo, q.hi, work);
     if (sb.g.hi < 0) continue;
+    sb.rise = std::min(sb.rise, q.rise);
+    sb.fall = std::min(sb.fall, q.fall);
     if (std::isnan(q.ghi) && (q.ghi = g_at(q.hi)) >= 0)
       return {Scan::Bracket, q.lo, q.glo, q.hi, q.ghi};
     if (std::isnan(q.glo)) q.glo = g_at(q.lo);
@@ -182,10 +203,11 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
     if (reach(q.glo, sb.rise) + reach(q.ghi, sb.fall) >= q.hi - q.lo) continue;
     if (q.hi - q.lo <= finest || top + 2 > kDepth || work.evaluations() >= budget)
       return {Scan::Undecided, q.lo, q.glo, q.hi, q.ghi};
-    const double m = 0.5 * (q.lo + q.hi), gm = g_at(m);
+    const double m = cut ? split(q.lo, q.glo, q.hi, q.ghi, sb) : 0.5 * (q.lo + q.hi);
+    const double gm = g_at(m);
     if (gm >= 0) return {Scan::Bracket, q.lo, q.glo, m, gm};
-    stack[top++] = {m, gm, q.hi, q.ghi};
-    stack[top++] = {q.lo, q.glo, m, gm};
+    stack[top++] = {m, gm, q.hi, q.ghi, sb.rise, sb.fall};
+    stack[top++] = {q.lo, q.glo, m, gm, sb.rise, sb.fall};
   }
   return {Scan::Clear, c, NAN, c, NAN};
 }
@@ -193,7 +215,7 @@ ObjectTracer::Scan ObjectTracer::scan(const Ray& ray, double a, double ga, doubl
 ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, double c, double gc,
                                         double tol, TraceCounters& work) const {
   for (;;) {
-    const Scan sc = scan(ray, a, ga, c, gc, kFinest * tol, kMaxSteps, work);
+    const Scan sc = scan(ray, a, ga, c, gc, kFinest * tol, kMaxSteps, true, work);
     if (sc.kind != Scan::Undecided) return sc;
     // A piece kFinest of the tolerance long that neither its interval nor its ends' spheres
     // clear: the surface passes close to the ray there, or the bounds are loose at this scale.
@@ -202,7 +224,7 @@ ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, dou
     // segment). The budget caps a ray that runs along a face, g within rounding of 0.
     const double deepest = std::max(kFinestDeep * tol, 4e-12 * (max_abs(ray.o) + std::abs(sc.hi)));
     const Scan deep = scan(ray, sc.lo, sc.glo, sc.hi, sc.ghi, deepest,
-                           std::min(kMaxSteps, work.evaluations() + kDeepBudget), work);
+                           std::min(kMaxSteps, work.evaluations() + kDeepBudget), false, work);
     if (deep.kind == Scan::Bracket) return deep;
     if (deep.kind == Scan::Undecided) {
       // Most often the piece ends within rounding of a crossing just past it, which every

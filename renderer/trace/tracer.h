@@ -59,11 +59,11 @@ struct TraceCounters {
   // Root refinement steps after a sign change: one point evaluation each, or for polynomial
   // blobs one value of the piece's polynomial (not counted as a point evaluation).
   int refine_iterations = 0;
-  // Searches that reported a hit without a certificate: cut short by the evaluation limit, or (sums
-  // of polynomial blobs, tracer_blobs.cpp) a piece undecided at kFinest of the tolerance.
+  // Searches that reported a hit without a certificate: cut short by the evaluation limit.
   int give_ups = 0;
-  // Pieces of the ray no interval could decide down to 1e-9 of the tolerance: the surface may
-  // touch the ray there without entering. Passed, not reported as hits.
+  // Pieces of the ray no interval (for sums of polynomial blobs: no Bernstein hull) could decide
+  // down to 1e-9 of the tolerance: the surface may touch the ray there without entering. Passed,
+  // not reported as hits.
   int undecided = 0;
   bool entered_box = false;  // the ray met some object's box (no work is spent on one that did not)
   int evaluations() const { return point_evals + box_evals; }
@@ -177,8 +177,13 @@ class ObjectTracer {
     // Undecided: the piece [lo, hi], g < 0 at both ends (known), [a, lo] clear.
     double lo, glo, hi, ghi;
   };
+  // `cut`: pieces are cut by split(), else halved (the deep halving of decide, whose pieces lie
+  // within rounding of the surface, where the chord says little).
   Scan scan(const Ray& ray, double a, double ga, double c, double gc, double finest, int budget,
-            TraceCounters& work) const;
+            bool cut, TraceCounters& work) const;
+  // Where scan halves a piece [lo, hi] it could not decide (g(lo) = glo < 0, g(hi) = ghi < 0,
+  // sb its bounds): the middle, or nearer hi where the left part should clear by its ends.
+  static double split(double lo, double glo, double hi, double ghi, const SegmentBounds& sb);
   // scan down to kFinest of the tolerance `tol`, a piece undecided there once more down to
   // kFinestDeep of it, and on past it: Clear or Bracket. A piece that stays undecided is passed
   // (the surface may touch the ray there but no sign change shows it enters) and counted in

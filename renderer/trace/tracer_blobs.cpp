@@ -74,7 +74,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   const double iso = object_->iso;
 
   // The piece [u0, u0 + S] of the stretch from t, where terms[active[0..n)] are the blobs: the
-  // first crossing in it, if any (a hit that is no crossing: a give-up, or the box's face).
+  // first crossing in it, if any (a hit that is no crossing: the box's face).
   const auto piece = [&](double t, double u0, double S, int n) -> std::optional<MarchResult> {
     double peak = 0;  // rounded to a few ulps of each term's (r to a few ulps of 1)
     for (int i = 0; i < n; ++i) peak += terms[active[i]].peak;
@@ -82,16 +82,16 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     ++work.box_evals;
     const StretchPolynomial sp = stretch_polynomial(terms, active, n, u0, S, iso);
     const double tol = kDecide * footprint(ray, t + u0) / S;
-    const Rise rise = first_rise(sp.a, sp.degree, sp.err, tol, kFinest * tol);
+    // Down to kFinestDeep of the tolerance: the hull's excess shrinks with the piece, so most
+    // near-tangencies are decided there; what is not is passed and counted, never a hit.
+    const Rise rise = first_rise(sp.a, sp.degree, sp.err, tol, kFinestDeep * tol);
+    work.undecided += rise.undecided;
     const auto at = [&](double x) { return t + u0 + x * S; };
     switch (rise.kind) {
       case Rise::Clear:
         return std::nullopt;
       case Rise::AtStart:  // where the ray enters the box: the box cuts the solid (its face)
         return MarchResult{true, at(0), face && u0 == 0 && t == t0};
-      case Rise::Undecided:
-        ++work.give_ups;
-        return MarchResult{true, at(rise.lo), false, true};
       case Rise::Bracket:
         break;
     }
