@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/cancel.h"
 #include "render/shading.h"
 
 namespace softtrace {
@@ -96,9 +97,10 @@ class FrameTracer {
   }
 
   // A tile of a slow field (a blend of thousands of children at many samples) takes minutes:
-  // a cancel is noticed before every sample, so it acts within one sample's time. The pixels
-  // left are garbage, but a cancelled frame is never written.
-  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+  // a cancel is noticed before every sample (and, in shade(), every light and secondary ray), so
+  // it acts within one ray's time. The pixels left are garbage, but a cancelled frame is never
+  // written.
+  bool cancelled() const { return cancel_requested(cancel_); }
 
   // The full-frame pixel (x, y), inside the data window.
   // `certified`: what the pixel's beam certified (none for a camera without a single eye).
@@ -121,7 +123,7 @@ class FrameTracer {
       RayWork shadow;
       Vec3 normal{0, 0, 0}, albedo{0, 0, 0};  // the background's
       if (hit.hit) {
-        const Shaded sh = shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow);
+        const Shaded sh = shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_);
         sum += sh.color;
         ++covered;
         normal = sh.normal;

@@ -15,8 +15,9 @@ namespace softtrace {
 
 struct RenderOptions {
   LipschitzMode lipschitz = LipschitzMode::Local;
-  // Stops the frame early when set: checked before every sample, so that even a pixel of a
-  // 10,000-child blend at 64 spp (about 0.4 s) is no longer than one sample's wait.
+  // Stops the frame early when set: checked before every sample, light and secondary ray
+  // (render/cancel.h), so that even a sample of a 10,000-child blend under area lights (thousands
+  // of shadow rays) is no longer than one ray's wait.
   const std::atomic<bool>* cancel = nullptr;
   // Samples per pixel; 0: the scene's. A caller sharing the scene between threads (Python)
   // passes its own here rather than writing it into the scene.

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "render/cancel.h"
+
 namespace softtrace {
 
 namespace {
@@ -51,8 +53,14 @@ uint64_t bits(double v) {
 class AreaSamples {
  public:
   AreaSamples(const Light& l, const Vec3& origin, double cone0, double cone, const EmbreeScene& rt,
-              RayWork& shadow)
-      : l_(l), origin_(origin), cone0_(cone0), cone_(cone), rt_(rt), shadow_(shadow) {
+              RayWork& shadow, const std::atomic<bool>* cancel)
+      : l_(l),
+        origin_(origin),
+        cone0_(cone0),
+        cone_(cone),
+        rt_(rt),
+        shadow_(shadow),
+        cancel_(cancel) {
     seed_ = splitmix(splitmix(splitmix(bits(origin.x)) ^ bits(origin.y)) ^ bits(origin.z));
     seen_.fill(-1);
   }
@@ -88,6 +96,7 @@ class AreaSamples {
   // The sample's place: the grid spans the rectangle's edges (POV-Ray's layout), a jittered
   // sample moves within +-half a cell by a hash of the point and the sample.
   bool trace(int i, int j) {
+    if (cancel_requested(cancel_)) return true;  // up to 4096 rays per light: stop between them
     const AreaLight& a = l_.area;
     double u = a.size1 > 1 ? double(i) / (a.size1 - 1) - 0.5 : 0;
     double v = a.size2 > 1 ? double(j) / (a.size2 - 1) - 0.5 : 0;
@@ -113,6 +122,7 @@ class AreaSamples {
   const double cone0_, cone_;
   const EmbreeScene& rt_;
   RayWork& shadow_;
+  const std::atomic<bool>* cancel_;
   uint64_t seed_;
   std::array<signed char, kMax * kMax> seen_;
 };
@@ -148,10 +158,11 @@ bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArriv
 }
 
 double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
-                        double cone, const EmbreeScene& rt, RayWork& shadow) {
+                        double cone, const EmbreeScene& rt, RayWork& shadow,
+                        const std::atomic<bool>* cancel) {
   if (!l.shadows) return 1;
   if (l.has_area) {
-    AreaSamples samples(l, origin, cone0, cone, rt, shadow);
+    AreaSamples samples(l, origin, cone0, cone, rt, shadow, cancel);
     const int n1 = l.area.size1 - 1, n2 = l.area.size2 - 1;
     if (l.area.adaptive >= 0) return samples.block(0, 0, n1, n2, 0);
     int seen = 0;

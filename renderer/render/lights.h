@@ -3,6 +3,8 @@
 // through (0 or 1, or an area light's grid of samples, adaptively).
 #pragma once
 
+#include <atomic>
+
 #include "trace/embree_scene.h"
 
 namespace softtrace {
@@ -21,7 +23,9 @@ bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArriv
 // The fraction of `l` that reaches `origin` past the scene's objects. Shadow rays keep the
 // footprint (cone0, cone) of the ray being shaded; their work is added to `shadow`. Jittered
 // area samples depend only on `origin`, so a pixel's result is the same in any tile or thread.
+// Once `cancel` (render/cancel.h) is set no more shadow rays are cast; the result is then moot.
 double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
-                        double cone, const EmbreeScene& rt, RayWork& shadow);
+                        double cone, const EmbreeScene& rt, RayWork& shadow,
+                        const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace softtrace

@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/cancel.h"
 #include "render/finish.h"
 #include "render/lights.h"
 
 namespace softtrace {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& secondary, int level) {
+             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   const SceneObject& obj = tracers.object(hit.object);
   const Material& m = obj.material;
@@ -33,6 +34,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // `shine` the highlights, which it does not.
   Vec3 light{0, 0, 0}, shine{0, 0, 0};
   for (const Light& l : scene.lights) {
+    if (cancel_requested(cancel)) break;  // up to 1,000 lights, each with its shadow rays
     if (l.type == Light::Type::Ambient) {
       light += mul(m.ambient, l.color * l.intensity);
       continue;
@@ -41,7 +43,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     if (!light_arrival(l, p, origin, at)) continue;
     const double cosine = dot(n, at.to_light);
     if (cosine <= 0) continue;
-    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary);
+    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
     if (seen == 0) continue;
     const Vec3 arrived = seen == 1 ? at.light : at.light * seen;
     light += diffuse_light(m, cosine, arrived);
@@ -51,12 +53,13 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   Vec3 color = mul(m.color, light);
   if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
 
-  if (m.reflects() && level < scene.image.max_trace_level) {
+  if (m.reflects() && level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
     secondary.add(next.work);
-    const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, level + 1).color
-                               : scene.background;
+    const Vec3 seen =
+        next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
+                 : scene.background;
     color += mul(m.reflection, seen);
   }
   return {color, n, m.color};

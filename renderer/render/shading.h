@@ -3,6 +3,8 @@
 // shadows, and mirror reflection traced up to the scene's max_trace_level.
 #pragma once
 
+#include <atomic>
+
 #include "trace/embree_scene.h"
 #include "trace/tracer.h"
 
@@ -15,8 +17,10 @@ struct Shaded {
 };
 
 // The normal comes from the hit object's tracer; shadow and reflected rays go through `rt`, each
-// one's work added to `secondary`. `level` is POV-Ray's trace level: 1 for a camera ray.
+// one's work added to `secondary`. Once `cancel` (render/cancel.h) is set no more rays are cast
+// and the colour is moot. `level` is POV-Ray's trace level: 1 for a camera ray.
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& secondary, int level = 1);
+             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel = nullptr,
+             int level = 1);
 
 }  // namespace softtrace
