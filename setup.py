@@ -21,12 +21,17 @@ def version():
 
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
-        build_dir = os.path.abspath(os.path.join(self.build_temp, "cmake"))
-        configure = ["cmake", "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
-                     "-DBUILD_TESTING=OFF", "-DPython3_EXECUTABLE=" + sys.executable]
-        if shutil.which("ninja"):
-            configure += ["-G", "Ninja"]
-        subprocess.run(configure, check=True)
+        # SOFTTRACE_CMAKE_BUILD names a CMake build folder already configured for this
+        # interpreter (the test python.pip_install uses the test build's): pip then only brings
+        # its module up to date instead of building the project again.
+        build_dir = os.environ.get("SOFTTRACE_CMAKE_BUILD")
+        if not build_dir:
+            build_dir = os.path.abspath(os.path.join(self.build_temp, "cmake"))
+            configure = ["cmake", "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
+                         "-DBUILD_TESTING=OFF", "-DPython3_EXECUTABLE=" + sys.executable]
+            if shutil.which("ninja"):
+                configure += ["-G", "Ninja"]
+            subprocess.run(configure, check=True)
         subprocess.run(["cmake", "--build", build_dir, "--target", "softtrace_python", "-j",
                         os.environ.get("SOFTTRACE_JOBS", str(os.cpu_count() or 1))], check=True)
         built = os.path.join(build_dir, "python", "softtrace",

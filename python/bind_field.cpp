@@ -79,12 +79,22 @@ struct Field {
 std::unique_ptr<Field> field_of_scene(const PyScene& s, const std::string& object) {
   auto f = std::make_unique<Field>();
   const std::vector<SceneObject>& objects = s.scene->objects;
+  // By default the first object with a field (a shape has none), as `softtrace eval`.
   size_t i = 0;
-  while (i < objects.size() && !object.empty() && objects[i].name != object) ++i;
-  if (i == objects.size()) throw SceneError(s.scene->path + ": no object named '" + object + "'");
+  while (i < objects.size() &&
+         (object.empty() ? bool(objects[i].shape) : objects[i].name != object))
+    ++i;
+  if (i == objects.size())
+    throw SceneError(s.scene->path + (object.empty()
+                                          ? std::string(": no object has a field: there is "
+                                                        "nothing to evaluate")
+                                          : ": no object named '" + object + "'"));
   if (objects[i].shape)
     throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) + ": a " +
                      shape_name(objects[i].shape->shape) + " shape, not a field");
+  if (objects[i].csg)
+    throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) + ": a CSG (" +
+                     csg_name(objects[i].csg->op) + "), not a field");
   f->scene = s.scene;
   f->root = objects[i].field.get();
   f->program = compile(*f->root);

@@ -42,7 +42,7 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
   // By default the first object with a field (a shape has none).
   const SceneObject* obj = nullptr;
   for (const auto& o : scene->objects)
-    if (!obj && !o.shape) obj = &o;
+    if (!obj && o.field) obj = &o;
   if (!obj && !scene->objects.empty()) obj = &scene->objects.front();
   if (!object.empty()) {
     obj = nullptr;
@@ -54,6 +54,9 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
   if (obj->shape)
     throw SceneError(scene->path + ": object '" + obj->name + "' is a " +
                      shape_name(obj->shape->shape) + " shape, not a field");
+  if (obj->csg)
+    throw SceneError(scene->path + ": object '" + obj->name + "' is a CSG (" +
+                     csg_name(obj->csg->op) + "), not a field");
   Box region = obj->bounds;
   if (bounds) {
     const auto& b = *bounds;

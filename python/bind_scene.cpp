@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "scene/json_text.h"
+#include "scene/scene_keys.h"
 
 namespace softtrace::python {
 
@@ -19,9 +20,22 @@ py::list vec(const Vec3& v) {
   return py::cast(std::vector<double>{v[0], v[1], v[2]});
 }
 
+// Every key of the camera, so that `scene.camera = dict(scene.camera, fov=40)` keeps a lens or an
+// orthographic view.
 py::dict camera_of(const Camera& c) {
-  return py::dict(py::arg("eye") = vec(c.eye), py::arg("target") = vec(c.target),
-                  py::arg("up") = vec(c.up), py::arg("fov") = c.fov);
+  const char* projection = "perspective";
+  switch (c.projection) {
+    case Camera::Projection::Perspective:
+      break;
+    case Camera::Projection::Orthographic:
+      projection = "orthographic";
+      break;
+  }
+  return py::dict(py::arg("projection") = projection, py::arg("eye") = vec(c.eye),
+                  py::arg("target") = vec(c.target), py::arg("up") = vec(c.up),
+                  py::arg("fov") = c.fov, py::arg("aperture") = c.aperture,
+                  py::arg("focal_distance") = c.focal_distance,
+                  py::arg("blur_samples") = c.blur_samples);
 }
 
 py::dict light_of(const Light& l) {
@@ -38,10 +52,11 @@ py::dict light_of(const Light& l) {
       d["shadows"] = l.shadows;
       break;
     case Light::Type::Spot:
-      // The loaded spot keeps its unit axis, not the point_at it was given.
+      // The loaded spot keeps its unit axis and its angles' cosines; lights_of puts back the
+      // point_at and angles the text gave.
       d["type"] = "spot";
       d["position"] = vec(l.position);
-      d["direction"] = vec(l.direction);
+      d["point_at"] = vec(l.position + l.direction);
       d["radius"] = std::acos(l.cos_radius) * 180 / M_PI;
       d["falloff"] = std::acos(l.cos_falloff) * 180 / M_PI;
       d["tightness"] = l.tightness;
@@ -65,6 +80,27 @@ py::dict light_of(const Light& l) {
   d["color"] = vec(l.color);
   d["intensity"] = l.intensity;
   return d;
+}
+
+// The scene's lights as the file's keys: those the text gives, as given (a spot's point_at and
+// angles exactly), the others at the values loaded; the default lights when the text has none.
+py::list lights_of(const PyScene& s) {
+  py::list out;
+  const json doc = s.scene->default_lights ? json() : parse_json_text(s.text, s.scene->path);
+  for (size_t i = 0; i < s.scene->lights.size(); ++i) {
+    py::dict d = light_of(s.scene->lights[i]);
+    if (!s.scene->default_lights) {
+      const py::dict given = py::module_::import("json").attr("loads")(doc["lights"][i].dump());
+      for (const auto& [key, value] : given) {
+        if (py::str(key).cast<std::string>() == "area")
+          d["area"].cast<py::dict>().attr("update")(value);
+        else
+          d[key] = value;
+      }
+    }
+    out.append(d);
+  }
+  return out;
 }
 
 // The scene with `key` of its JSON replaced by `value` (removed when None), parsed again.
@@ -120,6 +156,9 @@ void bind_scene(py::module_& m) {
           "spp", [](const PyScene& s) { return s.scene->image.spp; },
           [](PyScene& s, int v) { replace_image_entry(s, "spp", v); })
       .def_property(
+          "max_trace_level", [](const PyScene& s) { return s.scene->image.max_trace_level; },
+          [](PyScene& s, int v) { replace_image_entry(s, "max_trace_level", v); })
+      .def_property(
           "camera", [](const PyScene& s) { return camera_of(s.scene->camera); },
           [](PyScene& s, const py::object& v) { replace_key(s, "camera", v); })
       .def_property(
@@ -127,22 +166,28 @@ void bind_scene(py::module_& m) {
           [](const PyScene& s) {
             const ImageSettings& i = s.scene->image;
             return py::dict(py::arg("width") = i.width, py::arg("height") = i.height,
-                            py::arg("spp") = i.spp);
+                            py::arg("spp") = i.spp, py::arg("max_trace_level") = i.max_trace_level);
           },
           [](PyScene& s, const py::object& v) { replace_key(s, "image", v); })
       .def_property(
           "background", [](const PyScene& s) { return vec(s.scene->background); },
           [](PyScene& s, const py::object& v) { replace_key(s, "background", v); })
-      .def_property(
-          "lights",
-          [](const PyScene& s) {
-            py::list out;
-            for (const Light& l : s.scene->lights) out.append(light_of(l));
-            return out;
-          },
-          [](PyScene& s, const py::object& v) { replace_key(s, "lights", v); })
+      .def_property("lights", &lights_of,
+                    [](PyScene& s, const py::object& v) { replace_key(s, "lights", v); })
       .def_property_readonly("default_lights",
                              [](const PyScene& s) { return s.scene->default_lights; });
+  // The keys of the scene's own objects (camera, lights, material, shapes, ...): the package's
+  // builders for them are made from these lists, as the nodes' are from the kinds table.
+  m.def(
+      "scene_keys",
+      [] {
+        py::list out;
+        for (const SceneKeyList& list : scene_key_lists())
+          out.append(py::make_tuple(list.name, list.keys));
+        return out;
+      },
+      "The keys of each of the scene's own objects, as (name, keys) in docs/scene-format.md's "
+      "order.");
 }
 
 }  // namespace softtrace::python

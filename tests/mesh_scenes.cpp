@@ -12,7 +12,7 @@ std::vector<Case> all_cases() {
   auto add = [&](const std::string& name, Scene s) {
     auto scene = std::make_shared<Scene>(std::move(s));
     for (size_t i = 0; i < scene->objects.size(); ++i)
-      if (!scene->objects[i].shape)  // a plain primitive has no field to mesh
+      if (scene->objects[i].field)  // a plain primitive or a CSG has no field to mesh
         cases.push_back({name + "#" + std::to_string(i), scene, int(i)});
   };
   std::vector<std::string> files;

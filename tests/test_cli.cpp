@@ -260,8 +260,10 @@ TEST(Eval, EveryScenePrintsTheLibraryValues) {
   for (const auto& entry : fs::directory_iterator(source_path("scenes"))) {
     const std::string path = entry.path().string();
     const Scene scene = load_scene(path);
-    const SceneObject& obj = *std::find_if(scene.objects.begin(), scene.objects.end(),
-                                           [](const SceneObject& o) { return !o.shape; });
+    const auto field = std::find_if(scene.objects.begin(), scene.objects.end(),
+                                    [](const SceneObject& o) { return o.field != nullptr; });
+    if (field == scene.objects.end()) continue;  // only shapes and CSGs: nothing to evaluate
+    const SceneObject& obj = *field;
     const std::string dir = temp_dir("eval_all");
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> u(0, 1);

@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_util.h"
 
@@ -69,6 +71,15 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"render SCENE -o DIR/x.jpg",
        "DIR/x.jpg: unsupported output format '.jpg' (expected .exr or .png)"},
       {"render SCENE --quiet --progress", "--quiet excludes --progress" + usage},
+      {"render SCENE --progress=2", "--progress: a flag takes no value" + usage},
+      {"render SCENE --output", "--output: expected a value after it" + usage},
+      {"render SCENE --half=1", "--half: a flag takes no value" + usage},
+      {"render SCENE --png-alpha=x", "--png-alpha: a flag takes no value" + usage},
+      {"render SCENE --eye foo", "--eye: expected X,Y,Z (three finite numbers), got 'foo'" + usage},
+      {"render SCENE --target 1,2,x",
+       "--target: expected X,Y,Z (three finite numbers), got '1,2,x'" + usage},
+      {"render SCENE --fov foo", "--fov: expected a finite number, got 'foo'" + usage},
+      {"render SCENE --fov 0", "--fov: expected a vertical field of view in (0, 180) degrees"},
       {"render SCENE --width", "--width: expected a value after it" + usage},
       {"render SCENE --width 3 --width 4", "--width: given more than once" + usage},
       {"render SCENE extra", "unexpected argument 'extra'" + usage},
@@ -92,6 +103,11 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"mesh SCENE -o DIR/m.obj --threads 0",
        "--threads: expected an integer from 1 to 1024, got '0'" + usage},
       {"mesh SCENE", "--output is required" + usage},
+      {"mesh SCENE -o DIR/m.obj --object", "--object: expected a value after it" + usage},
+      {"mesh SCENE -o DIR/m.obj --bounds 1,2,3",
+       "--bounds '1,2,3': expected six numbers x0,x1,y0,y1,z0,z1"},
+      {"mesh SCENE -o DIR/m.obj --quiet=x", "--quiet: a flag takes no value" + usage},
+      {"mesh SCENE -o DIR/m.obj --progress=x", "--progress: a flag takes no value" + usage},
       // diff
       {"diff IMG IMG --fail -1", "--fail: expected a number >= 0, got '-1'" + usage},
       {"diff IMG IMG --failpercent 101",
@@ -111,6 +127,9 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"diff IMG IMG -o DIR/d.tif",
        "DIR/d.tif: unsupported output format '.tif' (expected .exr or .png)"},
       {"diff IMG", "b is required" + usage},
+      {"diff IMG IMG --od=1", "--od: a flag takes no value" + usage},
+      {"diff IMG IMG --quiet=1", "--quiet: a flag takes no value" + usage},
+      {"diff IMG IMG --out", "--out: expected a value after it" + usage},
       // bench
       {"bench SCENE --width 0", "--width: expected an integer from 1 to 16384, got '0'" + usage},
       {"bench SCENE --height 0", "--height: expected an integer from 1 to 16384, got '0'" + usage},
@@ -119,8 +138,12 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"bench SCENE --repeat 0", "--repeat: expected an integer from 1 to 1000, got '0'" + usage},
       {"bench SCENE --lipschitz Global2",
        "--lipschitz: expected local or global, got 'Global2'" + usage},
+      {"bench SCENE --json=1", "--json: a flag takes no value" + usage},
+      {"bench SCENE --quiet=1", "--quiet: a flag takes no value" + usage},
+      {"bench SCENE --progress=1", "--progress: a flag takes no value" + usage},
       // merge, nodes, no command
       {"merge IMG", "--output is required" + usage},
+      {"merge IMG -o DIR/m.exr --quiet=2", "--quiet: a flag takes no value" + usage},
       {"nodes extra", "unexpected argument 'extra'" + usage},
       {"", "expected a command: render, eval, mesh, diff, bench, merge or nodes" + usage},
   };
@@ -135,6 +158,38 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
     EXPECT_EQ(r.out, "") << args;
   }
   EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
+
+  // Every option each command's --help lists has a case above (named in its arguments, or a
+  // required one in its message), so that an option added later comes with its refusal.
+  for (const std::string command : {"render", "eval", "mesh", "diff", "bench", "merge", "nodes"}) {
+    std::istringstream help(run_softtrace(command + " --help").out);
+    int options = 0;
+    for (std::string line; std::getline(help, line);) {
+      if (line.rfind("  -", 0) != 0) continue;  // an option's line: "  -o,--output TEXT ..."
+      std::istringstream words(line);
+      std::string names;
+      words >> names;
+      if (names == "-h,--help" || names == "--help-all" || names == "-v,-a") continue;  // no value
+      std::vector<std::string> aliases;  // "-o,--output": -o and --output
+      std::istringstream split(names);
+      for (std::string alias; std::getline(split, alias, ',');) aliases.push_back(alias);
+      const std::string& name = aliases.back();
+      bool covered = false;
+      for (const Refusal& c : cases) {
+        std::istringstream args(c.args);
+        std::string word;
+        args >> word;
+        if (word != command) continue;
+        while (args >> word)
+          for (const std::string& alias : aliases)
+            covered |= word == alias || word.rfind(alias + "=", 0) == 0;
+        covered |= c.expected.rfind(name + " is required", 0) == 0;
+      }
+      EXPECT_TRUE(covered) << command << " " << name << " has no refusal case";
+      ++options;
+    }
+    EXPECT_GT(options, 0) << command;
+  }
 }
 
 // The size of a written PNG.

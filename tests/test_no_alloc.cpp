@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <new>
 #include <random>
 #include <string>
@@ -251,12 +252,16 @@ TEST_P(SceneNoAlloc, EvaluatorsDoNotAllocate) {
   const Scene s = load_scene(SOFTTRACE_SOURCE_DIR "/scenes/" + GetParam() + ".json");
   ASSERT_FALSE(s.objects.empty());
   int fields = 0;
-  for (const SceneObject& o : s.objects) {
-    if (o.shape) continue;  // a plain primitive has no evaluator
+  // A plain primitive has no evaluator; a CSG's fields are among its operands.
+  const std::function<void(const SceneObject&)> visit = [&](const SceneObject& o) {
+    if (o.csg)
+      for (const SceneObject& operand : o.csg->operands) visit(operand);
+    if (!o.field) return;
     SCOPED_TRACE(o.name);
     expect_no_allocation(*o.field, o.bounds);
     ++fields;
-  }
+  };
+  for (const SceneObject& o : s.objects) visit(o);
   EXPECT_GT(fields, 0);
 }
 

@@ -151,6 +151,15 @@ REFUSALS = [
     ("blob { threshold -1 sphere { 0, 1, 1 } pigment { rgb 1 } }", 2, 8, "must be positive"),
     ("/* never closed", 2, 1, "never closed"),
     ("blob { sphere { 0, 1, 1 } pigment { rgb 1 }", 2, 44, "the file ends inside blob { }"),
+    ("union { sphere { 0, 1 } box { 0, 1 } translate x pigment { rgb 1 } }", 2, 38,
+     "a transformation of a union is not supported"),
+    ("merge { sphere { 0, 1 pigment { rgb 1 } } }", 2, 1, "softtrace needs at least two"),
+    ("union { sphere { 0, 1 pigment { rgb 1 } } box { 0, 1 } }", 2, 1,
+     "the union has no pigment"),
+    ("difference { sphere { 0, 1 } disc { 0, y, 1 } pigment { rgb 1 } }", 2, 1,
+     "a disc in a difference"),
+    ("intersection { sphere { 0, 1 } box { 0, 1 finish { phong 1 } } pigment { rgb 1 } }", 2,
+     32, "a finish but no pigment"),
 ]
 
 
@@ -176,6 +185,25 @@ def test_plain_shapes():
                     "cap_radius": 0, "translate": [1, 3, 2]}
     assert disc["hole_radius"] == 0.5 and disc["normal"] == [0, 0, 1]
     assert objs[3]["material"]["phong"] == 1 and objs[0]["name"] == "plane1"
+
+
+def test_csg_nests_blobs_and_shapes_and_passes_its_pigment_on():
+    objs = scene_of("difference {\n"
+                    "  blob { sphere { 0, 2, 1 } pigment { rgb <1, 0, 0> } }\n"
+                    "  intersection { box { -1, 1 } sphere { 0, 1.2 } }\n"
+                    "  pigment { rgb <0, 0, 1> } }\n"
+                    "merge { sphere { 0, 1 pigment { rgb 1 } } box { 0, 1 pigment { rgb 1 } } }"
+                    )["objects"]
+    cut, merged = objs
+    assert cut["csg"] == "difference" and cut["name"] == "difference1"
+    blob, inner = cut["operands"]
+    assert blob["material"]["color"] == [1, 0, 0] and "field" in blob
+    assert inner["csg"] == "intersection" and "material" not in inner
+    assert [o["shape"]["type"] for o in inner["operands"]] == ["box", "sphere"]
+    assert all("material" not in o for o in inner["operands"])  # they take the difference's
+    assert cut["material"]["color"] == [0, 0, 1]
+    # Every part has its own pigment: the merge needs none.
+    assert merged["csg"] == "merge" and "material" not in merged
 
 
 def test_no_camera_is_refused():

@@ -6,6 +6,7 @@
 #include "describe/building.h"
 #include "model/blends.h"
 #include "model/program_builder.h"
+#include "model/scaled_node.h"
 
 namespace softtrace {
 
@@ -13,9 +14,9 @@ namespace {
 
 // s·(f - c)   — zero-surface function from a distance function, 003 §2.1, docs/scene-format.md
 // "offset"
-class Offset final : public FieldNode {
+class Offset final : public ScaledNode {
  public:
-  Offset(NodePtr child, double s, double c) : child_(std::move(child)), s_(s), c_(c) {}
+  Offset(NodePtr child, double s, double c) : ScaledNode(std::move(child), s), c_(c) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const double v = child_->eval(p, grad);
@@ -25,22 +26,12 @@ class Offset final : public FieldNode {
   Interval interval(const Box& b) const override {
     return offset_interval(s_, c_, child_->interval(b));
   }
-  double lipschitz() const override { return offset_lipschitz(s_, child_->lipschitz()); }
-  double lipschitz(const Box& b) const override {
-    return offset_lipschitz(s_, child_->lipschitz(b));
-  }
   void bounds(const Box& b, Interval* value, double* L) const override {
     Interval f;
     double Lf;
     child_->bounds(b, &f, &Lf);
     *value = offset_interval(s_, c_, f);
     *L = offset_lipschitz(s_, Lf);
-  }
-  double gradient_floor(const Box& b) const override {
-    return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
-  }
-  double hessian_bound(const Box& b) const override {
-    return iv::up(std::abs(s_) * child_->hessian_bound(b));
   }
   Box region(double level, Side side) const override {
     // The child's side flips with the sign of s; its level c + level/s is rounded away from
@@ -60,8 +51,7 @@ class Offset final : public FieldNode {
   }
 
  private:
-  NodePtr child_;
-  double s_, c_;
+  double c_;
 };
 
 }  // namespace

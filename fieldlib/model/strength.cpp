@@ -5,15 +5,16 @@
 
 #include "kernels/strength.h"
 #include "model/program_builder.h"
+#include "model/scaled_node.h"
 
 namespace softtrace {
 
 namespace {
 
 // s·f for a soft object f (f >= 0 everywhere: a potential's value)   — docs/math.md §4.10
-class Strength final : public FieldNode {
+class Strength final : public ScaledNode {
  public:
-  Strength(NodePtr child, double s) : child_(std::move(child)), s_(s) {}
+  Strength(NodePtr child, double s) : ScaledNode(std::move(child), s) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const double v = child_->eval(p, grad);
@@ -23,15 +24,11 @@ class Strength final : public FieldNode {
   Interval interval(const Box& b) const override {
     return strength_interval(s_, child_->interval(b));
   }
-  double lipschitz() const override { return strength_lipschitz(s_, child_->lipschitz()); }
   bool polynomial_blob(PolynomialBlob* b) const override {
     if (!child_->polynomial_blob(b)) return false;
     b->c2 *= s_;
     b->c3 *= s_;
     return true;
-  }
-  double lipschitz(const Box& b) const override {
-    return strength_lipschitz(s_, child_->lipschitz(b));
   }
   void bounds(const Box& b, Interval* value, double* L) const override {
     Interval f;
@@ -39,12 +36,6 @@ class Strength final : public FieldNode {
     child_->bounds(b, &f, &Lf);
     *value = strength_interval(s_, f);
     *L = strength_lipschitz(s_, Lf);
-  }
-  double gradient_floor(const Box& b) const override {
-    return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
-  }
-  double hessian_bound(const Box& b) const override {
-    return iv::up(std::abs(s_) * child_->hessian_bound(b));
   }
   // s f >= l ⇔ f >= l/s for s > 0 and f <= l/s for s < 0 (sides swap for <=), the level rounded
   // away from the side enclosed. A negative s over f >= 0: {s f >= l > 0} is empty, and
@@ -64,10 +55,6 @@ class Strength final : public FieldNode {
     i.a = b.consts({s_});
     return b.emit(i);
   }
-
- private:
-  NodePtr child_;
-  double s_;
 };
 
 // The pointer (relative to p) of the first negative strength under p's children, or "".

@@ -34,8 +34,11 @@ __all__ = ["Scene", "Field", "SceneError", "load_scene", "parse_scene", "load_di
 class Scene(_native.Scene):
     """A scene: camera, image settings, background, lights and objects (docs/scene-format.md).
 
-    Settings read as plain values and change by assignment, checked as in a file (a refused value
-    raises SceneError and leaves the scene as it was)::
+    Settings read as plain values, with every key of the file format (camera: projection, eye,
+    target, up, fov, aperture, focal_distance, blur_samples; image: width, height, spp,
+    max_trace_level; a light: the keys its entry gave, as given, and its defaults), and change by
+    assignment, checked as in a file (a refused value raises SceneError and leaves the scene as
+    it was)::
 
         scene.camera = dict(scene.camera, fov=40)
         scene.width, scene.height = 320, 240
@@ -267,7 +270,8 @@ def nodes() -> list:
     return _native.nodes()
 
 
-globals().update(_builders.builders(nodes()))
+_BUILDERS = _builders.builders(nodes(), _native.scene_keys())
+globals().update(_BUILDERS)
 # `from softtrace import *` brings every builder but those named as Python's builtins (min, max),
 # which it would hide; softtrace.min and softtrace.max are there all the same.
-__all__ += [k["name"] for k in nodes() if k["name"] not in dir(builtins)]
+__all__ += [name for name in _BUILDERS if name not in dir(builtins)]

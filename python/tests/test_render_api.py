@@ -276,3 +276,17 @@ def test_outputs_of_concurrent_renders_are_each_written(tmp_path):
                            for e in ("exr", "png"))  # every file, no temporary one left
     for i in range(2):
         assert softtrace.read_exr(tmp_path / ("t%d_2.exr" % i))["A"].shape == (16, 24 + i)
+
+
+@pytest.mark.parametrize("name", ["shapes_blob_floor_dof", "shapes_blob_floor_ortho"])
+def test_lens_orthographic_and_shape_scenes_are_the_cli_bits(name, tmp_path):
+    path = os.path.join(os.environ["SOFTTRACE_SOURCE_DIR"], "scenes", name + ".json")
+    scene = softtrace.load_scene(path)
+    assert scene.camera["aperture"] > 0 or scene.camera["projection"] == "orthographic"
+    ours = softtrace.render(scene, width=48, height=36, aovs=["depth"])
+    cli = tmp_path / "cli.exr"
+    subprocess.run([BIN, "render", path, "--width", "48", "--height", "36", "--aov", "depth",
+                    "-o", str(cli), "--quiet"], check=True)
+    theirs = softtrace.read_exr(cli)
+    assert np.array_equal(np.stack([theirs[c] for c in "RGBA"], -1), ours["rgba"])
+    assert np.array_equal(theirs["Z"], ours["depth"])

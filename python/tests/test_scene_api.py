@@ -109,7 +109,9 @@ def test_settings_are_checked_and_copied_on_write():
     scene = softtrace.load_scene(TWO_BLOBS)
     other = copy.copy(scene)
     camera = scene.camera
-    assert camera == {"eye": [0, -150, 40], "target": [10, 0, 0], "up": [0, 0, 1], "fov": 40}
+    assert camera == {"projection": "perspective", "eye": [0, -150, 40], "target": [10, 0, 0],
+                      "up": [0, 0, 1], "fov": 40, "aperture": 0, "focal_distance": 0,
+                      "blur_samples": 16}
     scene.camera = dict(camera, fov=30)
     assert scene.camera["fov"] == 30 and other.camera["fov"] == 40  # other keeps its own
     with pytest.raises(softtrace.SceneError) as e:
@@ -117,7 +119,7 @@ def test_settings_are_checked_and_copied_on_write():
     assert e.value.pointer == "/camera/fov"
     assert scene.camera["fov"] == 30  # a refused value changes nothing
     scene.width, scene.height, scene.spp = 20, 10, 2
-    assert scene.image == {"width": 20, "height": 10, "spp": 2}
+    assert scene.image == {"width": 20, "height": 10, "spp": 2, "max_trace_level": 5}
     assert softtrace.render(scene)["rgba"].shape == (10, 20, 4)
     with pytest.raises(softtrace.SceneError, match="/image/width"):
         scene.width = 0
@@ -204,6 +206,10 @@ def test_the_stub_lists_what_the_package_has():
     for kind in softtrace.nodes():
         args = functions[kind["name"]].args
         assert [a.arg for a in args.args] == [p["name"] for p in kind["params"]]
+    for name, build in softtrace._BUILDERS.items():  # the scene objects' builders too
+        args = functions[name].args
+        assert [a.arg for a in args.args + args.kwonlyargs] == list(
+            inspect.signature(build).parameters), name
     for name in ("load_scene", "render", "write_exr", "Field"):
         value = getattr(softtrace, name)
         real = inspect.signature(value.__init__ if isinstance(value, type) else value)
@@ -229,3 +235,128 @@ def test_stubtest_finds_the_stubs_match_the_module(tmp_path):
 def test_the_docstring_examples_run():
     failed, attempted = doctest.testmod(softtrace, optionflags=doctest.ELLIPSIS)
     assert attempted > 8 and failed == 0
+
+
+def keys_of(list_name):
+    return next(keys for name, keys in softtrace._native.scene_keys() if name == list_name)
+
+
+SHAPES_SCENE = os.path.join(SRC, "scenes", "shapes_blob_floor.json")
+
+
+def test_settings_read_back_every_key_and_assign_back_unchanged():
+    # A lens on an orthographic view, a reflection depth and every kind of light: each setting
+    # reads as the file's keys, all of them, so `scene.x = dict(scene.x, ...)` keeps the others.
+    scene = softtrace.load_scene(SHAPES_SCENE)
+    scene.width, scene.height = 32, 24
+    scene.camera = dict(scene.camera, projection="orthographic", aperture=0.5,
+                        focal_distance=40, blur_samples=2)
+    scene.max_trace_level = 3
+    area = {"axis1": [4, 0, 0], "axis2": [0, 4, 0], "size1": 2, "size2": 2}
+    scene.lights = [
+        {"type": "directional", "direction": [-0.6, 1, -1.6], "intensity": 0.9},
+        {"type": "point", "position": [10, -30, 40], "fade_distance": 30, "area": area},
+        {"type": "spot", "position": [0, -20, 50], "point_at": [1, 2, 3], "radius": 17.3,
+         "falloff": 29.1, "tightness": 2, "area": dict(area, jitter=True)},
+        {"type": "ambient", "intensity": 0.2}]
+    assert list(scene.camera) == keys_of("camera")
+    assert scene.camera["projection"] == "orthographic" and scene.camera["blur_samples"] == 2
+    assert list(scene.image) == keys_of("image") and scene.image["max_trace_level"] == 3
+    for light in scene.lights:
+        assert set(light) <= set(keys_of("light: " + light["type"])), light
+    spot = scene.lights[2]
+    assert (spot["point_at"], spot["radius"], spot["falloff"]) == ([1, 2, 3], 17.3, 29.1)
+    assert spot["area"] == dict(area, jitter=True)
+    before = softtrace.render(scene)["rgba"]
+    same = copy.copy(scene)
+    same.camera, same.image, same.lights = scene.camera, scene.image, scene.lights
+    assert same.to_dict()["camera"] == scene.to_dict()["camera"]
+    assert np.array_equal(softtrace.render(same)["rgba"], before)
+    scene.camera = dict(scene.camera, fov=scene.camera["fov"] + 4)  # still a lens, orthographic
+    wider = softtrace.render(scene)["rgba"]
+    assert scene.camera["projection"] == "orthographic" and scene.camera["aperture"] == 0.5
+    assert not np.array_equal(wider, before)
+    with pytest.raises(softtrace.SceneError, match="/image/max_trace_level"):
+        scene.max_trace_level = 0
+
+
+def test_builders_of_shapes_materials_and_lights_make_the_file_scene():
+    st = softtrace
+    built = {  # scenes/shapes_blob_floor.json, smaller
+        "camera": {"eye": [34, -46, 24], "target": [0, 0, 4], "fov": 32},
+        "image": {"width": 40, "height": 30, "spp": 1},
+        "background": [0.45, 0.55, 0.75],
+        "lights": [st.directional_light([-0.6, 1, -1.6], intensity=0.9),
+                   st.ambient_light(0.2)],
+        "objects": [
+            {"name": "floor", "material": st.material([0.62, 0.6, 0.55]),
+             "shape": st.plane([0, 0, 1], 0)},
+            {"name": "blob", "material": st.material([0.85, 0.45, 0.35]),
+             "field": st.soft_blend([
+                 st.soft_object(st.lp_metric([9, 9, 9], 2), translate=[0, 0, 5]),
+                 st.soft_object(st.lp_metric([6, 6, 6], 2), translate=[5, 3, 9])])},
+            {"name": "crate", "material": st.material(color=[0.75, 0.7, 0.35]),
+             "shape": st.box([-3, -3, 0], [3, 3, 6], rotate={"axis": [0, 0, 1], "deg": 25},
+                             translate=[-13, 4, 0])},
+            {"name": "pillar", "material": st.material([0.45, 0.7, 0.5]),
+             "shape": st.cylinder([0, 0, 0], [0, 0, 12], 1.8, translate=[9, 12, 0])},
+            {"name": "ball", "material": st.material([0.35, 0.55, 0.85]),
+             "shape": st.sphere([12, -6, 3], 3)}]}
+    scene = st.load_dict(built)
+    from_file = st.load_scene(SHAPES_SCENE)
+    from_file.width, from_file.height = 40, 30
+    from_file.spp = 1
+    assert scene.lights == from_file.lights and scene.objects == from_file.objects
+    assert np.array_equal(st.render(scene)["rgba"], st.render(from_file)["rgba"])
+    # The others: the dicts the format writes, refused by the loader where it refuses them.
+    assert st.spot_light([0, 0, 9], [0, 0, 0], area=st.area_light([1, 0, 0], [0, 1, 0], 2, 2)) == {
+        "type": "spot", "position": [0, 0, 9], "point_at": [0, 0, 0],
+        "area": {"axis1": [1, 0, 0], "axis2": [0, 1, 0], "size1": 2, "size2": 2}}
+    assert st.cone([0, 0, 0], 2, [0, 0, 3], 1)["cap_radius"] == 1
+    assert st.disc([0, 0, 0], [0, 0, 1], 2, hole_radius=1)["type"] == "disc"
+    assert st.point_light([1, 2, 3], 0.5)["intensity"] == 0.5
+    with pytest.raises(TypeError, match=r"sphere\(\) has no parameter 'potential'"):
+        st.sphere([0, 0, 0], 1, potential=st.wyvill())
+    with pytest.raises(TypeError, match=r"material\(\) has no parameter 'colour'"):
+        st.material(colour=[1, 0, 0])
+    with pytest.raises(softtrace.SceneError, match=r"/objects/0/shape/radius"):
+        st.load_dict(dict(built, objects=[{"shape": st.sphere([0, 0, 0], -1)}]))
+
+
+def test_a_builder_per_scene_object_with_its_keys():
+    made = {}
+    for name, keys in softtrace._native.scene_keys():
+        group, _, kind = name.partition(": ")
+        builder = {"shape": kind, "light": kind + "_light"}.get(group, name.replace(" ", "_"))
+        if not hasattr(softtrace, builder):
+            continue
+        made[name] = builder
+        build = getattr(softtrace, builder)
+        own = [k for k in keys if k != "type"]
+        assert sorted(inspect.signature(build).parameters) == sorted(own), name
+        node = build(**{k: 1 for k in own})
+        assert node == {**({"type": kind} if kind else {}), **{k: 1 for k in own}}
+        assert "docs/scene-format.md" in build.__doc__
+        runner = doctest.DocTestRunner()
+        for test in doctest.DocTestFinder().find(build, builder, globs=vars(softtrace)):
+            runner.run(test)
+        assert runner.summarize(verbose=False) == (0, 1), builder
+    # Written by hand in a scene: the top level, camera, image, object, animation, turntable.
+    assert sorted(made) == sorted(n for n, _ in softtrace._native.scene_keys()
+                                  if n.split(": ")[0] in ("shape", "light", "material",
+                                                          "area light"))
+    assert len(made) == 12 and not set(made.values()) & {k["name"] for k in softtrace.nodes()}
+
+
+def test_a_scenes_field_is_its_first_field_object_as_eval_takes_it():
+    scene = softtrace.load_scene(SHAPES_SCENE)  # its first object is the floor, a plane shape
+    field = softtrace.Field(scene)
+    cli = subprocess.run([BIN, "eval", SHAPES_SCENE], input="0 0 5\n", capture_output=True,
+                         text=True, check=True)
+    assert float(field.eval([0, 0, 5])) == float(cli.stdout.split()[0])
+    assert field.name.endswith("/objects/1/field")
+    with pytest.raises(softtrace.SceneError, match=r"/objects/0: a plane shape, not a field"):
+        softtrace.Field(scene, "floor")
+    shapes_only = softtrace.load_dict({"objects": [{"shape": softtrace.sphere([0, 0, 0], 1)}]})
+    with pytest.raises(softtrace.SceneError, match="no object has a field"):
+        softtrace.Field(shapes_only)

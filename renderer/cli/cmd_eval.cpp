@@ -21,10 +21,10 @@ constexpr size_t kMaxLine = 4096;
 int run_eval(const EvalArgs& a) {
   try {
     const Scene scene = load_scene(a.scene);
-    // By default the first object with a field (a shape has none).
+    // By default the first object with a field (a shape or a CSG has none).
     const SceneObject* obj = nullptr;
     for (const auto& o : scene.objects)
-      if (!obj && !o.shape) obj = &o;
+      if (!obj && o.field) obj = &o;
     if (!obj && a.object.empty())
       throw SceneError(a.scene + ": no object has a field: there is nothing to evaluate");
     if (!a.object.empty()) {
@@ -37,6 +37,9 @@ int run_eval(const EvalArgs& a) {
       throw SceneError(a.scene + ": object '" + obj->name + "' is a " +
                        shape_name(obj->shape->shape) +
                        " shape, not a field: there is nothing to evaluate");
+    if (obj->csg)
+      throw SceneError(a.scene + ": object '" + obj->name + "' is a CSG (" +
+                       csg_name(obj->csg->op) + "), not a field: there is nothing to evaluate");
     // The library's evaluators on the object's compiled program, pruned to each point.
     const Program program = compile(*obj->field);
     Workspace ws;

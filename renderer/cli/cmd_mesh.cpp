@@ -43,8 +43,8 @@ int run_mesh(const MeshArgs& a) {
   try {
     check_output_path(a.output, kMeshExtensions);  // fail before the work, not after
     const Scene scene = load_scene(a.scene);
-    size_t index = 0;  // by default the first object with a field (a shape has none)
-    while (index + 1 < scene.objects.size() && scene.objects[index].shape) ++index;
+    size_t index = 0;  // by default the first object with a field (a shape or a CSG has none)
+    while (index + 1 < scene.objects.size() && !scene.objects[index].field) ++index;
     if (!a.object.empty()) {
       index = scene.objects.size();
       for (size_t i = 0; i < scene.objects.size(); ++i)
@@ -56,6 +56,9 @@ int run_mesh(const MeshArgs& a) {
     if (obj.shape)
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) + ": a " +
                        shape_name(obj.shape->shape) + " shape, not a field: mesh a field object");
+    if (obj.csg)
+      throw SceneError(a.scene + ": /objects/" + std::to_string(index) + ": a CSG (" +
+                       csg_name(obj.csg->op) + "), not a field: mesh a field object");
     const Box region = a.bounds.empty() ? obj.bounds : parse_bounds(a.bounds);
     if (!region.bounded())
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) +

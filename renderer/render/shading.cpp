@@ -12,10 +12,11 @@ namespace softtrace {
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
-  const SceneObject& obj = tracers.object(hit.object);
+  // A CSG's hit is on one of its operands: the face's material is that operand's.
+  const SceneObject& obj = hit.face ? *hit.face : tracers.object(hit.object);
   const Material& m = obj.material;
   const Vec3 p = ray.o + ray.d * hit.t;
-  // A primitive's normal came with its exact hit.
+  // A primitive's or a CSG's normal came with its hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
@@ -27,7 +28,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
   // coordinates' magnitude (an infinite plane's box says nothing of the scale).
   const double offset =
-      std::max(tracer ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
+      std::max(obj.field ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
   const Vec3 origin = p + n * offset;
 
   // `light` is what the pigment multiplies (ambient and diffuse, summed in the lights' order);

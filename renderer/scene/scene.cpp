@@ -8,6 +8,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "scene/csg_load.h"
 #include "scene/json_text.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
@@ -103,11 +104,25 @@ Convention load_convention(const Params& p) {
   p.fail("convention", "unknown convention '" + c + "' (expected soft, zero or constructive)");
 }
 
-SceneObject load_object(const Params& p, size_t index) {
+// `inherited`: the material of the nearest enclosing CSG object that has one (null: none).
+SceneObject load_object(const Params& p, size_t index, const Material* inherited = nullptr) {
   p.check_keys(scene_keys("object"));
   SceneObject o;
   o.name = p.string("name", "object" + std::to_string(index));
-  if (p.has("material")) o.material = load_material(p.object("material"));
+  const bool has_material = p.has("material");
+  if (has_material)
+    o.material = load_material(p.object("material"));
+  else if (inherited)
+    o.material = *inherited;
+  if (p.has("csg")) {
+    for (const char* key : {"field", "shape", "convention", "iso", "bounds"})
+      if (p.has(key))
+        p.fail(key, std::string("an object with 'csg' has no '") + key + "' (its operands have)");
+    load_csg(p, o, has_material ? &o.material : inherited, load_object);
+    p.finish();
+    return o;
+  }
+  if (p.has("operands")) p.fail("operands", "'operands' belong to an object with 'csg'");
   if (p.has("shape")) {
     for (const char* key : {"field", "convention", "iso", "bounds"})
       if (p.has(key))

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,8 @@ struct ImageSettings {
   int max_trace_level = 5;
 };
 
+struct Csg;
+
 struct SceneObject {
   std::string name;
   Material material;
@@ -71,7 +74,24 @@ struct SceneObject {
   NodePtr field;
   // A plain primitive ("shape") instead of a field: then `field` is null and `bounds` its box.
   std::optional<Primitive> shape;
+  // A CSG of other objects ("csg") instead: then `field` is null, there is no `shape`, and
+  // `bounds` follow from the operands' (Csg).
+  std::shared_ptr<const Csg> csg;
 };
+
+// docs/scene-format.md "csg": POV-Ray's union, merge, intersection and difference of objects,
+// each a field, a shape or another CSG. The solid is the operands' solids combined (each field
+// clipped by its `bounds`); union and merge are the same solid (POV-Ray's merge only drops the
+// inner surfaces of transparent objects, and materials here are opaque). Its box: the union of
+// the operands' (union, merge), their intersection (intersection), the first's (difference).
+// An operand without a material takes the nearest enclosing CSG object's that has one, as a
+// POV-Ray CSG's texture passes to its untextured parts: a cut face keeps the cutter's material.
+struct Csg {
+  enum class Op { Union, Merge, Intersection, Difference };
+  Op op = Op::Union;
+  std::vector<SceneObject> operands;
+};
+const char* csg_name(Csg::Op op);
 
 struct Scene {
   std::string path;

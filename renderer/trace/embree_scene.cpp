@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "trace/csg_trace.h"
 #include "trace/primitive_trace.h"
 
 namespace softtrace {
@@ -25,10 +26,12 @@ struct RayContext {
   int object = -1;
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
+  const SceneObject* face = nullptr;
 };
 
 struct GeometryData {
-  const ObjectTracer* tracer;  // null for a primitive
+  const ObjectTracer* tracer;  // null for a primitive or a CSG
+  const CsgTracer* csg;        // null but for a CSG
   const SceneObject* object_data;
   int object;
 };
@@ -104,6 +107,35 @@ void primitive_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   if (first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t).hit) r->tfar = -INFINITY;
 }
 
+void csg_intersect_callback(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const CsgHit h = data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
+  if (!h.hit || h.t >= ctx->t) return;
+  ctx->t = h.t;
+  ctx->object = data->object;
+  ctx->on_box_face = false;
+  ctx->normal = h.normal;
+  ctx->face = h.face;
+  rh->ray.tfar = static_cast<float>(h.t);
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0;
+}
+
+// A shadow ray asks the same question as a camera ray: the result's first surface in range.
+void csg_occluded_callback(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  auto* ctx = reinterpret_cast<RayContext*>(args->context);
+  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+  if (data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -120,14 +152,18 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
   impl_->scene = rtcNewScene(impl_->device);
   for (int i = 0; i < tracers.size(); ++i) {
     const ObjectTracer* tracer = tracers.tracer(i);
-    impl_->data.push_back({tracer, &tracers.object(i), i});
+    const CsgTracer* csg = tracers.csg(i);
+    impl_->data.push_back({tracer, csg, &tracers.object(i), i});
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, &impl_->data.back());
     rtcSetGeometryBoundsFunction(geom, bounds_callback, nullptr);
-    rtcSetGeometryIntersectFunction(geom,
-                                    tracer ? intersect_callback : primitive_intersect_callback);
-    rtcSetGeometryOccludedFunction(geom, tracer ? occluded_callback : primitive_occluded_callback);
+    rtcSetGeometryIntersectFunction(geom, tracer ? intersect_callback
+                                          : csg  ? csg_intersect_callback
+                                                 : primitive_intersect_callback);
+    rtcSetGeometryOccludedFunction(geom, tracer ? occluded_callback
+                                         : csg  ? csg_occluded_callback
+                                                : primitive_occluded_callback);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);  // the scene holds the reference now
@@ -184,6 +220,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
     h.object = ctx.object;
     h.on_box_face = ctx.on_box_face;
     h.normal = ctx.normal;
+    h.face = ctx.face;
   }
   return h;
 }

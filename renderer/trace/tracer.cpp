@@ -6,6 +6,7 @@
 
 #include "math/illinois.h"
 #include "model/program_builder.h"
+#include "trace/csg_trace.h"
 #include "trace/tracer_limits.h"
 
 namespace softtrace {
@@ -44,8 +45,9 @@ Workspace& ObjectTracer::workspace() const {
 SceneTracers::SceneTracers(const Scene& scene, LipschitzMode mode) : objects_(&scene.objects) {
   tracers_.reserve(scene.objects.size());
   for (const auto& o : scene.objects) {
-    index_.push_back(o.shape ? -1 : static_cast<int>(tracers_.size()));
-    if (!o.shape) tracers_.emplace_back(o, mode);
+    index_.push_back(o.field ? static_cast<int>(tracers_.size()) : -1);
+    if (o.field) tracers_.emplace_back(o, mode);
+    csg_.push_back(o.csg ? std::make_shared<const CsgTracer>(o, mode) : nullptr);
   }
 }
 
@@ -64,12 +66,15 @@ bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
   return t0 <= t1;
 }
 
-ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode)
-    : object_(&object), program_(compile(*object.field)), mode_(mode) {
+ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode, bool complement)
+    : object_(&object),
+      inside_sign_(complement ? -object.inside_sign : object.inside_sign),
+      program_(compile(*object.field)),
+      mode_(mode) {
   global_L_ = object.field->lipschitz();
-  g_empty_ = -object.inside_sign * object.iso;
+  g_empty_ = -inside_sign_ * object.iso;
   default_footprint_ = 1e-5 * object.bounds.diagonal();
-  if (mode == LipschitzMode::Local && object.inside_sign > 0 && object.iso > 0)
+  if (mode == LipschitzMode::Local && inside_sign_ > 0 && object.iso > 0)
     blobs_ = BlobSum::of(program_);
   const Box& b = object.bounds;
   scale_ = std::max(max_abs(b.lo), max_abs(b.hi));
@@ -80,12 +85,12 @@ double ObjectTracer::eval(const Vec3& p, Vec3* grad) const {
 }
 
 double ObjectTracer::g(const Vec3& p) const {
-  return object_->inside_sign * (eval(p, nullptr) - object_->iso);
+  return inside_sign_ * (eval(p, nullptr) - object_->iso);
 }
 
 double ObjectTracer::g_view(const Vec3& p) const {
   Workspace& ws = workspace();
-  return object_->inside_sign * (value(ws.view, p, ws) - object_->iso);
+  return inside_sign_ * (value(ws.view, p, ws) - object_->iso);
 }
 
 Vec3 ObjectTracer::normal(const Vec3& p) const {
@@ -95,7 +100,7 @@ Vec3 ObjectTracer::normal(const Vec3& p) const {
   } else {
     eval(p, &grad);
   }
-  grad = grad * -object_->inside_sign;
+  grad = grad * -inside_sign_;
   const double len = length(grad);
   return len > 0 && std::isfinite(len) ? grad / len : Vec3{};
 }
@@ -139,7 +144,7 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   // whose supports it passes through), which the points of this segment evaluate afterwards.
   const BoxBounds bb = bounds(program_, segment(ray, a, b), workspace());
   const double iso = object_->iso;
-  const bool up = object_->inside_sign > 0;
+  const bool up = inside_sign_ > 0;
   const Interval g = up ? Interval{bb.value.lo - iso, bb.value.hi - iso}
                         : Interval{iso - bb.value.hi, iso - bb.value.lo};
   // The global mode is the baseline the local bounds are measured against: its bound only.

@@ -21,6 +21,7 @@
 // both sides (docs/math.md, "How the tracer uses them").
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "eval/blob_ray.h"
@@ -106,7 +107,9 @@ struct MarchResult {
 
 class ObjectTracer {
  public:
-  ObjectTracer(const SceneObject& object, LipschitzMode mode);
+  // `complement`: trace the complement of the object's solid (f on the other side of iso, still
+  // within its box), whose first point is where a ray inside the solid leaves it (CSG's exits).
+  ObjectTracer(const SceneObject& object, LipschitzMode mode, bool complement = false);
 
   // The first t in [tnear, tfar] where the ray is inside the solid, if any (for Query::Any, some
   // t where it is: the search stops at the first sign change, unrefined). The work is added to
@@ -123,6 +126,8 @@ class ObjectTracer {
   double clear_depth(const Frustum& f, double from, TraceCounters& work) const;
 
   const SceneObject& object() const { return *object_; }
+  // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
+  double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
   Vec3 normal(const Vec3& p) const;
   // The outward normal of the object box's face nearest to p (for hits on_box_face).
@@ -213,6 +218,7 @@ class ObjectTracer {
   Vec3 blob_gradient(const Vec3& p) const;
 
   const SceneObject* object_;
+  double inside_sign_;  // the object's, or its opposite for the complement
   Program program_;
   LipschitzMode mode_;
   double global_L_;
@@ -224,26 +230,31 @@ class ObjectTracer {
   std::optional<BlobSum> blobs_;
 };
 
+class CsgTracer;
+
 // Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading
 // (shading.h) both use them and neither owns them, so shading never goes through Embree.
 // Objects with a `shape` (plain primitives) have no tracer: they are traced analytically
-// (primitive_trace.h).
+// (primitive_trace.h). A CSG object has a CsgTracer instead (csg_trace.h).
 class SceneTracers {
  public:
   SceneTracers(const Scene& scene, LipschitzMode mode);
   // The tracer of object `object`, which must have a field (tracer() says).
   const ObjectTracer& operator[](int object) const { return tracers_[index_[object]]; }
-  // The object's tracer, or null for a primitive.
+  // The object's tracer, or null for a primitive or a CSG.
   const ObjectTracer* tracer(int object) const {
     return index_[object] < 0 ? nullptr : &tracers_[index_[object]];
   }
+  // A CSG object's tracer, or null for any other.
+  const CsgTracer* csg(int object) const { return csg_[object].get(); }
   const SceneObject& object(int object) const { return (*objects_)[object]; }
   int size() const { return static_cast<int>(index_.size()); }  // the number of objects
 
  private:
   const std::vector<SceneObject>* objects_;
   std::vector<ObjectTracer> tracers_;
-  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive
+  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive or a CSG
+  std::vector<std::shared_ptr<const CsgTracer>> csg_;  // per object: a CSG's tracer, or null
 };
 
 // [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.

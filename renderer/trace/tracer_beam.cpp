@@ -75,7 +75,7 @@ double ObjectTracer::clear_depth(const Frustum& f, double from, TraceCounters& w
       ++evals;
       ++work.box_evals;
       const Interval v = bounds(program_, sl, ws).value;
-      const double g_hi = object_->inside_sign > 0 ? v.hi - iso : iso - v.lo;
+      const double g_hi = inside_sign_ > 0 ? v.hi - iso : iso - v.lo;
       if (!(g_hi < 0)) {
         // A slice no deeper than it is wide: a thinner one would be hardly smaller.
         if (b - s <= spread * b) break;

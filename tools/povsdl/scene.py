@@ -35,6 +35,7 @@ REFUSED_DIRECTIVES = {
 }
 TRANSFORMS = ("translate", "rotate", "scale", "matrix", "transform")
 SHAPES = ("plane", "box", "sphere", "cylinder", "cone", "disc")
+CSG = ("union", "merge", "intersection", "difference")
 
 
 class Modifiers:
@@ -60,6 +61,7 @@ class Converter:
         self.ambient_light = (1.0, 1.0, 1.0)
         self.objects = []
         self.names = {}
+        self.csg_depth = 0  # how many CSGs enclose the object being read
         self.warnings = []  # (line, col, message): carried across, but not exactly
 
     # ---- top level -----------------------------------------------------------------------
@@ -200,10 +202,13 @@ class Converter:
             self.objects.append(self._blob(s, ex, tok))
         elif word in SHAPES:
             self.objects.append(self._shape(s, ex, tok))
+        elif word in CSG:
+            self.objects.append(self._csg(s, ex, tok))
         else:
             raise s.error(tok, "'%s' is not supported (this converter takes blob, plane, box, "
-                          "sphere, cylinder, cone and disc objects, camera, light_source, "
-                          "background and global_settings)" % word)
+                          "sphere, cylinder, cone and disc objects, their union, merge, "
+                          "intersection and difference, camera, light_source, background and "
+                          "global_settings)" % word)
 
     def _global_settings(self, s, ex):
         s.expect("{")
@@ -464,7 +469,15 @@ class Converter:
         return self._reference(s, "transform")["matrix"]
 
     def _material(self, pigment, finish, at, s):
+        """The object's material; None for an object inside a CSG without a pigment of its own,
+        which takes the enclosing CSG's (docs/scene-format.md "CSG of objects")."""
         if pigment is None:
+            if self.csg_depth > 0:
+                if finish:
+                    raise s.error(at, "the %s has a finish but no pigment; a CSG's part takes "
+                                  "its whole texture from the CSG, so give it a pigment too"
+                                  % at.text)
+                return None
             raise s.error(at, "the %s has no pigment" % at.text)
         f = dict(self.default_finish)
         f.update({k: v for k, v in finish.items() if k != "kind"})
@@ -546,10 +559,7 @@ class Converter:
                 shape["translate"] = [full[i][3] for i in range(3)]
             else:
                 shape["matrix"] = [list(full[i]) for i in range(3)]
-        n = self.names.get(word, 0) + 1
-        self.names[word] = n
-        return {"name": "%s%d" % (word, n),
-                "material": self._material(mods.pigment, mods.finish, at, s), "shape": shape}
+        return self._named(word, self._material(mods.pigment, mods.finish, at, s), shape=shape)
 
     # ---- blob ----------------------------------------------------------------------------
     def _blob(self, s, ex, at):
@@ -583,10 +593,61 @@ class Converter:
             raise s.error(at, "the blob has no component of positive strength, so no surface")
         field = children[0] if len(children) == 1 else {"type": "soft_blend",
                                                           "children": children}
-        n = self.names.get("blob", 0) + 1
-        self.names["blob"] = n
-        return {"name": "blob%d" % n, "material": self._material(mods.pigment, mods.finish, at, s),
-                "convention": "soft", "iso": threshold, "field": field}
+        return self._named("blob", self._material(mods.pigment, mods.finish, at, s),
+                           convention="soft", iso=threshold, field=field)
+
+    def _named(self, word, material, **keys):
+        """An object named after its kind and count (blob1, box2, difference1), with its
+        material where it has one."""
+        n = self.names.get(word, 0) + 1
+        self.names[word] = n
+        obj = {"name": "%s%d" % (word, n)}
+        if material is not None:
+            obj["material"] = material
+        obj.update(keys)
+        return obj
+
+    # ---- CSG -----------------------------------------------------------------------------
+    def _csg(self, s, ex, at):
+        """POV-Ray's union, merge, intersection and difference of blobs, shapes and CSGs as a
+        softtrace CSG object. Its parts are converted where they stand, so a transformation of
+        the CSG itself is refused (transform its parts instead)."""
+        word = at.text
+        s.expect("{")
+        operands = []
+        mods = Modifiers()
+        self.csg_depth += 1
+        while not s.closes(word):
+            tok = s.next()
+            w = tok.text
+            if w == "blob":
+                operands.append(self._blob(s, ex, tok))
+            elif w in SHAPES:
+                operands.append(self._shape(s, ex, tok))
+            elif w in CSG:
+                operands.append(self._csg(s, ex, tok))
+            elif w in TRANSFORMS:
+                raise s.error(tok, "a transformation of a %s is not supported; transform its "
+                              "objects instead" % word)
+            elif self._modifier(s, ex, tok, mods) or w in HARMLESS:
+                continue
+            else:
+                raise s.error(tok, "%s { %s } is not supported" % (word, w))
+        self.csg_depth -= 1
+        if len(operands) < 2:
+            raise s.error(at, "the %s has %d object(s); softtrace needs at least two"
+                          % (word, len(operands)))
+        for op in operands:
+            if op.get("shape", {}).get("type") == "disc":
+                raise s.error(at, "a disc in a %s is not supported (it has no inside)" % word)
+        # A top-level CSG needs no pigment where every part has one of its own.
+        def textured(obj):
+            return "material" in obj or ("csg" in obj and all(map(textured, obj["operands"])))
+        if mods.pigment is None and self.csg_depth == 0 and all(map(textured, operands)):
+            material = None
+        else:
+            material = self._material(mods.pigment, mods.finish, at, s)
+        return self._named(word, material, csg=word, operands=operands)
 
     def _component(self, s, ex, tok):
         w = tok.text
