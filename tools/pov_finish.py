@@ -3,7 +3,8 @@
 
 Each case is three blended spheres (tools/pov_scene.py's `blob`: murakami soft objects over
 spheres at iso 0.5, POV's blob of the same spheres, strength 1, threshold 0.5) under the same
-camera and lights, with one finish term or one kind of light set. Both renderers write linear
+camera and lights, with one finish term or one kind of light set, or (case "components") with
+its own material on some of the spheres, which POV-Ray gets as the components' textures. Both renderers write linear
 EXR (POV-Ray with assumed_gamma 1.0, +FE): softtrace `render --flatten --spp 1`, POV-Ray
 without anti-aliasing. `softtrace diff` compares R,G,B. A case passes when the mean absolute
 difference is at most 1/255 and at most 1% of the pixels differ by more than 4/255 in a channel
@@ -61,12 +62,28 @@ CASES = {
                                       "size2": 5, "adaptive": 1}), AMBIENT], {}),
 }
 
+# Per-component materials (the blob's components' own textures, mixed by field value): name ->
+# (the object's material keys, each sphere's material or None, lights).
+COMPONENT_CASES = {
+    "components": ({"diffuse": 0.7, "phong": 0.5},
+                   [{"color": [0.9, 0.9, 0.9], "diffuse": 0.7, "phong": 0.8, "phong_size": 80},
+                    {"color": [0.1, 0.3, 0.85], "diffuse": 0.6, "specular": 0.5,
+                     "roughness": 0.03},
+                    None], [KEY, AMBIENT]),
+}
+for _name, (_object, _components, _lights) in COMPONENT_CASES.items():
+    CASES[_name] = (_object, _lights, {})
+
 
 def scene(case, width, height):
     material, lights, image = CASES[case]
     children = [{"type": "soft_object", "potential": {"type": "murakami"},
                  "distance": {"type": "lp_metric", "radii": [r, r, r], "n": 2},
                  "translate": c} for c, r in SPHERES]
+    if case in COMPONENT_CASES:
+        for child, own in zip(children, COMPONENT_CASES[case][1]):
+            if own is not None:
+                child["material"] = dict(own)
     return {
         "camera": {"eye": [1.5, -9, 4], "target": [0, 0, 0.4], "up": [0, 0, 1], "fov": 30},
         "image": dict({"width": width, "height": height, "spp": 1}, **image),

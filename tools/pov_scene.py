@@ -75,7 +75,7 @@ def grey_or_rgb(v):
 
 
 def material(obj):
-    """The object's material as POV's pigment and finish: the keys are POV's, with softtrace's
+    """The material of `obj` (an object or a blend's component) as POV's pigment and finish: the keys are POV's, with softtrace's
     defaults (ambient 1, diffuse 1) written out; ambient scales the scene's ambient lights."""
     m = obj.get("material", {})
     c = m.get("color", [0.8, 0.8, 0.8])
@@ -106,8 +106,10 @@ def blob(scene):
         if (child["potential"]["type"] != "murakami" or dist["type"] != "lp_metric" or
                 dist.get("n") != 2 or len(set(radii)) != 1):
             raise ValueError("a blob's children must be murakami spheres")
-        lines.append("  sphere { %s, %.9g, 1 }" % (pov_vec(child.get("translate", [0, 0, 0])),
-                                                   radii[0]))
+        # A component's own material is its texture (POV-Ray mixes them by field value).
+        own = (" " + material(child).strip()) if "material" in child else ""
+        lines.append("  sphere { %s, %.9g, 1%s }" % (pov_vec(child.get("translate", [0, 0, 0])),
+                                                     radii[0], own))
     lines.append(material(obj))
     lines.append("}")
     return "\n".join(lines) + "\n"

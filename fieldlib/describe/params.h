@@ -28,6 +28,9 @@ class Params {
   Params(const json& j, std::string pointer, std::shared_ptr<const std::string> file);
 
   const std::string& pointer() const { return pointer_; }
+  // The file named in errors: Params over a copy of this JSON (e.g. one with keys taken out by
+  // the renderer) report against the same file.
+  const std::shared_ptr<const std::string>& file() const { return file_; }
   const json& raw() const { return *j_; }
   bool has(const std::string& key) const;
 

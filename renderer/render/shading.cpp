@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "render/cancel.h"
 #include "render/finish.h"
@@ -14,7 +15,6 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj = hit.face ? *hit.face : tracers.object(hit.object);
-  const Material& m = obj.material;
   const Vec3 p = ray.o + ray.d * hit.t;
   // A primitive's or a CSG's normal came with its hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
@@ -31,13 +31,35 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       std::max(obj.field ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
   const Vec3 origin = p + n * offset;
 
+  // A blend whose components carry materials: POV-Ray shades the point with each component's
+  // material and sums the colours with weights |s_i f_i(p)|, normalised (docs/math.md, "Blended
+  // materials"). One material with a non-zero weight is shaded as a plain object. The reflected
+  // ray's shade() below reuses `weights`: it is read only before that call.
+  thread_local std::vector<ComponentMaterials::Weight> weights;
+  weights.clear();
+  if (obj.components) obj.components->weights(p, weights);
+  const bool blended = weights.size() > 1;
+  const Material& m =
+      weights.size() == 1 ? obj.components->materials()[weights[0].material] : obj.material;
+  const auto each = [&](const auto& f) {
+    for (const ComponentMaterials::Weight& w : weights)
+      f(obj.components->materials()[w.material], w.weight);
+  };
+
   // `light` is what the pigment multiplies (ambient and diffuse, summed in the lights' order);
-  // `shine` the highlights, which it does not.
-  Vec3 light{0, 0, 0}, shine{0, 0, 0};
+  // `shine` the highlights, which it does not. A blended point sums its materials' colours in
+  // `mixed` instead.
+  Vec3 light{0, 0, 0}, shine{0, 0, 0}, mixed{0, 0, 0};
   for (const Light& l : scene.lights) {
     if (cancel_requested(cancel)) break;  // up to 1,000 lights, each with its shadow rays
     if (l.type == Light::Type::Ambient) {
-      light += mul(m.ambient, l.color * l.intensity);
+      const Vec3 c = l.color * l.intensity;
+      if (!blended)
+        light += mul(m.ambient, c);
+      else
+        each([&](const Material& mk, double wk) {
+          mixed += mul(mk.color, mul(mk.ambient, c)) * wk;
+        });
       continue;
     }
     LightArrival at;
@@ -47,23 +69,42 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
     if (seen == 0) continue;
     const Vec3 arrived = seen == 1 ? at.light : at.light * seen;
-    light += diffuse_light(m, cosine, arrived);
     // As in POV-Ray, lights without shadows (its fill lights) make no highlights.
-    if (l.shadows) shine += highlights(m, n, ray.d, at.to_light, arrived);
+    if (!blended) {
+      light += diffuse_light(m, cosine, arrived);
+      if (l.shadows) shine += highlights(m, n, ray.d, at.to_light, arrived);
+      continue;
+    }
+    each([&](const Material& mk, double wk) {
+      Vec3 c = mul(mk.color, diffuse_light(mk, cosine, arrived));
+      if (l.shadows) c += highlights(mk, n, ray.d, at.to_light, arrived);
+      mixed += c * wk;
+    });
   }
-  Vec3 color = mul(m.color, light);
-  if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
+  Vec3 color = mixed;
+  Vec3 reflection = m.reflection, albedo = m.color;
+  if (!blended) {
+    color = mul(m.color, light);
+    if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
+  } else {
+    reflection = albedo = Vec3{0, 0, 0};
+    each([&](const Material& mk, double wk) {
+      reflection += mk.reflection * wk;
+      albedo += mk.color * wk;
+    });
+  }
 
-  if (m.reflects() && level < scene.image.max_trace_level && !cancel_requested(cancel)) {
+  if ((reflection.x > 0 || reflection.y > 0 || reflection.z > 0) &&
+      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
     secondary.add(next.work);
     const Vec3 seen =
         next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
                  : scene.background;
-    color += mul(m.reflection, seen);
+    color += mul(reflection, seen);
   }
-  return {color, n, m.color};
+  return {color, n, albedo};
 }
 
 }  // namespace softtrace

@@ -143,7 +143,7 @@ SceneObject load_object(const Params& p, size_t index, const Material* inherited
   BuildContext ctx;
   ctx.slot = Family::ConventionField;  // the field must be of the object's convention
   ctx.convention = o.convention;
-  o.field = build_field(p.object("field"), ctx);
+  o.field = build_object_field(p.object("field"), ctx, o.material, &o.components);
 
   if (p.has("bounds")) {
     const json& raw = p.get("bounds");

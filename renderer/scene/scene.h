@@ -10,6 +10,7 @@
 
 #include "describe/building.h"
 #include "model/node.h"
+#include "scene/component_materials.h"
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/primitive.h"
@@ -72,6 +73,8 @@ struct SceneObject {
   double inside_sign = 1;
   Box bounds;  // where the renderer looks for the surface: "bounds" or the field's region box
   NodePtr field;
+  // The field's components' own materials, mixed at each shaded point; null when none has one.
+  std::shared_ptr<const ComponentMaterials> components;
   // A plain primitive ("shape") instead of a field: then `field` is null and `bounds` its box.
   std::optional<Primitive> shape;
   // A CSG of other objects ("csg") instead: then `field` is null, there is no `shape`, and
