@@ -75,6 +75,49 @@ std::string affine_cloud(int n, unsigned seed) {
   return s + "]}";
 }
 
+// n capsules as POV-Ray's cylinder components come out of tools/pov2softtrace.py: segments in
+// world coordinates (every fifth of zero length: a point skeleton), every third under a rotation
+// and translation, every fourth sheared by a `matrix`; strengths in [-1, 2] (a third negative),
+// Murakami's, Wyvill's and the cubic potential; every other child an ellipsoid between them.
+std::string capsule_cloud(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> c(-6, 6), r(1.5, 4), a(-1, 1), len(0.5, 6);
+  const auto num = [](double v) { return std::to_string(v); };
+  const auto vec = [&](const Vec3& v) {
+    return "[" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "]";
+  };
+  const char* const potentials[] = {"murakami", "wyvill", "cubic"};
+  std::string s = R"({"type":"soft_blend","children":[)";
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p0{c(rng), c(rng), c(rng)};
+    const Vec3 p1 = i % 5 == 4 ? p0 : p0 + normalize({a(rng), a(rng), a(rng)}) * len(rng);
+    std::string distance = R"({"type":"segment","p0":)" + vec(p0) + R"(,"p1":)" + vec(p1) +
+                           R"(,"radius":)" + num(r(rng)) + "}";
+    if (i % 2 == 1)
+      distance = R"({"type":"lp_metric","n":2,"translate":)" + vec(p0) + R"(,"radii":[)" +
+                 num(r(rng)) + "," + num(r(rng)) + "," + num(r(rng)) + "]}";
+    std::string place;
+    if (i % 4 == 0) {
+      place = R"(,"matrix":[)";
+      for (int row = 0; row < 3; ++row)
+        place += std::string(row ? "," : "") + "[" + num((row == 0) + 0.4 * a(rng)) + "," +
+                 num((row == 1) + 0.4 * a(rng)) + "," + num((row == 2) + 0.4 * a(rng)) + "," +
+                 num(a(rng)) + "]";
+      place += "]";
+    } else if (i % 3 == 0) {
+      place = R"(,"rotate":{"axis":[)" + num(a(rng)) + "," + num(a(rng)) +
+              ",1],\"deg\":" + num(90 * a(rng)) + R"(},"translate":)" +
+              vec({a(rng), a(rng), a(rng)});
+    }
+    const double strength =
+        i % 3 == 2 ? -0.4 - 0.6 * std::abs(a(rng)) : 0.5 + 1.5 * std::abs(a(rng));
+    s += (i ? "," : "") + std::string(R"({"type":"soft_object","potential":{"type":")") +
+         potentials[i % 3] + R"("},"strength":)" + num(strength) + place + R"(,"distance":)" +
+         distance + "}";
+  }
+  return s + "]}";
+}
+
 // A cloud's JSON compiled, its BlobSum, a workspace and an id buffer.
 struct Cloud {
   NodePtr node;
@@ -113,9 +156,22 @@ TEST(BlobSum, RecognisesOnlySumsOfPolynomialBlobs) {
   EXPECT_FALSE(is_blob_sum(sum(soft("murakami", ball), soft("blanc", ball))));
   EXPECT_FALSE(is_blob_sum(sum(soft("murakami", ball),
                                soft("murakami", R"({"type":"lp_metric","radii":[1,2,3],"n":3})"))));
-  EXPECT_FALSE(is_blob_sum(
+  // Capsules are (POV-Ray's cylinder components), also of zero length, rotated or sheared.
+  EXPECT_TRUE(is_blob_sum(
       sum(soft("murakami", ball),
           soft("murakami", R"({"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":1})"))));
+  EXPECT_TRUE(
+      is_blob_sum(sum(soft("cubic", ball),
+                      soft("wyvill", R"({"type":"segment","p0":[1,2,3],"p1":[1,2,3],"radius":1,)"
+                                     R"("rotate":{"axis":[0,0,1],"deg":30}})"))));
+  EXPECT_TRUE(is_blob_sum(sum(
+      soft("murakami", ball),
+      R"({"type":"soft_object","potential":{"type":"murakami"},"matrix":[[1,0.5,0,0],[0,1,0,0],)"
+      R"([0,0,2,1]],"distance":{"type":"segment","p0":[0,0,0],"p1":[1,0,0],"radius":1}})")));
+  // A segment so long beside its radius that 1 / |axis|^2 underflows keeps the segment tracer.
+  EXPECT_FALSE(is_blob_sum(
+      sum(soft("murakami", ball),
+          soft("murakami", R"({"type":"segment","p0":[0,0,0],"p1":[1e90,0,0],"radius":1e-20})"))));
   // Radii whose squares' reciprocals underflow or overflow: the segment tracer's kernels rescale.
   EXPECT_FALSE(
       is_blob_sum(sum(soft("murakami", ball),
@@ -129,63 +185,71 @@ TEST(BlobSum, RecognisesOnlySumsOfPolynomialBlobs) {
                            soft("murakami", ball) + "," + soft("murakami", ball) + "]}"));
 }
 
-// Along random stretches of random rays, each piece's polynomial (plus iso) is the compiled
+// Along a stretch o + u d, u in [0, len], each piece's polynomial (plus iso) is the compiled
 // field, within the piece's err and the rounding of the points (the field is evaluated at the
 // rounded o + u d, the polynomial at exact u: a few ulps of the coordinates, times a slope of
-// at most ~1 per unit here).
+// at most ~1 per unit here). Counts the points checked inside pieces and between them.
 // `slack` scales the rounding allowance: affine frames cancel more digits in L x + k, and their
 // blobs are steeper (radii down to 0.8, strengths up to 2).
-void expect_pieces_are_polynomials_of_the_field(Cloud& cloud, double slack) {
-  ASSERT_TRUE(cloud.blobs.has_value());
+void expect_stretch_is_polynomials_of_the_field(Cloud& cloud, const Vec3& o, const Vec3& d,
+                                                double len, double slack, std::mt19937_64& rng,
+                                                int* pieces, int* outside) {
   const Program& prog = cloud.prog;
   const auto& blobs = cloud.blobs;
-  Workspace& ws = cloud.ws;
-  std::vector<BlobSum::Term> terms(blobs->size());
-  std::vector<int32_t>& ids = cloud.ids;
+  std::vector<BlobSum::Term> terms(blobs->max_terms());
+  std::uniform_real_distribution<double> x01(0, 1);
+  const int n = blobs->terms(prog, o, d, len, 1e-12, terms.data(), cloud.ids.data());
+  std::vector<double> cuts{0, len};
+  for (int i = 0; i < n; ++i) {
+    cuts.push_back(terms[i].enter);
+    cuts.push_back(terms[i].exit);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  for (size_t c = 0; c + 1 < cuts.size(); ++c) {
+    const double s0 = cuts[c], S = cuts[c + 1] - s0;
+    if (!(S > 1e-9)) continue;
+    std::vector<int> active;  // (s0 + S may round past the cut: compare with the cut itself)
+    for (int i = 0; i < n; ++i)
+      if (terms[i].enter <= s0 && terms[i].exit >= cuts[c + 1]) active.push_back(i);
+    const StretchPolynomial sp =
+        stretch_polynomial(terms.data(), active.data(), int(active.size()), s0, S, 0.5);
+    for (int k = 0; k < 5; ++k) {
+      const double x = x01(rng);
+      const double field = value(prog, o + d * (s0 + x * S), cloud.ws);
+      if (active.empty()) {
+        ++*outside;
+        ASSERT_EQ(field, 0) << "a blob the query missed is non-zero at u = " << s0 + x * S;
+        continue;
+      }
+      ++*pieces;
+      // The field is evaluated at the rounded o + u d: 1e-16 of |o| + u, over radii >= 2.
+      const double rounding = slack * (1e-13 + 2e-16 * (length(o) + s0 + S));
+      ASSERT_NEAR(power_value(sp.a, sp.degree, x) + 0.5, field, sp.err + rounding)
+          << "piece at " << s0 << " of length " << S;
+    }
+    // The peaks bound the piece from above.
+    double peak = 0;
+    for (int i : active) peak += terms[i].peak;
+    ASSERT_LE(power_value(sp.a, sp.degree, 0.5) + 0.5, peak * (1 + 1e-12) + 1e-15);
+  }
+}
+
+// The same along random stretches of 300 random rays.
+void expect_pieces_are_polynomials_of_the_field(Cloud& cloud, double slack) {
+  ASSERT_TRUE(cloud.blobs.has_value());
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1, 1), x01(0, 1);
   int pieces = 0, outside = 0;
   for (int ray = 0; ray < 300; ++ray) {
+    SCOPED_TRACE("ray " + std::to_string(ray));
     // Every third stretch starts 1e8 away and ends 1e8 beyond the cloud: the terms then lose
     // digits to w = L o + k as the points o + u d do to their own rounding, no more.
     const bool far = ray % 3 == 2;
     const Vec3 d = normalize({u(rng), u(rng), u(rng)});
     const Vec3 o = Vec3{u(rng), u(rng), u(rng)} * 12 - (far ? d * 1e8 : Vec3{});
     const double len = far ? 2e8 : 30 * x01(rng);
-    const int n = blobs->terms(prog, o, d, len, 1e-12, terms.data(), ids.data());
-    std::vector<double> cuts{0, len};
-    for (int i = 0; i < n; ++i) {
-      cuts.push_back(terms[i].enter);
-      cuts.push_back(terms[i].exit);
-    }
-    std::sort(cuts.begin(), cuts.end());
-    for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-      const double s0 = cuts[c], S = cuts[c + 1] - s0;
-      if (!(S > 1e-9)) continue;
-      std::vector<int> active;
-      for (int i = 0; i < n; ++i)
-        if (terms[i].enter <= s0 && terms[i].exit >= s0 + S) active.push_back(i);
-      const StretchPolynomial sp =
-          stretch_polynomial(terms.data(), active.data(), int(active.size()), s0, S, 0.5);
-      for (int k = 0; k < 5; ++k) {
-        const double x = x01(rng);
-        const double field = value(prog, o + d * (s0 + x * S), ws);
-        if (active.empty()) {
-          ++outside;
-          ASSERT_EQ(field, 0) << "a blob the query missed is non-zero at u = " << s0 + x * S;
-          continue;
-        }
-        ++pieces;
-        // The field is evaluated at the rounded o + u d: 1e-16 of |o| + u, over radii >= 2.
-        const double rounding = slack * (1e-13 + 2e-16 * (length(o) + s0 + S));
-        ASSERT_NEAR(power_value(sp.a, sp.degree, x) + 0.5, field, sp.err + rounding)
-            << "ray " << ray << ", piece at " << s0 << " of length " << S;
-      }
-      // The peaks bound the piece from above.
-      double peak = 0;
-      for (int i : active) peak += terms[i].peak;
-      ASSERT_LE(power_value(sp.a, sp.degree, 0.5) + 0.5, peak * (1 + 1e-12) + 1e-15);
-    }
+    expect_stretch_is_polynomials_of_the_field(cloud, o, d, len, slack, rng, &pieces, &outside);
+    if (testing::Test::HasFatalFailure()) return;
   }
   EXPECT_GT(pieces, 1000);
   EXPECT_GT(outside, 50);
@@ -200,6 +264,54 @@ TEST(BlobSum, AffineBlobsOfAnyStrengthAreOnePolynomialToo) {
   ASSERT_TRUE(cloud.blobs.has_value());
   EXPECT_EQ(cloud.blobs->size(), 40);
   expect_pieces_are_polynomials_of_the_field(cloud, 10);
+}
+
+// Capsules (segments) of any strength and placement, among ellipsoids: each of a capsule's three
+// parts along a ray (past either end plane, between them) is one quadratic in r.
+TEST(BlobSum, CapsulesArePiecewiseOnePolynomialToo) {
+  Cloud cloud(capsule_cloud(40, 6));
+  ASSERT_TRUE(cloud.blobs.has_value());
+  EXPECT_EQ(cloud.blobs->size(), 40);
+  EXPECT_EQ(cloud.blobs->max_terms(), 40 + 2 * 16);  // 20 segments, 4 of them of zero length
+  expect_pieces_are_polynomials_of_the_field(cloud, 10);
+}
+
+// Rays exactly along a capsule's axis (its middle part is then constant along the ray: no term of
+// alpha > 0), exactly across it (the ray stays in one part), through its end caps, and through a
+// zero-length segment, near and from 1e8 away.
+TEST(BlobSum, CapsulesAlongAndAcrossTheirAxis) {
+  Cloud cloud(R"({"type":"soft_blend","children":[
+      {"type":"soft_object","potential":{"type":"murakami"},
+       "distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":2}},
+      {"type":"soft_object","potential":{"type":"wyvill"},"strength":-0.8,
+       "distance":{"type":"segment","p0":[2,0.5,0],"p1":[2,0.5,4],"radius":1}},
+      {"type":"soft_object","potential":{"type":"cubic"},"strength":1.5,
+       "distance":{"type":"segment","p0":[0,3,1],"p1":[0,3,1],"radius":1.5}}]})");
+  ASSERT_TRUE(cloud.blobs.has_value());
+  EXPECT_EQ(cloud.blobs->max_terms(), 3 + 2 * 2);
+  std::mt19937_64 rng(8);
+  int pieces = 0, outside = 0;
+  const struct {
+    Vec3 o, d;
+  } rays[] = {
+      {{-10, 0.7, -0.4}, {1, 0, 0}},  // along the first capsule's axis, inside its radius
+      {{10, 1.9, 0.3}, {-1, 0, 0}},   // the same way back, grazing its surface
+      {{2, 0.2, -6}, {0, 0, 1}},      // along the second's axis
+      {{-1.5, -6, 0.5}, {0, 1, 0}},   // across the first's axis, between its end planes
+      {{-3.5, -6, 0}, {0, 1, 0}},     // across, beyond one end plane
+      {{0, 3, -6}, {0, 0, 1}},        // through the zero-length segment's point
+      {{-8, -5, 0.2}, {0.8, 0.6, 0}},
+  };
+  for (const auto& ray : rays)
+    for (const double far : {0.0, 1e8}) {
+      SCOPED_TRACE("ray from " + std::to_string(ray.o.x) + (far > 0 ? ", far" : ""));
+      const Vec3 d = normalize(ray.d);
+      expect_stretch_is_polynomials_of_the_field(cloud, ray.o - d * far, d, 20 + 2 * far, 10, rng,
+                                                 &pieces, &outside);
+      if (testing::Test::HasFatalFailure()) return;
+    }
+  EXPECT_GT(pieces, 100);
+  EXPECT_GT(outside, 20);
 }
 
 // The normals of blob sums come from BlobSum::gradient: the compiled gradient's value and
@@ -231,6 +343,12 @@ TEST(BlobSum, GradientIsTheCompiledOne) {
 }
 TEST(BlobSum, AffineBlobsGradientIsTheCompiledOne) {
   Cloud cloud(affine_cloud(40, 5));
+  ASSERT_TRUE(cloud.blobs.has_value());
+  expect_gradient_is_the_compiled_one(cloud, 1e-13);
+}
+
+TEST(BlobSum, CapsulesGradientIsTheCompiledOne) {
+  Cloud cloud(capsule_cloud(40, 7));
   ASSERT_TRUE(cloud.blobs.has_value());
   expect_gradient_is_the_compiled_one(cloud, 1e-13);
 }

@@ -230,10 +230,11 @@ INSTANTIATE_TEST_SUITE_P(Scenes, NoHoles, scene_modes(kCases),
 
 // Solids with no closed-form first hit, against a dense sampling march of the model tree along
 // the same pixel-centre rays: a large blob with a small hole punched into it by a negative
-// strength (the polynomial blob path in the local mode), and thin capsules sheared by a matrix
-// (an affine placement), each also seen at grazing incidence. No pixel may differ: every
-// reference hit is hit, no later than the reference's first inside sample, and every hit the
-// reference misses (a sliver between its samples) lies inside the solid.
+// strength, thin capsules sheared by a matrix (an affine placement), a chain of capsules, a groove
+// cut by a negative capsule, and a thin capsule seen end-on and along its side (all on the
+// polynomial blob path in the local mode), each also seen at grazing incidence. No pixel may
+// differ: every reference hit is hit, no later than the reference's first inside sample, and every
+// hit the reference misses (a sliver between its samples) lies inside the solid.
 struct MarchCase {
   const char* name;
   Camera camera;
@@ -260,6 +261,25 @@ const char* const kShearedBlobsField = R"({"type":"soft_blend","children":[
     {"type":"soft_object","potential":{"type":"wyvill"},"strength":-1,"scale":[0.8,0.8,0.8],"translate":[0.6,0.2,0],
      "distance":{"type":"lp_metric","radii":[1,1,1],"n":2}}]})";
 
+// Capsules (segments) on the polynomial path: a chain of them with a ball at a joint and a
+// point skeleton (a zero-length segment) at its end, in each potential.
+const char* const kCapsuleChainField = R"({"type":"soft_blend","children":[
+    {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"segment","p0":[-6,0,0],"p1":[-2,2,0],"radius":1.6}},
+    {"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"segment","p0":[-2,2,0],"p1":[2,0,1],"radius":1.6}},
+    {"type":"soft_object","potential":{"type":"cubic"},"strength":1.5,"distance":{"type":"segment","p0":[2,0,1],"p1":[6,2,0],"radius":1.2}},
+    {"type":"soft_object","potential":{"type":"murakami"},"strength":0.8,"translate":[-2,2,0],
+     "distance":{"type":"lp_metric","radii":[2,2,2],"n":2}},
+    {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"segment","p0":[6,2,0],"p1":[6,2,0],"radius":2}}]})";
+// A negative capsule cutting a groove through a ball, off its centre.
+const char* const kCapsuleCutField = R"({"type":"soft_blend","children":[
+    {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},
+    {"type":"soft_object","potential":{"type":"murakami"},"strength":-1.5,
+     "distance":{"type":"segment","p0":[-5,0.5,1.4],"p1":[5,0.5,1.4],"radius":1.3}}]})";
+// A thin capsule along x (its surface radius 0.4 kLevel = 0.216) beside a fatter one.
+const char* const kCapsuleAxisField = R"({"type":"soft_blend","children":[
+    {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"segment","p0":[-5,0,0],"p1":[5,0,0],"radius":0.4}},
+    {"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"segment","p0":[-3,1.5,0],"p1":[3,1.5,0],"radius":1}}]})";
+
 // Camera: eye, target, up, vertical fov in degrees.
 const MarchCase kMarchCases[] = {
     {"hole", {{9, -4, 3}, {2, 0, 0}, {0, 0, 1}, 40}, kHoleField},
@@ -271,6 +291,14 @@ const MarchCase kMarchCases[] = {
     {"sheared_blobs", {{3, -6, 4}, {0.5, 0, 0}, {0, 0, 1}, 40}, kShearedBlobsField},
     // Almost edge-on to the flattened one's plane.
     {"sheared_blobs_grazing", {{5, -5, 0.6}, {0, 0, 0}, {0, 0, 1}, 35}, kShearedBlobsField},
+    {"capsule_chain", {{3, -14, 8}, {0, 1, 0.3}, {0, 0, 1}, 50}, kCapsuleChainField},
+    {"capsule_cut", {{7, -6, 6}, {0, 0, 0.5}, {0, 0, 1}, 45}, kCapsuleCutField},
+    // Down the groove, along the negative capsule's axis.
+    {"capsule_cut_along_axis", {{-14, 0.5, 1.6}, {0, 0.5, 1.4}, {0, 0, 1}, 25}, kCapsuleCutField},
+    // End-on: about 0.1 degree off the thin capsule's axis.
+    {"capsule_end_on", {{-15, 0.02, 0.01}, {0, 0, 0}, {0, 0, 1}, 6}, kCapsuleAxisField},
+    // Along the thin capsule's top line: its rays graze the cylinder from end to end.
+    {"capsule_axis_grazing", {{-14, 0, 0.2165}, {0, 0, 0.2165}, {0, 0, 1}, 4}, kCapsuleAxisField},
 };
 
 std::string march_scene_json(const MarchCase& c) {

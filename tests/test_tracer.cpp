@@ -111,6 +111,78 @@ TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
   EXPECT_GT(hits, 100);
 }
 
+// Capsules on the polynomial path: a chain of them, one of negative strength cutting a sphere, a
+// zero-length one and a sheared one. Along random rays, rays grazing the surface (along a tangent
+// at a reference hit) and rays along the chain's axes, the local mode's first hit is the segment
+// tracer's, no later than the dense reference march's, with no point evaluation.
+TEST(BlobTracer, CapsulesAgreeWithTheSegmentTracerAndTheReference) {
+  const Scene scene = parse_scene(
+      R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"field":{"type":"soft_blend","children":[
+        {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"segment","p0":[-9,0,0],"p1":[-3,1,0],"radius":2.5}},
+        {"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":"segment","p0":[-3,1,0],"p1":[3,1,0],"radius":2.5}},
+        {"type":"soft_object","potential":{"type":"wyvill"},"distance":{"type":"segment","p0":[3,1,0],"p1":[6,-3,2],"radius":2.5}},
+        {"type":"soft_object","potential":{"type":"murakami"},"translate":[0,-6,0],"distance":{"type":"lp_metric","radii":[5,5,5],"n":2}},
+        {"type":"soft_object","potential":{"type":"murakami"},"strength":-1.2,"distance":{"type":"segment","p0":[0,-6,-7],"p1":[0,-6,7],"radius":2}},
+        {"type":"soft_object","potential":{"type":"cubic"},"strength":1.6,"distance":{"type":"segment","p0":[-6,-8,4],"p1":[-6,-8,4],"radius":3}},
+        {"type":"soft_object","potential":{"type":"murakami"},"matrix":[[1,0.9,0,0],[0,0.15,0,4],[0.3,0,1,-4]],
+         "distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":1.5}}]}}]})",
+      "<test>");
+  const SceneObject& obj = scene.objects[0];
+  const ObjectTracer blobs(obj, LipschitzMode::Local), segments(obj, LipschitzMode::Global);
+  ASSERT_TRUE(blobs.blob_sum()) << "capsules should take the polynomial path";
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Box& b = obj.bounds;
+  const double R = b.diagonal();
+  int hits = 0, grazing = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Vec3 dir0 = normalize({u(rng), u(rng), u(rng)});
+    Vec3 target = b.center() +
+                  Vec3{u(rng) * b.extent().x, u(rng) * b.extent().y, u(rng) * b.extent().z} * 0.4;
+    Vec3 dir = dir0;
+    // Every tenth along a capsule of the chain (the middle one's axis is the x axis at y = 1),
+    // offset from the axis by up to the surface's radius.
+    if (i % 10 == 5) target = Vec3{0, 1, 0} + Vec3{0, u(rng), u(rng)} * 1.6, dir = {1, 0, 0};
+    if (i % 10 == 7) target = Vec3{0, -6, 0} + Vec3{u(rng), u(rng), 0} * 1.2, dir = {0, 0, 1};
+    Ray ray{target - dir * R, dir};
+    double t0 = 0, t1 = 2 * R;
+    if (!clip_to_box(ray, b, t0, t1)) continue;
+    double ref = reference_first_hit(segments, ray, t0, t1, 20000);
+    if (i % 4 == 0 && std::isfinite(ref)) {
+      const Vec3 p = ray.o + ray.d * ref, n = segments.normal(p);
+      const Vec3 side = cross(n, ray.d);
+      if (length(side) > 1e-6) {
+        const Vec3 along = normalize(cross(side, n));
+        ray = {p - along * R, along};
+        t0 = 0, t1 = 3 * R;
+        if (!clip_to_box(ray, b, t0, t1)) continue;
+        ref = reference_first_hit(segments, ray, t0, t1, 20000);
+        ++grazing;
+      }
+    }
+    const double ds = (t1 - t0) / 20000;
+    TraceCounters a, g;
+    const MarchResult m = blobs.first_hit(ray, 0, 3 * R, a);
+    const MarchResult s = segments.first_hit(ray, 0, 3 * R, g);
+    EXPECT_EQ(a.point_evals, 0);
+    if (std::isfinite(ref)) {
+      ++hits;
+      ASSERT_TRUE(m.hit) << "ray " << i << " skipped a surface at t = " << ref;
+      ASSERT_LE(m.t, ref + 2e-8 * R) << "ray " << i;
+    }
+    if (m.gave_up || s.gave_up) continue;  // a tangency neither can certify (grazing rays)
+    ASSERT_EQ(m.hit, s.hit) << "ray " << i;
+    if (!m.hit) continue;
+    ASSERT_TRUE(blobs.inside(ray.o + ray.d * m.t)) << "ray " << i << ": reported hit is outside";
+    if (std::isfinite(ref)) {
+      ASSERT_GE(m.t, ref - ds - 1e-9 * R) << "ray " << i;
+    }
+    ASSERT_NEAR(m.t, s.t, 2e-8 * R) << "ray " << i;
+  }
+  EXPECT_GT(hits, 150);
+  EXPECT_GT(grazing, 20);
+}
+
 // A solid cut by its object's bounds shows the cut as a flat face: the hit is flagged so
 // shading uses the face's normal (the gradient there belongs to the uncut field, and a shadow
 // ray leaving along it would start inside the solid).

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernels/lp_metric.h"
+#include "kernels/skeletal.h"
 
 namespace softtrace {
 
@@ -31,9 +32,18 @@ bool potential_in_r(Op op, double* c2, double* c3) {
   return false;
 }
 
-// One child of the sum: placements from register 0, an ellipsoidal lp_metric of the last one,
-// a polynomial potential of that, and optionally its strength s (which scales c2 and c3). The
-// frame x -> M x + k is the placements' composition.
+// A capsule's axis in its frame (0 for an ellipsoid): its square and reciprocal must neither
+// overflow nor vanish (the kernel divides by |ab|^2 in world units, and so loses nothing there).
+bool set_axis(BlobSum::Frame* frame, const Vec3& axis) {
+  const double a2 = dot(axis, axis);
+  frame->axis = axis;
+  frame->inv_axis2 = a2 > 0 ? 1 / a2 : 0.0;
+  return a2 == 0 || (a2 > 1e-200 && a2 < 1e200);
+}
+
+// One child of the sum: placements from register 0, an ellipsoidal lp_metric or a segment of the
+// last one, a polynomial potential of that, and optionally its strength s (which scales c2 and
+// c3). The frame x -> M x + k is the placements' composition.
 // An affinely placed blob (scale, matrix) compiles to one oracle instruction; its node says
 // which blob it is. Its frame's rows must neither overflow nor vanish when squared (as below).
 bool read_oracle_blob(const Instr& in, BlobSum::Frame* frame, BlobSum::Blob* blob) {
@@ -46,6 +56,7 @@ bool read_oracle_blob(const Instr& in, BlobSum::Frame* frame, BlobSum::Blob* blo
   }
   frame->L = b.L;
   frame->k = b.k;
+  if (!set_axis(frame, b.axis)) return false;
   blob->centre = {};
   blob->inv_r2 = 0;  // no ball: terms() takes the frame
   blob->c2 = b.c2;
@@ -86,10 +97,22 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   if (c.end - i != 2 && c.end - i != 3) return false;
   const Instr& metric = p.code[i];
   const Instr& potential = p.code[i + 1];
-  if (metric.op != Op::LpMetric || metric.in != reg) return false;
-  const LpMetricParams m = LpMetricParams::load(K + metric.a);
-  if (m.n != 2) return false;
-  if (potential.in != metric.out) return false;
+  if (metric.in != reg || potential.in != metric.out) return false;
+  // The metric's frame: q = (X - a) / radius for a segment from a, (X / radii) for an ellipsoid.
+  Vec3 radii, origin;
+  if (metric.op == Op::LineSegment) {
+    const LineSegmentParams m = line_segment_params(K + metric.a);
+    radii = {m.r, m.r, m.r};
+    origin = m.a;
+    if (!set_axis(frame, m.len2 > 0 ? m.ab / m.r : Vec3{})) return false;
+  } else if (metric.op == Op::LpMetric) {
+    const LpMetricParams m = LpMetricParams::load(K + metric.a);
+    if (m.n != 2) return false;
+    radii = m.a;
+    set_axis(frame, {});
+  } else {
+    return false;
+  }
   if (!potential_in_r(potential.op, &blob->c2, &blob->c3)) return false;
   if (c.end - i == 3) {
     const Instr& strength = p.code[i + 2];
@@ -100,16 +123,17 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   } else if (potential.out != c.slot) {
     return false;
   }
+  off = off - origin;
   for (int r = 0; r < 3; ++r) {
-    const double a = m.a[r];
+    const double a = radii[r];
     // The squares of |L x + k| must neither overflow nor vanish for any point a ray reaches (the
     // kernel rescales those; these sums would lose the blob): such radii keep the segment tracer.
     if (!(a > 1e-100 && a < 1e100 && std::abs(off[r]) < 1e100)) return false;
     frame->L.r[r] = M.r[r] / a;
     frame->k[r] = off[r] / a;
   }
-  const double a = m.a.x;
-  const bool ball_like = !rotated && a == m.a.y && a == m.a.z;
+  const double a = radii.x;
+  const bool ball_like = !rotated && a == radii.y && a == radii.z && frame->inv_axis2 == 0;
   blob->centre = -off;
   blob->inv_r2 = ball_like ? 1 / (a * a) : 0.0;
   return true;
@@ -133,6 +157,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     Frame frame;
     Blob blob;
     if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
+    s.capsules_ += frame.inv_axis2 > 0;
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
     next = c.end;
@@ -149,6 +174,62 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
   return s;
 }
 
+namespace {
+// The term of d^2 = |w + u v|^2 over the part [lo, hi] of the stretch [0, len], if its support
+// r = 1 - d^2 > 0 meets that part. v = 0 (a capsule's middle part seen along its axis) makes d^2
+// constant over the part.
+bool term(const Vec3& w, const Vec3& v, double lo, double hi, double len, const BlobSum::Blob& b,
+          BlobSum::Term* out) {
+  const double alpha = dot(v, v);
+  const double mid = alpha > 0 ? -dot(w, v) / alpha : 0.0;
+  const Vec3 w_mid = w + v * mid;
+  const double h2 = 1 - dot(w_mid, w_mid);
+  if (!(h2 > 0)) return false;
+  const double half = alpha > 0 ? std::sqrt(h2 / alpha) : std::numeric_limits<double>::infinity();
+  const double enter = std::max({mid - half, lo, 0.0}), exit = std::min({mid + half, hi, len});
+  if (!(enter < exit)) return false;
+  const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
+  const double r = std::max(h2 - alpha * gap * gap, 0.0);
+  // The largest value over the stretch: at the largest r for a positive strength, at most 0 for a
+  // negative one.
+  *out = {enter, exit, mid, alpha, h2, b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
+  return true;
+}
+
+// A capsule's terms: along the ray its point of the axis is s(u) = s0 + u sv times the axis,
+// clamped to [0, 1]. Where s(u) <= 0, d^2 = |w + u v|^2 (the near end); where s(u) >= 1,
+// d^2 = |w - axis + u v|^2 (the far end); between, the parts of w and v across the axis. The
+// parts meet where s(u) is 0 and 1, and d^2 is continuous with its derivative there (the parts
+// differ by |axis|^2 s^2), so rounding in those two points moves the sum by its square.
+int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w, const Vec3& v,
+                  double len, BlobSum::Term* out) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
+  const Vec3 w_across = w - f.axis * s0, v_across = v - f.axis * sv;
+  // [lo, hi] of each part: the near end's, the middle's, the far end's.
+  double lo[3], hi[3];
+  if (sv == 0) {  // the ray runs across the axis: one part all along
+    const int part = s0 <= 0 ? 0 : s0 >= 1 ? 2 : 1;
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = i == part ? -kInf : kInf;
+      hi[i] = -lo[i];
+    }
+  } else {
+    const double at0 = -s0 / sv, at1 = (1 - s0) / sv;  // where s is 0 and where it is 1
+    if (sv > 0) {
+      lo[0] = -kInf, hi[0] = at0, lo[1] = at0, hi[1] = at1, lo[2] = at1, hi[2] = kInf;
+    } else {
+      lo[2] = -kInf, hi[2] = at1, lo[1] = at1, hi[1] = at0, lo[0] = at0, hi[0] = kInf;
+    }
+  }
+  int n = 0;
+  n += term(w, v, lo[0], hi[0], len, b, out + n);
+  n += term(w_across, v_across, lo[1], hi[1], len, b, out + n);
+  n += term(w - f.axis, v, lo[2], hi[2], len, b, out + n);
+  return n;
+}
+}  // namespace
+
 int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
                    Term* out, int32_t* ids) const {
   const Vec3 e = o + d * len;
@@ -156,32 +237,31 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
   const double dd = dot(d, d);
   int n = 0;
   for (int i = 0; i < found; ++i) {
-    // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
-    double alpha, mid, h2;
     const Blob& b = blobs_[ids[i]];
     if (b.inv_r2 > 0) {
+      // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
       const Vec3 oc = o - b.centre;
-      mid = -dot(oc, d) / dd;
+      const double mid = -dot(oc, d) / dd;
       const Vec3 nearest = oc + d * mid;
-      h2 = 1 - dot(nearest, nearest) * b.inv_r2;
-      alpha = dd * b.inv_r2;
-    } else {
-      const Frame& f = frames_[ids[i]];
-      const Vec3 w = f.L * o + f.k, v = f.L * d;
-      alpha = dot(v, v);
-      mid = -dot(w, v) / alpha;
-      const Vec3 w_mid = w + v * mid;
-      h2 = 1 - dot(w_mid, w_mid);
+      const double h2 = 1 - dot(nearest, nearest) * b.inv_r2, alpha = dd * b.inv_r2;
+      if (!(h2 > 0)) continue;
+      const double half = std::sqrt(h2 / alpha);
+      const double enter = std::max(mid - half, 0.0), exit = std::min(mid + half, len);
+      if (!(enter < exit)) continue;
+      const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
+      const double r = std::max(h2 - alpha * gap * gap, 0.0);
+      out[n++] = {enter, exit, mid,  alpha,
+                  h2,    b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
+      continue;
     }
-    if (!(h2 > 0 && alpha > 0)) continue;
-    const double half = std::sqrt(h2 / alpha);
-    const double enter = std::max(mid - half, 0.0), exit = std::min(mid + half, len);
-    if (!(enter < exit)) continue;
-    const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
-    const double r = std::max(h2 - alpha * gap * gap, 0.0);
-    // The largest value over the stretch: at the largest r for a positive strength, at most 0
-    // for a negative one.
-    out[n++] = {enter, exit, mid, alpha, h2, b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
+    const Frame& f = frames_[ids[i]];
+    const Vec3 w = f.L * o + f.k, v = f.L * d;
+    if (f.inv_axis2 > 0) {
+      n += capsule_terms(f, b, w, v, len, out + n);
+    } else {
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      n += term(w, v, -kInf, kInf, len, b, out + n);
+    }
   }
   return n;
 }
@@ -193,11 +273,14 @@ double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* i
   for (int i = 0; i < found; ++i) {
     const Frame& frame = frames_[ids[i]];
     const Blob& b = blobs_[ids[i]];
-    const Vec3 w = frame.L * x + frame.k;
+    Vec3 w = frame.L * x + frame.k;
+    // A capsule's q: w less its nearest point of the axis.
+    if (frame.inv_axis2 > 0)
+      w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
     f += r * r * (b.c2 + b.c3 * r);
-    // dP/dr times ∇r = -2 L^T w.
+    // dP/dr times ∇r = -2 L^T q.
     g += frame.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
   }
   *grad = g;

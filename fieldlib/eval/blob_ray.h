@@ -1,13 +1,18 @@
 // A sum of polynomial blobs along a ray, as POV-Ray's blob solves it. Murakami's, Wyvill's and the
 // cubic potentials are polynomials in r = 1 - d^2 (r^2, (5 r^2 + 4 r^3)/9 and r^3, docs/math.md
 // §3.3-§3.4), and
-// an ellipsoidal distance's d^2 is quadratic along a line. So between the points where a ray
-// enters and leaves the blobs' supports, a soft_blend of such soft objects is one polynomial of
-// degree at most 6 in t, which bernstein.h decides exactly, with no Lipschitz bound and no step.
+// an ellipsoidal distance's d^2 is quadratic along a line. A capsule's (the distance to a segment,
+// POV-Ray's cylinder component) is quadratic on each of three parts of the line: before the plane
+// through one end perpendicular to the segment (the distance to that end), between the two planes
+// (to the segment's line) and beyond the other (to the other end). So between the points where a
+// ray enters and leaves those parts of the blobs' supports, a soft_blend of such soft objects is
+// one polynomial of degree at most 6 in t, which bernstein.h decides exactly, with no Lipschitz
+// bound and no step.
 //
 // Along the ray x = o + u d, a blob whose support is |L x + k| <= 1 has d^2 = q(u) = 1 - h2 +
 // alpha (u - mid)^2 (mid the point nearest its centre, h2 = 1 - q(mid)), hence r = h2 - alpha
-// (u - mid)^2: three numbers per blob and ray, well conditioned however far the ray starts.
+// (u - mid)^2: three numbers per blob and ray, well conditioned however far the ray starts. A
+// capsule's three parts are three such terms, each over its own part of the ray.
 #pragma once
 
 #include <optional>
@@ -21,12 +26,13 @@ namespace softtrace {
 class BlobSum {
  public:
   // The blobs of `p` if its field is exactly a sum of soft objects, each Murakami's, Wyvill's or
-  // the cubic potential of an lp_metric with n = 2 under translations and rotations, of any
+  // the cubic potential of an lp_metric with n = 2 or of a segment, under any placement, of any
   // strength; nullopt otherwise.
   static std::optional<BlobSum> of(const Program& p);
 
-  // One blob's part of a stretch of ray: its potential is P(r(u)) over [enter, exit] (the
-  // support clipped to the stretch), r(u) = h2 - alpha (u - mid)^2, P(r) = c2 r^2 + c3 r^3.
+  // One blob's part of a stretch of ray (a capsule has up to three): its potential is P(r(u))
+  // over [enter, exit] (the support clipped to the stretch, and for a capsule to one side of, or
+  // between, its end planes), r(u) = h2 - alpha (u - mid)^2, P(r) = c2 r^2 + c3 r^3.
   struct Term {
     double enter, exit;
     double mid, alpha, h2;
@@ -35,20 +41,26 @@ class BlobSum {
   };
   // The terms of the blobs whose supports the stretch o + u d, u in [0, len], passes through (d a
   // unit vector; `pad` the rounding of the points the caller will take along it), in out[];
-  // returns their number. `ids` and `out` need room for size() entries.
+  // returns their number. `ids` needs room for size() entries, `out` for max_terms().
   int terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad, Term* out,
             int32_t* ids) const;
-  // f(x) and ∇f(x) from the blobs whose supports hold x (∇ of c2 r^2 + c3 r^3 with r = 1 - |Lx +
-  // k|^2): the compiled gradient's value without pruning the program first. `ids` as for terms.
+  // f(x) and ∇f(x) from the blobs whose supports hold x (∇ of c2 r^2 + c3 r^3 with r = 1 - |q|^2,
+  // q = Lx + k less its nearest point of the axis): the compiled gradient's value without pruning
+  // the program first. `ids` as for terms.
   double gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const;
   int size() const { return static_cast<int>(blobs_.size()); }
+  // The most terms one stretch can have: one per ellipsoid, three per capsule.
+  int max_terms() const { return size() + 2 * capsules_; }
   // The median of the blobs' mean support radii: how long a stretch meets a few of them.
   double typical_radius() const { return typical_radius_; }
 
-  // Where a blob's support is |L x + k| <= 1.
+  // Where a blob's support is |q| <= 1 for q = L x + k less its nearest point of the segment from
+  // 0 to `axis` (1 / |axis|^2 in inv_axis2; both 0 for an ellipsoid).
   struct Frame {
     Mat3 L;
     Vec3 k;
+    Vec3 axis;
+    double inv_axis2 = 0;
   };
   // What terms() reads first, in half a Frame's memory: the potential, and for a ball
   // (translations only, equal radii) its centre and 1 / radius^2, with which a ray's nearest
@@ -63,6 +75,7 @@ class BlobSum {
   std::vector<Frame> frames_;  // by child of the sum
   std::vector<Blob> blobs_;    // the same
   int group_ = 0;
+  int capsules_ = 0;  // frames with an axis
   double typical_radius_ = 0;
 };
 

@@ -23,6 +23,16 @@ class Segment final : public FieldNode {
     return line_segment_distance(m_, p, grad);
   }
   Interval interval(const Box& b) const override { return line_segment_interval(m_, b); }
+  // |X - closest(X)|/r is the distance from (X - a)/r to the segment from 0 to ab/r: a capsule.
+  bool polynomial_blob(PolynomialBlob* b) const override {
+    const double s = 1 / m_.r;
+    b->L.r[0] = {s, 0, 0};
+    b->L.r[1] = {0, s, 0};
+    b->L.r[2] = {0, 0, s};
+    b->k = m_.a * -s;
+    b->axis = m_.len2 > 0 ? m_.ab * s : Vec3{};
+    return true;
+  }
   double lipschitz() const override { return 1 / m_.r; }
   // Off the segment |∇f| = 1/r, and the Euclidean distance e has Hessian norm 1/e (its level
   // sets are cylinders and spheres of radius e, joined C^1), so |Hf| <= 1/(r·e_min).

@@ -11,11 +11,13 @@
 namespace softtrace {
 
 // What a node is when it is a polynomial blob (eval/blob_ray.h): a distance function that is
-// |L x + k| (an ellipsoid's, c2 = c3 = 0), or a soft field that is c2 r^2 + c3 r^3 with
-// r = 1 - |L x + k|^2 where r > 0, and 0 elsewhere.
+// the distance from q = L x + k to the segment from 0 to `axis` (|q| for an ellipsoid, whose axis
+// is 0; a capsule's otherwise, c2 = c3 = 0), or a soft field that is c2 r^2 + c3 r^3 with r = 1 -
+// that distance squared where r > 0, and 0 elsewhere.
 struct PolynomialBlob {
   Mat3 L;
   Vec3 k;
+  Vec3 axis;
   double c2 = 0, c3 = 0;
 };
 

@@ -138,6 +138,8 @@ class ObjectTracer {
   double eval(const Vec3& p, Vec3* grad) const;
 
   const Program& program() const { return program_; }
+  // Whether rays take the polynomial blob path (tracer_blobs.cpp).
+  bool blob_sum() const { return blobs_.has_value(); }
 
  private:
   // How far a computed g may be from the true one: the program's rounding, a few ulps of the

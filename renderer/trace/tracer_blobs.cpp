@@ -43,31 +43,32 @@ struct BlobScratch {
   std::vector<int32_t> ids;
   std::vector<Event> events;
   std::vector<int> active;
-  void fit(int n) {
+  void fit(const BlobSum& blobs) {
+    const int n = blobs.max_terms();
+    if (static_cast<int>(ids.size()) < blobs.size()) ids.resize(blobs.size());
     if (static_cast<int>(terms.size()) >= n) return;
     terms.resize(n);
-    ids.resize(n);
     events.resize(2 * n);
     active.resize(n);
   }
 };
 
-BlobScratch& blob_scratch(int n) {
+BlobScratch& blob_scratch(const BlobSum& blobs) {
   thread_local BlobScratch scratch;
-  scratch.fit(n);
+  scratch.fit(blobs);
   return scratch;
 }
 }  // namespace
 
 Vec3 ObjectTracer::blob_gradient(const Vec3& p) const {
   Vec3 grad;
-  blobs_->gradient(program_, p, &grad, blob_scratch(blobs_->size()).ids.data());
+  blobs_->gradient(program_, p, &grad, blob_scratch(*blobs_).ids.data());
   return grad;
 }
 
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
                                           TraceCounters& work, Query query) const {
-  BlobScratch& scratch = blob_scratch(blobs_->size());
+  BlobScratch& scratch = blob_scratch(*blobs_);
   BlobSum::Term* terms = scratch.terms.data();
   Event* events = scratch.events.data();
   int* active = scratch.active.data();
