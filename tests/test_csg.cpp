@@ -7,8 +7,11 @@
 // a blob exactly tangent to a plane. Also the loader's materials and boxes.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 
+#include "cli_util.h"
+#include "io/image_file.h"
 #include "render/camera.h"
 #include "scene/scene.h"
 #include "trace/csg_trace.h"
@@ -275,6 +278,45 @@ TEST(Csg, ACutFaceTakesTheCuttersTurnedNormalAndMaterial) {
   for (const CsgSpan& sp : spans) {
     EXPECT_TRUE(m.inside(s.objects[0], ray.o + ray.d * (0.5 * (sp.t0 + sp.t1))));
     EXPECT_FALSE(m.inside(s.objects[0], ray.o + ray.d * (sp.t1 + 1e-6)));
+  }
+}
+
+// A red ball in front of a green CSG, inside the CSG's box (which a small box off to the side
+// stretches towards the camera, so that Embree may well try the CSG first): each pixel's material
+// is the surface it shows (a nearer hit keeps nothing of a farther CSG's face), with the objects
+// in either order.
+TEST(CsgRender, ANearerObjectKeepsItsOwnMaterialWhicheverEmbreeTriesFirst) {
+  const std::string csg = R"({"csg": "union", "material": {"color": [0, 1, 0]}, "operands": [
+      {"shape": {"type": "box", "corner1": [-6, -6, -6], "corner2": [0, 6, 6]}},
+      {"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 5}},
+      {"shape": {"type": "box", "corner1": [15, 7, 7], "corner2": [20, 8, 8]}}]})";
+  const std::string ball = R"({"material": {"color": [1, 0, 0]},
+      "shape": {"type": "sphere", "center": [4, 0, 0], "radius": 1.5}})";
+  const std::string dir = test::temp_dir("csg_render");
+  for (const bool csg_first : {true, false}) {
+    SCOPED_TRACE(csg_first ? "CSG first" : "ball first");
+    const std::string scene = dir + "/scene.json", image = dir + "/scene.exr";
+    std::ofstream(scene) << R"({"camera": {"eye": [30, 0, 0], "target": [0, 0, 0], "fov": 30},
+      "objects": [)" << (csg_first ? csg + "," + ball : ball + "," + csg)
+                         << "]}";
+    ASSERT_EQ(test::run_softtrace("render " + scene +
+                                  " -q --width 32 --height 24 --aov albedo -o " + image)
+                  .status,
+              0);
+    const ImageFile f = read_image(image);
+    const int r = f.channel("albedo.R"), g = f.channel("albedo.G");
+    ASSERT_GE(r, 0);
+    // The ball covers the frame's centre (it is nearer than the CSG's face at x = 5 there).
+    EXPECT_EQ(f.at(16, 12, r), 1.0f);
+    EXPECT_EQ(f.at(16, 12, g), 0.0f);
+    int red = 0, green = 0;
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x) {
+        red += f.at(x, y, r) == 1.0f && f.at(x, y, g) == 0.0f;
+        green += f.at(x, y, r) == 0.0f && f.at(x, y, g) == 1.0f;
+      }
+    EXPECT_GT(red, 10);
+    EXPECT_GT(green, 10);
   }
 }
 

@@ -48,27 +48,37 @@ void bounds_callback(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.hi.z), INFINITY);
 }
 
+// Takes a hit nearer than any so far: what shading needs of it, and Embree's ray cut to it. Every
+// field is set by every hit, so a nearer hit keeps nothing of a farther one's (Embree calls the
+// geometries in its own order, not in depth order). `normal` and `face` are a primitive's or a
+// CSG's; a field's normal is computed once, for the closest hit.
+void record_hit(const RTCIntersectFunctionNArguments* args, RayContext* ctx, int object, double t,
+                bool on_box_face, const Vec3& normal, const SceneObject* face) {
+  ctx->t = t;
+  ctx->object = object;
+  ctx->on_box_face = on_box_face;
+  ctx->normal = normal;
+  ctx->face = face;
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
+  rh->ray.tfar = static_cast<float>(t);
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0;
+}
+
 void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
   // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
   // The beam's depth along its axis is depth / cos along the ray.
   const double clear_to = ctx->beam ? ctx->beam->depth[data->object] / ctx->beam_cos : 0;
   const MarchResult m =
       data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Nearest, clear_to);
   if (!m.hit || m.t >= ctx->t) return;
-  ctx->t = m.t;
-  ctx->object = data->object;
-  ctx->on_box_face = m.on_box_face;
-  rh->ray.tfar = static_cast<float>(m.t);
-  rh->hit.geomID = args->geomID;
-  rh->hit.primID = args->primID;
-  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rh->hit.u = rh->hit.v = 0;
-  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z =
-      0;  // the normal is computed once, for the closest hit
+  record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, nullptr);
 }
 
 void occluded_callback(const RTCOccludedFunctionNArguments* args) {
@@ -84,19 +94,9 @@ void primitive_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
   const PrimitiveHit h = first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t);
   if (!h.hit || h.t >= ctx->t) return;
-  ctx->t = h.t;
-  ctx->object = data->object;
-  ctx->on_box_face = false;
-  ctx->normal = h.normal;
-  rh->ray.tfar = static_cast<float>(h.t);
-  rh->hit.geomID = args->geomID;
-  rh->hit.primID = args->primID;
-  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rh->hit.u = rh->hit.v = 0;
-  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0;
+  record_hit(args, ctx, data->object, h.t, false, h.normal, nullptr);
 }
 
 void primitive_occluded_callback(const RTCOccludedFunctionNArguments* args) {
@@ -111,20 +111,9 @@ void csg_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
   const CsgHit h = data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
   if (!h.hit || h.t >= ctx->t) return;
-  ctx->t = h.t;
-  ctx->object = data->object;
-  ctx->on_box_face = false;
-  ctx->normal = h.normal;
-  ctx->face = h.face;
-  rh->ray.tfar = static_cast<float>(h.t);
-  rh->hit.geomID = args->geomID;
-  rh->hit.primID = args->primID;
-  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rh->hit.u = rh->hit.v = 0;
-  rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0;
+  record_hit(args, ctx, data->object, h.t, false, h.normal, h.face);
 }
 
 // A shadow ray asks the same question as a camera ray: the result's first surface in range.
