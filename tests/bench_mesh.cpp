@@ -11,9 +11,9 @@
 #include <new>
 #include <string>
 
+#include "bench_mesh_scene.h"
 #include "mesh/mesh.h"
 #include "model/program_builder.h"
-#include "scene/scene.h"
 
 namespace {
 
@@ -40,18 +40,8 @@ void operator delete(void* p, size_t) noexcept {
 namespace softtrace {
 namespace {
 
-const Scene& blobs() {
-  static const Scene scene = [] {
-    const std::string path = "/tmp/softtrace_mesh_bench_blobs1000.json";
-    const std::string cmd = "python3 " SOFTTRACE_SOURCE_DIR "/tools/blob_scene.py 1000 -o " + path;
-    if (std::system(cmd.c_str()) != 0) throw std::runtime_error("tools/blob_scene.py failed");
-    return load_scene(path);
-  }();
-  return scene;
-}
-
 void BM_MeshBlobs1000(benchmark::State& state) {
-  const SceneObject& o = blobs().objects.front();
+  const SceneObject& o = mesh_bench_blobs().objects.front();
   const Program p = compile(*o.field);
   MeshOptions opt;
   opt.cells = int(state.range(0));

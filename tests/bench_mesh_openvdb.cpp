@@ -1,8 +1,8 @@
-// OpenVDB's volumeToMesh against softtrace's mesher (fieldlib/mesh) on the same field: the
-// 1000-blob scene of tools/blob_scene.py over its bounds, N cells along the longest side, 2
-// threads. Issue 33 asks to use a well-kept library where measurement says it beats our own; this
-// is that measurement (docs/performance.md "Meshing"). Not a test: run
-// build/tests/softtrace_mesh_openvdb_bench, built only where Debian's libopenvdb-dev is installed.
+// OpenVDB's volumeToMesh on the field bench_mesh.cpp meshes: the 1000-blob scene of
+// tools/blob_scene.py over its bounds, N cells along the longest side, 2 threads. A well-kept
+// library should replace our mesher where measurement says it beats it; this is that measurement
+// (docs/performance.md "Meshing"), compiled into build/tests/softtrace_mesh_bench beside
+// BM_MeshBlobs1000 where Debian's libopenvdb-dev is installed.
 //
 // OpenVDB meshes a sampled grid, so it is given the samples as cheaply as we can make them, with
 // our own pruning: the lattice is cut into OpenVDB's leaves of 8^3 points; a leaf whose box (one
@@ -21,28 +21,17 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "bench_mesh_scene.h"
 #include "eval/eval.h"
 #include "mesh/mesh.h"
 #include "mesh_check.h"
 #include "model/program_builder.h"
-#include "scene/scene.h"
 
 namespace softtrace {
 namespace {
-
-const Scene& blobs() {
-  static const Scene scene = [] {
-    const std::string path = "/tmp/softtrace_mesh_openvdb_bench_blobs1000.json";
-    const std::string cmd = "python3 " SOFTTRACE_SOURCE_DIR "/tools/blob_scene.py 1000 -o " + path;
-    if (std::system(cmd.c_str()) != 0) throw std::runtime_error("tools/blob_scene.py failed");
-    return load_scene(path);
-  }();
-  return scene;
-}
 
 constexpr int kLeaf = 8;  // openvdb::FloatTree's leaf: 8^3 voxels
 
@@ -69,11 +58,15 @@ Sampled sample(const Program& p, double iso, double inside_sign, const Vec3& lo,
   // Each leaf's verdict: 0 outside (background), 1 inside (a tile), 2 sampled (index into slots).
   std::vector<int> kind(count, 0);
   std::vector<LeafSamples> slots(count);
+  // Leaf `id`'s first lattice point (leaves numbered x slowest).
+  const auto origin = [&](int id) {
+    return openvdb::Coord(id / (leaves[1] * leaves[2]) * kLeaf,
+                          (id / leaves[2]) % leaves[1] * kLeaf, id % leaves[2] * kLeaf);
+  };
   tbb::parallel_for(0, count, [&](int id) {
     thread_local Workspace ws;
-    const int I = id / (leaves[1] * leaves[2]), J = (id / leaves[2]) % leaves[1],
-              K = id % leaves[2];
-    const int o[3] = {I * kLeaf, J * kLeaf, K * kLeaf};
+    const openvdb::Coord c = origin(id);
+    const int o[3] = {c.x(), c.y(), c.z()};
     const Box box{
         {lo.x + h * (o[0] - 1), lo.y + h * (o[1] - 1), lo.z + h * (o[2] - 1)},
         {lo.x + h * (o[0] + kLeaf), lo.y + h * (o[1] + kLeaf), lo.z + h * (o[2] + kLeaf)}};
@@ -86,7 +79,7 @@ Sampled sample(const Program& p, double iso, double inside_sign, const Vec3& lo,
     }
     kind[id] = 2;
     LeafSamples& s = slots[id];
-    s.origin = openvdb::Coord(o[0], o[1], o[2]);
+    s.origin = c;
     const Code code(ws.view);
     double x[kBatch], y[kBatch], z[kBatch], f[kBatch];
     int lanes = 0, first = 0;
@@ -106,11 +99,7 @@ Sampled sample(const Program& p, double iso, double inside_sign, const Vec3& lo,
   Sampled out;
   for (int id = 0; id < count; ++id) {
     if (kind[id] == 2) out.leaves.push_back(slots[id]);
-    if (kind[id] == 1) {
-      const int I = id / (leaves[1] * leaves[2]), J = (id / leaves[2]) % leaves[1],
-                K = id % leaves[2];
-      out.inside.emplace_back(I * kLeaf, J * kLeaf, K * kLeaf);
-    }
+    if (kind[id] == 1) out.inside.push_back(origin(id));
   }
   return out;
 }
@@ -118,7 +107,7 @@ Sampled sample(const Program& p, double iso, double inside_sign, const Vec3& lo,
 void BM_OpenVdbBlobs1000(benchmark::State& state) {
   openvdb::initialize();
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
-  const SceneObject& o = blobs().objects.front();
+  const SceneObject& o = mesh_bench_blobs().objects.front();
   const Program p = compile(*o.field);
   const int cells = int(state.range(0));
   const Vec3 size = o.bounds.hi - o.bounds.lo;
@@ -188,31 +177,5 @@ BENCHMARK(BM_OpenVdbBlobs1000)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// softtrace's mesher on the same field and lattice size, in the same run (the ratio is the figure).
-void BM_SofttraceBlobs1000(benchmark::State& state) {
-  const SceneObject& o = blobs().objects.front();
-  const Program p = compile(*o.field);
-  MeshOptions opt;
-  opt.cells = int(state.range(0));
-  opt.threads = 2;
-  size_t faces = 0, vertices = 0;
-  for (auto _ : state) {
-    const Mesh m = mesh({&p, o.iso, o.inside_sign}, o.bounds, opt);
-    faces = m.faces.size();
-    vertices = m.vertices.size();
-  }
-  state.counters["vertices"] = double(vertices);
-  state.counters["faces"] = double(faces);
-}
-BENCHMARK(BM_SofttraceBlobs1000)
-    ->Arg(64)
-    ->Arg(128)
-    ->Arg(256)
-    ->Arg(512)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-
 }  // namespace
 }  // namespace softtrace
-
-BENCHMARK_MAIN();
