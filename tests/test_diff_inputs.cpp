@@ -113,5 +113,27 @@ TEST(DiffTamperedExr, AnAttributeLargerThanTheFileIsRefused) {
   EXPECT_EQ(run_softtrace("diff " + good + " " + good).status, 0);
 }
 
+// OpenEXR reads a channel list (and a fixed-size or preview attribute) by its contents, not by
+// its declared size: a channel list declared one byte short made OpenEXR read on from a place
+// the size check never walked, where a string claimed 1.8 GB (the diff fuzzer's find). A value
+// that does not take exactly its declared size is refused.
+TEST(DiffTamperedExr, AValueThatDoesNotTakeItsDeclaredSizeIsRefused) {
+  const std::string dir = temp_dir("diff_tampered_exr_size");
+  const std::string good = dir + "/good.exr";
+  write_image(good, 8, 6, 4, OIIO::TypeDesc::FLOAT, ramp, {"R", "G", "B", "A"});
+  for (const std::string& key : {std::string("channels") + '\0' + "chlist" + '\0',
+                                 std::string("pixelAspectRatio") + '\0' + "float" + '\0'}) {
+    std::string bytes = read_file(good);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    --bytes[at + key.size()];  // the size's low byte: one short (the sizes here are < 256)
+    const std::string bad = dir + "/bad.exr";
+    std::ofstream(bad, std::ios::binary) << bytes;
+    const RunResult r = run_softtrace("diff " + bad + " " + good);
+    EXPECT_EQ(r.status, 4) << r.out;
+    EXPECT_NE(r.err.find("value takes"), std::string::npos) << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace softtrace::test

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
 
 #include "io/image_file.h"
 #include "io/image_io.h"
@@ -102,9 +103,46 @@ class FdOStream : public Imf::OStream {
   std::string error_;  // the first failed write's reason
 };
 
-// OpenEXR 3.1 allocates an attribute's declared size before it reads the value, so a tampered
-// 12 KB header can ask for gigabytes. Walk the header(s) first: every attribute is
-// name\0 type\0 int32 size, value; a size beyond the bytes the file has left is refused here.
+// The size OpenEXR 3.1's reader of an attribute type reads whatever size the file declares, for
+// the types of fixed size; -1 for the rest.
+long long fixed_attribute_size(const std::string& type) {
+  static const std::pair<const char*, int> kSizes[] = {{"box2i", 16},
+                                                       {"box2f", 16},
+                                                       {"chromaticities", 32},
+                                                       {"compression", 1},
+                                                       {"deepImageState", 1},
+                                                       {"double", 8},
+                                                       {"envmap", 1},
+                                                       {"float", 4},
+                                                       {"int", 4},
+                                                       {"keycode", 28},
+                                                       {"lineOrder", 1},
+                                                       {"m33f", 36},
+                                                       {"m33d", 72},
+                                                       {"m44f", 64},
+                                                       {"m44d", 128},
+                                                       {"rational", 8},
+                                                       {"tiledesc", 9},
+                                                       {"timecode", 8},
+                                                       {"v2i", 8},
+                                                       {"v2f", 8},
+                                                       {"v2d", 16},
+                                                       {"v3i", 12},
+                                                       {"v3f", 12},
+                                                       {"v3d", 24}};
+  for (const auto& [name, size] : kSizes)
+    if (type == name) return size;
+  return -1;
+}
+
+// OpenEXR 3.1 allocates what a header declares before it reads it (a string attribute's size, a
+// preview's width x height, a string vector's lengths), so a tampered 12 KB header can ask for
+// gigabytes. Walk the header(s) first, reading every attribute (name\0 type\0 int32 size, value)
+// exactly as OpenEXR will, and refuse a size beyond the bytes the file has left. Where OpenEXR's
+// reader goes by a value's contents rather than its declared size (a fixed-size type, a channel
+// list, a preview), the two must agree, or OpenEXR would read on from another place than this
+// walk (a fuzzer found a 1.8 GB string behind a channel list longer than declared). Names and
+// types are at most 255 characters, as OpenEXR reads them.
 void check_exr_attribute_sizes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return;  // OpenEXR reports it
@@ -117,23 +155,56 @@ void check_exr_attribute_sizes(const std::string& path) {
     out.clear();
     char c;
     while (in.get(c) && c != 0)
-      if (out.size() < 256) out += c;
+      if ((out += c).size() > 255)
+        throw std::runtime_error("an attribute, type or channel name longer than 255 characters");
     return bool(in);
   };
-  std::string name, type;
+  const auto read_int = [&](long long* v) {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+    *v = static_cast<long long>(int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 |
+                                        uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24));
+    return true;
+  };
+  const auto at = [&] { return static_cast<long long>(in.tellg()); };
+  std::string name, type, channel;
   for (int headers = 0; headers < 1024 && in; ++headers) {
     if (!read_name(name) || name.empty()) return;  // the end of the headers (or of the file)
     do {
-      if (!read_name(type)) return;
-      unsigned char b[4];
-      if (!in.read(reinterpret_cast<char*>(b), 4)) return;
-      const long long size = static_cast<long long>(int32_t(
-          uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24));
-      const long long left = file_size - static_cast<long long>(in.tellg());
+      long long size;
+      if (!read_name(type) || !read_int(&size)) return;
+      const long long start = at(), left = file_size - start;
+      const auto refuse = [&](const std::string& why) {
+        throw std::runtime_error("attribute '" + name + "' " + why);
+      };
       if (size < 0 || size > left)
-        throw std::runtime_error("attribute '" + name + "' declares " + std::to_string(size) +
-                                 " bytes, but the file has " + std::to_string(left) + " left");
-      in.seekg(size, std::ios::cur);
+        refuse("declares " + std::to_string(size) + " bytes, but the file has " +
+               std::to_string(left) + " left");
+      long long read = size;  // what OpenEXR's reader of the type will take
+      if (const long long fixed = fixed_attribute_size(type); fixed >= 0) {
+        read = fixed;
+      } else if (type == "chlist") {  // name\0 and 16 bytes a channel, then an empty name
+        while (read_name(channel) && !channel.empty() && at() - start <= size)
+          in.seekg(16, std::ios::cur);
+        read = in ? at() - start : size + 1;
+      } else if (type == "preview") {  // width, height, then 4 bytes a pixel
+        long long w, h;
+        if (!read_int(&w) || !read_int(&h)) return;
+        const double bytes = 8 + 4.0 * double(uint32_t(w)) * double(uint32_t(h));
+        read = bytes > double(size) ? size + 1 : static_cast<long long>(bytes);
+      } else if (type == "stringvector") {  // int32 length, then the characters, to the size
+        long long n;
+        while (at() - start < size && read_int(&n) && n >= 0 && at() - start + n <= size)
+          in.seekg(n, std::ios::cur);
+        read = in ? at() - start : size + 1;
+      } else if (type == "floatvector" && size % 4 != 0) {
+        read = size - size % 4;
+      }
+      if (read != size)
+        refuse("declares " + std::to_string(size) + " bytes, but its " + type + " value takes " +
+               std::to_string(read));
+      in.clear();
+      in.seekg(start + size);
     } while (read_name(name) && !name.empty());
     // A single-part file has one header; a multi-part file ends its list with an empty header.
     if (!multipart || in.peek() == 0) return;
