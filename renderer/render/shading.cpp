@@ -94,8 +94,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     });
   }
 
-  if ((reflection.x > 0 || reflection.y > 0 || reflection.z > 0) &&
-      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
+  if (reflects(reflection) && level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
     secondary.add(next.work);

@@ -19,9 +19,12 @@ struct Material {
   double specular = 0, roughness = 0.05;  // the specular exponent is 1 / roughness
   double metallic = 0;                    // 0: highlights take the light's colour; 1: the surface's
   Vec3 reflection{0, 0, 0};               // mirror reflection, per channel
-
-  bool reflects() const { return reflection.x > 0 || reflection.y > 0 || reflection.z > 0; }
 };
+
+// Whether a reflection (a material's, or the weighted mix of a blend's) sends a mirror ray.
+inline bool reflects(const Vec3& reflection) {
+  return reflection.x > 0 || reflection.y > 0 || reflection.z > 0;
+}
 
 // The "material" object at `m` (its keys are scene_keys("material")); throws SceneError naming
 // the key for a value out of range.
