@@ -17,7 +17,7 @@ struct Model {
 };
 
 const Model kModels[] = {
-    {"fig12b_soft_blend",
+    {"fig000_12b_soft_blend",
      R"({"field":{"type":"soft_blend","children":[
           {"type":"soft_object","distance":{"type":"superquadric","radii":[8,8,24],"n1":1,"n2":20}},
           {"type":"soft_object","distance":{"type":"lp_metric","radii":[30,30,12],"n":20}}]}})"},

@@ -50,7 +50,7 @@ const SweepCase kCases[] = {
      R"({"type":"soft_object","translate":[0.2,-0.1,0.3],"rotate":{"axis":[1,1,0],"deg":35},
          "distance":{"type":"lp_metric","radii":[0.6,1,0.4],"n":4}})",
      kUnit},
-    {"fig12b_soft_blend",
+    {"fig000_12b_soft_blend",
      R"({"type":"soft_blend","children":[
           {"type":"soft_object","distance":{"type":"superquadric","radii":[8,8,24],"n1":1,"n2":20}},
           {"type":"soft_object","distance":{"type":"lp_metric","radii":[30,30,12],"n":20}}]})",

@@ -16,7 +16,7 @@
 namespace softtrace::test {
 namespace {
 
-const char* kScene = "scenes/fig12b_soft_blend.json";  // 640x480
+const char* kScene = "scenes/fig000_12b_soft_blend.json";  // 640x480
 
 struct Refusal {
   std::string args;      // after "softtrace "; SCENE, IMG and OUT are replaced

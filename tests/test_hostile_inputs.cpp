@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kScene = source_path("scenes/fig12b_soft_blend.json");
+const std::string kScene = source_path("scenes/fig000_12b_soft_blend.json");
 const std::string kTileScene = source_path("tests/scenes/turntable.json");  // 48x36
 
 // `args` exits 2 with exactly one line on stderr containing `expect`, and `dir` (where outputs

@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kScene = source_path("scenes/fig12b_soft_blend.json");
+const std::string kScene = source_path("scenes/fig000_12b_soft_blend.json");
 
 // A 64 KiB tmpfs mounted on a fresh folder for the test's life, with a file "old.exr" holding
 // "old" and the rest filled until the disk is full. Mounting needs root (CAP_SYS_ADMIN):

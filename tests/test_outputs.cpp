@@ -36,7 +36,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kScene = "scenes/fig12b_soft_blend.json";
+const char* kScene = "scenes/fig000_12b_soft_blend.json";
 constexpr int kW = 40, kH = 30;
 
 std::string render_args(const std::string& extra) {
@@ -116,7 +116,8 @@ TEST(Outputs, ExrHeaderHasStandardAndSofttraceAttributes) {
   const auto* software = h.findTypedAttribute<Imf::StringAttribute>("software");
   ASSERT_NE(software, nullptr);
   EXPECT_EQ(software->value().rfind("softtrace ", 0), 0u) << software->value();
-  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("softtrace/scene").value(), "fig12b_soft_blend");
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("softtrace/scene").value(),
+            "fig000_12b_soft_blend");
   EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("softtrace/sceneHash").value(),
             fnv1a64_hex(read_file(source_path(kScene))));
   EXPECT_EQ(h.typedAttribute<Imf::IntAttribute>("softtrace/spp").value(), 2);

@@ -238,7 +238,7 @@ TEST(Frames, FrameNumberGoesIntoTheNameAndTheCamera) {
   };
   refused(source_path(kScene) + " --frame 3",
           "turntable.json: /animation: there is no frame 3 (frames 0 to 2)");
-  refused(source_path("scenes/fig12b_soft_blend.json") + " --frame 0", "has no /animation");
+  refused(source_path("scenes/fig000_12b_soft_blend.json") + " --frame 0", "has no /animation");
   const RunResult hash =
       run_softtrace("render " + source_path(kScene) + " -o " + dir + "/x.##.exr");
   EXPECT_EQ(hash.status, 2);

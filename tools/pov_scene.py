@@ -9,7 +9,7 @@ Two kinds of object are written:
 - `blob`: a soft_blend of murakami soft objects over spheres (lp_metric, n = 2, equal radii) at
   iso t is POV's blob of the same spheres with strength 1 and threshold t: both sum
   (1 - (d/r)^2)^2 inside each sphere.
-- `isosurface`: the Fig. 12(b) blend (scenes/fig12b_soft_blend.json), written out in POV's
+- `isosurface`: the Fig. 12(b) blend (scenes/fig000_12b_soft_blend.json), written out in POV's
   function syntax.
 """
 import math
@@ -130,7 +130,7 @@ FIG12B_FUNCTIONS = """\
 
 
 def isosurface_fig12b(scene, max_gradient, accuracy):
-    """scenes/fig12b_soft_blend.json's object: inside where Blanc(bar) + Blanc(cube) >= 0.5.
+    """scenes/fig000_12b_soft_blend.json's object: inside where Blanc(bar) + Blanc(cube) >= 0.5.
 
     POV's isosurface is inside where the function is below the threshold, so the function is
     0.5 - the blend and the threshold 0. The container is the blend's support box: the cube's

@@ -195,7 +195,7 @@ def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
     or nothing, checked before the work.
 
     >>> scene = load_scene(os.path.join(os.path.dirname(__file__), "..", "..", "scenes",
-    ...                                  "fig12b_soft_blend.json"))  # doctest: +SKIP
+    ...                                  "fig000_12b_soft_blend.json"))  # doctest: +SKIP
     >>> image = render(scene, width=64, aovs=["depth"])  # doctest: +SKIP
     >>> sorted(image)  # doctest: +SKIP
     ['depth', 'rgba']

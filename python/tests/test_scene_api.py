@@ -167,7 +167,7 @@ def test_points_of_any_shape():
 
 
 def test_jupyter_picture_is_a_small_png():
-    scene = softtrace.load_scene(os.path.join(SRC, "scenes", "fig12b_soft_blend.json"))
+    scene = softtrace.load_scene(os.path.join(SRC, "scenes", "fig000_12b_soft_blend.json"))
     png = scene._repr_png_()
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     width, height = struct.unpack(">II", png[16:24])

@@ -20,9 +20,9 @@ namespace {
 constexpr int kTile = 16;  // a task's pixels a side
 // The smallest beam's pixels a side. A tile is the first beam; each beam certifies the approach to
 // every object for all its rays (ObjectTracer::clear_depth), then its quarters go on from there,
-// down to this size. Measured on fig12b_soft_blend at 640x480, one thread, median frames: without
-// beams 0.61 s (1 spp) and 2.38 s (4 spp); smallest beams of 16, 8, 4 and 2 pixels at 4 spp 1.25,
-// 1.14, 1.01 and 0.99 s; of 4 and 2 pixels at 1 spp 0.27 and 0.28 s.
+// down to this size. Measured on fig000_12b_soft_blend at 640x480, one thread, median frames:
+// without beams 0.61 s (1 spp) and 2.38 s (4 spp); smallest beams of 16, 8, 4 and 2 pixels at 4
+// spp 1.25, 1.14, 1.01 and 0.99 s; of 4 and 2 pixels at 1 spp 0.27 and 0.28 s.
 constexpr int kBeam = 4;
 constexpr int kBeamLevels = 3;  // 16, 8, 4
 static_assert(kTile == kBeam << (kBeamLevels - 1));
