@@ -155,11 +155,18 @@ TEST(Fig000Fig2, BlendChangesTheSolidOnlyInsideItsRanges) {
 TEST(Fig000Fig3, DieFacesAreDeformedEverywhere) {
   const FigureScene s("fig000_3b_die");
   const FieldNode& die = *s.object("die").field;
-  const nlohmann::json& children = s.at("/objects/0/field/children");
+  // The pips: the spheres of the two differences (the inner one's first child is the box).
+  std::vector<nlohmann::json> spheres;
+  for (const char* pointer :
+       {"/objects/0/field/children/0/children", "/objects/0/field/children"}) {
+    const nlohmann::json& children = s.at(pointer);
+    for (size_t i = 1; i < children.size(); ++i) spheres.push_back(children[i]);
+  }
   std::map<std::pair<int, int>, int> pips;  // (axis, side) -> count
   std::vector<Vec3> centres;
-  for (size_t i = 1; i < children.size(); ++i) {
-    const Vec3 c = vec(children[i]["translate"]);
+  for (size_t i = 0; i < spheres.size(); ++i) {
+    ASSERT_EQ(spheres[i]["type"], "lp_metric");
+    const Vec3 c = vec(spheres[i]["translate"]);
     centres.push_back(c);
     EXPECT_GT(die.value(c), 1) << "pip " << i << " is a dimple";
     const double v[3] = {c.x, c.y, c.z};
