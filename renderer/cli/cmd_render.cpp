@@ -95,6 +95,7 @@ int run_render(const RenderArgs& a) {
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
+    if (a.antialias) scene.image.antialias.threshold = *a.antialias;
     if (a.frame >= 0) set_frame(scene, a.frame);
     CameraOverride view;
     if (a.eye) view.eye = point_of(*a.eye);

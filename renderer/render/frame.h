@@ -33,7 +33,8 @@ struct TracedScene {
 
 struct FrameStats {
   long long primary_rays = 0;
-  long long steps = 0;  // all field/interval evaluations, shadow rays included
+  long long steps = 0;           // all field/interval evaluations, shadow rays included
+  long long refined_pixels = 0;  // traced again by adaptive anti-aliasing
   RayWork primary, shadow;
 };
 
