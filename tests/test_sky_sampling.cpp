@@ -57,43 +57,42 @@ TEST(Sky, IsOpaqueAndBrightensUpwards) {
   EXPECT_NEAR(film.rgba[(12 * 32) * 4], 0.5, 0.05);  // the horizon, mid-height
 }
 
-// A ball resting on a floor, lit by ambient light only: with ambient occlusion, the floor beside
-// the ball (a crease) is darker than the floor in the open, which keeps all of its light.
+// A ball of radius 3 resting on a floor, lit by ambient light only: with ambient occlusion, the
+// floor beside the ball (a crease) is darker than the floor a little farther out, which is darker
+// than the floor in the open, which keeps all of its light.
 TEST(AmbientOcclusion, ACreaseIsDarkerThanAnOpenFace) {
   const char* text = R"({
     "camera": {"eye": [0, -20, 10], "target": [0, 0, 0]},
     "image": {"ambient_occlusion": {"samples": 32, "distance": 6}},
     "lights": [{"type": "ambient", "intensity": 1}],
     "objects": [
-      {"name": "floor", "shape": {"type": "plane", "normal": [0, 0, 1], "distance": 0}},
-      {"name": "ball", "bounds": [[-4, -4, 0], [4, 4, 8]], "field": {"type": "soft_object",
+      {"name": "floor", "material": {"color": [1, 1, 1]},
+       "shape": {"type": "plane", "normal": [0, 0, 1], "distance": 0}},
+      {"name": "ball", "material": {"color": [1, 1, 1]}, "field": {"type": "soft_object",
        "translate": [0, 0, 3], "distance": {"type": "lp_metric", "radii": [6, 6, 6], "n": 2}}}]})";
-  const Scene scene = parse_scene(text, "ao.json");
-  const TracedScene rt(scene, LipschitzMode::Local);
-  // Straight down onto the floor at (x, 0).
-  const auto floor_at = [&](double x) {
+  // The colour straight down onto the floor at (x, 0) (beyond the ball's radius).
+  const auto floor_at = [](const Scene& scene, double x) {
+    const TracedScene rt(scene, LipschitzMode::Local);
     const Ray ray{{x, 0, 30}, {0, 0, -1}, 0, 1e-4};
     const TraceHit hit = rt.embree.intersect(ray, 0, INFINITY);
     EXPECT_TRUE(hit.hit);
     EXPECT_NEAR(hit.t, 30, 1e-6) << x;  // the floor, not the ball
     RayWork work;
     const Shaded s = shade(scene, rt.tracers, rt.embree, ray, hit, work);
-    EXPECT_GT(work.rays, 0);
+    EXPECT_EQ(work.rays, scene.image.occlusion.samples);  // once for all ambient lights
     return s.color.x;
   };
-  const double open = floor_at(20), crease = floor_at(4.2), under_edge = floor_at(5);
+  const Scene scene = parse_scene(text, "ao.json");
+  const double crease = floor_at(scene, 3.2), near = floor_at(scene, 4.5),
+               open = floor_at(scene, 20);
   EXPECT_EQ(open, 1);  // nothing within 6 of it: all of the ambient light
-  EXPECT_LT(crease, 0.75);
-  EXPECT_LT(crease, under_edge);
-  EXPECT_LT(under_edge, open);
+  EXPECT_LT(crease, 0.9);
+  EXPECT_LT(crease, near);
+  EXPECT_LT(near, open);
 
   Scene plain = parse_scene(text, "ao.json");
   plain.image.occlusion = AmbientOcclusion{};
-  const TracedScene plain_rt(plain, LipschitzMode::Local);
-  const Ray ray{{4.2, 0, 30}, {0, 0, -1}, 0, 1e-4};
-  const TraceHit hit = plain_rt.embree.intersect(ray, 0, INFINITY);
-  RayWork work;
-  EXPECT_EQ(shade(plain, plain_rt.tracers, plain_rt.embree, ray, hit, work).color.x, 1);
+  EXPECT_EQ(floor_at(plain, 3.2), 1);  // without occlusion the crease has all of it too
 }
 
 // The same scene with and without adaptive anti-aliasing: the first pass is the plain render, so
@@ -108,11 +107,10 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
   Film adaptive(64, 48), plain(64, 48);
   FrameStats stats;
   ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, adaptive, nullptr, &stats));
-  Scene off = scene;
-  off.image.antialias = Antialias{};
-  ASSERT_TRUE(render_frame(off, rt, RenderOptions{}, plain, nullptr, nullptr));
-
   const double threshold = scene.image.antialias.threshold;
+  scene.image.antialias = Antialias{};
+  ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, plain, nullptr, nullptr));
+
   const auto differ = [&](int x0, int y0, int x1, int y1) {
     if (x1 < 0 || y1 < 0 || x1 >= 64 || y1 >= 48) return false;
     double d = 0;
@@ -132,7 +130,9 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
       edges += edge;
       flat += !edge;
       changed += !same;
-      if (!edge) EXPECT_TRUE(same) << "a flat pixel was refined: " << x << "," << y;
+      if (!edge) {
+        EXPECT_TRUE(same) << "a flat pixel was refined: " << x << "," << y;
+      }
     }
   EXPECT_EQ(stats.refined_pixels, edges);
   EXPECT_GT(edges, 20);
