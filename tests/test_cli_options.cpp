@@ -52,6 +52,8 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
        " (expected 1 to 16384)"},
       {"render SCENE --scale 2 --width 8", "--width excludes --scale" + usage},
       {"render SCENE --spp 0", "--spp: expected an integer from 1 to 4096, got '0'" + usage},
+      {"render SCENE --antialias -1",
+       "--antialias: expected a number from 0 to 1e+06, got '-1'" + usage},
       {"render SCENE --threads 1025",
        "--threads: expected an integer from 1 to 1024, got '1025'" + usage},
       {"render SCENE --lipschitz foo", "--lipschitz: expected local or global, got 'foo'" + usage},
