@@ -74,6 +74,7 @@ void BM_ModelValueAndGradient(benchmark::State& state, const Model* m) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// The box question: interval and Lipschitz bound together, as one bounds() call (node.h).
 void BM_ModelIntervalAndLipschitz(benchmark::State& state, const Model* m) {
   const Scene s = load(*m);
   const auto pts = points_in(s.objects[0].bounds, 4096);
@@ -81,8 +82,7 @@ void BM_ModelIntervalAndLipschitz(benchmark::State& state, const Model* m) {
   size_t i = 0;
   for (auto _ : state) {
     const Box b = Box::around(pts[i++ & 4095], r);
-    benchmark::DoNotOptimize(s.objects[0].field->interval(b));
-    benchmark::DoNotOptimize(s.objects[0].field->lipschitz(b));
+    benchmark::DoNotOptimize(s.objects[0].field->bounds(b));
   }
   state.SetItemsProcessed(state.iterations());
 }
