@@ -4,10 +4,9 @@
 namespace softtrace::test {
 namespace {
 
-const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
 const Box kFig12({-40, -40, -30}, {40, 40, 30});
 
-const SweepCase kCases[] = {
+const SweepCase kFoundationCases[] = {
     {"lp_metric_n2", R"({"type":"lp_metric","radii":[1,2,0.5],"n":2})", kUnit, Convention::Soft,
      1.0, Side::Below},
     {"lp_metric_n2_cylinder_placed",
@@ -57,7 +56,7 @@ const SweepCase kCases[] = {
      kFig12},
 };
 
-SOFTTRACE_SWEEP_FAMILY(Foundation, kCases);
+SOFTTRACE_SWEEP_FAMILY(Foundation, kFoundationCases);
 
 }  // namespace
 }  // namespace softtrace::test
