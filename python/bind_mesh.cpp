@@ -18,6 +18,7 @@
 #include "mesh/mesh.h"
 #include "model/program_builder.h"
 #include "scene/scene.h"
+#include "scene/vertex_colors.h"
 
 namespace py = pybind11;
 using namespace softtrace;
@@ -85,6 +86,7 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
     } catch (const std::invalid_argument& e) {
       throw py::value_error(e.what());
     }
+    m.colors = vertex_colors(*obj, m.vertices, opt.threads);
   }
   py::array_t<int64_t> faces({py::ssize_t(m.faces.size()), py::ssize_t(3)});
   int64_t* f = faces.mutable_data();

@@ -15,6 +15,7 @@
 #include "model/program_builder.h"
 #include "render/progress.h"
 #include "scene/scene.h"
+#include "scene/vertex_colors.h"
 
 namespace softtrace {
 namespace {
@@ -94,6 +95,7 @@ int run_mesh(const MeshArgs& a) {
                                                : "--cells " + std::to_string(a.cells)) +
                                   ": " + e.what());
     }
+    m.colors = vertex_colors(obj, m.vertices, opt.threads);
     progress.finish();
     if (m.faces.empty())
       throw std::invalid_argument(a.scene + ": object '" + obj.name +
