@@ -45,6 +45,10 @@ void load_csg(const Params& p, SceneObject& o, const Material* passed_on,
     const SceneObject& operand = csg->operands.back();
     if (operand.shape && operand.shape->shape == Primitive::Shape::Disc)
       operands[i].fail("shape", "a disc has no inside: it cannot be a CSG operand");
+    if (operand.mesh)
+      operands[i].fail("mesh",
+                       "a triangle mesh cannot be a CSG operand (its inside is not traced): make "
+                       "it an object of its own");
   }
   Box box = csg->operands[0].bounds;
   for (size_t i = 1; i < csg->operands.size(); ++i) {

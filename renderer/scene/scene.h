@@ -14,6 +14,7 @@
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/primitive.h"
+#include "scene/triangle_mesh.h"
 
 namespace softtrace {
 
@@ -80,6 +81,9 @@ struct SceneObject {
   // A CSG of other objects ("csg") instead: then `field` is null, there is no `shape`, and
   // `bounds` follow from the operands' (Csg).
   std::shared_ptr<const Csg> csg;
+  // A triangle mesh ("mesh") instead: then there is no field, shape or csg, and `bounds` is the
+  // placed mesh's box.
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // docs/scene-format.md "csg": POV-Ray's union, merge, intersection and difference of objects,

@@ -2,10 +2,12 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "trace/csg_trace.h"
+#include "trace/mesh_hit.h"
 #include "trace/primitive_trace.h"
 
 namespace softtrace {
@@ -30,7 +32,7 @@ struct RayContext {
 };
 
 struct GeometryData {
-  const ObjectTracer* tracer;  // null for a primitive or a CSG
+  const ObjectTracer* tracer;  // null for a primitive, a CSG or a mesh
   const CsgTracer* csg;        // null but for a CSG
   const SceneObject* object_data;
   int object;
@@ -125,6 +127,40 @@ void csg_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   if (data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
 }
 
+// A mesh's triangles are Embree's own: it calls this for each hit nearer than the closest so far
+// (its distance in the ray's tfar), which is then accepted. Recording it here keeps our context's
+// closest hit, which the user geometries search up to, the same as Embree's.
+void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;  // rtcIntersect1 only
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  // Embree hands the context on unchanged: it is the RayContext that intersect() passed.
+  auto* ctx = reinterpret_cast<RayContext*>(const_cast<RTCIntersectContext*>(args->context));
+  RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
+  const RTCHit* hit = reinterpret_cast<const RTCHit*>(args->hit);
+  const MeshHit h =
+      mesh_hit(*data->object_data->mesh, hit->primID, ctx->ray, ray->tfar, hit->u, hit->v);
+  ctx->t = h.t;
+  ctx->object = data->object;
+  ctx->on_box_face = false;
+  ctx->normal = h.normal;
+  ctx->face = nullptr;
+}
+
+// The mesh's triangles as Embree's triangle geometry (copied: Embree pads its buffers).
+RTCGeometry mesh_geometry(RTCDevice device, const TriangleMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const size_t vertices = mesh.positions.size() / 3, triangles = mesh.triangles();
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices));
+  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+  if (!v || !t) throw std::runtime_error("cannot allocate Embree's buffers for a mesh");
+  std::copy(mesh.positions.begin(), mesh.positions.end(), v);
+  std::copy(mesh.indices.begin(), mesh.indices.end(), t);
+  rtcSetGeometryIntersectFilterFunction(geom, mesh_filter_callback);
+  return geom;
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -143,6 +179,14 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
     const ObjectTracer* tracer = tracers.tracer(i);
     const CsgTracer* csg = tracers.csg(i);
     impl_->data.push_back({tracer, csg, &tracers.object(i), i});
+    if (const TriangleMesh* mesh = tracers.object(i).mesh.get()) {
+      RTCGeometry geom = mesh_geometry(impl_->device, *mesh);
+      rtcSetGeometryUserData(geom, &impl_->data.back());
+      rtcCommitGeometry(geom);
+      rtcAttachGeometry(impl_->scene, geom);
+      rtcReleaseGeometry(geom);
+      continue;
+    }
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, &impl_->data.back());
