@@ -108,8 +108,8 @@ class ObjReader {
     if (i == 0) fail(std::string("a ") + what + " index of 0 (indices start at 1)");
     if (i < 0) {
       if (static_cast<unsigned long long>(-(i + 1)) >= count)
-        fail(std::string(what) + " index " + std::to_string(i) + " out of range (" +
-             std::to_string(count) + " " + what + "s before it)");
+        fail(std::string(what) + " index " + std::to_string(i) + " out of range (only " +
+             std::to_string(count) + " before it)");
       return uint32_t(count - static_cast<unsigned long long>(-(i + 1)) - 1);
     }
     if (static_cast<unsigned long long>(i) > kMaxMeshVertices)

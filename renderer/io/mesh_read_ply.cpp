@@ -154,7 +154,8 @@ class PlyReader {
                             : e.name == "vertex" ? kMaxMeshVertices
                                                  : kMaxMeshFileBytes;
         if (count > most)
-          fail_line(std::to_string(count) + " " + e.name + "s: more than " + std::to_string(most));
+          fail_line(std::to_string(count) + " records of element '" + e.name + "': more than " +
+                    std::to_string(most));
         e.count = size_t(count);
         elements_.push_back(e);
       } else if (t[0] == "property") {
@@ -210,7 +211,8 @@ class PlyReader {
         least += format_ == Format::Ascii ? 2 : p.list ? type_size(p.count) : type_size(p.item);
       if (least > 0 && e.count > (bytes_.size() - std::min(at_, bytes_.size())) / least) {
         line_ = e.line;
-        fail_line("the file is too short for " + std::to_string(e.count) + " " + e.name + "s");
+        fail_line("the file is too short for " + std::to_string(e.count) + " records of element '" +
+                  e.name + "'");
       }
     }
     line_ = end_header + 1;  // the body's first line (text): token() counts the ones after it
@@ -229,6 +231,7 @@ class PlyReader {
 
   // The next text token, counting lines; empty at the end of the file.
   std::string_view token() {
+    const size_t line = line_;  // at the end of the file: the last line with a token
     while (at_ < bytes_.size()) {
       const char c = bytes_[at_];
       if (c == '\n')
@@ -241,6 +244,7 @@ class PlyReader {
     while (at_ < bytes_.size() && bytes_[at_] != ' ' && bytes_[at_] != '\t' &&
            bytes_[at_] != '\r' && bytes_[at_] != '\n')
       ++at_;
+    if (b == at_) line_ = line;
     return std::string_view(bytes_).substr(b, at_ - b);
   }
 

@@ -39,7 +39,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // ray's shade() below reuses `weights`: it is read only before that call.
   thread_local std::vector<ComponentMaterials::Weight> weights;
   weights.clear();
-  if (obj.components) obj.components->weights(p, weights);
+  if (obj.components) obj.components->weights(hit.face ? hit.face_point : p, weights);
   const bool blended = weights.size() > 1;
   const Material& m =
       weights.size() == 1 ? obj.components->materials()[weights[0].material] : obj.material;

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "scene/ranges.h"
+
 namespace softtrace {
 
 const char* csg_name(Csg::Op op) {
@@ -67,6 +69,21 @@ void load_csg(const Params& p, SceneObject& o, const Material* passed_on,
   }
   if (box.empty())
     p.fail("operands", "the operands' boxes do not overlap: the intersection is empty");
+  if (has_placement(p)) {
+    csg->placed = true;
+    csg->to_parent = load_placement(p);
+    p.check(invert(csg->to_parent.linear, csg->to_local), "",
+            "expected an invertible placement (scale and matrix)");
+    // An infinite plane's box is the whole range (primitive.h): placed, it is that range still.
+    const bool infinite = std::max(max_abs(box.lo), max_abs(box.hi)) >= kMaxPosition;
+    Box placed;
+    for (int c = 0; c < 8; ++c) placed.extend(csg->to_parent.apply(box.corner(c)));
+    const Vec3 far{kMaxPosition, kMaxPosition, kMaxPosition};
+    if (infinite) placed = placed.intersected(Box(far * -1.0, far));
+    p.check(std::max(max_abs(placed.lo), max_abs(placed.hi)) <= kMaxPosition, "",
+            std::string("expected a placed CSG ") + kPositionRule);
+    box = placed;
+  }
   o.bounds = box;
   o.csg = std::move(csg);
 }

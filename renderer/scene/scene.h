@@ -93,10 +93,16 @@ struct SceneObject {
 // the operands' (union, merge), their intersection (intersection), the first's (difference).
 // An operand without a material takes the nearest enclosing CSG object's that has one, as a
 // POV-Ray CSG's texture passes to its untextured parts: a cut face keeps the cutter's material.
+// A CSG object's placement keys move the whole tree: its operands (and their boxes, a field's
+// `bounds` included) are in the CSG's own frame, `to_parent` takes that frame to its parent's
+// (the world's at the top), and the object's `bounds` are in the parent's frame.
 struct Csg {
   enum class Op { Union, Merge, Intersection, Difference };
   Op op = Op::Union;
   std::vector<SceneObject> operands;
+  bool placed = false;  // false: the identity
+  Affine to_parent;
+  Mat3 to_local;  // the inverse of to_parent.linear
 };
 const char* csg_name(Csg::Op op);
 

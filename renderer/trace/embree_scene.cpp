@@ -29,6 +29,7 @@ struct RayContext {
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
   const SceneObject* face = nullptr;
+  Vec3 face_point{0, 0, 0};
 };
 
 struct GeometryData {
@@ -55,12 +56,14 @@ void bounds_callback(const RTCBoundsFunctionArguments* args) {
 // geometries in its own order, not in depth order). `normal` and `face` are a primitive's or a
 // CSG's; a field's normal is computed once, for the closest hit.
 void record_hit(const RTCIntersectFunctionNArguments* args, RayContext* ctx, int object, double t,
-                bool on_box_face, const Vec3& normal, const SceneObject* face) {
+                bool on_box_face, const Vec3& normal, const SceneObject* face,
+                const Vec3& face_point = {0, 0, 0}) {
   ctx->t = t;
   ctx->object = object;
   ctx->on_box_face = on_box_face;
   ctx->normal = normal;
   ctx->face = face;
+  ctx->face_point = face_point;
   RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
   rh->ray.tfar = static_cast<float>(t);
   rh->hit.geomID = args->geomID;
@@ -115,7 +118,7 @@ void csg_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   const CsgHit h = data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
   if (!h.hit || h.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, h.t, false, h.normal, h.face);
+  record_hit(args, ctx, data->object, h.t, false, h.normal, h.face, h.face_point);
 }
 
 // A shadow ray asks the same question as a camera ray: the result's first surface in range.
@@ -144,6 +147,7 @@ void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
   ctx->on_box_face = false;
   ctx->normal = h.normal;
   ctx->face = nullptr;
+  ctx->face_point = {0, 0, 0};
 }
 
 // The mesh's triangles as Embree's triangle geometry (copied: Embree pads its buffers).
@@ -254,6 +258,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
     h.on_box_face = ctx.on_box_face;
     h.normal = ctx.normal;
     h.face = ctx.face;
+    h.face_point = ctx.face_point;
   }
   return h;
 }

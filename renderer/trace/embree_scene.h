@@ -19,6 +19,7 @@ struct TraceHit {
   Vec3 normal{0, 0, 0};      // a primitive's, a CSG's or a mesh's unit normal (fields: not set)
   // A CSG's hit: the operand whose surface it is (its material is the face's); otherwise null.
   const SceneObject* face = nullptr;
+  Vec3 face_point{0, 0, 0};  // a CSG's hit: the point in the face's own frame (CsgHit)
   TraceCounters work;  // what the ray cost, over every object it met
 };
 
