@@ -171,8 +171,8 @@ TEST(MeshObjects, ACubeMeshHasTheBoxShapesSilhouette) {
   const std::string camera = R"("camera": {"eye": [5, -7, 4], "target": [0, 0, 0], "fov": 35},)";
   const std::string place =
       R"("scale": [1, 1.5, 0.8], "rotate": {"axis": [1, 1, 0], "deg": 30}, "translate": [0.3, 0, 0])";
-  const std::string mesh_scene = "{" + camera + R"("objects": [{"mesh": "cube.obj", )" + place +
-                                 "}]}";
+  const std::string mesh_scene =
+      "{" + camera + R"("objects": [{"mesh": "cube.obj", )" + place + "}]}";
   const std::string box_scene =
       "{" + camera + R"("objects": [{"shape": {"type": "box", )" + place + "}}]}";
   write(dir + "/mesh.json", mesh_scene);
@@ -257,8 +257,8 @@ TEST(MeshObjects, TheLoaderNamesTheFileLineAndTheKey) {
   write(dir + "/bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
   write(dir + "/far.obj", kCubeObj);
   const auto error = [&](const std::string& objects) {
-    write(dir + "/s.json", R"({"camera": {"eye": [5, 5, 5], "target": [0, 0, 0]}, "objects": )" +
-                               objects + "}");
+    write(dir + "/s.json",
+          R"({"camera": {"eye": [5, 5, 5], "target": [0, 0, 0]}, "objects": )" + objects + "}");
     try {
       load_scene(dir + "/s.json");
     } catch (const SceneError& e) {
@@ -269,9 +269,9 @@ TEST(MeshObjects, TheLoaderNamesTheFileLineAndTheKey) {
   EXPECT_EQ(error(R"([{"mesh": "bad.obj"}])"),
             dir + "/bad.obj:4: vertex index 4 out of range (the file has 3 vertices) (read for " +
                 dir + "/s.json: /objects/0/mesh)");
-  EXPECT_EQ(error(R"([{"mesh": "none.obj"}])"),
-            dir + "/none.obj: cannot open the mesh file (read for " + dir +
-                "/s.json: /objects/0/mesh)");
+  EXPECT_EQ(
+      error(R"([{"mesh": "none.obj"}])"),
+      dir + "/none.obj: cannot open the mesh file (read for " + dir + "/s.json: /objects/0/mesh)");
   EXPECT_NE(error(R"([{"mesh": "far.obj", "translate": [1e12, 0, 0]}])")
                 .find("/s.json: /objects/0/mesh: " + dir + "/far.obj: vertex 2 is placed beyond"),
             std::string::npos);

@@ -33,11 +33,11 @@ struct CsgNode {
       : object(&o), from_world(frame), placed_frame(placed) {
     if (o.csg) {
       // Its operands are in its own frame: its placement undone after its parent's.
-      const Affine inner = o.csg->placed ? compose({o.csg->to_local, o.csg->to_local *
-                                                                         (o.csg->to_parent.offset *
-                                                                          -1.0)},
-                                                   frame)
-                                         : frame;
+      const Affine inner =
+          o.csg->placed
+              ? compose({o.csg->to_local, o.csg->to_local * (o.csg->to_parent.offset * -1.0)},
+                        frame)
+              : frame;
       operands.reserve(o.csg->operands.size());
       for (const SceneObject& operand : o.csg->operands)
         operands.emplace_back(operand, mode, inner, placed || o.csg->placed);

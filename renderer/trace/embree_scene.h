@@ -20,7 +20,7 @@ struct TraceHit {
   // A CSG's hit: the operand whose surface it is (its material is the face's); otherwise null.
   const SceneObject* face = nullptr;
   Vec3 face_point{0, 0, 0};  // a CSG's hit: the point in the face's own frame (CsgHit)
-  TraceCounters work;  // what the ray cost, over every object it met
+  TraceCounters work;        // what the ray cost, over every object it met
 };
 
 // What a beam certified for the rays through its block of pixels: per object, the forward depth
