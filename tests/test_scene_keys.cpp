@@ -55,9 +55,12 @@ const std::string kEveryKeyCameras = std::string(R"({
     {"shape": {"type": "disc", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 1, "hole_radius": 0.5,
      "scale": [1, 2, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
-    {"name": "cut", "material": {"color": [1, 1, 1]}, "csg": "difference", "operands": [
+    {"name": "cut", "material": {"color": [1, 1, 1]}, "csg": "difference", "scale": [1, 1, 1],
+     "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
+     "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]], "operands": [
      {"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 2}},
-     {"shape": {"type": "box", "corner1": [0, 0, 0], "corner2": [3, 3, 3]}}]}],
+     {"shape": {"type": "box", "corner1": [0, 0, 0], "corner2": [3, 3, 3]}}]},
+    {"name": "triangle", "mesh": ")" SOFTTRACE_SOURCE_DIR R"(/tests/bad_scenes/meshes/triangle.obj"}],
   "animation": {"frames": 1, "cameras": [{"eye": [0, 10, 0], "target": [0, 0, 0]}]}
 })";
 const std::string kEveryKeyTurntable =
@@ -74,7 +77,7 @@ const std::map<std::string, std::vector<std::string>> kWhere = {
     {"light: ambient", {"/lights/2"}},
     {"light: spot", {"/lights/3"}},
     {"area light", {"/lights/1/area", "/lights/3/area"}},
-    {"object", {"/objects/0", "/objects/1", "/objects/7"}},
+    {"object", {"/objects/0", "/objects/1", "/objects/7", "/objects/8"}},
     {"material", {"/objects/0/material"}},
     {"shape: plane", {"/objects/1/shape"}},
     {"shape: box", {"/objects/2/shape"}},
