@@ -39,7 +39,8 @@ const std::string kEveryKeyCameras = std::string(R"({
                "brilliance": 2, "phong": 0.5, "phong_size": 60, "specular": 0.3, "roughness": 0.02,
                "metallic": 0.5, "reflection": [0.1, 0.2, 0.3]}, "convention": "soft", "iso": 0.4,
                "bounds": [[-3, -3, -3], [3, 3, 3]], "field": )") +
-                                     kBall + R"(},
+                                     kBall +
+                                     R"(},
     {"name": "floor", "material": {"color": [1, 1, 1]}, "shape": {"type": "plane", "normal": [0, 0, 1],
      "distance": -3, "scale": [1, 1, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 0],
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
@@ -60,7 +61,8 @@ const std::string kEveryKeyCameras = std::string(R"({
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]], "operands": [
      {"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 2}},
      {"shape": {"type": "box", "corner1": [0, 0, 0], "corner2": [3, 3, 3]}}]},
-    {"name": "triangle", "mesh": ")" SOFTTRACE_SOURCE_DIR R"(/tests/bad_scenes/meshes/triangle.obj"}],
+    {"name": "triangle", "mesh": ")" SOFTTRACE_SOURCE_DIR
+                                     R"(/tests/bad_scenes/meshes/triangle.obj"}],
   "animation": {"frames": 1, "cameras": [{"eye": [0, 10, 0], "target": [0, 0, 0]}]}
 })";
 const std::string kEveryKeyTurntable =
