@@ -11,6 +11,7 @@
 #include "model/node_util.h"
 #include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/nary_ops.h"
 
 namespace softtrace {
 
@@ -74,9 +75,7 @@ class Ricci final : public FieldNode {
   // children that are 0 outside their supports could be dropped there too, not taken here), then
   // one instruction with the parameters and the global bound inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(
-        Op::Ricci, c_, reg,
-        b.consts({m_.positive ? 1.0 : 0.0, m_.n, static_cast<double>(m_.rest), global_L_}));
+    return b.nary(Op::Ricci, c_, reg, b.consts(RicciOp::constants(m_, global_L_)));
   }
 
  private:

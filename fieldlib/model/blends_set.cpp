@@ -11,6 +11,8 @@
 #include "model/node_util.h"
 #include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/nary_ops.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -68,7 +70,7 @@ class Perlin final : public FieldNode {
   // The children's code as a group (never pruned), then one instruction with the mode and the
   // global bound inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::Perlin, c_, reg, b.consts({static_cast<double>(mode_), global_L_}));
+    return b.nary(Op::Perlin, c_, reg, b.consts(PerlinOp::constants(mode_, global_L_)));
   }
 
  private:
@@ -174,7 +176,7 @@ class Complement final : public FieldNode {
     Instr i{Op::Complement};
     i.in = b.compile(*c_, reg);
     i.out = b.new_slot();
-    i.a = b.consts({static_cast<double>(conv_)});
+    i.a = b.consts(ComplementOp::constants(conv_));
     return b.emit(i);
   }
 

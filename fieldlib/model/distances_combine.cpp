@@ -11,6 +11,7 @@
 #include "math/scratch.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/nary_ops.h"
 
 namespace softtrace {
 
@@ -65,7 +66,7 @@ class SuperEllipsoidalUnion final : public FieldNode {
   // The children's code as a group (never pruned: they are distances, not soft fields), then
   // one instruction with n inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::SuperUnion, c_, reg, b.consts({n_}));
+    return b.nary(Op::SuperUnion, c_, reg, b.consts(SuperUnionOp::constants(n_)));
   }
 
  private:
@@ -129,7 +130,8 @@ class SuperEllipsoidalIntersection final : public FieldNode {
   }
   // As the union's: a group never pruned, then one instruction with n and the global bound.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::SuperIntersect, c_, reg, b.consts({n_, global_L_}));
+    return b.nary(Op::SuperIntersect, c_, reg,
+                  b.consts(SuperIntersectOp::constants(n_, global_L_)));
   }
 
  private:

@@ -12,6 +12,7 @@
 #include "math/bound_util.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/gauge_ops.h"
 
 namespace softtrace {
 
@@ -60,7 +61,7 @@ class LpMetric final : public FieldNode {
     Instr i{Op::LpMetric};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts(m_.constants());
+    i.a = b.consts(LpMetricOp::constants(m_));
     return b.emit(i);
   }
   Box region(double level, Side side) const override {
@@ -129,14 +130,12 @@ class SphericalProduct final : public FieldNode {
   void bounds(const Box& b, Interval* value, double* L) const override {
     spherical_product_bounds(m_, b, value, L);
   }
-  // One instruction with the parameters inline, in spherical_product_params' order.
+  // One instruction with the parameters inline, in SphericalProductOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    const OneSidedTerm* t = m_.t;
     Instr i{Op::SphericalProduct};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({t[0].r_pos, t[0].r_neg, t[0].dead, t[1].r_pos, t[1].r_neg, t[1].dead,
-                    t[2].r_pos, t[2].r_neg, t[2].dead, m_.n1, m_.n2, m_.global_L});
+    i.a = b.consts(SphericalProductOp::constants(m_));
     return b.emit(i);
   }
   // [DF-5]: a power sum is at least its largest term, so f <= c needs every u <= c.

@@ -8,17 +8,18 @@
 #include "kernels/planes.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/plane_ops.h"
 
 namespace softtrace {
 
 namespace {
 
-// One instruction with the parameters inline, in plane_params' order.
+// One instruction with the parameters inline, in PlaneOp's layout (both ops share it).
 int compile_plane(ProgramBuilder& b, int reg, Op op, const PlaneParams& m) {
   Instr i{op};
   i.in = reg;
   i.out = b.new_slot();
-  i.a = b.consts({m.n.x, m.n.y, m.n.z, m.a});
+  i.a = b.consts(ParallelPlanesOp::constants(m));
   return b.emit(i);
 }
 
@@ -113,7 +114,7 @@ class GeneralizedDistance final : public FieldNode {
     Instr i{Op::GenDistance};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts(c_);
+    i.a = b.consts(GenDistanceOp::constants(c_));
     i.n = static_cast<int32_t>(n_.size());
     return b.emit(i);
   }

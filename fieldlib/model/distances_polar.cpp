@@ -8,6 +8,7 @@
 #include "kernels/skeletal.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/skeletal_ops.h"
 
 namespace softtrace {
 
@@ -45,12 +46,12 @@ class Torus final : public FieldNode {
     const double r = (m_.R + level * m_.a) * (1 + 1e-12), h = level * m_.b * (1 + 1e-12);
     return {{-r, -r, -h}, {r, r, h}};
   }
-  // One instruction with the parameters inline, in torus_params' order.
+  // One instruction with the parameters inline, in TorusOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::Torus};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.R, m_.a, m_.b, m_.n, m_.global_L});
+    i.a = b.consts(TorusOp::constants(m_));
     return b.emit(i);
   }
 
@@ -85,13 +86,12 @@ class PolarPrism final : public FieldNode {
     const double r = level * m_.r0 * (1 + m_.A) * (1 + 1e-12), h = level * m_.c * (1 + 1e-12);
     return {{-r, -r, -h}, {r, r, h}};
   }
-  // One instruction with the parameters inline, in polar_prism_params' order.
+  // One instruction with the parameters inline, in PolarPrismOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::PolarPrism};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.r0, m_.k, m_.A, m_.kind == PolarProfile::Cosine ? 0.0 : 1.0, m_.c, m_.n,
-                    m_.dR_max, m_.global});
+    i.a = b.consts(PolarPrismOp::constants(m_));
     return b.emit(i);
   }
 

@@ -6,6 +6,7 @@
 #include "kernels/skeletal.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/skeletal_ops.h"
 
 namespace softtrace {
 
@@ -52,12 +53,12 @@ class Segment final : public FieldNode {
     const double e = level * m_.r;
     return {b.lo - Vec3{e, e, e}, b.hi + Vec3{e, e, e}};
   }
-  // One instruction with the parameters inline, in line_segment_params' order.
+  // One instruction with the parameters inline, in LineSegmentOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LineSegment};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.a.x, m_.a.y, m_.a.z, m_.ab.x, m_.ab.y, m_.ab.z, m_.r, m_.len2});
+    i.a = b.consts(LineSegmentOp::constants(m_));
     return b.emit(i);
   }
 

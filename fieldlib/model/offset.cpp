@@ -7,6 +7,7 @@
 #include "model/blends.h"
 #include "model/program_builder.h"
 #include "model/scaled_node.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -46,7 +47,7 @@ class Offset final : public ScaledNode {
     Instr i{Op::Offset};
     i.in = b.compile(*child_, reg);
     i.out = b.new_slot();
-    i.a = b.consts({s_, c_});
+    i.a = b.consts(OffsetOp::constants(s_, c_));
     return b.emit(i);
   }
 

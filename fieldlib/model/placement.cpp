@@ -4,6 +4,7 @@
 
 #include "math/affine.h"
 #include "model/program_builder.h"
+#include "program/ops/placement_ops.h"
 
 namespace softtrace {
 
@@ -49,9 +50,7 @@ class Placed final : public FieldNode {
     Instr i{rotated_ ? Op::Place : Op::Translate};
     i.in = reg;
     i.out = b.new_reg();
-    i.a = rotated_ ? b.consts({t_.x, t_.y, t_.z, Rt_.r[0].x, Rt_.r[0].y, Rt_.r[0].z, Rt_.r[1].x,
-                               Rt_.r[1].y, Rt_.r[1].z, Rt_.r[2].x, Rt_.r[2].y, Rt_.r[2].z})
-                   : b.consts({t_.x, t_.y, t_.z});
+    i.a = b.consts(rotated_ ? PlaceOp::constants(t_, Rt_) : TranslateOp::constants(t_));
     b.emit(i);
     return b.compile(*child_, i.out);
   }

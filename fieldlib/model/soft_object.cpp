@@ -13,6 +13,7 @@
 #include "model/potential.h"
 #include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -58,7 +59,7 @@ class SoftObject final : public FieldNode {
     Instr i{P_->op()};
     i.in = b.compile(*d_, reg);
     i.out = b.new_slot();
-    if (P_->op() == Op::Blanc) i.a = b.consts({P_->parameter()});
+    if (P_->op() == Op::Blanc) i.a = b.consts(BlancOp::constants(P_->parameter()));
     return b.emit(i);
   }
 
@@ -137,7 +138,7 @@ class TransformedSoftObject final : public FieldNode {
     i.in = b.compile(*d_, reg);
     i.n = f_ ? b.compile(*f_, reg) : i.in;
     i.reg = reg;
-    i.a = b.consts(K_.constants());
+    i.a = b.consts(RadiusTransformOp::constants(K_));
     i.out = b.new_slot();
     return b.emit(i);
   }

@@ -6,6 +6,7 @@
 #include "kernels/strength.h"
 #include "model/program_builder.h"
 #include "model/scaled_node.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -52,7 +53,7 @@ class Strength final : public ScaledNode {
     Instr i{Op::Strength};
     i.in = b.compile(*child_, reg);
     i.out = b.new_slot();
-    i.a = b.consts({s_});
+    i.a = b.consts(StrengthOp::constants(s_));
     return b.emit(i);
   }
 };
