@@ -10,6 +10,7 @@
 #include "math/affine.h"
 #include "render/camera.h"
 #include "render/frame.h"
+#include "render/shading.h"
 #include "scene/scene.h"
 
 namespace softtrace {
@@ -110,6 +111,51 @@ TEST(CsgPlacement, APlacedCsgsBoxIsItsOperandsBoxPlaced) {
   EXPECT_EQ(b.hi.x, 12);
   EXPECT_EQ(b.lo.z, -2);
   EXPECT_EQ(b.hi.z, 8);
+}
+
+// A placed CSG's field operand mixes its components' materials at the point in its own frame:
+// the tree moved by 10 along x, seen from a camera moved with it, shades every pixel as before.
+TEST(CsgPlacement, ComponentMaterialsAreWeighedInTheOperandsFrame) {
+  const auto scene = [](const std::string& eye, const std::string& target,
+                        const std::string& placement) {
+    return parse_scene(R"({"camera": {"eye": )" + eye + R"(, "target": )" + target +
+                           R"(, "fov": 30},
+        "lights": [{"type": "directional", "direction": [-1, 0.5, -1]}],
+        "objects": [{"csg": "union", )" +
+                           placement + R"("operands": [
+          {"material": {"color": [0.5, 0.5, 0.5]}, "field": {"type": "soft_blend", "children": [
+            {"type": "soft_object", "material": {"color": [0.9, 0.1, 0.1]},
+             "distance": {"type": "lp_metric", "radii": [3, 3, 3], "n": 2}},
+            {"type": "soft_object", "translate": [3, 0, 0], "material": {"color": [0.1, 0.1, 0.9]},
+             "distance": {"type": "lp_metric", "radii": [3, 3, 3], "n": 2}}]}},
+          {"shape": {"type": "box", "corner1": [-1, -1, -5], "corner2": [4, 1, -2]}}]}]})",
+                       "weights.json");
+  };
+  const Scene here = scene("[1.5, -20, 6]", "[1.5, 0, 0]", "");
+  const Scene moved = scene("[11.5, -20, 6]", "[11.5, 0, 0]", R"("translate": [10, 0, 0], )");
+  const TracedScene rh(here, LipschitzMode::Local), rm(moved, LipschitzMode::Local);
+  constexpr int kW = 64, kH = 48;
+  const ViewCamera ch(here.camera, kW, kH), cm(moved.camera, kW, kH);
+  RayWork shadow;
+  long compared = 0, differ = 0;
+  double reddest = 0, bluest = 0;  // the components' colours both show
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const Ray a = ch.generate(x + 0.5, y + 0.5), b = cm.generate(x + 0.5, y + 0.5);
+      const TraceHit ha = rh.embree.intersect(a, 0, INFINITY);
+      const TraceHit hb = rm.embree.intersect(b, 0, INFINITY);
+      if (!ha.hit || !hb.hit || ha.face != &here.objects[0].csg->operands[0]) continue;
+      const Vec3 ca = shade(here, rh.tracers, rh.embree, a, ha, shadow).color;
+      const Vec3 cb = shade(moved, rm.tracers, rm.embree, b, hb, shadow).color;
+      ++compared;
+      differ += max_abs(ca - cb) > 1e-3;
+      reddest = std::max(reddest, ca.x - ca.z);
+      bluest = std::max(bluest, ca.z - ca.x);
+    }
+  EXPECT_GT(compared, 200);
+  EXPECT_LE(differ, compared / 100) << differ << " of " << compared;
+  EXPECT_GT(reddest, 0.2);
+  EXPECT_GT(bluest, 0.2);
 }
 
 }  // namespace
