@@ -41,21 +41,7 @@ class LpMetric final : public FieldNode {
     b->k = {};
     return true;
   }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    lp_metric_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global_L; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    lp_metric_bounds(m_, b, &f, &L);
-    return L;
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    lp_metric_bounds(m_, b, value, L);
-  }
   // One instruction with the parameters inline.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LpMetric};
@@ -96,6 +82,12 @@ class LpMetric final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    lp_metric_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   LpMetricParams m_;
 };
 
@@ -115,21 +107,7 @@ class SphericalProduct final : public FieldNode {
   }
 
   double eval(const Vec3& p, Vec3* grad) const override { return spherical_product(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    spherical_product_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global_L; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    spherical_product_bounds(m_, b, &f, &L);
-    return L;
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    spherical_product_bounds(m_, b, value, L);
-  }
   // One instruction with the parameters inline, in SphericalProductOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::SphericalProduct};
@@ -152,6 +130,12 @@ class SphericalProduct final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    spherical_product_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   SphericalProductParams m_;
 };
 

@@ -29,12 +29,6 @@ class ParallelPlanes final : public FieldNode {
   ParallelPlanes(const Vec3& n, double a) : m_{n, a} {}
 
   double eval(const Vec3& p, Vec3* grad) const override { return parallel_planes(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    double L;
-    parallel_planes_bounds(m_, dot_range(b, m_.n), &f, &L);
-    return f;
-  }
   double lipschitz() const override { return 1 / m_.a; }
   // {f <= c} is a slab: unbounded, so region() keeps the default.
   int compile(ProgramBuilder& b, int reg) const override {
@@ -42,6 +36,12 @@ class ParallelPlanes final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    parallel_planes_bounds(m_, dot_range(b, m_.n), &out.value, &out.lipschitz);
+    return out;
+  }
+
   PlaneParams m_;
 };
 
@@ -51,24 +51,18 @@ class OneBranchPlane final : public FieldNode {
   OneBranchPlane(const Vec3& n, double a) : m_{n, a} {}
 
   double eval(const Vec3& p, Vec3* grad) const override { return one_branch_plane(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    double L;
-    one_branch_plane_bounds(m_, dot_range(b, m_.n), &f, &L);
-    return f;
-  }
   double lipschitz() const override { return 1 / m_.a; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    one_branch_plane_bounds(m_, dot_range(b, m_.n), &f, &L);
-    return L;
-  }
   int compile(ProgramBuilder& b, int reg) const override {
     return compile_plane(b, reg, Op::OneBranchPlane, m_);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    one_branch_plane_bounds(m_, dot_range(b, m_.n), &out.value, &out.lipschitz);
+    return out;
+  }
+
   PlaneParams m_;
 };
 
@@ -87,18 +81,7 @@ class GeneralizedDistance final : public FieldNode {
   double eval(const Vec3& p, Vec3* grad) const override {
     return generalized_distance(params(), p, grad);
   }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    generalized_distance_bounds(params(), b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return params().global_L(); }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    generalized_distance_bounds(params(), b, &f, &L);
-    return L;
-  }
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();
@@ -120,6 +103,12 @@ class GeneralizedDistance final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    generalized_distance_bounds(params(), b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   GeneralizedDistanceParams params() const { return {c_.data(), static_cast<int>(n_.size())}; }
   // The box of {X : X·n_m ∈ below_m(c), m = i, j, l}; unbounded for a near-singular triple.
   Box solve(double c, size_t i, size_t j, size_t l) const {

@@ -27,18 +27,7 @@ class Torus final : public FieldNode {
   }
 
   double eval(const Vec3& p, Vec3* grad) const override { return torus(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    torus_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global_L; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    torus_bounds(m_, b, &f, &L);
-    return L;
-  }
   // f <= c forces |ρ - R| <= c·a and |z| <= c·b (a power sum is at least its largest term).
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
@@ -56,6 +45,12 @@ class Torus final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    torus_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   TorusParams m_;
 };
 
@@ -67,18 +62,7 @@ class PolarPrism final : public FieldNode {
       : m_(polar_prism_params(r0, k, A, kind, c, n)) {}
 
   double eval(const Vec3& p, Vec3* grad) const override { return polar_prism(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    polar_prism_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    polar_prism_bounds(m_, b, &f, &L);
-    return L;
-  }
   // f <= c forces h <= c, so ρ <= c·Rmax = c·r0 (1 + A), and |z| <= c·c_z.
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
@@ -96,6 +80,12 @@ class PolarPrism final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    polar_prism_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   PolarPrismParams m_;
 };
 

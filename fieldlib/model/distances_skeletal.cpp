@@ -23,7 +23,6 @@ class Segment final : public FieldNode {
   double eval(const Vec3& p, Vec3* grad) const override {
     return line_segment_distance(m_, p, grad);
   }
-  Interval interval(const Box& b) const override { return line_segment_interval(m_, b); }
   // |X - closest(X)|/r is the distance from (X - a)/r to the segment from 0 to ab/r: a capsule.
   bool polynomial_blob(PolynomialBlob* b) const override {
     const double s = 1 / m_.r;
@@ -63,6 +62,11 @@ class Segment final : public FieldNode {
   }
 
  private:
+  // The distance's range over the box (skeletal.h); the slope is 1/r everywhere off the segment.
+  NodeBounds box_bounds(const Box& b) const override {
+    return {line_segment_interval(m_, b), lipschitz()};
+  }
+
   double distance_lower(const Box& b) const {
     const double c = length(b.center() - line_segment_closest(m_, b.center())),
                  h = 0.5 * b.diagonal();

@@ -24,16 +24,6 @@ class Offset final : public ScaledNode {
     if (grad) *grad = offset_gradient(s_, *grad);
     return offset_value(s_, c_, v);
   }
-  Interval interval(const Box& b) const override {
-    return offset_interval(s_, c_, child_->interval(b));
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    Interval f;
-    double Lf;
-    child_->bounds(b, &f, &Lf);
-    *value = offset_interval(s_, c_, f);
-    *L = offset_lipschitz(s_, Lf);
-  }
   Box region(double level, Side side) const override {
     // The child's side flips with the sign of s; its level c + level/s is rounded away from
     // the side enclosed (up for Below, down for Above) so no point is lost to rounding.
@@ -52,6 +42,11 @@ class Offset final : public ScaledNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    const NodeBounds f = child_->bounds(b);
+    return {offset_interval(s_, c_, f.value), offset_lipschitz(s_, f.lipschitz)};
+  }
+
   double c_;
 };
 
