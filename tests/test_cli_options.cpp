@@ -234,8 +234,8 @@ TEST(CliOptions, OneSideAloneKeepsTheScenesAspectAndScaleScalesBoth) {
 // object's box; zoomed in on it, every one does, where the scene's view leaves a few outside.
 TEST(CliOptions, BenchTakesTheCameraOptions) {
   const auto entered = [&](const std::string& view) {
-    const RunResult r =
-        run_softtrace("bench " + source_path(kScene) + " -q --repeat 1 --width 32 --json" + view);
+    const RunResult r = run_softtrace("bench " + source_path(kDefaultScene) +
+                                      " -q --repeat 1 --width 32 --json" + view);
     EXPECT_EQ(r.status, 0) << view << ": " << r.err;
     return r.status == 0 ? nlohmann::json::parse(r.out)["primary"]["entered_box"].get<long>() : -1;
   };

@@ -191,7 +191,7 @@ TEST(MeshObjects, ACubeMeshHasTheBoxShapesSilhouette) {
 // silhouette as the field's own render, and hits shaded with the file's normals.
 TEST(MeshObjects, SofttraceMeshRoundTripsThroughObjAndPly) {
   const std::string dir = temp_dir("mesh_round_trip");
-  const std::string scene_path = source_path("scenes/fig000_12b_soft_blend.json");
+  const std::string scene_path = source_path(test::kDefaultScene);
   const Scene field = load_scene(scene_path);
   const std::vector<int> field_mask = hit_mask(field, 160, 120);
   for (const char* ext : {"obj", "ply"}) {

@@ -17,7 +17,7 @@ namespace {
 
 using json = nlohmann::json;
 
-const char* kBall =
+const char* kKeysBall =
     R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[2,2,2],"n":2}})";
 
 // Between them, every key of every list, at the places `kWhere` names.
@@ -41,7 +41,7 @@ const std::string kEveryKeyCameras = std::string(R"({
                "brilliance": 2, "phong": 0.5, "phong_size": 60, "specular": 0.3, "roughness": 0.02,
                "metallic": 0.5, "reflection": [0.1, 0.2, 0.3]}, "convention": "soft", "iso": 0.4,
                "bounds": [[-3, -3, -3], [3, 3, 3]], "field": )") +
-                                     kBall +
+                                     kKeysBall +
                                      R"(},
     {"name": "floor", "material": {"color": [1, 1, 1]}, "shape": {"type": "plane", "normal": [0, 0, 1],
      "distance": -3, "scale": [1, 1, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 0],
@@ -69,7 +69,8 @@ const std::string kEveryKeyCameras = std::string(R"({
 })";
 const std::string kEveryKeyTurntable =
     std::string(R"({"camera": {"eye": [10, 0, 0], "target": [0, 0, 0]}, "objects": [{"field": )") +
-    kBall + R"(}], "animation": {"frames": 4, "turntable": {"axis": [0, 0, 1], "degrees": 90}}})";
+    kKeysBall +
+    R"(}], "animation": {"frames": 4, "turntable": {"axis": [0, 0, 1], "degrees": 90}}})";
 
 // Where each list's object sits in the two scenes above.
 const std::map<std::string, std::vector<std::string>> kWhere = {
@@ -139,7 +140,7 @@ std::string load_error(const std::string& text) {
 // In every scene object, a misspelled key beside a missing required one names the misspelling.
 TEST(SceneKeys, UnknownKeysAreReportedBeforeMissingOnes) {
   const std::string camera = R"("camera": {"eye": [10, 0, 0], "target": [0, 0, 0]})";
-  const std::string objects = std::string(R"("objects": [{"field": )") + kBall + "}]";
+  const std::string objects = std::string(R"("objects": [{"field": )") + kKeysBall + "}]";
   const struct {
     std::string scene, expected;
   } cases[] = {
@@ -162,7 +163,7 @@ TEST(SceneKeys, UnknownKeysAreReportedBeforeMissingOnes) {
        "s.json: /lights/0/shadows: unknown key 'shadows' for an ambient light"},
       {"{" + camera + R"(, "objects": [{"feild": {}}]})",
        "s.json: /objects/0/feild: unknown key 'feild' (did you mean 'field'?)"},
-      {"{" + camera + R"(, "objects": [{"material": {"colour": [1, 1, 1]}, "field": )" + kBall +
+      {"{" + camera + R"(, "objects": [{"material": {"colour": [1, 1, 1]}, "field": )" + kKeysBall +
            "}]}",
        "s.json: /objects/0/material/colour: unknown key 'colour' (did you mean 'color'?)"},
       {"{" + camera + ", " + objects + R"(, "animation": {"frmes": 3, "turntable": {}}})",

@@ -30,16 +30,9 @@ struct RenderArgs {
   LipschitzMode lipschitz = LipschitzMode::Local;
   // At most one: the part of the frame to render. Given but empty is refused, not the whole frame.
   std::optional<std::string> crop, pixel_bounds, tile;
-<<<<<<< HEAD
-  int frame = -1;   // -1: the scene's camera, no animation frame
-  CameraArgs view;  // after the frame's camera is set
-=======
-  int frame = -1;  // -1: the scene's camera, no animation frame
-  // The camera's eye and target ("X,Y,Z", checked by point_xyz) and fov, over the scene's.
-  std::optional<std::string> eye, target;
-  std::optional<double> fov;
+  int frame = -1;                   // -1: the scene's camera, no animation frame
+  CameraArgs view;                  // after the frame's camera is set
   std::optional<double> antialias;  // the adaptive anti-aliasing threshold, over the scene's
->>>>>>> main
 };
 int run_render(const RenderArgs& a);
 // What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.

@@ -14,11 +14,8 @@
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/primitive.h"
-<<<<<<< HEAD
-#include "scene/triangle_mesh.h"
-=======
 #include "scene/sky.h"
->>>>>>> main
+#include "scene/triangle_mesh.h"
 
 namespace softtrace {
 
