@@ -58,6 +58,8 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
   if (obj->csg)
     throw SceneError(scene->path + ": object '" + obj->name + "' is a CSG (" +
                      csg_name(obj->csg->op) + "), not a field");
+  if (obj->mesh)
+    throw SceneError(scene->path + ": object '" + obj->name + "' is a triangle mesh, not a field");
   Box region = obj->bounds;
   if (bounds) {
     const auto& b = *bounds;

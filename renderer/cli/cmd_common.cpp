@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "cli/option_checks.h"
+
 namespace softtrace {
 
 namespace {
@@ -55,6 +57,14 @@ std::unique_ptr<tbb::global_control> limit_threads(int threads) {
   if (!threads) return nullptr;
   return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                threads);
+}
+
+void apply_camera_options(Scene& scene, const CameraArgs& view) {
+  CameraOverride o;
+  if (view.eye) o.eye = point_of(*view.eye);
+  if (view.target) o.target = point_of(*view.target);
+  o.fov = view.fov;
+  override_camera(scene, o);
 }
 
 }  // namespace softtrace

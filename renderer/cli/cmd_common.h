@@ -1,5 +1,5 @@
-// What `render` and `bench` share: the command line's overrides of the scene's image and the
-// thread limit.
+// What `render` and `bench` share: the command line's overrides of the scene's image and camera,
+// and the thread limit.
 #pragma once
 
 #include <tbb/global_control.h>
@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "cli/commands.h"
 #include "scene/scene.h"
 
 namespace softtrace {
@@ -19,6 +20,10 @@ namespace softtrace {
 // with a SceneError naming /image (check_pixel_count, scene.h).
 void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height,
                       double scale);
+
+// Moves the scene's camera by --eye, --target and --fov (those given; override_camera, scene.h),
+// after any animation frame is set. Throws std::invalid_argument naming the option.
+void apply_camera_options(Scene& scene, const CameraArgs& view);
 
 // Caps TBB's parallelism at `threads` (0: all cores) for as long as the result lives.
 std::unique_ptr<tbb::global_control> limit_threads(int threads);

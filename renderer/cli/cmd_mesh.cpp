@@ -60,6 +60,9 @@ int run_mesh(const MeshArgs& a) {
     if (obj.csg)
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) + ": a CSG (" +
                        csg_name(obj.csg->op) + "), not a field: mesh a field object");
+    if (obj.mesh)
+      throw SceneError(a.scene + ": /objects/" + std::to_string(index) +
+                       ": a triangle mesh already, not a field: mesh a field object");
     const Box region = a.bounds.empty() ? obj.bounds : parse_bounds(a.bounds);
     if (!region.bounded())
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) +

@@ -7,15 +7,9 @@
 
 #include "describe/params.h"
 #include "math/box.h"
+#include "scene/placement.h"
 
 namespace softtrace {
-
-// p_world = linear * p_object + offset: scale, then rotate, then translate, then `matrix`.
-struct Affine {
-  Mat3 linear;
-  Vec3 offset{0, 0, 0};
-  Vec3 apply(const Vec3& p) const { return linear * p + offset; }
-};
 
 struct Primitive {
   enum class Shape { Plane, Box, Sphere, Cylinder, Cone, Disc };
@@ -38,6 +32,10 @@ struct Primitive {
 // Reads the object's "shape" (its "type" and parameters, placement keys included). Throws
 // SceneError at the pointer of a bad value.
 Primitive load_primitive(const Params& p);
+
+// Moves `s` by `m`, after its own placement: sets to_world, to_object and world_box. Returns why
+// it cannot ("" when it can): a singular map, or a bounded shape placed beyond kMaxPosition.
+std::string place_primitive(Primitive& s, const Affine& m);
 
 // The name of each shape as the scene file writes it.
 const char* shape_name(Primitive::Shape s);

@@ -24,6 +24,9 @@ struct CsgHit {
   Vec3 normal;  // outward from the result's solid, unit (a subtracted operand's, turned)
   // The operand (a field or a shape) whose surface it is: the face takes its material.
   const SceneObject* face = nullptr;
+  // The point in the face's own frame (the world's but inside a placed CSG): where its
+  // component materials are weighed.
+  Vec3 face_point;
 };
 
 struct CsgNode;

@@ -1,7 +1,7 @@
 // The only code that sees Embree: one user geometry per scene object, whose bounds callback
 // returns the object's box and whose intersect/occluded callbacks call the object's tracer, a
 // primitive's exact intersection or a CSG's tracer (Mitsuba's thin adapter; the objects never see
-// Embree).
+// Embree); a triangle mesh is Embree's own triangle geometry.
 #pragma once
 
 #include <memory>
@@ -16,10 +16,11 @@ struct TraceHit {
   double t = std::numeric_limits<double>::infinity();
   int object = -1;           // index into Scene::objects
   bool on_box_face = false;  // see MarchResult
-  Vec3 normal{0, 0, 0};      // a primitive's or a CSG's outward unit normal (fields: not set)
+  Vec3 normal{0, 0, 0};      // a primitive's, a CSG's or a mesh's unit normal (fields: not set)
   // A CSG's hit: the operand whose surface it is (its material is the face's); otherwise null.
   const SceneObject* face = nullptr;
-  TraceCounters work;  // what the ray cost, over every object it met
+  Vec3 face_point{0, 0, 0};  // a CSG's hit: the point in the face's own frame (CsgHit)
+  TraceCounters work;        // what the ray cost, over every object it met
 };
 
 // What a beam certified for the rays through its block of pixels: per object, the forward depth
