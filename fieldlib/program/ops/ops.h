@@ -15,6 +15,8 @@
 // list, inline each op's code into their loops as a hand-written case would be.
 #pragma once
 
+#include <cstdlib>
+
 #include "program/ops/gauge_ops.h"
 #include "program/ops/nary_ops.h"
 #include "program/ops/op_io.h"
@@ -37,7 +39,7 @@ inline bool zero_when_quiet(Op op) {
     SOFTTRACE_OPS(SOFTTRACE_OP_ZERO_WHEN_QUIET)
 #undef SOFTTRACE_OP_ZERO_WHEN_QUIET
   }
-  return false;  // not reached: the switch names every op
+  std::abort();  // not reached: the switch names every op, and -Werror=switch keeps it so
 }
 
 }  // namespace softtrace
