@@ -152,11 +152,7 @@ class Complement final : public FieldNode {
   }
   // The child's code, then one instruction with the convention inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::Complement};
-    i.in = b.compile(*c_, reg);
-    i.out = b.new_slot();
-    i.a = b.consts(ComplementOp::constants(conv_));
-    return b.emit(i);
+    return b.single(Op::Complement, b.compile(*c_, reg), ComplementOp::constants(conv_));
   }
 
  private:

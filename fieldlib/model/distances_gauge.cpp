@@ -44,11 +44,7 @@ class LpMetric final : public FieldNode {
   double lipschitz() const override { return m_.global_L; }
   // One instruction with the parameters inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::LpMetric};
-    i.in = reg;
-    i.out = b.new_slot();
-    i.a = b.consts(LpMetricOp::constants(m_));
-    return b.emit(i);
+    return b.single(Op::LpMetric, reg, LpMetricOp::constants(m_));
   }
   Box region(double level, Side side) const override {
     return side == Side::Below ? scaled_box(m_.a, level) : Box::unbounded();
@@ -110,11 +106,7 @@ class SphericalProduct final : public FieldNode {
   double lipschitz() const override { return m_.global_L; }
   // One instruction with the parameters inline, in SphericalProductOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::SphericalProduct};
-    i.in = reg;
-    i.out = b.new_slot();
-    i.a = b.consts(SphericalProductOp::constants(m_));
-    return b.emit(i);
+    return b.single(Op::SphericalProduct, reg, SphericalProductOp::constants(m_));
   }
   // [DF-5]: a power sum is at least its largest term, so f <= c needs every u <= c.
   Box region(double level, Side side) const override {

@@ -14,15 +14,6 @@ namespace softtrace {
 
 namespace {
 
-// One instruction with the parameters inline, in PlaneOp's layout (both ops share it).
-int compile_plane(ProgramBuilder& b, int reg, Op op, const PlaneParams& m) {
-  Instr i{op};
-  i.in = reg;
-  i.out = b.new_slot();
-  i.a = b.consts(ParallelPlanesOp::constants(m));
-  return b.emit(i);
-}
-
 // |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3. The kernels: planes.h.
 class ParallelPlanes final : public FieldNode {
  public:
@@ -32,7 +23,7 @@ class ParallelPlanes final : public FieldNode {
   double lipschitz() const override { return 1 / m_.a; }
   // {f <= c} is a slab: unbounded, so region() keeps the default.
   int compile(ProgramBuilder& b, int reg) const override {
-    return compile_plane(b, reg, Op::ParallelPlanes, m_);
+    return b.single(Op::ParallelPlanes, reg, ParallelPlanesOp::constants(m_));
   }
 
  private:
@@ -53,7 +44,7 @@ class OneBranchPlane final : public FieldNode {
   double eval(const Vec3& p, Vec3* grad) const override { return one_branch_plane(m_, p, grad); }
   double lipschitz() const override { return 1 / m_.a; }
   int compile(ProgramBuilder& b, int reg) const override {
-    return compile_plane(b, reg, Op::OneBranchPlane, m_);
+    return b.single(Op::OneBranchPlane, reg, OneBranchPlaneOp::constants(m_));
   }
 
  private:
@@ -94,12 +85,8 @@ class GeneralizedDistance final : public FieldNode {
   }
   // One instruction: the normal count in n, the parameters in GeneralizedDistanceParams' layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::GenDistance};
-    i.in = reg;
-    i.out = b.new_slot();
-    i.a = b.consts(GenDistanceOp::constants(c_));
-    i.n = static_cast<int32_t>(n_.size());
-    return b.emit(i);
+    return b.single(Op::GenDistance, reg, GenDistanceOp::constants(c_),
+                    static_cast<int32_t>(n_.size()));
   }
 
  private:

@@ -37,11 +37,7 @@ class Torus final : public FieldNode {
   }
   // One instruction with the parameters inline, in TorusOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::Torus};
-    i.in = reg;
-    i.out = b.new_slot();
-    i.a = b.consts(TorusOp::constants(m_));
-    return b.emit(i);
+    return b.single(Op::Torus, reg, TorusOp::constants(m_));
   }
 
  private:
@@ -72,11 +68,7 @@ class PolarPrism final : public FieldNode {
   }
   // One instruction with the parameters inline, in PolarPrismOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::PolarPrism};
-    i.in = reg;
-    i.out = b.new_slot();
-    i.a = b.consts(PolarPrismOp::constants(m_));
-    return b.emit(i);
+    return b.single(Op::PolarPrism, reg, PolarPrismOp::constants(m_));
   }
 
  private:

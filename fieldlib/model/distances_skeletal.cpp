@@ -54,11 +54,7 @@ class Segment final : public FieldNode {
   }
   // One instruction with the parameters inline, in LineSegmentOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::LineSegment};
-    i.in = reg;
-    i.out = b.new_slot();
-    i.a = b.consts(LineSegmentOp::constants(m_));
-    return b.emit(i);
+    return b.single(Op::LineSegment, reg, LineSegmentOp::constants(m_));
   }
 
  private:

@@ -34,11 +34,7 @@ class Offset final : public ScaledNode {
   }
   // The child's code, then one instruction with s and c inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    Instr i{Op::Offset};
-    i.in = b.compile(*child_, reg);
-    i.out = b.new_slot();
-    i.a = b.consts(OffsetOp::constants(s_, c_));
-    return b.emit(i);
+    return b.single(Op::Offset, b.compile(*child_, reg), OffsetOp::constants(s_, c_));
   }
 
  private:

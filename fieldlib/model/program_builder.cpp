@@ -29,6 +29,15 @@ int ProgramBuilder::emit(const Instr& i) {
   return i.out;
 }
 
+int ProgramBuilder::single(Op op, int in, const std::vector<double>& c, int32_t n) {
+  Instr i{op};
+  i.in = in;
+  i.out = new_slot();
+  i.a = consts(c);
+  i.n = n;
+  return emit(i);
+}
+
 int ProgramBuilder::oracle(const FieldNode& node, int reg) {
   Instr i{Op::Oracle};
   i.out = new_slot();

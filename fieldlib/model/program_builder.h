@@ -23,6 +23,10 @@ class ProgramBuilder {
   int consts(std::initializer_list<double> c);
   int consts(const std::vector<double>& c);
   int emit(const Instr& i);
+  // One instruction of `op` over `in` (a point register for a distance, a value slot for an op
+  // over one slot) with the constants `c` in its struct's layout (program/ops/) and `n` where that
+  // struct reads it; writes a new slot, which it returns.
+  int single(Op op, int in, const std::vector<double>& c, int32_t n = 0);
 
   // An oracle instruction: `node` evaluates its own subtree at register `reg`.
   int oracle(const FieldNode& node, int reg);
