@@ -51,10 +51,4 @@ void apply_image_size(Scene& scene, const std::string& scene_path, int width, in
   check_pixel_count(image, scene_path);
 }
 
-std::unique_ptr<tbb::global_control> limit_threads(int threads) {
-  if (!threads) return nullptr;
-  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                               threads);
-}
-
 }  // namespace softtrace

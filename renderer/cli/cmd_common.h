@@ -1,10 +1,7 @@
-// What `render` and `bench` share: the command line's overrides of the scene's image and the
-// thread limit.
+// What `render` and `bench` share: the command line's overrides of the scene's image (the thread
+// limit is render/threads.h).
 #pragma once
 
-#include <tbb/global_control.h>
-
-#include <memory>
 #include <string>
 
 #include "scene/scene.h"
@@ -19,8 +16,5 @@ namespace softtrace {
 // with a SceneError naming /image (check_pixel_count, scene.h).
 void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height,
                       double scale);
-
-// Caps TBB's parallelism at `threads` (0: all cores) for as long as the result lives.
-std::unique_ptr<tbb::global_control> limit_threads(int threads);
 
 }  // namespace softtrace

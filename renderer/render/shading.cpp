@@ -7,6 +7,7 @@
 #include "render/cancel.h"
 #include "render/finish.h"
 #include "render/lights.h"
+#include "scene/traced_objects.h"
 
 namespace softtrace {
 
@@ -14,7 +15,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
-  const SceneObject& obj = hit.face ? *hit.face : tracers.object(hit.object);
+  const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
   const Vec3 p = ray.o + ray.d * hit.t;
   // A primitive's or a CSG's normal came with its hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);

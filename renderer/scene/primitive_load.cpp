@@ -1,6 +1,7 @@
+#include "scene/primitive_load.h"
+
 #include <cmath>
 
-#include "scene/primitive.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
 

@@ -10,6 +10,7 @@
 
 #include "scene/csg_load.h"
 #include "scene/json_text.h"
+#include "scene/primitive_load.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
 

@@ -14,6 +14,7 @@
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/primitive.h"
+#include "scene/trace_target.h"
 
 namespace softtrace {
 
@@ -90,7 +91,7 @@ struct SceneObject {
 // An operand without a material takes the nearest enclosing CSG object's that has one, as a
 // POV-Ray CSG's texture passes to its untextured parts: a cut face keeps the cutter's material.
 struct Csg {
-  enum class Op { Union, Merge, Intersection, Difference };
+  using Op = CsgOp;  // trace_target.h: the tracer takes it too
   Op op = Op::Union;
   std::vector<SceneObject> operands;
 };

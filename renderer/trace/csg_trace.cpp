@@ -20,18 +20,22 @@ constexpr int kMaxSpans = 256;
 // One operand of the tree: a CSG (its operands), a field (the tracers of its solid and of the
 // solid's complement) or a shape (neither).
 struct CsgNode {
-  const SceneObject* object;
+  int face;  // TracedObject::face, reported by hits on its surface
+  Box bounds;
+  CsgOp op;
+  std::optional<Primitive> shape;
   std::vector<CsgNode> operands;
   // A field's: the tracers of its solid and of the solid's complement.
   std::unique_ptr<ObjectTracer> inside, outside;
 
-  CsgNode(const SceneObject& o, LipschitzMode mode) : object(&o) {
-    if (o.csg) {
-      operands.reserve(o.csg->operands.size());
-      for (const SceneObject& operand : o.csg->operands) operands.emplace_back(operand, mode);
+  CsgNode(const TracedObject& o, LipschitzMode mode)
+      : face(o.face), bounds(o.bounds), op(o.op), shape(o.shape) {
+    if (o.csg()) {
+      operands.reserve(o.operands.size());
+      for (const TracedObject& operand : o.operands) operands.emplace_back(operand, mode);
     } else if (o.field) {
-      inside = std::make_unique<ObjectTracer>(o, mode);
-      outside = std::make_unique<ObjectTracer>(o, mode, true);
+      inside = std::make_unique<ObjectTracer>(*o.field, mode);
+      outside = std::make_unique<ObjectTracer>(*o.field, mode, true);
     }
   }
 };
@@ -43,7 +47,7 @@ using Spans = std::vector<CsgSpan>;
 // A shape's one span (its solid is convex), within [lo, hi]; an end beyond kMaxPosition is no
 // surface (an infinite plane is drawn to there, as on its own).
 void shape_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Spans& out) {
-  const SolidSpan s = solid_span(*n.object->shape, ray);
+  const SolidSpan s = solid_span(*n.shape, ray);
   if (s.empty()) return;
   CsgSpan span{s.t0, s.t1, {&n, false, false, s.n0}, {&n, false, false, s.n1}};
   const auto far = [&](double t) { return !(max_abs(ray.o + ray.d * t) <= kMaxPosition); };
@@ -58,7 +62,7 @@ void shape_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Spans& 
 void field_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work,
                  Spans& out) {
   double e0 = -kInf, e1 = kInf;  // where the ray is inside the field's box
-  if (!clip_to_box(ray, n.object->bounds, e0, e1)) return;
+  if (!clip_to_box(ray, n.bounds, e0, e1)) return;
   const double end = std::min(hi, e1);
   // Just past a crossing: the tracer places it no nearer than the surface and within
   // kRefine of the footprint past it; as far again is past it for certain.
@@ -151,30 +155,29 @@ Spans complement(const Spans& b, double lo, double hi) {
 
 Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work) {
   Spans acc;
-  if (n.object->shape) {
+  if (n.shape) {
     shape_spans(n, ray, lo, hi, acc);
     return acc;
   }
-  if (!n.object->csg) {
+  if (n.operands.empty()) {
     field_spans(n, ray, lo, hi, work, acc);
     return acc;
   }
   acc = node_spans(n.operands[0], ray, lo, hi, work);
   for (size_t i = 1; i < n.operands.size(); ++i) {
     const CsgNode& next = n.operands[i];
-    switch (n.object->csg->op) {
-      case Csg::Op::Union:
-      case Csg::Op::Merge:
+    switch (n.op) {
+      case CsgOp::Union:
+      case CsgOp::Merge:
         acc = unite(acc, node_spans(next, ray, lo, hi, work));
         break;
-      case Csg::Op::Intersection:
-      case Csg::Op::Difference: {
+      case CsgOp::Intersection:
+      case CsgOp::Difference: {
         // Only where the result so far holds can the next operand change it.
         if (acc.empty()) return acc;
         const double a = acc.front().t0, b = acc.back().t1;
         const Spans other = node_spans(next, ray, a, b, work);
-        acc = intersect(
-            acc, n.object->csg->op == Csg::Op::Intersection ? other : complement(other, a, b));
+        acc = intersect(acc, n.op == CsgOp::Intersection ? other : complement(other, a, b));
         break;
       }
     }
@@ -184,15 +187,15 @@ Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCo
 
 }  // namespace
 
-CsgTracer::CsgTracer(const SceneObject& object, LipschitzMode mode)
-    : object_(&object), root_(std::make_unique<CsgNode>(object, mode)) {}
+CsgTracer::CsgTracer(const TracedObject& object, LipschitzMode mode)
+    : bounds_(object.bounds), root_(std::make_unique<CsgNode>(object, mode)) {}
 
 CsgTracer::~CsgTracer() = default;
 
 std::vector<CsgSpan> CsgTracer::spans(const Ray& ray, double tnear, double tfar,
                                       TraceCounters& work) const {
   double b0 = tnear, b1 = tfar;
-  if (!clip_to_box(ray, object_->bounds, b0, b1)) return {};
+  if (!clip_to_box(ray, bounds_, b0, b1)) return {};
   work.entered_box = true;
   // The operands search [tnear, tfar], not the CSG's box: a face on the box (a field clipped by
   // its bounds, a box shape) must not be cut off by rounding.
@@ -206,7 +209,7 @@ CsgHit CsgTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCoun
     Vec3 n = !leaf.inside ? e.normal
              : e.on_box   ? leaf.inside->box_face_normal(p)
                           : leaf.inside->normal(p);
-    return CsgHit{true, t, e.flip ? -n : n, leaf.object};
+    return CsgHit{true, t, e.flip ? -n : n, leaf.face};
   };
   for (const CsgSpan& s : spans(ray, tnear, tfar, work)) {
     if (s.e0.leaf && s.t0 >= tnear) return hit_at(s.t0, s.e0);
