@@ -13,7 +13,7 @@ catches() {
   rm -rf "$tmp/fieldlib" "$tmp/renderer"
   cp -r "$root/fieldlib" "$root/renderer" "$tmp/"
   printf '#include "%s"\n' "$2" >>"$tmp/$1"
-  if out=$(python3 "$root/tests/check_layers.py" "$tmp" 2>&1); then
+  if out=$(python3 "$root/tests/checks/check_layers.py" "$tmp" 2>&1); then
     echo "check_layers.py passed $1 including \"$2\"" >&2
     exit 1
   fi
