@@ -165,12 +165,28 @@ void bind_scene(py::module_& m) {
           "image",
           [](const PyScene& s) {
             const ImageSettings& i = s.scene->image;
-            return py::dict(py::arg("width") = i.width, py::arg("height") = i.height,
-                            py::arg("spp") = i.spp, py::arg("max_trace_level") = i.max_trace_level);
+            py::dict d(py::arg("width") = i.width, py::arg("height") = i.height,
+                       py::arg("spp") = i.spp, py::arg("max_trace_level") = i.max_trace_level);
+            // The sampling options the scene turned on (off has no value in the file).
+            if (i.antialias.on())
+              d["antialias"] = py::dict(py::arg("threshold") = i.antialias.threshold,
+                                        py::arg("depth") = i.antialias.depth);
+            if (i.occlusion.samples > 0)
+              d["ambient_occlusion"] = py::dict(py::arg("samples") = i.occlusion.samples,
+                                                py::arg("distance") = i.occlusion.distance);
+            return d;
           },
           [](PyScene& s, const py::object& v) { replace_key(s, "image", v); })
       .def_property(
-          "background", [](const PyScene& s) { return vec(s.scene->background); },
+          "background",
+          [](const PyScene& s) -> py::object {
+            const std::optional<SkyGradient>& sky = s.scene->sky;
+            if (!sky) return vec(s.scene->background);
+            py::list gradient;
+            gradient.append(vec(sky->bottom));
+            gradient.append(vec(sky->top));
+            return py::dict(py::arg("gradient") = gradient, py::arg("up") = vec(sky->up));
+          },
           [](PyScene& s, const py::object& v) { replace_key(s, "background", v); })
       .def_property("lights", &lights_of,
                     [](PyScene& s, const py::object& v) { replace_key(s, "lights", v); })

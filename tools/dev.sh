@@ -102,8 +102,8 @@ case "${1:-}" in
     install_missing
     build softtrace
     mkdir -p out
-    "$BUILD_DIR/softtrace" render scenes/fig12b_soft_blend.json -o out/fig12b_soft_blend.exr \
-      -o out/fig12b_soft_blend.png --aov depth,normal,steps
+    "$BUILD_DIR/softtrace" render scenes/fig000_12b_soft_blend.json -o out/fig000_12b_soft_blend.exr \
+      -o out/fig000_12b_soft_blend.png --aov depth,normal,steps
     ;;
   test)
     install_missing

@@ -2,7 +2,7 @@
 """Renders the same pictures with softtrace and POV-Ray 3.7 and compares silhouettes and times.
 
 Cases: `blobN` (tools/blob_scene.py: N murakami spheres blended at iso 0.5, POV's `blob` of the
-same spheres with strength 1 and threshold 0.5), `fig12b` (scenes/fig12b_soft_blend.json, POV's
+same spheres with strength 1 and threshold 0.5), `fig12b` (scenes/fig000_12b_soft_blend.json, POV's
 `isosurface` of the same blend), and POV-Ray scenes converted by tools/pov2softtrace.py:
 `pov:NAME` (tools/pov_cases/NAME.pov or POV-Ray's sample objects/NAME.pov) and `cloudN` (N mixed
 sphere and cylinder components, tools/pov_cloud.py); `real` names the whole real-world-like set. Both renderers get the same size, 1 sample per pixel and the same
@@ -102,7 +102,7 @@ def write_case(case, a, work):
         sc = blob_scene.scene(int(case[4:]), 1, a.width, a.height)
         pov = pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc)
     elif case == "fig12b":
-        sc = read_json_scene(os.path.join(ROOT, "scenes", "fig12b_soft_blend.json"))
+        sc = read_json_scene(os.path.join(ROOT, "scenes", "fig000_12b_soft_blend.json"))
         head = pov_scene.header(sc, a.width, a.height)
         pov = head + pov_scene.isosurface_fig12b(sc, a.max_gradient, a.accuracy)
         with open(base + "_safe.pov", "w") as f:

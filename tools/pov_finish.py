@@ -74,6 +74,18 @@ COMPONENT_CASES = {
 for _name, (_object, _components, _lights) in COMPONENT_CASES.items():
     CASES[_name] = (_object, _lights, {})
 
+# A gradient sky (POV's sky_sphere), seen around the blob and in its reflection.
+CASES["sky"] = ({"diffuse": 0.6, "reflection": 0.4}, [KEY, AMBIENT], {"max_trace_level": 3})
+BACKGROUNDS = {"sky": {"gradient": [[0.9, 0.6, 0.3], [0.1, 0.3, 0.9]], "up": [0, 0, 1]}}
+# Adaptive anti-aliasing, POV's +A0.3 +R3 (method 1, without jitter): the same pixels are
+# refined, each with 9 samples (a grid in POV-Ray, the R2 sequence in softtrace).
+CASES["antialias"] = ({"phong": 0.6}, [KEY, AMBIENT], {"antialias": {"threshold": 0.3, "depth": 3}})
+POV_ANTIALIAS = {"antialias": ["+A0.3", "+AM1", "+R3", "-J"]}
+# Where the refined edge pixels' samples differ (the grid against R2), more pixels part: 160x120,
+# POV-Ray refines 296 pixels and softtrace 330; over 4/255 are 1.17% of the pixels without
+# softtrace's anti-aliasing, 1.03% with it (mean 0.196/255 and 0.114/255).
+PERCENT_LIMITS = {"antialias": 2.0}
+
 
 def scene(case, width, height):
     material, lights, image = CASES[case]
@@ -87,7 +99,7 @@ def scene(case, width, height):
     return {
         "camera": {"eye": [1.5, -9, 4], "target": [0, 0, 0.4], "up": [0, 0, 1], "fov": 30},
         "image": dict({"width": width, "height": height, "spp": 1}, **image),
-        "background": [0.2, 0.3, 0.45],
+        "background": copy.deepcopy(BACKGROUNDS.get(case, [0.2, 0.3, 0.45])),
         "lights": copy.deepcopy(lights),
         "objects": [{"name": case, "material": dict({"color": [0.8, 0.3, 0.25]}, **material),
                      "convention": "soft", "iso": 0.5,
@@ -164,14 +176,15 @@ def main():
             f.write(pov_scene.header(sc, a.width, a.height, alpha=False) + pov_scene.blob(sc))
         run([softtrace, "render", base + ".json", "-o", base + ".exr", "--flatten", "--quiet"])
         run(["povray", "+I" + base + ".pov", "+O" + base + "_pov.exr", "+FE",
-             "+W%d" % a.width, "+H%d" % a.height, "-D", "-A", "-P", "+WT2"])
+             "+W%d" % a.width, "+H%d" % a.height, "-D", "-P", "+WT2"] +
+            POV_ANTIALIAS.get(c, ["-A"]))
         mean, over, peak = compare(softtrace, base + "_pov.exr", base + ".exr")
-        ok = mean <= MEAN_LIMIT and over <= PERCENT_LIMIT
+        ok = mean <= MEAN_LIMIT and over <= PERCENT_LIMITS.get(c, PERCENT_LIMIT)
         failed += not ok
         print("%-14s %9.3f %9.2f %8.2f  %s" % (c, mean * 255, over, peak * 255,
                                                "ok" if ok else "FAILED"))
-    print("limits: mean <= 1/255, at most %g%% of pixels over 4/255; images in %s" % (
-        PERCENT_LIMIT, work))
+    print("limits: mean <= 1/255, at most %g%% of pixels over 4/255 (antialias: %g%%); "
+          "images in %s" % (PERCENT_LIMIT, PERCENT_LIMITS["antialias"], work))
     if not a.work and not failed:
         shutil.rmtree(work)
     return 1 if failed else 0

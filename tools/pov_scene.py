@@ -9,7 +9,7 @@ Two kinds of object are written:
 - `blob`: a soft_blend of murakami soft objects over spheres (lp_metric, n = 2, equal radii) at
   iso t is POV's blob of the same spheres with strength 1 and threshold t: both sum
   (1 - (d/r)^2)^2 inside each sphere.
-- `isosurface`: the Fig. 12(b) blend (scenes/fig12b_soft_blend.json), written out in POV's
+- `isosurface`: the Fig. 12(b) blend (scenes/fig000_12b_soft_blend.json), written out in POV's
   function syntax.
 """
 import math
@@ -29,6 +29,9 @@ def header(scene, width, height, alpha=True):
     vfov = math.radians(cam.get("fov", 40.0))
     hfov = math.degrees(2 * math.atan(math.tan(vfov / 2) * width / height))
     bg = scene.get("background", [0, 0, 0])
+    sky = None
+    if isinstance(bg, dict):  # a gradient sky: POV's sky_sphere, opaque, over a black background
+        sky, bg = bg, [0, 0, 0]
     level = scene.get("image", {}).get("max_trace_level", 5)
     out = ["#version 3.7;",
            "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level %d }" % level,
@@ -37,6 +40,14 @@ def header(scene, width, height, alpha=True):
            "camera { perspective location %s look_at %s sky %s" % (
                pov_vec(cam["eye"]), pov_vec(cam["target"]), pov_vec(cam.get("up", [0, 0, 1]))),
            "  right x*%d/%d up y angle %.9g }" % (width, height, hfov)]
+    if sky:
+        up = sky.get("up", [0, 0, 1])
+        n = math.sqrt(sum(c * c for c in up))
+        up = [c / n for c in up]
+        # The pattern's value at direction d is (d.up + 1) / 2: bottom straight down, top up.
+        out.append("sky_sphere { pigment { gradient %s color_map { [0 rgb <%g, %g, %g>] "
+                   "[1 rgb <%g, %g, %g>] } scale 2 translate -%s } }" % (
+                       pov_vec(up), *sky["gradient"][0], *sky["gradient"][1], pov_vec(up)))
     ambient = 0.0
     for light in scene.get("lights", []):
         kind = light.get("type")
@@ -130,7 +141,7 @@ FIG12B_FUNCTIONS = """\
 
 
 def isosurface_fig12b(scene, max_gradient, accuracy):
-    """scenes/fig12b_soft_blend.json's object: inside where Blanc(bar) + Blanc(cube) >= 0.5.
+    """scenes/fig000_12b_soft_blend.json's object: inside where Blanc(bar) + Blanc(cube) >= 0.5.
 
     POV's isosurface is inside where the function is below the threshold, so the function is
     0.5 - the blend and the threshold 0. The container is the blend's support box: the cube's

@@ -7,6 +7,10 @@
 
 #include "kernels/lp_metric.h"
 #include "kernels/skeletal.h"
+#include "program/ops/gauge_ops.h"
+#include "program/ops/placement_ops.h"
+#include "program/ops/potential_ops.h"
+#include "program/ops/skeletal_ops.h"
 
 namespace softtrace {
 
@@ -79,13 +83,11 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   for (; i < c.end && (p.code[i].op == Op::Translate || p.code[i].op == Op::Place); ++i) {
     const Instr& in = p.code[i];
     if (in.in != reg) return false;
-    const Vec3 t{K[in.a], K[in.a + 1], K[in.a + 2]};
+    const Vec3 t = TranslateOp::load(K + in.a);  // Place's shift is laid out as Translate's
     off = off - t;
-    if (in.op == Op::Place) {  // local = Rt (x - t), Rt row-major after t
+    if (in.op == Op::Place) {  // local = Rt (x - t)
       rotated = true;
-      Mat3 Rt;
-      for (int r = 0; r < 3; ++r)
-        Rt.r[r] = {K[in.a + 3 + 3 * r], K[in.a + 4 + 3 * r], K[in.a + 5 + 3 * r]};
+      const Mat3 Rt = PlaceOp::load_rotation(K + in.a);
       Mat3 next;
       for (int r = 0; r < 3; ++r)
         next.r[r] = M.r[0] * Rt.r[r].x + M.r[1] * Rt.r[r].y + M.r[2] * Rt.r[r].z;
@@ -101,12 +103,12 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   // The metric's frame: q = (X - a) / radius for a segment from a, (X / radii) for an ellipsoid.
   Vec3 radii, origin;
   if (metric.op == Op::LineSegment) {
-    const LineSegmentParams m = line_segment_params(K + metric.a);
+    const LineSegmentParams m = LineSegmentOp::load(K + metric.a);
     radii = {m.r, m.r, m.r};
     origin = m.a;
     if (!set_axis(frame, m.len2 > 0 ? m.ab / m.r : Vec3{})) return false;
   } else if (metric.op == Op::LpMetric) {
-    const LpMetricParams m = LpMetricParams::load(K + metric.a);
+    const LpMetricParams m = LpMetricOp::load(K + metric.a);
     if (m.n != 2) return false;
     radii = m.a;
     set_axis(frame, {});
@@ -118,8 +120,8 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
     const Instr& strength = p.code[i + 2];
     if (strength.op != Op::Strength || strength.in != potential.out || strength.out != c.slot)
       return false;
-    blob->c2 *= K[strength.a];
-    blob->c3 *= K[strength.a];
+    blob->c2 *= StrengthOp::load(K + strength.a);
+    blob->c3 *= StrengthOp::load(K + strength.a);
   } else if (potential.out != c.slot) {
     return false;
   }

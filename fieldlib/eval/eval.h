@@ -1,4 +1,5 @@
-// The evaluators of compiled programs (program.h), one per numeric domain, each in its own file:
+// The evaluators of compiled programs (program.h), one per numeric domain, each in its own file,
+// each a loop over the instructions whose cases the op list generates (program/ops/ops.h):
 // - eval_values.cpp:   f at a batch of points (structure of arrays; one instruction at a time over
 //                      the batch, so the kernels vectorise);
 // - eval_gradient.cpp: f and ∇f at one point (hits and normals only);
@@ -10,12 +11,10 @@
 
 #include <vector>
 
+#include "program/ops/op_io.h"
 #include "program/program.h"
 
 namespace softtrace {
-
-// The largest batch the values evaluator takes in one call.
-constexpr int kBatch = 16;
 
 // What an evaluator walks: a whole program or a pruned view of one.
 struct Code {
@@ -52,15 +51,8 @@ class Workspace {
   std::vector<double> regs;   // register r, axis i, lane l at [(r * 3 + i) * kBatch + l]
   std::vector<Vec3> points;   // register r at [r] (one point; the slots then hold slot s at [s])
   // gradient
-  struct Dual {
-    double v;
-    Vec3 g;
-  };
-  struct Frame {
-    Vec3 p;
-    Mat3 J;         // ∂(local point)/∂(world point)
-    bool identity;  // J = I: gradients pass unchanged (no 0·inf where a gradient is infinite)
-  };
+  using Dual = softtrace::Dual;  // a value and its gradient (program/ops/op_io.h)
+  using Frame = LocalFrame;      // a point register and its Jacobian
   std::vector<Dual> duals;
   std::vector<Frame> frames;
   // bounds

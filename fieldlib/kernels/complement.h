@@ -17,11 +17,6 @@ namespace softtrace {
 // complement; CG fields are >= 0 and reach 0 only on a skeleton).
 constexpr double kCgFloor = 1e-12;
 
-// The convention as the program stores it in its constant pool.
-inline Convention complement_convention(const double* c) {
-  return static_cast<Convention>(static_cast<int>(c[0]));
-}
-
 // 1 - f, -f or 1/f (guarded at f <= kCgFloor), and the gradient in place when g is non-null.
 inline double complement(Convention conv, double f, Vec3* g) {
   switch (conv) {

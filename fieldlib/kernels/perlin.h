@@ -15,11 +15,6 @@ namespace softtrace {
 
 enum class PerlinMode { Union, Intersection, Difference };
 
-// The mode as the program stores it in its constant pool.
-inline PerlinMode perlin_mode(const double* c) {
-  return static_cast<PerlinMode>(static_cast<int>(c[0]));
-}
-
 // Whether child i's factor is 1 - f_i.
 inline bool perlin_complemented(PerlinMode m, size_t i) {
   return m == PerlinMode::Union || (m == PerlinMode::Difference && i > 0);

@@ -19,11 +19,6 @@ struct PlaneParams {
   double a;
 };
 
-// The instruction's constants: n in c[0..2], then a.
-inline PlaneParams plane_params(const double* c) {
-  return {{c[0], c[1], c[2]}, c[3]};
-}
-
 // The exact image of X·n over a box (interval arithmetic, outward rounded).
 inline Interval dot_range(const Box& b, const Vec3& n) {
   return Interval(n.x) * b.axis(0) + Interval(n.y) * b.axis(1) + Interval(n.z) * b.axis(2);

@@ -49,13 +49,6 @@ struct PolarPrismParams {
   double dR_max, global;  // max |R'(φ)| and the global Lipschitz bound
 };
 
-// The instruction's constants: r0, k, A, the profile (0 cosine, 1 triangle), c, n, dR_max and the
-// global bound in c[0..7].
-inline PolarPrismParams polar_prism_params(const double* c) {
-  return {c[0], c[1], c[2], c[3] == 0 ? PolarProfile::Cosine : PolarProfile::Triangle,
-          c[4], c[5], c[6], c[7]};
-}
-
 // The largest |∇h| for R ∈ R_range (see the file comment).
 inline double polar_prism_h_slope(const PolarPrismParams& m, Interval R_range) {
   const double R_lo = R_range.lo;

@@ -35,12 +35,6 @@ struct RicciParams {
   RicciArg rest;  // the arguments of children 2..k (a difference's); the first child's is f_1
 };
 
-// The parameters as the program stores them in its constant pool: positive, n, rest (and the
-// global bound after them).
-inline RicciParams ricci_params(const double* c) {
-  return {c[0] != 0, c[1], static_cast<RicciArg>(static_cast<int>(c[2]))};
-}
-
 inline RicciArg ricci_arg_kind(const RicciParams& m, size_t i) {
   return i == 0 ? RicciArg::Same : m.rest;
 }

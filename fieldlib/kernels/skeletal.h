@@ -19,11 +19,6 @@ struct LineSegmentParams {
   double len2;  // |ab|^2
 };
 
-// The instruction's constants: a in c[0..2], ab in c[3..5], then r and len2.
-inline LineSegmentParams line_segment_params(const double* c) {
-  return {{c[0], c[1], c[2]}, {c[3], c[4], c[5]}, c[6], c[7]};
-}
-
 // The point of the segment nearest p.
 inline Vec3 line_segment_closest(const LineSegmentParams& m, const Vec3& p) {
   const double t = m.len2 > 0 ? std::clamp(dot(p - m.a, m.ab) / m.len2, 0.0, 1.0) : 0.0;
@@ -58,11 +53,6 @@ inline Vec3 rho_gradient(const Vec3& p, double rho) {
 struct TorusParams {
   double R, a, b, n, global_L;  // major radius, radii in ρ and z, exponent, gauge_lipschitz
 };
-
-// The instruction's constants: R, a, b, n, global_L in c[0..4].
-inline TorusParams torus_params(const double* c) {
-  return {c[0], c[1], c[2], c[3], c[4]};
-}
 
 // ((|ρ - R|/a)^n + (|z|/b)^n)^(1/n)   — docs/scene-format.md torus, docs/math.md §2.1, §2.5.
 inline double torus(const TorusParams& m, const Vec3& p, Vec3* grad) {

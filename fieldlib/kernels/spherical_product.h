@@ -21,11 +21,6 @@ struct SphericalProductParams {
   double n1, n2, global_L;
 };
 
-// The instruction's constants: r_pos, r_neg, dead for x, y, z in c[0..8], then n1, n2, global_L.
-inline SphericalProductParams spherical_product_params(const double* c) {
-  return {{{c[0], c[1], c[2]}, {c[3], c[4], c[5]}, {c[6], c[7], c[8]}}, c[9], c[10], c[11]};
-}
-
 inline double spherical_product(const SphericalProductParams& m, const Vec3& p, Vec3* grad) {
   double dx, dy, dz, dh[2], dm[2];
   const double uh[2] = {m.t[0].value(p.x, &dx), m.t[1].value(p.y, &dy)};

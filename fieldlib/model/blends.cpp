@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "describe/building.h"
+#include "model/nary_node.h"
 #include "model/program_builder.h"
 
 namespace softtrace {
@@ -10,9 +11,9 @@ namespace softtrace {
 namespace {
 
 // Σ f_i   — soft blend B_SUk, 000 Eq. 12, 002 Eq. 3, docs/math.md §5.1
-class SoftBlend final : public FieldNode {
+class SoftBlend final : public NaryNode {
  public:
-  explicit SoftBlend(std::vector<NodePtr> children) : c_(std::move(children)) {}
+  explicit SoftBlend(std::vector<NodePtr> children) : NaryNode(std::move(children)) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     double v = 0;
@@ -24,19 +25,9 @@ class SoftBlend final : public FieldNode {
     }
     return v;
   }
-  Interval interval(const Box& b) const override {
-    Interval s(0);
-    for (const auto& c : c_) s = s + c->interval(b);
-    return s;
-  }
   double lipschitz() const override {
     double L = 0;
     for (const auto& c : c_) L += c->lipschitz();
-    return L;
-  }
-  double lipschitz(const Box& b) const override {
-    double L = 0;
-    for (const auto& c : c_) L += c->lipschitz(b);
     return L;
   }
   Box region(double level, Side side) const override {
@@ -49,7 +40,15 @@ class SoftBlend final : public FieldNode {
   int compile(ProgramBuilder& b, int reg) const override { return b.nary(Op::Sum, c_, reg); }
 
  private:
-  std::vector<NodePtr> c_;
+  // Σ [f_i] and Σ L_i, summed in the children's order.
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    NodeBounds s{Interval(0), 0};
+    for (size_t i = 0; i < c_.size(); ++i) {
+      s.value = s.value + I[i];
+      s.lipschitz += L[i];
+    }
+    return s;
+  }
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "kernels/bt_base.h"
 #include "math/bound_util.h"
 #include "math/scratch.h"
+#include "model/nary_node.h"
 
 namespace softtrace {
 
@@ -24,11 +25,11 @@ Interval signed_interval(int sigma, Interval a) {
 
 // R = τ·BT_k(σ_1 f_1, ..., σ_k f_k) — 003 Eqs. 2–5 and §3.3, docs/math.md §7.1–§7.4 (§7.6 with
 // bulge)
-class BtBlend final : public FieldNode {
+class BtBlend final : public NaryNode {
  public:
   BtBlend(std::vector<NodePtr> children, BtOperator op, int tau, std::vector<int> sigma,
           double omega)
-      : c_(std::move(children)),
+      : NaryNode(std::move(children)),
         op_(std::move(op)),
         tau_(tau),
         sigma_(std::move(sigma)),
@@ -62,55 +63,11 @@ class BtBlend final : public FieldNode {
     return tau_ * v;
   }
 
-  Interval interval(const Box& b) const override {
-    const int k = op_.k();
-    Scratch<double> lo(k), hi(k);
-    for (int i = 0; i < k; ++i) {
-      const Interval X = signed_interval(sigma_[i], c_[i]->interval(b));
-      lo[i] = X.lo;
-      hi[i] = X.hi;
-    }
-    BulgeOperand g[2];
-    const Interval bt = bulge() ? bulge_enclosure(lo.data(), hi.data(), bulge_bounds(b, g))
-                                : monotone_enclosure(lo.data(), hi.data());
-    return tau_ > 0 ? bt : -bt;
-  }
-
   double lipschitz() const override {
     if (bulge()) return kInf;
     double L = 0;
     for (int i = 0; i < op_.k(); ++i) L = std::max(L, iv::up(c_[i]->lipschitz() / op_.m()[i]));
     return L;
-  }
-
-  double lipschitz(const Box& b) const override {
-    if (bulge()) return bulge_lipschitz(b);
-    Interval I;
-    double L;
-    bounds(b, &I, &L);
-    return L;
-  }
-
-  // Without bulge elimination, the children's intervals and bounds in one call each; the bound
-  // is the largest L_i/m_i among the children that can be active in the box.
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    if (bulge()) return FieldNode::bounds(b, value, L);
-    const int k = op_.k();
-    Scratch<Interval> X(k);
-    Scratch<double> Lc(k), lo(k), hi(k);
-    for (int i = 0; i < k; ++i) {
-      Interval f;
-      c_[i]->bounds(b, &f, &Lc[i]);
-      X[i] = signed_interval(sigma_[i], f);
-      lo[i] = X[i].lo;
-      hi[i] = X[i].hi;
-    }
-    const Interval bt = monotone_enclosure(lo.data(), hi.data());
-    *value = tau_ > 0 ? bt : -bt;
-    *L = 0;
-    for (int i = 0; i < k; ++i)
-      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
-        *L = std::max(*L, iv::up(Lc[i] / op_.m()[i]));
   }
 
   Box region(double level, Side side) const override {
@@ -121,6 +78,27 @@ class BtBlend final : public FieldNode {
   }
 
  private:
+  // From the children's intervals I and bounds L over b: BT at the ends of X_i = σ_i [f_i], and the
+  // largest L_i/m_i among the children that can be active in the box; with bulge elimination,
+  // bulge_bounds.
+  NodeBounds combine(const Box& b, const Interval* I, const double* L) const override {
+    const int k = op_.k();
+    Scratch<Interval> X(k);
+    Scratch<double> lo(k), hi(k);
+    for (int i = 0; i < k; ++i) {
+      X[i] = signed_interval(sigma_[i], I[i]);
+      lo[i] = X[i].lo;
+      hi[i] = X[i].hi;
+    }
+    if (bulge()) return bulge_bounds(b, X.data(), lo.data(), hi.data(), L);
+    const Interval bt = monotone_enclosure(lo.data(), hi.data());
+    double Lr = 0;
+    for (int i = 0; i < k; ++i)
+      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
+        Lr = std::max(Lr, iv::up(L[i] / op_.m()[i]));
+    return {tau_ > 0 ? bt : -bt, Lr};
+  }
+
   bool bulge() const { return omega_ > 0; }
 
   // A box containing {σ_i f_i <= t} (below) or {σ_i f_i >= t} (!below).
@@ -153,13 +131,25 @@ class BtBlend final : public FieldNode {
                    vhi + 2 * op_.value_tolerance(hi, vhi, r, m));
   }
 
+  // With bulge elimination, over b: the enclosure and the bound of blends_bt.h, both from one
+  // computation of the position functions' ranges (X_i = σ_i [f_i] with ends lo, hi; L the
+  // children's box bounds).
+  NodeBounds bulge_bounds(const Box& b, const Interval* X, const double* lo, const double* hi,
+                          const double* L) const {
+    BulgeOperand g[2];
+    const BulgeBox B = position_ranges(b, L, g);
+    const Interval bt = bulge_enclosure(lo, hi, B);
+    return {tau_ > 0 ? bt : -bt, bulge_lipschitz(X, g, B, bt)};
+  }
+
   // The position functions' ranges and slopes over the box, from the operands' gradient
-  // floors and Hessian bounds (bt_base.h, bulge_box); `g` receives the operands' bounds.
-  BulgeBox bulge_bounds(const Box& b, BulgeOperand g[2]) const {
+  // floors and Hessian bounds (bt_base.h, bulge_box) and their box Lipschitz bounds L; `g`
+  // receives the operands' bounds.
+  BulgeBox position_ranges(const Box& b, const double* L, BulgeOperand g[2]) const {
     bool known = true;
     for (int i = 0; i < 2; ++i) {
       g[i].grad_lo = c_[i]->gradient_floor(b);
-      g[i].grad_hi = c_[i]->lipschitz(b);
+      g[i].grad_hi = L[i];
       g[i].hessian = c_[i]->hessian_bound(b);
       known = known && g[i].grad_lo > 0 && std::isfinite(g[i].hessian);
     }
@@ -215,18 +205,11 @@ class BtBlend final : public FieldNode {
   bool homogeneous() const { return !op_.is_conic() || op_.conic_p() == 0; }
 
   // |∇BT| <= max_i L_i/m_i + max_i (r_i/m_i)|∇cosθ| + |BT| max_i |∇M_i|/m_i (blends_bt.h), the
-  // first two maxima over the children that can be active in the box.
-  double bulge_lipschitz(const Box& b) const {
+  // first two maxima over the children that can be active in the box; `bt` is BT's enclosure
+  // over it, `g` the operands' bounds (their grad_hi the children's box Lipschitz bounds).
+  double bulge_lipschitz(const Interval* X, const BulgeOperand* g, const BulgeBox& B,
+                         Interval bt) const {
     if (!homogeneous()) return kInf;
-    Interval X[2];
-    double lo[2], hi[2];
-    for (int i = 0; i < 2; ++i) {
-      X[i] = signed_interval(sigma_[i], c_[i]->interval(b));
-      lo[i] = X[i].lo;
-      hi[i] = X[i].hi;
-    }
-    BulgeOperand g[2];  // their grad_hi are the children's box Lipschitz bounds
-    const BulgeBox B = bulge_bounds(b, g);
     double slope = 0, range = 0, weight = 0;
     int active = 0;
     for (int i = 0; i < 2; ++i) {
@@ -238,7 +221,7 @@ class BtBlend final : public FieldNode {
       range = std::max(range, iv::up(op_.r()[i] / m));
     }
     if (active < 2) range = 0;  // one term: BT = x_j/M_j does not depend on the ranges
-    const double h = magnitude(bulge_enclosure(lo, hi, B));
+    const double h = magnitude(bt);
     return iv::up(slope + iv::up(flat_product(range, B.dcos)) + iv::up(flat_product(h, weight)));
   }
 
@@ -254,7 +237,6 @@ class BtBlend final : public FieldNode {
     return !(iv::down(X[i].lo - reach) > P_hi[i]);
   }
 
-  std::vector<NodePtr> c_;
   BtOperator op_;
   int tau_;
   std::vector<int> sigma_;

@@ -8,18 +8,20 @@
 #include "kernels/ricci.h"
 #include "math/scratch.h"
 #include "model/blends.h"
+#include "model/nary_node.h"
 #include "model/node_util.h"
 #include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/nary_ops.h"
 
 namespace softtrace {
 
 namespace {
 
 // (Σ g_i^q)^(1/q)   — 000 Eq. 6, 002 Eqs. 7–8 (ricci.h)
-class Ricci final : public FieldNode {
+class Ricci final : public NaryNode {
  public:
-  Ricci(std::vector<NodePtr> c, RicciParams m) : c_(std::move(c)), m_(m) {
+  Ricci(std::vector<NodePtr> c, RicciParams m) : NaryNode(std::move(c)), m_(m) {
     std::vector<Interval> f;
     std::vector<double> L;
     for (const auto& c : c_) {
@@ -36,23 +38,7 @@ class Ricci final : public FieldNode {
     for (size_t i = 0; i < k; ++i) f[i] = c_[i]->eval(p, grad ? &gf[i] : nullptr);
     return ricci(m_, f.data(), gf.data(), k, grad);
   }
-  Interval interval(const Box& b) const override {
-    const size_t k = c_.size();
-    Scratch<Interval> f(k);
-    for (size_t i = 0; i < k; ++i) f[i] = c_[i]->interval(b);
-    return ricci_interval(m_, f.data(), k);
-  }
   double lipschitz() const override { return global_L_; }
-  double lipschitz(const Box& b) const override {
-    const size_t k = c_.size();
-    Scratch<Interval> f(k);
-    Scratch<double> L(k);
-    for (size_t i = 0; i < k; ++i) {
-      f[i] = c_[i]->interval(b);
-      L[i] = c_[i]->lipschitz(b);
-    }
-    return ricci_lipschitz(m_, f.data(), L.data(), k, global_L_);
-  }
   // Regions: q = n gives max g <= B <= k^(1/n) max g; q = -n gives k^(-1/n) min g <= B <= min g.
   Box region(double level, Side side) const override {
     const double k = static_cast<double>(c_.size());
@@ -74,12 +60,16 @@ class Ricci final : public FieldNode {
   // children that are 0 outside their supports could be dropped there too, not taken here), then
   // one instruction with the parameters and the global bound inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(
-        Op::Ricci, c_, reg,
-        b.consts({m_.positive ? 1.0 : 0.0, m_.n, static_cast<double>(m_.rest), global_L_}));
+    return b.nary(Op::Ricci, c_, reg, b.consts(RicciOp::constants(m_, global_L_)));
   }
 
  private:
+  // B at the ends of the children's intervals, and the bound of ricci.h, from the children's.
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    const size_t k = c_.size();
+    return {ricci_interval(m_, I, k), ricci_lipschitz(m_, I, L, k, global_L_)};
+  }
+
   // The region of child i where its argument g_i >= l (Above) or <= l (Below).
   Box arg_region(size_t i, double l, Side side) const {
     const Side other = side == Side::Above ? Side::Below : Side::Above;
@@ -99,7 +89,6 @@ class Ricci final : public FieldNode {
     return Box::unbounded();
   }
 
-  std::vector<NodePtr> c_;
   RicciParams m_;
   double global_L_;
 };

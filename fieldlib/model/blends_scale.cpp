@@ -20,6 +20,7 @@
 
 #include "describe/building.h"
 #include "model/blends.h"
+#include "model/nary_node.h"
 #include "model/strength.h"
 
 namespace softtrace {
@@ -71,38 +72,26 @@ double ScaleOperator::operator()(double x1, double x2, double dh[2]) const {
 namespace {
 
 // BSA2 or BSS2 of two children   — 000 §II.C.3, docs/math.md §6.3.2, §6.3.3
-class Scale final : public FieldNode {
+class Scale final : public NaryNode {
  public:
-  Scale(NodePtr f1, NodePtr f2, double r1, double r2, double p, bool bsa)
-      : f1_(std::move(f1)), f2_(std::move(f2)), op_(r1, r2, p, bsa), bsa_(bsa) {
+  // `children`: exactly two (the kinds table).
+  Scale(std::vector<NodePtr> children, double r1, double r2, double p, bool bsa)
+      : NaryNode(std::move(children)), op_(r1, r2, p, bsa), bsa_(bsa) {
     kappa_ = bsa ? (r1 + r2) / (r1 * r2 + r1 + r2) : (r1 + r2 - r1 * r2) / (r1 + r2);
     gain_ = bsa ? 1.0 : 1 / (1 - std::max(r1, r2));
   }
 
   double eval(const Vec3& p, Vec3* grad) const override {
     Vec3 g1, g2;
-    const double x1 = f1_->eval(p, grad ? &g1 : nullptr), x2 = f2_->eval(p, grad ? &g2 : nullptr);
+    const double x1 = c_[0]->eval(p, grad ? &g1 : nullptr),
+                 x2 = c_[1]->eval(p, grad ? &g2 : nullptr);
     double dh[2];
     const double h = op_(x1, x2, grad ? dh : nullptr);
     if (grad) *grad = g1 * dh[0] + g2 * dh[1];
     return h;
   }
-  Interval interval(const Box& b) const override {
-    return range(f1_->interval(b), f2_->interval(b));
-  }
   double lipschitz() const override {
-    return std::max(f1_->lipschitz(), f2_->lipschitz()) * gain_ * (1 + 1e-12);
-  }
-  double lipschitz(const Box& b) const override {
-    return std::max(f1_->lipschitz(b), f2_->lipschitz(b)) * gain_ * (1 + 1e-12);
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    Interval i1, i2;
-    double L1, L2;
-    f1_->bounds(b, &i1, &L1);
-    f2_->bounds(b, &i2, &L2);
-    *value = range(i1, i2);
-    *L = std::max(L1, L2) * gain_ * (1 + 1e-12);
+    return std::max(c_[0]->lipschitz(), c_[1]->lipschitz()) * gain_ * (1 + 1e-12);
   }
   Box region(double level, Side side) const override {
     // BSA2: {B >= l} needs both x_i >= l; {B <= c} needs some x_i <= c/κ_A (c > 0).
@@ -110,18 +99,21 @@ class Scale final : public FieldNode {
     const bool both = bsa_ == (side == Side::Above);
     double l = level;
     if (!both && level > 0) l = bsa_ ? level / kappa_ : level * kappa_;
-    const Box a = f1_->region(l, side), c = f2_->region(l, side);
+    const Box a = c_[0]->region(l, side), c = c_[1]->region(l, side);
     return both ? a.intersected(c) : a.united(c);
   }
 
  private:
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    return {range(I[0], I[1]), std::max(L[0], L[1]) * gain_ * (1 + 1e-12)};
+  }
+
   // B is non-decreasing in both arguments: its range is B at the ends, widened for rounding.
   Interval range(Interval i1, Interval i2) const {
     const double lo = op_(i1.lo, i2.lo, nullptr), hi = op_(i1.hi, i2.hi, nullptr);
     return iv::out(lo - 1e-13 * std::abs(lo), hi + 1e-13 * std::abs(hi));
   }
 
-  NodePtr f1_, f2_;
   ScaleOperator op_;
   bool bsa_;
   double kappa_, gain_;
@@ -140,7 +132,7 @@ NodePtr create_scale(const Params& p, const BuildContext& ctx, bool union_op) {
   }
   std::vector<NodePtr> c = build_children(p, "children", ctx);
   refuse_negative_strength(p, ctx.kind->name);
-  return std::make_unique<Scale>(std::move(c[0]), std::move(c[1]), r1, r2, pp, bsa);
+  return std::make_unique<Scale>(std::move(c), r1, r2, pp, bsa);
 }
 
 }  // namespace

@@ -8,19 +8,22 @@
 #include "kernels/perlin.h"
 #include "math/scratch.h"
 #include "model/blends.h"
+#include "model/nary_node.h"
 #include "model/node_util.h"
 #include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/nary_ops.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
 namespace {
 
 // 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, docs/math.md §5.2 (perlin.h).
-class Perlin final : public FieldNode {
+class Perlin final : public NaryNode {
  public:
   using Mode = PerlinMode;
-  Perlin(std::vector<NodePtr> c, Mode m) : c_(std::move(c)), mode_(m) {
+  Perlin(std::vector<NodePtr> c, Mode m) : NaryNode(std::move(c)), mode_(m) {
     std::vector<Interval> G;
     for (size_t i = 0; i < c_.size(); ++i) G.push_back(perlin_factor(m, i, global_range(*c_[i])));
     std::vector<double> L;
@@ -35,22 +38,7 @@ class Perlin final : public FieldNode {
     for (size_t i = 0; i < k; ++i) g[i] = c_[i]->eval(p, grad ? &gg[i] : nullptr);
     return perlin(mode_, g.data(), gg.data(), k, grad);
   }
-  Interval interval(const Box& b) const override {
-    Scratch<Interval> f(c_.size());
-    for (size_t i = 0; i < c_.size(); ++i) f[i] = c_[i]->interval(b);
-    return perlin_interval(mode_, f.data(), c_.size());
-  }
   double lipschitz() const override { return global_L_; }
-  double lipschitz(const Box& b) const override {
-    const size_t k = c_.size();
-    Scratch<Interval> f(k);
-    Scratch<double> L(k);
-    for (size_t i = 0; i < k; ++i) {
-      f[i] = c_[i]->interval(b);
-      L[i] = c_[i]->lipschitz(b);
-    }
-    return perlin_lipschitz(mode_, f.data(), L.data(), k, global_L_);
-  }
   // Soft children (f >= 0): B > 0 needs some f_i > 0 (union), every f_i > 0 (intersection), or
   // f_1 > 0 (difference); the support boxes follow.
   Box region(double level, Side side) const override {
@@ -68,19 +56,24 @@ class Perlin final : public FieldNode {
   // The children's code as a group (never pruned), then one instruction with the mode and the
   // global bound inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::Perlin, c_, reg, b.consts({static_cast<double>(mode_), global_L_}));
+    return b.nary(Op::Perlin, c_, reg, b.consts(PerlinOp::constants(mode_, global_L_)));
   }
 
  private:
-  std::vector<NodePtr> c_;
+  // Interval arithmetic on the product, and [PE-3]'s bound, from the children's (perlin.h).
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    const size_t k = c_.size();
+    return {perlin_interval(mode_, I, k), perlin_lipschitz(mode_, I, L, k, global_L_)};
+  }
+
   Mode mode_;
   double global_L_;
 };
 
 // min / max of the children (sharp union/intersection baselines, docs/math.md §1)
-class MinMax final : public FieldNode {
+class MinMax final : public NaryNode {
  public:
-  MinMax(std::vector<NodePtr> c, bool is_min) : c_(std::move(c)), min_(is_min) {}
+  MinMax(std::vector<NodePtr> c, bool is_min) : NaryNode(std::move(c)), min_(is_min) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     double best = 0;
@@ -94,26 +87,10 @@ class MinMax final : public FieldNode {
     }
     return best;
   }
-  Interval interval(const Box& b) const override {
-    Interval r = c_[0]->interval(b);
-    for (size_t i = 1; i < c_.size(); ++i)
-      r = min_ ? min(r, c_[i]->interval(b)) : max(r, c_[i]->interval(b));
-    return r;
-  }
-  // |min(a) - min(b)| <= max_i |a_i - b_i|; over a box only children that can be the extreme
-  // somewhere in it (their interval reaches the result's interval) count.
+  // |min(a) - min(b)| <= max_i |a_i - b_i|.
   double lipschitz() const override {
     double L = 0;
     for (const auto& c : c_) L = std::max(L, c->lipschitz());
-    return L;
-  }
-  double lipschitz(const Box& b) const override {
-    Scratch<Interval> I(c_.size());
-    for (size_t i = 0; i < c_.size(); ++i) I[i] = c_[i]->interval(b);
-    const Interval r = interval(b);
-    double L = 0;
-    for (size_t i = 0; i < c_.size(); ++i)
-      if (min_ ? I[i].lo <= r.hi : I[i].hi >= r.lo) L = std::max(L, c_[i]->lipschitz(b));
     return L;
   }
   // min >= l iff every f_i >= l; min <= c iff some f_i <= c (and dually for max).
@@ -131,7 +108,18 @@ class MinMax final : public FieldNode {
   }
 
  private:
-  std::vector<NodePtr> c_;
+  // The interval min/max of the intervals; over a box only children that can be the extreme
+  // somewhere in it (their interval reaches the result's interval) count towards the bound.
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    const size_t k = c_.size();
+    Interval r = I[0];
+    for (size_t i = 1; i < k; ++i) r = min_ ? min(r, I[i]) : max(r, I[i]);
+    double Lr = 0;
+    for (size_t i = 0; i < k; ++i)
+      if (min_ ? I[i].lo <= r.hi : I[i].hi >= r.lo) Lr = std::max(Lr, L[i]);
+    return {r, Lr};
+  }
+
   bool min_;
 };
 
@@ -143,14 +131,7 @@ class Complement final : public FieldNode {
   double eval(const Vec3& p, Vec3* grad) const override {
     return complement(conv_, c_->eval(p, grad), grad);
   }
-  Interval interval(const Box& b) const override {
-    return complement_interval(conv_, c_->interval(b));
-  }
   double lipschitz() const override { return complement_lipschitz(conv_, c_->lipschitz()); }
-  double lipschitz(const Box& b) const override {
-    if (conv_ != Convention::Constructive) return c_->lipschitz(b);
-    return complement_lipschitz(conv_, c_->interval(b), c_->lipschitz(b));
-  }
   Box region(double level, Side side) const override {
     const Side other = side == Side::Above ? Side::Below : Side::Above;
     switch (conv_) {
@@ -174,11 +155,16 @@ class Complement final : public FieldNode {
     Instr i{Op::Complement};
     i.in = b.compile(*c_, reg);
     i.out = b.new_slot();
-    i.a = b.consts({static_cast<double>(conv_)});
+    i.a = b.consts(ComplementOp::constants(conv_));
     return b.emit(i);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    const NodeBounds f = c_->bounds(b);
+    return {complement_interval(conv_, f.value), complement_lipschitz(conv_, f.value, f.lipschitz)};
+  }
+
   NodePtr c_;
   Convention conv_;
 };

@@ -10,7 +10,9 @@
 #include "kernels/super_ellipsoidal.h"
 #include "math/scratch.h"
 #include "model/distances.h"
+#include "model/nary_node.h"
 #include "model/program_builder.h"
+#include "program/ops/nary_ops.h"
 
 namespace softtrace {
 
@@ -22,9 +24,10 @@ namespace {
 // non-decreasing in every x_i: the interval is U at the children's lower and upper ends.
 // region: U <= min x_i, and U >= min x_i / k^(1/n), so {U <= c} ⊂ ∪ {x_i <= c k^(1/n)} and
 // {U >= c} ⊂ ∩ {x_i >= c}.
-class SuperEllipsoidalUnion final : public FieldNode {
+class SuperEllipsoidalUnion final : public NaryNode {
  public:
-  SuperEllipsoidalUnion(std::vector<NodePtr> children, double n) : c_(std::move(children)), n_(n) {}
+  SuperEllipsoidalUnion(std::vector<NodePtr> children, double n)
+      : NaryNode(std::move(children)), n_(n) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const size_t k = c_.size();
@@ -35,21 +38,10 @@ class SuperEllipsoidalUnion final : public FieldNode {
     if (grad) *grad = super_union_gradient(x.data(), g.data(), k, n_, U);
     return U;
   }
-  Interval interval(const Box& b) const override {
-    Scratch<Interval> x(c_.size());
-    return terms(b, x);
-  }
   double lipschitz() const override {
     double L = 0;
     for (const auto& c : c_) L = std::max(L, c->lipschitz());
     return L;
-  }
-  double lipschitz(const Box& b) const override {
-    Scratch<Interval> x(c_.size());
-    const Interval U = terms(b, x);
-    Scratch<double> L(c_.size());
-    for (size_t i = 0; i < c_.size(); ++i) L[i] = c_[i]->lipschitz(b);
-    return super_union_lipschitz(x.data(), L.data(), c_.size(), n_, U);
   }
   Box region(double level, Side side) const override {
     Box out = side == Side::Below ? Box() : Box::unbounded();
@@ -65,16 +57,16 @@ class SuperEllipsoidalUnion final : public FieldNode {
   // The children's code as a group (never pruned: they are distances, not soft fields), then
   // one instruction with n inline.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::SuperUnion, c_, reg, b.consts({n_}));
+    return b.nary(Op::SuperUnion, c_, reg, b.consts(SuperUnionOp::constants(n_)));
   }
 
  private:
-  Interval terms(const Box& b, Scratch<Interval>& x) const {
-    for (size_t i = 0; i < c_.size(); ++i) x[i] = c_[i]->interval(b);
-    return super_union_interval(x.data(), c_.size(), n_);
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    const size_t k = c_.size();
+    const Interval U = super_union_interval(I, k, n_);
+    return {U, super_union_lipschitz(I, L, k, n_, U)};
   }
 
-  std::vector<NodePtr> c_;
   double n_;
 };
 
@@ -84,10 +76,10 @@ class SuperEllipsoidalUnion final : public FieldNode {
 // partials come from power_sum_partial_bound. Monotone, so the interval is the power sum of the
 // children's intervals. region: I >= max x_i, so {I <= c} ⊂ ∩ {x_i <= c}; I <= k^(1/n) max x_i,
 // so {I >= c} ⊂ ∪ {x_i >= c / k^(1/n)}.
-class SuperEllipsoidalIntersection final : public FieldNode {
+class SuperEllipsoidalIntersection final : public NaryNode {
  public:
   SuperEllipsoidalIntersection(std::vector<NodePtr> children, double n)
-      : c_(std::move(children)), n_(n) {
+      : NaryNode(std::move(children)), n_(n) {
     global_L_ = std::numeric_limits<double>::infinity();
     if (n_ < 1) return;
     std::vector<double> L;
@@ -104,18 +96,7 @@ class SuperEllipsoidalIntersection final : public FieldNode {
     for (size_t i = 0; i < k; ++i) x[i] = c_[i]->eval(p, grad ? &g[i] : nullptr);
     return super_intersection(x.data(), g.data(), k, n_, grad);
   }
-  Interval interval(const Box& b) const override {
-    Scratch<Interval> x(c_.size());
-    return terms(b, x);
-  }
   double lipschitz() const override { return global_L_; }
-  double lipschitz(const Box& b) const override {
-    Scratch<Interval> x(c_.size());
-    const Interval f = terms(b, x);
-    Scratch<double> L(c_.size());
-    for (size_t i = 0; i < c_.size(); ++i) L[i] = c_[i]->lipschitz(b);
-    return super_intersection_lipschitz(x.data(), L.data(), c_.size(), n_, f, global_L_);
-  }
   Box region(double level, Side side) const override {
     Box out = side == Side::Below ? Box::unbounded() : Box();
     const double scale = std::pow(static_cast<double>(c_.size()), 1 / n_) * (1 + 1e-13);
@@ -129,16 +110,17 @@ class SuperEllipsoidalIntersection final : public FieldNode {
   }
   // As the union's: a group never pruned, then one instruction with n and the global bound.
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::SuperIntersect, c_, reg, b.consts({n_, global_L_}));
+    return b.nary(Op::SuperIntersect, c_, reg,
+                  b.consts(SuperIntersectOp::constants(n_, global_L_)));
   }
 
  private:
-  Interval terms(const Box& b, Scratch<Interval>& x) const {
-    for (size_t i = 0; i < c_.size(); ++i) x[i] = c_[i]->interval(b);
-    return power_sum(x.data(), static_cast<int>(c_.size()), n_);
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    const size_t k = c_.size();
+    const Interval f = power_sum(I, static_cast<int>(k), n_);
+    return {f, super_intersection_lipschitz(I, L, k, n_, f, global_L_)};
   }
 
-  std::vector<NodePtr> c_;
   double n_, global_L_;
 };
 

@@ -12,6 +12,7 @@
 #include "math/bound_util.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/gauge_ops.h"
 
 namespace softtrace {
 
@@ -40,27 +41,13 @@ class LpMetric final : public FieldNode {
     b->k = {};
     return true;
   }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    lp_metric_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global_L; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    lp_metric_bounds(m_, b, &f, &L);
-    return L;
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    lp_metric_bounds(m_, b, value, L);
-  }
   // One instruction with the parameters inline.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LpMetric};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts(m_.constants());
+    i.a = b.consts(LpMetricOp::constants(m_));
     return b.emit(i);
   }
   Box region(double level, Side side) const override {
@@ -95,6 +82,12 @@ class LpMetric final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    lp_metric_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   LpMetricParams m_;
 };
 
@@ -114,29 +107,13 @@ class SphericalProduct final : public FieldNode {
   }
 
   double eval(const Vec3& p, Vec3* grad) const override { return spherical_product(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    spherical_product_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global_L; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    spherical_product_bounds(m_, b, &f, &L);
-    return L;
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    spherical_product_bounds(m_, b, value, L);
-  }
-  // One instruction with the parameters inline, in spherical_product_params' order.
+  // One instruction with the parameters inline, in SphericalProductOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
-    const OneSidedTerm* t = m_.t;
     Instr i{Op::SphericalProduct};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({t[0].r_pos, t[0].r_neg, t[0].dead, t[1].r_pos, t[1].r_neg, t[1].dead,
-                    t[2].r_pos, t[2].r_neg, t[2].dead, m_.n1, m_.n2, m_.global_L});
+    i.a = b.consts(SphericalProductOp::constants(m_));
     return b.emit(i);
   }
   // [DF-5]: a power sum is at least its largest term, so f <= c needs every u <= c.
@@ -153,6 +130,12 @@ class SphericalProduct final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    spherical_product_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   SphericalProductParams m_;
 };
 

@@ -8,17 +8,18 @@
 #include "kernels/planes.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/plane_ops.h"
 
 namespace softtrace {
 
 namespace {
 
-// One instruction with the parameters inline, in plane_params' order.
+// One instruction with the parameters inline, in PlaneOp's layout (both ops share it).
 int compile_plane(ProgramBuilder& b, int reg, Op op, const PlaneParams& m) {
   Instr i{op};
   i.in = reg;
   i.out = b.new_slot();
-  i.a = b.consts({m.n.x, m.n.y, m.n.z, m.a});
+  i.a = b.consts(ParallelPlanesOp::constants(m));
   return b.emit(i);
 }
 
@@ -28,12 +29,6 @@ class ParallelPlanes final : public FieldNode {
   ParallelPlanes(const Vec3& n, double a) : m_{n, a} {}
 
   double eval(const Vec3& p, Vec3* grad) const override { return parallel_planes(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    double L;
-    parallel_planes_bounds(m_, dot_range(b, m_.n), &f, &L);
-    return f;
-  }
   double lipschitz() const override { return 1 / m_.a; }
   // {f <= c} is a slab: unbounded, so region() keeps the default.
   int compile(ProgramBuilder& b, int reg) const override {
@@ -41,6 +36,12 @@ class ParallelPlanes final : public FieldNode {
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    parallel_planes_bounds(m_, dot_range(b, m_.n), &out.value, &out.lipschitz);
+    return out;
+  }
+
   PlaneParams m_;
 };
 
@@ -50,24 +51,18 @@ class OneBranchPlane final : public FieldNode {
   OneBranchPlane(const Vec3& n, double a) : m_{n, a} {}
 
   double eval(const Vec3& p, Vec3* grad) const override { return one_branch_plane(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    double L;
-    one_branch_plane_bounds(m_, dot_range(b, m_.n), &f, &L);
-    return f;
-  }
   double lipschitz() const override { return 1 / m_.a; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    one_branch_plane_bounds(m_, dot_range(b, m_.n), &f, &L);
-    return L;
-  }
   int compile(ProgramBuilder& b, int reg) const override {
     return compile_plane(b, reg, Op::OneBranchPlane, m_);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    one_branch_plane_bounds(m_, dot_range(b, m_.n), &out.value, &out.lipschitz);
+    return out;
+  }
+
   PlaneParams m_;
 };
 
@@ -86,18 +81,7 @@ class GeneralizedDistance final : public FieldNode {
   double eval(const Vec3& p, Vec3* grad) const override {
     return generalized_distance(params(), p, grad);
   }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    generalized_distance_bounds(params(), b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return params().global_L(); }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    generalized_distance_bounds(params(), b, &f, &L);
-    return L;
-  }
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();
@@ -113,12 +97,18 @@ class GeneralizedDistance final : public FieldNode {
     Instr i{Op::GenDistance};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts(c_);
+    i.a = b.consts(GenDistanceOp::constants(c_));
     i.n = static_cast<int32_t>(n_.size());
     return b.emit(i);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    generalized_distance_bounds(params(), b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   GeneralizedDistanceParams params() const { return {c_.data(), static_cast<int>(n_.size())}; }
   // The box of {X : X·n_m ∈ below_m(c), m = i, j, l}; unbounded for a near-singular triple.
   Box solve(double c, size_t i, size_t j, size_t l) const {

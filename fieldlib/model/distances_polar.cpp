@@ -8,6 +8,7 @@
 #include "kernels/skeletal.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/skeletal_ops.h"
 
 namespace softtrace {
 
@@ -26,18 +27,7 @@ class Torus final : public FieldNode {
   }
 
   double eval(const Vec3& p, Vec3* grad) const override { return torus(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    torus_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global_L; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    torus_bounds(m_, b, &f, &L);
-    return L;
-  }
   // f <= c forces |ρ - R| <= c·a and |z| <= c·b (a power sum is at least its largest term).
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
@@ -45,16 +35,22 @@ class Torus final : public FieldNode {
     const double r = (m_.R + level * m_.a) * (1 + 1e-12), h = level * m_.b * (1 + 1e-12);
     return {{-r, -r, -h}, {r, r, h}};
   }
-  // One instruction with the parameters inline, in torus_params' order.
+  // One instruction with the parameters inline, in TorusOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::Torus};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.R, m_.a, m_.b, m_.n, m_.global_L});
+    i.a = b.consts(TorusOp::constants(m_));
     return b.emit(i);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    torus_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   TorusParams m_;
 };
 
@@ -66,18 +62,7 @@ class PolarPrism final : public FieldNode {
       : m_(polar_prism_params(r0, k, A, kind, c, n)) {}
 
   double eval(const Vec3& p, Vec3* grad) const override { return polar_prism(m_, p, grad); }
-  Interval interval(const Box& b) const override {
-    Interval f;
-    polar_prism_bounds(m_, b, &f, nullptr);
-    return f;
-  }
   double lipschitz() const override { return m_.global; }
-  double lipschitz(const Box& b) const override {
-    Interval f;
-    double L;
-    polar_prism_bounds(m_, b, &f, &L);
-    return L;
-  }
   // f <= c forces h <= c, so ρ <= c·Rmax = c·r0 (1 + A), and |z| <= c·c_z.
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
@@ -85,17 +70,22 @@ class PolarPrism final : public FieldNode {
     const double r = level * m_.r0 * (1 + m_.A) * (1 + 1e-12), h = level * m_.c * (1 + 1e-12);
     return {{-r, -r, -h}, {r, r, h}};
   }
-  // One instruction with the parameters inline, in polar_prism_params' order.
+  // One instruction with the parameters inline, in PolarPrismOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::PolarPrism};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.r0, m_.k, m_.A, m_.kind == PolarProfile::Cosine ? 0.0 : 1.0, m_.c, m_.n,
-                    m_.dR_max, m_.global});
+    i.a = b.consts(PolarPrismOp::constants(m_));
     return b.emit(i);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    NodeBounds out;
+    polar_prism_bounds(m_, b, &out.value, &out.lipschitz);
+    return out;
+  }
+
   PolarPrismParams m_;
 };
 

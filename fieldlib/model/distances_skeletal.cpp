@@ -6,6 +6,7 @@
 #include "kernels/skeletal.h"
 #include "model/distances.h"
 #include "model/program_builder.h"
+#include "program/ops/skeletal_ops.h"
 
 namespace softtrace {
 
@@ -22,7 +23,6 @@ class Segment final : public FieldNode {
   double eval(const Vec3& p, Vec3* grad) const override {
     return line_segment_distance(m_, p, grad);
   }
-  Interval interval(const Box& b) const override { return line_segment_interval(m_, b); }
   // |X - closest(X)|/r is the distance from (X - a)/r to the segment from 0 to ab/r: a capsule.
   bool polynomial_blob(PolynomialBlob* b) const override {
     const double s = 1 / m_.r;
@@ -52,16 +52,21 @@ class Segment final : public FieldNode {
     const double e = level * m_.r;
     return {b.lo - Vec3{e, e, e}, b.hi + Vec3{e, e, e}};
   }
-  // One instruction with the parameters inline, in line_segment_params' order.
+  // One instruction with the parameters inline, in LineSegmentOp's layout.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{Op::LineSegment};
     i.in = reg;
     i.out = b.new_slot();
-    i.a = b.consts({m_.a.x, m_.a.y, m_.a.z, m_.ab.x, m_.ab.y, m_.ab.z, m_.r, m_.len2});
+    i.a = b.consts(LineSegmentOp::constants(m_));
     return b.emit(i);
   }
 
  private:
+  // The distance's range over the box (skeletal.h); the slope is 1/r everywhere off the segment.
+  NodeBounds box_bounds(const Box& b) const override {
+    return {line_segment_interval(m_, b), lipschitz()};
+  }
+
   double distance_lower(const Box& b) const {
     const double c = length(b.center() - line_segment_closest(m_, b.center())),
                  h = 0.5 * b.diagonal();

@@ -4,16 +4,10 @@
 
 namespace softtrace {
 
-Interval FieldNode::interval(const Box& b) const {
-  const double L = lipschitz(b);
-  if (!std::isfinite(L) || !b.bounded()) return Interval::entire();
-  const double v = value(b.center()), r = L * 0.5 * b.diagonal();
-  return iv::out(v - r, v + r);
-}
-
-void FieldNode::bounds(const Box& b, Interval* value, double* L) const {
-  *value = interval(b);
-  *L = lipschitz(b);
+void FieldNode::bounds(const Box& b, Interval* value, double* lipschitz) const {
+  const NodeBounds nb = box_bounds(b);
+  *value = nb.value;
+  *lipschitz = nb.lipschitz;
 }
 
 int FieldNode::compile(ProgramBuilder& b, int reg) const {

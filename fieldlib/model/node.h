@@ -17,23 +17,34 @@ namespace softtrace {
 
 class ProgramBuilder;
 
+// A node's answer to the box question: f's range and a bound on |∇f| over one box. (The program's
+// BoxBounds, eval/eval.h, adds what a ray segment needs; a node answers over boxes only.)
+struct NodeBounds {
+  Interval value;        // contains f over the box
+  double lipschitz = 0;  // >= |∇f| over the box; +inf where no bound exists
+};
+
 class FieldNode : public Oracle {
  public:
   // f(p), and ∇f(p) into *grad when grad is non-null. Where f is not differentiable (kinks of
   // min/max, the skeleton of a gauge) any element of the Clarke subdifferential is acceptable.
   double eval(const Vec3& p, Vec3* grad) const override = 0;
 
-  // A sound enclosure of f over the box. The default is f(centre) ± L(box)·half-diagonal, which
-  // is sound for any node whose box Lipschitz bound is; nodes override it with tighter ones.
-  virtual Interval interval(const Box& b) const;
+  // The box question: a sound enclosure of f over b and a bound on |∇f| there, answered together
+  // by each kind (box_bounds below): most kinds derive both from the same terms, and a blend needs
+  // both of every child, which it then asks once each. interval() and lipschitz(b) are its parts,
+  // not separate questions; ask bounds() where both are needed.
+  NodeBounds bounds(const Box& b) const { return box_bounds(b); }
+  Interval interval(const Box& b) const { return box_bounds(b).value; }
+  double lipschitz(const Box& b) const { return box_bounds(b).lipschitz; }
+  // The same question as an oracle instruction asks it (program/oracle.h).
+  void bounds(const Box& b, Interval* value, double* lipschitz) const final;
 
-  // Bounds on |∇f|: globally and over a box. +inf where no bound exists (exponents below 1).
+  // A different question: a bound on |∇f| over all of space, fixed when the node is built (the
+  // tracer's step bound, and what the blends' global bounds and the program's constants are made
+  // of). +inf where no bound exists (exponents below 1, surface-defined radii). Over a box,
+  // lipschitz(b) is never above it.
   virtual double lipschitz() const = 0;
-  virtual double lipschitz(const Box& b) const { return lipschitz(); }
-  // interval(b) and lipschitz(b) together, equal to them bit for bit. Nodes whose two bounds
-  // share their work (a gauge's terms; a modulated soft object's octant refinement) override it,
-  // so that a caller needing both, as the bounds pass does for an oracle, pays for it once.
-  void bounds(const Box& b, Interval* value, double* lipschitz) const override;
 
   // A box containing {p : f(p) >= level} (Side::Above) or {f(p) <= level} (Side::Below);
   // Box::unbounded() when no finite box is known. For soft fields, region(l, Above) with
@@ -60,6 +71,13 @@ class FieldNode : public Oracle {
     eval(p, &g);
     return g;
   }
+
+ protected:
+  // Each kind's answer to bounds(b): the value interval and the box Lipschitz bound from one pass
+  // over the kind's terms, asking each child's bounds() once (a kind with no box bound of its own
+  // gives its global one). Blends over a list of children derive from NaryNode (nary_node.h),
+  // which gathers the children's bounds for them.
+  virtual NodeBounds box_bounds(const Box& b) const = 0;
 };
 
 using NodePtr = std::unique_ptr<FieldNode>;

@@ -7,6 +7,7 @@
 #include "model/blends.h"
 #include "model/program_builder.h"
 #include "model/scaled_node.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -23,16 +24,6 @@ class Offset final : public ScaledNode {
     if (grad) *grad = offset_gradient(s_, *grad);
     return offset_value(s_, c_, v);
   }
-  Interval interval(const Box& b) const override {
-    return offset_interval(s_, c_, child_->interval(b));
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    Interval f;
-    double Lf;
-    child_->bounds(b, &f, &Lf);
-    *value = offset_interval(s_, c_, f);
-    *L = offset_lipschitz(s_, Lf);
-  }
   Box region(double level, Side side) const override {
     // The child's side flips with the sign of s; its level c + level/s is rounded away from
     // the side enclosed (up for Below, down for Above) so no point is lost to rounding.
@@ -46,11 +37,16 @@ class Offset final : public ScaledNode {
     Instr i{Op::Offset};
     i.in = b.compile(*child_, reg);
     i.out = b.new_slot();
-    i.a = b.consts({s_, c_});
+    i.a = b.consts(OffsetOp::constants(s_, c_));
     return b.emit(i);
   }
 
  private:
+  NodeBounds box_bounds(const Box& b) const override {
+    const NodeBounds f = child_->bounds(b);
+    return {offset_interval(s_, c_, f.value), offset_lipschitz(s_, f.lipschitz)};
+  }
+
   double c_;
 };
 

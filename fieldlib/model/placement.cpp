@@ -4,6 +4,7 @@
 
 #include "math/affine.h"
 #include "model/program_builder.h"
+#include "program/ops/placement_ops.h"
 
 namespace softtrace {
 
@@ -32,15 +33,10 @@ class Placed final : public FieldNode {
     if (grad) *grad = R_ * *grad;
     return v;
   }
-  Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
   bool polynomial_blob(PolynomialBlob* b) const override {
     return child_->polynomial_blob(b) && (compose(b, Rt_, t_), true);
   }
   double lipschitz() const override { return child_->lipschitz(); }
-  double lipschitz(const Box& b) const override { return child_->lipschitz(to_local(b)); }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    child_->bounds(to_local(b), value, L);
-  }
   // A rigid motion keeps gradient lengths and Hessian norms.
   double gradient_floor(const Box& b) const override { return child_->gradient_floor(to_local(b)); }
   double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }
@@ -49,9 +45,7 @@ class Placed final : public FieldNode {
     Instr i{rotated_ ? Op::Place : Op::Translate};
     i.in = reg;
     i.out = b.new_reg();
-    i.a = rotated_ ? b.consts({t_.x, t_.y, t_.z, Rt_.r[0].x, Rt_.r[0].y, Rt_.r[0].z, Rt_.r[1].x,
-                               Rt_.r[1].y, Rt_.r[1].z, Rt_.r[2].x, Rt_.r[2].y, Rt_.r[2].z})
-                   : b.consts({t_.x, t_.y, t_.z});
+    i.a = b.consts(rotated_ ? PlaceOp::constants(t_, Rt_) : TranslateOp::constants(t_));
     b.emit(i);
     return b.compile(*child_, i.out);
   }
@@ -61,6 +55,9 @@ class Placed final : public FieldNode {
   }
 
  private:
+  // A rigid motion keeps values and gradient lengths: the child's bounds over the box around b.
+  NodeBounds box_bounds(const Box& b) const override { return child_->bounds(to_local(b)); }
+
   Box to_local(const Box& b) const {
     return b.bounded() ? transform_box(b, Rt_, Rt_ * (-t_)) : Box::unbounded();
   }
@@ -118,16 +115,10 @@ class AffinePlaced final : public FieldNode {
     if (grad) *grad = Mt_ * *grad;  // ∇(f∘g) = M^T ∇f
     return v;
   }
-  Interval interval(const Box& b) const override { return child_->interval(to_local(b)); }
   bool polynomial_blob(PolynomialBlob* b) const override {
     return child_->polynomial_blob(b) && (compose(b, M_, t_), true);
   }
   double lipschitz() const override { return scaled(child_->lipschitz()); }
-  double lipschitz(const Box& b) const override { return scaled(child_->lipschitz(to_local(b))); }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    child_->bounds(to_local(b), value, L);
-    *L = scaled(*L);
-  }
   // |M^T g| >= σ_min(M) |g| = |g| / |A|_2; the Hessian is M^T H M, of norm <= |M|^2 |H|.
   double gradient_floor(const Box& b) const override {
     return std::max(0.0, iv::down(child_->gradient_floor(to_local(b)) * floor_M_));
@@ -141,6 +132,12 @@ class AffinePlaced final : public FieldNode {
   }
 
  private:
+  // The child's range over the box around M (b - t); its slopes times |M|_2 (∇(f∘g) = M^T ∇f).
+  NodeBounds box_bounds(const Box& b) const override {
+    const NodeBounds f = child_->bounds(to_local(b));
+    return {f.value, scaled(f.lipschitz)};
+  }
+
   Box to_local(const Box& b) const { return affine_box(b, M_, t_, false); }
   double scaled(double L) const { return L == 0 ? 0.0 : iv::up(L * norm_M_); }
 

@@ -14,12 +14,10 @@ class ScaledNode : public FieldNode {
  public:
   ScaledNode(NodePtr child, double s) : child_(std::move(child)), s_(s) {}
 
-  // |∇(s g)| = |s| |∇g|: the child's Lipschitz bounds, gradient floor and Hessian bound times |s|,
-  // rounded away from the side they bound.
+  // |∇(s g)| = |s| |∇g|: the child's global Lipschitz bound, gradient floor and Hessian bound
+  // times |s|, rounded away from the side they bound (the box bound likewise, in each kind's
+  // box_bounds through its kernel).
   double lipschitz() const override { return iv::up(std::abs(s_) * child_->lipschitz()); }
-  double lipschitz(const Box& b) const override {
-    return iv::up(std::abs(s_) * child_->lipschitz(b));
-  }
   double gradient_floor(const Box& b) const override {
     return std::max(0.0, iv::down(std::abs(s_) * child_->gradient_floor(b)));
   }

@@ -13,6 +13,7 @@
 #include "model/potential.h"
 #include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -33,22 +34,11 @@ class SoftObject final : public FieldNode {
     if (grad) *grad = dP == 0 ? Vec3{} : *grad * dP;
     return v;
   }
-  Interval interval(const Box& b) const override { return P_->interval(d_->interval(b)); }
   // A polynomial potential of an ellipsoid's distance is a polynomial blob.
   bool polynomial_blob(PolynomialBlob* b) const override {
     return potential_in_r(P_->type(), &b->c2, &b->c3) && d_->polynomial_blob(b);
   }
   double lipschitz() const override { return flat_product(P_->lipschitz(), d_->lipschitz()); }
-  double lipschitz(const Box& b) const override {
-    return flat_product(P_->lipschitz(d_->interval(b)), d_->lipschitz(b));
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    Interval d;
-    double Ld;
-    d_->bounds(b, &d, &Ld);
-    *value = P_->interval(d);
-    *L = flat_product(P_->lipschitz(d), Ld);
-  }
   Box region(double level, Side side) const override {
     if (side == Side::Above && level > 0) return d_->region(1, Side::Below);
     return Box::unbounded();
@@ -58,11 +48,17 @@ class SoftObject final : public FieldNode {
     Instr i{P_->op()};
     i.in = b.compile(*d_, reg);
     i.out = b.new_slot();
-    if (P_->op() == Op::Blanc) i.a = b.consts({P_->parameter()});
+    if (P_->op() == Op::Blanc) i.a = b.consts(BlancOp::constants(P_->parameter()));
     return b.emit(i);
   }
 
  private:
+  // P over d's range, and sup|P'| there times d's bound.
+  NodeBounds box_bounds(const Box& b) const override {
+    const NodeBounds d = d_->bounds(b);
+    return {P_->interval(d.value), flat_product(P_->lipschitz(d.value), d.lipschitz)};
+  }
+
   NodePtr d_;
   PotentialPtr P_;
 };
@@ -89,32 +85,7 @@ class TransformedSoftObject final : public FieldNode {
     return K_.eval(d, gd, fm, gf, grad);
   }
 
-  // Outside the support box the field is exactly 0: no bound is needed there. This matters in
-  // blends, where every stretch box asks every child, and the decorrelated [d]/[f] bounds of a
-  // far-away child are loose (measured on [002] Fig. 8(c): thousands of evaluations per ray).
-  Interval interval(const Box& b) const override {
-    if (K_.outside_support(b)) return Interval(0);
-    Interval I;
-    refined(b, kRefine, &I, nullptr);
-    return I;
-  }
-
   double lipschitz() const override { return K_.lipschitz(); }
-
-  double lipschitz(const Box& b) const override {
-    Interval I;
-    double L;
-    bounds(b, &I, &L);
-    return L;
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    if (K_.outside_support(b)) {
-      *value = Interval(0);
-      *L = 0;
-      return;
-    }
-    refined(b, kRefine, value, L);
-  }
 
   Box region(double level, Side side) const override {
     if (side != Side::Above || level <= 0) return Box::unbounded();
@@ -137,12 +108,22 @@ class TransformedSoftObject final : public FieldNode {
     i.in = b.compile(*d_, reg);
     i.n = f_ ? b.compile(*f_, reg) : i.in;
     i.reg = reg;
-    i.a = b.consts(K_.constants());
+    i.a = b.consts(RadiusTransformOp::constants(K_));
     i.out = b.new_slot();
     return b.emit(i);
   }
 
  private:
+  // Outside the support box the field is exactly 0: no bound is needed there. This matters in
+  // blends, where every stretch box asks every child, and the decorrelated [d]/[f] bounds of a
+  // far-away child are loose (measured on [002] Fig. 8(c): thousands of evaluations per ray).
+  NodeBounds box_bounds(const Box& b) const override {
+    if (K_.outside_support(b)) return {Interval(0), 0};
+    NodeBounds out;
+    refined(b, kRefine, &out.value, &out.lipschitz);
+    return out;
+  }
+
   void init() {
     K_.d_lipschitz = d_->lipschitz();
     K_.support = region(std::numeric_limits<double>::min(), Side::Above);
@@ -163,23 +144,23 @@ class TransformedSoftObject final : public FieldNode {
   // SurfaceDefined.BoxBoundsStayUsefulAtTheSurface refined).
   static constexpr double kRefineMaxSize = 1.0 / 16;
 
-  // The interval over b and, where L is non-null, the Lipschitz bound: each the tighter of b's own
-  // and its octants' (one walk over the octants serves both).
+  // The interval and the Lipschitz bound over b: each the tighter of b's own and its octants' (one
+  // walk over the octants serves both).
   void refined(const Box& b, int levels, Interval* I, double* L) const {
-    const Bounds B = child_bounds(b, L != nullptr);
+    const Bounds B = child_bounds(b);
     *I = K_.interval(B);
-    if (L) *L = K_.slope_bound(B);
+    *L = K_.slope_bound(B);
     if (levels == 0 || !decorrelated(B, b) || !worth_refining(b)) return;
     Interval h(kInf, -kInf);
     double m = 0, Ls;
     for (const Box& s : octants(b)) {
       Interval Is;
-      refined(s, levels - 1, &Is, L ? &Ls : nullptr);
+      refined(s, levels - 1, &Is, &Ls);
       h = hull(h, Is);
-      if (L) m = std::max(m, Ls);
+      m = std::max(m, Ls);
     }
     *I = {std::max(I->lo, h.lo), std::min(I->hi, h.hi)};
-    if (L) *L = std::min(*L, m);
+    *L = std::min(*L, m);
   }
   bool decorrelated(const Bounds& B, const Box& b) const {
     return K_.src != WSource::Constant && b.bounded() && B.w.lo < 0.25 * B.w.hi && B.T.lo < B.T.hi;
@@ -199,24 +180,11 @@ class TransformedSoftObject final : public FieldNode {
     return out;
   }
 
-  // The shared kernel's bounds from d's and f's over b; with `slopes`, their Lipschitz bounds too,
-  // from the same calls as their intervals.
-  Bounds child_bounds(const Box& b, bool slopes) const {
-    Interval d, f;
-    double Ld = 0, Lf = 0;
-    if (slopes) {
-      d_->bounds(b, &d, &Ld);
-    } else {
-      d = d_->interval(b);
-    }
-    if (f_) {
-      if (slopes) {
-        f_->bounds(b, &f, &Lf);
-      } else {
-        f = f_->interval(b);
-      }
-    }
-    return K_.bounds(d, Ld, f, Lf);
+  // The shared kernel's bounds from d's and f's over b (their intervals and Lipschitz bounds).
+  Bounds child_bounds(const Box& b) const {
+    const NodeBounds d = d_->bounds(b);
+    const NodeBounds f = f_ ? f_->bounds(b) : NodeBounds{};
+    return K_.bounds(d.value, d.lipschitz, f.value, f.lipschitz);
   }
 
   NodePtr d_, f_;  // f_: the modulation (or contour) field, for a modulated w

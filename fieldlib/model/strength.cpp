@@ -6,6 +6,7 @@
 #include "kernels/strength.h"
 #include "model/program_builder.h"
 #include "model/scaled_node.h"
+#include "program/ops/potential_ops.h"
 
 namespace softtrace {
 
@@ -21,21 +22,11 @@ class Strength final : public ScaledNode {
     if (grad) *grad = strength_gradient(s_, *grad);
     return strength_value(s_, v);
   }
-  Interval interval(const Box& b) const override {
-    return strength_interval(s_, child_->interval(b));
-  }
   bool polynomial_blob(PolynomialBlob* b) const override {
     if (!child_->polynomial_blob(b)) return false;
     b->c2 *= s_;
     b->c3 *= s_;
     return true;
-  }
-  void bounds(const Box& b, Interval* value, double* L) const override {
-    Interval f;
-    double Lf;
-    child_->bounds(b, &f, &Lf);
-    *value = strength_interval(s_, f);
-    *L = strength_lipschitz(s_, Lf);
   }
   // s f >= l ⇔ f >= l/s for s > 0 and f <= l/s for s < 0 (sides swap for <=), the level rounded
   // away from the side enclosed. A negative s over f >= 0: {s f >= l > 0} is empty, and
@@ -52,8 +43,14 @@ class Strength final : public ScaledNode {
     Instr i{Op::Strength};
     i.in = b.compile(*child_, reg);
     i.out = b.new_slot();
-    i.a = b.consts({s_});
+    i.a = b.consts(StrengthOp::constants(s_));
     return b.emit(i);
+  }
+
+ private:
+  NodeBounds box_bounds(const Box& b) const override {
+    const NodeBounds f = child_->bounds(b);
+    return {strength_interval(s_, f.value), strength_lipschitz(s_, f.lipschitz)};
   }
 };
 

@@ -11,8 +11,8 @@
 // - Each child subtree of an n-ary instruction is a contiguous range of instructions, announced by
 //   a `Group` instruction before the first child. Pruning is choosing ranges: the bounds pass skips
 //   the ranges of children that cannot matter in a box and emits the rest (eval_bounds.cpp).
-// - Constants live in one pool (`consts`); n-ary instructions read their argument slots from
-//   `args`.
+// - Constants live in one pool (`consts`), each op's in the layout its kernel struct defines
+//   (ops/ops.h); n-ary instructions read their argument slots from `args`.
 #pragma once
 
 #include <cstdint>
@@ -25,39 +25,37 @@
 
 namespace softtrace {
 
-// The one list of instructions; each evaluator has one case per entry.
-#define SOFTTRACE_OPS(X)                                                                    \
-  X(Translate)        /* reg out = reg in - c[0..2]                                     */  \
-  X(Place)            /* reg out = Rt (reg in - t), c = t[3], Rt[9] row-major           */  \
-  X(Oracle)           /* slot out = node(reg in): a model node evaluates its subtree    */  \
-  X(LpMetric)         /* slot out = lp_metric(reg in; a = c[0..2], n, L, 1/a = c[5..7]) */  \
-  X(SphericalProduct) /* slot out = spherical_product(reg in; terms c[0..8], n1, n2, L) */  \
-  X(ParallelPlanes)   /* slot out = |reg in · n|/a (n = c[0..2], a = c[3]), 000 Eq. 2   */ \
-  X(OneBranchPlane)   /* slot out = [reg in · n]_+/a (n = c[0..2], a = c[3]), 002 f_o   */ \
-  X(LineSegment)      /* slot out = |reg in - nearest|/r (a, ab, r, |ab|^2), 000 Eq. 5  */  \
-  X(Torus)            /* slot out = torus(reg in; R, a, b, n, L = c[0..4]) (skeletal.h) */  \
-  X(GenDistance)      /* slot out = (Σ u_i^n)^(1/n), u_i one-sided in (reg in) dot n_i, */ \
-                      /* i < n, 000 Eq. 4; c = n, sigma, L, then n_i[3], r_pos, r_neg,  */  \
-                      /* dead per normal (generalized_distance.h)                       */  \
-  X(PolarPrism)       /* slot out = (h^n + |z/c|^n)^(1/n), h = rho/R(phi) (c[0..7]),    */  \
-                      /* docs/math.md §10.1 (polar_prism.h)                             */ \
-  X(Blanc)            /* slot out = P_blanc(slot in; s = c[0]), 002 Eq. 2               */  \
-  X(Wyvill)           /* slot out = 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6 (d < 1)           */  \
-  X(Murakami)         /* slot out = (1 - d^2)^2 (d < 1), POV-Ray's blob density         */  \
-  X(Cubic)            /* slot out = (1 - d^2)^3 (d < 1), Galin et al. 2020              */  \
-  X(Strength)         /* slot out = s · slot in (s = c[0]): a soft object's strength  */   \
-  X(Offset)           /* slot out = s (slot in - c) (s = c[0], c = c[1]), 003 §2.1      */ \
-  X(Complement)       /* slot out = 1 - f, -f or 1/f of slot in (convention = c[0])     */  \
-  X(RadiusTransform)  /* slot out = P(T(d, w)), d = slot in, w constant or from f =     */  \
-                      /* slot n; reg = the point register (transformed_potential.h)     */  \
-  X(Group)            /* announces the children of the n-ary instruction groups[a]      */  \
-  X(Sum)              /* slot out = Σ slots args[a..a+n), soft_blend 000 Eq. 12         */ \
-  X(Min)              /* slot out = min of args[a..a+n)                                 */  \
-  X(Max)              /* slot out = max of args[a..a+n)                                 */  \
-  X(SuperUnion)       /* slot out = (Σ args^-n)^(-1/n) (n = c[in]), 000 Eq. 6 B_RU^cg   */ \
-  X(SuperIntersect)   /* slot out = (Σ [args]_+^n)^(1/n) (n, L = c[in..]), B_RI^cg      */ \
-  X(Perlin)           /* slot out = Perlin blend (mode, L = c[in..]), 002 Eqs. 4-6      */  \
-  X(Ricci)            /* slot out = (Σ g_i^q)^(1/q) (q = ±n, g, L = c[in..]), 002 Eq. 7 */
+// The one list of instructions. Each entry `name` has its kernel struct `name##Op` (ops/ops.h:
+// its constant layout, operands, lanes, point value and gradient, box and segment bounds), from
+// which every evaluator's cases and the storage pass are generated.
+#define SOFTTRACE_OPS(X)                                                                       \
+  X(Translate)        /* reg out = reg in - t                          (placement_ops.h) */    \
+  X(Place)            /* reg out = Rt (reg in - t)                     (placement_ops.h) */    \
+  X(Oracle)           /* slot out = node(reg in): a model node's subtree   (oracle_op.h) */    \
+  X(LpMetric)         /* slot out = lp_metric(reg in), 000 Eq. 3           (gauge_ops.h) */    \
+  X(SphericalProduct) /* slot out = spherical_product(reg in), 000 Eq. 8   (gauge_ops.h) */    \
+  X(ParallelPlanes)   /* slot out = |reg in · n|/a, 000 Eq. 2              (plane_ops.h) */   \
+  X(OneBranchPlane)   /* slot out = [reg in · n]_+/a, 002 f_o              (plane_ops.h) */   \
+  X(LineSegment)      /* slot out = |reg in - nearest|/r, 000 Eq. 5     (skeletal_ops.h) */    \
+  X(Torus)            /* slot out = torus(reg in)                       (skeletal_ops.h) */    \
+  X(GenDistance)      /* slot out = (Σ u_i^n)^(1/n) over n planes, 000 Eq. 4 (plane_ops.h) */ \
+  X(PolarPrism)       /* slot out = polar prism, docs/math.md §10.1     (skeletal_ops.h) */   \
+  X(Blanc)            /* slot out = P_blanc(slot in), 002 Eq. 2        (potential_ops.h) */    \
+  X(Wyvill)           /* slot out = Wyvill's P(slot in)                (potential_ops.h) */    \
+  X(Murakami)         /* slot out = (1 - d^2)^2, POV-Ray's blob        (potential_ops.h) */    \
+  X(Cubic)            /* slot out = (1 - d^2)^3, Galin et al. 2020     (potential_ops.h) */    \
+  X(Strength)         /* slot out = s · slot in                        (potential_ops.h) */   \
+  X(Offset)           /* slot out = s (slot in - c), 003 §2.1          (potential_ops.h) */   \
+  X(Complement)       /* slot out = 1 - f, -f or 1/f of slot in        (potential_ops.h) */    \
+  X(RadiusTransform)  /* slot out = P(T(d, w)), d = slot in, f = slot n (potential_ops.h) */   \
+  X(Group)            /* announces the children of groups[a]               (nary_ops.h) */     \
+  X(Sum)              /* slot out = Σ args[a..a+n), soft_blend 000 Eq. 12  (nary_ops.h) */    \
+  X(Min)              /* slot out = min of args[a..a+n)                    (nary_ops.h) */     \
+  X(Max)              /* slot out = max of args[a..a+n)                    (nary_ops.h) */     \
+  X(SuperUnion)       /* slot out = (Σ args^-n)^(-1/n), 000 Eq. 6          (nary_ops.h) */    \
+  X(SuperIntersect)   /* slot out = (Σ [args]_+^n)^(1/n), B_RI^cg          (nary_ops.h) */    \
+  X(Perlin)           /* slot out = Perlin blend, 002 Eqs. 4-6             (nary_ops.h) */     \
+  X(Ricci)            /* slot out = (Σ g_i^q)^(1/q), 002 Eq. 7             (nary_ops.h) */
 
 enum class Op : uint8_t {
 #define SOFTTRACE_OP_ENUM(name) name,

@@ -14,66 +14,25 @@
 #include <queue>
 #include <vector>
 
+#include "program/ops/ops.h"
 #include "program/program.h"
 
 namespace softtrace {
 
 namespace {
 
-enum Space { kSlot = 0, kReg = 1 };
-
 // Calls use(space, id&) for every value instruction k reads, then def(space, id&) for the one it
-// writes (if any). One case per instruction of the op list.
+// writes (if any): its op's operands (ops.h).
 template <class Use, class Def>
 void operands(Program& p, int k, const Use& use, const Def& def) {
   Instr& in = p.code[k];
   switch (in.op) {
-    case Op::Translate:
-    case Op::Place:
-      use(kReg, in.in);
-      def(kReg, in.out);
-      return;
-    case Op::Oracle:
-    case Op::LpMetric:
-    case Op::SphericalProduct:
-    case Op::ParallelPlanes:
-    case Op::OneBranchPlane:
-    case Op::LineSegment:
-    case Op::Torus:
-    case Op::GenDistance:
-    case Op::PolarPrism:
-      use(kReg, in.in);
-      def(kSlot, in.out);
-      return;
-    case Op::Blanc:
-    case Op::Wyvill:
-    case Op::Murakami:
-    case Op::Cubic:
-    case Op::Strength:
-    case Op::Offset:
-    case Op::Complement:
-      use(kSlot, in.in);
-      def(kSlot, in.out);
-      return;
-    case Op::RadiusTransform:
-      use(kSlot, in.in);
-      use(kSlot, in.n);
-      use(kReg, in.reg);
-      def(kSlot, in.out);
-      return;
-    case Op::Group:  // the children's register is read where the group starts (pruning's query)
-      use(kReg, p.groups[in.a].reg);
-      return;
-    case Op::Sum:
-    case Op::Min:
-    case Op::Max:
-    case Op::SuperUnion:
-    case Op::SuperIntersect:
-    case Op::Perlin:
-    case Op::Ricci:
-      for (int j = in.a; j < in.a + in.n; ++j) use(kSlot, p.args[j]);
-      def(kSlot, in.out);
-      return;
+#define SOFTTRACE_OP_OPERANDS(name)      \
+  case Op::name:                         \
+    name##Op::operands(in, p, use, def); \
+    return;
+    SOFTTRACE_OPS(SOFTTRACE_OP_OPERANDS)
+#undef SOFTTRACE_OP_OPERANDS
   }
 }
 

@@ -36,7 +36,7 @@ class Scene(_native.Scene):
 
     Settings read as plain values, with every key of the file format (camera: projection, eye,
     target, up, fov, aperture, focal_distance, blur_samples; image: width, height, spp,
-    max_trace_level; a light: the keys its entry gave, as given, and its defaults), and change by
+    max_trace_level, and antialias and ambient_occlusion when on; a light: the keys its entry gave, as given, and its defaults), and change by
     assignment, checked as in a file (a refused value raises SceneError and leaves the scene as
     it was)::
 
@@ -195,7 +195,7 @@ def render(scene: Scene, *, width: int = 0, height: int = 0, spp: int = 0,
     or nothing, checked before the work.
 
     >>> scene = load_scene(os.path.join(os.path.dirname(__file__), "..", "..", "scenes",
-    ...                                  "fig12b_soft_blend.json"))  # doctest: +SKIP
+    ...                                  "fig000_12b_soft_blend.json"))  # doctest: +SKIP
     >>> image = render(scene, width=64, aovs=["depth"])  # doctest: +SKIP
     >>> sorted(image)  # doctest: +SKIP
     ['depth', 'rgba']

@@ -29,8 +29,8 @@ class Scene:
     spp: int
     max_trace_level: int
     camera: Dict[str, Any]
-    image: Dict[str, int]
-    background: List[float]
+    image: Dict[str, Any]
+    background: Union[List[float], Dict[str, Any]]
     lights: Optional[List[Dict[str, Any]]]
     @property
     def default_lights(self) -> bool: ...

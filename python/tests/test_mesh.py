@@ -10,7 +10,7 @@ import softtrace
 
 BIN = os.environ["SOFTTRACE_BIN"]
 SRC = os.environ["SOFTTRACE_SOURCE_DIR"]
-FIG12B = os.path.join(SRC, "scenes", "fig12b_soft_blend.json")
+FIG12B = os.path.join(SRC, "scenes", "fig000_12b_soft_blend.json")
 
 
 def edge_counts(faces):

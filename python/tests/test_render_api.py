@@ -207,7 +207,7 @@ def test_ctrl_c_interrupts_within_a_tile(blob_scene):
 
 def test_two_threads_render_one_scene_at_different_sizes():
     scene = softtrace.load_scene(os.path.join(os.environ["SOFTTRACE_SOURCE_DIR"], "scenes",
-                                              "fig12b_soft_blend.json"))
+                                              "fig000_12b_soft_blend.json"))
     sizes = [(96, 64, 2), (40, 120, 3)]
     own = (scene.width, scene.height, scene.spp)
     alone = [softtrace.render(scene, width=w, height=h, spp=s)["rgba"] for w, h, s in sizes]

@@ -131,6 +131,8 @@ def test_settings_are_checked_and_copied_on_write():
         scene.lights = [{"type": "point"}]
     scene.lights = None
     assert scene.default_lights
+    scene.background = {"gradient": [[0.5, 0.4, 0.3], [0.1, 0.2, 0.9]]}
+    assert scene.background == {"gradient": [[0.5, 0.4, 0.3], [0.1, 0.2, 0.9]], "up": [0, 0, 1]}
     scene.background = [0.1, 0.2, 0.3]
     assert scene.background == [0.1, 0.2, 0.3]
     assert json.loads(scene.text)["background"] == [0.1, 0.2, 0.3]
@@ -167,7 +169,7 @@ def test_points_of_any_shape():
 
 
 def test_jupyter_picture_is_a_small_png():
-    scene = softtrace.load_scene(os.path.join(SRC, "scenes", "fig12b_soft_blend.json"))
+    scene = softtrace.load_scene(os.path.join(SRC, "scenes", "fig000_12b_soft_blend.json"))
     png = scene._repr_png_()
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     width, height = struct.unpack(">II", png[16:24])
@@ -252,6 +254,8 @@ def test_settings_read_back_every_key_and_assign_back_unchanged():
     scene.camera = dict(scene.camera, projection="orthographic", aperture=0.5,
                         focal_distance=40, blur_samples=2)
     scene.max_trace_level = 3
+    scene.image = dict(scene.image, antialias={"threshold": 0.3, "depth": 2},
+                       ambient_occlusion={"samples": 2, "distance": 5})
     area = {"axis1": [4, 0, 0], "axis2": [0, 4, 0], "size1": 2, "size2": 2}
     scene.lights = [
         {"type": "directional", "direction": [-0.6, 1, -1.6], "intensity": 0.9},

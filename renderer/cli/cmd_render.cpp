@@ -96,6 +96,7 @@ int run_render(const RenderArgs& a) {
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
+    if (a.antialias) scene.image.antialias.threshold = *a.antialias;
     if (a.frame >= 0) set_frame(scene, a.frame);
     CameraOverride view;
     if (a.eye) view.eye = point_of(*a.eye);
@@ -199,6 +200,8 @@ int run_render(const RenderArgs& a) {
       std::fprintf(stderr, ", %d spp in %.2f s (%.2f M primary rays/s, %.1f evaluations/ray)",
                    scene.image.spp, secs, stats.primary_rays / secs * 1e-6,
                    static_cast<double>(stats.steps) / std::max(1LL, stats.primary_rays));
+      if (scene.image.antialias.on())
+        std::fprintf(stderr, ", %lld pixels anti-aliased", stats.refined_pixels);
       for (const auto& o : outputs) std::fprintf(stderr, " -> %s", o.c_str());
       std::fprintf(stderr, "\n");
     }

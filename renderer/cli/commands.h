@@ -27,6 +27,7 @@ struct RenderArgs {
   // The camera's eye and target ("X,Y,Z", checked by point_xyz) and fov, over the scene's.
   std::optional<std::string> eye, target;
   std::optional<double> fov;
+  std::optional<double> antialias;  // the adaptive anti-aliasing threshold, over the scene's
 };
 int run_render(const RenderArgs& a);
 // What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.

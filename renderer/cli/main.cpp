@@ -51,6 +51,10 @@ int main(int argc, char** argv) {
       ->excludes(render_width, render_height);
   render->add_option("--spp", r.spp, "Samples per pixel (overrides the scene)")
       ->check(integer_in(1, 4096));
+  render
+      ->add_option("--antialias", r.antialias,
+                   "Adaptive anti-aliasing threshold, POV-Ray's +A (overrides the scene)")
+      ->check(number_in(0, 1e6));
   render->add_option("--threads", r.threads, "Worker threads (default: all cores)")
       ->check(integer_in(1, 1024));
   render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps,albedo")

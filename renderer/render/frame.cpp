@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <vector>
 
+#include "render/antialias.h"
 #include "render/camera.h"
 #include "render/cancel.h"
 #include "render/shading.h"
@@ -20,9 +22,9 @@ namespace {
 constexpr int kTile = 16;  // a task's pixels a side
 // The smallest beam's pixels a side. A tile is the first beam; each beam certifies the approach to
 // every object for all its rays (ObjectTracer::clear_depth), then its quarters go on from there,
-// down to this size. Measured on fig12b_soft_blend at 640x480, one thread, median frames: without
-// beams 0.61 s (1 spp) and 2.38 s (4 spp); smallest beams of 16, 8, 4 and 2 pixels at 4 spp 1.25,
-// 1.14, 1.01 and 0.99 s; of 4 and 2 pixels at 1 spp 0.27 and 0.28 s.
+// down to this size. Measured on fig000_12b_soft_blend at 640x480, one thread, median frames:
+// without beams 0.61 s (1 spp) and 2.38 s (4 spp); smallest beams of 16, 8, 4 and 2 pixels at 4
+// spp 1.25, 1.14, 1.01 and 0.99 s; of 4 and 2 pixels at 1 spp 0.27 and 0.28 s.
 constexpr int kBeam = 4;
 constexpr int kBeamLevels = 3;  // 16, 8, 4
 static_assert(kTile == kBeam << (kBeamLevels - 1));
@@ -44,35 +46,48 @@ struct Work {
 // to the data window, so a pixel's rays start where they would in any crop of the frame.
 class FrameTracer {
  public:
-  FrameTracer(const Scene& scene, const TracedScene& rt, Film& film, const RenderOptions& opt)
+  // The first pass traces every pixel with its samples; the second traces again those that
+  // adaptive anti-aliasing marks (render/antialias.h).
+  enum class Pass { First, Refine };
+
+  // `adaptive`: the frame's adaptive anti-aliasing, or null without it.
+  FrameTracer(const Scene& scene, const TracedScene& rt, Film& film, const RenderOptions& opt,
+              AdaptivePixels* adaptive)
       : scene_(scene),
         rt_(rt),
         film_(film),
         cancel_(opt.cancel),
         spp_(samples_per_pixel(scene.camera, opt.spp ? opt.spp : scene.image.spp)),
+        refined_spp_(spp_ * scene.image.antialias.depth * scene.image.antialias.depth),
         camera_(scene.camera, film.full_width, film.full_height),
-        objects_(rt.tracers.size()) {}
+        objects_(rt.tracers.size()),
+        window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
+        adaptive_(adaptive) {}
 
-  // The full-frame tile at (tx, ty) (in pixels), where it meets the data window.
-  void tile(int tx, int ty, Work& work) const {
+  int refined_spp() const { return refined_spp_; }
+
+  // The full-frame tile at (tx, ty) (in pixels), where it meets `area`: the pass's pixels.
+  void tile(int tx, int ty, const PixelRect& area, Pass pass, Work& work) const {
     work.clear.resize(size_t(kBeamLevels) * objects_);
-    beam(tx, ty, 0, nullptr, work);
+    beam(tx, ty, 0, nullptr, area, pass, work);
   }
 
  private:
   // The pixels [x, x + size) x [y, y + size) of the full frame, size = kTile >> level, from the
-  // depths `from` (per object) that the beam holding it certified.
-  void beam(int x, int y, int level, const double* from, Work& work) const {
+  // depths `from` (per object) that the beam holding it certified. A beam's place and its
+  // certified depths depend only on where it is in the full frame, not on `area`.
+  void beam(int x, int y, int level, const double* from, const PixelRect& area, Pass pass,
+            Work& work) const {
     const int size = kTile >> level;
-    if (x >= film_.x0 + film_.width || x + size <= film_.x0 || y >= film_.y0 + film_.height ||
-        y + size <= film_.y0 || cancelled())
+    if (x >= area.x1 || x + size <= area.x0 || y >= area.y1 || y + size <= area.y0 || cancelled())
       return;
+    if (pass == Pass::Refine && !adaptive_->any({x, y, x + size, y + size})) return;
     // Rays from a lens or an orthographic plane leave no single eye: no frustum holds them, and
     // each ray approaches the objects on its own.
     if (!camera_.single_eye()) {
-      for (int py = std::max(y, film_.y0); py < std::min(y + size, film_.y0 + film_.height); ++py)
-        for (int px = std::max(x, film_.x0); px < std::min(x + size, film_.x0 + film_.width); ++px)
-          pixel(px, py, nullptr, work);
+      for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
+        for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
+          pixel(px, py, nullptr, pass, work);
       return;
     }
     const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
@@ -87,13 +102,14 @@ class FrameTracer {
     work.primary.box_evals += beam_work.box_evals;
     if (level + 1 < kBeamLevels) {
       const int h = size / 2;
-      for (int q = 0; q < 4; ++q) beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, work);
+      for (int q = 0; q < 4; ++q)
+        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, area, pass, work);
       return;
     }
     const BeamClear certified{fr.forward, clear};
-    for (int py = std::max(y, film_.y0); py < std::min(y + size, film_.y0 + film_.height); ++py)
-      for (int px = std::max(x, film_.x0); px < std::min(x + size, film_.x0 + film_.width); ++px)
-        pixel(px, py, &certified, work);
+    for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
+      for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
+        pixel(px, py, &certified, pass, work);
   }
 
   // A tile of a slow field (a blend of thousands of children at many samples) takes minutes:
@@ -102,16 +118,46 @@ class FrameTracer {
   // written.
   bool cancelled() const { return cancel_requested(cancel_); }
 
-  // The full-frame pixel (x, y), inside the data window.
+  // The full-frame pixel (x, y) of the pass's area. The first pass writes the pixels of the data
+  // window (colour and AOVs) and, with adaptive anti-aliasing, tells it every pixel's colour; the
+  // second traces a marked pixel again with refined_spp_ samples, which replace its colour.
   // `certified`: what the pixel's beam certified (none for a camera without a single eye).
-  void pixel(int x, int y, const BeamClear* certified, Work& work) const {
-    const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);
-    const int spp = spp_;
+  void pixel(int x, int y, const BeamClear* certified, Pass pass, Work& work) const {
+    const bool in_film = window_.contains(x, y);
+    const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
+    switch (pass) {
+      case Pass::First: {
+        float rgba[4];
+        if (!samples(x, y, spp_, certified, in_film ? &i : nullptr, work, rgba)) return;
+        if (in_film) std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+        if (adaptive_) {
+          // Compared as seen: over the plain background (a gradient sky is in rgba already).
+          for (int k = 0; k < 3; ++k)
+            rgba[k] += static_cast<float>(scene_.background[k]) * (1 - rgba[3]);
+          adaptive_->set_first(x, y, rgba);
+        }
+        return;
+      }
+      case Pass::Refine: {
+        float rgba[4];
+        if (!adaptive_->refine(x, y) ||
+            !samples(x, y, refined_spp_, certified, nullptr, work, rgba))
+          return;
+        std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+        return;
+      }
+    }
+  }
+
+  // Pixel (x, y) traced with `spp` samples into `rgba` (premultiplied); the pixel-centre ray's
+  // AOVs go to the film's pixel `*aov` when given. False when cancelled.
+  bool samples(int x, int y, int spp, const BeamClear* certified, const size_t* aov, Work& work,
+               float rgba[4]) const {
     Vec3 sum{0, 0, 0};
     int covered = 0;
     for (int s = 0; s < spp; ++s) {
       // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
-      if (cancelled()) return;
+      if (cancelled()) return false;
       double dx, dy;
       sample_offset(s, dx, dy);
       double lx, ly;
@@ -128,12 +174,16 @@ class FrameTracer {
         ++covered;
         normal = sh.normal;
         albedo = sh.albedo;
+      } else if (scene_.sky) {
+        sum += scene_.sky->seen(ray.d);  // opaque: a gradient sky is part of the picture
+        ++covered;
       }
-      if (s == 0) aovs(i, hit, normal, albedo, shadow);
+      if (s == 0 && aov) aovs(*aov, hit, normal, albedo, shadow);
       work.shadow += shadow;
     }
-    for (int k = 0; k < 3; ++k) film_.rgba[i * 4 + k] = static_cast<float>(sum[k] / spp);
-    film_.rgba[i * 4 + 3] = static_cast<float>(covered) / spp;
+    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k] / spp);
+    rgba[3] = static_cast<float>(covered) / spp;
+    return true;
   }
 
   // The pixel-centre ray's AOVs, into the planes the film has. The background adds nothing to
@@ -154,23 +204,21 @@ class FrameTracer {
   const TracedScene& rt_;
   Film& film_;
   const std::atomic<bool>* cancel_;
-  const int spp_;
+  const int spp_, refined_spp_;
   const ViewCamera camera_;
   const int objects_;
+  const PixelRect window_;  // the film's data window
+  AdaptivePixels* const adaptive_;
 };
 
-}  // namespace
-
-bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
-                  Progress* progress, FrameStats* stats) {
-  const FrameTracer tracer(scene, rt, film, opt);
-  // The full frame's tiles that meet the data window [x0, x0 + width) x [y0, y0 + height).
-  const int x1 = film.x0 + film.width, y1 = film.y0 + film.height;
-  const int gx0 = film.x0 / kTile, gy0 = film.y0 / kTile;
-  const int tiles_x = (x1 + kTile - 1) / kTile - gx0, tiles_y = (y1 + kTile - 1) / kTile - gy0;
-  tbb::combinable<Work> work_total;
-
-  // One tile per task; a cancel is noticed before the next sample (FrameTracer::pixel).
+// Runs `pass` over the full-frame tiles that meet `area`, one tile per task; a cancel is noticed
+// before the next sample (FrameTracer::samples). Progress counts the data window's pixels.
+void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass,
+              const PixelRect& window, const RenderOptions& opt, Progress* progress,
+              tbb::combinable<Work>& work_total) {
+  const int gx0 = area.x0 / kTile, gy0 = area.y0 / kTile;
+  const int tiles_x = (area.x1 + kTile - 1) / kTile - gx0;
+  const int tiles_y = (area.y1 + kTile - 1) / kTile - gy0;
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
       [&](const tbb::blocked_range<int>& tiles) {
@@ -178,20 +226,42 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
         for (int t = tiles.begin(); t < tiles.end(); ++t) {
           if (opt.cancel && *opt.cancel) return;
           const int tx = (gx0 + t % tiles_x) * kTile, ty = (gy0 + t / tiles_x) * kTile;
-          tracer.tile(tx, ty, work);
+          tracer.tile(tx, ty, area, pass, work);
           if (progress) {
-            const int w = std::min(tx + kTile, x1) - std::max(tx, film.x0);
-            const int h = std::min(ty + kTile, y1) - std::max(ty, film.y0);
-            progress->advance(long(w) * h);
+            const int w = std::min(tx + kTile, window.x1) - std::max(tx, window.x0);
+            const int h = std::min(ty + kTile, window.y1) - std::max(ty, window.y0);
+            if (w > 0 && h > 0) progress->advance(long(w) * h);
           }
         }
       },
       tbb::simple_partitioner());
+}
+
+}  // namespace
+
+bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
+                  Progress* progress, FrameStats* stats) {
+  const PixelRect window{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height};
+  std::optional<AdaptivePixels> adaptive;
+  if (scene.image.antialias.on())
+    adaptive.emplace(scene.image.antialias, window, film.full_width, film.full_height);
+  const FrameTracer tracer(scene, rt, film, opt, adaptive ? &*adaptive : nullptr);
+  tbb::combinable<Work> work_total;
+  run_pass(tracer, adaptive ? adaptive->apron() : window, FrameTracer::Pass::First, window, opt,
+           progress, work_total);
+  if (adaptive && !(opt.cancel && *opt.cancel)) {
+    adaptive->decide();
+    run_pass(tracer, window, FrameTracer::Pass::Refine, window, opt, nullptr, work_total);
+  }
 
   if (stats) {
     *stats = FrameStats{};
     stats->primary_rays = static_cast<long long>(film.width) * film.height *
                           samples_per_pixel(scene.camera, opt.spp ? opt.spp : scene.image.spp);
+    if (adaptive) {
+      stats->refined_pixels = adaptive->refined();
+      stats->primary_rays += stats->refined_pixels * tracer.refined_spp();
+    }
     work_total.combine_each([&](const Work& w) {
       stats->primary += w.primary;
       stats->shadow += w.shadow;

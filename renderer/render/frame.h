@@ -2,7 +2,8 @@
 // beams (blocks of pixels whose approach to each object is certified together). Every pixel
 // depends only on its own rays and its blocks, which are placed in the full frame, so the result
 // is the same bits for any thread count, and a crop of the frame has the same bits as those
-// pixels of the whole frame.
+// pixels of the whole frame. With adaptive anti-aliasing the frame is two such loops: every pixel
+// of the data window and a one-pixel apron, then the marked pixels again (render/antialias.h).
 #pragma once
 
 #include <atomic>
@@ -37,7 +38,8 @@ struct TracedScene {
 
 struct FrameStats {
   long long primary_rays = 0;
-  long long steps = 0;  // all field/interval evaluations, shadow rays included
+  long long steps = 0;           // all field/interval evaluations, shadow rays included
+  long long refined_pixels = 0;  // traced again by adaptive anti-aliasing
   RayWork primary, shadow;
 };
 

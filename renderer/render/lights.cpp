@@ -3,9 +3,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include "render/cancel.h"
+#include "render/point_hash.h"
 
 namespace softtrace {
 
@@ -35,19 +35,6 @@ bool spot_and_fade(const Light& l, const Vec3& to_light, double distance, Vec3& 
   return true;
 }
 
-uint64_t splitmix(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-uint64_t bits(double v) {
-  uint64_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-}
-
 // An area light's samples at one point, each traced once (adaptive sampling asks for corners
 // that neighbouring blocks share).
 class AreaSamples {
@@ -61,7 +48,7 @@ class AreaSamples {
         rt_(rt),
         shadow_(shadow),
         cancel_(cancel) {
-    seed_ = splitmix(splitmix(splitmix(bits(origin.x)) ^ bits(origin.y)) ^ bits(origin.z));
+    seed_ = point_seed(origin);
     seen_.fill(-1);
   }
 

@@ -7,6 +7,7 @@
 #include "render/cancel.h"
 #include "render/finish.h"
 #include "render/lights.h"
+#include "render/occlusion.h"
 #include "scene/traced_objects.h"
 
 namespace softtrace {
@@ -51,10 +52,16 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // `shine` the highlights, which it does not. A blended point sums its materials' colours in
   // `mixed` instead.
   Vec3 light{0, 0, 0}, shine{0, 0, 0}, mixed{0, 0, 0};
+  const AmbientOcclusion& occlusion = scene.image.occlusion;
+  double open = -1;  // the open fraction of the sky, once traced
   for (const Light& l : scene.lights) {
     if (cancel_requested(cancel)) break;  // up to 1,000 lights, each with its shadow rays
     if (l.type == Light::Type::Ambient) {
-      const Vec3 c = l.color * l.intensity;
+      // With ambient occlusion the ambient lights reach the point through its open sky, traced
+      // once for all of them.
+      if (occlusion.samples > 0 && open < 0)
+        open = open_sky(occlusion, origin, n, cone0, ray.cone, rt, secondary, cancel);
+      const Vec3 c = open < 0 ? l.color * l.intensity : l.color * (l.intensity * open);
       if (!blended)
         light += mul(m.ambient, c);
       else
@@ -100,8 +107,9 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
     secondary.add(next.work);
     const Vec3 seen =
-        next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
-                 : scene.background;
+        next.hit    ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
+        : scene.sky ? scene.sky->seen(mirror.d)
+                    : scene.background;
     color += mul(reflection, seen);
   }
   return {color, n, albedo};

@@ -115,6 +115,9 @@ std::string render_settings(const Scene& scene, const std::string& lipschitz, in
   std::string s = std::to_string(scene.image.width) + "x" + std::to_string(scene.image.height) +
                   " spp=" + std::to_string(scene.image.spp) + " lipschitz=" + lipschitz;
   if (frame >= 0) s += " frame=" + std::to_string(frame);
+  // The scene file's bytes hold the rest; only --antialias can change this without them.
+  const Antialias& aa = scene.image.antialias;
+  if (aa.on()) s += " antialias=" + std::to_string(aa.threshold) + "/" + std::to_string(aa.depth);
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/csg_load.h"
+#include "scene/image_load.h"
 #include "scene/json_text.h"
 #include "scene/primitive_load.h"
 #include "scene/ranges.h"
@@ -86,6 +87,8 @@ ImageSettings load_image(const Params& p) {
   s.height = p.integer("height", 1, 16384, s.height);
   s.spp = p.integer("spp", 1, 4096, s.spp);
   s.max_trace_level = p.integer("max_trace_level", 1, 256, s.max_trace_level);
+  if (p.has("antialias")) s.antialias = load_antialias(p.object("antialias"));
+  if (p.has("ambient_occlusion")) s.occlusion = load_occlusion(p.object("ambient_occlusion"));
   p.finish();
   return s;
 }
@@ -219,7 +222,10 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   if (has_camera) s.camera = load_camera(root.object("camera"));
   if (root.has("animation")) s.animation = load_animation(root.object("animation"));
   if (root.has("image")) s.image = load_image(root.object("image"));
-  s.background = load_color(root, "background", s.background);
+  if (root.has("background") && root.get("background").is_object())
+    s.sky = load_sky_gradient(root.object("background"));
+  else
+    s.background = load_color(root, "background", s.background);
   std::vector<Params> lights;
   if (root.has("lights")) {
     lights = root.objects("lights");

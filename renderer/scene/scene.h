@@ -14,6 +14,7 @@
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/primitive.h"
+#include "scene/sky.h"
 #include "scene/trace_target.h"
 
 namespace softtrace {
@@ -57,10 +58,28 @@ struct Animation {
   double degrees = 360;
 };
 
+// docs/scene-format.md "image", "antialias": POV-Ray's adaptive anti-aliasing (+A, method 1).
+// A pixel whose colour differs from a neighbour's by more than `threshold` (the sum of the
+// absolute differences of R, G, B over the background and A) takes spp * depth^2 samples.
+struct Antialias {
+  double threshold = -1;  // < 0: off
+  int depth = 3;
+  bool on() const { return threshold >= 0; }
+};
+
+// docs/scene-format.md "image", "ambient_occlusion": the ambient lights reach a shaded point in
+// the fraction of `samples` rays over its hemisphere that leave it for `distance` unblocked.
+struct AmbientOcclusion {
+  int samples = 0;  // 0: off
+  double distance = 0;
+};
+
 struct ImageSettings {
   int width = 640, height = 480, spp = 1;
   // POV-Ray's max_trace_level: the camera ray is level 1, each mirror reflection one more.
   int max_trace_level = 5;
+  Antialias antialias;
+  AmbientOcclusion occlusion;
 };
 
 struct Csg;
@@ -105,6 +124,8 @@ struct Scene {
   bool default_lights = false;  // the lights follow the camera (no "lights" in the file)
   ImageSettings image;
   Vec3 background{0, 0, 0};
+  // A gradient "background" instead of a colour: the sky is then part of the picture (A = 1).
+  std::optional<SkyGradient> sky;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;
 

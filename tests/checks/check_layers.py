@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Fails when a source file includes from a layer it may not (README.md "Layout").
 
-Each library's folders are layers; a file may include its own folder and the folders listed for it
-below, never one above it. Third-party headers are held to the one room that adapts each library.
+Each library's folders are layers (with their subfolders: fieldlib/program/ops/ is part of
+program); a file may include its own folder and the folders listed for it below, never one above it. Third-party headers are held to the one room that adapts each library.
 Usage: check_layers.py [REPO_ROOT]   (exit 1 and one line per violation, file:line: ...)
 """
 import os
@@ -67,7 +67,13 @@ def check(root):
             problems.append(f"{room}: the layer folder is missing")
             continue
         lib, layer = room.split("/")
-        for name in sorted(os.listdir(folder)):
+        # A layer's subfolders (program/ops/) are part of it.
+        names = []
+        for dirpath, dirnames, filenames in os.walk(folder):
+            dirnames.sort()
+            sub = os.path.relpath(dirpath, folder)
+            names += [name if sub == "." else f"{sub}/{name}" for name in sorted(filenames)]
+        for name in names:
             if not name.endswith((".h", ".cpp")):
                 continue
             rel = f"{room}/{name}"

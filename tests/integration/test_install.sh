@@ -34,7 +34,7 @@ done
 "$prefix/bin/softtrace" --help | grep -q 'share/doc/softtrace/' || fail "--help does not point to the installed docs"
 MANPATH=$prefix/share/man man -w softtrace | grep -qx "$prefix/share/man/man1/softtrace.1" ||
   fail "man does not find softtrace.1 under the prefix"
-"$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig12b_soft_blend.json" --scale 0.1 -q \
+"$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig000_12b_soft_blend.json" --scale 0.1 -q \
   -o "$work/installed_scene.png" || fail "the installed binary cannot render an installed scene"
 # Every fieldlib header is installed, and every installed header compiles on its own (an
 # installed header that includes one left out would not).

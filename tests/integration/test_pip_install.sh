@@ -28,7 +28,7 @@ SOFTTRACE_CMAKE_BUILD=$build "$work/venv/bin/python" -m pip install -q --no-buil
 
 version=$(sed -n 's/^project(softtrace VERSION \([0-9.]*\).*/\1/p' "$src/CMakeLists.txt")
 cd "$work"  # not the source tree: the import must find the venv's package
-"$work/venv/bin/python" - "$work/venv" "$version" "$src/scenes/fig12b_soft_blend.json" <<'PY' || fail "the installed package"
+"$work/venv/bin/python" - "$work/venv" "$version" "$src/scenes/fig000_12b_soft_blend.json" <<'PY' || fail "the installed package"
 import importlib.metadata as metadata
 import os
 import sys

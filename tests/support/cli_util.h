@@ -5,6 +5,9 @@
 
 namespace softtrace::test {
 
+// The scene most CLI tests render: the README's default (640x480).
+inline const std::string kDefaultScene = "scenes/fig000_12b_soft_blend.json";
+
 struct RunResult {
   int status = -1;
   std::string out, err;

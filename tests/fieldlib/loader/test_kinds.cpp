@@ -169,15 +169,6 @@ TEST(Kinds, SceneFormatDocDescribesEveryKindWithTheTablesParameters) {
         << path << " documents '" << name << "', which is no kind";
 }
 
-std::string build_error(const std::string& json, Convention c = Convention::Soft) {
-  try {
-    build_from_json(json, c);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Kinds, MisspelledKeysNameTheNearestKeyBeforeMissingOnes) {
   EXPECT_EQ(build_error(R"({"type":"segment","p0":[0,0,0],"p1":[1,0,0],"raduis":2})"),
             "<test>: /raduis: unknown key 'raduis' (did you mean 'radius'?)");

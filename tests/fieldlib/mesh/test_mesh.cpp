@@ -109,8 +109,8 @@ TEST_P(MeshVolume, WithinOnePercentOfMonteCarlo) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, MeshVolume,
-                         ::testing::Values("fig12b_soft_blend.json#0", "tracer_2#0", "tracer_3#0",
-                                           "fig003_9_wheel.json#0"),
+                         ::testing::Values("fig000_12b_soft_blend.json#0", "tracer_2#0",
+                                           "tracer_3#0", "fig003_9_wheel.json#0"),
                          [](const auto& info) {
                            return mesh_scenes::test_name({info.param, nullptr, 0});
                          });

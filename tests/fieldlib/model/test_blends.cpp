@@ -14,6 +14,7 @@ namespace softtrace {
 namespace {
 
 using test::build_from_json;
+using test::for_random_points;
 
 const std::string kA =
     R"({"type":"soft_object","translate":[-0.4,0,0],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2}})";
@@ -37,15 +38,8 @@ std::string comp(const std::string& c) {
   return blend("complement", {c});
 }
 
-template <class F>
-void for_random_points(int count, double r, F&& fn) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-r, r);
-  for (int i = 0; i < count; ++i) fn(Vec3{u(rng), u(rng), u(rng)});
-}
-
 void expect_same_field(const FieldNode& a, const FieldNode& b, double r, double tol) {
-  for_random_points(2000, r, [&](const Vec3& p) {
+  for_random_points(2000, r, 7, [&](const Vec3& p) {
     Vec3 ga, gb;
     ASSERT_NEAR(a.eval(p, &ga), b.eval(p, &gb), tol);
     ASSERT_NEAR(length(ga - gb), 0, tol * 10);
@@ -84,7 +78,7 @@ TEST(Perlin, NeutralElements) {  // [PE-2]
 TEST(Perlin, UnionPartialsAreInUnitInterval) {  // [PE-3]
   const auto a = build_from_json(kA), b = build_from_json(kB);
   const auto u = build_from_json(blend("perlin_union", {kA, kB}));
-  for_random_points(3000, 2, [&](const Vec3& p) {
+  for_random_points(3000, 2, 7, [&](const Vec3& p) {
     Vec3 ga, gb, gu;
     const double fa = a->eval(p, &ga), fb = b->eval(p, &gb);
     u->eval(p, &gu);
@@ -112,7 +106,7 @@ TEST(RicciCG, BoundsAndLimits) {  // [RC-1]
   for (double n : {1.0, 3.0, 200.0}) {
     const auto u = cg(blend("ricci_union", {kDa, kDb}, ",\"n\":" + std::to_string(n)));
     const auto i = cg(blend("ricci_intersection", {kDa, kDb}, ",\"n\":" + std::to_string(n)));
-    for_random_points(2000, 2, [&](const Vec3& p) {
+    for_random_points(2000, 2, 7, [&](const Vec3& p) {
       const double x1 = a->value(p), x2 = b->value(p);
       ASSERT_LE(u->value(p), std::min(x1, x2) * (1 + 1e-14));
       ASSERT_GE(i->value(p), std::max(x1, x2) * (1 - 1e-14));
@@ -147,7 +141,7 @@ TEST(RicciCG, UnionAndIntersectionAreRayLinear) {  // [RC-3]
   const auto i = cg(blend("ricci_intersection", {kDa, kDb}, ",\"n\":2.5"));
   const auto d = cg(blend("ricci_difference", {kDa, kDb}, ",\"n\":2.5"));
   int not_linear = 0;
-  for_random_points(1000, 2, [&](const Vec3& p) {
+  for_random_points(1000, 2, 7, [&](const Vec3& p) {
     for (double l : {0.3, 2.7}) {
       ASSERT_NEAR(u->value(p * l), l * u->value(p), 1e-12 * (1 + l * u->value(p)));
       ASSERT_NEAR(i->value(p * l), l * i->value(p), 1e-12 * (1 + l * i->value(p)));
@@ -161,7 +155,7 @@ TEST(RicciSoft, BoundsNeutralAndSoftBlend) {  // [RS-1]
   const auto a = build_from_json(kA), b = build_from_json(kB);
   const auto u = build_from_json(blend("ricci_union", {kA, kB}, ",\"n\":3"));
   const auto i = build_from_json(blend("ricci_intersection", {kA, kB}, ",\"n\":3"));
-  for_random_points(3000, 2, [&](const Vec3& p) {
+  for_random_points(3000, 2, 7, [&](const Vec3& p) {
     const double fa = a->value(p), fb = b->value(p);
     ASSERT_GE(u->value(p), std::max(fa, fb) * (1 - 1e-14));
     ASSERT_LE(i->value(p), std::min(fa, fb) * (1 + 1e-14));
@@ -344,7 +338,7 @@ TEST(Complement, EachConvention) {
                                  Convention::Zero);  // the zero convention takes d - 1
   const auto c = build_from_json(comp(kDa), Convention::Constructive);
   const auto d = cg(kDa);
-  for_random_points(500, 2, [&](const Vec3& p) {
+  for_random_points(500, 2, 7, [&](const Vec3& p) {
     ASSERT_DOUBLE_EQ(s->value(p), 1 - a->value(p));
     ASSERT_DOUBLE_EQ(z->value(p), -(d->value(p) - 1));
     ASSERT_DOUBLE_EQ(c->value(p), 1 / d->value(p));
@@ -357,7 +351,7 @@ TEST(MinMax, SharpBaselines) {
   const auto a = build_from_json(kA), b = build_from_json(kB);
   const auto mn = build_from_json(blend("min", {kA, kB})),
              mx = build_from_json(blend("max", {kA, kB}));
-  for_random_points(500, 2, [&](const Vec3& p) {
+  for_random_points(500, 2, 7, [&](const Vec3& p) {
     ASSERT_EQ(mn->value(p), std::min(a->value(p), b->value(p)));
     ASSERT_EQ(mx->value(p), std::max(a->value(p), b->value(p)));
   });

@@ -17,15 +17,6 @@
 namespace softtrace::test {
 namespace {
 
-std::string build_error(const std::string& json, Convention c = Convention::Soft) {
-  try {
-    build_from_json(json, c);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 const char* const kBall = R"({"type":"lp_metric","radii":[1,1,1],"n":2})";
 
 std::string soft(double strength, const std::string& extra = "", double radius = 1) {

@@ -13,6 +13,7 @@ namespace softtrace {
 namespace {
 
 using test::build_from_json;
+using test::for_random_points;
 
 const double kW[][2] = {{1, 1}, {1.6, 0.7}, {0.4, 0.8}, {0.3, 0.6}, {2.5, 1}, {0.05, 0.1}};
 
@@ -217,19 +218,12 @@ NodePtr modulated(const std::string& type, const char* f, const std::string& key
                          R"(,"radii":{"type":")" + type + R"(",")" + key + R"(":)" + f + "}}");
 }
 
-template <class F>
-void for_random_points(int count, double r, F&& fn) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-r, r);
-  for (int i = 0; i < count; ++i) fn(Vec3{u(rng), u(rng), u(rng)});
-}
-
 TEST(SurfaceDefined, OuterBlendRegionIsFaBelowHalf) {  // [TA-1], and [VIR-1] for contour
   const auto d = build_from_json(kD), fa = build_from_json(kFa);
   for (const char* type : {"T_an", "T_al"}) {
     const auto n = modulated(type, kFa);
     int tested = 0;
-    for_random_points(20000, 2.5, [&](const Vec3& p) {
+    for_random_points(20000, 2.5, 11, [&](const Vec3& p) {
       const double dv = d->value(p), fv = fa->value(p);
       if (dv < 0.5 || std::abs(fv - 0.5) < 1e-3) return;
       ++tested;
@@ -240,7 +234,7 @@ TEST(SurfaceDefined, OuterBlendRegionIsFaBelowHalf) {  // [TA-1], and [VIR-1] fo
   // [VIR-1]: contour fc = 1 with fc = 2 f_a (radii halved).
   const char* fc = R"({"type":"superquadric","radii":[1.1,0.9,0.8],"n1":1.3,"n2":3})";
   const auto c = modulated("contour", fc, "contour"), fcn = build_from_json(fc);
-  for_random_points(20000, 2.5, [&](const Vec3& p) {
+  for_random_points(20000, 2.5, 11, [&](const Vec3& p) {
     const double dv = d->value(p), fv = fcn->value(p);
     if (dv < 0.5 || std::abs(fv - 1) < 2e-3) return;
     EXPECT_EQ(c->value(p) > 0, fv < 1);
@@ -251,7 +245,7 @@ TEST(SurfaceDefined, OuterBlendRegionIsFaBelowHalf) {  // [TA-1], and [VIR-1] fo
 template <class F>
 void for_surface_points(F&& fn) {
   const auto d = build_from_json(kD);
-  for_random_points(2000, 1, [&](const Vec3& p) {
+  for_random_points(2000, 1, 11, [&](const Vec3& p) {
     const double dv = d->value(p);
     if (dv > 1e-3) fn(p / (2 * dv));
   });
@@ -271,7 +265,7 @@ TEST(SurfaceDefined, LevelSurfacesInterpolateAlongRays) {  // [TA-4]
   const auto d = build_from_json(kD), fa = build_from_json(kFa);
   const auto an = modulated("T_an", kFa), al = modulated("T_al", kFa);
   const auto P = make_blanc(0);
-  for_random_points(300, 1, [&](const Vec3& p) {
+  for_random_points(300, 1, 11, [&](const Vec3& p) {
     const double rho = length(p);
     if (rho < 1e-3) return;
     const Vec3 dir = p / rho;
@@ -288,7 +282,7 @@ TEST(SurfaceDefined, LevelSurfacesInterpolateAlongRays) {  // [TA-4]
 TEST(SurfaceDefined, TanStaysMonotoneWhereW1IsSmall) {  // [TA-5], and A4's counter-example
   // A modulation barely larger than d makes w1 small (< 0.5) in many directions.
   const auto n = modulated("T_an", R"({"type":"lp_metric","radii":[1.05,0.9,1.3],"n":2.2})");
-  for_random_points(300, 1, [&](const Vec3& p) {
+  for_random_points(300, 1, 11, [&](const Vec3& p) {
     double prev = 2;
     for (int i = 0; i <= 400; ++i) {
       const double v = n->value(p * (i / 200.0));
@@ -308,7 +302,7 @@ TEST(SurfaceDefined, HalfDistanceModulationIsTheIdentity) {  // [TA-6]
   const auto n = modulated("T_an", R"({"type":"lp_metric","radii":[2,1.6,2.4],"n":2})");
   const auto plain =
       build_from_json(std::string(R"({"type":"soft_object","distance":)") + kD + "}");
-  for_random_points(2000, 1.5,
+  for_random_points(2000, 1.5, 11,
                     [&](const Vec3& p) { EXPECT_NEAR(n->value(p), plain->value(p), 1e-12); });
 }
 
@@ -317,7 +311,7 @@ TEST(SurfaceDefined, InnerBlendRegionIsFsAboveHalf) {  // [TS-1]
   for (const char* type : {"T_sn", "T_sr"}) {
     const auto n = modulated(type, kFs);
     int tested = 0;
-    for_random_points(20000, 1, [&](const Vec3& p) {
+    for_random_points(20000, 1, 11, [&](const Vec3& p) {
       const double dv = d->value(p), fv = fs->value(p);
       if (dv > 0.5 || dv == 0 || std::abs(fv - 0.5) < 1e-3) return;
       ++tested;
@@ -331,7 +325,7 @@ TEST(Contour, EqualsTanWithHalfContour) {  // [VIR-2]
   const auto c =
       modulated("contour", R"({"type":"lp_metric","radii":[1.2,1,1.5],"n":3})", "contour");
   const auto a = modulated("T_an", R"({"type":"lp_metric","radii":[2.4,2,3],"n":3})");
-  for_random_points(3000, 2, [&](const Vec3& p) {
+  for_random_points(3000, 2, 11, [&](const Vec3& p) {
     Vec3 gc, ga;
     EXPECT_NEAR(c->eval(p, &gc), a->eval(p, &ga), 1e-13);
     EXPECT_NEAR(length(gc - ga), 0, 1e-11);
@@ -347,7 +341,7 @@ TEST(Contour, AddedMaterialLiesInsideTheContour) {  // [VIR-3]
   const auto d2 =
       build_from_json(R"({"type":"lp_metric","translate":[1.2,0,0],"radii":[0.8,0.8,0.8],"n":2})");
   int added = 0;
-  for_random_points(200000, 2, [&](const Vec3& p) {
+  for_random_points(200000, 2, 11, [&](const Vec3& p) {
     const double a = n->value(p), b = other->value(p);
     if (a + b < 0.5 || a >= 0.5 || b >= 0.5) return;
     ++added;
@@ -365,7 +359,7 @@ TEST(SurfaceDefined, BoxLipschitzNearTheSkeleton) {
   const auto an = modulated("T_an", kFa);
   const Box near = Box::around({0.06, 0.04, 0.03}, 0.02);
   double sampled = 0;
-  for_random_points(2000, 1, [&](const Vec3& p) {
+  for_random_points(2000, 1, 11, [&](const Vec3& p) {
     sampled = std::max(sampled, length(an->gradient(near.center() + p * 0.02)));
   });
   EXPECT_LE(an->lipschitz(near), 1000 * sampled) << "sampled max slope " << sampled;

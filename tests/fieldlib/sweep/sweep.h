@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <random>
 #include <string>
@@ -32,6 +33,10 @@ struct SweepCase {
   double region_level = 1e-300;
   Side region_side = Side::Above;
 };
+
+// The domains most families draw from: the unit kinds fill kUnit, blends and far children kWide.
+inline const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
+inline const Box kWide({-3, -3, -3}, {3, 3, 3});
 
 inline void PrintTo(const SweepCase& c, std::ostream* os) {
   *os << c.name;
@@ -58,6 +63,24 @@ inline Box random_box(std::mt19937_64& rng, const Box& domain) {
 
 // Builds a node from JSON text; the text is parsed with comments allowed.
 NodePtr build_from_json(const std::string& json, Convention convention = Convention::Soft);
+
+// The message building `json` fails with, or "" when it builds.
+inline std::string build_error(const std::string& json, Convention c = Convention::Soft) {
+  try {
+    build_from_json(json, c);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Calls fn on `count` points drawn uniformly from [-r, r]^3, the same ones for the same seed.
+template <class F>
+void for_random_points(int count, double r, uint64_t seed, F&& fn) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-r, r);
+  for (int i = 0; i < count; ++i) fn(Vec3{u(rng), u(rng), u(rng)});
+}
 
 struct ListedCase {
   std::string family;

@@ -28,7 +28,7 @@ const double kNone = std::numeric_limits<double>::quiet_NaN();
 #define ZERO(d) R"({"type":"offset","children":[)" d "]}"
 #define DIST_FAR R"({"type":"lp_metric","translate":[0.3,3,0],"radii":[1,1.5,1],"n":2})"
 
-const SweepCase kCases[] = {
+const SweepCase kBlendCases[] = {
     {"perlin_union", R"({"type":"perlin_union","children":[)" SOFT_A "," SOFT_B "," SOFT_C "]}",
      kDom},
     {"perlin_intersection",
@@ -91,7 +91,17 @@ const SweepCase kCases[] = {
      Convention::Zero, 0.0, Side::Above},
 };
 
-SOFTTRACE_SWEEP_FAMILY(Blends, kCases);
+SOFTTRACE_SWEEP_FAMILY(Blends, kBlendCases);
+
+#undef SOFT_A
+#undef SOFT_B
+#undef SOFT_C
+#undef SOFT_TN
+#undef SOFT_TL
+#undef DIST_A
+#undef DIST_B
+#undef ZERO
+#undef DIST_FAR
 
 }  // namespace
 }  // namespace softtrace::test

@@ -5,9 +5,6 @@
 namespace softtrace::test {
 namespace {
 
-const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
-const Box kWide({-3, -3, -3}, {3, 3, 3});
-
 #define BIG \
   R"({"type":"soft_object","potential":{"type":"murakami"},"strength":2,"distance":{"type":"lp_metric","radii":[2,1.6,1.8],"n":2}})"
 #define HOLE \
@@ -15,7 +12,7 @@ const Box kWide({-3, -3, -3}, {3, 3, 3});
 #define SHEARED \
   R"({"type":"soft_object","potential":{"type":"cubic"},"matrix":[[1,0.8,0,0.1],[0,0.3,0,-0.2],[0.2,0,0.5,0.3]],"distance":{"type":"segment","p0":[-1,0,0],"p1":[1,0,0],"radius":1}})"
 
-const SweepCase kCases[] = {
+const SweepCase kBlobCases[] = {
     {"strength_positive",
      R"({"type":"soft_object","strength":2.5,"potential":{"type":"wyvill"},
          "distance":{"type":"lp_metric","radii":[1,1.2,0.9],"n":2}})",
@@ -58,7 +55,11 @@ const SweepCase kCases[] = {
      kWide},
 };
 
-SOFTTRACE_SWEEP_FAMILY(Blobs, kCases);
+SOFTTRACE_SWEEP_FAMILY(Blobs, kBlobCases);
+
+#undef BIG
+#undef HOLE
+#undef SHEARED
 
 }  // namespace
 }  // namespace softtrace::test

@@ -5,7 +5,6 @@
 namespace softtrace::test {
 namespace {
 
-const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
 constexpr Convention kZero = Convention::Zero;
 
 #define BALL(x, r)                                                                               \
@@ -16,7 +15,7 @@ constexpr Convention kZero = Convention::Zero;
 #define ROD \
   R"({"type":"offset","level":1,"children":[{"type":"segment","p0":[0,-1,-0.3],"p1":[0,1,0.4],"radius":0.3}]})"
 
-const SweepCase kCases[] = {
+const SweepCase kBtCases[] = {
     {"offset_lp",
      R"({"type":"offset","children":[{"type":"lp_metric","radii":[1,0.8,1.2],"n":3}]})", kUnit,
      kZero, 0.0, Side::Below},
@@ -80,7 +79,11 @@ const SweepCase kCases[] = {
 #undef BAR
 #undef ROD
 
-SOFTTRACE_SWEEP_FAMILY(BT, kCases);
+SOFTTRACE_SWEEP_FAMILY(BT, kBtCases);
+
+#undef BALL
+#undef BAR
+#undef ROD
 
 }  // namespace
 }  // namespace softtrace::test

@@ -7,13 +7,11 @@ namespace softtrace::test {
 namespace {
 
 const double kNoRegion = std::numeric_limits<double>::quiet_NaN();
-const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
-const Box kWide({-3, -3, -3}, {3, 3, 3});
 const Box kFig13({-40, -40, -30}, {40, 40, 30});
 
 #define BELOW(level) Convention::Soft, level, Side::Below
 
-const SweepCase kCases[] = {
+const SweepCase kDistanceCases[] = {
     // Planes (§2.3, §2.4): slabs and half-spaces have no finite region.
     {"parallel_planes", R"({"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7})", kUnit,
      BELOW(kNoRegion)},
@@ -148,7 +146,9 @@ const SweepCase kCases[] = {
 
 #undef BELOW
 
-SOFTTRACE_SWEEP_FAMILY(Distances, kCases);
+SOFTTRACE_SWEEP_FAMILY(Distances, kDistanceCases);
+
+#undef BELOW
 
 }  // namespace
 }  // namespace softtrace::test

@@ -4,10 +4,9 @@
 namespace softtrace::test {
 namespace {
 
-const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
 const Box kFig12({-40, -40, -30}, {40, 40, 30});
 
-const SweepCase kCases[] = {
+const SweepCase kFoundationCases[] = {
     {"lp_metric_n2", R"({"type":"lp_metric","radii":[1,2,0.5],"n":2})", kUnit, Convention::Soft,
      1.0, Side::Below},
     {"lp_metric_n2_cylinder_placed",
@@ -50,14 +49,14 @@ const SweepCase kCases[] = {
      R"({"type":"soft_object","translate":[0.2,-0.1,0.3],"rotate":{"axis":[1,1,0],"deg":35},
          "distance":{"type":"lp_metric","radii":[0.6,1,0.4],"n":4}})",
      kUnit},
-    {"fig12b_soft_blend",
+    {"fig000_12b_soft_blend",
      R"({"type":"soft_blend","children":[
           {"type":"soft_object","distance":{"type":"superquadric","radii":[8,8,24],"n1":1,"n2":20}},
           {"type":"soft_object","distance":{"type":"lp_metric","radii":[30,30,12],"n":20}}]})",
      kFig12},
 };
 
-SOFTTRACE_SWEEP_FAMILY(Foundation, kCases);
+SOFTTRACE_SWEEP_FAMILY(Foundation, kFoundationCases);
 
 }  // namespace
 }  // namespace softtrace::test

@@ -5,16 +5,15 @@
 namespace softtrace::test {
 namespace {
 
-const Box kUnit({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
-const Box kWide({-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5});
+const Box kTransformBox({-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5});
 
 #define SPHERE R"({"type":"lp_metric","radii":[1,0.8,1.2],"n":2})"
 #define BAR R"({"type":"superquadric","radii":[1,1,1.3],"n1":2,"n2":6})"
 
-const SweepCase kCases[] = {
+const SweepCase kTransformCases[] = {
     {"T_n_wide",
      R"({"type":"soft_object","distance":)" SPHERE R"(,"radii":{"type":"T_n","w1":1.6,"w2":0.7}})",
-     kWide},
+     kTransformBox},
     {"T_n_narrow",
      R"({"type":"soft_object","distance":)" BAR R"(,"radii":{"type":"T_n","w1":0.4,"w2":0.8}})",
      kUnit},
@@ -25,24 +24,25 @@ const SweepCase kCases[] = {
     {"T_l_k_above_1",
      R"({"type":"soft_object","distance":)" SPHERE R"(,"radii":{"type":"T_l","w1":0.6}})", kUnit},
     {"T_l_k_below_1",
-     R"({"type":"soft_object","distance":)" BAR R"(,"radii":{"type":"T_l","w1":2}})", kWide},
+     R"({"type":"soft_object","distance":)" BAR R"(,"radii":{"type":"T_l","w1":2}})",
+     kTransformBox},
     {"T_r", R"({"type":"soft_object","distance":)" SPHERE R"(,"radii":{"type":"T_r","w2":0.4}})",
      kUnit},
     {"T_an",
      R"({"type":"soft_object","distance":)" SPHERE
      R"(,"radii":{"type":"T_an","modulation":
                  {"type":"superquadric","radii":[2.2,1.8,1.6],"n1":1,"n2":3}}})",
-     kWide},
+     kTransformBox},
     {"T_an_thin",
      R"({"type":"soft_object","distance":)" BAR
      R"(,"radii":{"type":"T_an","modulation":
                       {"type":"lp_metric","radii":[1.8,2.2,2],"n":1.5}}})",
-     kWide},
+     kTransformBox},
     {"T_al",
      R"({"type":"soft_object","distance":)" SPHERE
      R"(,"radii":{"type":"T_al","modulation":
                  {"type":"lp_metric","radii":[1.8,1.2,2.4],"n":3}}})",
-     kWide},
+     kTransformBox},
     {"T_sn",
      R"({"type":"soft_object","distance":)" BAR
      R"(,"radii":{"type":"T_sn","modulation":
@@ -57,15 +57,18 @@ const SweepCase kCases[] = {
      R"({"type":"soft_object","distance":)" SPHERE
      R"(,"radii":{"type":"contour","contour":
                     {"type":"lp_metric","radii":[1.4,1.1,2],"n":4}}})",
-     kWide},
+     kTransformBox},
     {"contour_pinched_placed",
      R"({"type":"soft_object","translate":[0.2,0,-0.1],"distance":)" BAR
      R"(,"radii":{"type":"contour","w_min":0.01,"contour":
          {"type":"superquadric","radii":[2,2,2.6],"n1":0.6,"n2":4}}})",
-     kWide},
+     kTransformBox},
 };
 
-SOFTTRACE_SWEEP_FAMILY(Transforms, kCases);
+SOFTTRACE_SWEEP_FAMILY(Transforms, kTransformCases);
+
+#undef SPHERE
+#undef BAR
 
 }  // namespace
 }  // namespace softtrace::test

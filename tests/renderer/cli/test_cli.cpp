@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kDefaultScene = "scenes/fig12b_soft_blend.json";
+const char* kDefaultScene = "scenes/fig000_12b_soft_blend.json";
 
 // Every file in tests/bad_scenes starts with "// expect: <text>": exit status 2, exactly one
 // line on stderr naming the place and containing <text>, and no output file.

@@ -16,8 +16,6 @@
 namespace softtrace::test {
 namespace {
 
-const char* kScene = "scenes/fig12b_soft_blend.json";  // 640x480
-
 struct Refusal {
   std::string args;      // after "softtrace "; SCENE, IMG and OUT are replaced
   std::string expected;  // the whole stderr line after "softtrace: "
@@ -31,7 +29,7 @@ std::string substitute(std::string text, const std::string& word, const std::str
 
 TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
   const std::string dir = temp_dir("cli_options");
-  const std::string scene = source_path(kScene), img = dir + "/img.png";
+  const std::string scene = source_path(kDefaultScene), img = dir + "/img.png";
   ASSERT_EQ(run_softtrace("render " + scene + " --width 8 --height 6 -q -o " + img).status, 0);
   const std::string usage = " (see softtrace --help)";
   const Refusal cases[] = {
@@ -52,6 +50,8 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
        " (expected 1 to 16384)"},
       {"render SCENE --scale 2 --width 8", "--width excludes --scale" + usage},
       {"render SCENE --spp 0", "--spp: expected an integer from 1 to 4096, got '0'" + usage},
+      {"render SCENE --antialias -1",
+       "--antialias: expected a number from 0 to 1e+06, got '-1'" + usage},
       {"render SCENE --threads 1025",
        "--threads: expected an integer from 1 to 1024, got '1025'" + usage},
       {"render SCENE --lipschitz foo", "--lipschitz: expected local or global, got 'foo'" + usage},
@@ -202,7 +202,7 @@ std::pair<int, int> png_size(const std::string& path) {
 // The scene is 640x480, its camera's fov vertical: a width alone must not widen the view.
 TEST(CliOptions, OneSideAloneKeepsTheScenesAspectAndScaleScalesBoth) {
   const std::string dir = temp_dir("cli_size");
-  const std::string render = "render " + source_path(kScene) + " -q --spp 1 -o " + dir;
+  const std::string render = "render " + source_path(kDefaultScene) + " -q --spp 1 -o " + dir;
   const struct {
     std::string options;
     int width, height;
@@ -220,7 +220,7 @@ TEST(CliOptions, OneSideAloneKeepsTheScenesAspectAndScaleScalesBoth) {
     EXPECT_EQ(png_size(dir + "/x.png"), std::make_pair(c.width, c.height)) << c.options;
   }
   const RunResult bench =
-      run_softtrace("bench " + source_path(kScene) + " -q --repeat 1 --width 32");
+      run_softtrace("bench " + source_path(kDefaultScene) + " -q --repeat 1 --width 32");
   ASSERT_EQ(bench.status, 0) << bench.err;
   EXPECT_NE(bench.out.find(": 32x24,"), std::string::npos) << bench.out;
 }
@@ -238,8 +238,8 @@ TEST(CliOptions, AFrameThatShowsNothingWarnsAndStillWrites) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/away.png"));
   }
   // A picture with something in it, or a part of the frame, says nothing of the kind.
-  const RunResult seen =
-      run_softtrace("render " + source_path(kScene) + " -q --width 16 -o " + dir + "/seen.png");
+  const RunResult seen = run_softtrace("render " + source_path(kDefaultScene) +
+                                       " -q --width 16 -o " + dir + "/seen.png");
   EXPECT_EQ(seen.status, 0);
   EXPECT_EQ(seen.err, "");
   const RunResult part = run_softtrace("render " + away + " -q --tile 0/2 -o " + dir + "/part.exr");

@@ -15,7 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kScene = source_path("scenes/fig12b_soft_blend.json");
 const std::string kTileScene = source_path("tests/scenes/turntable.json");  // 48x36
 
 // `args` exits 2 with exactly one line on stderr containing `expect`, and `dir` (where outputs
@@ -37,7 +36,7 @@ void expect_refused(const std::string& args, const std::string& expect, const st
 TEST(HostileOptions, PartsOfTheFrameAreExact) {
   const std::string dir = temp_dir("hostile_parts");
   const std::string render =
-      "render " + kScene + " --width 8 --height 6 --quiet -o " + dir + "/o.exr";
+      "render " + source_path(kDefaultScene) + " --width 8 --height 6 --quiet -o " + dir + "/o.exr";
   expect_refused(render + " --tile 0/4294967297", "--tile '0/4294967297': expected I/N", dir);
   expect_refused(render + " --tile 4294967296/4294967297", "--tile '4294967296/4294967297'", dir);
   expect_refused(render + " --tile ''", "--tile '': expected I/N", dir);
@@ -50,7 +49,7 @@ TEST(HostileOptions, PartsOfTheFrameAreExact) {
 // through (which turned every mismatch into a pass).
 TEST(HostileOptions, RefusalsNameTheValueAndTheRule) {
   const std::string dir = temp_dir("hostile_options");
-  const std::string diff = "diff " + kScene + " " + kScene;
+  const std::string diff = "diff " + source_path(kDefaultScene) + " " + source_path(kDefaultScene);
   expect_refused(diff + " -failpercent 101",
                  "--failpercent: expected a number from 0 to 100, got '101'", dir);
   expect_refused(diff + " -failpercent nan",
@@ -62,9 +61,9 @@ TEST(HostileOptions, RefusalsNameTheValueAndTheRule) {
   const RunResult digits = run_softtrace(diff + " -allowfailures -1");
   EXPECT_LT(digits.err.size(), 160u) << digits.err;
   expect_refused(diff + " -fail nan", "--fail: expected a number >= 0, got 'nan'", dir);
-  expect_refused("render " + kScene + " --frame 1e3",
+  expect_refused("render " + source_path(kDefaultScene) + " --frame 1e3",
                  "--frame: expected an integer from 0 to 999999, got '1e3'", dir);
-  expect_refused("render " + kScene + " --frame 1000000",
+  expect_refused("render " + source_path(kDefaultScene) + " --frame 1000000",
                  "--frame: expected an integer from 0 to 999999, got '1000000'", dir);
 }
 
@@ -76,9 +75,9 @@ TEST(HostileInputs, FoldersAndEndlessFilesAreRefused) {
   expect_refused("render " + dir + out, dir + ": is a folder, not a scene file", dir);
   expect_refused("render /dev/zero" + out, "/dev/zero:1:1: invalid JSON", dir);
   expect_refused("eval /dev/zero", "/dev/zero:1:1: invalid JSON", dir);
-  expect_refused("eval " + kScene + " --points " + dir, dir + ": is a folder, not a points file",
-                 dir);
-  expect_refused("eval " + kScene + " --points /dev/zero",
+  expect_refused("eval " + source_path(kDefaultScene) + " --points " + dir,
+                 dir + ": is a folder, not a points file", dir);
+  expect_refused("eval " + source_path(kDefaultScene) + " --points /dev/zero",
                  "/dev/zero:1: a line longer than 4096 bytes", dir);
 }
 
@@ -88,12 +87,13 @@ TEST(HostileInputs, EvalReadsLongAndUnterminatedLines) {
   std::string padded = "1 2 3";
   padded.append(4096 - padded.size(), ' ');
   std::ofstream(dir + "/points") << padded << "\n\n  \n4 5 6";
-  const RunResult r = run_softtrace("eval " + kScene + " --points " + dir + "/points");
+  const RunResult r =
+      run_softtrace("eval " + source_path(kDefaultScene) + " --points " + dir + "/points");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 2) << r.out;
   std::ofstream(dir + "/long") << padded << " \n";
-  expect_refused("eval " + kScene + " --points " + dir + "/long", "/long:1: a line longer than",
-                 "");
+  expect_refused("eval " + source_path(kDefaultScene) + " --points " + dir + "/long",
+                 "/long:1: a line longer than", "");
 }
 
 // A tile whose softtrace/tile attribute was tampered with ("0/2000000000") once made merge

@@ -22,8 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kScene = source_path("scenes/fig12b_soft_blend.json");
-
 // A 64 KiB tmpfs mounted on a fresh folder for the test's life, with a file "old.exr" holding
 // "old" and the rest filled until the disk is full. Mounting needs root (CAP_SYS_ADMIN):
 // `mounted()` is false elsewhere and the test skips.
@@ -71,8 +69,9 @@ class FullDisk {
 TEST(FullDisk, RenderCommitsNothingAndFails) {
   const FullDisk disk("full_render");
   REQUIRE_FULL_DISK(disk);
-  const RunResult r = run_softtrace("render " + kScene + " --width 8 --height 6 --quiet -o " +
-                                    disk.dir() + "/old.exr -o " + disk.dir() + "/old.png");
+  const RunResult r =
+      run_softtrace("render " + source_path(kDefaultScene) + " --width 8 --height 6 --quiet -o " +
+                    disk.dir() + "/old.exr -o " + disk.dir() + "/old.png");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
   EXPECT_EQ(read_file(disk.dir() + "/old.exr"), "old");
@@ -83,8 +82,8 @@ TEST(FullDisk, RenderCommitsNothingAndFails) {
 TEST(FullDisk, PngAloneCommitsNothingAndFails) {
   const FullDisk disk("full_png");
   REQUIRE_FULL_DISK(disk);
-  const RunResult r = run_softtrace("render " + kScene + " --width 8 --height 6 --quiet -o " +
-                                    disk.dir() + "/old.png");
+  const RunResult r = run_softtrace("render " + source_path(kDefaultScene) +
+                                    " --width 8 --height 6 --quiet -o " + disk.dir() + "/old.png");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(read_file(disk.dir() + "/old.png"), "old");
   EXPECT_TRUE(disk.extra_files().empty()) << disk.extra_files()[0];
@@ -96,11 +95,11 @@ TEST(FullDisk, MergeLeavesNoTemporaryFile) {
   REQUIRE_FULL_DISK(disk);
   const std::string tiles = temp_dir("full_merge_tiles");
   for (int i = 0; i < 2; ++i)
-    ASSERT_EQ(
-        run_softtrace("render " + kScene + " --width 8 --height 6 --quiet --tile " +
-                      std::to_string(i) + "/2 -o " + tiles + "/t" + std::to_string(i) + ".exr")
-            .status,
-        0);
+    ASSERT_EQ(run_softtrace("render " + source_path(kDefaultScene) +
+                            " --width 8 --height 6 --quiet --tile " + std::to_string(i) + "/2 -o " +
+                            tiles + "/t" + std::to_string(i) + ".exr")
+                  .status,
+              0);
   const RunResult r = run_softtrace("merge " + tiles + "/t0.exr " + tiles + "/t1.exr --quiet -o " +
                                     disk.dir() + "/old.exr");
   EXPECT_EQ(r.status, 2) << r.err;
@@ -112,7 +111,8 @@ TEST(FullDisk, DiffOutputFailsWithFour) {
   const FullDisk disk("full_diff");
   REQUIRE_FULL_DISK(disk);
   const std::string dir = temp_dir("full_diff_in");
-  ASSERT_EQ(run_softtrace("render " + kScene + " --width 8 --height 6 --quiet -o " + dir + "/a.exr")
+  ASSERT_EQ(run_softtrace("render " + source_path(kDefaultScene) +
+                          " --width 8 --height 6 --quiet -o " + dir + "/a.exr")
                 .status,
             0);
   const RunResult r =
@@ -128,8 +128,8 @@ TEST(FullDisk, DiffOutputFailsWithFour) {
 TEST(NonRegularOutput, FifoIsRefused) {
   const std::string dir = temp_dir("fifo_out");
   ASSERT_EQ(::mkfifo((dir + "/out.exr").c_str(), 0600), 0);
-  const RunResult r =
-      run_softtrace("render " + kScene + " --width 8 --height 6 --quiet -o " + dir + "/out.exr");
+  const RunResult r = run_softtrace("render " + source_path(kDefaultScene) +
+                                    " --width 8 --height 6 --quiet -o " + dir + "/out.exr");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("out.exr: is a FIFO; outputs must be regular files or links to them"),
             std::string::npos)
@@ -144,9 +144,10 @@ TEST(NonRegularOutput, LinkToADeviceIsRefused) {
   if (::mknod((dir + "/null").c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0)
     GTEST_SKIP() << "cannot make a device node: " << std::strerror(errno);
   fs::create_symlink(dir + "/null", dir + "/out.exr");
-  for (const std::string& command :
-       {"render " + kScene + " --width 8 --height 6 --quiet -o " + dir + "/out.exr",
-        "diff " + kScene + " " + kScene + " -o " + dir + "/out.exr"}) {
+  for (const std::string& command : {"render " + source_path(kDefaultScene) +
+                                         " --width 8 --height 6 --quiet -o " + dir + "/out.exr",
+                                     "diff " + source_path(kDefaultScene) + " " +
+                                         source_path(kDefaultScene) + " -o " + dir + "/out.exr"}) {
     const RunResult r = run_softtrace(command);
     EXPECT_NE(r.status, 0) << command;
     EXPECT_NE(r.err.find("out.exr: is a character device"), std::string::npos) << r.err;
@@ -160,9 +161,10 @@ TEST(NonRegularOutput, LinkToADeviceIsRefused) {
 TEST(StandardOutput, UnwritableIsAFailure) {
   const std::string points = temp_dir("stdout_full") + "/points";
   std::ofstream(points) << "0 0 0\n1 2 3\n";
-  for (const std::string& command :
-       {"eval " + kScene + " --points " + points, std::string("nodes"), std::string("nodes --dict"),
-        "bench " + kScene + " --width 8 --height 6 --repeat 1 --quiet --json"}) {
+  for (const std::string& command : {"eval " + source_path(kDefaultScene) + " --points " + points,
+                                     std::string("nodes"), std::string("nodes --dict"),
+                                     "bench " + source_path(kDefaultScene) +
+                                         " --width 8 --height 6 --repeat 1 --quiet --json"}) {
     const RunResult r =
         run_command("{ " + std::string(SOFTTRACE_BIN) + " " + command + " >/dev/full; }");
     EXPECT_EQ(r.status, 2) << command << ": " << r.err;

@@ -99,9 +99,9 @@ TEST_P(Signal, WhileTheLibrariesLoadExitsWithNothingWritten) {
   const int sig = GetParam();
   const std::string dir = temp_dir("signal_start_" + std::to_string(sig));
   const std::string err = dir + "/../stderr_start_" + std::to_string(sig);
-  const pid_t pid = spawn(
-      {"render", source_path("scenes/fig12b_soft_blend.json"), "-o", dir + "/image.exr", "--quiet"},
-      err);
+  const pid_t pid = spawn({"render", source_path("scenes/fig000_12b_soft_blend.json"), "-o",
+                           dir + "/image.exr", "--quiet"},
+                          err);
   ASSERT_TRUE(wait_until([&] { return runs_core(pid); }));
   ASSERT_EQ(::kill(pid, sig), 0);
   EXPECT_EQ(wait_status(pid), 128 + sig);
@@ -142,7 +142,7 @@ TEST_P(Signal, StopsEval) {
   const std::string dir = temp_dir("signal_eval_" + std::to_string(sig));
   ASSERT_EQ(::mkfifo((dir + "/points").c_str(), 0600), 0);
   const pid_t pid =
-      spawn({"eval", source_path("scenes/fig12b_soft_blend.json"), "--points", dir + "/points"},
+      spawn({"eval", source_path("scenes/fig000_12b_soft_blend.json"), "--points", dir + "/points"},
             dir + "/stderr");
   ASSERT_TRUE(wait_until([&] { return has_thread(pid, "signal-watcher"); }));
   ASSERT_EQ(::kill(pid, sig), 0);
@@ -157,7 +157,7 @@ TEST_P(Signal, DuringRenderLeavesTheOldFileAndNoTemporaryFile) {
   const std::string dir = temp_dir("signal_render_" + std::to_string(sig));
   const std::string out = dir + "/image.exr", err = dir + "/../stderr_" + std::to_string(sig);
   write_text(out, "old image");
-  const pid_t pid = spawn({"render", source_path("scenes/fig12b_soft_blend.json"), "-o", out,
+  const pid_t pid = spawn({"render", source_path("scenes/fig000_12b_soft_blend.json"), "-o", out,
                            "--width", "1024", "--height", "1024", "--spp", "4", "--progress"},
                           err);
   ASSERT_TRUE(wait_until([&] { return read_file(err).rfind("\rrendering [", 0) == 0; }));

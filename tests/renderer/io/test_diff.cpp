@@ -138,7 +138,7 @@ TEST(Diff, PerturbedImageFailsIdenticalPasses) {
 // fails, 0.3 % passes (regression.sh allows 0.5 %), a change below 0.005 passes.
 TEST(Diff, PerturbedReferenceAtRegressionThresholds) {
   const std::string dir = temp_dir("diff_reference");
-  const std::string ref = source_path("reference_images/fig12b_soft_blend.exr");
+  const std::string ref = source_path("reference_images/fig000_12b_soft_blend.exr");
   const Image a = read(ref);
   ASSERT_GT(a.w * a.h, 1000);
   const auto perturbed = [&](double fraction, float by) {

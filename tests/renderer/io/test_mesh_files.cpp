@@ -43,7 +43,7 @@ std::string tmp(const std::string& name) {
 const Mesh& sample() {
   static const Mesh m = [] {
     for (const auto& c : mesh_scenes::all_cases())
-      if (c.name == "fig12b_soft_blend.json#0") {
+      if (c.name == "fig000_12b_soft_blend.json#0") {
         const SceneObject& o = c.scene->objects[0];
         const Program p = compile(*o.field);
         MeshOptions opt;
@@ -203,7 +203,7 @@ int run(const std::string& args) {
 }
 
 TEST(MeshCli, WritesTheFileOrExitsTwoWritingNothing) {
-  const std::string scene = SOFTTRACE_SOURCE_DIR "/scenes/fig12b_soft_blend.json";
+  const std::string scene = SOFTTRACE_SOURCE_DIR "/scenes/fig000_12b_soft_blend.json";
   const std::string out = tmp("cli.obj");
   fs::remove(out);
   EXPECT_EQ(run(scene + " -o " + tmp("cli.fbx")), 2);

@@ -22,7 +22,7 @@ namespace softtrace {
 namespace {
 
 TEST(MeshRender, Fig12bGlbThroughEmbreeMatchesTheFieldsRender) {
-  const Scene scene = load_scene(SOFTTRACE_SOURCE_DIR "/scenes/fig12b_soft_blend.json");
+  const Scene scene = load_scene(SOFTTRACE_SOURCE_DIR "/scenes/fig000_12b_soft_blend.json");
   ASSERT_EQ(scene.objects.size(), 1u);
   const SceneObject& o = scene.objects[0];
   const Program p = compile(*o.field);

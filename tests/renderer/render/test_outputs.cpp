@@ -36,11 +36,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kScene = "scenes/fig12b_soft_blend.json";
 constexpr int kW = 40, kH = 30;
 
 std::string render_args(const std::string& extra) {
-  return "render " + source_path(kScene) + " --width " + std::to_string(kW) + " --height " +
+  return "render " + source_path(kDefaultScene) + " --width " + std::to_string(kW) + " --height " +
          std::to_string(kH) + " --quiet " + extra;
 }
 
@@ -61,7 +60,7 @@ Pixels oiio_read(const std::string& path) {
 }
 
 Vec3 background() {
-  return load_scene(source_path(kScene)).background;
+  return load_scene(source_path(kDefaultScene)).background;
 }
 
 TEST(Outputs, PremultipliedByDefaultFlattenedOverTheBackground) {
@@ -116,14 +115,15 @@ TEST(Outputs, ExrHeaderHasStandardAndSofttraceAttributes) {
   const auto* software = h.findTypedAttribute<Imf::StringAttribute>("software");
   ASSERT_NE(software, nullptr);
   EXPECT_EQ(software->value().rfind("softtrace ", 0), 0u) << software->value();
-  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("softtrace/scene").value(), "fig12b_soft_blend");
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("softtrace/scene").value(),
+            "fig000_12b_soft_blend");
   EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("softtrace/sceneHash").value(),
-            fnv1a64_hex(read_file(source_path(kScene))));
+            fnv1a64_hex(read_file(source_path(kDefaultScene))));
   EXPECT_EQ(h.typedAttribute<Imf::IntAttribute>("softtrace/spp").value(), 2);
   EXPECT_GT(h.typedAttribute<Imf::FloatAttribute>("renderTimeSeconds").value(), 0.0f);
 
   // worldToCamera: the eye at the origin, the target straight ahead (+z) at its distance.
-  const Scene scene = load_scene(source_path(kScene));
+  const Scene scene = load_scene(source_path(kDefaultScene));
   const Imath::M44f w2c = h.typedAttribute<Imf::M44fAttribute>("worldToCamera").value();
   const Imath::M44f w2ndc = h.typedAttribute<Imf::M44fAttribute>("worldToNDC").value();
   const auto v3 = [](const Vec3& v) { return Imath::V3f(float(v[0]), float(v[1]), float(v[2])); };
@@ -216,7 +216,7 @@ TEST(Outputs, PngSaysSrgbAndKeepsStraightAlpha) {
 // A film holds only the AOV planes asked for, and the frame fills what it holds: the same colour
 // and depth whichever planes are there.
 TEST(Outputs, FilmHoldsOnlyTheAovPlanesAskedFor) {
-  Scene scene = load_scene(source_path(kScene));
+  Scene scene = load_scene(source_path(kDefaultScene));
   scene.image.width = kW;
   scene.image.height = kH;
   const TracedScene rt(scene, LipschitzMode::Local);
@@ -373,7 +373,7 @@ TEST(Outputs, PendingWritesBelongToTheirThread) {
 // The header's scene hash is that of the text parsed: a scene parsed from text, named as no
 // file is, has one, and a file edited after loading does not change it.
 TEST(Outputs, SceneHashIsOfTheParsedText) {
-  const std::string text = read_file(source_path(kScene));
+  const std::string text = read_file(source_path(kDefaultScene));
   const Scene parsed = parse_scene(text, "no/such/scene.json");
   EXPECT_EQ(frame_info(parsed, kW, kH).scene_hash, fnv1a64_hex(text));
   const std::string dir = temp_dir("outputs_hash_edit");

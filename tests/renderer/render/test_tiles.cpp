@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kScene = "tests/scenes/turntable.json";  // 48x36, 2 spp
+const char* kTurntable = "tests/scenes/turntable.json";  // 48x36, 2 spp
 
 // Same windows, channels and bits in every channel of every pixel.
 void expect_same_bits(const std::string& a_path, const std::string& b_path) {
@@ -41,7 +41,8 @@ void expect_same_bits(const std::string& a_path, const std::string& b_path) {
 }
 
 std::string render(const std::string& args, const std::string& out) {
-  const RunResult r = run_softtrace("render " + source_path(kScene) + " -q " + args + " -o " + out);
+  const RunResult r =
+      run_softtrace("render " + source_path(kTurntable) + " -q " + args + " -o " + out);
   EXPECT_EQ(r.status, 0) << args << ": " << r.err;
   return out;
 }
@@ -199,7 +200,7 @@ TEST(Merge, RefusesGapsOverlapsAndMismatches) {
 TEST(Frames, FrameNumberGoesIntoTheNameAndTheCamera) {
   const std::string dir = temp_dir("frames");
   for (int f = 0; f < 3; ++f) {
-    const RunResult r = run_softtrace("render " + source_path(kScene) + " -q --frame " +
+    const RunResult r = run_softtrace("render " + source_path(kTurntable) + " -q --frame " +
                                       std::to_string(f) + " -o " + dir + "/turn.####.exr");
     ASSERT_EQ(r.status, 0) << r.err;
   }
@@ -210,13 +211,13 @@ TEST(Frames, FrameNumberGoesIntoTheNameAndTheCamera) {
   EXPECT_EQ(f1.attributes.at("softtrace/frame"), "1");
   // The default name is the scene's, with the frame.
   const RunResult def = run_command("cd " + dir + " && " + SOFTTRACE_BIN + " render " +
-                                    source_path(kScene) + " -q --frame 2 --width 8 --height 6");
+                                    source_path(kTurntable) + " -q --frame 2 --width 8 --height 6");
   EXPECT_EQ(def.status, 0) << def.err;
   EXPECT_TRUE(fs::exists(dir + "/turntable.0002.exr"));
 
   // A list of cameras: a frame with the scene's own camera is the render without --frame.
   const std::string listed = dir + "/listed.json";
-  std::string text = read_file(source_path(kScene));
+  std::string text = read_file(source_path(kTurntable));
   const std::string turntable =
       R"("frames": 3, "turntable": { "axis": [0, 0, 1], "degrees": 360 })";
   ASSERT_NE(text.find(turntable), std::string::npos);
@@ -236,11 +237,11 @@ TEST(Frames, FrameNumberGoesIntoTheNameAndTheCamera) {
     EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir + "/bad.exr"));
   };
-  refused(source_path(kScene) + " --frame 3",
+  refused(source_path(kTurntable) + " --frame 3",
           "turntable.json: /animation: there is no frame 3 (frames 0 to 2)");
-  refused(source_path("scenes/fig12b_soft_blend.json") + " --frame 0", "has no /animation");
+  refused(source_path("scenes/fig000_12b_soft_blend.json") + " --frame 0", "has no /animation");
   const RunResult hash =
-      run_softtrace("render " + source_path(kScene) + " -o " + dir + "/x.##.exr");
+      run_softtrace("render " + source_path(kTurntable) + " -o " + dir + "/x.##.exr");
   EXPECT_EQ(hash.status, 2);
   EXPECT_NE(hash.err.find("'#' stands for the frame: give --frame"), std::string::npos) << hash.err;
 }
@@ -254,9 +255,9 @@ TEST(Merge, InterruptedTileLeavesNothingToMerge) {
   // Big enough to be still rendering when the signal comes.
   const pid_t pid = ::fork();
   if (pid == 0) {
-    ::execl(SOFTTRACE_BIN, SOFTTRACE_BIN, "render", source_path(kScene).c_str(), "-q", "--width",
-            "4000", "--height", "3000", "--spp", "16", "--tile", "1/2", "-o", tile1.c_str(),
-            static_cast<char*>(nullptr));
+    ::execl(SOFTTRACE_BIN, SOFTTRACE_BIN, "render", source_path(kTurntable).c_str(), "-q",
+            "--width", "4000", "--height", "3000", "--spp", "16", "--tile", "1/2", "-o",
+            tile1.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
   // Once its main thread blocks SIGINT for the signal watcher, it is past start-up. Libraries

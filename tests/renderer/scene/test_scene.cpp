@@ -46,7 +46,7 @@ TEST(SceneLoading, DefaultsFollowTheConvention) {
 // A C++ string may hold a NUL that the file system would end the path at: "x.json\0junk" is
 // refused rather than loaded as x.json. The pixel limit is the command line's and Python's.
 TEST(SceneLoading, PathsWithNulAndThePixelLimit) {
-  const std::string path = std::string(SOFTTRACE_SOURCE_DIR "/scenes/fig12b_soft_blend.json");
+  const std::string path = std::string(SOFTTRACE_SOURCE_DIR "/scenes/fig000_12b_soft_blend.json");
   EXPECT_NO_THROW(load_scene(path));
   try {
     load_scene(path + std::string("\0junk", 5));

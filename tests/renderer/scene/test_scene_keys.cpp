@@ -24,8 +24,10 @@ const char* kBall =
 const std::string kEveryKeyCameras = std::string(R"({
   "camera": {"projection": "perspective", "eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40,
              "aperture": 0.1, "focal_distance": 9, "blur_samples": 2},
-  "image": {"width": 8, "height": 6, "spp": 2, "max_trace_level": 3},
-  "background": [0.1, 0.2, 0.3],
+  "image": {"width": 8, "height": 6, "spp": 2, "max_trace_level": 3,
+            "antialias": {"threshold": 0.3, "depth": 2},
+            "ambient_occlusion": {"samples": 4, "distance": 2}},
+  "background": {"gradient": [[0.1, 0.2, 0.3], [0.4, 0.5, 0.9]], "up": [0, 0, 1]},
   "lights": [
     {"type": "directional", "direction": [-1, 0, 0], "intensity": 1, "color": [1, 1, 1], "shadows": false},
     {"type": "point", "position": [5, 5, 5], "intensity": 2, "color": [1, 0.5, 1], "shadows": true,
@@ -69,6 +71,9 @@ const std::map<std::string, std::vector<std::string>> kWhere = {
     {"top level", {""}},
     {"camera", {"/camera", "/animation/cameras/0"}},
     {"image", {"/image"}},
+    {"antialias", {"/image/antialias"}},
+    {"ambient_occlusion", {"/image/ambient_occlusion"}},
+    {"background", {"/background"}},
     {"light: directional", {"/lights/0"}},
     {"light: point", {"/lights/1"}},
     {"light: ambient", {"/lights/2"}},
