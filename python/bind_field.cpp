@@ -95,6 +95,9 @@ std::unique_ptr<Field> field_of_scene(const PyScene& s, const std::string& objec
   if (objects[i].csg)
     throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) + ": a CSG (" +
                      csg_name(objects[i].csg->op) + "), not a field");
+  if (objects[i].mesh)
+    throw SceneError(s.scene->path + ": /objects/" + std::to_string(i) +
+                     ": a triangle mesh, not a field");
   f->scene = s.scene;
   f->root = objects[i].field.get();
   f->program = compile(*f->root);

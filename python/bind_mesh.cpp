@@ -18,6 +18,7 @@
 #include "mesh/mesh.h"
 #include "model/program_builder.h"
 #include "scene/scene.h"
+#include "scene/vertex_colors.h"
 
 namespace py = pybind11;
 using namespace softtrace;
@@ -57,6 +58,8 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
   if (obj->csg)
     throw SceneError(scene->path + ": object '" + obj->name + "' is a CSG (" +
                      csg_name(obj->csg->op) + "), not a field");
+  if (obj->mesh)
+    throw SceneError(scene->path + ": object '" + obj->name + "' is a triangle mesh, not a field");
   Box region = obj->bounds;
   if (bounds) {
     const auto& b = *bounds;
@@ -85,6 +88,7 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
     } catch (const std::invalid_argument& e) {
       throw py::value_error(e.what());
     }
+    m.colors = vertex_colors(*obj, m.vertices, opt.threads);
   }
   py::array_t<int64_t> faces({py::ssize_t(m.faces.size()), py::ssize_t(3)});
   int64_t* f = faces.mutable_data();

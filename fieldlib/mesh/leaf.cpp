@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "math/illinois.h"
 #include "mesh/tetra.h"
@@ -17,13 +18,12 @@ double LeafMesher::solved(double f, const Vec3& p, bool capped) const {
 
 void LeafMesher::run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* out) {
   out->keys.clear();
-  out->shared.clear();
+  out->place.clear();
   out->positions.clear();
   out->outward.clear();
   out->capped.clear();
-  out->faces.clear();
+  out->cuts.clear();
   edges_.clear();
-  cuts_.clear();
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
   const int stride[3] = {1, m_[0], m_[0] * m_[1]};
   const int points = m_[0] * m_[1] * m_[2];
@@ -65,11 +65,17 @@ void LeafMesher::run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* 
     s = int32_t(edges_.size());
     const int q[3] = {p % m_[0], p / m_[0] % m_[1], p / stride[2]};
     const int g[3] = {c0[0] + q[0], c0[1] + q[1], c0[2] + q[2]};
-    bool shared = false;
-    for (int a = 0; a < 3; ++a)
-      if (!(d >> a & 1) && (q[a] == 0 || q[a] == m_[a] - 1)) shared = true;
+    EdgePlace place = EdgePlace::Interior;
+    for (int a = 0; a < 3; ++a) {
+      if (d >> a & 1) continue;
+      if (q[a] == 0 && c0[a] > 0) {
+        place = EdgePlace::Borrowed;
+        break;
+      }
+      if (q[a] == 0 || q[a] == m_[a] - 1) place = EdgePlace::Solved;
+    }
     out->keys.push_back(lattice_.edge_key(g[0], g[1], g[2], d));
-    out->shared.push_back(shared);
+    out->place.push_back(place);
     const int pa = local(base, in), pb = local(base, outside);
     auto at = [&](int lp) {
       return lattice_.point(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1], c0[2] + lp / stride[2]);
@@ -84,6 +90,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* 
     e.capped = padded(pa) || padded(pb);
     e.ga = solved(values_[pa], e.a, e.capped);
     e.gb = solved(values_[pb], e.b, e.capped);
+    e.solve = place != EdgePlace::Borrowed;
     edges_.push_back(e);
     return uint32_t(s);
   };
@@ -100,31 +107,13 @@ void LeafMesher::run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* 
           for (int v = 0; v < 4; ++v) in |= (mask >> kKuhnTetrahedra[t][v] & 1) << v;
           const TetCut& cut = tet_cut(t, in);
           if (cut.count == 0) continue;
-          Cut c;
-          c.quad = cut.count == 4;
+          LeafCut c{{0, 0, 0, 0}, cut.count == 4};
           for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(base, cut.in[e], cut.out[e]);
-          cuts_.push_back(c);
+          out->cuts.push_back(c);
         }
       }
 
   solve_edges(code, ws, out);
-
-  // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
-  const auto& pos = out->positions;
-  for (const Cut& c : cuts_) {
-    if (!c.quad) {
-      out->faces.push_back({c.v[0], c.v[1], c.v[2]});
-      continue;
-    }
-    const Vec3 d02 = pos[c.v[2]] - pos[c.v[0]], d13 = pos[c.v[3]] - pos[c.v[1]];
-    if (dot(d02, d02) <= dot(d13, d13)) {
-      out->faces.push_back({c.v[0], c.v[1], c.v[2]});
-      out->faces.push_back({c.v[0], c.v[2], c.v[3]});
-    } else {
-      out->faces.push_back({c.v[0], c.v[1], c.v[3]});
-      out->faces.push_back({c.v[1], c.v[2], c.v[3]});
-    }
-  }
 }
 
 // Each edge's crossing by the Illinois method on its bracket [inside end, outside end], with a
@@ -148,7 +137,9 @@ void LeafMesher::solve_edges(Code code, Workspace& ws, LeafMesh* out) {
     st.bracket = {1, edges_[e].gb, 0, edges_[e].ga};
     st.px = 1;
     st.pg = edges_[e].gb;
-    if (edges_[e].ga > 0)
+    if (!edges_[e].solve)
+      st.t = std::numeric_limits<double>::quiet_NaN();  // the solving leaf's, after the weld
+    else if (edges_[e].ga > 0)
       active.push_back(uint32_t(e));
     else
       st.t = 0;  // ga == 0: the inside end is on the surface
@@ -202,7 +193,8 @@ void LeafMesher::solve_edges(Code code, Workspace& ws, LeafMesh* out) {
   out->outward.resize(n);
   out->capped.resize(n);
   for (size_t id = 0; id < n; ++id) {
-    const double s = std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin);
+    const double s =
+        edges_[id].solve ? std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin) : state[id].t;
     const Edge& e = edges_[id];
     out->positions[id] = e.a + s * (e.b - e.a);
     out->outward[id] = e.b - e.a;

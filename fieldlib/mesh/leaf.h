@@ -1,9 +1,9 @@
 // One leaf block of the mesher: the cells [c0, c1) of the lattice, meshed on their own. Corner
 // values come from the batched values evaluator on the program pruned to the block; each edge
-// crossing is solved on the exact field. A vertex on the block's faces is found again, with the
-// same bits, by the neighbour that shares the face (the pruned program's value at a point does
-// not depend on the box it was pruned to: only children that are exactly 0 there are dropped),
-// and the mesher welds the two by their edge key.
+// crossing is solved on the exact field. A vertex on the block's faces is found again by the
+// neighbours that share its edge, with the same corner values (the pruned program's value at a
+// point does not depend on the box it was pruned to: only children that are exactly 0 there are
+// dropped); one of them solves it (EdgePlace), and the mesher welds them by their edge key.
 #pragma once
 
 #include <array>
@@ -23,13 +23,29 @@ constexpr double kEdgeMargin = 1e-4;
 // The crossing is solved to this fraction of the edge (solve_edges in leaf.cpp).
 constexpr double kEdgeTolerance = 1e-4;
 
+// Where a leaf's vertex lies. An edge on the block's boundary is held by every leaf around it,
+// and solved by one only: the leaf for which it lies on no lower face (the leaves below hold the
+// edge's cells too, so they are leaves as well: their interval cannot exclude a crossing).
+enum class EdgePlace : uint8_t {
+  Interior,  // this leaf's alone
+  Solved,    // on the boundary, solved here
+  Borrowed,  // on a lower face: its position is the solving leaf's (mesh.cpp's weld)
+};
+
+// The polygon a tetrahedron cuts: a triangle, or a quadrilateral (v[3] too) that the mesher splits
+// along its shorter diagonal once every position is known (after the weld).
+struct LeafCut {
+  uint32_t v[4];  // indices into the leaf's vertices, counter-clockwise seen from outside
+  bool quad;
+};
+
 struct LeafMesh {
-  std::vector<uint64_t> keys;   // each vertex's lattice edge
-  std::vector<uint8_t> shared;  // 1: the edge lies on the block's boundary (a neighbour has it)
-  std::vector<Vec3> positions;
-  std::vector<Vec3> outward;                   // the edge from its inside end to its outside end
-  std::vector<uint8_t> capped;                 // 1: an end of the edge is a padding point
-  std::vector<std::array<uint32_t, 3>> faces;  // indices into this leaf's vertices
+  std::vector<uint64_t> keys;  // each vertex's lattice edge
+  std::vector<EdgePlace> place;
+  std::vector<Vec3> positions;  // not a number where Borrowed
+  std::vector<Vec3> outward;    // the edge from its inside end to its outside end
+  std::vector<uint8_t> capped;  // 1: an end of the edge is a padding point
+  std::vector<LeafCut> cuts;
 };
 
 // The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
@@ -64,13 +80,9 @@ class LeafMesher {
     Vec3 a, b;  // inside end, outside end
     double ga, gb;
     bool capped;  // an end is a padding point
+    bool solve;   // not Borrowed
   };
   std::vector<Edge> edges_;
-  struct Cut {
-    uint32_t v[4];
-    bool quad;
-  };
-  std::vector<Cut> cuts_;
 };
 
 }  // namespace softtrace

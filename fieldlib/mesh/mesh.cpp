@@ -159,50 +159,86 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
   });
 
-  // Pass 3: weld. A vertex on a leaf's boundary may be in the neighbours too, with the same key
-  // (and position); the first in leaf order keeps it. Interior vertices are unique already.
+  // Pass 3: weld. A vertex on a leaf's boundary is in the neighbours too, with the same key; the
+  // first in leaf order names it, and its position is the one leaf's that solved it. Interior
+  // vertices are unique already.
   std::vector<size_t> first(parts.size() + 1, 0);
   for (size_t i = 0; i < parts.size(); ++i) first[i + 1] = first[i] + parts[i].keys.size();
+  auto part_of = [&](uint64_t g) {
+    return size_t(std::upper_bound(first.begin(), first.end(), g) - first.begin()) - 1;
+  };
   std::vector<std::pair<uint64_t, uint64_t>> boundary;  // (key, vertex before welding)
   for (size_t i = 0; i < parts.size(); ++i)
     for (size_t v = 0; v < parts[i].keys.size(); ++v)
-      if (parts[i].shared[v]) boundary.emplace_back(parts[i].keys[v], first[i] + v);
+      if (parts[i].place[v] != EdgePlace::Interior)
+        boundary.emplace_back(parts[i].keys[v], first[i] + v);
   std::sort(boundary.begin(), boundary.end());
   constexpr uint64_t kKeep = ~uint64_t(0);
   std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
-  for (size_t b = 1; b < boundary.size(); ++b)
-    if (boundary[b].first == boundary[b - 1].first)
-      same[boundary[b].second] = same[boundary[b - 1].second] == kKeep
-                                     ? boundary[b - 1].second
-                                     : same[boundary[b - 1].second];
+  for (size_t b = 0, end; b < boundary.size(); b = end) {
+    const uint64_t name = boundary[b].second;
+    const Vec3* solved = nullptr;
+    for (end = b; end < boundary.size() && boundary[end].first == boundary[b].first; ++end) {
+      const uint64_t g = boundary[end].second;
+      const size_t i = part_of(g);
+      if (parts[i].place[g - first[i]] == EdgePlace::Solved)
+        solved = &parts[i].positions[g - first[i]];
+      if (end > b) same[g] = name;
+    }
+    if (!solved)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
+      throw std::logic_error("mesh: a boundary vertex that no leaf solved");
+    const size_t i = part_of(name);
+    parts[i].positions[name - first[i]] = *solved;
+  }
   boundary = {};
   std::vector<uint32_t> index(first.back());
   Mesh m;
   m.lattice = lattice.box;
   m.voxel = lattice.h;
-  size_t faces = 0;
-  for (const auto& p : parts) faces += p.faces.size();
-  if (first.back() > size_t(UINT32_MAX) || faces > size_t(UINT32_MAX))
-    throw std::length_error("the mesh would have more than 2^32 vertices or faces");
-  m.faces.reserve(faces);
   std::vector<Vec3> outward;    // each welded vertex's edge direction out (vertex_normal)
   std::vector<uint8_t> capped;  // and whether its edge reaches the padding
   for (size_t i = 0; i < parts.size(); ++i) {
-    LeafMesh& p = parts[i];
+    const LeafMesh& p = parts[i];
     for (size_t v = 0; v < p.keys.size(); ++v) {
       const size_t g = first[i] + v;
-      if (same[g] != kKeep) {
-        index[g] = index[same[g]];
-        continue;
-      }
+      if (same[g] != kKeep) continue;
       index[g] = uint32_t(m.vertices.size());
       m.vertices.push_back(p.positions[v]);
       outward.push_back(p.outward[v]);
       capped.push_back(p.capped[v]);
     }
-    for (const auto& f : p.faces)
-      m.faces.push_back({index[first[i] + f[0]], index[first[i] + f[1]], index[first[i] + f[2]]});
-    p = LeafMesh();
+    if (m.vertices.size() > size_t(UINT32_MAX))
+      throw std::length_error("the mesh would have more than 2^32 vertices or faces");
+  }
+  for (size_t g = 0; g < same.size(); ++g)
+    if (same[g] != kKeep) index[g] = index[same[g]];
+  same = {};
+  // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
+  size_t faces = 0;
+  for (const auto& p : parts)
+    for (const LeafCut& c : p.cuts) faces += c.quad ? 2 : 1;
+  if (faces > size_t(UINT32_MAX))
+    throw std::length_error("the mesh would have more than 2^32 vertices or faces");
+  m.faces.reserve(faces);
+  for (size_t i = 0; i < parts.size(); ++i) {
+    for (const LeafCut& c : parts[i].cuts) {
+      uint32_t v[4];
+      for (int k = 0; k < (c.quad ? 4 : 3); ++k) v[k] = index[first[i] + c.v[k]];
+      if (!c.quad) {
+        m.faces.push_back({v[0], v[1], v[2]});
+        continue;
+      }
+      const Vec3 d02 = m.vertices[v[2]] - m.vertices[v[0]];
+      const Vec3 d13 = m.vertices[v[3]] - m.vertices[v[1]];
+      if (dot(d02, d02) <= dot(d13, d13)) {
+        m.faces.push_back({v[0], v[1], v[2]});
+        m.faces.push_back({v[0], v[2], v[3]});
+      } else {
+        m.faces.push_back({v[0], v[1], v[3]});
+        m.faces.push_back({v[1], v[2], v[3]});
+      }
+    }
+    parts[i] = LeafMesh();
   }
   parts = {};
 

@@ -59,6 +59,7 @@ int run_bench(const BenchArgs& a) {
   try {
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
+    apply_camera_options(scene, a.view);
     const auto limit = limit_threads(a.threads);
     const int threads = a.threads ? a.threads : default_threads();
     const TracedScene rt(scene, a.lipschitz);

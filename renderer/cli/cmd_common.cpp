@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "cli/option_checks.h"
+
 namespace softtrace {
 
 namespace {
@@ -49,6 +51,14 @@ void apply_image_size(Scene& scene, const std::string& scene_path, int width, in
     image.height = height;
   }
   check_pixel_count(image, scene_path);
+}
+
+void apply_camera_options(Scene& scene, const CameraArgs& view) {
+  CameraOverride o;
+  if (view.eye) o.eye = point_of(*view.eye);
+  if (view.target) o.target = point_of(*view.target);
+  o.fov = view.fov;
+  override_camera(scene, o);
 }
 
 }  // namespace softtrace

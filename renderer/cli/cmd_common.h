@@ -1,9 +1,10 @@
-// What `render` and `bench` share: the command line's overrides of the scene's image (the thread
-// limit is render/threads.h).
+// What `render` and `bench` share: the command line's overrides of the scene's image and camera
+// (the thread limit is render/threads.h).
 #pragma once
 
 #include <string>
 
+#include "cli/commands.h"
 #include "scene/scene.h"
 
 namespace softtrace {
@@ -16,5 +17,9 @@ namespace softtrace {
 // with a SceneError naming /image (check_pixel_count, scene.h).
 void apply_image_size(Scene& scene, const std::string& scene_path, int width, int height,
                       double scale);
+
+// Moves the scene's camera by --eye, --target and --fov (those given; override_camera, scene.h),
+// after any animation frame is set. Throws std::invalid_argument naming the option.
+void apply_camera_options(Scene& scene, const CameraArgs& view);
 
 }  // namespace softtrace

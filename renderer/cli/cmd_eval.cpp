@@ -40,6 +40,9 @@ int run_eval(const EvalArgs& a) {
     if (obj->csg)
       throw SceneError(a.scene + ": object '" + obj->name + "' is a CSG (" +
                        csg_name(obj->csg->op) + "), not a field: there is nothing to evaluate");
+    if (obj->mesh)
+      throw SceneError(a.scene + ": object '" + obj->name +
+                       "' is a triangle mesh, not a field: there is nothing to evaluate");
     // The library's evaluators on the object's compiled program, pruned to each point.
     const Program program = compile(*obj->field);
     Workspace ws;

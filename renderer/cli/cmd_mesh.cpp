@@ -15,6 +15,7 @@
 #include "model/program_builder.h"
 #include "render/progress.h"
 #include "scene/scene.h"
+#include "scene/vertex_colors.h"
 
 namespace softtrace {
 namespace {
@@ -59,6 +60,9 @@ int run_mesh(const MeshArgs& a) {
     if (obj.csg)
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) + ": a CSG (" +
                        csg_name(obj.csg->op) + "), not a field: mesh a field object");
+    if (obj.mesh)
+      throw SceneError(a.scene + ": /objects/" + std::to_string(index) +
+                       ": a triangle mesh already, not a field: mesh a field object");
     const Box region = a.bounds.empty() ? obj.bounds : parse_bounds(a.bounds);
     if (!region.bounded())
       throw SceneError(a.scene + ": /objects/" + std::to_string(index) +
@@ -94,6 +98,7 @@ int run_mesh(const MeshArgs& a) {
                                                : "--cells " + std::to_string(a.cells)) +
                                   ": " + e.what());
     }
+    m.colors = vertex_colors(obj, m.vertices, opt.threads);
     progress.finish();
     if (m.faces.empty())
       throw std::invalid_argument(a.scene + ": object '" + obj.name +

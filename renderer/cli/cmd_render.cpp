@@ -98,11 +98,7 @@ int run_render(const RenderArgs& a) {
     if (a.spp) scene.image.spp = a.spp;
     if (a.antialias) scene.image.antialias.threshold = *a.antialias;
     if (a.frame >= 0) set_frame(scene, a.frame);
-    CameraOverride view;
-    if (a.eye) view.eye = point_of(*a.eye);
-    if (a.target) view.target = point_of(*a.target);
-    view.fov = a.fov;
-    override_camera(scene, view);
+    apply_camera_options(scene, a.view);
     const PixelBounds window = window_of(a, scene.image.width, scene.image.height);
 
     OutputOptions out_opt;
@@ -141,11 +137,11 @@ int run_render(const RenderArgs& a) {
     std::string settings =
         render_settings(scene, a.lipschitz == LipschitzMode::Local ? "local" : "global", a.frame);
     if (a.flatten) settings += " flatten";
-    if (a.eye) settings += " eye=" + *a.eye;
-    if (a.target) settings += " target=" + *a.target;
-    if (a.fov) {
+    if (a.view.eye) settings += " eye=" + *a.view.eye;
+    if (a.view.target) settings += " target=" + *a.view.target;
+    if (a.view.fov) {
       char fov[32];
-      std::snprintf(fov, sizeof fov, " fov=%.17g", *a.fov);
+      std::snprintf(fov, sizeof fov, " fov=%.17g", *a.view.fov);
       settings += fov;
     }
     if (a.half) settings += " half";

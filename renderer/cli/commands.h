@@ -12,6 +12,13 @@
 
 namespace softtrace {
 
+// --eye, --target (each "X,Y,Z", checked by point_xyz) and --fov over the scene's camera, as
+// `render` and `bench` take them (cmd_common.h apply_camera_options).
+struct CameraArgs {
+  std::optional<std::string> eye, target;
+  std::optional<double> fov;
+};
+
 struct RenderArgs {
   std::string scene;
   std::vector<std::string> outputs;
@@ -23,10 +30,8 @@ struct RenderArgs {
   LipschitzMode lipschitz = LipschitzMode::Local;
   // At most one: the part of the frame to render. Given but empty is refused, not the whole frame.
   std::optional<std::string> crop, pixel_bounds, tile;
-  int frame = -1;  // -1: the scene's camera, no animation frame
-  // The camera's eye and target ("X,Y,Z", checked by point_xyz) and fov, over the scene's.
-  std::optional<std::string> eye, target;
-  std::optional<double> fov;
+  int frame = -1;                   // -1: the scene's camera, no animation frame
+  CameraArgs view;                  // after the frame's camera is set
   std::optional<double> antialias;  // the adaptive anti-aliasing threshold, over the scene's
 };
 int run_render(const RenderArgs& a);
@@ -76,6 +81,7 @@ struct BenchArgs {
   double scale = 0;
   bool json = false, quiet = false, progress = false;
   LipschitzMode lipschitz = LipschitzMode::Local;
+  CameraArgs view;
 };
 int run_bench(const BenchArgs& a);
 

@@ -14,6 +14,18 @@
 
 using namespace softtrace;
 
+namespace {
+// --eye, --target and --fov: `render` and `bench` move the camera alike.
+void add_camera_options(CLI::App* command, CameraArgs& view) {
+  command->add_option("--eye", view.eye, "Camera eye X,Y,Z (overrides the scene's)")
+      ->check(point_xyz());
+  command->add_option("--target", view.target, "Camera target X,Y,Z (overrides the scene's)")
+      ->check(point_xyz());
+  command->add_option("--fov", view.fov, "Camera's vertical field of view in degrees (overrides)")
+      ->check(finite_number());
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   CLI::App app{
@@ -85,12 +97,7 @@ int main(int argc, char** argv) {
                    "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
       ->check(integer_in(0, 999999));
 
-  render->add_option("--eye", r.eye, "Camera eye X,Y,Z (overrides the scene's)")
-      ->check(point_xyz());
-  render->add_option("--target", r.target, "Camera target X,Y,Z (overrides the scene's)")
-      ->check(point_xyz());
-  render->add_option("--fov", r.fov, "Camera's vertical field of view in degrees (overrides)")
-      ->check(finite_number());
+  add_camera_options(render, r.view);
 
   EvalArgs e;
   auto* eval = app.add_subcommand(
@@ -186,6 +193,7 @@ int main(int argc, char** argv) {
   bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(integer_in(1, 1000));
   bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
       ->transform(lipschitz_mode());
+  add_camera_options(bench, b.view);
   bench->add_flag("--json", b.json, "Print the results as JSON");
   auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
   bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")

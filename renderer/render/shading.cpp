@@ -28,9 +28,11 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // hit's error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
   const double cone0 = ray.cone0 + ray.cone * hit.t;
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
-  // coordinates' magnitude (an infinite plane's box says nothing of the scale).
-  const double offset =
-      std::max(obj.field ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)), cone0);
+  // coordinates' magnitude (an infinite plane's box says nothing of the scale). A mesh's is
+  // Embree's float test: its rays leave as a field's do.
+  const double offset = std::max(
+      obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
+      cone0);
   const Vec3 origin = p + n * offset;
 
   // A blend whose components carry materials: POV-Ray shades the point with each component's
@@ -39,7 +41,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // ray's shade() below reuses `weights`: it is read only before that call.
   thread_local std::vector<ComponentMaterials::Weight> weights;
   weights.clear();
-  if (obj.components) obj.components->weights(p, weights);
+  if (obj.components) obj.components->weights(hit.face > 0 ? hit.face_point : p, weights);
   const bool blended = weights.size() > 1;
   const Material& m =
       weights.size() == 1 ? obj.components->materials()[weights[0].material] : obj.material;

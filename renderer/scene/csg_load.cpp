@@ -2,6 +2,9 @@
 
 #include <string>
 
+#include "scene/placement.h"
+#include "scene/ranges.h"
+
 namespace softtrace {
 
 const char* csg_name(Csg::Op op) {
@@ -45,6 +48,10 @@ void load_csg(const Params& p, SceneObject& o, const Material* passed_on,
     const SceneObject& operand = csg->operands.back();
     if (operand.shape && operand.shape->shape == Primitive::Shape::Disc)
       operands[i].fail("shape", "a disc has no inside: it cannot be a CSG operand");
+    if (operand.mesh)
+      operands[i].fail("mesh",
+                       "a triangle mesh cannot be a CSG operand (its inside is not traced): make "
+                       "it an object of its own");
   }
   Box box = csg->operands[0].bounds;
   for (size_t i = 1; i < csg->operands.size(); ++i) {
@@ -63,6 +70,21 @@ void load_csg(const Params& p, SceneObject& o, const Material* passed_on,
   }
   if (box.empty())
     p.fail("operands", "the operands' boxes do not overlap: the intersection is empty");
+  if (has_placement(p)) {
+    csg->placed = true;
+    csg->to_parent = load_placement(p);
+    p.check(invert(csg->to_parent.linear, csg->to_local), "",
+            "expected an invertible placement (scale and matrix)");
+    // An infinite plane's box is the whole range (primitive.h): placed, it is that range still.
+    const bool infinite = std::max(max_abs(box.lo), max_abs(box.hi)) >= kMaxPosition;
+    Box placed;
+    for (int c = 0; c < 8; ++c) placed.extend(csg->to_parent.apply(box.corner(c)));
+    const Vec3 far{kMaxPosition, kMaxPosition, kMaxPosition};
+    if (infinite) placed = placed.intersected(Box(far * -1.0, far));
+    p.check(std::max(max_abs(placed.lo), max_abs(placed.hi)) <= kMaxPosition, "",
+            std::string("expected a placed CSG ") + kPositionRule);
+    box = placed;
+  }
   o.bounds = box;
   o.csg = std::move(csg);
 }

@@ -5,16 +5,9 @@
 #pragma once
 
 #include "math/box.h"
-#include "math/vec.h"
+#include "scene/affine.h"
 
 namespace softtrace {
-
-// p_world = linear * p_object + offset: scale, then rotate, then translate, then `matrix`.
-struct Affine {
-  Mat3 linear;
-  Vec3 offset{0, 0, 0};
-  Vec3 apply(const Vec3& p) const { return linear * p + offset; }
-};
 
 struct Primitive {
   enum class Shape { Plane, Box, Sphere, Cylinder, Cone, Disc };

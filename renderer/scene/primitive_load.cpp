@@ -2,79 +2,13 @@
 
 #include <cmath>
 
+#include "scene/placement.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
 
 namespace softtrace {
 
 namespace {
-
-Mat3 multiply(const Mat3& a, const Mat3& b) {
-  Mat3 m;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      m.r[i][j] = a.r[i].x * b.r[0][j] + a.r[i].y * b.r[1][j] + a.r[i].z * b.r[2][j];
-  return m;
-}
-
-// The inverse by cofactors; `det` returns the determinant (0 for a singular map).
-Mat3 inverse(const Mat3& m, double& det) {
-  const Vec3 &x = m.r[0], &y = m.r[1], &z = m.r[2];
-  const Vec3 c0 = cross(y, z), c1 = cross(z, x), c2 = cross(x, y);
-  det = dot(x, c0);
-  Mat3 inv;
-  for (int i = 0; i < 3; ++i) inv.r[i] = Vec3{c0[i], c1[i], c2[i]} / det;
-  return inv;
-}
-
-// Scale, then rotate, then translate, then `matrix` (3 rows [a, b, c, tx]), as the soft objects'
-// placement keys read.
-Affine load_placement(const Params& p) {
-  Affine m;
-  if (p.has("scale")) {
-    const Vec3 s = p.vec3("scale");
-    for (int i = 0; i < 3; ++i)
-      p.check(std::abs(s[i]) >= 1e-12 && std::abs(s[i]) <= 1e12, "scale/" + std::to_string(i),
-              "expected a scale factor of magnitude between 1e-12 and 1e12");
-    m.linear = Mat3{{{s.x, 0, 0}, {0, s.y, 0}, {0, 0, s.z}}};
-  }
-  if (p.has("rotate")) {
-    const Params r = p.object("rotate");
-    r.check_keys({"axis", "deg"});
-    const Vec3 axis = r.vec3("axis");
-    r.check(max_abs(axis) > 0, "axis", "expected a non-zero axis");
-    const double deg = r.number("deg");
-    r.finish();
-    m.linear = multiply(Mat3::rotation(unit(axis), deg), m.linear);
-  }
-  if (p.has("translate")) {
-    m.offset = p.vec3("translate");
-    p.check(max_abs(m.offset) <= kMaxPosition, "translate",
-            std::string("expected a translation ") + kPositionRule);
-  }
-  if (p.has("matrix")) {
-    const nlohmann::json& rows = p.get("matrix");
-    const auto ok = [&] {
-      if (!rows.is_array() || rows.size() != 3) return false;
-      for (const auto& row : rows) {
-        if (!row.is_array() || row.size() != 4) return false;
-        for (const auto& v : row)
-          if (!v.is_number() || !(std::abs(v.get<double>()) <= 1e12)) return false;
-      }
-      return true;
-    };
-    if (!ok()) p.fail("matrix", "expected 3 rows [a, b, c, t] of numbers within 1e12");
-    Mat3 l;
-    Vec3 t;
-    for (int i = 0; i < 3; ++i) {
-      l.r[i] = {rows[i][0].get<double>(), rows[i][1].get<double>(), rows[i][2].get<double>()};
-      t[i] = rows[i][3].get<double>();
-    }
-    m.linear = multiply(l, m.linear);
-    m.offset = l * m.offset + t;
-  }
-  return m;
-}
 
 // The object-space box of a bounded shape.
 Box local_box(const Primitive& s) {
@@ -112,6 +46,23 @@ const char* shape_name(Primitive::Shape s) {
       return "cone";
     case Primitive::Shape::Disc:
       return "disc";
+  }
+  return "";
+}
+
+std::string place_primitive(Primitive& s, const Affine& m) {
+  s.to_world = compose(m, s.to_world);
+  if (!invert(s.to_world.linear, s.to_object))
+    return "expected an invertible placement (scale and matrix)";
+  const Box local = local_box(s);
+  if (local.bounded()) {
+    s.world_box = Box();
+    for (int c = 0; c < 8; ++c) s.world_box.extend(s.to_world.apply(local.corner(c)));
+    if (!(std::max(max_abs(s.world_box.lo), max_abs(s.world_box.hi)) <= kMaxPosition))
+      return std::string("expected a placed shape ") + kPositionRule;
+  } else {
+    s.world_box = Box({-kMaxPosition, -kMaxPosition, -kMaxPosition},
+                      {kMaxPosition, kMaxPosition, kMaxPosition});
   }
   return "";
 }
@@ -200,21 +151,8 @@ Primitive load_primitive(const Params& p) {
               "expected a hole radius >= 0 and below the radius");
       break;
   }
-  s.to_world = load_placement(p);
-  double det = 0;
-  s.to_object = inverse(s.to_world.linear, det);
-  p.check(std::isfinite(det) && std::abs(det) > 1e-30 && max_abs(s.to_object.r[0]) < 1e30 &&
-              max_abs(s.to_object.r[1]) < 1e30 && max_abs(s.to_object.r[2]) < 1e30,
-          "", "expected an invertible placement (scale and matrix)");
-  const Box local = local_box(s);
-  if (local.bounded()) {
-    for (int c = 0; c < 8; ++c) s.world_box.extend(s.to_world.apply(local.corner(c)));
-    p.check(std::max(max_abs(s.world_box.lo), max_abs(s.world_box.hi)) <= kMaxPosition, "",
-            std::string("expected a placed shape ") + kPositionRule);
-  } else {
-    s.world_box = Box({-kMaxPosition, -kMaxPosition, -kMaxPosition},
-                      {kMaxPosition, kMaxPosition, kMaxPosition});
-  }
+  const std::string problem = place_primitive(s, load_placement(p));
+  p.check(problem.empty(), "", problem);
   p.finish();
   return s;
 }

@@ -11,6 +11,8 @@
 #include "scene/csg_load.h"
 #include "scene/image_load.h"
 #include "scene/json_text.h"
+#include "scene/mesh_load.h"
+#include "scene/placement.h"
 #include "scene/primitive_load.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
@@ -118,6 +120,14 @@ SceneObject load_object(const Params& p, size_t index, const Material* inherited
     o.material = load_material(p.object("material"));
   else if (inherited)
     o.material = *inherited;
+  if (p.has("mesh")) {
+    for (const char* key : {"field", "shape", "csg", "convention", "iso", "bounds"})
+      if (p.has(key)) p.fail(key, std::string("an object with a 'mesh' has no '") + key + "'");
+    o.mesh = load_mesh(p, load_placement(p));
+    o.bounds = o.mesh->world_box;
+    p.finish();
+    return o;
+  }
   if (p.has("csg")) {
     for (const char* key : {"field", "shape", "convention", "iso", "bounds"})
       if (p.has(key))
@@ -127,6 +137,11 @@ SceneObject load_object(const Params& p, size_t index, const Material* inherited
     return o;
   }
   if (p.has("operands")) p.fail("operands", "'operands' belong to an object with 'csg'");
+  for (const char* key : {"scale", "rotate", "translate", "matrix"})
+    if (p.has(key))
+      p.fail(key, std::string("'") + key +
+                      "' places a mesh or a CSG object (a shape's placement is in its 'shape', a "
+                      "field's in its nodes)");
   if (p.has("shape")) {
     for (const char* key : {"field", "convention", "iso", "bounds"})
       if (p.has(key))

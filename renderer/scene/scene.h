@@ -16,6 +16,7 @@
 #include "scene/primitive.h"
 #include "scene/sky.h"
 #include "scene/trace_target.h"
+#include "scene/triangle_mesh.h"
 
 namespace softtrace {
 
@@ -100,6 +101,9 @@ struct SceneObject {
   // A CSG of other objects ("csg") instead: then `field` is null, there is no `shape`, and
   // `bounds` follow from the operands' (Csg).
   std::shared_ptr<const Csg> csg;
+  // A triangle mesh ("mesh") instead: then there is no field, shape or csg, and `bounds` is the
+  // placed mesh's box.
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // docs/scene-format.md "csg": POV-Ray's union, merge, intersection and difference of objects,
@@ -109,10 +113,16 @@ struct SceneObject {
 // the operands' (union, merge), their intersection (intersection), the first's (difference).
 // An operand without a material takes the nearest enclosing CSG object's that has one, as a
 // POV-Ray CSG's texture passes to its untextured parts: a cut face keeps the cutter's material.
+// A CSG object's placement keys move the whole tree: its operands (and their boxes, a field's
+// `bounds` included) are in the CSG's own frame, `to_parent` takes that frame to its parent's
+// (the world's at the top), and the object's `bounds` are in the parent's frame.
 struct Csg {
   using Op = CsgOp;  // trace_target.h: the tracer takes it too
   Op op = Op::Union;
   std::vector<SceneObject> operands;
+  bool placed = false;  // false: the identity
+  Affine to_parent;
+  Mat3 to_local;  // the inverse of to_parent.linear
 };
 const char* csg_name(Csg::Op op);
 

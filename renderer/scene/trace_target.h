@@ -10,7 +10,9 @@
 
 #include "math/box.h"
 #include "program/program.h"
+#include "scene/affine.h"
 #include "scene/primitive.h"
+#include "scene/triangle_mesh.h"
 
 namespace softtrace {
 
@@ -28,7 +30,8 @@ struct TraceTarget {
 // POV-Ray's CSG operations (scene.h Csg).
 enum class CsgOp { Union, Merge, Intersection, Difference };
 
-// A scene object as the tracers see it: a field's solid, a plain primitive, or a CSG of objects.
+// A scene object as the tracers see it: a field's solid, a plain primitive, a triangle mesh, or a
+// CSG of objects.
 struct TracedObject {
   // The scene layer's name for this object or CSG operand, which a CSG's hit reports for the
   // operand whose surface it is (its material is the face's); the tracers never read it.
@@ -36,9 +39,17 @@ struct TracedObject {
   Box bounds;  // the object's box: Embree's, and where a CSG's spans are searched
   std::optional<TraceTarget> field;
   std::optional<Primitive> shape;
-  // A CSG (neither a field nor a shape) has its operation and at least two operands.
+  // A mesh's triangles, shared with the loaded object (placed in the world; a mesh is never a CSG
+  // operand).
+  std::shared_ptr<const TriangleMesh> mesh;
+  // A CSG (neither a field, a shape nor a mesh) has its operation and at least two operands.
   CsgOp op = CsgOp::Union;
   std::vector<TracedObject> operands;
+  // A CSG's placement (scene.h Csg): its operands are in its own frame, which `to_parent` takes
+  // to its parent's; `to_local` is the inverse of to_parent.linear. Not placed: the identity.
+  bool placed = false;
+  Affine to_parent;
+  Mat3 to_local;
   bool csg() const { return !operands.empty(); }
 };
 

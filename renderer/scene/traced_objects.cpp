@@ -13,8 +13,12 @@ TracedObject traced(const SceneObject& o, int& next) {
   t.bounds = o.bounds;
   if (o.field) t.field = trace_target(o);
   if (o.shape) t.shape = *o.shape;
+  t.mesh = o.mesh;
   if (o.csg) {
     t.op = o.csg->op;
+    t.placed = o.csg->placed;
+    t.to_parent = o.csg->to_parent;
+    t.to_local = o.csg->to_local;
     t.operands.reserve(o.csg->operands.size());
     for (const SceneObject& operand : o.csg->operands) t.operands.push_back(traced(operand, next));
   }

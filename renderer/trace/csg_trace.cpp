@@ -25,14 +25,35 @@ struct CsgNode {
   CsgOp op;
   std::optional<Primitive> shape;
   std::vector<CsgNode> operands;
+  // A CSG's placement (TracedObject): `to_local` takes its parent's frame to its operands'.
+  bool placed;
+  Affine to_parent;
+  Mat3 to_local;
   // A field's: the tracers of its solid and of the solid's complement.
   std::unique_ptr<ObjectTracer> inside, outside;
+  // The frame the object is given in (its enclosing CSGs' placements undone): a point there is
+  // from_world.apply(world point). `placed_frame`: not the world's.
+  Affine from_world;
+  bool placed_frame = false;
 
-  CsgNode(const TracedObject& o, LipschitzMode mode)
-      : face(o.face), bounds(o.bounds), op(o.op), shape(o.shape) {
+  CsgNode(const TracedObject& o, LipschitzMode mode, const Affine& frame = {},
+          bool in_placed = false)
+      : face(o.face),
+        bounds(o.bounds),
+        op(o.op),
+        shape(o.shape),
+        placed(o.placed),
+        to_parent(o.to_parent),
+        to_local(o.to_local),
+        from_world(frame),
+        placed_frame(in_placed) {
     if (o.csg()) {
+      // Its operands are in its own frame: its placement undone after its parent's.
+      const Affine inner =
+          o.placed ? compose({o.to_local, o.to_local * (o.to_parent.offset * -1.0)}, frame) : frame;
       operands.reserve(o.operands.size());
-      for (const TracedObject& operand : o.operands) operands.emplace_back(operand, mode);
+      for (const TracedObject& operand : o.operands)
+        operands.emplace_back(operand, mode, inner, in_placed || o.placed);
     } else if (o.field) {
       inside = std::make_unique<ObjectTracer>(*o.field, mode);
       outside = std::make_unique<ObjectTracer>(*o.field, mode, true);
@@ -153,17 +174,11 @@ Spans complement(const Spans& b, double lo, double hi) {
   return out;
 }
 
-Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work) {
-  Spans acc;
-  if (n.shape) {
-    shape_spans(n, ray, lo, hi, acc);
-    return acc;
-  }
-  if (n.operands.empty()) {
-    field_spans(n, ray, lo, hi, work, acc);
-    return acc;
-  }
-  acc = node_spans(n.operands[0], ray, lo, hi, work);
+Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work);
+
+// A CSG's spans from its operands' (`ray` in its operands' frame).
+Spans combined_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work) {
+  Spans acc = node_spans(n.operands[0], ray, lo, hi, work);
   for (size_t i = 1; i < n.operands.size(); ++i) {
     const CsgNode& next = n.operands[i];
     switch (n.op) {
@@ -181,6 +196,30 @@ Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCo
         break;
       }
     }
+  }
+  return acc;
+}
+
+Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work) {
+  Spans acc;
+  if (n.shape) {
+    shape_spans(n, ray, lo, hi, acc);
+    return acc;
+  }
+  if (n.operands.empty()) {
+    field_spans(n, ray, lo, hi, work, acc);
+    return acc;
+  }
+  if (!n.placed) return combined_spans(n, ray, lo, hi, work);
+  // In the CSG's own frame the ray's direction is to_local d, s times as long: a distance t
+  // along the ray there is s t; the footprint's radius scales by s too.
+  const Vec3 d = n.to_local * ray.d;
+  const double s = length(d);
+  const Ray local{n.to_local * (ray.o - n.to_parent.offset), d / s, ray.cone0 * s, ray.cone};
+  acc = combined_spans(n, local, lo * s, hi * s, work);
+  for (CsgSpan& span : acc) {
+    span.t0 = std::max(span.t0 / s, lo);
+    span.t1 = std::min(span.t1 / s, hi);
   }
   return acc;
 }
@@ -204,12 +243,19 @@ std::vector<CsgSpan> CsgTracer::spans(const Ray& ray, double tnear, double tfar,
 
 CsgHit CsgTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work) const {
   const auto hit_at = [&](double t, const CsgEnd& e) {
-    const Vec3 p = ray.o + ray.d * t;
     const CsgNode& leaf = *e.leaf;
+    // The point and the normal in the leaf's frame; a normal is a covector: it comes back to the
+    // world through the transpose of the map from the world to that frame.
+    const Vec3 world = ray.o + ray.d * t;
+    const Vec3 p = leaf.placed_frame ? leaf.from_world.apply(world) : world;
     Vec3 n = !leaf.inside ? e.normal
              : e.on_box   ? leaf.inside->box_face_normal(p)
                           : leaf.inside->normal(p);
-    return CsgHit{true, t, e.flip ? -n : n, leaf.face};
+    if (leaf.placed_frame) {
+      n = leaf.from_world.linear.transposed_times(n);
+      if (max_abs(n) > 0) n = unit(n);
+    }
+    return CsgHit{true, t, e.flip ? -n : n, leaf.face, p};
   };
   for (const CsgSpan& s : spans(ray, tnear, tfar, work)) {
     if (s.e0.leaf && s.t0 >= tnear) return hit_at(s.t0, s.e0);

@@ -26,6 +26,9 @@ struct CsgHit {
   // The face (TracedObject::face) of the operand, a field or a shape, whose surface it is: the
   // face takes its material.
   int face = -1;
+  // The point in the face's own frame (the world's but inside a placed CSG): where its
+  // component materials are weighed.
+  Vec3 face_point;
 };
 
 struct CsgNode;

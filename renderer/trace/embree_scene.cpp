@@ -2,10 +2,12 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "trace/csg_trace.h"
 #include "trace/embree_device.h"
+#include "trace/mesh_hit.h"
 #include "trace/primitive_trace.h"
 
 namespace softtrace {
@@ -27,10 +29,11 @@ struct RayContext {
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
   int face = -1;
+  Vec3 face_point{0, 0, 0};
 };
 
 struct GeometryData {
-  const ObjectTracer* tracer;  // null for a primitive or a CSG
+  const ObjectTracer* tracer;  // null for a primitive, a CSG or a mesh
   const CsgTracer* csg;        // null but for a CSG
   const TracedObject* object_data;
   int object;
@@ -53,12 +56,14 @@ void bounds_callback(const RTCBoundsFunctionArguments* args) {
 // geometries in its own order, not in depth order). `normal` and `face` are a primitive's or a
 // CSG's; a field's normal is computed once, for the closest hit.
 void record_hit(const RTCIntersectFunctionNArguments* args, RayContext* ctx, int object, double t,
-                bool on_box_face, const Vec3& normal, int face) {
+                bool on_box_face, const Vec3& normal, int face,
+                const Vec3& face_point = {0, 0, 0}) {
   ctx->t = t;
   ctx->object = object;
   ctx->on_box_face = on_box_face;
   ctx->normal = normal;
   ctx->face = face;
+  ctx->face_point = face_point;
   RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
   rh->ray.tfar = static_cast<float>(t);
   rh->hit.geomID = args->geomID;
@@ -113,7 +118,7 @@ void csg_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   const CsgHit h = data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
   if (!h.hit || h.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, h.t, false, h.normal, h.face);
+  record_hit(args, ctx, data->object, h.t, false, h.normal, h.face, h.face_point);
 }
 
 // A shadow ray asks the same question as a camera ray: the result's first surface in range.
@@ -123,6 +128,46 @@ void csg_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
   if (data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
+}
+
+// A mesh's triangles are Embree's own: it calls this for each hit nearer than the closest so far
+// (its distance in the ray's tfar), which is then accepted. Recording it here keeps our context's
+// closest hit, which the user geometries search up to, the same as Embree's.
+void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;  // rtcIntersect1 only
+  const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
+  // Embree hands the context on unchanged: it is the RayContext that intersect() passed.
+  auto* ctx = reinterpret_cast<RayContext*>(const_cast<RTCIntersectContext*>(args->context));
+  RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
+  const RTCHit* hit = reinterpret_cast<const RTCHit*>(args->hit);
+  const MeshHit h =
+      mesh_hit(*data->object_data->mesh, hit->primID, ctx->ray, ray->tfar, hit->u, hit->v);
+  ctx->t = h.t;
+  ctx->object = data->object;
+  ctx->on_box_face = false;
+  ctx->normal = h.normal;
+  ctx->face = -1;
+  ctx->face_point = {0, 0, 0};
+}
+
+// The mesh's triangles as Embree's triangle geometry (copied: Embree pads its buffers).
+RTCGeometry mesh_geometry(EmbreeDevice& device, const TriangleMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  device.check("creating a mesh's geometry");
+  const size_t vertices = mesh.positions.size() / 3, triangles = mesh.triangles();
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices));
+  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+  if (!v || !t) {
+    rtcReleaseGeometry(geom);
+    device.check("allocating a mesh's buffers");
+    throw EmbreeError("Embree: allocating a mesh's buffers failed");
+  }
+  std::copy(mesh.positions.begin(), mesh.positions.end(), v);
+  std::copy(mesh.indices.begin(), mesh.indices.end(), t);
+  rtcSetGeometryIntersectFilterFunction(geom, mesh_filter_callback);
+  return geom;
 }
 
 }  // namespace
@@ -146,6 +191,15 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
     const ObjectTracer* tracer = tracers.tracer(i);
     const CsgTracer* csg = tracers.csg(i);
     impl_->data.push_back({tracer, csg, &tracers.object(i), i});
+    if (const TriangleMesh* mesh = tracers.object(i).mesh.get()) {
+      RTCGeometry geom = mesh_geometry(device, *mesh);
+      rtcSetGeometryUserData(geom, &impl_->data.back());
+      rtcCommitGeometry(geom);
+      rtcAttachGeometry(impl_->scene, geom);
+      rtcReleaseGeometry(geom);
+      device.check("setting up a mesh's geometry");
+      continue;
+    }
     RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
     device.check("creating an object's geometry");
     rtcSetGeometryUserPrimitiveCount(geom, 1);
@@ -214,6 +268,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
     h.on_box_face = ctx.on_box_face;
     h.normal = ctx.normal;
     h.face = ctx.face;
+    h.face_point = ctx.face_point;
   }
   return h;
 }

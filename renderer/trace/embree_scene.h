@@ -1,7 +1,8 @@
 // The only code that sees Embree (with embree_device.h, which turns its errors into ours): one
 // user geometry per scene object, whose bounds callback returns the object's box and whose
 // intersect/occluded callbacks call the object's tracer, a primitive's exact intersection or a
-// CSG's tracer (Mitsuba's thin adapter; the objects never see Embree).
+// CSG's tracer (Mitsuba's thin adapter; the objects never see Embree); a triangle mesh is
+// Embree's own triangle geometry.
 #pragma once
 
 #include <memory>
@@ -17,11 +18,12 @@ struct TraceHit {
   double t = std::numeric_limits<double>::infinity();
   int object = -1;           // index into Scene::objects
   bool on_box_face = false;  // see MarchResult
-  Vec3 normal{0, 0, 0};      // a primitive's or a CSG's outward unit normal (fields: not set)
+  Vec3 normal{0, 0, 0};      // a primitive's, a CSG's or a mesh's unit normal (fields: not set)
   // A CSG's hit: the face (TracedObject::face) of the operand whose surface it is (its material
   // is the face's); otherwise -1.
   int face = -1;
-  TraceCounters work;  // what the ray cost, over every object it met
+  Vec3 face_point{0, 0, 0};  // a CSG's hit: the point in the face's own frame (CsgHit)
+  TraceCounters work;        // what the ray cost, over every object it met
 };
 
 // What a beam certified for the rays through its block of pixels: per object, the forward depth

@@ -248,7 +248,7 @@ class SceneTracers {
   SceneTracers(const std::vector<TracedObject>& objects, LipschitzMode mode);
   // The tracer of object `object`, which must have a field (tracer() says).
   const ObjectTracer& operator[](int object) const { return tracers_[index_[object]]; }
-  // The object's tracer, or null for a primitive or a CSG.
+  // The object's tracer, or null for a primitive, a CSG or a mesh.
   const ObjectTracer* tracer(int object) const {
     return index_[object] < 0 ? nullptr : &tracers_[index_[object]];
   }
@@ -260,7 +260,7 @@ class SceneTracers {
  private:
   const std::vector<TracedObject>* objects_;
   std::vector<ObjectTracer> tracers_;
-  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive or a CSG
+  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive, a CSG or a mesh
   std::vector<std::shared_ptr<const CsgTracer>> csg_;  // per object: a CSG's tracer, or null
 };
 

@@ -26,10 +26,12 @@ MAY_INCLUDE = {
     "renderer/film": ["math", "io"],
     "renderer/scene": FIELDLIB + ["io"],
     # The tracer takes what it traces (scene/trace_target.h: compiled programs, iso, inside sign,
-    # bounds, plain primitives) and never sees the scene's loader (scene.h and the *_load, json_
-    # and scene_keys files), the model or the JSON behind them.
+    # bounds, plain primitives, triangle meshes, a placed CSG's affine map) and never sees the
+    # scene's loader (scene.h and the *_load, placement, json_ and scene_keys files), the model or
+    # the JSON behind them.
     "renderer/trace": ["math", "kernels", "program", "eval", "scene/trace_target.h",
-                       "scene/primitive.h", "scene/ranges.h"],
+                       "scene/primitive.h", "scene/triangle_mesh.h", "scene/affine.h",
+                       "scene/ranges.h"],
     "renderer/render": FIELDLIB + ["io", "film", "scene", "trace"],
     "renderer/cli": FIELDLIB + ["io", "film", "scene", "trace", "render"],
 }

@@ -20,15 +20,25 @@ inline std::string scene_path(const std::string& name) {
   return std::string(SOFTTRACE_SOURCE_DIR) + "/scenes/" + name + ".json";
 }
 
+// The scene's JSON (comments allowed), to reach the primitives inside an object's blend.
+inline nlohmann::json scene_json(const std::string& name) {
+  std::ifstream in(scene_path(name));
+  std::stringstream text;
+  text << in.rdbuf();
+  return nlohmann::json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
+}
+
+// A point written in a scene as [x, y, z].
+inline Vec3 vec(const nlohmann::json& j) {
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
 class FigureScene {
  public:
   explicit FigureScene(const std::string& name)
-      : scene_(load_scene(scene_path(name))), file_(std::make_shared<const std::string>(name)) {
-    std::ifstream in(scene_path(name));
-    std::stringstream text;
-    text << in.rdbuf();
-    json_ = nlohmann::json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
-  }
+      : scene_(load_scene(scene_path(name))),
+        file_(std::make_shared<const std::string>(name)),
+        json_(scene_json(name)) {}
   const Scene& scene() const { return scene_; }
   const nlohmann::json& json() const { return json_; }
   const SceneObject& object(const std::string& name) const {

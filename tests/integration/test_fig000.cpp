@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 
+#include "figure_scene.h"
 #include "scene/scene.h"
 #include "scene/traced_objects.h"
 #include "trace/tracer.h"
@@ -27,20 +28,17 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string scene_path(const std::string& name) {
-  return std::string(SOFTTRACE_SOURCE_DIR) + "/scenes/" + name + ".json";
-}
+using figure::samples;
+using figure::scene_json;
+using figure::scene_path;
 
-// A figure scene: the whole field via load_scene, and nodes built from parts of its JSON.
-class FigureScene {
+// A figure scene's first object: its whole field via load_scene, and nodes built from parts of
+// its JSON.
+class FirstObject {
  public:
-  explicit FigureScene(const std::string& name)
+  explicit FirstObject(const std::string& name)
       : scene_(load_scene(scene_path(name))), file_(std::make_shared<std::string>(name)) {
-    std::ifstream in(scene_path(name));
-    std::stringstream text;
-    text << in.rdbuf();
-    json_ =
-        std::make_unique<json>(json::parse(text.str(), nullptr, true, /*ignore_comments=*/true));
+    json_ = std::make_unique<json>(scene_json(name));
   }
   const FieldNode& field() const { return *scene_.objects.at(0).field; }
   // The node at a JSON pointer below the first object's field, e.g. "/children/0/distance".
@@ -66,17 +64,6 @@ class FigureScene {
   std::vector<std::unique_ptr<json>> copies_;  // Params refer to their JSON while building
 };
 
-// Uniform points in the box [lo, hi], fixed seed.
-std::vector<Vec3> samples(const Vec3& lo, const Vec3& hi, int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec3> out(n);
-  for (auto& p : out)
-    p = {lo.x + (hi.x - lo.x) * u(rng), lo.y + (hi.y - lo.y) * u(rng),
-         lo.z + (hi.z - lo.z) * u(rng)};
-  return out;
-}
-
 // The bar-and-cube scenes of Figs. 12–14: children 0 (bar) and 1 (cube).
 struct BarAndCube {
   explicit BarAndCube(const std::string& name, bool contour)
@@ -86,7 +73,7 @@ struct BarAndCube {
         d1(s.node("/children/0/distance")),
         d2(s.node("/children/1/distance")),
         fc(contour ? s.node("/children/0/radii/contour") : nullptr) {}
-  FigureScene s;
+  FirstObject s;
   NodePtr f1, f2, d1, d2, fc;
 };
 
@@ -277,7 +264,7 @@ TEST(Fig13, StarContourBoundsTheBlendRegion) {
 // d = `end` on (sampled past the end, not only up to it), and the blend is in (0, 0.5] between
 // the surface (d = 0.5) and there.
 void check_outer_zone(const char* name, double end) {
-  FigureScene s(name);
+  FirstObject s(name);
   const NodePtr d = s.node("/children/0/distance");
   const NodePtr large = s.node("/children/0");
   std::mt19937_64 rng(7);
@@ -315,7 +302,7 @@ TEST(Fig7, TnHalvesTheLargeCylindersOuterZone) {
 // The figure's point: with T_n the large cylinder's zone (0.25 of its radii 20: 5 units) is
 // thinner than the small one's (0.5 of radii 12: 6 units); plain, it was thicker (10 units).
 TEST(Fig7, LargeCylinderEndsWithTheSmallerZone) {
-  FigureScene d("fig000_7d_cylinders_T_n");
+  FirstObject d("fig000_7d_cylinders_T_n");
   const NodePtr small = d.node("/children/1/distance");
   const double small_radius = 1 / small->value({1, 0, 15});  // d = 1 at this distance (x axis)
   const double large_radius = 1 / d.node("/children/0/distance")->value({0, 1, 0});

@@ -17,10 +17,7 @@ namespace {
 using figure::FigureScene;
 using figure::first_crossing;
 using figure::samples;
-
-Vec3 vec(const nlohmann::json& j) {
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
+using figure::vec;
 
 double angle_deg(const Vec3& a, const Vec3& b) {
   return std::acos(std::clamp(dot(normalize(a), normalize(b)), -1.0, 1.0)) * 180 / M_PI;

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "describe/params.h"
+#include "figure_scene.h"
 #include "kernels/bt_base.h"
 #include "scene/scene.h"
 
@@ -21,17 +22,8 @@ namespace {
 using json = nlohmann::json;
 using Rng = std::mt19937_64;
 
-std::string scene_path(const std::string& name) {
-  return std::string(SOFTTRACE_SOURCE_DIR) + "/scenes/" + name + ".json";
-}
-
-// The scene's JSON (comments allowed), to reach the primitives inside an object's blend.
-json scene_json(const std::string& name) {
-  std::ifstream in(scene_path(name));
-  std::stringstream s;
-  s << in.rdbuf();
-  return json::parse(s.str(), nullptr, true, true);
-}
+using figure::scene_json;
+using figure::scene_path;
 
 NodePtr build_zero(const json& j) {
   BuildContext ctx;

@@ -15,10 +15,7 @@ namespace {
 using figure::FigureScene;
 using figure::first_crossing;
 using figure::samples;
-
-Vec3 vec(const nlohmann::json& j) {
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
+using figure::vec;
 
 TEST(Fig003Fig3, ObjectsApartAreThoseUnited) {
   const FigureScene a("fig003_3a_box_and_superellipsoid"), b("fig003_3b_bd_union");

@@ -51,4 +51,16 @@ RunResult run_command(const std::string& command, const std::string& stdin_file)
   return r;
 }
 
+std::string render_tiles_and_merge(const std::string& render, const std::string& dir, int n) {
+  std::string tiles;
+  for (int i = 0; i < n; ++i) {
+    const std::string tile = dir + "/t" + std::to_string(i) + ".exr";
+    const std::string part = " --tile " + std::to_string(i) + "/" + std::to_string(n);
+    if (run_softtrace(render + part + " -o " + tile).status != 0) return "";
+    tiles += " " + tile;
+  }
+  const std::string merged = dir + "/merged.exr";
+  return run_softtrace("merge" + tiles + " -o " + merged).status == 0 ? merged : "";
+}
+
 }  // namespace softtrace::test

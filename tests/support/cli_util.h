@@ -24,4 +24,9 @@ std::string source_path(const std::string& relative);  // a path in the source t
 std::string temp_dir(const std::string& name);         // a fresh, empty folder in the build tree
 std::string read_file(const std::string& path);
 
+// Runs `render` (softtrace's arguments, "render SCENE ..." without -o) as n tiles (--tile i/n)
+// into `dir`, then merges them into dir/merged.exr; returns that path, or "" when a render or the
+// merge fails.
+std::string render_tiles_and_merge(const std::string& render, const std::string& dir, int n);
+
 }  // namespace softtrace::test

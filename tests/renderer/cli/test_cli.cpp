@@ -23,10 +23,12 @@ namespace fs = std::filesystem;
 const char* kDefaultScene = "scenes/fig000_12b_soft_blend.json";
 
 // Every file in tests/bad_scenes starts with "// expect: <text>": exit status 2, exactly one
-// line on stderr naming the place and containing <text>, and no output file.
+// line on stderr naming the place and containing <text>, and no output file. (Its folders hold
+// what those scenes read, such as the mesh files in meshes/.)
 TEST(BadScenes, OneLocatedLineExitTwoNoOutput) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(source_path("tests/bad_scenes"))) {
+    if (entry.is_directory()) continue;
     const std::string path = entry.path().string(), text = read_file(path);
     ASSERT_EQ(text.rfind("// expect: ", 0), 0u) << path << " has no '// expect:' first line";
     // Some files have CR LF or CR-only line endings: the first line ends at either.

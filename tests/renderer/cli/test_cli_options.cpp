@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -141,6 +142,10 @@ TEST(CliOptions, EveryOptionRefusesABadValueInOurWords) {
       {"bench SCENE --json=1", "--json: a flag takes no value" + usage},
       {"bench SCENE --quiet=1", "--quiet: a flag takes no value" + usage},
       {"bench SCENE --progress=1", "--progress: a flag takes no value" + usage},
+      {"bench SCENE --eye foo", "--eye: expected X,Y,Z (three finite numbers), got 'foo'" + usage},
+      {"bench SCENE --target 1,2,x",
+       "--target: expected X,Y,Z (three finite numbers), got '1,2,x'" + usage},
+      {"bench SCENE --fov 0", "--fov: expected a vertical field of view in (0, 180) degrees"},
       // merge, nodes, no command
       {"merge IMG", "--output is required" + usage},
       {"merge IMG -o DIR/m.exr --quiet=2", "--quiet: a flag takes no value" + usage},
@@ -223,6 +228,23 @@ TEST(CliOptions, OneSideAloneKeepsTheScenesAspectAndScaleScalesBoth) {
       run_softtrace("bench " + source_path(kDefaultScene) + " -q --repeat 1 --width 32");
   ASSERT_EQ(bench.status, 0) << bench.err;
   EXPECT_NE(bench.out.find(": 32x24,"), std::string::npos) << bench.out;
+}
+
+// bench moves the camera as render does: looking away from the scene, no primary ray enters an
+// object's box; zoomed in on it, every one does, where the scene's view leaves a few outside.
+TEST(CliOptions, BenchTakesTheCameraOptions) {
+  const auto entered = [&](const std::string& view) {
+    const RunResult r = run_softtrace("bench " + source_path(kDefaultScene) +
+                                      " -q --repeat 1 --width 32 --json" + view);
+    EXPECT_EQ(r.status, 0) << view << ": " << r.err;
+    return r.status == 0 ? nlohmann::json::parse(r.out)["primary"]["entered_box"].get<long>() : -1;
+  };
+  const long rays = 32 * 24 * 4;  // the scene's 4 spp
+  const long scene_view = entered("");
+  EXPECT_GT(scene_view, rays / 4);
+  EXPECT_LT(scene_view, rays);
+  EXPECT_EQ(entered(" --fov 5"), rays);
+  EXPECT_EQ(entered(" --eye 500,0,0 --target 1000,0,0"), 0);
 }
 
 TEST(CliOptions, AFrameThatShowsNothingWarnsAndStillWrites) {

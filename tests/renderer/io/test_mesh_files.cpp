@@ -218,5 +218,42 @@ TEST(MeshCli, WritesTheFileOrExitsTwoWritingNothing) {
   EXPECT_EQ(slurp(out).rfind("# softtrace mesh: ", 0), 0u);
 }
 
+// scenes/molecule_two_colour.json: a red oxygen (centre (0, 0, 1.8), radius 2.6) and two white
+// hydrogens that take the object's colour. The vertex on top of the oxygen lies outside both
+// hydrogens' supports, the one at the far left outside the oxygen's, so each takes its atom's
+// colour alone; the necks between them mix (POV-Ray's blob texture weights).
+TEST(MeshCli, ComponentMaterialsColourTheVertices) {
+  const std::string out = tmp("molecule.glb");
+  fs::remove(out);
+  ASSERT_EQ(run(SOFTTRACE_SOURCE_DIR "/scenes/molecule_two_colour.json -o " + out +
+                " --cells 48 --threads 2 -q"),
+            0);
+  const glb::Glb g = glb::read(out);
+  ASSERT_EQ(g.colors.size(), g.positions.size());
+  ASSERT_FALSE(g.positions.empty());
+  size_t top = 0, left = 0;
+  for (size_t v = 0; v < g.positions.size(); ++v) {
+    if (g.positions[v].z > g.positions[top].z) top = v;
+    if (g.positions[v].x < g.positions[left].x) left = v;
+  }
+  const Vec3 red{0.8, 0.06, 0.04}, white{0.85, 0.85, 0.85};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(g.colors[top][k], red[k], 1e-6) << "top vertex " << k;
+    EXPECT_NEAR(g.colors[left][k], white[k], 1e-6) << "left vertex " << k;
+  }
+  // Between the atoms: some vertices are neither colour alone, but mixes of the two.
+  size_t mixed = 0;
+  for (const Vec3& c : g.colors) {
+    // A mix t red + (1 - t) white keeps g == b and lies strictly between them.
+    const double t = (c.y - white.y) / (red.y - white.y);
+    if (t > 0.05 && t < 0.95) {
+      ++mixed;
+      EXPECT_NEAR(c.x, t * red.x + (1 - t) * white.x, 1e-5);
+      EXPECT_NEAR(c.z, t * red.z + (1 - t) * white.z, 1e-5);
+    }
+  }
+  EXPECT_GT(mixed, 0u);
+}
+
 }  // namespace
 }  // namespace softtrace

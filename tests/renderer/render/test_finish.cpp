@@ -107,13 +107,7 @@ TEST(FinishRender, JitteredAreaLightMergesAcrossTilesAndAlbedoIsTheMaterial) {
   const std::string base = "render " + test::source_path("scenes/finish_atoms.json") +
                            " -q --width 48 --height 36 --spp 2 --aov albedo,steps ";
   ASSERT_EQ(test::run_softtrace(base + "-o " + dir + "/full.exr").status, 0);
-  std::string tiles;
-  for (int i = 0; i < 3; ++i) {
-    const std::string t = dir + "/t" + std::to_string(i) + ".exr";
-    ASSERT_EQ(test::run_softtrace(base + "--tile " + std::to_string(i) + "/3 -o " + t).status, 0);
-    tiles += " " + t;
-  }
-  ASSERT_EQ(test::run_softtrace("merge" + tiles + " -o " + dir + "/merged.exr").status, 0);
+  ASSERT_EQ(test::render_tiles_and_merge(base, dir, 3), dir + "/merged.exr");
   const ImageFile full = read_image(dir + "/full.exr"), merged = read_image(dir + "/merged.exr");
   ASSERT_EQ(full.channels, merged.channels);
   EXPECT_EQ(full.pixels, merged.pixels);

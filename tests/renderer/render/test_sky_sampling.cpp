@@ -149,13 +149,7 @@ TEST(AdaptiveAntialias, SameBitsForThreadsAndTileSplits) {
       "render " + test::source_path(kScene) + " -q --width 64 --height 48 --aov depth ";
   ASSERT_EQ(test::run_softtrace(base + "--threads 1 -o " + dir + "/one.exr").status, 0);
   ASSERT_EQ(test::run_softtrace(base + "--threads 2 -o " + dir + "/two.exr").status, 0);
-  std::string tiles;
-  for (int i = 0; i < 3; ++i) {
-    const std::string t = dir + "/t" + std::to_string(i) + ".exr";
-    ASSERT_EQ(test::run_softtrace(base + "--tile " + std::to_string(i) + "/3 -o " + t).status, 0);
-    tiles += " " + t;
-  }
-  ASSERT_EQ(test::run_softtrace("merge" + tiles + " -o " + dir + "/merged.exr").status, 0);
+  ASSERT_EQ(test::render_tiles_and_merge(base, dir, 3), dir + "/merged.exr");
   const ImageFile one = read_image(dir + "/one.exr"), two = read_image(dir + "/two.exr"),
                   merged = read_image(dir + "/merged.exr");
   EXPECT_EQ(one.pixels, two.pixels);

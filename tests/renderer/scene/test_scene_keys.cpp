@@ -17,7 +17,7 @@ namespace {
 
 using json = nlohmann::json;
 
-const char* kBall =
+const char* kKeysBall =
     R"({"type":"soft_object","distance":{"type":"lp_metric","radii":[2,2,2],"n":2}})";
 
 // Between them, every key of every list, at the places `kWhere` names.
@@ -41,7 +41,8 @@ const std::string kEveryKeyCameras = std::string(R"({
                "brilliance": 2, "phong": 0.5, "phong_size": 60, "specular": 0.3, "roughness": 0.02,
                "metallic": 0.5, "reflection": [0.1, 0.2, 0.3]}, "convention": "soft", "iso": 0.4,
                "bounds": [[-3, -3, -3], [3, 3, 3]], "field": )") +
-                                     kBall + R"(},
+                                     kKeysBall +
+                                     R"(},
     {"name": "floor", "material": {"color": [1, 1, 1]}, "shape": {"type": "plane", "normal": [0, 0, 1],
      "distance": -3, "scale": [1, 1, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 0],
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
@@ -57,14 +58,19 @@ const std::string kEveryKeyCameras = std::string(R"({
     {"shape": {"type": "disc", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 1, "hole_radius": 0.5,
      "scale": [1, 2, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
-    {"name": "cut", "material": {"color": [1, 1, 1]}, "csg": "difference", "operands": [
+    {"name": "cut", "material": {"color": [1, 1, 1]}, "csg": "difference", "scale": [1, 1, 1],
+     "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
+     "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]], "operands": [
      {"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 2}},
-     {"shape": {"type": "box", "corner1": [0, 0, 0], "corner2": [3, 3, 3]}}]}],
+     {"shape": {"type": "box", "corner1": [0, 0, 0], "corner2": [3, 3, 3]}}]},
+    {"name": "triangle", "mesh": ")" SOFTTRACE_SOURCE_DIR
+                                     R"(/tests/bad_scenes/meshes/triangle.obj"}],
   "animation": {"frames": 1, "cameras": [{"eye": [0, 10, 0], "target": [0, 0, 0]}]}
 })";
 const std::string kEveryKeyTurntable =
     std::string(R"({"camera": {"eye": [10, 0, 0], "target": [0, 0, 0]}, "objects": [{"field": )") +
-    kBall + R"(}], "animation": {"frames": 4, "turntable": {"axis": [0, 0, 1], "degrees": 90}}})";
+    kKeysBall +
+    R"(}], "animation": {"frames": 4, "turntable": {"axis": [0, 0, 1], "degrees": 90}}})";
 
 // Where each list's object sits in the two scenes above.
 const std::map<std::string, std::vector<std::string>> kWhere = {
@@ -79,7 +85,7 @@ const std::map<std::string, std::vector<std::string>> kWhere = {
     {"light: ambient", {"/lights/2"}},
     {"light: spot", {"/lights/3"}},
     {"area light", {"/lights/1/area", "/lights/3/area"}},
-    {"object", {"/objects/0", "/objects/1", "/objects/7"}},
+    {"object", {"/objects/0", "/objects/1", "/objects/7", "/objects/8"}},
     {"material", {"/objects/0/material"}},
     {"shape: plane", {"/objects/1/shape"}},
     {"shape: box", {"/objects/2/shape"}},
@@ -134,7 +140,7 @@ std::string load_error(const std::string& text) {
 // In every scene object, a misspelled key beside a missing required one names the misspelling.
 TEST(SceneKeys, UnknownKeysAreReportedBeforeMissingOnes) {
   const std::string camera = R"("camera": {"eye": [10, 0, 0], "target": [0, 0, 0]})";
-  const std::string objects = std::string(R"("objects": [{"field": )") + kBall + "}]";
+  const std::string objects = std::string(R"("objects": [{"field": )") + kKeysBall + "}]";
   const struct {
     std::string scene, expected;
   } cases[] = {
@@ -157,7 +163,7 @@ TEST(SceneKeys, UnknownKeysAreReportedBeforeMissingOnes) {
        "s.json: /lights/0/shadows: unknown key 'shadows' for an ambient light"},
       {"{" + camera + R"(, "objects": [{"feild": {}}]})",
        "s.json: /objects/0/feild: unknown key 'feild' (did you mean 'field'?)"},
-      {"{" + camera + R"(, "objects": [{"material": {"colour": [1, 1, 1]}, "field": )" + kBall +
+      {"{" + camera + R"(, "objects": [{"material": {"colour": [1, 1, 1]}, "field": )" + kKeysBall +
            "}]}",
        "s.json: /objects/0/material/colour: unknown key 'colour' (did you mean 'color'?)"},
       {"{" + camera + ", " + objects + R"(, "animation": {"frmes": 3, "turntable": {}}})",
