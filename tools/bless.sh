@@ -2,7 +2,7 @@
 # Re-bless reference images after an intended change:
 #   tools/bless.sh NAME [NAME...]    or    tools/bless.sh --all
 # Builds softtrace (in BUILD_DIR, default build/), renders each scene at its size in the
-# SOFTTRACE_REGRESSION_SCENES list (tests/CMakeLists.txt) with tests/regression.sh's render
+# SOFTTRACE_REGRESSION_SCENES list (tests/CMakeLists.txt) with tests/integration/regression.sh's render
 # options (--flatten), and stores it as a half-float, zip-compressed EXR in reference_images/.
 # A reference whose R,G,B are unchanged is left alone, so blessing never makes a change git would
 # show (the header's render time differs on every run).

@@ -49,11 +49,11 @@ sanitize() {
     ctest --test-dir build-asan -j "$(nproc)" --output-on-failure
 }
 
-# libFuzzer, three targets: the scene loader and field evaluation (tests/fuzz_scene.cpp) for
+# libFuzzer, three targets: the scene loader and field evaluation (tests/fuzz/fuzz_scene.cpp) for
 # FUZZ_SECONDS, seeded from scenes/ and tests/bad_scenes/, with a dictionary of every kind and
 # parameter name (`softtrace nodes --dict`, from the one list of kinds) plus
-# tests/fuzz_scene.dict; then merge's tile headers (tests/fuzz_merge_tiles.cpp) and diff's image
-# readers (tests/fuzz_diff_images.cpp) for half of FUZZ_SECONDS each, seeded with small EXR
+# tests/fuzz/fuzz_scene.dict; then merge's tile headers (tests/fuzz/fuzz_merge_tiles.cpp) and diff's image
+# readers (tests/fuzz/fuzz_diff_images.cpp) for half of FUZZ_SECONDS each, seeded with small EXR
 # tiles and PNGs the plain build renders (and reference_images/ for diff). A crash leaves its
 # input in build-fuzz/crash-*; make it a test (a tests/bad_scenes/ file, a tile or image case)
 # or fix the reader before going on.
@@ -87,7 +87,7 @@ fuzz() {
   cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene fuzz_merge_tiles fuzz_diff_images
   mkdir -p build-fuzz/corpus build-fuzz/corpus-merge build-fuzz/corpus-diff
   "$BUILD_DIR/softtrace" nodes --dict >build-fuzz/scene.dict
-  cat tests/fuzz_scene.dict >>build-fuzz/scene.dict
+  cat tests/fuzz/fuzz_scene.dict >>build-fuzz/scene.dict
   fuzz_seeds
   local seconds=${FUZZ_SECONDS:-60}
   run_fuzzer fuzz_scene "$seconds" 16384 -dict=build-fuzz/scene.dict \

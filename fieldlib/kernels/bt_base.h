@@ -3,7 +3,8 @@
 // being Hoffmann's conic H_2 (§7.2) or the hyper-ellipsoid (§7.3). Nodes (blends_bt.cpp) and tests
 // share these functions.
 //
-// Facts the nodes' bounds rest on (docs/math.md §7.1, §8; tested in tests/test_bt.cpp):
+// Facts the nodes' bounds rest on (docs/math.md §7.1, §8; tested in
+// tests/fieldlib/kernels/test_bt.cpp):
 // - [BT-5] ∂BT/∂x_i >= 0 and [BT-2] Σ m_i ∂BT/∂x_i = 1.
 // - h_lo(x) = min_i (x_i - r_i)/m_i <= BT(x) <= h_hi(x) = min_i x_i/m_i ([BT-3], §7.3 bracket;
 //   for the conic, u = x - m·BT lies in Q = [0,r1]x[0,r2] in region II and BT = h_hi outside).
@@ -18,7 +19,7 @@
 //   by it.
 // - Cost: the Illinois Regula Falsi took 7.05 iterations on average (max 18) over the 37 271 of
 //   60 000 random inputs (k = 2..6) that needed it; the rest are non-blending and return h_hi
-//   after one evaluation of T (tests/test_bt.cpp, RootResidualAndIterationCounts).
+//   after one evaluation of T (tests/fieldlib/kernels/test_bt.cpp, RootResidualAndIterationCounts).
 #pragma once
 
 #include <vector>

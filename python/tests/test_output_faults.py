@@ -15,7 +15,7 @@ import softtrace
 @pytest.fixture
 def full_disk(tmp_path):
     """A 64 KiB tmpfs holding old.exr and old.png ("old"), the rest filled. Mounting needs root
-    (CAP_SYS_ADMIN): the test skips elsewhere, as tests/test_output_faults.cpp's do."""
+    (CAP_SYS_ADMIN): the test skips elsewhere, as tests/renderer/cli/test_output_faults.cpp's do."""
     disk = tmp_path / "disk"
     disk.mkdir()
     libc = ctypes.CDLL(None, use_errno=True)

@@ -1,6 +1,5 @@
 // `softtrace bench`: a scene's frame rendered --repeat times without output, timed per frame, with
 // the work per ray that enters an object box. The JSON (schema 1) is documented in docs/cli.md.
-#include <tbb/info.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -14,6 +13,7 @@
 #include "cli/commands.h"
 #include "commit.h"
 #include "render/frame.h"
+#include "render/threads.h"
 
 namespace softtrace {
 
@@ -61,7 +61,7 @@ int run_bench(const BenchArgs& a) {
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     apply_camera_options(scene, a.view);
     const auto limit = limit_threads(a.threads);
-    const int threads = a.threads ? a.threads : tbb::info::default_concurrency();
+    const int threads = a.threads ? a.threads : default_threads();
     const TracedScene rt(scene, a.lipschitz);
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;

@@ -53,12 +53,6 @@ void apply_image_size(Scene& scene, const std::string& scene_path, int width, in
   check_pixel_count(image, scene_path);
 }
 
-std::unique_ptr<tbb::global_control> limit_threads(int threads) {
-  if (!threads) return nullptr;
-  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                               threads);
-}
-
 void apply_camera_options(Scene& scene, const CameraArgs& view) {
   CameraOverride o;
   if (view.eye) o.eye = point_of(*view.eye);

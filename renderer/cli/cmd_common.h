@@ -1,10 +1,7 @@
-// What `render` and `bench` share: the command line's overrides of the scene's image and camera,
-// and the thread limit.
+// What `render` and `bench` share: the command line's overrides of the scene's image and camera
+// (the thread limit is render/threads.h).
 #pragma once
 
-#include <tbb/global_control.h>
-
-#include <memory>
 #include <string>
 
 #include "cli/commands.h"
@@ -24,8 +21,5 @@ void apply_image_size(Scene& scene, const std::string& scene_path, int width, in
 // Moves the scene's camera by --eye, --target and --fov (those given; override_camera, scene.h),
 // after any animation frame is set. Throws std::invalid_argument naming the option.
 void apply_camera_options(Scene& scene, const CameraArgs& view);
-
-// Caps TBB's parallelism at `threads` (0: all cores) for as long as the result lives.
-std::unique_ptr<tbb::global_control> limit_threads(int threads);
 
 }  // namespace softtrace

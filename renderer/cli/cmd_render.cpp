@@ -16,6 +16,7 @@
 #include "film/film.h"
 #include "render/frame.h"
 #include "render/frame_metadata.h"
+#include "render/threads.h"
 #include "render/tiles.h"
 
 namespace softtrace {

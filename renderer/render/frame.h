@@ -10,6 +10,7 @@
 
 #include "film/film.h"
 #include "render/progress.h"
+#include "scene/traced_objects.h"
 #include "trace/embree_scene.h"
 
 namespace softtrace {
@@ -25,9 +26,12 @@ struct RenderOptions {
   int spp = 0;
 };
 
-// What a frame is traced with: every object's tracer and the Embree scene over them.
+// What a frame is traced with: the objects as the tracers take them, every object's tracer and
+// the Embree scene over them. The scene must outlive it (shading reads its materials).
 struct TracedScene {
-  TracedScene(const Scene& scene, LipschitzMode mode) : tracers(scene, mode), embree(tracers) {}
+  TracedScene(const Scene& scene, LipschitzMode mode)
+      : objects(traced_objects(scene)), tracers(objects, mode), embree(tracers) {}
+  std::vector<TracedObject> objects;
   SceneTracers tracers;
   EmbreeScene embree;
 };

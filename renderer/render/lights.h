@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "scene/light.h"
 #include "trace/embree_scene.h"
 
 namespace softtrace {

@@ -8,6 +8,7 @@
 #include "render/finish.h"
 #include "render/lights.h"
 #include "render/occlusion.h"
+#include "scene/traced_objects.h"
 
 namespace softtrace {
 
@@ -15,7 +16,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
-  const SceneObject& obj = hit.face ? *hit.face : tracers.object(hit.object);
+  const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
   const Vec3 p = ray.o + ray.d * hit.t;
   // A primitive's or a CSG's normal came with its hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
@@ -40,7 +41,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // ray's shade() below reuses `weights`: it is read only before that call.
   thread_local std::vector<ComponentMaterials::Weight> weights;
   weights.clear();
-  if (obj.components) obj.components->weights(hit.face ? hit.face_point : p, weights);
+  if (obj.components) obj.components->weights(hit.face > 0 ? hit.face_point : p, weights);
   const bool blended = weights.size() > 1;
   const Material& m =
       weights.size() == 1 ? obj.components->materials()[weights[0].material] : obj.material;

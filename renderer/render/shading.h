@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "scene/scene.h"
 #include "trace/embree_scene.h"
 #include "trace/tracer.h"
 

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "scene/placement.h"
 #include "scene/ranges.h"
 
 namespace softtrace {

@@ -1,9 +1,11 @@
+#include "scene/mesh_load.h"
+
 #include <cmath>
 #include <filesystem>
 
 #include "io/mesh_read.h"
+#include "scene/placement.h"
 #include "scene/ranges.h"
-#include "scene/triangle_mesh.h"
 
 namespace softtrace {
 

@@ -7,10 +7,6 @@
 
 namespace softtrace {
 
-Affine compose(const Affine& outer, const Affine& inner) {
-  return {times(outer.linear, inner.linear), outer.linear * inner.offset + outer.offset};
-}
-
 bool has_placement(const Params& p) {
   return p.has("scale") || p.has("rotate") || p.has("translate") || p.has("matrix");
 }

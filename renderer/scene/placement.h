@@ -1,22 +1,14 @@
 // Placement of the scene's own objects (docs/scene-format.md "Placement of shapes, meshes and
 // CSGs"): the keys scale, rotate, translate and matrix read into one affine map, as the soft
 // objects' placement keys read (fieldlib's are of nodes; these are of a shape, a mesh or a CSG).
+// The map itself is affine.h.
 #pragma once
 
 #include "describe/params.h"
 #include "math/vec.h"
+#include "scene/affine.h"
 
 namespace softtrace {
-
-// p_world = linear * p_object + offset: scale, then rotate, then translate, then `matrix`.
-struct Affine {
-  Mat3 linear;
-  Vec3 offset{0, 0, 0};
-  Vec3 apply(const Vec3& p) const { return linear * p + offset; }
-};
-
-// `outer` after `inner`.
-Affine compose(const Affine& outer, const Affine& inner);
 
 // Whether `p` has any of the placement keys.
 bool has_placement(const Params& p);

@@ -1,13 +1,11 @@
 // Plain primitives (docs/scene-format.md "shape"): POV-Ray's plane, box, sphere, cylinder, cone
 // and disc as exact solids, placed by an affine map. The renderer traces them analytically
-// (trace/primitive_trace.h), never as fields.
+// (trace/primitive_trace.h), never as fields. Plain data: the tracer includes this, never the
+// loader (primitive_load.h).
 #pragma once
 
-#include <string>
-
-#include "describe/params.h"
 #include "math/box.h"
-#include "scene/placement.h"
+#include "scene/affine.h"
 
 namespace softtrace {
 
@@ -28,14 +26,6 @@ struct Primitive {
   // edge lies far below a pixel from the horizon).
   Box world_box;
 };
-
-// Reads the object's "shape" (its "type" and parameters, placement keys included). Throws
-// SceneError at the pointer of a bad value.
-Primitive load_primitive(const Params& p);
-
-// Moves `s` by `m`, after its own placement: sets to_world, to_object and world_box. Returns why
-// it cannot ("" when it can): a singular map, or a bounded shape placed beyond kMaxPosition.
-std::string place_primitive(Primitive& s, const Affine& m);
 
 // The name of each shape as the scene file writes it.
 const char* shape_name(Primitive::Shape s);

@@ -1,6 +1,8 @@
+#include "scene/primitive_load.h"
+
 #include <cmath>
 
-#include "scene/primitive.h"
+#include "scene/placement.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
 

@@ -11,6 +11,9 @@
 #include "scene/csg_load.h"
 #include "scene/image_load.h"
 #include "scene/json_text.h"
+#include "scene/mesh_load.h"
+#include "scene/placement.h"
+#include "scene/primitive_load.h"
 #include "scene/ranges.h"
 #include "scene/scene_keys.h"
 

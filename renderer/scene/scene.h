@@ -15,6 +15,7 @@
 #include "scene/material.h"
 #include "scene/primitive.h"
 #include "scene/sky.h"
+#include "scene/trace_target.h"
 #include "scene/triangle_mesh.h"
 
 namespace softtrace {
@@ -116,7 +117,7 @@ struct SceneObject {
 // `bounds` included) are in the CSG's own frame, `to_parent` takes that frame to its parent's
 // (the world's at the top), and the object's `bounds` are in the parent's frame.
 struct Csg {
-  enum class Op { Union, Merge, Intersection, Difference };
+  using Op = CsgOp;  // trace_target.h: the tracer takes it too
   Op op = Op::Union;
   std::vector<SceneObject> operands;
   bool placed = false;  // false: the identity

@@ -2,7 +2,8 @@
 // animation (the field nodes' keys are in fieldlib/kinds.cpp). The loader declares each object's
 // list before it reads anything (Params::check_keys), so a misspelled key is reported before a
 // missing one and the loader cannot read a key the list lacks; docs/scene-format.md's "The
-// scene" has one table per list, and tests/test_scene_keys.cpp holds the three together.
+// scene" has one table per list, and tests/renderer/scene/test_scene_keys.cpp holds the three
+// together.
 #pragma once
 
 #include <string>

@@ -1,16 +1,14 @@
 // A triangle mesh object (docs/scene-format.md "mesh"): a mesh file's triangles, placed in the
 // world. The renderer hands them to Embree as its own triangle geometry; a hit's normal is the
-// triangle's, or with the file's normals the interpolated one (trace/mesh_hit.h).
+// triangle's, or with the file's normals the interpolated one (trace/mesh_hit.h). Plain data: the
+// tracer includes this, never the loader (mesh_load.h).
 #pragma once
 
 #include <cstdint>
-#include <memory>
-#include <string>
 #include <vector>
 
-#include "describe/params.h"
 #include "math/box.h"
-#include "scene/placement.h"
+#include "math/vec.h"
 
 namespace softtrace {
 
@@ -29,10 +27,5 @@ struct TriangleMesh {
     return {positions[3 * size_t(i)], positions[3 * size_t(i) + 1], positions[3 * size_t(i) + 2]};
   }
 };
-
-// Reads the object's "mesh" (a path, relative to the scene file's folder) and places it by
-// `placement`. Throws SceneError: the mesh file's own located line (mesh_read.h) followed by the
-// key's pointer, or the pointer of a placement that takes the mesh beyond kMaxPosition.
-std::shared_ptr<const TriangleMesh> load_mesh(const Params& object, const Affine& placement);
 
 }  // namespace softtrace

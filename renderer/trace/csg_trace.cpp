@@ -20,8 +20,15 @@ constexpr int kMaxSpans = 256;
 // One operand of the tree: a CSG (its operands), a field (the tracers of its solid and of the
 // solid's complement) or a shape (neither).
 struct CsgNode {
-  const SceneObject* object;
+  int face;  // TracedObject::face, reported by hits on its surface
+  Box bounds;
+  CsgOp op;
+  std::optional<Primitive> shape;
   std::vector<CsgNode> operands;
+  // A CSG's placement (TracedObject): `to_local` takes its parent's frame to its operands'.
+  bool placed;
+  Affine to_parent;
+  Mat3 to_local;
   // A field's: the tracers of its solid and of the solid's complement.
   std::unique_ptr<ObjectTracer> inside, outside;
   // The frame the object is given in (its enclosing CSGs' placements undone): a point there is
@@ -29,21 +36,27 @@ struct CsgNode {
   Affine from_world;
   bool placed_frame = false;
 
-  CsgNode(const SceneObject& o, LipschitzMode mode, const Affine& frame = {}, bool placed = false)
-      : object(&o), from_world(frame), placed_frame(placed) {
-    if (o.csg) {
+  CsgNode(const TracedObject& o, LipschitzMode mode, const Affine& frame = {},
+          bool in_placed = false)
+      : face(o.face),
+        bounds(o.bounds),
+        op(o.op),
+        shape(o.shape),
+        placed(o.placed),
+        to_parent(o.to_parent),
+        to_local(o.to_local),
+        from_world(frame),
+        placed_frame(in_placed) {
+    if (o.csg()) {
       // Its operands are in its own frame: its placement undone after its parent's.
       const Affine inner =
-          o.csg->placed
-              ? compose({o.csg->to_local, o.csg->to_local * (o.csg->to_parent.offset * -1.0)},
-                        frame)
-              : frame;
-      operands.reserve(o.csg->operands.size());
-      for (const SceneObject& operand : o.csg->operands)
-        operands.emplace_back(operand, mode, inner, placed || o.csg->placed);
+          o.placed ? compose({o.to_local, o.to_local * (o.to_parent.offset * -1.0)}, frame) : frame;
+      operands.reserve(o.operands.size());
+      for (const TracedObject& operand : o.operands)
+        operands.emplace_back(operand, mode, inner, in_placed || o.placed);
     } else if (o.field) {
-      inside = std::make_unique<ObjectTracer>(o, mode);
-      outside = std::make_unique<ObjectTracer>(o, mode, true);
+      inside = std::make_unique<ObjectTracer>(*o.field, mode);
+      outside = std::make_unique<ObjectTracer>(*o.field, mode, true);
     }
   }
 };
@@ -55,7 +68,7 @@ using Spans = std::vector<CsgSpan>;
 // A shape's one span (its solid is convex), within [lo, hi]; an end beyond kMaxPosition is no
 // surface (an infinite plane is drawn to there, as on its own).
 void shape_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Spans& out) {
-  const SolidSpan s = solid_span(*n.object->shape, ray);
+  const SolidSpan s = solid_span(*n.shape, ray);
   if (s.empty()) return;
   CsgSpan span{s.t0, s.t1, {&n, false, false, s.n0}, {&n, false, false, s.n1}};
   const auto far = [&](double t) { return !(max_abs(ray.o + ray.d * t) <= kMaxPosition); };
@@ -70,7 +83,7 @@ void shape_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Spans& 
 void field_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work,
                  Spans& out) {
   double e0 = -kInf, e1 = kInf;  // where the ray is inside the field's box
-  if (!clip_to_box(ray, n.object->bounds, e0, e1)) return;
+  if (!clip_to_box(ray, n.bounds, e0, e1)) return;
   const double end = std::min(hi, e1);
   // Just past a crossing: the tracer places it no nearer than the surface and within
   // kRefine of the footprint past it; as far again is past it for certain.
@@ -168,19 +181,18 @@ Spans combined_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Tra
   Spans acc = node_spans(n.operands[0], ray, lo, hi, work);
   for (size_t i = 1; i < n.operands.size(); ++i) {
     const CsgNode& next = n.operands[i];
-    switch (n.object->csg->op) {
-      case Csg::Op::Union:
-      case Csg::Op::Merge:
+    switch (n.op) {
+      case CsgOp::Union:
+      case CsgOp::Merge:
         acc = unite(acc, node_spans(next, ray, lo, hi, work));
         break;
-      case Csg::Op::Intersection:
-      case Csg::Op::Difference: {
+      case CsgOp::Intersection:
+      case CsgOp::Difference: {
         // Only where the result so far holds can the next operand change it.
         if (acc.empty()) return acc;
         const double a = acc.front().t0, b = acc.back().t1;
         const Spans other = node_spans(next, ray, a, b, work);
-        acc = intersect(
-            acc, n.object->csg->op == Csg::Op::Intersection ? other : complement(other, a, b));
+        acc = intersect(acc, n.op == CsgOp::Intersection ? other : complement(other, a, b));
         break;
       }
     }
@@ -190,21 +202,20 @@ Spans combined_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Tra
 
 Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCounters& work) {
   Spans acc;
-  if (n.object->shape) {
+  if (n.shape) {
     shape_spans(n, ray, lo, hi, acc);
     return acc;
   }
-  if (!n.object->csg) {
+  if (n.operands.empty()) {
     field_spans(n, ray, lo, hi, work, acc);
     return acc;
   }
-  const Csg& csg = *n.object->csg;
-  if (!csg.placed) return combined_spans(n, ray, lo, hi, work);
+  if (!n.placed) return combined_spans(n, ray, lo, hi, work);
   // In the CSG's own frame the ray's direction is to_local d, s times as long: a distance t
   // along the ray there is s t; the footprint's radius scales by s too.
-  const Vec3 d = csg.to_local * ray.d;
+  const Vec3 d = n.to_local * ray.d;
   const double s = length(d);
-  const Ray local{csg.to_local * (ray.o - csg.to_parent.offset), d / s, ray.cone0 * s, ray.cone};
+  const Ray local{n.to_local * (ray.o - n.to_parent.offset), d / s, ray.cone0 * s, ray.cone};
   acc = combined_spans(n, local, lo * s, hi * s, work);
   for (CsgSpan& span : acc) {
     span.t0 = std::max(span.t0 / s, lo);
@@ -215,15 +226,15 @@ Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCo
 
 }  // namespace
 
-CsgTracer::CsgTracer(const SceneObject& object, LipschitzMode mode)
-    : object_(&object), root_(std::make_unique<CsgNode>(object, mode)) {}
+CsgTracer::CsgTracer(const TracedObject& object, LipschitzMode mode)
+    : bounds_(object.bounds), root_(std::make_unique<CsgNode>(object, mode)) {}
 
 CsgTracer::~CsgTracer() = default;
 
 std::vector<CsgSpan> CsgTracer::spans(const Ray& ray, double tnear, double tfar,
                                       TraceCounters& work) const {
   double b0 = tnear, b1 = tfar;
-  if (!clip_to_box(ray, object_->bounds, b0, b1)) return {};
+  if (!clip_to_box(ray, bounds_, b0, b1)) return {};
   work.entered_box = true;
   // The operands search [tnear, tfar], not the CSG's box: a face on the box (a field clipped by
   // its bounds, a box shape) must not be cut off by rounding.
@@ -244,7 +255,7 @@ CsgHit CsgTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCoun
       n = leaf.from_world.linear.transposed_times(n);
       if (max_abs(n) > 0) n = unit(n);
     }
-    return CsgHit{true, t, e.flip ? -n : n, leaf.object, p};
+    return CsgHit{true, t, e.flip ? -n : n, leaf.face, p};
   };
   for (const CsgSpan& s : spans(ray, tnear, tfar, work)) {
     if (s.e0.leaf && s.t0 >= tnear) return hit_at(s.t0, s.e0);

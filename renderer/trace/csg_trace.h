@@ -1,7 +1,8 @@
-// Tracing a CSG object (scene.h Csg): along a ray, the spans where it is inside each operand (a
-// shape's analytically, a field's from its certified crossings, entry, exit, entry...), combined
-// by the operation down the tree; the first end of a combined span inside the ray's range is
-// the hit, on the surface of the operand that bounds the result there.
+// Tracing a CSG object (scene/trace_target.h TracedObject, loaded as scene.h Csg): along a ray, the
+// spans where it is inside each operand (a shape's analytically, a field's from its certified
+// crossings, entry, exit, entry...), combined by the operation down the tree; the first end of a
+// combined span inside the ray's range is the hit, on the surface of the operand that bounds the
+// result there.
 //
 // A field's crossings are each the certified first crossing of ObjectTracer::first_hit: its entry
 // the first point inside its solid (f on the inside side of iso, within its `bounds`), its exit
@@ -22,8 +23,9 @@ struct CsgHit {
   bool hit = false;
   double t = 0;
   Vec3 normal;  // outward from the result's solid, unit (a subtracted operand's, turned)
-  // The operand (a field or a shape) whose surface it is: the face takes its material.
-  const SceneObject* face = nullptr;
+  // The face (TracedObject::face) of the operand, a field or a shape, whose surface it is: the
+  // face takes its material.
+  int face = -1;
   // The point in the face's own frame (the world's but inside a placed CSG): where its
   // component materials are weighed.
   Vec3 face_point;
@@ -46,8 +48,8 @@ struct CsgSpan {
 
 class CsgTracer {
  public:
-  // `object` (which has a csg) must outlive the tracer.
-  CsgTracer(const SceneObject& object, LipschitzMode mode);
+  // `object` is a CSG (TracedObject::csg()); the tracer keeps what it needs of it.
+  CsgTracer(const TracedObject& object, LipschitzMode mode);
   ~CsgTracer();
   CsgTracer(const CsgTracer&) = delete;
   CsgTracer& operator=(const CsgTracer&) = delete;
@@ -58,10 +60,8 @@ class CsgTracer {
   // The result's spans within [tnear, tfar], in order (for tests).
   std::vector<CsgSpan> spans(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
 
-  const SceneObject& object() const { return *object_; }
-
  private:
-  const SceneObject* object_;
+  Box bounds_;
   std::unique_ptr<CsgNode> root_;
 };
 

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "trace/csg_trace.h"
+#include "trace/embree_device.h"
 #include "trace/mesh_hit.h"
 #include "trace/primitive_trace.h"
 
@@ -28,14 +28,14 @@ struct RayContext {
   int object = -1;
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
-  const SceneObject* face = nullptr;
+  int face = -1;
   Vec3 face_point{0, 0, 0};
 };
 
 struct GeometryData {
   const ObjectTracer* tracer;  // null for a primitive, a CSG or a mesh
   const CsgTracer* csg;        // null but for a CSG
-  const SceneObject* object_data;
+  const TracedObject* object_data;
   int object;
 };
 
@@ -56,7 +56,7 @@ void bounds_callback(const RTCBoundsFunctionArguments* args) {
 // geometries in its own order, not in depth order). `normal` and `face` are a primitive's or a
 // CSG's; a field's normal is computed once, for the closest hit.
 void record_hit(const RTCIntersectFunctionNArguments* args, RayContext* ctx, int object, double t,
-                bool on_box_face, const Vec3& normal, const SceneObject* face,
+                bool on_box_face, const Vec3& normal, int face,
                 const Vec3& face_point = {0, 0, 0}) {
   ctx->t = t;
   ctx->object = object;
@@ -83,7 +83,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   const MarchResult m =
       data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Nearest, clear_to);
   if (!m.hit || m.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, nullptr);
+  record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, -1);
 }
 
 void occluded_callback(const RTCOccludedFunctionNArguments* args) {
@@ -101,7 +101,7 @@ void primitive_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   const PrimitiveHit h = first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t);
   if (!h.hit || h.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, h.t, false, h.normal, nullptr);
+  record_hit(args, ctx, data->object, h.t, false, h.normal, -1);
 }
 
 void primitive_occluded_callback(const RTCOccludedFunctionNArguments* args) {
@@ -146,19 +146,24 @@ void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
   ctx->object = data->object;
   ctx->on_box_face = false;
   ctx->normal = h.normal;
-  ctx->face = nullptr;
+  ctx->face = -1;
   ctx->face_point = {0, 0, 0};
 }
 
 // The mesh's triangles as Embree's triangle geometry (copied: Embree pads its buffers).
-RTCGeometry mesh_geometry(RTCDevice device, const TriangleMesh& mesh) {
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+RTCGeometry mesh_geometry(EmbreeDevice& device, const TriangleMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  device.check("creating a mesh's geometry");
   const size_t vertices = mesh.positions.size() / 3, triangles = mesh.triangles();
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices));
   auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
-  if (!v || !t) throw std::runtime_error("cannot allocate Embree's buffers for a mesh");
+  if (!v || !t) {
+    rtcReleaseGeometry(geom);
+    device.check("allocating a mesh's buffers");
+    throw EmbreeError("Embree: allocating a mesh's buffers failed");
+  }
   std::copy(mesh.positions.begin(), mesh.positions.end(), v);
   std::copy(mesh.indices.begin(), mesh.indices.end(), t);
   rtcSetGeometryIntersectFilterFunction(geom, mesh_filter_callback);
@@ -168,30 +173,35 @@ RTCGeometry mesh_geometry(RTCDevice device, const TriangleMesh& mesh) {
 }  // namespace
 
 struct EmbreeScene::Impl {
-  RTCDevice device = nullptr;
+  EmbreeDevice device;
   RTCScene scene = nullptr;
   std::vector<GeometryData> data;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);  // before the device (`device` is destroyed after)
+  }
 };
 
 EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<Impl>()) {
   impl_->data.reserve(tracers.size());  // the callbacks hold pointers into it
 
-  impl_->device = rtcNewDevice(nullptr);
-  if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
-  impl_->scene = rtcNewScene(impl_->device);
+  EmbreeDevice& device = impl_->device;
+  impl_->scene = rtcNewScene(device.get());
+  device.check("creating the scene");
   for (int i = 0; i < tracers.size(); ++i) {
     const ObjectTracer* tracer = tracers.tracer(i);
     const CsgTracer* csg = tracers.csg(i);
     impl_->data.push_back({tracer, csg, &tracers.object(i), i});
     if (const TriangleMesh* mesh = tracers.object(i).mesh.get()) {
-      RTCGeometry geom = mesh_geometry(impl_->device, *mesh);
+      RTCGeometry geom = mesh_geometry(device, *mesh);
       rtcSetGeometryUserData(geom, &impl_->data.back());
       rtcCommitGeometry(geom);
       rtcAttachGeometry(impl_->scene, geom);
       rtcReleaseGeometry(geom);
+      device.check("setting up a mesh's geometry");
       continue;
     }
-    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+    RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
+    device.check("creating an object's geometry");
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, &impl_->data.back());
     rtcSetGeometryBoundsFunction(geom, bounds_callback, nullptr);
@@ -204,14 +214,13 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);  // the scene holds the reference now
+    device.check("setting up an object's geometry");
   }
   rtcCommitScene(impl_->scene);
+  device.check("building the scene");
 }
 
-EmbreeScene::~EmbreeScene() {
-  rtcReleaseScene(impl_->scene);
-  rtcReleaseDevice(impl_->device);
-}
+EmbreeScene::~EmbreeScene() = default;
 
 namespace {
 RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
@@ -249,6 +258,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
   rh.ray = make_ray(ray, tnear, tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx.rtc, &rh);
+  if (impl_->device.failed()) impl_->device.check("tracing a ray");
   TraceHit h;
   h.work = ctx.work;
   if (ctx.object >= 0) {
@@ -271,6 +281,7 @@ bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCount
   ctx.t = tfar;
   RTCRay r = make_ray(ray, tnear, tfar);
   rtcOccluded1(impl_->scene, &ctx.rtc, &r);
+  if (impl_->device.failed()) impl_->device.check("tracing a shadow ray");
   work.point_evals += ctx.work.point_evals;
   work.box_evals += ctx.work.box_evals;
   work.refine_iterations += ctx.work.refine_iterations;

@@ -1,10 +1,12 @@
-// The only code that sees Embree: one user geometry per scene object, whose bounds callback
-// returns the object's box and whose intersect/occluded callbacks call the object's tracer, a
-// primitive's exact intersection or a CSG's tracer (Mitsuba's thin adapter; the objects never see
-// Embree); a triangle mesh is Embree's own triangle geometry.
+// The only code that sees Embree (with embree_device.h, which turns its errors into ours): one
+// user geometry per scene object, whose bounds callback returns the object's box and whose
+// intersect/occluded callbacks call the object's tracer, a primitive's exact intersection or a
+// CSG's tracer (Mitsuba's thin adapter; the objects never see Embree); a triangle mesh is
+// Embree's own triangle geometry.
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "trace/tracer.h"
@@ -17,8 +19,9 @@ struct TraceHit {
   int object = -1;           // index into Scene::objects
   bool on_box_face = false;  // see MarchResult
   Vec3 normal{0, 0, 0};      // a primitive's, a CSG's or a mesh's unit normal (fields: not set)
-  // A CSG's hit: the operand whose surface it is (its material is the face's); otherwise null.
-  const SceneObject* face = nullptr;
+  // A CSG's hit: the face (TracedObject::face) of the operand whose surface it is (its material
+  // is the face's); otherwise -1.
+  int face = -1;
   Vec3 face_point{0, 0, 0};  // a CSG's hit: the point in the face's own frame (CsgHit)
   TraceCounters work;        // what the ray cost, over every object it met
 };
@@ -30,20 +33,28 @@ struct BeamClear {
   const double* depth;  // one per object
 };
 
+// An error Embree reported (embree_device.h), in Embree's words: out of memory while building
+// the scene, for one. The command line reports it as one line and exits with status 2.
+class EmbreeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class EmbreeScene {
  public:
-  // The tracers must outlive this object.
+  // The tracers must outlive this object. Throws EmbreeError if Embree fails to build the scene.
   explicit EmbreeScene(const SceneTracers& tracers);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // Closest hit along the ray in [tnear, tfar]; thread-safe. `beam`, if given, holds for this ray:
-  // each object's search starts where it certified.
+  // Closest hit along the ray in [tnear, tfar]; thread-safe. Throws EmbreeError if Embree
+  // reported an error while tracing it (so no ray passes for one Embree could not trace). `beam`,
+  // if given, holds for this ray: each object's search starts where it certified.
   TraceHit intersect(const Ray& ray, double tnear, double tfar,
                      const BeamClear* beam = nullptr) const;
   // Whether anything lies along the ray in [tnear, tfar]; thread-safe. The ray's work is added to
-  // `work`.
+  // `work`. Throws EmbreeError as intersect() does.
   bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
 
  private:

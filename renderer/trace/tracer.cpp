@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "math/illinois.h"
-#include "model/program_builder.h"
 #include "trace/csg_trace.h"
 #include "trace/tracer_limits.h"
 
@@ -25,7 +24,7 @@ constexpr double kProbeReach = 2;
 }  // namespace
 
 double ObjectTracer::value_error(double g) const {
-  return 1e-12 * (std::abs(g) + std::abs(object_->iso)) + 1e-300;
+  return 1e-12 * (std::abs(g) + std::abs(target_.iso)) + 1e-300;
 }
 
 double ObjectTracer::reach(double g, double rate) const {
@@ -42,12 +41,13 @@ Workspace& ObjectTracer::workspace() const {
   return ws;
 }
 
-SceneTracers::SceneTracers(const Scene& scene, LipschitzMode mode) : objects_(&scene.objects) {
-  tracers_.reserve(scene.objects.size());
-  for (const auto& o : scene.objects) {
+SceneTracers::SceneTracers(const std::vector<TracedObject>& objects, LipschitzMode mode)
+    : objects_(&objects) {
+  tracers_.reserve(objects.size());
+  for (const TracedObject& o : objects) {
     index_.push_back(o.field ? static_cast<int>(tracers_.size()) : -1);
-    if (o.field) tracers_.emplace_back(o, mode);
-    csg_.push_back(o.csg ? std::make_shared<const CsgTracer>(o, mode) : nullptr);
+    if (o.field) tracers_.emplace_back(*o.field, mode);
+    csg_.push_back(o.csg() ? std::make_shared<const CsgTracer>(o, mode) : nullptr);
   }
 }
 
@@ -66,17 +66,17 @@ bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
   return t0 <= t1;
 }
 
-ObjectTracer::ObjectTracer(const SceneObject& object, LipschitzMode mode, bool complement)
-    : object_(&object),
-      inside_sign_(complement ? -object.inside_sign : object.inside_sign),
-      program_(compile(*object.field)),
+ObjectTracer::ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool complement)
+    : target_(target),
+      inside_sign_(complement ? -target.inside_sign : target.inside_sign),
+      program_(*target_.program),
       mode_(mode) {
-  global_L_ = object.field->lipschitz();
-  g_empty_ = -inside_sign_ * object.iso;
-  default_footprint_ = 1e-5 * object.bounds.diagonal();
-  if (mode == LipschitzMode::Local && inside_sign_ > 0 && object.iso > 0)
+  global_L_ = target.lipschitz;
+  g_empty_ = -inside_sign_ * target.iso;
+  default_footprint_ = 1e-5 * target.bounds.diagonal();
+  if (mode == LipschitzMode::Local && inside_sign_ > 0 && target.iso > 0)
     blobs_ = BlobSum::of(program_);
-  const Box& b = object.bounds;
+  const Box& b = target.bounds;
   scale_ = std::max(max_abs(b.lo), max_abs(b.hi));
 }
 
@@ -85,12 +85,12 @@ double ObjectTracer::eval(const Vec3& p, Vec3* grad) const {
 }
 
 double ObjectTracer::g(const Vec3& p) const {
-  return inside_sign_ * (eval(p, nullptr) - object_->iso);
+  return inside_sign_ * (eval(p, nullptr) - target_.iso);
 }
 
 double ObjectTracer::g_view(const Vec3& p) const {
   Workspace& ws = workspace();
-  return inside_sign_ * (value(ws.view, p, ws) - object_->iso);
+  return inside_sign_ * (value(ws.view, p, ws) - target_.iso);
 }
 
 Vec3 ObjectTracer::normal(const Vec3& p) const {
@@ -106,7 +106,7 @@ Vec3 ObjectTracer::normal(const Vec3& p) const {
 }
 
 Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
-  const Box& b = object_->bounds;
+  const Box& b = target_.bounds;
   Vec3 n{-1, 0, 0};
   double best = std::abs(p.x - b.lo.x);
   for (int i = 0; i < 3; ++i)
@@ -143,7 +143,7 @@ ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double 
   // One pass: the interval, the slope bound and the program pruned to the segment (the children
   // whose supports it passes through), which the points of this segment evaluate afterwards.
   const BoxBounds bb = bounds(program_, segment(ray, a, b), workspace());
-  const double iso = object_->iso;
+  const double iso = target_.iso;
   const bool up = inside_sign_ > 0;
   const Interval g = up ? Interval{bb.value.lo - iso, bb.value.hi - iso}
                         : Interval{iso - bb.value.hi, iso - bb.value.lo};
@@ -232,7 +232,7 @@ ObjectTracer::Scan ObjectTracer::decide(const Ray& ray, double a, double ga, dou
       // certifies that crossing, and [deep.lo, there] brackets the first one.
       for (double ahead = deep.hi - deep.lo; ahead <= kFinest * tol; ahead *= 4) {
         const Vec3 q = ray.o + ray.d * (deep.hi + ahead);
-        if (!object_->bounds.contains(q)) break;
+        if (!target_.bounds.contains(q)) break;
         ++work.point_evals;
         const double gq = g(q);
         if (gq >= 0) {
@@ -354,7 +354,7 @@ double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double 
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                                     Query query, double clear_to) const {
   double t0 = tnear, t1 = tfar;
-  if (!clip_to_box(ray, object_->bounds, t0, t1)) return {};
+  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
   work.entered_box = true;
   // A solid where the ray enters the box from outside it is cut by the box: the hit is its face.
   const bool face = t0 > tnear && t0 >= clear_to;

@@ -23,10 +23,11 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "eval/blob_ray.h"
 #include "eval/eval.h"
-#include "scene/scene.h"
+#include "scene/trace_target.h"
 
 namespace softtrace {
 
@@ -107,9 +108,10 @@ struct MarchResult {
 
 class ObjectTracer {
  public:
-  // `complement`: trace the complement of the object's solid (f on the other side of iso, still
+  // `complement`: trace the complement of the target's solid (f on the other side of iso, still
   // within its box), whose first point is where a ray inside the solid leaves it (CSG's exits).
-  ObjectTracer(const SceneObject& object, LipschitzMode mode, bool complement = false);
+  // The tracer keeps a copy of the target (its program shared).
+  ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool complement = false);
 
   // The first t in [tnear, tfar] where the ray is inside the solid, if any (for Query::Any, some
   // t where it is: the search stops at the first sign change, unrefined). The work is added to
@@ -125,7 +127,6 @@ class ObjectTracer {
   // `from`: a depth already certified (by a beam holding this one); the search starts there.
   double clear_depth(const Frustum& f, double from, TraceCounters& work) const;
 
-  const SceneObject& object() const { return *object_; }
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
@@ -222,9 +223,9 @@ class ObjectTracer {
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
   Vec3 blob_gradient(const Vec3& p) const;
 
-  const SceneObject* object_;
-  double inside_sign_;  // the object's, or its opposite for the complement
-  Program program_;
+  TraceTarget target_;
+  double inside_sign_;      // the target's, or its opposite for the complement
+  const Program& program_;  // *target_.program
   LipschitzMode mode_;
   double global_L_;
   double default_footprint_;  // for rays without a cone: 1e-5 of the object's box diagonal
@@ -237,28 +238,29 @@ class ObjectTracer {
 
 class CsgTracer;
 
-// Every object's tracer, built once per scene. The Embree adapter (embree_scene.h) and the shading
-// (shading.h) both use them and neither owns them, so shading never goes through Embree.
-// Objects with a `shape` (plain primitives) have no tracer: they are traced analytically
-// (primitive_trace.h). A CSG object has a CsgTracer instead (csg_trace.h).
+// Every object's tracer, built once per scene from the objects as traced (scene/traced_objects.h),
+// which must outlive it. The Embree adapter (embree_scene.h) and the shading (shading.h) both use
+// them and neither owns them, so shading never goes through Embree. Objects with a `shape` (plain
+// primitives) have no tracer: they are traced analytically (primitive_trace.h). A CSG object has
+// a CsgTracer instead (csg_trace.h).
 class SceneTracers {
  public:
-  SceneTracers(const Scene& scene, LipschitzMode mode);
+  SceneTracers(const std::vector<TracedObject>& objects, LipschitzMode mode);
   // The tracer of object `object`, which must have a field (tracer() says).
   const ObjectTracer& operator[](int object) const { return tracers_[index_[object]]; }
-  // The object's tracer, or null for a primitive or a CSG.
+  // The object's tracer, or null for a primitive, a CSG or a mesh.
   const ObjectTracer* tracer(int object) const {
     return index_[object] < 0 ? nullptr : &tracers_[index_[object]];
   }
   // A CSG object's tracer, or null for any other.
   const CsgTracer* csg(int object) const { return csg_[object].get(); }
-  const SceneObject& object(int object) const { return (*objects_)[object]; }
+  const TracedObject& object(int object) const { return (*objects_)[object]; }
   int size() const { return static_cast<int>(index_.size()); }  // the number of objects
 
  private:
-  const std::vector<SceneObject>* objects_;
+  const std::vector<TracedObject>* objects_;
   std::vector<ObjectTracer> tracers_;
-  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive or a CSG
+  std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive, a CSG or a mesh
   std::vector<std::shared_ptr<const CsgTracer>> csg_;  // per object: a CSG's tracer, or null
 };
 

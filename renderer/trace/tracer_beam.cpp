@@ -22,7 +22,7 @@ double ObjectTracer::clear_depth(const Frustum& f, double from, TraceCounters& w
   // less than beams cost it (a slice's box holds many blobs): 1000 blobs at 640x480 took 1.15-1.25x
   // the time with beams.
   if (mode_ == LipschitzMode::Global || blobs_) return 0;
-  const Box& box = object_->bounds;
+  const Box& box = target_.bounds;
   if (!box.bounded()) return 0;
   // The box's range of forward depths (depth is linear: its extremes are at corners).
   double near = std::numeric_limits<double>::infinity(), far = -near;
@@ -60,7 +60,7 @@ double ObjectTracer::clear_depth(const Frustum& f, double from, TraceCounters& w
   };
 
   Workspace& ws = workspace();
-  const double iso = object_->iso;
+  const double iso = target_.iso;
   // From a depth a larger beam reached, slices a few times as deep as wide; the box's far side
   // may be reached with a few doublings.
   double s = near, len = (far - near) / 4;

@@ -72,7 +72,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   BlobSum::Term* terms = scratch.terms.data();
   Event* events = scratch.events.data();
   int* active = scratch.active.data();
-  const double iso = object_->iso;
+  const double iso = target_.iso;
 
   // The piece [u0, u0 + S] of the stretch from t, where terms[active[0..n)] are the blobs: the
   // first crossing in it, if any (a hit that is no crossing: the box's face).

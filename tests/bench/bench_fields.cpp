@@ -6,6 +6,7 @@
 
 #include "eval/eval.h"
 #include "model/program_builder.h"
+#include "scene/traced_objects.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -178,7 +179,7 @@ void BM_BlobBoxPass(benchmark::State& state) {
 
 void BM_FirstHit(benchmark::State& state, const Model* m, LipschitzMode mode) {
   const Scene s = load(*m);
-  const ObjectTracer tr(s.objects[0], mode);
+  const ObjectTracer tr(trace_target(s.objects[0]), mode);
   const Box& b = s.objects[0].bounds;
   const auto targets =
       points_in(Box(b.center() - b.extent() * 0.2, b.center() + b.extent() * 0.2), 1024);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "scene/traced_objects.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -21,7 +22,7 @@ TEST(GrazingRay, Fig003Fig9aGrazeIsDecidedClear) {
   for (const SceneObject& o : scene.objects)
     if (o.name == "bulge_eliminated") obj = &o;
   ASSERT_NE(obj, nullptr);
-  const ObjectTracer tr(*obj, LipschitzMode::Local);
+  const ObjectTracer tr(trace_target(*obj), LipschitzMode::Local);
   // The camera ray as the renderer builds it (eye, unit direction, the pixel's cone).
   const Ray ray{{0, -22, 8},
                 {0.018073891901949017, 0.94672777313342682, -0.32152738298524319},

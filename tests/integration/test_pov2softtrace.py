@@ -14,8 +14,8 @@ import sys
 
 import pytest
 
-SOURCE = os.environ.get("SOFTTRACE_SOURCE_DIR", os.path.dirname(os.path.dirname(
-    os.path.abspath(__file__))))
+SOURCE = os.environ.get("SOFTTRACE_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))))
 TOOL = os.path.join(SOURCE, "tools", "pov2softtrace.py")
 sys.path.insert(0, os.path.join(SOURCE, "tools"))
 from povsdl.lexer import PovError  # noqa: E402

@@ -86,8 +86,8 @@ struct Outcome {
 Outcome run_regression(const std::string& scene, const std::string& reference, const Entry& e,
                        const std::string& tag) {
   const std::string work = temp_dir("regression_" + tag);
-  const RunResult r = run_command(source_path("tests/regression.sh") + " " + SOFTTRACE_BIN + " " +
-                                  scene + " " + reference + " " + work + " " +
+  const RunResult r = run_command(source_path("tests/integration/regression.sh") + " " +
+                                  SOFTTRACE_BIN + " " + scene + " " + reference + " " + work + " " +
                                   std::to_string(e.width) + " " + std::to_string(e.height));
   return {r, work};
 }

@@ -20,6 +20,7 @@
 
 #include "figure_scene.h"
 #include "scene/scene.h"
+#include "scene/traced_objects.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -141,7 +142,7 @@ TEST_P(Fig12, SurfaceAwayFromTheBlendIsUnchanged) {
 TEST_P(Fig12, TracerFindsTheFirstHitCheaply) {
   const Scene scene = load_scene(scene_path(GetParam()));
   const SceneObject& obj = scene.objects[0];
-  const ObjectTracer tr(obj, LipschitzMode::Local);
+  const ObjectTracer tr(trace_target(obj), LipschitzMode::Local);
   long total_steps = 0;
   int rays = 0, hits = 0;
   for (const Vec3& target : samples({-12, -12, 4}, {12, 12, 14}, 150, 21)) {

@@ -1,7 +1,8 @@
-// A CSG object's placement keys (scene.h Csg, trace/csg_trace.h): a placed tree, nested placements
-// included, renders as the same tree with every operand placed on its own by the composed map
-// (a field by its node's `matrix`, a shape by its shape's), pixel by pixel: the same silhouette,
-// the same depths and normals to the tracer's tolerance, the same face materials.
+// A CSG object's placement keys (scene.h Csg, trace/csg_trace.h, the TracedObject placement of
+// scene/trace_target.h): a placed tree, nested placements included, renders as the same tree with
+// every operand placed on its own by the composed map (a field by its node's `matrix`, a shape by
+// its shape's), pixel by pixel: the same silhouette, the same depths and normals to the tracer's
+// tolerance, the same face materials.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "render/frame.h"
 #include "render/shading.h"
 #include "scene/scene.h"
+#include "scene/traced_objects.h"
 
 namespace softtrace {
 namespace {
@@ -88,9 +90,10 @@ TEST(CsgPlacement, APlacedTreeRendersAsItsOperandsPlacedOneByOne) {
       // The tracer places a hit within 1/1000 of the footprint; a pixel here is ~0.1 wide.
       far_depth += std::abs(ha.t - hb.t) > 1e-3;
       bent += dot(ha.normal, hb.normal) < 0.999;
-      other_face += ha.face->name != hb.face->name;
+      const std::string& face = face_object(a.objects[0], ha.face).name;
+      other_face += face != face_object(b.objects[0], hb.face).name;
       for (int k = 0; k < 3; ++k)
-        faces[k] = faces[k] || ha.face->name == (const char*[]){"blob", "knife", "crate"}[k];
+        faces[k] = faces[k] || face == (const char*[]){"blob", "knife", "crate"}[k];
     }
   EXPECT_GT(both, 3000);
   EXPECT_GE(double(both) / double(any), 0.999) << both << " of " << any;
@@ -144,7 +147,9 @@ TEST(CsgPlacement, ComponentMaterialsAreWeighedInTheOperandsFrame) {
       const Ray a = ch.generate(x + 0.5, y + 0.5), b = cm.generate(x + 0.5, y + 0.5);
       const TraceHit ha = rh.embree.intersect(a, 0, INFINITY);
       const TraceHit hb = rm.embree.intersect(b, 0, INFINITY);
-      if (!ha.hit || !hb.hit || ha.face != &here.objects[0].csg->operands[0]) continue;
+      if (!ha.hit || !hb.hit ||
+          &face_object(here.objects[0], ha.face) != &here.objects[0].csg->operands[0])
+        continue;
       const Vec3 ca = shade(here, rh.tracers, rh.embree, a, ha, shadow).color;
       const Vec3 cb = shade(moved, rm.tracers, rm.embree, b, hb, shadow).color;
       ++compared;

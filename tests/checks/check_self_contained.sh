@@ -3,7 +3,7 @@
 # and papers the project was written from live beside the repository, not in it). Prints each
 # offending line and exits 1 if there is one.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 pattern='\.\./shared|MATH\.md|SCENE\.md'
 if out=$(grep -rnE "$pattern" --exclude-dir=.git --exclude-dir='build*' --exclude-dir=out \
   --exclude=check_self_contained.sh . ); then

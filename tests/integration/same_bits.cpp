@@ -1,6 +1,7 @@
 // same_bits A B: exit 0 when two images have the same windows, channels and pixel bits (every
 // channel of every pixel, NaN payloads and signed zeros included), else 1 with the first
-// difference on stderr; 2 when one cannot be read. For shell tests (tests/test_slurm.sh).
+// difference on stderr; 2 when one cannot be read. For shell tests
+// (tests/integration/test_slurm.sh).
 #include <cstdio>
 #include <cstring>
 #include <exception>

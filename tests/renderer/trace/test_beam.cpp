@@ -9,6 +9,7 @@
 #include <random>
 
 #include "render/camera.h"
+#include "scene/traced_objects.h"
 #include "tracer_scenes.h"
 
 namespace softtrace {
@@ -21,7 +22,7 @@ class Beams : public testing::TestWithParam<int> {};
 TEST_P(Beams, NoRayMeetsTheSolidBeforeItsBeamsDepth) {
   const Scene scene = parse_scene(kScenes[GetParam()], "<test>");
   const SceneObject& obj = scene.objects[0];
-  const ObjectTracer tr(obj, LipschitzMode::Local);
+  const ObjectTracer tr(trace_target(obj), LipschitzMode::Local);
   const Box& b = obj.bounds;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0, 1);
@@ -99,9 +100,14 @@ TEST(Beams, NotForTheGlobalModeNorForPolynomialBlobs) {
   const ViewCamera camera(fig.camera, 64, 48);
   const Frustum fr = camera.frustum(0, 0, 16, 16);  // a corner: the background
   TraceCounters work;
-  EXPECT_GT(ObjectTracer(fig.objects[0], LipschitzMode::Local).clear_depth(fr, 0, work), 0);
-  EXPECT_EQ(ObjectTracer(fig.objects[0], LipschitzMode::Global).clear_depth(fr, 0, work), 0);
-  EXPECT_EQ(ObjectTracer(blobs.objects[0], LipschitzMode::Local).clear_depth(fr, 0, work), 0);
+  EXPECT_GT(
+      ObjectTracer(trace_target(fig.objects[0]), LipschitzMode::Local).clear_depth(fr, 0, work), 0);
+  EXPECT_EQ(
+      ObjectTracer(trace_target(fig.objects[0]), LipschitzMode::Global).clear_depth(fr, 0, work),
+      0);
+  EXPECT_EQ(
+      ObjectTracer(trace_target(blobs.objects[0]), LipschitzMode::Local).clear_depth(fr, 0, work),
+      0);
 }
 
 }  // namespace

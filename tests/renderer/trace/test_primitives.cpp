@@ -8,6 +8,7 @@
 #include "render/camera.h"
 #include "render/frame.h"
 #include "render/shading.h"
+#include "scene/primitive_load.h"
 #include "scene/scene.h"
 #include "trace/primitive_trace.h"
 

@@ -14,6 +14,7 @@
 #include "io/image_file.h"
 #include "render/camera.h"
 #include "scene/scene.h"
+#include "scene/traced_objects.h"
 #include "trace/csg_trace.h"
 
 namespace softtrace {
@@ -71,7 +72,8 @@ class Membership {
 
  private:
   void add(const SceneObject& o) {
-    if (o.field) tracers_[&o] = std::make_unique<ObjectTracer>(o, LipschitzMode::Local);
+    if (o.field)
+      tracers_[&o] = std::make_unique<ObjectTracer>(trace_target(o), LipschitzMode::Local);
     if (o.csg)
       for (const SceneObject& a : o.csg->operands) add(a);
   }
@@ -113,7 +115,7 @@ double blob_top() {
     "objects": [{"field": )" + kBlob +
                                   "}]}",
                               "top.json");
-  const ObjectTracer tr(s.objects[0], LipschitzMode::Local);
+  const ObjectTracer tr(trace_target(s.objects[0]), LipschitzMode::Local);
   double lo = 0, hi = 20;  // inside at the origin, outside at 20
   for (int i = 0; i < 200 && lo < hi; ++i) {
     const double mid = 0.5 * (lo + hi);
@@ -165,7 +167,7 @@ TEST_P(CsgAgainstMarch, NoHolesNoFalseSurfacesNoAcne) {
   const Scene scene = parse_scene(scene_text(c), std::string(c.name) + ".json");
   const SceneObject& object = scene.objects[0];
   ASSERT_TRUE(object.csg);
-  const CsgTracer tracer(object, LipschitzMode::Local);
+  const CsgTracer tracer(traced_object(object), LipschitzMode::Local);
   const Membership m(object);
   const int w = 64, h = 48;
   const ViewCamera camera(scene.camera, w, h);
@@ -187,7 +189,8 @@ TEST_P(CsgAgainstMarch, NoHolesNoFalseSurfacesNoAcne) {
       const double slack = 1e-3 * (ray.cone0 + ray.cone * got.t) + 1e-9 * got.t;
       EXPECT_GE(got.t, ref.t - c.step - slack);
       EXPECT_LE(got.t, ref.t + slack);
-      ASSERT_NE(got.face, nullptr);
+      ASSERT_GT(got.face, 0);  // an operand of the object
+      const SceneObject& face = face_object(object, got.face);
       EXPECT_NEAR(length(got.normal), 1, 1e-9);
       // The shadow ray leaves as shading's does (by the footprint, on the side the viewer sees)
       // and must be blocked exactly where the march finds the solid along it.
@@ -195,8 +198,8 @@ TEST_P(CsgAgainstMarch, NoHolesNoFalseSurfacesNoAcne) {
       if (dot(n, ray.d) > 0) n = -n;
       if (dot(n, to_light) <= 0) continue;
       const Vec3 p = ray.o + ray.d * got.t;
-      const double offset = std::max(1e-4 * (got.face->field ? got.face->bounds.diagonal() : 0),
-                                     ray.cone0 + ray.cone * got.t);
+      const double offset =
+          std::max(1e-4 * (face.field ? face.bounds.diagonal() : 0), ray.cone0 + ray.cone * got.t);
       const Ray shadow{p + n * offset, to_light, 0, 0};
       TraceCounters shadow_work;
       const bool blocked = tracer.first_hit(shadow, 0, 1e3, shadow_work).hit;
@@ -263,13 +266,13 @@ TEST(Csg, ACutFaceTakesTheCuttersTurnedNormalAndMaterial) {
       {"name": "cutter", "material": {"color": [0, 0, 1]},
        "shape": {"type": "box", "corner1": [-1, -20, -20], "corner2": [40, 20, 20]}}]}]})",
                               "cut.json");
-  const CsgTracer tracer(s.objects[0], LipschitzMode::Local);
+  const CsgTracer tracer(traced_object(s.objects[0]), LipschitzMode::Local);
   TraceCounters work;
   const Ray ray{{30, 0.5, 0.5}, {-1, 0, 0}, 0, 0};
   const CsgHit h = tracer.first_hit(ray, 0, 100, work);
   ASSERT_TRUE(h.hit);
   EXPECT_NEAR(h.t, 31, 1e-9);  // the box's face at x = -1
-  EXPECT_EQ(h.face->name, "cutter");
+  EXPECT_EQ(face_object(s.objects[0], h.face).name, "cutter");
   EXPECT_NEAR(h.normal.x, 1, 1e-12);  // the box's outward normal there is -x, turned
   // Every span of the result lies in the solid, by membership at its midpoint.
   const Membership m(s.objects[0]);

@@ -143,7 +143,7 @@ TEST_P(FirstRoot, EveryPixelHitsTheFirstRoot) {
   const Case& c = cases()[GetParam()];
   const Scene& scene = *c.scene;
   // The reference marches fields; a shape object is traced in closed form instead, and checked
-  // against point membership in tests/test_primitives.cpp.
+  // against point membership in tests/renderer/trace/test_primitives.cpp.
   for (const SceneObject& o : scene.objects)
     if (!o.field)
       GTEST_SKIP() << "the scene has shape or CSG objects, which the reference does not march";

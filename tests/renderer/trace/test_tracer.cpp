@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "scene/traced_objects.h"
 #include "tracer_scenes.h"
 
 namespace softtrace {
@@ -17,7 +18,7 @@ class TracerVsReference : public testing::TestWithParam<std::tuple<int, Lipschit
 TEST_P(TracerVsReference, NeverSkipsASurface) {
   const Scene scene = parse_scene(kScenes[std::get<0>(GetParam())], "<test>");
   const SceneObject& obj = scene.objects[0];
-  const ObjectTracer tr(obj, std::get<1>(GetParam()));
+  const ObjectTracer tr(trace_target(obj), std::get<1>(GetParam()));
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   const Box& b = obj.bounds;
@@ -88,7 +89,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerVsReference,
 TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
   const Scene scene = parse_scene(kScenes[kBlobs], "<test>");
   const SceneObject& obj = scene.objects[0];
-  const ObjectTracer blobs(obj, LipschitzMode::Local), segments(obj, LipschitzMode::Global);
+  const ObjectTracer blobs(trace_target(obj), LipschitzMode::Local),
+      segments(trace_target(obj), LipschitzMode::Global);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   const double R = obj.bounds.diagonal();
@@ -128,7 +130,8 @@ TEST(BlobTracer, CapsulesAgreeWithTheSegmentTracerAndTheReference) {
          "distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":1.5}}]}}]})",
       "<test>");
   const SceneObject& obj = scene.objects[0];
-  const ObjectTracer blobs(obj, LipschitzMode::Local), segments(obj, LipschitzMode::Global);
+  const ObjectTracer blobs(trace_target(obj), LipschitzMode::Local),
+      segments(trace_target(obj), LipschitzMode::Global);
   ASSERT_TRUE(blobs.blob_sum()) << "capsules should take the polynomial path";
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -191,7 +194,7 @@ TEST(BoxCut, HitsOnTheCutFaceAreFlaggedWithTheFaceNormal) {
       R"({"camera":{"eye":[30,-40,20],"target":[0,0,0]},"objects":[{"bounds":[[-5,-5,-5],[5,5,0]],
           "field":{"type":"soft_object","distance":{"type":"lp_metric","radii":[8,8,8],"n":2}}}]})",
       "<test>");
-  const ObjectTracer tr(scene.objects[0], LipschitzMode::Local);
+  const ObjectTracer tr(trace_target(scene.objects[0]), LipschitzMode::Local);
   TraceCounters work;
   // Straight down onto the cut at z = 0, inside the ball's d <= 0.5 (radius 4).
   const MarchResult cut = tr.first_hit({{1, 1, 10}, {0, 0, -1}}, 0, 100, work);

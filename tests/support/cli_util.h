@@ -17,7 +17,7 @@ struct RunResult {
 // from a file.
 RunResult run_softtrace(const std::string& args, const std::string& stdin_file = "");
 
-// Runs any shell command line the same way (e.g. idiff, tests/regression.sh).
+// Runs any shell command line the same way (e.g. idiff, tests/integration/regression.sh).
 RunResult run_command(const std::string& command, const std::string& stdin_file = "");
 
 std::string source_path(const std::string& relative);  // a path in the source tree

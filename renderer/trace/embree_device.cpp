@@ -1,0 +1,71 @@
+#include "trace/embree_device.h"
+
+#include "trace/embree_scene.h"
+
+namespace softtrace {
+
+namespace {
+
+const char* error_name(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_UNKNOWN:
+      return "error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
+  }
+  return "error";
+}
+
+// "Embree failed <what>: <kind>[: <Embree's words>]", on one line.
+std::string error_text(const char* what, RTCError code, const std::string& message) {
+  std::string text = std::string("Embree failed ") + what + ": " + error_name(code);
+  if (!message.empty()) text += ": " + message;
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+}  // namespace
+
+EmbreeDevice::EmbreeDevice(const char* config) : device_(rtcNewDevice(config)) {
+  // A device that failed has no callback yet: Embree keeps its error for a null device.
+  if (!device_)
+    throw EmbreeError(error_text("creating its device", rtcGetDeviceError(nullptr), ""));
+  rtcSetDeviceErrorFunction(device_, on_error, this);
+}
+
+EmbreeDevice::~EmbreeDevice() {
+  rtcReleaseDevice(device_);
+}
+
+void EmbreeDevice::on_error(void* self, RTCError code, const char* message) {
+  auto* d = static_cast<EmbreeDevice*>(self);
+  const std::lock_guard<std::mutex> lock(d->mutex_);
+  if (d->code_ != RTC_ERROR_NONE) return;  // the first error is the cause; the rest follow it
+  d->code_ = code;
+  d->message_ = message ? message : "";
+  d->failed_.store(true, std::memory_order_relaxed);
+}
+
+void EmbreeDevice::check(const char* what) {
+  if (!failed()) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (code_ == RTC_ERROR_NONE) return;  // another thread's check took it
+  const std::string text = error_text(what, code_, message_);
+  code_ = RTC_ERROR_NONE;
+  message_.clear();
+  failed_.store(false, std::memory_order_relaxed);
+  throw EmbreeError(text);
+}
+
+}  // namespace softtrace
