@@ -41,6 +41,15 @@ struct SlotToSlot {
     def(kSlot, in.out);
   }
 };
+// A placement: a point register to a new one, whose box or segment pruning needs too.
+struct RegisterToRegister {
+  static constexpr bool kPlaces = true;
+  template <class Use, class Def>
+  static void operands(Instr& in, const Program&, const Use& use, const Def& def) {
+    use(kReg, in.in);
+    def(kReg, in.out);
+  }
+};
 // An n-ary instruction: its children's slots args[a..a+n) to a slot.
 struct SlotsToSlot {
   static constexpr bool kPlaces = false;

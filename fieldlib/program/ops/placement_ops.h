@@ -38,17 +38,11 @@ inline void place_segment(const Instr& in, const BoundsIO& io, bool rotate) {
 }
 
 // Register out = register in - t.
-struct TranslateOp {
-  static constexpr bool kPlaces = true;  // its box or segment is wanted by pruning too
+struct TranslateOp : RegisterToRegister {
   static constexpr bool kZeroWhenQuiet = false;
   static std::vector<double> constants(const Vec3& t) { return {t.x, t.y, t.z}; }
   static Vec3 load(const double* c) { return {c[0], c[1], c[2]}; }
 
-  template <class Use, class Def>
-  static void operands(Instr& in, const Program&, const Use& use, const Def& def) {
-    use(kReg, in.in);
-    def(kReg, in.out);
-  }
   static void values(const Instr& in, const LaneIO& io) {
     const double* t = io.K + in.a;
     for (int i = 0; i < 3; ++i) {
@@ -86,8 +80,7 @@ struct TranslateOp {
 };
 
 // Register out = Rt (register in - t).
-struct PlaceOp {
-  static constexpr bool kPlaces = true;
+struct PlaceOp : RegisterToRegister {
   static constexpr bool kZeroWhenQuiet = false;
   static std::vector<double> constants(const Vec3& t, const Mat3& Rt) {
     return {t.x,       t.y,       t.z,       Rt.r[0].x, Rt.r[0].y, Rt.r[0].z,
@@ -100,11 +93,6 @@ struct PlaceOp {
     return Rt;
   }
 
-  template <class Use, class Def>
-  static void operands(Instr& in, const Program&, const Use& use, const Def& def) {
-    use(kReg, in.in);
-    def(kReg, in.out);
-  }
   static void values(const Instr& in, const LaneIO& io) {
     const double* t = io.K + in.a;
     const double* M = t + 3;
