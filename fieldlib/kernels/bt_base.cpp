@@ -172,6 +172,17 @@ double BtOperator::eval(const double* x, const double* r, const double* m, doubl
   return bt_hyper(x, k(), r, p_.data(), m, dx, nullptr);
 }
 
+void BtOperator::range_derivatives(const double* x, const double* r, const double* m, double h,
+                                   const double* dx, double* dr) const {
+  if (conic_) {
+    const ConicParameterDerivatives d = bt2_conic_parameter_derivatives(x, r[0], r[1], p_[0], m);
+    dr[0] = d.r1;
+    dr[1] = d.r2;
+    return;
+  }
+  for (int i = 0; i < k(); ++i) dr[i] = dx[i] > 0 ? -dx[i] * (x[i] - m[i] * h) / r[i] : 0.0;
+}
+
 double BtOperator::value_tolerance(const double* x, double value, const double* r,
                                    const double* m) const {
   if (!std::isfinite(value)) return 0;

@@ -73,6 +73,12 @@ class BtOperator {
   double operator()(const double* x, double* dx) const { return eval(x, r_.data(), m_.data(), dx); }
   // With the ranges r and weights m replaced (bulge elimination's position functions, §7.6).
   double eval(const double* x, const double* r, const double* m, double* dx) const;
+  // ∂BT/∂r_i (docs/math.md §7.5) into dr at x with ranges r and weights m, given h = BT(x) and
+  // dx = ∂BT/∂x_i there. Hyper-ellipsoid: ∂T/∂r_i = p_i q_i^(p_i-1) u_i/r_i² with u = x - m h,
+  // so ∂BT/∂r_i = -∂_iBT·u_i/r_i; the conic: bt2_conic_parameter_derivatives. Zero outside the
+  // blend (u_j = 0 for the arg-min j, ∂_iBT = 0 for the others).
+  void range_derivatives(const double* x, const double* r, const double* m, double h,
+                         const double* dx, double* dr) const;
 
   // Bound on |computed BT(x) - exact BT(x)| for the given r, m (see the header comment).
   double value_tolerance(const double* x, double value, const double* r, const double* m) const;

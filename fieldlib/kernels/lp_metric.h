@@ -52,6 +52,31 @@ inline double lp_metric(const LpMetricParams& m, const Vec3& p, Vec3* grad) {
   return f;
 }
 
+// The Hessian of f = (Σ u_i^n)^(1/n), u_i = |x_i|/a_i: with g = ∇f,
+//   ∂²f/∂x_i∂x_j = (n - 1)/f · (δ_ij f^(2-n) u_i^(n-2)/a_i² - g_i g_j)
+// (differentiate g_i = (u_i/f)^(n-1) sgn(x_i)/a_i). False at the centre (f = 0) and, for n < 2,
+// on a coordinate plane, where u_i^(n-2) is unbounded and f has no Hessian.
+inline bool lp_metric_hessian(const LpMetricParams& m, const Vec3& p, Mat3* H) {
+  Vec3 g;
+  const double f = lp_metric(m, p, &g);
+  if (!(f > 0) || !std::isfinite(f)) return false;
+  const double n = m.n;
+  double d[3];
+  for (int i = 0; i < 3; ++i) {
+    const double u = std::abs(p[i]) * m.ia[i] / f;  // u_i/f <= 1: no overflow in the power
+    if (u == 0 && n < 2) {
+      if (n != 1) return false;
+      d[i] = 0;  // n = 1: f is linear off the planes, (n - 1) = 0 below
+    } else {
+      d[i] = (n == 2 ? 1.0 : std::pow(u, n - 2)) * m.ia[i] * m.ia[i];
+    }
+  }
+  const double c = (n - 1) / f;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) H->r[i][j] = c * ((i == j ? d[i] : 0.0) - g[i] * g[j]);
+  return std::isfinite(c);
+}
+
 // The terms u_i = |x_i|/a_i over `b`: |x_i| · fl(1/a_i), two roundings of at most 2^-53 relative
 // each, so widened by 2^-51 relative (and 2^-1074 for underflow) they hold the exact quotients.
 inline void lp_metric_terms(const LpMetricParams& m, const Box& b, Interval* u) {

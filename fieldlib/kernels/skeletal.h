@@ -33,6 +33,23 @@ inline double line_segment_distance(const LineSegmentParams& m, const Vec3& p, V
   return dist / m.r;
 }
 
+// The Hessian of |X - closest(X)|/r: the distance e has Hessian (I - n n^T - a a^T)/e beside the
+// segment (a its unit axis, n = (X - closest)/e) and (I - n n^T)/e beyond an end (a sphere's);
+// on the ends' planes the spherical side's (one-sided). False on the segment (e = 0).
+inline bool line_segment_hessian(const LineSegmentParams& m, const Vec3& p, Mat3* H) {
+  const double t = m.len2 > 0 ? dot(p - m.a, m.ab) / m.len2 : 0.0;
+  const Vec3 q = p - line_segment_closest(m, p);
+  const double e = length(q);
+  if (!(e > 0)) return false;
+  const Vec3 n = q / e;
+  const bool beside = t > 0 && t < 1;
+  const Vec3 a = beside ? m.ab / std::sqrt(m.len2) : Vec3{};
+  const double s = 1 / (e * m.r);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) H->r[i][j] = ((i == j ? 1.0 : 0.0) - n[i] * n[j] - a[i] * a[j]) * s;
+  return true;
+}
+
 // The value interval over `b`: the distance to a set is 1-Lipschitz, so over a box it is within
 // half a diagonal of the distance at the centre. (The Lipschitz bound is 1/r everywhere.)
 inline Interval line_segment_interval(const LineSegmentParams& m, const Box& b) {

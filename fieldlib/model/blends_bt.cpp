@@ -8,6 +8,7 @@
 
 #include "describe/building.h"
 #include "kernels/bt_base.h"
+#include "kernels/bulge_gradient.h"
 #include "math/bound_util.h"
 #include "math/scratch.h"
 #include "model/nary_node.h"
@@ -48,17 +49,18 @@ class BtBlend final : public NaryNode {
       if (need_g) g[i] = g[i] * sigma_[i];
     }
     double v;
+    Vec3 s;  // ∇BT
     if (bulge()) {
       const BulgeParameters b =
           bulge_parameters(g[0], g[1], op_.r().data(), op_.m().data(), omega_);
       v = op_.eval(x.data(), b.P, b.M, grad ? dx.data() : nullptr);
+      if (grad) s = position_terms(p, x.data(), g.data(), b, v, dx.data());
     } else {
       v = op_(x.data(), grad ? dx.data() : nullptr);
     }
     if (grad) {
-      Vec3 s;
-      for (int i = 0; i < k; ++i) s += g[i] * (dx[i] * tau_);
-      *grad = s;
+      for (int i = 0; i < k; ++i) s += g[i] * dx[i];
+      *grad = s * tau_;
     }
     return tau_ * v;
   }
@@ -100,6 +102,45 @@ class BtBlend final : public NaryNode {
   }
 
   bool bulge() const { return omega_ > 0; }
+
+  // The true gradient's terms from the position functions (blends_bt.h): Σ_i ∂_{r_i}BT ∇P_i +
+  // ∂_{m_i}BT ∇M_i at p, with ∂_{m_i}BT = -h ∂_iBT (§7.5); x, g the operands' values and
+  // gradients, b the position functions' values there, h = BT and dx = ∂_iBT.
+  Vec3 position_terms(const Vec3& p, const double* x, const Vec3* g, const BulgeParameters& b,
+                      double h, const double* dx) const {
+    if (dx[0] == 0 && dx[1] == 0) return {};
+    Mat3 H[2];
+    for (int i = 0; i < 2; ++i) H[i] = operand_hessian(i, p);
+    const BulgeGradients d = bulge_gradients(g, H, op_.r().data(), op_.m().data());
+    double dr[2];
+    op_.range_derivatives(x, b.P, b.M, h, dx, dr);
+    Vec3 s;
+    for (int i = 0; i < 2; ++i) s += d.P[i] * dr[i] + d.M[i] * (-h * dx[i]);
+    return s;
+  }
+
+  // The Hessian of the union operand σ_i f_i at p: the child's exact one (FieldNode::hessian)
+  // or, where it gives none, central differences of its gradient with the step δ = 1e-5·(1 +
+  // max|p_j|) (truncation O(δ²) times the third derivatives, rounding O(ε/δ) of |∇f|: both far
+  // below what moves a normal by 0.01 degrees on the scenes' scales), symmetrised.
+  Mat3 operand_hessian(int i, const Vec3& p) const {
+    Mat3 H;
+    if (!c_[i]->hessian(p, &H)) {
+      const double delta = 1e-5 * (1 + max_abs(p));
+      for (int j = 0; j < 3; ++j) {
+        Vec3 a = p, c = p, ga, gc;
+        a[j] += delta;
+        c[j] -= delta;
+        c_[i]->eval(a, &ga);
+        c_[i]->eval(c, &gc);
+        H.r[j] = (ga - gc) / (a[j] - c[j]);
+      }
+      for (int j = 0; j < 3; ++j)
+        for (int l = j + 1; l < 3; ++l) H.r[j][l] = H.r[l][j] = 0.5 * (H.r[j][l] + H.r[l][j]);
+    }
+    for (Vec3& row : H.r) row = row * sigma_[i];
+    return H;
+  }
 
   // A box containing {σ_i f_i <= t} (below) or {σ_i f_i >= t} (!below).
   Box child_region(int i, double t, bool below) const {

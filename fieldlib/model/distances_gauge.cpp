@@ -76,6 +76,7 @@ class LpMetric final : public FieldNode {
     const double amin = std::min({m_.a.x, m_.a.y, m_.a.z});
     return iv::up(1 / iv::down(amin * amin * f));
   }
+  bool hessian(const Vec3& p, Mat3* H) const override { return lp_metric_hessian(m_, p, H); }
 
  private:
   NodeBounds box_bounds(const Box& b) const override {

@@ -43,6 +43,7 @@ class Segment final : public FieldNode {
     const double e = distance_lower(b);
     return e > 0 ? iv::up(1 / iv::down(m_.r * e)) : std::numeric_limits<double>::infinity();
   }
+  bool hessian(const Vec3& p, Mat3* H) const override { return line_segment_hessian(m_, p, H); }
   Box region(double level, Side side) const override {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();

@@ -59,6 +59,11 @@ class FieldNode : public Oracle {
   virtual double hessian_bound(const Box& b) const {
     return std::numeric_limits<double>::infinity();
   }
+  // The exact Hessian of f at p into *H (symmetric, row-major), for the same blends' true
+  // gradient (∇P_i and ∇M_i need ∇cosθ and ∇G, docs/math.md §7.6). False where the kind has no
+  // closed form or f has no Hessian at p (a skeleton, a kink); the blend then differences the
+  // gradient instead (blends_bt.h).
+  virtual bool hessian(const Vec3& p, Mat3* H) const { return false; }
 
   // Emits this node's subtree into a flat program (program.h), reading point register `reg`;
   // returns the slot of its value. The default is one oracle instruction that calls this node's

@@ -40,6 +40,13 @@ class Placed final : public FieldNode {
   // A rigid motion keeps gradient lengths and Hessian norms.
   double gradient_floor(const Box& b) const override { return child_->gradient_floor(to_local(b)); }
   double hessian_bound(const Box& b) const override { return child_->hessian_bound(to_local(b)); }
+  // H = R H_local R^T.
+  bool hessian(const Vec3& p, Mat3* H) const override {
+    Mat3 local;
+    if (!child_->hessian(Rt_ * (p - t_), &local)) return false;
+    *H = times(times(R_, local), Rt_);
+    return true;
+  }
   // A pure translation is three subtractions; a rotation one matrix.
   int compile(ProgramBuilder& b, int reg) const override {
     Instr i{rotated_ ? Op::Place : Op::Translate};
@@ -125,6 +132,12 @@ class AffinePlaced final : public FieldNode {
   }
   double hessian_bound(const Box& b) const override {
     return iv::up(iv::up(child_->hessian_bound(to_local(b)) * norm_M_) * norm_M_);
+  }
+  bool hessian(const Vec3& p, Mat3* H) const override {
+    Mat3 local;
+    if (!child_->hessian(M_ * (p - t_), &local)) return false;
+    *H = times(times(Mt_, local), M_);
+    return true;
   }
   Box region(double level, Side side) const override {
     const Box local = child_->region(level, side);

@@ -24,6 +24,11 @@ class ScaledNode : public FieldNode {
   double hessian_bound(const Box& b) const override {
     return iv::up(std::abs(s_) * child_->hessian_bound(b));
   }
+  bool hessian(const Vec3& p, Mat3* H) const override {
+    if (!child_->hessian(p, H)) return false;
+    for (Vec3& row : H->r) row = row * s_;
+    return true;
+  }
 
  protected:
   NodePtr child_;

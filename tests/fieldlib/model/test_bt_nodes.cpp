@@ -1,6 +1,6 @@
 // The BT_k nodes and offset (blends_bt.h, offset.h): convention and parameter checks with
 // located errors, the duals and BD_k against the scalar operator, per-box Lipschitz tightening,
-// and bulge elimination ([BE-1]..[BE-5], value continuity, the frozen-parameter gradient,
+// and bulge elimination ([BE-1]..[BE-5], value continuity, the true gradient,
 // interval and region soundness).
 #include <gtest/gtest.h>
 
@@ -291,14 +291,16 @@ TEST(BulgeElimination, ValueContinuity) {
     }
 }
 
-// docs/math.md's implementation choice: the gradient is the paper's partial gradient, i.e. the
-// gradient of BT(f(X); P(X0), M(X0)) with the position functions frozen at X0.
-TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
+// The value is BT(f(X); P(X), M(X)) with the position functions of bt_base.h at X, and the
+// gradient is the true one (docs/math.md §7.6): the partial gradient with P and M frozen at X0
+// (central differences of the frozen function) plus the position terms, so it differs from the
+// frozen partial where the normals' angle varies.
+TEST(BulgeElimination, ValueUsesThePositionFunctionsAndTheGradientTheirSlopes) {
   const NodePtr f1 = build_from_json(kCylZ, kZero), f2 = build_from_json(kCylX, kZero);
   const NodePtr n = build_from_json(blend("bt_union", kBulgeBases[0], {kCylZ, kCylX}), kZero);
   const double r[2] = {0.3, 0.2}, m[2] = {1, 0.5};
   Rng g(36);
-  int blending = 0;
+  int blending = 0, apart = 0;
   for (int s = 0; s < 3000; ++s) {
     const Vec3 X0 = point_in(g, Box({-0.8, 0.05, -0.8}, {0.8, 0.8, 0.8}));
     Vec3 g1, g2;
@@ -309,54 +311,59 @@ TEST(BulgeElimination, GradientIsThePartialGradientWithFrozenParameters) {
       return bt2_conic(x, b.P[0], b.P[1], 0, b.M, nullptr);
     };
     ASSERT_EQ(n->value(X0), frozen(X0));
-    if (conic_region_ii(x0, b.P[0], b.P[1], b.M)) ++blending;
-    const Vec3 grad = n->gradient(X0);
-    const double h = 1e-6;
+    if (!conic_region_ii(x0, b.P[0], b.P[1], b.M)) continue;
+    ++blending;
+    Vec3 partial;
     for (int i = 0; i < 3; ++i) {
       Vec3 a = X0, c = X0;
-      a[i] += h;
-      c[i] -= h;
-      const double fd = (frozen(a) - frozen(c)) / (2 * h);
-      Vec3 a2 = X0, c2 = X0;  // skip the kink of min (the quotients disagree there)
-      a2[i] += 2 * h;
-      c2[i] -= 2 * h;
-      if (std::abs(fd - (frozen(a2) - frozen(c2)) / (4 * h)) > 1e-5) continue;
-      ASSERT_NEAR(grad[i], fd, 1e-5 * (1 + std::abs(fd)));
+      a[i] += 1e-6;
+      c[i] -= 1e-6;
+      partial[i] = (frozen(a) - frozen(c)) / 2e-6;
     }
+    if (length(n->gradient(X0) - partial) > 1e-3 * length(partial)) ++apart;
   }
   EXPECT_GT(blending, 100);
+  EXPECT_GT(apart, blending / 2) << "the position terms are part of the gradient";
 }
 
-// The exact gradient needs the children's Hessians (docs/math.md §7.6), so the shading normal is
-// the partial gradient. Near the zero surface of the crossing cylinders it stays within a few
-// degrees of the evaluated field's central-difference gradient (measured: mean 0.2°, max 3.7°).
-TEST(BulgeElimination, PartialGradientIsCloseToTheNormalNearTheSurface) {
-  for (const std::string& base : kBulgeBases) {
-    const NodePtr n = build_from_json(blend("bt_union", base, {kCylZ, kCylX}), kZero);
-    Rng g(38);
-    double worst = 0, sum = 0;
-    int count = 0;
-    for (int s = 0; s < 200000 && count < 1000; ++s) {
-      const Vec3 X = point_in(g, Box({-0.8, -0.8, -0.8}, {0.8, 0.8, 0.8}));
-      if (std::abs(n->value(X)) > 0.01) continue;
-      Vec3 fd;
-      for (int i = 0; i < 3; ++i) {
-        Vec3 a = X, c = X;
-        a[i] += 1e-6;
-        c[i] -= 1e-6;
-        fd[i] = (n->value(a) - n->value(c)) / 2e-6;
+// The gradient is the true gradient of the evaluated field (docs/math.md §7.6): near the zero
+// surface of the crossing cylinders it matches the central differences of the value to 0.1
+// degrees for every base and dual, skipping points within ~1e-5 of a kink (two steps disagree).
+TEST(BulgeElimination, GradientMatchesCentralDifferencesNearTheSurface) {
+  for (const std::string& base : kBulgeBases)
+    for (const char* type : {"bt_union", "bt_intersection", "bt_difference"}) {
+      const NodePtr n = build_from_json(blend(type, base, {kCylZ, kCylX}), kZero);
+      Rng g(38);
+      double worst = 0;
+      int count = 0, skipped = 0;
+      for (int s = 0; s < 200000 && count < 1000; ++s) {
+        const Vec3 X = point_in(g, Box({-0.8, -0.8, -0.8}, {0.8, 0.8, 0.8}));
+        if (std::abs(n->value(X)) > 0.01) continue;
+        Vec3 fd[2];
+        for (int k = 0; k < 2; ++k)
+          for (int i = 0; i < 3; ++i) {
+            const double h = k == 0 ? 1e-6 : 4e-6;
+            Vec3 a = X, c = X;
+            a[i] += h;
+            c[i] -= h;
+            fd[k][i] = (n->value(a) - n->value(c)) / (2 * h);
+          }
+        const auto angle = [](const Vec3& u, const Vec3& v) {
+          const double cosine = dot(u, v) / (length(u) * length(v));
+          return std::acos(std::min(1.0, cosine)) * 180 / M_PI;
+        };
+        ++count;
+        if (angle(fd[0], fd[1]) > 0.01) {
+          ++skipped;
+          continue;
+        }
+        const double degrees = angle(n->gradient(X), fd[0]);
+        worst = std::max(worst, degrees);
+        ASSERT_LT(degrees, 0.1) << type << " " << base << " at " << X.x << " " << X.y << " " << X.z;
       }
-      const Vec3 grad = n->gradient(X);
-      const double cosine = dot(grad, fd) / (length(grad) * length(fd));
-      const double degrees = std::acos(std::min(1.0, cosine)) * 180 / M_PI;
-      worst = std::max(worst, degrees);
-      sum += degrees;
-      ++count;
+      EXPECT_GE(count, 500) << type << " " << base;  // the thinnest dual has ~560 in the box
+      EXPECT_LE(skipped, count / 50) << type << " " << base;
     }
-    EXPECT_EQ(count, 1000);
-    EXPECT_LT(sum / count, 1.0) << base;
-    EXPECT_LT(worst, 10.0) << base;
-  }
 }
 
 TEST(BulgeElimination, BoundsAreSound) {
