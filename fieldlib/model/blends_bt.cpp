@@ -108,7 +108,8 @@ class BtBlend final : public NaryNode {
   // gradients, b the position functions' values there, h = BT and dx = ∂_iBT.
   Vec3 position_terms(const Vec3& p, const double* x, const Vec3* g, const BulgeParameters& b,
                       double h, const double* dx) const {
-    if (dx[0] == 0 && dx[1] == 0) return {};
+    // Outside both terms, or at an infinite value (an infinite child), P and M do not matter.
+    if ((dx[0] == 0 && dx[1] == 0) || !std::isfinite(h)) return {};
     Mat3 H[2];
     for (int i = 0; i < 2; ++i) H[i] = operand_hessian(i, p);
     const BulgeGradients d = bulge_gradients(g, H, op_.r().data(), op_.m().data());

@@ -34,9 +34,11 @@
 // from the union operands' gradients g_i = σ_i ∇f_i (so a dual uses the angle between the
 // gradients its union sees). A conic base then needs p < ω² r1 r2 so that p < P_1 P_2 at
 // every X (checked at load time).
-// - Gradient: docs/math.md's implementation choice, the paper's partial gradient Σ ∂_iBT σ_i ∇f_i
-//   with P and M frozen at X. The exact gradient adds ∂_rBT ∇P + ∂_mBT ∇M, which needs the
-//   children's Hessians (through cosθ and G = |∇f_1|/|∇f_2|); nodes do not provide them.
+// - Gradient: the true one (docs/math.md §7.6), not the paper's partial Σ ∂_iBT g_i with P and M
+//   frozen at X: ∇BT = Σ_i ∂_iBT ∇g_i + Σ_i (∂_{r_i}BT ∇P_i + ∂_{m_i}BT ∇M_i), ∂_{r_i}BT from
+//   BtOperator::range_derivatives, ∂_{m_i}BT = -BT ∂_iBT, ∇P_i and ∇M_i from the operands'
+//   Hessians through ∇cosθ and ∇G (kernels/bulge_gradient.h). A child's Hessian is its exact
+//   FieldNode::hessian where the kind has one, else central differences of its gradient.
 // - Lipschitz over a box B, derived; +inf globally, and wherever a child gives no gradient floor
 //   or Hessian bound (node.h). With c = 1 - cosθ + ω, P_i = r_i c:
 //     ∇BT = Σ_i ∂_iBT ∇x_i + ∂_cBT ∇c + Σ_i ∂_{M_i}BT ∇M_i.
