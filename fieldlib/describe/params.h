@@ -87,9 +87,9 @@ class Params {
   const json* j_;
   std::string pointer_;
   std::shared_ptr<const std::string> file_;
-  mutable std::set<std::string> used_;
-  mutable std::set<std::string> wanted_;    // every key asked for, present or not
-  mutable std::vector<std::string> known_;  // check_keys' list; empty: any key may be read
+  mutable std::vector<std::string> used_;    // keys read, each once
+  mutable std::vector<std::string> wanted_;  // every key asked for, present or not, each once
+  mutable std::vector<std::string> known_;   // check_keys' list; empty: any key may be read
 };
 
 std::string json_pointer_escape(const std::string& key);

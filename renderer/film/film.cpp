@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "film/srgb_bytes.h"
 #include "io/image_file.h"
 
 #ifndef SOFTTRACE_VERSION
@@ -15,11 +16,6 @@ namespace softtrace {
 namespace {
 
 const char* const kImageExtensions[] = {".exr", ".png", nullptr};
-
-float srgb_encode(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
-}
 
 ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo& info,
                     ExrExtras& extras) {
@@ -72,14 +68,15 @@ PngPixels png_pixels(const Film& film, const OutputOptions& opt, const FrameInfo
   PngPixels png{film.width, film.height, nc, {}};
   const size_t npix = size_t(film.width) * film.height;
   png.bytes.resize(npix * nc);
+  const SrgbBytes& srgb_byte = SrgbBytes::get();
   for (size_t i = 0; i < npix; ++i) {
     uint8_t* out = &png.bytes[i * nc];
     const float* in = &film.rgba[i * 4];
     // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
     for (int k = 0; k < 3; ++k)
-      out[k] = png_sample(srgb_encode(opt.png_alpha && !opt.flatten
-                                          ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
-                                          : in[k] + float(info.background[k]) * (1 - in[3])));
+      out[k] = srgb_byte(opt.png_alpha && !opt.flatten
+                             ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
+                             : in[k] + float(info.background[k]) * (1 - in[3]));
     if (opt.png_alpha) out[3] = png_sample(opt.flatten ? 1.0f : in[3]);
   }
   return png;
