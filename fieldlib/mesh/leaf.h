@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "eval/eval.h"
 #include "mesh/lattice.h"
 #include "mesh/mesh.h"
+#include "mesh/sampler.h"
 
 namespace softtrace {
 
@@ -51,25 +51,27 @@ struct LeafMesh {
 // The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
 // the cap's face axis where the cap (`capped`: the vertex's edge reaches the padding) is what p
 // lies on, and the edge's direction `out` at a critical point of the field. Computed once per
-// welded vertex (mesh.cpp); `ws` fitted to the program.
-Vec3 vertex_normal(const MeshField& field, const Lattice& lattice, const Vec3& p, bool capped,
-                   const Vec3& out, Workspace& ws);
+// welded vertex (mesh.cpp).
+Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
+                   const Vec3& p, bool capped, const Vec3& out, SamplerScratch& scratch);
 
 class LeafMesher {
  public:
-  LeafMesher(const MeshField& field, const Lattice& lattice) : field_(field), lattice_(lattice) {}
+  LeafMesher(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice)
+      : field_(field), sampler_(sampler), lattice_(lattice) {}
 
   // Meshes cells c0..c1-1 (per axis) into *out (cleared first).
-  void run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* out);
+  void run(const int c0[3], const int c1[3], SamplerScratch& scratch, LeafMesh* out);
 
  private:
   bool inside(double f) const { return field_.inside_sign > 0 ? f >= field_.iso : f <= field_.iso; }
   // The function whose zero the vertex is: g = inside_sign (f - iso), >= 0 inside, and on an
   // edge from a padding point the solid cut by the lattice box, min(g, inside distance).
   double solved(double f, const Vec3& p, bool capped) const;
-  void solve_edges(Code code, Workspace& ws, LeafMesh* out);
+  void solve_edges(SamplerScratch& scratch, LeafMesh* out);
 
   const MeshField& field_;
+  const FieldSampler& sampler_;
   const Lattice& lattice_;
   int m_[3] = {0, 0, 0};  // points per axis in the block
   std::vector<double> values_;

@@ -24,18 +24,18 @@ struct Block {
   int lo[3], hi[3];  // cells [lo, hi) per axis
 };
 
-// Runs job(i, workspace) for i < count on `threads` threads; rethrows the first exception.
+// Runs job(i, scratch) for i < count on `threads` threads; rethrows the first exception.
 template <class Job>
 void parallel_for(size_t count, int threads, const std::atomic<bool>* cancel, Job job) {
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto work = [&] {
-    Workspace ws;
+    SamplerScratch scratch;
     try {
       for (size_t i; (i = next++) < count;) {
         if (cancel && cancel->load(std::memory_order_relaxed)) throw MeshCancelled();
-        job(i, ws);
+        job(i, scratch);
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(error_mutex);
@@ -143,8 +143,8 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
                          std::min(k + top, cells[2])}});
   std::vector<std::vector<Block>> found(tops.size());
   std::atomic<size_t> tops_done{0};
-  parallel_for(tops.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
-    find_leaves(field, lattice, tops[i], ws, &found[i]);
+  parallel_for(tops.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
+    find_leaves(field, lattice, tops[i], s.ws, &found[i]);
     report(0.1 * double(++tops_done) / double(tops.size()));
   });
   std::vector<Block> leaves;
@@ -154,8 +154,9 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   // Pass 2: the leaves, each on its own.
   std::vector<LeafMesh> parts(leaves.size());
   std::atomic<size_t> leaves_done{0};
-  parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
-    LeafMesher(field, lattice).run(leaves[i].lo, leaves[i].hi, ws, &parts[i]);
+  const FieldSampler sampler(*field.program);
+  parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
+    LeafMesher(field, sampler, lattice).run(leaves[i].lo, leaves[i].hi, s, &parts[i]);
     report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
   });
 
@@ -247,10 +248,10 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   m.normals.resize(m.vertices.size());
   const size_t chunks = (m.vertices.size() + kChunk - 1) / kChunk;
   std::atomic<size_t> chunks_done{0};
-  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, Workspace& ws) {
-    ws.fit(*field.program);
+  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch& s) {
     for (size_t v = c * kChunk; v < std::min(m.vertices.size(), (c + 1) * kChunk); ++v)
-      m.normals[v] = vertex_normal(field, lattice, m.vertices[v], capped[v], outward[v], ws);
+      m.normals[v] =
+          vertex_normal(field, sampler, lattice, m.vertices[v], capped[v], outward[v], s);
     report(0.9 + 0.1 * double(++chunks_done) / double(chunks));
   });
   m.colors.assign(m.vertices.size(), options.color);
