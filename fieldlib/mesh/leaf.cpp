@@ -20,8 +20,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
   out->keys.clear();
   out->place.clear();
   out->positions.clear();
-  out->outward.clear();
-  out->capped.clear();
+  out->edge.clear();
   out->cuts.clear();
   edges_.clear();
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
@@ -85,6 +84,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
     e.a = at(pa);
     e.b = at(pb);
     e.capped = padded(pa) || padded(pb);
+    e.code = uint8_t(d | (lo == in ? 0 : kEdgeDown) | (e.capped ? kEdgeCapped : 0));
     e.ga = solved(values_[pa], e.a, e.capped);
     e.gb = solved(values_[pb], e.b, e.capped);
     e.solve = place != EdgePlace::Borrowed;
@@ -111,6 +111,10 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
       }
 
   solve_edges(scratch, out);
+  // Every leaf's mesh is kept until the weld: without the growth's slack.
+  out->keys.shrink_to_fit();
+  out->place.shrink_to_fit();
+  out->cuts.shrink_to_fit();
 }
 
 namespace {
@@ -209,29 +213,27 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
   }
 
   out->positions.resize(n);
-  out->outward.resize(n);
-  out->capped.resize(n);
+  out->edge.resize(n);
   for (size_t id = 0; id < n; ++id) {
     const double s =
         edges_[id].solve ? std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin) : state[id].t;
     const Edge& e = edges_[id];
     out->positions[id] = e.a + s * (e.b - e.a);
-    out->outward[id] = e.b - e.a;
-    out->capped[id] = e.capped;
+    out->edge[id] = e.code;
   }
 }
 
 Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
-                   const Vec3& p, bool capped, const Vec3& out, SamplerScratch& scratch) {
+                   const Vec3& p, uint8_t edge, SamplerScratch& scratch) {
   // Outward is where inside_sign (f - iso) falls: -inside_sign grad f; on the cap, the face's.
   Vec3 grad;
   const double f = sampler.gradient(p, &grad, scratch);
   Vec3 nrm = grad * -field.inside_sign;
   const double g = field.inside_sign > 0 ? f - field.iso : field.iso - f;
-  if (capped && lattice.inside_distance(p) < g) nrm = lattice.cap_normal(p);
+  if ((edge & kEdgeCapped) && lattice.inside_distance(p) < g) nrm = lattice.cap_normal(p);
   const double len = length(nrm);
   // A critical point on the surface has no normal: the edge's direction out stands in.
-  return len > 0 && std::isfinite(len) ? nrm / len : normalize(out);
+  return len > 0 && std::isfinite(len) ? nrm / len : normalize(edge_outward(edge));
 }
 
 }  // namespace softtrace

@@ -196,8 +196,11 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   Mesh m;
   m.lattice = lattice.box;
   m.voxel = lattice.h;
-  std::vector<Vec3> outward;    // each welded vertex's edge direction out (vertex_normal)
-  std::vector<uint8_t> capped;  // and whether its edge reaches the padding
+  size_t welded = 0;
+  for (uint64_t s : same) welded += s == kKeep;
+  m.vertices.reserve(welded);
+  std::vector<uint8_t> edge;  // each welded vertex's EdgeCode (vertex_normal)
+  edge.reserve(welded);
   for (size_t i = 0; i < parts.size(); ++i) {
     const LeafMesh& p = parts[i];
     for (size_t v = 0; v < p.keys.size(); ++v) {
@@ -205,8 +208,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
       if (same[g] != kKeep) continue;
       index[g] = uint32_t(m.vertices.size());
       m.vertices.push_back(p.positions[v]);
-      outward.push_back(p.outward[v]);
-      capped.push_back(p.capped[v]);
+      edge.push_back(p.edge[v]);
     }
     if (m.vertices.size() > size_t(UINT32_MAX))
       throw std::length_error("the mesh would have more than 2^32 vertices or faces");
@@ -250,8 +252,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   std::atomic<size_t> chunks_done{0};
   parallel_for(chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch& s) {
     for (size_t v = c * kChunk; v < std::min(m.vertices.size(), (c + 1) * kChunk); ++v)
-      m.normals[v] =
-          vertex_normal(field, sampler, lattice, m.vertices[v], capped[v], outward[v], s);
+      m.normals[v] = vertex_normal(field, sampler, lattice, m.vertices[v], edge[v], s);
     report(0.9 + 0.1 * double(++chunks_done) / double(chunks));
   });
   m.colors.assign(m.vertices.size(), options.color);
