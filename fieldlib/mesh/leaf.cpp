@@ -144,6 +144,7 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     double rx = 0, rg = 0;  // and the one before that (none before the first step)
     double t = -1;          // the solution, once found
     uint8_t slow = 0;       // steps in a row that did not halve the bracket
+    uint8_t steps = 0;      // steps taken
   };
   std::vector<State> state(n);
   std::vector<uint32_t> active;
@@ -162,54 +163,53 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
       st.t = 0;  // ga == 0: the inside end is on the surface
   }
   double x[kBatch], y[kBatch], z[kBatch], f[kBatch], at[kBatch];
-  for (int step = 0; !active.empty(); ++step) {
-    size_t kept = 0;
-    for (size_t first = 0; first < active.size(); first += kBatch) {
-      const int m = int(std::min<size_t>(kBatch, active.size() - first));
-      for (int l = 0; l < m; ++l) {
-        const State& st = state[active[first + l]];
-        const IllinoisBracket& b = st.bracket;
-        double s = step > 0 ? inverse_quadratic(st.rx, st.rg, st.qx, st.qg, st.px, st.pg)
-                            : b.false_position();
-        if (!(s > b.hi && s < b.lo)) s = b.false_position();
-        if (st.slow >= 2 || !(s > b.hi && s < b.lo)) s = 0.5 * (b.lo + b.hi);
-        at[l] = s;
-        const Edge& e = edges_[active[first + l]];
-        const Vec3 p = e.a + s * (e.b - e.a);
-        x[l] = p.x, y[l] = p.y, z[l] = p.z;
-      }
-      sampler_.values(x, y, z, m, f, scratch);
-      for (int l = 0; l < m; ++l) {
-        const uint32_t id = active[first + l];
-        State& st = state[id];
-        IllinoisBracket& b = st.bracket;
-        const double g = solved(f[l], {x[l], y[l], z[l]}, edges_[id].capped);
-        const double width = b.lo - b.hi;
-        if (g == 0) {
-          st.t = at[l];
-          continue;
-        }
-        b.update(at[l], g, g > 0);
-        st.slow = b.lo - b.hi > 0.5 * width && st.slow < 2 ? st.slow + 1 : 0;
-        const double secant = g * (at[l] - st.px) / (g - st.pg);  // the secant's next step
-        st.rx = st.qx;
-        st.rg = st.qg;
-        st.qx = st.px;
-        st.qg = st.pg;
-        st.px = at[l];
-        st.pg = g;
-        if (b.lo - b.hi <= kEdgeTolerance || step >= 200) {
-          st.t = b.false_position();
-        } else if (std::abs(secant) <= kEdgeTolerance) {
-          st.t = at[l] - secant;
-        } else {
-          active[kept++] = id;
-          continue;
-        }
-        if (!(st.t >= b.hi && st.t <= b.lo)) st.t = 0.5 * (b.lo + b.hi);
-      }
+  // A queue: an edge not done goes to the back, so that every batch but the leaf's last is full
+  // (the evaluator's cost is mostly per batch). Each edge's steps are the same in any order.
+  for (size_t first = 0, m; first < active.size(); first += m) {
+    m = std::min<size_t>(kBatch, active.size() - first);
+    for (size_t l = 0; l < m; ++l) {
+      const State& st = state[active[first + l]];
+      const IllinoisBracket& b = st.bracket;
+      double s = st.steps > 0 ? inverse_quadratic(st.rx, st.rg, st.qx, st.qg, st.px, st.pg)
+                              : b.false_position();
+      if (!(s > b.hi && s < b.lo)) s = b.false_position();
+      if (st.slow >= 2 || !(s > b.hi && s < b.lo)) s = 0.5 * (b.lo + b.hi);
+      at[l] = s;
+      const Edge& e = edges_[active[first + l]];
+      const Vec3 p = e.a + s * (e.b - e.a);
+      x[l] = p.x, y[l] = p.y, z[l] = p.z;
     }
-    active.resize(kept);
+    sampler_.values(x, y, z, int(m), f, scratch);
+    for (size_t l = 0; l < m; ++l) {
+      const uint32_t id = active[first + l];
+      State& st = state[id];
+      IllinoisBracket& b = st.bracket;
+      const double g = solved(f[l], {x[l], y[l], z[l]}, edges_[id].capped);
+      const double width = b.lo - b.hi;
+      if (g == 0) {
+        st.t = at[l];
+        continue;
+      }
+      b.update(at[l], g, g > 0);
+      st.slow = b.lo - b.hi > 0.5 * width && st.slow < 2 ? st.slow + 1 : 0;
+      const double secant = g * (at[l] - st.px) / (g - st.pg);  // the secant's next step
+      st.rx = st.qx;
+      st.rg = st.qg;
+      st.qx = st.px;
+      st.qg = st.pg;
+      st.px = at[l];
+      st.pg = g;
+      if (b.lo - b.hi <= kEdgeTolerance || st.steps >= 200) {
+        st.t = b.false_position();
+      } else if (std::abs(secant) <= kEdgeTolerance) {
+        st.t = at[l] - secant;
+      } else {
+        ++st.steps;
+        active.push_back(id);
+        continue;
+      }
+      if (!(st.t >= b.hi && st.t <= b.lo)) st.t = 0.5 * (b.lo + b.hi);
+    }
   }
 
   out->positions.resize(n);

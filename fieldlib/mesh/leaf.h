@@ -32,8 +32,6 @@ enum class EdgePlace : uint8_t {
   Borrowed,  // on a lower face: its position is the solving leaf's (mesh.cpp's weld)
 };
 
-// The polygon a tetrahedron cuts: a triangle, or a quadrilateral (v[3] too) that the mesher splits
-// along its shorter diagonal once every position is known (after the weld).
 // What the normal needs of a vertex's lattice edge, in a byte (a vertex keeps it until the
 // normals are taken, after the weld): the edge's axes (bits 0-2, its key's direction), whether it
 // runs down them from its inside end to its outside end (kEdgeDown) and whether an end is a
@@ -45,6 +43,8 @@ inline Vec3 edge_outward(uint8_t code) {
   return {code & 1 ? s : 0.0, code & 2 ? s : 0.0, code & 4 ? s : 0.0};
 }
 
+// The polygon a tetrahedron cuts: a triangle, or a quadrilateral (v[3] too) that the mesher splits
+// along its shorter diagonal once every position is known (after the weld).
 struct LeafCut {
   uint32_t v[4];  // indices into the leaf's vertices, counter-clockwise seen from outside
   bool quad;
