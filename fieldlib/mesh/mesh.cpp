@@ -173,7 +173,13 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     for (size_t v = 0; v < parts[i].keys.size(); ++v)
       if (parts[i].place[v] != EdgePlace::Interior)
         boundary.emplace_back(parts[i].keys[v], first[i] + v);
-  std::sort(boundary.begin(), boundary.end());
+  // Sorted in halves on two threads, then merged (the pairs are distinct: one order).
+  const auto half = boundary.begin() + std::ptrdiff_t(boundary.size() / 2);
+  parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
+    if (h == 0) std::sort(boundary.begin(), half);
+    if (h == 1) std::sort(half, boundary.end());
+  });
+  std::inplace_merge(boundary.begin(), half, boundary.end());
   constexpr uint64_t kKeep = ~uint64_t(0);
   std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
   for (size_t b = 0, end; b < boundary.size(); b = end) {
