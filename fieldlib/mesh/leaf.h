@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "eval/eval.h"
 #include "mesh/lattice.h"
 #include "mesh/mesh.h"
+#include "mesh/sampler.h"
 
 namespace softtrace {
 
@@ -32,6 +32,17 @@ enum class EdgePlace : uint8_t {
   Borrowed,  // on a lower face: its position is the solving leaf's (mesh.cpp's weld)
 };
 
+// What the normal needs of a vertex's lattice edge, in a byte (a vertex keeps it until the
+// normals are taken, after the weld): the edge's axes (bits 0-2, its key's direction), whether it
+// runs down them from its inside end to its outside end (kEdgeDown) and whether an end is a
+// padding point (kEdgeCapped).
+constexpr uint8_t kEdgeDown = 8, kEdgeCapped = 16;
+// The direction from the edge's inside end to its outside end (not of unit length).
+inline Vec3 edge_outward(uint8_t code) {
+  const double s = code & kEdgeDown ? -1 : 1;
+  return {code & 1 ? s : 0.0, code & 2 ? s : 0.0, code & 4 ? s : 0.0};
+}
+
 // The polygon a tetrahedron cuts: a triangle, or a quadrilateral (v[3] too) that the mesher splits
 // along its shorter diagonal once every position is known (after the weld).
 struct LeafCut {
@@ -43,33 +54,34 @@ struct LeafMesh {
   std::vector<uint64_t> keys;  // each vertex's lattice edge
   std::vector<EdgePlace> place;
   std::vector<Vec3> positions;  // not a number where Borrowed
-  std::vector<Vec3> outward;    // the edge from its inside end to its outside end
-  std::vector<uint8_t> capped;  // 1: an end of the edge is a padding point
+  std::vector<uint8_t> edge;    // each vertex's EdgeCode
   std::vector<LeafCut> cuts;
 };
 
 // The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
-// the cap's face axis where the cap (`capped`: the vertex's edge reaches the padding) is what p
-// lies on, and the edge's direction `out` at a critical point of the field. Computed once per
-// welded vertex (mesh.cpp); `ws` fitted to the program.
-Vec3 vertex_normal(const MeshField& field, const Lattice& lattice, const Vec3& p, bool capped,
-                   const Vec3& out, Workspace& ws);
+// the cap's face axis where the cap (the vertex's edge reaches the padding) is what p lies on,
+// and the edge's direction out at a critical point of the field. `edge` is the vertex's EdgeCode.
+// Computed once per welded vertex (mesh.cpp).
+Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
+                   const Vec3& p, uint8_t edge, SamplerScratch& scratch);
 
 class LeafMesher {
  public:
-  LeafMesher(const MeshField& field, const Lattice& lattice) : field_(field), lattice_(lattice) {}
+  LeafMesher(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice)
+      : field_(field), sampler_(sampler), lattice_(lattice) {}
 
   // Meshes cells c0..c1-1 (per axis) into *out (cleared first).
-  void run(const int c0[3], const int c1[3], Workspace& ws, LeafMesh* out);
+  void run(const int c0[3], const int c1[3], SamplerScratch& scratch, LeafMesh* out);
 
  private:
   bool inside(double f) const { return field_.inside_sign > 0 ? f >= field_.iso : f <= field_.iso; }
   // The function whose zero the vertex is: g = inside_sign (f - iso), >= 0 inside, and on an
   // edge from a padding point the solid cut by the lattice box, min(g, inside distance).
   double solved(double f, const Vec3& p, bool capped) const;
-  void solve_edges(Code code, Workspace& ws, LeafMesh* out);
+  void solve_edges(SamplerScratch& scratch, LeafMesh* out);
 
   const MeshField& field_;
+  const FieldSampler& sampler_;
   const Lattice& lattice_;
   int m_[3] = {0, 0, 0};  // points per axis in the block
   std::vector<double> values_;
@@ -79,8 +91,11 @@ class LeafMesher {
   struct Edge {
     Vec3 a, b;  // inside end, outside end
     double ga, gb;
-    bool capped;  // an end is a padding point
-    bool solve;   // not Borrowed
+    bool capped;   // an end is a padding point
+    uint8_t code;  // its EdgeCode
+    bool solve;    // not Borrowed
+    double tc,
+        gc;  // a third point of the edge's line (at a + tc (b - a)) and its value; tc 0: none
   };
   std::vector<Edge> edges_;
 };

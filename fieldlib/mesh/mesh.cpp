@@ -24,18 +24,18 @@ struct Block {
   int lo[3], hi[3];  // cells [lo, hi) per axis
 };
 
-// Runs job(i, workspace) for i < count on `threads` threads; rethrows the first exception.
+// Runs job(i, scratch) for i < count on `threads` threads; rethrows the first exception.
 template <class Job>
 void parallel_for(size_t count, int threads, const std::atomic<bool>* cancel, Job job) {
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto work = [&] {
-    Workspace ws;
+    SamplerScratch scratch;
     try {
       for (size_t i; (i = next++) < count;) {
         if (cancel && cancel->load(std::memory_order_relaxed)) throw MeshCancelled();
-        job(i, ws);
+        job(i, scratch);
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(error_mutex);
@@ -143,8 +143,8 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
                          std::min(k + top, cells[2])}});
   std::vector<std::vector<Block>> found(tops.size());
   std::atomic<size_t> tops_done{0};
-  parallel_for(tops.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
-    find_leaves(field, lattice, tops[i], ws, &found[i]);
+  parallel_for(tops.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
+    find_leaves(field, lattice, tops[i], s.ws, &found[i]);
     report(0.1 * double(++tops_done) / double(tops.size()));
   });
   std::vector<Block> leaves;
@@ -154,8 +154,9 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   // Pass 2: the leaves, each on its own.
   std::vector<LeafMesh> parts(leaves.size());
   std::atomic<size_t> leaves_done{0};
-  parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, Workspace& ws) {
-    LeafMesher(field, lattice).run(leaves[i].lo, leaves[i].hi, ws, &parts[i]);
+  const FieldSampler sampler(*field.program);
+  parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
+    LeafMesher(field, sampler, lattice).run(leaves[i].lo, leaves[i].hi, s, &parts[i]);
     report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
   });
 
@@ -172,7 +173,13 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     for (size_t v = 0; v < parts[i].keys.size(); ++v)
       if (parts[i].place[v] != EdgePlace::Interior)
         boundary.emplace_back(parts[i].keys[v], first[i] + v);
-  std::sort(boundary.begin(), boundary.end());
+  // Sorted in halves on two threads, then merged (the pairs are distinct: one order).
+  const auto half = boundary.begin() + std::ptrdiff_t(boundary.size() / 2);
+  parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
+    if (h == 0) std::sort(boundary.begin(), half);
+    if (h == 1) std::sort(half, boundary.end());
+  });
+  std::inplace_merge(boundary.begin(), half, boundary.end());
   constexpr uint64_t kKeep = ~uint64_t(0);
   std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
   for (size_t b = 0, end; b < boundary.size(); b = end) {
@@ -191,66 +198,89 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     parts[i].positions[name - first[i]] = *solved;
   }
   boundary = {};
-  std::vector<uint32_t> index(first.back());
+  // The welded vertices and the faces, numbered in leaf order, written by chunks of leaves on the
+  // threads at offsets counted first (the same mesh for any thread count).
+  constexpr size_t kPartChunk = 256;
+  const size_t part_chunks = (parts.size() + kPartChunk - 1) / kPartChunk;
+  auto chunk_parts = [&](size_t c) {
+    return std::make_pair(c * kPartChunk, std::min(parts.size(), (c + 1) * kPartChunk));
+  };
+  std::vector<size_t> vertex_at(part_chunks + 1, 0), face_at(part_chunks + 1, 0);
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    const auto [begin, end] = chunk_parts(c);
+    for (size_t g = first[begin]; g < first[end]; ++g) vertex_at[c + 1] += same[g] == kKeep;
+    for (size_t i = begin; i < end; ++i)
+      for (const LeafCut& cut : parts[i].cuts) face_at[c + 1] += cut.quad ? 2 : 1;
+  });
+  for (size_t c = 0; c < part_chunks; ++c) {
+    vertex_at[c + 1] += vertex_at[c];
+    face_at[c + 1] += face_at[c];
+  }
+  if (vertex_at.back() > size_t(UINT32_MAX) || face_at.back() > size_t(UINT32_MAX))
+    throw std::length_error("the mesh would have more than 2^32 vertices or faces");
   Mesh m;
   m.lattice = lattice.box;
   m.voxel = lattice.h;
-  std::vector<Vec3> outward;    // each welded vertex's edge direction out (vertex_normal)
-  std::vector<uint8_t> capped;  // and whether its edge reaches the padding
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const LeafMesh& p = parts[i];
-    for (size_t v = 0; v < p.keys.size(); ++v) {
-      const size_t g = first[i] + v;
-      if (same[g] != kKeep) continue;
-      index[g] = uint32_t(m.vertices.size());
-      m.vertices.push_back(p.positions[v]);
-      outward.push_back(p.outward[v]);
-      capped.push_back(p.capped[v]);
-    }
-    if (m.vertices.size() > size_t(UINT32_MAX))
-      throw std::length_error("the mesh would have more than 2^32 vertices or faces");
-  }
-  for (size_t g = 0; g < same.size(); ++g)
-    if (same[g] != kKeep) index[g] = index[same[g]];
+  m.vertices.resize(vertex_at.back());
+  std::vector<uint8_t> edge(vertex_at.back());  // each welded vertex's EdgeCode (vertex_normal)
+  std::vector<uint32_t> index(first.back());
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    const auto [begin, end] = chunk_parts(c);
+    size_t next = vertex_at[c];
+    for (size_t i = begin; i < end; ++i)
+      for (size_t v = 0; v < parts[i].keys.size(); ++v) {
+        const size_t g = first[i] + v;
+        if (same[g] != kKeep) continue;
+        index[g] = uint32_t(next);
+        m.vertices[next] = parts[i].positions[v];
+        edge[next++] = parts[i].edge[v];
+      }
+  });
+  // A duplicate's vertex comes before it in leaf order, in this chunk or an earlier one: its
+  // index is known once every chunk above is done.
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    const auto [begin, end] = chunk_parts(c);
+    for (size_t g = first[begin]; g < first[end]; ++g)
+      if (same[g] != kKeep) index[g] = index[same[g]];
+  });
   same = {};
   // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
-  size_t faces = 0;
-  for (const auto& p : parts)
-    for (const LeafCut& c : p.cuts) faces += c.quad ? 2 : 1;
-  if (faces > size_t(UINT32_MAX))
-    throw std::length_error("the mesh would have more than 2^32 vertices or faces");
-  m.faces.reserve(faces);
-  for (size_t i = 0; i < parts.size(); ++i) {
-    for (const LeafCut& c : parts[i].cuts) {
-      uint32_t v[4];
-      for (int k = 0; k < (c.quad ? 4 : 3); ++k) v[k] = index[first[i] + c.v[k]];
-      if (!c.quad) {
-        m.faces.push_back({v[0], v[1], v[2]});
-        continue;
+  m.faces.resize(face_at.back());
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    const auto [begin, end] = chunk_parts(c);
+    size_t next = face_at[c];
+    for (size_t i = begin; i < end; ++i) {
+      for (const LeafCut& cut : parts[i].cuts) {
+        uint32_t v[4];
+        for (int k = 0; k < (cut.quad ? 4 : 3); ++k) v[k] = index[first[i] + cut.v[k]];
+        if (!cut.quad) {
+          m.faces[next++] = {v[0], v[1], v[2]};
+          continue;
+        }
+        const Vec3 d02 = m.vertices[v[2]] - m.vertices[v[0]];
+        const Vec3 d13 = m.vertices[v[3]] - m.vertices[v[1]];
+        if (dot(d02, d02) <= dot(d13, d13)) {
+          m.faces[next++] = {v[0], v[1], v[2]};
+          m.faces[next++] = {v[0], v[2], v[3]};
+        } else {
+          m.faces[next++] = {v[0], v[1], v[3]};
+          m.faces[next++] = {v[1], v[2], v[3]};
+        }
       }
-      const Vec3 d02 = m.vertices[v[2]] - m.vertices[v[0]];
-      const Vec3 d13 = m.vertices[v[3]] - m.vertices[v[1]];
-      if (dot(d02, d02) <= dot(d13, d13)) {
-        m.faces.push_back({v[0], v[1], v[2]});
-        m.faces.push_back({v[0], v[2], v[3]});
-      } else {
-        m.faces.push_back({v[0], v[1], v[3]});
-        m.faces.push_back({v[1], v[2], v[3]});
-      }
+      parts[i] = LeafMesh();
     }
-    parts[i] = LeafMesh();
-  }
+  });
   parts = {};
+  index = {};
 
   // Normals, once per welded vertex, in chunks over the threads.
   constexpr size_t kChunk = 4096;
   m.normals.resize(m.vertices.size());
   const size_t chunks = (m.vertices.size() + kChunk - 1) / kChunk;
   std::atomic<size_t> chunks_done{0};
-  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, Workspace& ws) {
-    ws.fit(*field.program);
+  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch& s) {
     for (size_t v = c * kChunk; v < std::min(m.vertices.size(), (c + 1) * kChunk); ++v)
-      m.normals[v] = vertex_normal(field, lattice, m.vertices[v], capped[v], outward[v], ws);
+      m.normals[v] = vertex_normal(field, sampler, lattice, m.vertices[v], edge[v], s);
     report(0.9 + 0.1 * double(++chunks_done) / double(chunks));
   });
   m.colors.assign(m.vertices.size(), options.color);
