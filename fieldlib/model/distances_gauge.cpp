@@ -109,6 +109,7 @@ struct SphericalProduct {
   static double value(const SphericalProductParams& m, const Vec3& p, Vec3* grad) {
     return spherical_product(m, p, grad);
   }
+  // (The kernel's bounds take optional scratch arguments: no KernelOf here.)
   static void bounds(const SphericalProductParams& m, const Box& b, Interval* value,
                      double* lipschitz) {
     spherical_product_bounds(m, b, value, lipschitz);

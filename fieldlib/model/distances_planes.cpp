@@ -15,37 +15,23 @@ namespace softtrace {
 
 namespace {
 
-// |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3. The kernels: planes.h. Its node is
-// KernelNode<ParallelPlanes>.
-struct ParallelPlanes {
+// |X·n|/a (both = true)   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3; [X·n]_+/a (both =
+// false)   — 002 §4.5 f_o (R4), docs/math.md §2.4. The kernels: planes.h. The nodes are
+// KernelNode<OnePlane<both>>.
+template <bool both>
+struct OnePlane {
   using Params = PlaneParams;
-  using OpKernel = ParallelPlanesOp;
-  static constexpr Op kOp = Op::ParallelPlanes;
+  using OpKernel = PlaneOp<both>;
+  static constexpr Op kOp = both ? Op::ParallelPlanes : Op::OneBranchPlane;
   static double value(const PlaneParams& m, const Vec3& p, Vec3* grad) {
-    return parallel_planes(m, p, grad);
+    return OpKernel::kernel(m, p, grad);
   }
   static void bounds(const PlaneParams& m, const Box& b, Interval* value, double* lipschitz) {
-    parallel_planes_bounds(m, dot_range(b, m.n), value, lipschitz);
+    (both ? parallel_planes_bounds : one_branch_plane_bounds)(m, dot_range(b, m.n), value,
+                                                              lipschitz);
   }
   static double lipschitz(const PlaneParams& m) { return 1 / m.a; }
-  // {f <= c} is a slab: no finite region.
-  static Box region(const PlaneParams&, double, Side) { return Box::unbounded(); }
-};
-
-// [X·n]_+/a   — 002 §4.5 f_o (R4), docs/math.md §2.4. The kernels: planes.h. Its node is
-// KernelNode<OneBranchPlane>.
-struct OneBranchPlane {
-  using Params = PlaneParams;
-  using OpKernel = OneBranchPlaneOp;
-  static constexpr Op kOp = Op::OneBranchPlane;
-  static double value(const PlaneParams& m, const Vec3& p, Vec3* grad) {
-    return one_branch_plane(m, p, grad);
-  }
-  static void bounds(const PlaneParams& m, const Box& b, Interval* value, double* lipschitz) {
-    one_branch_plane_bounds(m, dot_range(b, m.n), value, lipschitz);
-  }
-  static double lipschitz(const PlaneParams& m) { return 1 / m.a; }
-  // {f <= c} is a half-space or empty: no finite region.
+  // {f <= c} is a slab, a half-space or empty: no finite region.
   static Box region(const PlaneParams&, double, Side) { return Box::unbounded(); }
 };
 
@@ -115,12 +101,12 @@ class GeneralizedDistance final : public FieldNode {
 }  // namespace
 
 NodePtr create_parallel_planes(const Params& p, const BuildContext&) {
-  return std::make_unique<KernelNode<ParallelPlanes>>(
+  return std::make_unique<KernelNode<OnePlane<true>>>(
       PlaneParams{unit_normal(p, "normal"), p.number("a")});
 }
 
 NodePtr create_one_branch_plane(const Params& p, const BuildContext&) {
-  return std::make_unique<KernelNode<OneBranchPlane>>(
+  return std::make_unique<KernelNode<OnePlane<false>>>(
       PlaneParams{unit_normal(p, "normal"), p.number("a")});
 }
 

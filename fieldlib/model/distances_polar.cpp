@@ -20,10 +20,7 @@ namespace {
 // |∇ρ| = 1 and ∇ρ ⟂ z, so ∇f has orthogonal parts ∂_1/a and ∂_2/b: the 2-D gauge's
 // gauge_lipschitz(1/a, 1/b) globally, partial bounds from (ρ, z) intervals over a box. The
 // kernels: skeletal.h. Its node is KernelNode<Torus>.
-struct Torus {
-  using Params = TorusParams;
-  using OpKernel = TorusOp;
-  static constexpr Op kOp = Op::Torus;
+struct Torus : KernelOf<TorusParams, TorusOp, Op::Torus, torus, torus_bounds> {
   static TorusParams params(double R, double a, double b, double n) {
     const double w[2] = {1 / a, 1 / b};
     return {R, a, b, n, gauge_lipschitz(w, 2, n)};
@@ -45,16 +42,8 @@ struct Torus {
 // (h^n + |z/c|^n)^(1/n), h = ρ/R(φ)   — docs/math.md §10.1's substitutes for [000] Fig. 13's rose
 // bar and star contour. The kernels and why their bounds hold: polar_prism.h. Its node is
 // KernelNode<PolarPrism>.
-struct PolarPrism {
-  using Params = PolarPrismParams;
-  using OpKernel = PolarPrismOp;
-  static constexpr Op kOp = Op::PolarPrism;
-  static double value(const PolarPrismParams& m, const Vec3& p, Vec3* grad) {
-    return polar_prism(m, p, grad);
-  }
-  static void bounds(const PolarPrismParams& m, const Box& b, Interval* value, double* lipschitz) {
-    polar_prism_bounds(m, b, value, lipschitz);
-  }
+struct PolarPrism
+    : KernelOf<PolarPrismParams, PolarPrismOp, Op::PolarPrism, polar_prism, polar_prism_bounds> {
   static double lipschitz(const PolarPrismParams& m) { return m.global; }
   // f <= c forces h <= c, so ρ <= c·Rmax = c·r0 (1 + A), and |z| <= c·c_z.
   static Box region(const PolarPrismParams& m, double level, Side side) {

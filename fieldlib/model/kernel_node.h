@@ -9,7 +9,8 @@
 //   bounds(m, box, &value, &L)    the box question (FieldNode::box_bounds);
 //   lipschitz(m)                  the global bound;
 //   region(m, level, side)        FieldNode::region (Box::unbounded() where none is finite).
-// Every call is a static inline function of K, so the node's code is what a hand-written class
+// KernelOf below names the first four for a kernel whose functions take the box itself. Every
+// call is a static inline function of K, so the node's code is what a hand-written class
 // forwarding to the kernel compiles to. A kind with more to answer (children, polynomial_blob,
 // gradient_floor, hessian_bound) keeps a class of its own: model/README.md lists them.
 #pragma once
@@ -18,6 +19,21 @@
 #include "model/program_builder.h"
 
 namespace softtrace {
+
+// The parameters, op and kernel functions of a K whose kernel answers the box question from the
+// box itself (`kernel_bounds(m, box, &value, &L)`); K derives from it and adds lipschitz and
+// region.
+template <class P, class OpStruct, Op op, double (&kernel)(const P&, const Vec3&, Vec3*),
+          void (&kernel_bounds)(const P&, const Box&, Interval*, double*)>
+struct KernelOf {
+  using Params = P;
+  using OpKernel = OpStruct;
+  static constexpr Op kOp = op;
+  static double value(const P& m, const Vec3& p, Vec3* grad) { return kernel(m, p, grad); }
+  static void bounds(const P& m, const Box& b, Interval* value, double* lipschitz) {
+    kernel_bounds(m, b, value, lipschitz);
+  }
+};
 
 template <class K>
 class KernelNode final : public FieldNode {
