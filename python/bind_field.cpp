@@ -3,9 +3,6 @@
 // released. A field keeps its node's JSON text and convention, which is what it pickles as.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <stdexcept>
 
@@ -13,6 +10,7 @@
 #include "eval/batch.h"
 #include "loader/build.h"
 #include "model/program_builder.h"
+#include "render/threads.h"
 #include "scene/json_text.h"
 
 namespace softtrace::python {
@@ -47,7 +45,6 @@ struct Field {
   NodePtr own;
   const FieldNode* root = nullptr;
   Program program;
-  tbb::enumerable_thread_specific<Workspace> workspaces;
   std::string json_text, name;  // the node, for pickling
   Convention convention = Convention::Soft;
 
@@ -65,11 +62,12 @@ struct Field {
     {
       py::gil_scoped_release release;
       const std::vector<size_t> order = spatial_order(xyz, n);
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + kBatch - 1) / kBatch, 256),
-                        [&](const tbb::blocked_range<size_t>& r) {
-                          eval_ordered(program, xyz, order, r.begin() * kBatch,
-                                       std::min(n, r.end() * kBatch), f, g, workspaces.local());
-                        });
+      // Ranges of batches on the worker threads, each with its thread's workspace (fitted to the
+      // program by eval_ordered), as the tracer keeps one (trace/tracer.cpp).
+      parallel_ranges((n + kBatch - 1) / kBatch, 256, [&](size_t begin, size_t end) {
+        thread_local Workspace ws;
+        eval_ordered(program, xyz, order, begin * kBatch, std::min(n, end * kBatch), f, g, ws);
+      });
     }
     if (with_gradient) return py::make_tuple(values, grads);
     return std::move(values);

@@ -8,7 +8,6 @@
 // each other's: nothing here writes to the scene.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
-#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
@@ -23,6 +22,7 @@
 #include "film/film.h"
 #include "render/frame.h"
 #include "render/frame_metadata.h"
+#include "render/threads.h"
 
 namespace softtrace::python {
 
@@ -63,8 +63,7 @@ class FrameJob {
     opt_.spp = spp;
     worker_ = std::thread([this, &scene, &film, threads, &progress] {
       try {
-        tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-        arena.execute([&] {
+        run_on_threads(threads, [&] {
           const TracedScene rt(scene, LipschitzMode::Local);
           complete_ = render_frame(scene, rt, opt_, film, &progress, nullptr);
         });

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
 #include "kernels/lp_metric.h"
+#include "kernels/potentials.h"
 #include "kernels/skeletal.h"
 #include "program/ops/gauge_ops.h"
 #include "program/ops/placement_ops.h"
@@ -15,25 +17,63 @@
 namespace softtrace {
 
 namespace {
-// P(r) = c2 r^2 + c3 r^3 for r = 1 - d^2 in [0, 1]: Murakami's (1 - d^2)^2, and Wyvill's
-// 1 - 22/9 d^2 + 17/9 d^4 - 4/9 d^6, whose constant and linear terms in r cancel.
-bool potential_in_r(Op op, double* c2, double* c3) {
-  if (op == Op::Murakami) {
-    *c2 = 1;
-    *c3 = 0;
-    return true;
+// What each op is to the pattern of a sum of polynomial blobs (BlobSum::of; docs/math.md §8):
+// a placement of the point, the one oracle an affinely placed blob compiles to, a blob's
+// distance, a potential of it (the kernels' potential_in_r says which are polynomials in
+// r = 1 - d^2), its strength, or no part of a blob.
+enum class BlobRole { Translate, Place, Oracle, Segment, LpMetric, Potential, Strength, None };
+struct BlobPart {
+  BlobRole role;
+  PotentialType potential = PotentialType::Blanc;  // BlobRole::Potential: which
+};
+
+// One case per op of the op list (no default: -Werror=switch fails the build until a new op says
+// what it is here). A child with an op of no part, or of a part out of place, is no blob: its sum
+// keeps the general tracer (read_blob returns false, BlobSum::of nullopt).
+BlobPart blob_part(Op op) {
+  switch (op) {
+    case Op::Translate:
+      return {BlobRole::Translate};
+    case Op::Place:
+      return {BlobRole::Place};
+    case Op::Oracle:
+      return {BlobRole::Oracle};
+    case Op::LineSegment:
+      return {BlobRole::Segment};
+    case Op::LpMetric:  // with n = 2: an ellipsoid (read_blob checks n)
+      return {BlobRole::LpMetric};
+    case Op::Blanc:
+      return {BlobRole::Potential, PotentialType::Blanc};
+    case Op::Wyvill:
+      return {BlobRole::Potential, PotentialType::Wyvill};
+    case Op::Murakami:
+      return {BlobRole::Potential, PotentialType::Murakami};
+    case Op::Cubic:
+      return {BlobRole::Potential, PotentialType::Cubic};
+    case Op::Strength:
+      return {BlobRole::Strength};
+    // Distances with no polynomial blob form, the other ops over a slot, and the n-ary ops (a
+    // blob is a leaf of the one sum).
+    case Op::SphericalProduct:
+    case Op::ParallelPlanes:
+    case Op::OneBranchPlane:
+    case Op::Torus:
+    case Op::GenDistance:
+    case Op::PolarPrism:
+    case Op::Offset:
+    case Op::Complement:
+    case Op::RadiusTransform:
+    case Op::Group:
+    case Op::Sum:
+    case Op::Min:
+    case Op::Max:
+    case Op::SuperUnion:
+    case Op::SuperIntersect:
+    case Op::Perlin:
+    case Op::Ricci:
+      return {BlobRole::None};
   }
-  if (op == Op::Cubic) {  // r^3
-    *c2 = 0;
-    *c3 = 1;
-    return true;
-  }
-  if (op == Op::Wyvill) {
-    *c2 = 5.0 / 9;
-    *c3 = 4.0 / 9;
-    return true;
-  }
-  return false;
+  std::abort();  // not reached: the switch names every op, and -Werror=switch keeps it so
 }
 
 // A capsule's axis in its frame (0 for an ellipsoid): its square and reciprocal must neither
@@ -68,9 +108,40 @@ bool read_oracle_blob(const Instr& in, BlobSum::Frame* frame, BlobSum::Blob* blo
   return true;
 }
 
+// The blob's distance instruction `metric`: its frame's radii and origin (q = (X - a) / radius for
+// a segment from a, X / radii for an ellipsoid) and its axis into *frame; false for a distance
+// the pattern does not read.
+bool read_distance(const Instr& metric, const double* K, BlobSum::Frame* frame, Vec3* radii,
+                   Vec3* origin) {
+  switch (blob_part(metric.op).role) {
+    case BlobRole::Segment: {
+      const LineSegmentParams m = LineSegmentOp::load(K + metric.a);
+      *radii = {m.r, m.r, m.r};
+      *origin = m.a;
+      return set_axis(frame, m.len2 > 0 ? m.ab / m.r : Vec3{});
+    }
+    case BlobRole::LpMetric: {
+      const LpMetricParams m = LpMetricOp::load(K + metric.a);
+      if (m.n != 2) return false;
+      *radii = m.a;
+      *origin = {};
+      set_axis(frame, {});
+      return true;
+    }
+    case BlobRole::Translate:
+    case BlobRole::Place:
+    case BlobRole::Oracle:
+    case BlobRole::Potential:
+    case BlobRole::Strength:
+    case BlobRole::None:
+      return false;
+  }
+  std::abort();  // not reached: the switch names every role
+}
+
 bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::Frame* frame,
                BlobSum::Blob* blob) {
-  if (c.end - c.begin == 1 && p.code[c.begin].op == Op::Oracle) {
+  if (c.end - c.begin == 1 && blob_part(p.code[c.begin].op).role == BlobRole::Oracle) {
     const Instr& in = p.code[c.begin];
     return in.in == reg0 && in.out == c.slot && read_oracle_blob(in, frame, blob);
   }
@@ -80,12 +151,14 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   int32_t reg = reg0;
   int32_t i = c.begin;
   const double* K = p.consts.data();
-  for (; i < c.end && (p.code[i].op == Op::Translate || p.code[i].op == Op::Place); ++i) {
+  for (; i < c.end; ++i) {
     const Instr& in = p.code[i];
+    const BlobRole role = blob_part(in.op).role;
+    if (role != BlobRole::Translate && role != BlobRole::Place) break;
     if (in.in != reg) return false;
     const Vec3 t = TranslateOp::load(K + in.a);  // Place's shift is laid out as Translate's
     off = off - t;
-    if (in.op == Op::Place) {  // local = Rt (x - t)
+    if (role == BlobRole::Place) {  // local = Rt (x - t)
       rotated = true;
       const Mat3 Rt = PlaceOp::load_rotation(K + in.a);
       Mat3 next;
@@ -100,25 +173,15 @@ bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::F
   const Instr& metric = p.code[i];
   const Instr& potential = p.code[i + 1];
   if (metric.in != reg || potential.in != metric.out) return false;
-  // The metric's frame: q = (X - a) / radius for a segment from a, (X / radii) for an ellipsoid.
   Vec3 radii, origin;
-  if (metric.op == Op::LineSegment) {
-    const LineSegmentParams m = LineSegmentOp::load(K + metric.a);
-    radii = {m.r, m.r, m.r};
-    origin = m.a;
-    if (!set_axis(frame, m.len2 > 0 ? m.ab / m.r : Vec3{})) return false;
-  } else if (metric.op == Op::LpMetric) {
-    const LpMetricParams m = LpMetricOp::load(K + metric.a);
-    if (m.n != 2) return false;
-    radii = m.a;
-    set_axis(frame, {});
-  } else {
+  if (!read_distance(metric, K, frame, &radii, &origin)) return false;
+  const BlobPart pot = blob_part(potential.op);
+  if (pot.role != BlobRole::Potential || !potential_in_r(pot.potential, &blob->c2, &blob->c3))
     return false;
-  }
-  if (!potential_in_r(potential.op, &blob->c2, &blob->c3)) return false;
   if (c.end - i == 3) {
     const Instr& strength = p.code[i + 2];
-    if (strength.op != Op::Strength || strength.in != potential.out || strength.out != c.slot)
+    if (blob_part(strength.op).role != BlobRole::Strength || strength.in != potential.out ||
+        strength.out != c.slot)
       return false;
     blob->c2 *= StrengthOp::load(K + strength.a);
     blob->c3 *= StrengthOp::load(K + strength.a);

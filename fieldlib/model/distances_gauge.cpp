@@ -11,6 +11,7 @@
 #include "kernels/spherical_product.h"
 #include "math/bound_util.h"
 #include "model/distances.h"
+#include "model/kernel_node.h"
 #include "model/program_builder.h"
 #include "program/ops/gauge_ops.h"
 
@@ -92,44 +93,41 @@ class LpMetric final : public FieldNode {
 // one-sided terms u of one_sided.h. L = 0: the superquadric, 000 Eq. 3 / 002 Eq. 15 (n1 on both x
 // and y, R2); n1 = n2, L >= 0: the super-elliptic cylinder, 002 Eqs. 17-18. docs/math.md §2.6,
 // §2.9-2.10. The kernels and their bounds: spherical_product.h. The nested gauge_lipschitz with
-// the largest slopes 1/(a·min t) is global because ∇h ⟂ z.
-class SphericalProduct final : public FieldNode {
- public:
-  SphericalProduct(const OneSidedTerm (&t)[3], double n1, double n2)
-      : m_{{t[0], t[1], t[2]}, n1, n2, 0} {
+// the largest slopes 1/(a·min t) is global because ∇h ⟂ z. Its node is
+// KernelNode<SphericalProduct>.
+struct SphericalProduct {
+  using Params = SphericalProductParams;
+  using OpKernel = SphericalProductOp;
+  static constexpr Op kOp = Op::SphericalProduct;
+  static SphericalProductParams params(const OneSidedTerm (&t)[3], double n1, double n2) {
+    SphericalProductParams m{{t[0], t[1], t[2]}, n1, n2, 0};
     const double wh[2] = {t[0].slope(), t[1].slope()};
     const double Lh = gauge_lipschitz(wh, 2, n1);
     const double wm[2] = {Lh, t[2].slope()};
-    m_.global_L = std::isfinite(Lh) ? gauge_lipschitz(wm, 2, n2) : Lh;
+    m.global_L = std::isfinite(Lh) ? gauge_lipschitz(wm, 2, n2) : Lh;
+    return m;
   }
-
-  double eval(const Vec3& p, Vec3* grad) const override { return spherical_product(m_, p, grad); }
-  double lipschitz() const override { return m_.global_L; }
-  // One instruction with the parameters inline, in SphericalProductOp's layout.
-  int compile(ProgramBuilder& b, int reg) const override {
-    return b.single(Op::SphericalProduct, reg, SphericalProductOp::constants(m_));
+  static double value(const SphericalProductParams& m, const Vec3& p, Vec3* grad) {
+    return spherical_product(m, p, grad);
   }
+  // (The kernel's bounds take optional scratch arguments: no KernelOf here.)
+  static void bounds(const SphericalProductParams& m, const Box& b, Interval* value,
+                     double* lipschitz) {
+    spherical_product_bounds(m, b, value, lipschitz);
+  }
+  static double lipschitz(const SphericalProductParams& m) { return m.global_L; }
   // [DF-5]: a power sum is at least its largest term, so f <= c needs every u <= c.
-  Box region(double level, Side side) const override {
+  static Box region(const SphericalProductParams& m, double level, Side side) {
     if (side == Side::Above) return Box::unbounded();
     if (level < 0) return Box();
     Box b;
     for (int i = 0; i < 3; ++i) {
-      const Interval s = m_.t[i].below(level);
+      const Interval s = m.t[i].below(level);
       b.lo[i] = s.lo;
       b.hi[i] = s.hi;
     }
     return b;
   }
-
- private:
-  NodeBounds box_bounds(const Box& b) const override {
-    NodeBounds out;
-    spherical_product_bounds(m_, b, &out.value, &out.lipschitz);
-    return out;
-  }
-
-  SphericalProductParams m_;
 };
 
 // Terms for radii a1..a3 and side lengths t1..t6 (t_{2i-1} on +axis i, t_{2i} on -axis i).
@@ -139,7 +137,7 @@ NodePtr spherical_product_node(const Params& p, double n1, double n2, double hal
   OneSidedTerm terms[3];
   for (int i = 0; i < 3; ++i) terms[i] = {a[i] * t[2 * i], a[i] * t[2 * i + 1], 0.0};
   terms[2].dead = half_length;
-  return std::make_unique<SphericalProduct>(terms, n1, n2);
+  return std::make_unique<KernelNode<SphericalProduct>>(SphericalProduct::params(terms, n1, n2));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "kernels/one_sided.h"
 #include "kernels/planes.h"
 #include "model/distances.h"
+#include "model/kernel_node.h"
 #include "model/program_builder.h"
 #include "program/ops/plane_ops.h"
 
@@ -14,47 +15,24 @@ namespace softtrace {
 
 namespace {
 
-// |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3. The kernels: planes.h.
-class ParallelPlanes final : public FieldNode {
- public:
-  ParallelPlanes(const Vec3& n, double a) : m_{n, a} {}
-
-  double eval(const Vec3& p, Vec3* grad) const override { return parallel_planes(m_, p, grad); }
-  double lipschitz() const override { return 1 / m_.a; }
-  // {f <= c} is a slab: unbounded, so region() keeps the default.
-  int compile(ProgramBuilder& b, int reg) const override {
-    return b.single(Op::ParallelPlanes, reg, ParallelPlanesOp::constants(m_));
+// |X·n|/a (both = true)   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3; [X·n]_+/a (both =
+// false)   — 002 §4.5 f_o (R4), docs/math.md §2.4. The kernels: planes.h. The nodes are
+// KernelNode<OnePlane<both>>.
+template <bool both>
+struct OnePlane {
+  using Params = PlaneParams;
+  using OpKernel = PlaneOp<both>;
+  static constexpr Op kOp = both ? Op::ParallelPlanes : Op::OneBranchPlane;
+  static double value(const PlaneParams& m, const Vec3& p, Vec3* grad) {
+    return OpKernel::kernel(m, p, grad);
   }
-
- private:
-  NodeBounds box_bounds(const Box& b) const override {
-    NodeBounds out;
-    parallel_planes_bounds(m_, dot_range(b, m_.n), &out.value, &out.lipschitz);
-    return out;
+  static void bounds(const PlaneParams& m, const Box& b, Interval* value, double* lipschitz) {
+    (both ? parallel_planes_bounds : one_branch_plane_bounds)(m, dot_range(b, m.n), value,
+                                                              lipschitz);
   }
-
-  PlaneParams m_;
-};
-
-// [X·n]_+/a   — 002 §4.5 f_o (R4), docs/math.md §2.4. The kernels: planes.h.
-class OneBranchPlane final : public FieldNode {
- public:
-  OneBranchPlane(const Vec3& n, double a) : m_{n, a} {}
-
-  double eval(const Vec3& p, Vec3* grad) const override { return one_branch_plane(m_, p, grad); }
-  double lipschitz() const override { return 1 / m_.a; }
-  int compile(ProgramBuilder& b, int reg) const override {
-    return b.single(Op::OneBranchPlane, reg, OneBranchPlaneOp::constants(m_));
-  }
-
- private:
-  NodeBounds box_bounds(const Box& b) const override {
-    NodeBounds out;
-    one_branch_plane_bounds(m_, dot_range(b, m_.n), &out.value, &out.lipschitz);
-    return out;
-  }
-
-  PlaneParams m_;
+  static double lipschitz(const PlaneParams& m) { return 1 / m.a; }
+  // {f <= c} is a slab, a half-space or empty: no finite region.
+  static Box region(const PlaneParams&, double, Side) { return Box::unbounded(); }
 };
 
 // (Σ_i u_i^n)^(1/n), u_i = [X·n_i]_+/(t_{2i-1} a_i) + [-X·n_i]_+/(t_{2i} a_i)
@@ -123,11 +101,13 @@ class GeneralizedDistance final : public FieldNode {
 }  // namespace
 
 NodePtr create_parallel_planes(const Params& p, const BuildContext&) {
-  return std::make_unique<ParallelPlanes>(unit_normal(p, "normal"), p.number("a"));
+  return std::make_unique<KernelNode<OnePlane<true>>>(
+      PlaneParams{unit_normal(p, "normal"), p.number("a")});
 }
 
 NodePtr create_one_branch_plane(const Params& p, const BuildContext&) {
-  return std::make_unique<OneBranchPlane>(unit_normal(p, "normal"), p.number("a"));
+  return std::make_unique<KernelNode<OnePlane<false>>>(
+      PlaneParams{unit_normal(p, "normal"), p.number("a")});
 }
 
 NodePtr create_generalized_distance(const Params& p, const BuildContext&) {

@@ -33,29 +33,22 @@ class Blanc final : public Potential {
   double s_;
 };
 
+// A potential without a parameter: its kernel P(d) (kernels/potentials.h) and its bound, as
+// template arguments. Blanc, whose softness is a parameter, is the class above.
+template <PotentialType T, double (&P)(double, double*), double (&Lipschitz)()>
+class FixedPotential final : public Potential {
+ public:
+  double eval(double d, double* dP) const override { return P(d, dP); }
+  double lipschitz() const override { return Lipschitz(); }
+  PotentialType type() const override { return T; }
+};
+
 // 1 - 4/9 d^6 + 17/9 d^4 - 22/9 d^2   — Wyvill et al., docs/math.md §3.3
-class Wyvill final : public Potential {
- public:
-  double eval(double d, double* dP) const override { return wyvill(d, dP); }
-  double lipschitz() const override { return wyvill_lipschitz(); }
-  PotentialType type() const override { return PotentialType::Wyvill; }
-};
-
+using Wyvill = FixedPotential<PotentialType::Wyvill, wyvill, wyvill_lipschitz>;
 // (1 - d^2)^2, POV-Ray's blob density   — docs/math.md §3.3; its 0.5 level is d = 0.5412
-class Murakami final : public Potential {
- public:
-  double eval(double d, double* dP) const override { return murakami(d, dP); }
-  double lipschitz() const override { return murakami_lipschitz(); }
-  PotentialType type() const override { return PotentialType::Murakami; }
-};
-
+using Murakami = FixedPotential<PotentialType::Murakami, murakami, murakami_lipschitz>;
 // (1 - d^2)^3   — Galin et al. 2020 (Segment Tracing), docs/math.md §3.4
-class Cubic final : public Potential {
- public:
-  double eval(double d, double* dP) const override { return cubic(d, dP); }
-  double lipschitz() const override { return cubic_lipschitz(); }
-  PotentialType type() const override { return PotentialType::Cubic; }
-};
+using Cubic = FixedPotential<PotentialType::Cubic, cubic, cubic_lipschitz>;
 
 }  // namespace
 

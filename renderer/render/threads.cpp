@@ -1,7 +1,10 @@
 #include "render/threads.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace softtrace {
 
@@ -24,6 +27,17 @@ ThreadLimit limit_threads(int threads) {
 
 int default_threads() {
   return tbb::info::default_concurrency();
+}
+
+void run_on_threads(int threads, const std::function<void()>& work) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute(work);
+}
+
+void parallel_ranges(size_t count, size_t grain,
+                     const std::function<void(size_t begin, size_t end)>& body) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain),
+                    [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
 }
 
 }  // namespace softtrace

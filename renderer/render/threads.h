@@ -1,7 +1,11 @@
-// The frame loop's worker threads (TBB's, frame.cpp): how many there are by default, and a cap on
-// them for a command's run. TBB stays behind this header, so the command line never includes it.
+// The frame loop's worker threads (TBB's, frame.cpp): how many there are by default, a cap on
+// them for a command's run, a run of its own on a given number of them, and a parallel loop over
+// ranges for the Python module's batches. TBB stays behind this header, so neither the command
+// line nor the Python module includes it.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 
 namespace softtrace {
@@ -26,5 +30,19 @@ ThreadLimit limit_threads(int threads);
 // The worker threads a parallel loop uses when nothing caps them (TBB's default concurrency: the
 // cores this process may run on).
 int default_threads();
+
+// Runs `work` on the calling thread with at most `threads` worker threads (0: all cores) for the
+// parallel loops it starts (frame.cpp's, parallel_ranges), apart from other callers: unlike
+// limit_threads, which caps the whole process, two such runs at different counts (two Python
+// threads rendering) do not change each other's (a tbb::task_arena of its own). Exceptions of
+// `work` reach the caller.
+void run_on_threads(int threads, const std::function<void()>& work);
+
+// Calls body(begin, end) over [0, count) split into ranges of at least about `grain` (TBB's
+// blocked_range and automatic partitioning), in parallel on the worker threads; each range runs
+// whole on one thread, so a thread_local workspace in `body` is its own for the range. Returns
+// when every range is done; the first exception of `body` reaches the caller.
+void parallel_ranges(size_t count, size_t grain,
+                     const std::function<void(size_t begin, size_t end)>& body);
 
 }  // namespace softtrace

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <unordered_set>
 #include <vector>
 
+#include "io/file_read.h"
 #include "scene/csg_load.h"
 #include "scene/image_load.h"
 #include "scene/json_text.h"
@@ -330,30 +329,13 @@ void check_pixel_count(const ImageSettings& image, const std::string& name) {
 }
 
 Scene load_scene(const std::string& path) {
-  // A C string would end at the NUL: "x.json\0junk" must not load x.json.
-  if (path.find('\0') != std::string::npos)
-    throw SceneError(path.substr(0, path.find('\0')) + "...: a path with a NUL byte");
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw SceneError(path + ": is a folder, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open the scene file");
-  // Read in blocks, so that an endless input (/dev/zero, a pipe) is bounded: the read stops at
-  // the first block with a NUL byte (the parser then names its LINE:COL) or past the size limit.
+  // A NUL byte ends the read at its block: the parser then names its LINE:COL.
   std::string text;
-  std::vector<char> block(1 << 16);
-  while (in) {
-    in.read(block.data(), std::streamsize(block.size()));
-    const size_t got = size_t(in.gcount());
-    text.append(block.data(), got);
-    if (std::find(block.begin(), block.begin() + std::ptrdiff_t(got), '\0') !=
-        block.begin() + std::ptrdiff_t(got))
-      break;
-    if (text.size() > kMaxSceneBytes)
-      throw SceneError(path + ": larger than " + std::to_string(kMaxSceneBytes >> 20) +
-                       " MiB; a scene file may be at most that");
+  try {
+    text = read_file_bounded(path, kMaxSceneBytes, "scene", AtNul::Stop);
+  } catch (const FileReadError& e) {
+    throw SceneError(e.what());
   }
-  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
   return parse_scene(text, path);
 }
 

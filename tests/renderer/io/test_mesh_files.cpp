@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_util.h"
 #include "glb_read.h"
 #include "io/mesh_file.h"
 #include "mesh_scenes.h"
@@ -18,13 +19,6 @@ namespace softtrace {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 template <class T>
 T at(const std::string& bytes, size_t offset) {
@@ -64,7 +58,7 @@ TEST(MeshFiles, BinaryStlHoldsEveryFaceWithItsNormal) {
   const Mesh& m = sample();
   ASSERT_GT(m.faces.size(), 100u);
   write_mesh(tmp("m.stl"), m);
-  const std::string b = slurp(tmp("m.stl"));
+  const std::string b = test::read_file(tmp("m.stl"));
   ASSERT_EQ(at<uint32_t>(b, 80), m.faces.size());
   ASSERT_EQ(b.size(), 84 + 50 * m.faces.size());
   for (size_t f = 0; f < m.faces.size(); ++f) {
@@ -117,7 +111,7 @@ TEST(MeshFiles, ObjSharesVerticesAndNormals) {
 TEST(MeshFiles, BinaryPlyHoldsNormalsAndColours) {
   const Mesh& m = sample();
   write_mesh(tmp("m.ply"), m);
-  const std::string b = slurp(tmp("m.ply"));
+  const std::string b = test::read_file(tmp("m.ply"));
   const size_t end = b.find("end_header\n");
   ASSERT_NE(end, std::string::npos);
   const std::string header = b.substr(0, end);
@@ -184,7 +178,7 @@ TEST(MeshFiles, AFailedWriteLeavesTheOldFile) {
   Mesh bad = sample();
   bad.faces.push_back({0, 1, uint32_t(bad.vertices.size())});
   EXPECT_THROW(write_mesh(path, bad), std::invalid_argument);
-  EXPECT_EQ(slurp(path), "old\n");
+  EXPECT_EQ(test::read_file(path), "old\n");
   EXPECT_THROW(write_mesh(tmp("m.fbx"), sample()), std::invalid_argument);
   for (const auto& e : fs::directory_iterator(SOFTTRACE_TEST_TMP))
     EXPECT_NE(e.path().filename().string().rfind(".keep.obj.", 0), 0u) << "temporary file left";
@@ -215,7 +209,7 @@ TEST(MeshCli, WritesTheFileOrExitsTwoWritingNothing) {
   EXPECT_EQ(run(SOFTTRACE_SOURCE_DIR "/README.md -o " + out), 2);
   EXPECT_FALSE(fs::exists(out));
   ASSERT_EQ(run(scene + " -o " + out + " --cells 16 --threads 2 -q"), 0);
-  EXPECT_EQ(slurp(out).rfind("# softtrace mesh: ", 0), 0u);
+  EXPECT_EQ(test::read_file(out).rfind("# softtrace mesh: ", 0), 0u);
 }
 
 // scenes/molecule_two_colour.json: a red oxygen (centre (0, 0, 1.8), radius 2.6) and two white

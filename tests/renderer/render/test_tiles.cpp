@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -15,6 +14,7 @@
 #include "cli_util.h"
 #include "io/image_file.h"
 #include "render/tiles.h"
+#include "same_bits.h"
 
 namespace softtrace::test {
 namespace {
@@ -22,23 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* kTurntable = "tests/scenes/turntable.json";  // 48x36, 2 spp
-
-// Same windows, channels and bits in every channel of every pixel.
-void expect_same_bits(const std::string& a_path, const std::string& b_path) {
-  const ImageFile a = read_image(a_path), b = read_image(b_path);
-  EXPECT_EQ(a.full_width, b.full_width);
-  EXPECT_EQ(a.full_height, b.full_height);
-  EXPECT_EQ(a.x0, b.x0);
-  EXPECT_EQ(a.y0, b.y0);
-  EXPECT_EQ(a.width, b.width);
-  EXPECT_EQ(a.height, b.height);
-  ASSERT_EQ(a.channels, b.channels);
-  ASSERT_EQ(a.pixels.size(), b.pixels.size());
-  size_t differing = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i)
-    differing += std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) != 0;
-  EXPECT_EQ(differing, 0u) << a_path << " vs " << b_path;
-}
 
 std::string render(const std::string& args, const std::string& out) {
   const RunResult r =

@@ -1,0 +1,40 @@
+#include "io/file_read.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+namespace softtrace {
+
+void refuse_nul_in_path(const std::string& path) {
+  if (path.find('\0') != std::string::npos)
+    throw FileReadError(path.substr(0, path.find('\0')) + "...: a path with a NUL byte");
+}
+
+std::string read_file_bounded(const std::string& path, size_t limit, const std::string& what,
+                              AtNul at_nul) {
+  refuse_nul_in_path(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw FileReadError(path + ": is a folder, not a " + what + " file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileReadError(path + ": cannot open the " + what + " file");
+  std::string bytes;
+  std::vector<char> block(1 << 16);
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    const size_t got = size_t(in.gcount());
+    bytes.append(block.data(), got);
+    if (at_nul == AtNul::Stop && std::find(block.begin(), block.begin() + std::ptrdiff_t(got),
+                                           '\0') != block.begin() + std::ptrdiff_t(got))
+      break;
+    if (bytes.size() > limit)
+      throw FileReadError(path + ": larger than " + std::to_string(limit >> 20) + " MiB; a " +
+                          what + " file may be at most that");
+  }
+  if (in.bad()) throw FileReadError(path + ": cannot read the " + what + " file");
+  return bytes;
+}
+
+}  // namespace softtrace
