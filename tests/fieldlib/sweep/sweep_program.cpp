@@ -129,4 +129,37 @@ TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
   }
 }
 
+TEST_P(NodeSweep, ProgramSegmentSlopeHoldsCentralDifferences) {
+  // The slope along a segment against the derivative d f(a + t u)/dt sampled by central
+  // differences at points inside it, where the step stays inside (the derivative, not a chord).
+  const SweepCase& c = GetParam();
+  Compiled cc(c);
+  const NodePtr& n = cc.node;
+  Workspace& ws = cc.ws;
+  std::mt19937_64 rng(9);
+  for (int i = 0; i < 200; ++i) {
+    const Box box = random_box(rng, c.domain);
+    const Segment seg{uniform_in(rng, box), uniform_in(rng, box)};
+    const double len = length(seg.b - seg.a);
+    if (!(len > 0)) continue;
+    const Vec3 dir = (seg.b - seg.a) / len;
+    const BoxBounds bb = bounds(cc.prog, seg, ws);
+    const double h = 1e-6 * len;
+    std::uniform_real_distribution<double> u(h, len - h);
+    for (int j = 0; j < 10; ++j) {
+      const double t = u(rng);
+      const double fp = n->value(seg.a + dir * (t + h)), fm = n->value(seg.a + dir * (t - h));
+      if (!std::isfinite(fp) || !std::isfinite(fm)) continue;
+      const double derivative = (fp - fm) / (2 * h);
+      // Rounding of the two values, and the second-order term of a kink or a sharp bend.
+      const double slack = 1e-6 * (std::abs(bb.slope.lo) + std::abs(bb.slope.hi)) +
+                           1e-12 * (std::abs(fp) + std::abs(fm)) / h + 1e-9;
+      ASSERT_GE(derivative, bb.slope.lo - slack)
+          << c.name << ": [" << bb.slope.lo << ", " << bb.slope.hi << "] at t = " << t;
+      ASSERT_LE(derivative, bb.slope.hi + slack)
+          << c.name << ": [" << bb.slope.lo << ", " << bb.slope.hi << "] at t = " << t;
+    }
+  }
+}
+
 }  // namespace softtrace::test
