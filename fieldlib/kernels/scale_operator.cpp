@@ -28,6 +28,25 @@ ScaleOperator::ScaleOperator(double r1, double r2, double p, bool bsa)
   }
 }
 
+std::vector<double> ScaleOperator::constants() const {
+  return {r1_, r2_, p_, static_cast<double>(s_), a_, b1_, b2_, gain_, sum_lo_, sum_hi_};
+}
+
+ScaleOperator ScaleOperator::load(const double* c) {
+  ScaleOperator op;
+  op.r1_ = c[0];
+  op.r2_ = c[1];
+  op.p_ = c[2];
+  op.s_ = static_cast<int>(c[3]);
+  op.a_ = c[4];
+  op.b1_ = c[5];
+  op.b2_ = c[6];
+  op.gain_ = c[7];
+  op.sum_lo_ = c[8];
+  op.sum_hi_ = c[9];
+  return op;
+}
+
 bool ScaleOperator::region3(double x1, double x2) const {
   if (!(x1 > 0 && x2 > 0)) return false;
   if (s_ > 0) return x1 / (1 + r1_) < x2 && x2 < (1 + r2_) * x1;

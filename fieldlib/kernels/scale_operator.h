@@ -4,6 +4,8 @@
 // instruction, so both compute the same bits.
 #pragma once
 
+#include <vector>
+
 #include "math/interval.h"
 
 namespace softtrace {
@@ -13,6 +15,10 @@ namespace softtrace {
 class ScaleOperator {
  public:
   ScaleOperator(double r1, double r2, double p, bool bsa);
+  // Its derived coefficients as a program's constants, and back without recomputing them (the
+  // instruction reads them per lane).
+  std::vector<double> constants() const;
+  static ScaleOperator load(const double* c);
   double operator()(double x1, double x2, double dh[2]) const;
   bool region3(double x1, double x2) const;
 
@@ -31,6 +37,8 @@ class ScaleOperator {
   int sharp_everywhere(Interval x1, Interval x2) const;
 
  private:
+  ScaleOperator() = default;
+
   double r1_, r2_, p_;
   int s_;  // +1: y = x/h - 1 (BSA2); -1: y = 1 - x/h (BSS2)
   double a_, b1_, b2_;

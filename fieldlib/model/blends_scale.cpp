@@ -34,7 +34,7 @@ class Scale final : public NaryNode {
  public:
   // `children`: exactly two (the kinds table).
   Scale(std::vector<NodePtr> children, double r1, double r2, double p, bool bsa)
-      : NaryNode(std::move(children)), op_(r1, r2, p, bsa), r1_(r1), r2_(r2), p_(p), bsa_(bsa) {
+      : NaryNode(std::move(children)), op_(r1, r2, p, bsa), bsa_(bsa) {
     kappa_ = bsa ? (r1 + r2) / (r1 * r2 + r1 + r2) : (r1 + r2 - r1 * r2) / (r1 + r2);
     gain_ = bsa ? 1.0 : 1 / (1 - std::max(r1, r2));
   }
@@ -65,7 +65,7 @@ class Scale final : public NaryNode {
   // along a segment its slope is the chain rule on the children's (docs/math.md §8, "Slopes along a
   // segment").
   int compile(ProgramBuilder& b, int reg) const override {
-    return b.nary(Op::Scale, c_, reg, b.consts(ScaleOp::constants(r1_, r2_, p_, bsa_)));
+    return b.nary(Op::Scale, c_, reg, b.consts(ScaleOp::constants(op_)));
   }
 
  private:
@@ -74,7 +74,6 @@ class Scale final : public NaryNode {
   }
 
   ScaleOperator op_;
-  double r1_, r2_, p_;
   bool bsa_;
   double kappa_, gain_;
 };

@@ -285,12 +285,17 @@ struct PerlinOp : Combination<PerlinOp> {
 };
 
 // The scale method BSA2 / BSS2 of two children, 000 Eq. 8 (kernels/scale_operator.h). Constants
-// (at in): r1, r2, p, and 1 for BSA2 or 0 for BSS2.
+// (at in): the operator's own (ScaleOperator::constants).
 struct ScaleOp : Combination<ScaleOp> {
-  static std::vector<double> constants(double r1, double r2, double p, bool bsa) {
-    return {r1, r2, p, bsa ? 1.0 : 0.0};
+  static std::vector<double> constants(const ScaleOperator& op) { return op.constants(); }
+  static ScaleOperator load(const double* c) { return ScaleOperator::load(c); }
+  // Combination's loop with the operator loaded once, not per lane.
+  static void values(const Instr& in, const LaneIO& io) {
+    const ScaleOperator op = load(io.K + in.in);
+    const double *x1 = io.slot(io.args[in.a]), *x2 = io.slot(io.args[in.a + 1]);
+    double* out = io.slot(in.out);
+    for (int l = 0; l < io.n; ++l) out[l] = op(x1[l], x2[l], nullptr);
   }
-  static ScaleOperator load(const double* c) { return {c[0], c[1], c[2], c[3] != 0}; }
   static double combine(const Instr& in, const double* K, const double* x) {
     return load(K + in.in)(x[0], x[1], nullptr);
   }

@@ -895,12 +895,18 @@ TEST(Program, PerlinBlendsAreOneInstructionAfterTheirChildren) {
       ++blends;
     EXPECT_EQ(count_ops(prog.code, Op::Perlin), blends) << json;
     EXPECT_FALSE(prog.has_pruning) << json;
-    expect_models_bits(json, Convention::Soft, [](Vec3 p, int k) {
-      // 0: anywhere; 1: the origin; 2: a NaN coordinate.
-      if (k % 3 == 1) return Vec3{};
-      if (k % 3 == 2) return with_nan(p, k);
-      return p;
-    });
+    // The values and gradients to the bit; the bounds only to hold the samples: the scale unions
+    // compile (issue 36), so their soft objects are bounded by the program's kernels, whose
+    // intervals round otherwise than the model's by an ulp or so.
+    expect_models_bits(
+        json, Convention::Soft,
+        [](Vec3 p, int k) {
+          // 0: anywhere; 1: the origin; 2: a NaN coordinate.
+          if (k % 3 == 1) return Vec3{};
+          if (k % 3 == 2) return with_nan(p, k);
+          return p;
+        },
+        false);
     // Over a box outside every support no child is dropped; over all of space the bound is the
     // node's global one.
     Workspace ws;

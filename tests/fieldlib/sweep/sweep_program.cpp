@@ -162,4 +162,54 @@ TEST_P(NodeSweep, ProgramSegmentSlopeHoldsCentralDifferences) {
   }
 }
 
+// The combinations whose slope along a segment is derived (docs/math.md §8, "Slopes along a
+// segment") must show it one-signed where the field rises or falls through a short segment: a
+// slope of [-L, L] never is. Counts such segments among 400 short ones.
+TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
+  const char* soft_a =
+      R"({"type":"soft_object","translate":[-0.4,0,0],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2}})";
+  const char* soft_b =
+      R"({"type":"soft_object","translate":[0.5,0.2,0],"distance":{"type":"lp_metric","radii":[0.9,1.2,0.8],"n":4}})";
+  const char* dist_a = R"({"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2})";
+  const char* dist_b =
+      R"({"type":"lp_metric","translate":[0.5,0.2,0],"radii":[0.9,1.2,0.8],"n":4})";
+  struct Kind {
+    const char* name;
+    std::string json;
+    Convention convention;
+  };
+  const auto pair = [](const std::string& head, const char* a, const char* b) {
+    return head + R"(,"children":[)" + a + "," + b + "]}";
+  };
+  const Kind kinds[] = {
+      {"scale_BSS2", pair(R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1)", soft_a, soft_b),
+       Convention::Soft},
+      {"scale_BSA2", pair(R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1)", dist_a, dist_b),
+       Convention::Constructive},
+      {"perlin_union", pair(R"({"type":"perlin_union")", soft_a, soft_b), Convention::Soft},
+      {"perlin_intersection", pair(R"({"type":"perlin_intersection")", soft_a, soft_b),
+       Convention::Soft},
+      {"perlin_difference", pair(R"({"type":"perlin_difference")", soft_a, soft_b),
+       Convention::Soft},
+  };
+  const Box domain({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
+  for (const Kind& k : kinds) {
+    const NodePtr n = build_from_json(k.json, k.convention);
+    const Program prog = compile(*n);
+    Workspace ws;
+    ws.fit(prog);
+    std::mt19937_64 rng(10);
+    std::normal_distribution<double> g(0, 1);
+    int one_signed = 0;
+    for (int i = 0; i < 400; ++i) {
+      const Vec3 a = uniform_in(rng, domain);
+      const Vec3 d = normalize(Vec3{g(rng), g(rng), g(rng)});
+      const BoxBounds bb = bounds(prog, Segment{a, a + d * 0.05}, ws);
+      if (bb.slope.lo > 0 || bb.slope.hi < 0) ++one_signed;
+    }
+    EXPECT_GT(one_signed, 0) << k.name;
+    RecordProperty(k.name, one_signed);
+  }
+}
+
 }  // namespace softtrace::test
