@@ -71,4 +71,21 @@ inline double perlin_lipschitz(PerlinMode mode, const Interval* f, const double*
   return std::min(global_L, perlin_slope(G.data(), L, k));
 }
 
+// d B(f_1(t), ..., f_k(t))/dt from the children's ranges f and slope enclosures D along a segment
+// (docs/math.md §8, "Slopes along a segment"): the product rule, (Π g_j)' = Σ_i g_i' Π_{j≠i} g_j
+// with g_i' = ±f_i', in interval arithmetic over the factors' ranges; the union's 1 - Π negates it.
+inline Interval perlin_slope_along(PerlinMode mode, const Interval* f, const Interval* D,
+                                   size_t k) {
+  Scratch<Interval> G(k);
+  for (size_t i = 0; i < k; ++i) G[i] = perlin_factor(mode, i, f[i]);
+  Interval s(0);
+  for (size_t i = 0; i < k; ++i) {
+    Interval term = perlin_complemented(mode, i) ? -D[i] : D[i];
+    for (size_t j = 0; j < k; ++j)
+      if (j != i) term = term * G[j];
+    s = s + term;
+  }
+  return mode == PerlinMode::Union ? -s : s;
+}
+
 }  // namespace softtrace

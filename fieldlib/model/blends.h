@@ -15,6 +15,7 @@
 #pragma once
 
 #include "describe/build_context.h"
+#include "kernels/scale_operator.h"  // ScaleOperator, which the tests call directly
 #include "model/node.h"
 
 namespace softtrace {
@@ -38,19 +39,5 @@ NodePtr create_scale_intersection(const Params& p, const BuildContext& ctx);
 // offset s·(f - c) (003 §2.1; kernels/offset.h): `children` (exactly one), `scale` s != 0
 // (default 1), `level` c (default 1).
 NodePtr create_offset(const Params& p, const BuildContext& ctx);
-
-// The scale operators on two numbers (docs/math.md §6.3): BSA2 (bsa) or BSS2, and ∂h/∂x_i into dh.
-// Parameters are not validated here (the node's creator does): r_i > 0, p < r1 r2, BSS2 r_i < 1.
-class ScaleOperator {
- public:
-  ScaleOperator(double r1, double r2, double p, bool bsa);
-  double operator()(double x1, double x2, double dh[2]) const;
-  bool region3(double x1, double x2) const;
-
- private:
-  double r1_, r2_, p_;
-  int s_;  // +1: y = x/h - 1 (BSA2); -1: y = 1 - x/h (BSS2)
-  double a_, b1_, b2_;
-};
 
 }  // namespace softtrace

@@ -21,53 +21,11 @@
 #include "describe/building.h"
 #include "model/blends.h"
 #include "model/nary_node.h"
+#include "model/program_builder.h"
 #include "model/strength.h"
+#include "program/ops/nary_ops.h"
 
 namespace softtrace {
-
-ScaleOperator::ScaleOperator(double r1, double r2, double p, bool bsa)
-    : r1_(r1), r2_(r2), p_(p), s_(bsa ? 1 : -1) {
-  a_ = (1 + 2 * s_ * r2_) * r1_ * r1_ + (1 + s_ * r1_) * (1 + s_ * r1_) * r2_ * r2_ + 2 * p_;
-  b1_ = -2 * ((1 + s_ * r1_) * r2_ * r2_ + p_);
-  b2_ = -2 * ((1 + s_ * r2_) * r1_ * r1_ + p_);
-}
-
-bool ScaleOperator::region3(double x1, double x2) const {
-  if (!(x1 > 0 && x2 > 0)) return false;
-  if (s_ > 0) return x1 / (1 + r1_) < x2 && x2 < (1 + r2_) * x1;
-  return (1 - r1_) * x2 < x1 && (1 - r2_) * x1 < x2;
-}
-
-double ScaleOperator::operator()(double x1, double x2, double dh[2]) const {
-  const bool first = s_ > 0 ? x1 <= x2 : x1 >= x2;  // which argument min/max picks
-  const double sharp = first ? x1 : x2;
-  if (dh) {
-    dh[0] = first ? 1 : 0;
-    dh[1] = first ? 0 : 1;
-  }
-  if (!region3(x1, x2)) return sharp;
-  const double b = b1_ * x1 + b2_ * x2;
-  const double c = r1_ * r1_ * x2 * x2 + r2_ * r2_ * x1 * x1 + 2 * p_ * x1 * x2;
-  const double q = std::sqrt(std::max(b * b - 4 * a_ * c, 0.0));
-  // The "+" root for BSA2 and the "-" root for BSS2, each in its cancellation-free form (A6).
-  double h;
-  if (s_ > 0)
-    h = b > 0 ? 2 * c / (-b - q) : (-b + q) / (2 * a_);
-  else
-    h = b < 0 ? 2 * c / (-b + q) : (-b - q) / (2 * a_);
-  if (!std::isfinite(h)) return sharp;
-  if (dh) {  // implicit function theorem on G(h; x) = a h^2 + b h + c
-    const double Gh = 2 * a_ * h + b;
-    const double G1 = h * b1_ + 2 * r2_ * r2_ * x1 + 2 * p_ * x2;
-    const double G2 = h * b2_ + 2 * r1_ * r1_ * x2 + 2 * p_ * x1;
-    const double d1 = -G1 / Gh, d2 = -G2 / Gh;
-    if (std::isfinite(d1) && std::isfinite(d2)) {
-      dh[0] = d1;
-      dh[1] = d2;
-    }
-  }
-  return h;
-}
 
 namespace {
 
@@ -103,15 +61,16 @@ class Scale final : public NaryNode {
     return both ? a.intersected(c) : a.united(c);
   }
 
- private:
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
-    return {range(I[0], I[1]), std::max(L[0], L[1]) * gain_ * (1 + 1e-12)};
+  // The children's code as a group (never pruned), then one instruction with r1, r2, p inline:
+  // along a segment its slope is the chain rule on the children's (docs/math.md §8, "Slopes along a
+  // segment").
+  int compile(ProgramBuilder& b, int reg) const override {
+    return b.nary(Op::Scale, c_, reg, b.consts(ScaleOp::constants(op_)));
   }
 
-  // B is non-decreasing in both arguments: its range is B at the ends, widened for rounding.
-  Interval range(Interval i1, Interval i2) const {
-    const double lo = op_(i1.lo, i2.lo, nullptr), hi = op_(i1.hi, i2.hi, nullptr);
-    return iv::out(lo - 1e-13 * std::abs(lo), hi + 1e-13 * std::abs(hi));
+ private:
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+    return {op_.range(I[0], I[1]), std::max(L[0], L[1]) * gain_ * (1 + 1e-12)};
   }
 
   ScaleOperator op_;

@@ -31,8 +31,8 @@ class ProgramBuilder {
   // An oracle instruction: `node` evaluates its own subtree at register `reg`.
   int oracle(const FieldNode& node, int reg);
   // Emits `children` as a group combined by `op` (Sum, Min, Max, SuperUnion, SuperIntersect,
-  // Perlin, Ricci), whose `in` is `consts_at`; for Sum, children whose value is exactly 0 outside
-  // their support are made prunable.
+  // Perlin, Ricci, Scale), whose `in` is `consts_at`; for Sum, children whose value is exactly 0
+  // outside their support are made prunable.
   int nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& children, int reg,
            int consts_at = 0);
 

@@ -1,7 +1,8 @@
 // What an oracle instruction (program.h) asks of the model node behind it: the node evaluates its
-// own subtree. The root-defined blends (scale method, BT_k, bulge elimination) stay oracles by
-// design, their bounds derived next to their code; FieldNode (model/node.h) implements this, so
-// the evaluators call it without knowing the model.
+// own subtree. The root-defined blends BT_k and bulge elimination stay oracles by design, their
+// bounds derived next to their code (the scale method compiles to an instruction of its own: its
+// slope along a segment needs its children's, docs/math.md §8, "Slopes along a segment"); FieldNode
+// (model/node.h) implements this, so the evaluators call it without knowing the model.
 #pragma once
 
 #include "math/box.h"

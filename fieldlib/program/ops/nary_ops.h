@@ -1,8 +1,9 @@
 // The n-ary instructions: a group announcing children, the sum (soft_blend, 000 Eq. 12), min and
 // max, and the combinations whose kernels take their children's values as arrays (the
 // super-ellipsoidal union and intersection, 000 Eq. 6; Perlin's blends, 002 Eqs. 4-6; Ricci's,
-// 002 Eq. 7). Each reads its children's slots args[a..a+n); in the bounds pass, the kept children
-// of the walk's group (BoundsIO::child), whose code the walk has already bounded.
+// 002 Eq. 7; the scale method, 000 Eq. 8). Each reads its children's slots args[a..a+n); in the
+// bounds pass, the kept children of the walk's group (BoundsIO::child), whose code the walk has
+// already bounded.
 //
 // Rounding: a sum of k terms errs by at most (k-1)·2^-53·Σ|terms| (recursive summation); widened
 // by k·2^-52·Σ|bounds| + 1e-300, the last also covering terms dropped as 0 that are subnormal.
@@ -15,6 +16,7 @@
 #include "kernels/gauge.h"
 #include "kernels/perlin.h"
 #include "kernels/ricci.h"
+#include "kernels/scale_operator.h"
 #include "kernels/super_ellipsoidal.h"
 #include "math/scratch.h"
 #include "program/ops/op_io.h"
@@ -163,8 +165,10 @@ using MaxOp = ExtremeOp<false>;
 // A combination whose kernel takes the children's values as an array: C::combine(in, K, x) on
 // the values x[0..in.n) gathered, lane by lane (pow is a libm call); C::interval and
 // C::lipschitz on the children's intervals and bounds (the model's bits). Along a segment the
-// slope is the bound [-L, L], and no quiet start (a combination of distances; 1 - Π(1 - f_i), the
-// products and a soft Ricci union could claim one, not taken here).
+// slope is C::slope's, the chain rule on the children's slopes where the kind derives one
+// (docs/math.md §8, "Slopes along a segment"; capped by L), else the bound [-L, L]; and no quiet
+// start (a combination of distances; 1 - Π(1 - f_i), the products and a soft Ricci union could
+// claim one, not taken here).
 template <class C>
 struct Combination : SlotsToSlot {
   static constexpr bool kZeroWhenQuiet = false;
@@ -204,8 +208,18 @@ struct Combination : SlotsToSlot {
     double L;
     io.I[out.out] = C::interval(io.K + out.in, x.data(), Lc.data(), n, &L);
     io.L[out.out] = L;
-    io.D[out.out] = {-L, L};
     io.Q[out.out] = 0;
+    if (!io.segment) {
+      io.D[out.out] = {-L, L};
+      return;
+    }
+    Scratch<Interval> D(n);
+    for (int j = 0; j < n; ++j) D[j] = io.D[io.child(j).slot];
+    io.D[out.out] = BoundsIO::capped(C::slope(io.K + out.in, x.data(), D.data(), n), L);
+  }
+  // No slope of its own: the Lipschitz bound's (capped above).
+  static Interval slope(const double*, const Interval*, const Interval*, int) {
+    return Interval::entire();
   }
 };
 
@@ -264,6 +278,42 @@ struct PerlinOp : Combination<PerlinOp> {
                            double* lipschitz) {
     *lipschitz = perlin_lipschitz(load(c), x, L, n, c[1]);
     return perlin_interval(load(c), x, n);
+  }
+  static Interval slope(const double* c, const Interval* x, const Interval* D, int n) {
+    return perlin_slope_along(load(c), x, D, n);
+  }
+};
+
+// The scale method BSA2 / BSS2 of two children, 000 Eq. 8 (kernels/scale_operator.h). Constants
+// (at in): the operator's own (ScaleOperator::constants).
+struct ScaleOp : Combination<ScaleOp> {
+  static std::vector<double> constants(const ScaleOperator& op) { return op.constants(); }
+  static ScaleOperator load(const double* c) { return ScaleOperator::load(c); }
+  // Combination's loop with the operator loaded once, not per lane.
+  static void values(const Instr& in, const LaneIO& io) {
+    const ScaleOperator op = load(io.K + in.in);
+    const double *x1 = io.slot(io.args[in.a]), *x2 = io.slot(io.args[in.a + 1]);
+    double* out = io.slot(in.out);
+    for (int l = 0; l < io.n; ++l) out[l] = op(x1[l], x2[l], nullptr);
+  }
+  static double combine(const Instr& in, const double* K, const double* x) {
+    return load(K + in.in)(x[0], x[1], nullptr);
+  }
+  static double combine(const Instr& in, const double* K, const double* x, Vec3* g, Vec3* grad) {
+    double dh[2];
+    const double h = load(K + in.in)(x[0], x[1], dh);
+    *grad = g[0] * dh[0] + g[1] * dh[1];
+    return h;
+  }
+  // The model's bounds (blends_scale.cpp): h at the ends; max L_k times the gain.
+  static Interval interval(const double* c, const Interval* x, const double* L, int,
+                           double* lipschitz) {
+    const ScaleOperator op = load(c);
+    *lipschitz = std::max(L[0], L[1]) * op.gain() * (1 + 1e-12);
+    return op.range(x[0], x[1]);
+  }
+  static Interval slope(const double* c, const Interval* x, const Interval* D, int) {
+    return load(c).slope(x[0], x[1], D[0], D[1]);
   }
 };
 

@@ -129,4 +129,87 @@ TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
   }
 }
 
+TEST_P(NodeSweep, ProgramSegmentSlopeHoldsCentralDifferences) {
+  // The slope along a segment against the derivative d f(a + t u)/dt sampled by central
+  // differences at points inside it, where the step stays inside (the derivative, not a chord).
+  const SweepCase& c = GetParam();
+  Compiled cc(c);
+  const NodePtr& n = cc.node;
+  Workspace& ws = cc.ws;
+  std::mt19937_64 rng(9);
+  for (int i = 0; i < 200; ++i) {
+    const Box box = random_box(rng, c.domain);
+    const Segment seg{uniform_in(rng, box), uniform_in(rng, box)};
+    const double len = length(seg.b - seg.a);
+    if (!(len > 0)) continue;
+    const Vec3 dir = (seg.b - seg.a) / len;
+    const BoxBounds bb = bounds(cc.prog, seg, ws);
+    const double h = 1e-6 * len;
+    std::uniform_real_distribution<double> u(h, len - h);
+    for (int j = 0; j < 10; ++j) {
+      const double t = u(rng);
+      const double fp = n->value(seg.a + dir * (t + h)), fm = n->value(seg.a + dir * (t - h));
+      if (!std::isfinite(fp) || !std::isfinite(fm)) continue;
+      const double derivative = (fp - fm) / (2 * h);
+      // Rounding of the two values, and the second-order term of a kink or a sharp bend.
+      const double slack = 1e-6 * (std::abs(bb.slope.lo) + std::abs(bb.slope.hi)) +
+                           1e-12 * (std::abs(fp) + std::abs(fm)) / h + 1e-9;
+      ASSERT_GE(derivative, bb.slope.lo - slack)
+          << c.name << ": [" << bb.slope.lo << ", " << bb.slope.hi << "] at t = " << t;
+      ASSERT_LE(derivative, bb.slope.hi + slack)
+          << c.name << ": [" << bb.slope.lo << ", " << bb.slope.hi << "] at t = " << t;
+    }
+  }
+}
+
+// The combinations whose slope along a segment is derived (docs/math.md §8, "Slopes along a
+// segment") must show it one-signed where the field rises or falls through a short segment: a
+// slope of [-L, L] never is. Counts such segments among 400 short ones.
+TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
+  const char* soft_a =
+      R"({"type":"soft_object","translate":[-0.4,0,0],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2}})";
+  const char* soft_b =
+      R"({"type":"soft_object","translate":[0.5,0.2,0],"distance":{"type":"lp_metric","radii":[0.9,1.2,0.8],"n":4}})";
+  const char* dist_a = R"({"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2})";
+  const char* dist_b =
+      R"({"type":"lp_metric","translate":[0.5,0.2,0],"radii":[0.9,1.2,0.8],"n":4})";
+  struct Kind {
+    const char* name;
+    std::string json;
+    Convention convention;
+  };
+  const auto pair = [](const std::string& head, const char* a, const char* b) {
+    return head + R"(,"children":[)" + a + "," + b + "]}";
+  };
+  const Kind kinds[] = {
+      {"scale_BSS2", pair(R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1)", soft_a, soft_b),
+       Convention::Soft},
+      {"scale_BSA2", pair(R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1)", dist_a, dist_b),
+       Convention::Constructive},
+      {"perlin_union", pair(R"({"type":"perlin_union")", soft_a, soft_b), Convention::Soft},
+      {"perlin_intersection", pair(R"({"type":"perlin_intersection")", soft_a, soft_b),
+       Convention::Soft},
+      {"perlin_difference", pair(R"({"type":"perlin_difference")", soft_a, soft_b),
+       Convention::Soft},
+  };
+  const Box domain({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
+  for (const Kind& k : kinds) {
+    const NodePtr n = build_from_json(k.json, k.convention);
+    const Program prog = compile(*n);
+    Workspace ws;
+    ws.fit(prog);
+    std::mt19937_64 rng(10);
+    std::normal_distribution<double> g(0, 1);
+    int one_signed = 0;
+    for (int i = 0; i < 400; ++i) {
+      const Vec3 a = uniform_in(rng, domain);
+      const Vec3 d = normalize(Vec3{g(rng), g(rng), g(rng)});
+      const BoxBounds bb = bounds(prog, Segment{a, a + d * 0.05}, ws);
+      if (bb.slope.lo > 0 || bb.slope.hi < 0) ++one_signed;
+    }
+    EXPECT_GT(one_signed, 0) << k.name;
+    RecordProperty(k.name, one_signed);
+  }
+}
+
 }  // namespace softtrace::test
