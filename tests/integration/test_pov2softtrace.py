@@ -116,6 +116,26 @@ def test_camera_angle_is_horizontal_and_fov_vertical():
     assert cam["fov"] == pytest.approx(2 * math.degrees(math.atan(0.5 / 1.7)))
 
 
+def test_orthographic_and_focal_blur_cameras():
+    body = "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }"
+    # Orthographic without angle: `up` tall in world units, the fov that gives that at look_at.
+    cam = scene_of(body, "camera { orthographic location <0, 0, -10> look_at 0 right 8*x "
+                   "up 6*y }\n")["camera"]
+    assert cam["projection"] == "orthographic"
+    assert 2 * 10 * math.tan(math.radians(cam["fov"]) / 2) == pytest.approx(6)
+    # With angle: as tall as the perspective view at look_at, which is softtrace's own rule.
+    cam = scene_of(body, "camera { orthographic location <0, 0, -10> look_at 0 right x*4/3 "
+                   "angle 60 }\n")["camera"]
+    assert cam["projection"] == "orthographic"
+    assert cam["fov"] == pytest.approx(2 * math.degrees(math.atan(math.tan(math.radians(30)) * 0.75)))
+    # Focal blur: POV-Ray's lens is aperture/2 across; in focus at focal_point's distance.
+    cam = scene_of(body, "camera { location <0, 0, -10> look_at 0 right x*4/3 aperture 0.8 "
+                   "focal_point <3, 0, 0> blur_samples 8, 40 confidence 0.95 variance 0 }\n")["camera"]
+    assert cam["aperture"] == pytest.approx(0.4)
+    assert cam["focal_distance"] == pytest.approx(math.sqrt(109))
+    assert cam["blur_samples"] == 40 and "projection" not in cam
+
+
 def test_lights_background_and_finish():
     sc = scene_of("#declare Warm = rgb <1, 0.9, 0.8>;\n"
                   "light_source { <0, 10, 0> color Warm }\n"
@@ -223,6 +243,20 @@ def test_csg_nests_blobs_and_shapes_and_passes_its_pigment_on():
     assert cut["material"]["color"] == [0, 0, 1]
     # Every part has its own pigment: the merge needs none.
     assert merged["csg"] == "merge" and "material" not in merged
+
+
+def test_camera_refusals_are_located():
+    body = "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }"
+    for camera, col, phrase in [
+            ("camera { orthographic location <0, 0, -10> look_at 0 aperture 1 }", 1,
+             "focal blur with an orthographic camera"),
+            ("camera { location <0, 0, -10> look_at 0 aperture -1 }", 41, "must be >= 0"),
+            ("camera { location <0, 0, -10> look_at 0 blur_samples 2.5 }", 41,
+             "must be a whole number")]:
+        with pytest.raises(PovError) as e:
+            scene_of(body, camera + "\n")
+        assert (e.value.line, e.value.col) == (1, col), e.value.message
+        assert phrase in e.value.message
 
 
 def test_no_camera_is_refused():

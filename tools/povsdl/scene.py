@@ -1,6 +1,7 @@
 """POV-Ray 3.7 statements as a softtrace scene (a JSON-ready dict).
 
-Carried across: `camera` (location, look_at, angle, direction, up, right, sky), `light_source`
+Carried across: `camera` (location, look_at, angle, direction, up, right, sky, orthographic,
+focal blur's aperture, focal_point and blur_samples), `light_source`
 (point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, plane/box/sphere/cylinder/cone/disc objects, `global_settings` (ambient_light,
 assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
 and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, and `blob` objects:
@@ -232,12 +233,32 @@ class Converter:
         location, look_at = (0.0, 0.0, 0.0), None
         direction, up, right, sky = (0.0, 0.0, 1.0), (0.0, 1.0, 0.0), (1.33, 0.0, 0.0), None
         angle = None
+        orthographic, aperture, focal_point, blur_samples = False, 0.0, None, None
         while not s.closes("camera"):
             tok = s.next()
             w = tok.text
             if w == "perspective":
                 continue
-            if w == "location":
+            if w == "orthographic":
+                orthographic = True
+            elif w == "aperture":
+                aperture = ex.number("aperture")
+                if aperture < 0:
+                    raise s.error(tok, "aperture %g: must be >= 0" % aperture)
+            elif w == "focal_point":
+                focal_point = ex.vector("focal_point")
+            elif w == "blur_samples":
+                # `blur_samples N` or `blur_samples MIN, MAX`: POV-Ray stops between the two
+                # when its confidence test passes; softtrace takes every sample, the most.
+                blur_samples = ex.number("blur_samples")
+                if s.accept(","):
+                    blur_samples = ex.number("blur_samples")
+                if not (1 <= blur_samples <= 4096 and blur_samples == int(blur_samples)):
+                    raise s.error(tok, "blur_samples %g: must be a whole number from 1 to 4096"
+                                  % blur_samples)
+            elif w in ("confidence", "variance"):
+                ex.number(w)  # the adaptive stop: softtrace takes all blur_samples
+            elif w == "location":
                 location = ex.vector("location")
             elif w == "look_at":
                 look_at = ex.vector("look_at")
@@ -283,9 +304,32 @@ class Converter:
         if look_at is None:
             look_at = tuple(l + d for l, d in zip(location, direction))
         sky = sky or up
-        return {"eye": list(affine.to_softtrace_point(location)),
-                "target": list(affine.to_softtrace_point(look_at)),
-                "up": list(affine.to_softtrace_point(sky)), "fov": vfov}
+        camera = {"eye": list(affine.to_softtrace_point(location)),
+                  "target": list(affine.to_softtrace_point(look_at)),
+                  "up": list(affine.to_softtrace_point(sky)), "fov": vfov}
+        view = norm([t - l for t, l in zip(look_at, location)])
+        if orthographic:
+            if view == 0:
+                raise s.error(at, "camera: an orthographic camera needs look_at away from "
+                              "location")
+            # POV-Ray's orthographic view is `up` tall (in world units); with `angle` it is as
+            # tall as the perspective view at look_at. softtrace's is the latter: the field of
+            # view that gives `up`'s height there.
+            camera["projection"] = "orthographic"
+            if angle is None:
+                camera["fov"] = math.degrees(2 * math.atan(norm(up) / 2 / view))
+        if aperture > 0:
+            if orthographic:
+                raise s.error(at, "camera: focal blur with an orthographic camera is not "
+                              "supported")
+            # POV-Ray moves the eye by up to aperture/4 (its sample grid's radius 1/2 times
+            # aperture/2) across the view: a lens of diameter aperture/2. The plane in focus is
+            # across the view at focal_point's distance from location (default <0, 0, 0>).
+            fp = focal_point if focal_point is not None else (0.0, 0.0, 0.0)
+            camera["aperture"] = aperture / 2
+            camera["focal_distance"] = norm([f - l for f, l in zip(fp, location)])
+            camera["blur_samples"] = int(blur_samples if blur_samples is not None else 4)
+        return camera
 
     def _light(self, s, ex):
         s.expect("{")
