@@ -38,10 +38,11 @@ TOOLS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(TOOLS)
 sys.path.insert(0, TOOLS)
 import blob_scene  # noqa: E402
+import pov2softtrace  # noqa: E402
 import pov_cloud  # noqa: E402
 import pov_scene  # noqa: E402
 from povsdl.lexer import PovError  # noqa: E402
-from povsdl.scene import convert  # noqa: E402
+from povsdl.scene import convert, obj_text  # noqa: E402
 
 PACKAGES = ["povray", "python3-pil", "gnuplot-nox"]
 SAFE_MAX_GRADIENT = 0.74
@@ -118,10 +119,16 @@ def write_case(case, a, work):
             source = pov_case_path(case[4:])
             with open(source) as f:
                 text = f.read()
+        meshes = []
         try:
-            sc = convert(source, text, a.width, a.height)
+            sc = convert(source, text, a.width, a.height, None, meshes)
         except PovError as e:
             sys.exit("%s:%d:%d: %s" % (source, e.line, e.col, e.message))
+        for obj in pov2softtrace.mesh_objects(sc["objects"]):  # OBJ files beside the scene
+            name = "%s_%s.obj" % (os.path.basename(base), obj["name"])
+            with open(os.path.join(work, name), "w") as f:
+                f.write(obj_text(meshes[obj["mesh"]]))
+            obj["mesh"] = name
         # POV-Ray's alpha (+UA) is the coverage only where the background is transparent.
         pov = text + "\nbackground { rgbt <0, 0, 0, 1> }\n"
     else:
