@@ -3,11 +3,12 @@
 
 The scene must be written out literally: numbers, vectors and colours may be `#declare`d, but
 loops, macros, conditionals and rand() are refused. Carried across: `camera` (location, look_at,
-angle, direction, up, right, sky), `light_source` (point, `parallel`, `spotlight`, `area_light`,
+angle, direction, up, right, sky, orthographic, focal blur), `light_source` (point, `parallel`, `spotlight`, `area_light`,
 fading, `shadowless`), `background`, `global_settings { ambient_light }`, `blob` objects (sphere
 and cylinder components with their strengths, the threshold, translate/rotate/scale/matrix/
 transform on components and on the blob, the blob's pigment and finish), and plane, box, sphere,
-cylinder, cone and disc objects. POV-Ray's y-up left-handed frame becomes softtrace's z-up
+cylinder, cone and disc objects, and `mesh`/`mesh2` objects, whose triangles go to OUTPUT-STEM_NAME.obj
+beside the output (so a scene with meshes needs -o). POV-Ray's y-up left-handed frame becomes softtrace's z-up
 right-handed one by swapping y and z, which keeps the picture unmirrored (tools/povsdl/affine.py).
 POV-Ray's `angle` is horizontal, softtrace's `fov` vertical. docs/pov.md has the details.
 
@@ -27,7 +28,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from povsdl.lexer import PovError  # noqa: E402
-from povsdl.scene import convert  # noqa: E402
+from povsdl.scene import convert, obj_text  # noqa: E402
 
 
 def write_atomically(path, text):
@@ -50,6 +51,14 @@ def dumps(scene):
                   .replace("[ ", "[").replace(" ]", "]"), text)
 
 
+def mesh_objects(objects):
+    """The mesh objects among `objects` and their CSGs' operands, depth first."""
+    for obj in objects:
+        if "mesh" in obj:
+            yield obj
+        yield from mesh_objects(obj.get("operands", []))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(
         prog="pov2softtrace.py", description=__doc__.split("\n\n")[0],
@@ -70,17 +79,30 @@ def main(argv=None):
     except OSError as e:
         print("%s: cannot read: %s" % (a.scene, e.strerror), file=sys.stderr)
         return 2
-    warnings = []
+    warnings, meshes = [], []
     try:
-        scene = convert(a.scene, text, a.width, a.height, warnings)
+        scene = convert(a.scene, text, a.width, a.height, warnings, meshes)
     except PovError as e:
         print("%s:%d:%d: %s" % (a.scene, e.line, e.col, e.message), file=sys.stderr)
+        return 2
+    if meshes and not a.output:
+        print("%s: the scene has %d mesh object(s), whose triangles go to OBJ files beside the "
+              "output: give -o" % (a.scene, len(meshes)), file=sys.stderr)
         return 2
     for line, col, message in warnings:
         print("%s:%d:%d: warning: %s" % (a.scene, line, col, message), file=sys.stderr)
     out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (
         os.path.basename(a.scene), dumps(scene))
     if a.output:
+        # Each mesh's triangles beside the scene, OUTPUT-STEM_NAME.obj, named by a path relative
+        # to it (docs/scene-format.md "Triangle meshes"), written before the scene.
+        stem = os.path.splitext(os.path.abspath(a.output))[0]
+        for obj in mesh_objects(scene["objects"]):
+            path = "%s_%s.obj" % (stem, obj["name"])
+            write_atomically(path, obj_text(meshes[obj["mesh"]]))
+            obj["mesh"] = os.path.basename(path)
+        out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (
+            os.path.basename(a.scene), dumps(scene))
         write_atomically(a.output, out)
     else:
         sys.stdout.write(out)

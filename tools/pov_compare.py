@@ -9,7 +9,8 @@ sphere and cylinder components, tools/pov_cloud.py); `real` names the whole real
 number of threads. Rounds are interleaved (every case once, then again) so that a load spike on a
 shared machine hits every case alike; the medians over --repeat rounds are reported.
 
-Per case it prints the silhouettes' IoU (alpha >= 0.5 in softtrace's PNG and POV's +UA PNG), each
+Per case it prints the silhouettes' IoU (alpha >= 0.5 in softtrace's PNG and POV's +UA PNG), the
+colours' mean difference (the largest of premultiplied linear R, G, B per pixel, in 1/255), each
 renderer's frame time (softtrace bench's wall time; POV's "Trace Time" statistic), each whole
 process's wall time, the ratios, and softtrace's evaluations per primary ray that enters a box.
 For fig12b it also renders POV at max_gradient 0.74 (a bound on |grad f| over the whole box:
@@ -37,10 +38,11 @@ TOOLS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(TOOLS)
 sys.path.insert(0, TOOLS)
 import blob_scene  # noqa: E402
+import pov2softtrace  # noqa: E402
 import pov_cloud  # noqa: E402
 import pov_scene  # noqa: E402
 from povsdl.lexer import PovError  # noqa: E402
-from povsdl.scene import convert  # noqa: E402
+from povsdl.scene import convert, obj_text  # noqa: E402
 
 PACKAGES = ["povray", "python3-pil", "gnuplot-nox"]
 SAFE_MAX_GRADIENT = 0.74
@@ -117,10 +119,16 @@ def write_case(case, a, work):
             source = pov_case_path(case[4:])
             with open(source) as f:
                 text = f.read()
+        meshes = []
         try:
-            sc = convert(source, text, a.width, a.height)
+            sc = convert(source, text, a.width, a.height, None, meshes)
         except PovError as e:
             sys.exit("%s:%d:%d: %s" % (source, e.line, e.col, e.message))
+        for obj in pov2softtrace.mesh_objects(sc["objects"]):  # OBJ files beside the scene
+            name = "%s_%s.obj" % (os.path.basename(base), obj["name"])
+            with open(os.path.join(work, name), "w") as f:
+                f.write(obj_text(meshes[obj["mesh"]]))
+            obj["mesh"] = name
         # POV-Ray's alpha (+UA) is the coverage only where the background is transparent.
         pov = text + "\nbackground { rgbt <0, 0, 0, 1> }\n"
     else:
@@ -169,6 +177,24 @@ def coverage(png):
     from PIL import Image  # installed by install_missing
     im = Image.open(png).convert("RGBA")
     return [px >= 128 for px in im.getchannel("A").getdata()]
+
+
+def mean_difference(png1, png2):
+    """The mean over the pixels of the largest difference of premultiplied linear RGB, in units
+    of 1/255 (both backgrounds transparent black): how far the colours agree, where the IoU says
+    only whether the silhouettes do."""
+    from PIL import Image  # installed by install_missing
+
+    def linear(c):
+        c /= 255
+        return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+    def pixels(png):
+        return [[linear(px[i]) * px[3] / 255 for i in range(3)]
+                for px in Image.open(png).convert("RGBA").getdata()]
+
+    a, b = pixels(png1), pixels(png2)
+    return 255 * sum(max(abs(p - q) for p, q in zip(x, y)) for x, y in zip(a, b)) / len(a)
 
 
 def iou(m1, m2):
@@ -237,17 +263,18 @@ def main():
     rays = a.width * a.height
     print("%dx%d, 1 spp, %d threads, medians of %d interleaved rounds" % (
         a.width, a.height, a.threads, a.repeat))
-    print("%-10s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
-        "case", "IoU", "st frame", "st proc", "pov trace", "pov proc", "trace/", "proc/",
+    print("%-10s %6s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
+        "case", "IoU", "mean", "st frame", "st proc", "pov trace", "pov proc", "trace/", "proc/",
         "evals/", "us/ray"))
-    print("%-10s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
-        "", "", "s", "s", "s", "s", "st proc", "st proc", "entered", "st|pov"))
+    print("%-10s %6s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
+        "", "", "/255", "s", "s", "s", "s", "st proc", "st proc", "entered", "st|pov"))
     for c in cases:
         st, pov = runs[c]["st"], runs[c]["pov"]
         med = lambda rs, k: statistics.median(x[k] for x in rs)  # noqa: E731
         res = {"case": c, "width": a.width, "height": a.height, "threads": a.threads,
                "repeat": a.repeat, "commit": st[0]["commit"],
                "iou": iou(coverage(bases[c] + "_st.png"), coverage(bases[c] + "_pov.png")),
+               "mean_diff_255": mean_difference(bases[c] + "_st.png", bases[c] + "_pov.png"),
                "st_frame_s": med(st, "frame_s"), "st_process_s": med(st, "process_s"),
                "st_process_cpu_s": med(st, "process_cpu_s"),
                "pov_trace_s": med(pov, "trace_s"), "pov_process_s": med(pov, "process_s"),
@@ -262,8 +289,8 @@ def main():
             res["pov_max_gradient"] = a.max_gradient
             res["pov_pixels_differing_from_safe"] = sum(1 for x, y in zip(m1, m2) if x != y)
         results.append(res)
-        print("%-10s %6.4f %9.4f %9.4f %9.4f %9.4f %8.2f %8.2f %8.1f %s" % (
-            c, res["iou"], res["st_frame_s"], res["st_process_s"], res["pov_trace_s"],
+        print("%-10s %6.4f %6.2f %9.4f %9.4f %9.4f %9.4f %8.2f %8.2f %8.1f %s" % (
+            c, res["iou"], res["mean_diff_255"], res["st_frame_s"], res["st_process_s"], res["pov_trace_s"],
             res["pov_process_s"], res["pov_trace_s"] / res["st_process_s"],
             res["pov_process_s"] / res["st_process_s"], res["primary"]["evaluations"],
             "%.2f|%.2f" % (res["st_us_per_ray"], res["pov_us_per_ray"])))

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "scene/mesh_closure.h"
 #include "scene/placement.h"
 #include "scene/ranges.h"
 
@@ -48,10 +49,14 @@ void load_csg(const Params& p, SceneObject& o, const Material* passed_on,
     const SceneObject& operand = csg->operands.back();
     if (operand.shape && operand.shape->shape == Primitive::Shape::Disc)
       operands[i].fail("shape", "a disc has no inside: it cannot be a CSG operand");
-    if (operand.mesh)
-      operands[i].fail("mesh",
-                       "a triangle mesh cannot be a CSG operand (its inside is not traced): make "
-                       "it an object of its own");
+    if (operand.mesh) {
+      const std::string problem = mesh_closure_problem(*operand.mesh);
+      if (!problem.empty())
+        operands[i].fail("mesh",
+                         "a CSG operand must be a closed mesh (its inside is what the "
+                         "CSG combines), but " +
+                             problem);
+    }
   }
   Box box = csg->operands[0].bounds;
   for (size_t i = 1; i < csg->operands.size(); ++i) {

@@ -262,7 +262,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   if (!has_camera) {
     Box framed;
     for (const SceneObject& o : s.objects)
-      if (!(o.shape && o.shape->shape == Primitive::Shape::Plane)) framed = framed.united(o.bounds);
+      if (const std::optional<Box> b = framing_box(o)) framed = framed.united(*b);
     if (framed.empty())
       root.fail("camera", "expected a camera: there is nothing but infinite planes to frame");
     s.camera = camera_framing(framed, double(s.image.width) / s.image.height);

@@ -126,6 +126,14 @@ struct Csg {
 };
 const char* csg_name(Csg::Op op);
 
+// What a scene without a camera frames of object `o`: its finite part. An infinite plane frames
+// nothing (nullopt), and neither does an object whose box reaches kMaxPosition (ranges.h): a
+// CSG's box is built from its operands' own framing boxes instead, a union's from those that
+// have one (a floor under a blob frames the blob), an intersection's as the intersection of
+// those that have one (a blob cut by a plane: the blob's, within the object's box), a
+// difference's as its first operand's, a placed CSG's placed.
+std::optional<Box> framing_box(const SceneObject& o);
+
 struct Scene {
   std::string path;
   uint64_t file_hash = 0;  // 64-bit FNV-1a of the bytes parsed (the file's, or the text's)
@@ -140,7 +148,8 @@ struct Scene {
   std::vector<SceneObject> objects;
 
   Box bounds() const;  // union of the objects' boxes
-  // With no "camera" in the file: the camera is camera_framing(the objects' bounded boxes).
+  // With no "camera" in the file: the camera is camera_framing(the union of the objects'
+  // framing_box).
   bool default_camera = false;
 };
 

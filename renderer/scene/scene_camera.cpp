@@ -1,5 +1,8 @@
-// The camera's rules and the camera a scene gets without one (scene.h).
+// The camera's rules and the camera a scene gets without one, framing its objects' finite parts
+// (scene.h).
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scene/ranges.h"
 #include "scene/scene.h"
@@ -58,6 +61,43 @@ Camera camera_framing(const Box& box, double aspect) {
   const Vec3 from = unit(Vec3{0.55, -0.75, 0.45});
   c.eye = c.target + from * (radius / std::sin(half));
   return c;
+}
+
+std::optional<Box> framing_box(const SceneObject& o) {
+  const auto finite = [](const Box& b) {
+    return !b.empty() && std::max(max_abs(b.lo), max_abs(b.hi)) < kMaxPosition;
+  };
+  if (!o.csg) {
+    if (o.shape && o.shape->shape == Primitive::Shape::Plane) return std::nullopt;
+    return finite(o.bounds) ? std::optional<Box>(o.bounds) : std::nullopt;
+  }
+  std::optional<Box> inner;
+  const auto& operands = o.csg->operands;
+  switch (o.csg->op) {
+    case Csg::Op::Union:
+    case Csg::Op::Merge:
+      for (const SceneObject& a : operands)
+        if (const std::optional<Box> b = framing_box(a)) inner = inner ? inner->united(*b) : *b;
+      break;
+    case Csg::Op::Intersection:
+      for (const SceneObject& a : operands)
+        if (const std::optional<Box> b = framing_box(a))
+          inner = inner ? inner->intersected(*b) : *b;
+      break;
+    case Csg::Op::Difference:
+      inner = framing_box(operands[0]);
+      break;
+  }
+  if (!inner || inner->empty()) return std::nullopt;
+  Box box = *inner;
+  if (o.csg->placed) {
+    box = Box();
+    for (int c = 0; c < 8; ++c) box.extend(o.csg->to_parent.apply(inner->corner(c)));
+  }
+  // The loader's box holds the solid too (an intersection's is the operands' boxes' intersection,
+  // a cutting plane's box included): the frame is where both are.
+  const Box both = box.intersected(o.bounds);
+  return finite(both) ? both : box;
 }
 
 }  // namespace softtrace

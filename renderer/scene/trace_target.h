@@ -39,8 +39,8 @@ struct TracedObject {
   Box bounds;  // the object's box: Embree's, and where a CSG's spans are searched
   std::optional<TraceTarget> field;
   std::optional<Primitive> shape;
-  // A mesh's triangles, shared with the loaded object (placed in the world; a mesh is never a CSG
-  // operand).
+  // A mesh's triangles, shared with the loaded object (placed in the world, or in the enclosing
+  // CSG's frame for an operand, which must then be closed: scene/mesh_closure.h).
   std::shared_ptr<const TriangleMesh> mesh;
   // A CSG (neither a field, a shape nor a mesh) has its operation and at least two operands.
   CsgOp op = CsgOp::Union;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "scene/ranges.h"
+#include "trace/mesh_crossings.h"
 #include "trace/primitive_trace.h"
 #include "trace/tracer_limits.h"
 
@@ -18,7 +19,7 @@ constexpr int kMaxSpans = 256;
 }  // namespace
 
 // One operand of the tree: a CSG (its operands), a field (the tracers of its solid and of the
-// solid's complement) or a shape (neither).
+// solid's complement), a shape, or a closed triangle mesh (its solid).
 struct CsgNode {
   int face;  // TracedObject::face, reported by hits on its surface
   Box bounds;
@@ -31,6 +32,8 @@ struct CsgNode {
   Mat3 to_local;
   // A field's: the tracers of its solid and of the solid's complement.
   std::unique_ptr<ObjectTracer> inside, outside;
+  // A mesh's solid: its crossings along a ray.
+  std::unique_ptr<MeshSolid> mesh;
   // The frame the object is given in (its enclosing CSGs' placements undone): a point there is
   // from_world.apply(world point). `placed_frame`: not the world's.
   Affine from_world;
@@ -54,6 +57,8 @@ struct CsgNode {
       operands.reserve(o.operands.size());
       for (const TracedObject& operand : o.operands)
         operands.emplace_back(operand, mode, inner, in_placed || o.placed);
+    } else if (o.mesh) {
+      mesh = std::make_unique<MeshSolid>(o.mesh);
     } else if (o.field) {
       inside = std::make_unique<ObjectTracer>(*o.field, mode);
       outside = std::make_unique<ObjectTracer>(*o.field, mode, true);
@@ -77,6 +82,24 @@ void shape_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Spans& 
   span.t0 = std::max(span.t0, lo);
   span.t1 = std::min(span.t1, hi);
   if (span.t0 <= span.t1) out.push_back(span);
+}
+
+// A mesh's spans within [lo, hi]: from each entry to the exit after it, found along the whole
+// line through its box (the ray may start inside); an end beyond the range is no surface.
+void mesh_spans(const CsgNode& n, const Ray& ray, double lo, double hi, Spans& out) {
+  thread_local std::vector<MeshCrossing> crossings;
+  n.mesh->crossings(ray, crossings);
+  for (size_t i = 0; i < crossings.size(); i += 2) {
+    const MeshCrossing& in = crossings[i];
+    const bool closed = i + 1 < crossings.size();
+    const double t1 = closed ? crossings[i + 1].t : kInf;
+    if (t1 < lo) continue;
+    if (in.t > hi) break;
+    CsgSpan span{std::max(in.t, lo), std::min(t1, hi), {&n, false, false, in.normal}, {}};
+    if (in.t < lo) span.e0 = {};
+    if (closed && t1 <= hi) span.e1 = {&n, false, false, crossings[i + 1].normal};
+    out.push_back(span);
+  }
 }
 
 // A field's spans within [lo, hi] from its successive certified crossings.
@@ -206,6 +229,10 @@ Spans node_spans(const CsgNode& n, const Ray& ray, double lo, double hi, TraceCo
     shape_spans(n, ray, lo, hi, acc);
     return acc;
   }
+  if (n.mesh) {
+    mesh_spans(n, ray, lo, hi, acc);
+    return acc;
+  }
   if (n.operands.empty()) {
     field_spans(n, ray, lo, hi, work, acc);
     return acc;
@@ -248,7 +275,7 @@ CsgHit CsgTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCoun
     // world through the transpose of the map from the world to that frame.
     const Vec3 world = ray.o + ray.d * t;
     const Vec3 p = leaf.placed_frame ? leaf.from_world.apply(world) : world;
-    Vec3 n = !leaf.inside ? e.normal
+    Vec3 n = !leaf.inside ? e.normal  // a shape's or a mesh's
              : e.on_box   ? leaf.inside->box_face_normal(p)
                           : leaf.inside->normal(p);
     if (leaf.placed_frame) {

@@ -1,6 +1,7 @@
 // Tracing a CSG object (scene/trace_target.h TracedObject, loaded as scene.h Csg): along a ray, the
-// spans where it is inside each operand (a shape's analytically, a field's from its certified
-// crossings, entry, exit, entry...), combined by the operation down the tree; the first end of a
+// spans where it is inside each operand (a shape's analytically, a closed mesh's from all its
+// triangles' crossings (trace/mesh_crossings.h), a field's from its certified crossings, entry,
+// exit, entry...), combined by the operation down the tree; the first end of a
 // combined span inside the ray's range is the hit, on the surface of the operand that bounds the
 // result there.
 //
@@ -23,8 +24,8 @@ struct CsgHit {
   bool hit = false;
   double t = 0;
   Vec3 normal;  // outward from the result's solid, unit (a subtracted operand's, turned)
-  // The face (TracedObject::face) of the operand, a field or a shape, whose surface it is: the
-  // face takes its material.
+  // The face (TracedObject::face) of the operand, a field, a shape or a mesh, whose surface it is:
+  // the face takes its material.
   int face = -1;
   // The point in the face's own frame (the world's but inside a placed CSG): where its
   // component materials are weighed.
@@ -34,12 +35,13 @@ struct CsgHit {
 struct CsgNode;
 
 // Where the ray is inside a solid: t in [t0, t1], each end on the surface of `leaf` (an operand
-// that is a field or a shape), or on no surface where the span runs past the range searched.
+// that is a field, a shape or a mesh), or on no surface where the span runs past the range
+// searched.
 struct CsgEnd {
   const CsgNode* leaf = nullptr;  // the node of that operand; null: no surface
   bool on_box = false;            // a field's end on its bounds' face
   bool flip = false;              // the surface of a subtracted operand: its normal turns
-  Vec3 normal;                    // a shape's normal there (outward from the shape)
+  Vec3 normal;                    // a shape's or a mesh's normal there (outward from it)
 };
 struct CsgSpan {
   double t0, t1;

@@ -19,7 +19,7 @@ SOURCE = os.environ.get("SOFTTRACE_SOURCE_DIR", os.path.dirname(os.path.dirname(
 TOOL = os.path.join(SOURCE, "tools", "pov2softtrace.py")
 sys.path.insert(0, os.path.join(SOURCE, "tools"))
 from povsdl.lexer import PovError  # noqa: E402
-from povsdl.scene import convert  # noqa: E402
+from povsdl.scene import convert, obj_text  # noqa: E402
 
 CAMERA = "camera { location <0, 0, -10> look_at <0, 0, 0> angle 40 }\n"
 POV_SAMPLES = sorted(glob.glob("/usr/share/povray-3.7/scenes/objects/blob*.pov"))
@@ -114,6 +114,26 @@ def test_camera_angle_is_horizontal_and_fov_vertical():
     cam = scene_of("blob { sphere { 0, 1, 1 } pigment { rgb 1 } }",
                    "camera { location <0, 0, -5> direction <0, 0, 1.7> look_at 0 }\n")["camera"]
     assert cam["fov"] == pytest.approx(2 * math.degrees(math.atan(0.5 / 1.7)))
+
+
+def test_orthographic_and_focal_blur_cameras():
+    body = "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }"
+    # Orthographic without angle: `up` tall in world units, the fov that gives that at look_at.
+    cam = scene_of(body, "camera { orthographic location <0, 0, -10> look_at 0 right 8*x "
+                   "up 6*y }\n")["camera"]
+    assert cam["projection"] == "orthographic"
+    assert 2 * 10 * math.tan(math.radians(cam["fov"]) / 2) == pytest.approx(6)
+    # With angle: as tall as the perspective view at look_at, which is softtrace's own rule.
+    cam = scene_of(body, "camera { orthographic location <0, 0, -10> look_at 0 right x*4/3 "
+                   "angle 60 }\n")["camera"]
+    assert cam["projection"] == "orthographic"
+    assert cam["fov"] == pytest.approx(2 * math.degrees(math.atan(math.tan(math.radians(30)) * 0.75)))
+    # Focal blur: POV-Ray's lens is aperture/2 across; in focus at focal_point's distance.
+    cam = scene_of(body, "camera { location <0, 0, -10> look_at 0 right x*4/3 aperture 0.8 "
+                   "focal_point <3, 0, 0> blur_samples 8, 40 confidence 0.95 variance 0 }\n")["camera"]
+    assert cam["aperture"] == pytest.approx(0.4)
+    assert cam["focal_distance"] == pytest.approx(math.sqrt(109))
+    assert cam["blur_samples"] == 40 and "projection" not in cam
 
 
 def test_lights_background_and_finish():
@@ -223,6 +243,73 @@ def test_csg_nests_blobs_and_shapes_and_passes_its_pigment_on():
     assert cut["material"]["color"] == [0, 0, 1]
     # Every part has its own pigment: the merge needs none.
     assert merged["csg"] == "merge" and "material" not in merged
+
+
+def test_camera_refusals_are_located():
+    body = "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }"
+    for camera, col, phrase in [
+            ("camera { orthographic location <0, 0, -10> look_at 0 aperture 1 }", 1,
+             "focal blur with an orthographic camera"),
+            ("camera { location <0, 0, -10> look_at 0 aperture -1 }", 41, "must be >= 0"),
+            ("camera { location <0, 0, -10> look_at 0 blur_samples 2.5 }", 41,
+             "must be a whole number")]:
+        with pytest.raises(PovError) as e:
+            scene_of(body, camera + "\n")
+        assert (e.value.line, e.value.col) == (1, col), e.value.message
+        assert phrase in e.value.message
+
+
+def test_meshes_become_obj_triangles():
+    meshes = []
+    sc = convert("t.pov", CAMERA + """
+        mesh { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }
+               triangle { <1, 0, 0>, <0, 1, 0>, <0, 0, 2> } pigment { rgb 1 } translate x }
+        mesh2 { vertex_vectors { 3, <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }
+                normal_vectors { 3, <0, 0, -1>, <0, 0, -1>, <0, 1, 0> }
+                face_indices { 1, <0, 1, 2> } pigment { rgb 1 } }""", 320, 240, None, meshes)
+    a, b = sc["objects"]
+    assert a["mesh"] == 0 and b["mesh"] == 1 and a["name"] == "mesh1"
+    assert a["matrix"] == [[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0]]
+    # Shared corners are one vertex; y and z swap (softtrace is z-up).
+    assert meshes[0]["positions"] == [(0, 0, 0), (1, 0, 0), (0, 0, 1), (0, 2, 0)]
+    assert meshes[0]["faces"] == [[0, 1, 2], [1, 2, 3]] and meshes[0]["normals"] == []
+    # mesh2's normal_vectors without normal_indices go with the vertices: smooth.
+    assert meshes[1]["face_normals"] == [[0, 1, 2]]
+    assert meshes[1]["normals"][2] == (0, 0, 1)
+    assert obj_text(meshes[1]).splitlines()[1:] == [
+        "v 0 0 0", "v 1 0 0", "v 0 0 1", "vn 0 -1 0", "vn 0 -1 0", "vn 0 0 1", "f 1//1 2//2 3//3"]
+
+
+MESH_REFUSALS = [
+    ("union { sphere { 0, 1 } mesh { triangle { 0, x, y } } pigment { rgb 1 } }", 1, 25,
+     "a mesh in a CSG needs inside_vector"),
+    ("mesh { triangle { 0, x, y texture { pigment { rgb 1 } } } }", 1, 27,
+     "a triangle's own texture"),
+    ("mesh2 { vertex_vectors { 1, 0 } face_indices { 1, <0, 1, 2> } }", 1, 1,
+     "names a vertex beyond the 1 of vertex_vectors"),
+    ("mesh2 { vertex_vectors { 3, 0, x, y } uv_vectors { 1, <0, 0> } }", 1, 39,
+     "mesh2 { uv_vectors } is not supported"),
+    ("mesh { }", 1, 1, "mesh: no triangles"),
+]
+
+
+@pytest.mark.parametrize("body,line,col,phrase", MESH_REFUSALS)
+def test_mesh_refusals_are_located(body, line, col, phrase):
+    with pytest.raises(PovError) as e:
+        convert("t.pov", CAMERA + body, 320, 240)
+    assert (e.value.line - 1, e.value.col) == (line, col), e.value.message
+    assert phrase in e.value.message
+
+
+def test_meshes_are_written_beside_the_output(tmp_path):
+    pov = tmp_path / "m.pov"
+    pov.write_text(CAMERA + "mesh { triangle { 0, x, y } pigment { rgb 1 } }\n")
+    p = run_tool(str(pov))  # to standard output: there is nowhere to put the OBJ file
+    assert p.returncode == 2 and "give -o" in p.stderr
+    p = run_tool(str(pov), "-o", str(tmp_path / "out.json"))
+    assert p.returncode == 0, p.stderr
+    assert '"mesh": "out_mesh1.obj"' in (tmp_path / "out.json").read_text()
+    assert (tmp_path / "out_mesh1.obj").read_text().count("\nf ") == 1
 
 
 def test_no_camera_is_refused():

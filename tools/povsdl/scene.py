@@ -1,9 +1,11 @@
 """POV-Ray 3.7 statements as a softtrace scene (a JSON-ready dict).
 
-Carried across: `camera` (location, look_at, angle, direction, up, right, sky), `light_source`
+Carried across: `camera` (location, look_at, angle, direction, up, right, sky, orthographic,
+focal blur's aperture, focal_point and blur_samples), `light_source`
 (point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, plane/box/sphere/cylinder/cone/disc objects, `global_settings` (ambient_light,
 assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
-and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, and `blob` objects:
+and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, `mesh` and `mesh2` objects (their triangles written to OBJ
+files beside the scene), and `blob` objects:
 sphere and cylinder components (and the old `component` form) with strength, threshold,
 per-component and whole-blob translate/rotate/scale/matrix/transform, pigment, finish and texture.
 Everything else is refused with its line and column.
@@ -63,6 +65,7 @@ class Converter:
         self.names = {}
         self.csg_depth = 0  # how many CSGs enclose the object being read
         self.warnings = []  # (line, col, message): carried across, but not exactly
+        self.meshes = []  # each mesh object's triangles, written beside the scene (_mesh)
 
     # ---- top level -----------------------------------------------------------------------
     def run(self, text):
@@ -204,9 +207,11 @@ class Converter:
             self.objects.append(self._shape(s, ex, tok))
         elif word in CSG:
             self.objects.append(self._csg(s, ex, tok))
+        elif word in ("mesh", "mesh2"):
+            self.objects.append(self._mesh(s, ex, tok))
         else:
             raise s.error(tok, "'%s' is not supported (this converter takes blob, plane, box, "
-                          "sphere, cylinder, cone and disc objects, their union, merge, "
+                          "sphere, cylinder, cone, disc, mesh and mesh2 objects, their union, merge, "
                           "intersection and difference, camera, light_source, background and "
                           "global_settings)" % word)
 
@@ -232,12 +237,32 @@ class Converter:
         location, look_at = (0.0, 0.0, 0.0), None
         direction, up, right, sky = (0.0, 0.0, 1.0), (0.0, 1.0, 0.0), (1.33, 0.0, 0.0), None
         angle = None
+        orthographic, aperture, focal_point, blur_samples = False, 0.0, None, None
         while not s.closes("camera"):
             tok = s.next()
             w = tok.text
             if w == "perspective":
                 continue
-            if w == "location":
+            if w == "orthographic":
+                orthographic = True
+            elif w == "aperture":
+                aperture = ex.number("aperture")
+                if aperture < 0:
+                    raise s.error(tok, "aperture %g: must be >= 0" % aperture)
+            elif w == "focal_point":
+                focal_point = ex.vector("focal_point")
+            elif w == "blur_samples":
+                # `blur_samples N` or `blur_samples MIN, MAX`: POV-Ray stops between the two
+                # when its confidence test passes; softtrace takes every sample, the most.
+                blur_samples = ex.number("blur_samples")
+                if s.accept(","):
+                    blur_samples = ex.number("blur_samples")
+                if not (1 <= blur_samples <= 4096 and blur_samples == int(blur_samples)):
+                    raise s.error(tok, "blur_samples %g: must be a whole number from 1 to 4096"
+                                  % blur_samples)
+            elif w in ("confidence", "variance"):
+                ex.number(w)  # the adaptive stop: softtrace takes all blur_samples
+            elif w == "location":
                 location = ex.vector("location")
             elif w == "look_at":
                 look_at = ex.vector("look_at")
@@ -283,9 +308,32 @@ class Converter:
         if look_at is None:
             look_at = tuple(l + d for l, d in zip(location, direction))
         sky = sky or up
-        return {"eye": list(affine.to_softtrace_point(location)),
-                "target": list(affine.to_softtrace_point(look_at)),
-                "up": list(affine.to_softtrace_point(sky)), "fov": vfov}
+        camera = {"eye": list(affine.to_softtrace_point(location)),
+                  "target": list(affine.to_softtrace_point(look_at)),
+                  "up": list(affine.to_softtrace_point(sky)), "fov": vfov}
+        view = norm([t - l for t, l in zip(look_at, location)])
+        if orthographic:
+            if view == 0:
+                raise s.error(at, "camera: an orthographic camera needs look_at away from "
+                              "location")
+            # POV-Ray's orthographic view is `up` tall (in world units); with `angle` it is as
+            # tall as the perspective view at look_at. softtrace's is the latter: the field of
+            # view that gives `up`'s height there.
+            camera["projection"] = "orthographic"
+            if angle is None:
+                camera["fov"] = math.degrees(2 * math.atan(norm(up) / 2 / view))
+        if aperture > 0:
+            if orthographic:
+                raise s.error(at, "camera: focal blur with an orthographic camera is not "
+                              "supported")
+            # POV-Ray moves the eye by up to aperture/4 (its sample grid's radius 1/2 times
+            # aperture/2) across the view: a lens of diameter aperture/2. The plane in focus is
+            # across the view at focal_point's distance from location (default <0, 0, 0>).
+            fp = focal_point if focal_point is not None else (0.0, 0.0, 0.0)
+            camera["aperture"] = aperture / 2
+            camera["focal_distance"] = norm([f - l for f, l in zip(fp, location)])
+            camera["blur_samples"] = int(blur_samples if blur_samples is not None else 4)
+        return camera
 
     def _light(self, s, ex):
         s.expect("{")
@@ -561,6 +609,128 @@ class Converter:
                 shape["matrix"] = [list(full[i]) for i in range(3)]
         return self._named(word, self._material(mods.pigment, mods.finish, at, s), shape=shape)
 
+    # ---- triangle meshes -----------------------------------------------------------------
+    def _mesh(self, s, ex, at, operand=False):
+        """POV-Ray's `mesh` (triangle and smooth_triangle) and `mesh2` (vertex_vectors,
+        normal_vectors, face_indices, normal_indices) as a softtrace mesh object. The triangles
+        go to an OBJ file beside the scene (Converter.meshes; tools/pov2softtrace.py writes them
+        and names the file in the object's "mesh"); POV-Ray's y-up points become z-up ones. A
+        CSG operand needs `inside_vector`: without one POV-Ray gives a mesh no inside, softtrace
+        takes a closed mesh's."""
+        word = at.text
+        s.expect("{")
+        pt = lambda what: tuple(affine.to_softtrace_point(ex.vector(what)))  # noqa: E731
+        positions, normals, faces, face_normals = [], [], [], []
+        mods = Modifiers()
+        solid = False
+        if word == "mesh":
+            index = {}
+
+            def vertex(p):
+                if p not in index:
+                    index[p] = len(positions)
+                    positions.append(p)
+                return index[p]
+
+            while not s.closes("mesh"):
+                tok = s.next()
+                if tok.text in ("triangle", "smooth_triangle"):
+                    smooth = tok.text == "smooth_triangle"
+                    s.expect("{")
+                    corners, corner_normals = [], []
+                    for k in range(3):
+                        if k:
+                            s.expect(",")
+                        corners.append(vertex(pt("a corner")))
+                        if smooth:
+                            s.expect(",")
+                            corner_normals.append(pt("a corner's normal"))
+                    if not s.closes(tok.text):
+                        raise s.error(s.peek(), "%s { %s }: a triangle's own texture is not "
+                                      "supported (give the mesh one)" % (tok.text, s.peek().text))
+                    faces.append(corners)
+                    if smooth:
+                        face_normals.append(list(range(len(normals), len(normals) + 3)))
+                        normals.extend(corner_normals)
+                    else:
+                        face_normals.append(None)
+                elif tok.text == "inside_vector":
+                    ex.vector("inside_vector")  # softtrace finds a closed mesh's inside itself
+                    solid = True
+                elif not (self._modifier(s, ex, tok, mods) or tok.text in HARMLESS):
+                    raise s.error(tok, "mesh { %s } is not supported" % tok.text)
+        else:
+            def block(what, read):
+                s.expect("{")
+                n = ex.number("the number of " + what)
+                if n != int(n) or n < 0:
+                    raise s.error(s.peek(), "%s: expected a whole count, not %g" % (what, n))
+                items = []
+                for k in range(int(n)):
+                    s.expect(",")
+                    items.append(read())
+                if not s.closes(what):
+                    raise s.error(s.peek(), "%s: more items than its count, %d" % (what, n))
+                return items
+
+            def triple(what):
+                tok = s.peek()
+                v = ex.vector(what)
+                if any(c != int(c) for c in v):
+                    raise s.error(tok, "%s: expected whole vertex numbers" % what)
+                return [int(c) for c in v]
+
+            while not s.closes("mesh2"):
+                tok = s.next()
+                if tok.text == "vertex_vectors":
+                    positions = block("vertex_vectors", lambda: pt("a vertex"))
+                elif tok.text == "normal_vectors":
+                    normals = block("normal_vectors", lambda: pt("a normal"))
+                elif tok.text == "face_indices":
+                    faces = block("face_indices", lambda: triple("face_indices"))
+                elif tok.text == "normal_indices":
+                    face_normals = block("normal_indices", lambda: triple("normal_indices"))
+                elif tok.text == "inside_vector":
+                    ex.vector("inside_vector")
+                    solid = True
+                elif tok.text in ("uv_vectors", "uv_indices", "texture_list"):
+                    raise s.error(tok, "mesh2 { %s } is not supported (one texture for the "
+                                  "whole mesh)" % tok.text)
+                elif not (self._modifier(s, ex, tok, mods) or tok.text in HARMLESS):
+                    raise s.error(tok, "mesh2 { %s } is not supported" % tok.text)
+            for f in faces:
+                if any(not 0 <= i < len(positions) for i in f):
+                    raise s.error(at, "mesh2: face_indices <%d, %d, %d> names a vertex beyond "
+                                  "the %d of vertex_vectors" % (f[0], f[1], f[2], len(positions)))
+            if face_normals and len(face_normals) != len(faces):
+                raise s.error(at, "mesh2: %d normal_indices for %d faces" % (
+                    len(face_normals), len(faces)))
+            if not face_normals and normals:
+                if len(normals) != len(positions):
+                    raise s.error(at, "mesh2: normal_vectors without normal_indices must be one "
+                                  "per vertex (%d for %d)" % (len(normals), len(positions)))
+                face_normals = [list(f) for f in faces]
+            for f in face_normals:
+                if any(not 0 <= i < len(normals) for i in f):
+                    raise s.error(at, "mesh2: normal_indices <%d, %d, %d> names a normal beyond "
+                                  "the %d of normal_vectors" % (f[0], f[1], f[2], len(normals)))
+        if not faces:
+            raise s.error(at, "%s: no triangles" % word)
+        if operand and not solid:
+            raise s.error(at, "a %s in a CSG needs inside_vector (without it POV-Ray gives the "
+                          "mesh no inside)" % word)
+        # One face without normals makes the mesh flat, as softtrace reads OBJ files.
+        if any(f is None for f in face_normals) or not face_normals:
+            normals, face_normals = [], []
+        obj = self._named(word, self._material(mods.pigment, mods.finish, at, s))
+        obj["mesh"] = len(self.meshes)  # replaced by the OBJ file's name when written
+        self.meshes.append({"positions": positions, "normals": normals, "faces": faces,
+                            "face_normals": face_normals})
+        if mods.matrix != affine.IDENTITY:
+            full = affine.to_softtrace(mods.matrix)
+            obj["matrix"] = [list(full[i]) for i in range(3)]
+        return obj
+
     # ---- blob ----------------------------------------------------------------------------
     def _blob(self, s, ex, at):
         s.expect("{")
@@ -634,6 +804,8 @@ class Converter:
                 operands.append(self._shape(s, ex, tok))
             elif w in CSG:
                 operands.append(self._csg(s, ex, tok))
+            elif w in ("mesh", "mesh2"):
+                operands.append(self._mesh(s, ex, tok, operand=True))
             elif w in TRANSFORMS:
                 raise s.error(tok, "a transformation of a %s is not supported; transform its "
                               "objects instead" % word)
@@ -751,11 +923,30 @@ class Converter:
         return node
 
 
-def convert(path, text, width, height, warnings=None):
+def convert(path, text, width, height, warnings=None, meshes=None):
     """The scene as a dict; `warnings`, a list, receives (line, col, message) of what is carried
-    across only approximately."""
+    across only approximately; `meshes`, a list, receives each mesh object's triangles
+    ({"positions", "normals", "faces", "face_normals"}, softtrace's axes, 0-based), whose index
+    the object's "mesh" holds until the caller writes them (obj_text) and names the file."""
     c = Converter(path, width, height)
     scene = c.run(text)
     if warnings is not None:
         warnings.extend(c.warnings)
+    if meshes is not None:
+        meshes.extend(c.meshes)
     return scene
+
+
+def obj_text(mesh):
+    """A converted mesh as a Wavefront OBJ file's text (docs/scene-format.md "Triangle meshes")."""
+    lines = ["# Converted by tools/pov2softtrace.py: %d vertices, %d triangles" % (
+        len(mesh["positions"]), len(mesh["faces"]))]
+    lines += ["v %.17g %.17g %.17g" % tuple(p) for p in mesh["positions"]]
+    lines += ["vn %.17g %.17g %.17g" % tuple(n) for n in mesh["normals"]]
+    if mesh["face_normals"]:
+        lines += ["f %d//%d %d//%d %d//%d" % (f[0] + 1, n[0] + 1, f[1] + 1, n[1] + 1, f[2] + 1,
+                                               n[2] + 1)
+                  for f, n in zip(mesh["faces"], mesh["face_normals"])]
+    else:
+        lines += ["f %d %d %d" % (f[0] + 1, f[1] + 1, f[2] + 1) for f in mesh["faces"]]
+    return "\n".join(lines) + "\n"

@@ -103,6 +103,51 @@ TEST(Camera, ASceneWithoutACameraFramesItsObjects) {
   EXPECT_EQ(checked, 8);
 }
 
+// A scene without a camera whose CSGs hold infinite planes frames their finite parts, as if the
+// planes were not there: a union with a floor frames the ball on it, an intersection with a
+// half-space the ball, a difference from a plane nothing (the other object alone is framed), a
+// placed CSG its ball placed.
+TEST(Camera, ACsgWithAnInfinitePlaneFramesItsFiniteOperands) {
+  const std::string ball = R"({"shape": {"type": "sphere", "center": [5, 0, 0], "radius": 2}})";
+  const std::string floor = R"({"shape": {"type": "plane", "normal": [0, 0, 1], "distance": 0}})";
+  const auto camera_of = [](const std::string& objects) {
+    return parse_scene(R"({"image": {"width": 80, "height": 60}, "objects": [)" + objects + "]}",
+                       "frame.json")
+        .camera;
+  };
+  const auto expect_frames = [&](const std::string& objects, const std::string& alone) {
+    SCOPED_TRACE(objects);
+    const Camera got = camera_of(objects), want = camera_of(alone);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(got.target[i], want.target[i]);
+      EXPECT_EQ(got.eye[i], want.eye[i]);
+    }
+  };
+  expect_frames(R"({"csg": "union", "operands": [)" + ball + ", " + floor + "]}", ball);
+  expect_frames(R"({"csg": "merge", "operands": [)" + floor + ", " + ball + "]}", ball);
+  expect_frames(R"({"csg": "intersection", "operands": [)" + ball + ", " + floor + "]}", ball);
+  const std::string small = R"({"shape": {"type": "sphere", "center": [0, 9, 0], "radius": 1}})";
+  expect_frames(R"({"csg": "difference", "operands": [)" + floor + ", " + ball + "]}, " + small,
+                small);
+  expect_frames(
+      R"({"csg": "union", "translate": [0, 0, 10], "operands": [)" + ball + ", " + floor + "]}",
+      R"({"shape": {"type": "sphere", "center": [5, 0, 10], "radius": 2}})");
+  // Before, the union's box (the plane's, the whole range) put the eye 1e12 away.
+  EXPECT_LT(length(camera_of(R"({"csg": "union", "operands": [)" + ball + ", " + floor + "]}").eye),
+            100);
+  // A union of a plane and a CSG of planes has nothing finite: the scene needs a camera.
+  try {
+    camera_of(R"({"csg": "union", "operands": [)" + floor + R"(, {"csg": "intersection",
+        "operands": [)" +
+              floor + ", " + floor + "]}]}");
+    ADD_FAILURE() << "framed nothing";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("frame.json: /camera: expected a camera"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Camera, BadCameraKeysAreRefusedAtTheirPointers) {
   const std::string head = R"({"camera": {"eye": [0, -10, 0], "target": [0, 0, 0], )";
   const std::string tail = R"(}, "objects": [{"field": {"type": "soft_object",
