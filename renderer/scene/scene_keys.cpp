@@ -27,7 +27,7 @@ const std::vector<SceneKeyList>& scene_key_lists() {
         "mesh", "scale", "rotate", "translate", "matrix"}},
       {"material",
        {"color", "ambient", "diffuse", "brilliance", "phong", "phong_size", "specular", "roughness",
-        "metallic", "reflection"}},
+        "metallic", "reflection", "fresnel", "conserve_energy", "filter", "transmit", "ior"}},
       {"shape: plane", {"type", "normal", "distance", "scale", "rotate", "translate", "matrix"}},
       {"shape: box", {"type", "corner1", "corner2", "scale", "rotate", "translate", "matrix"}},
       {"shape: sphere", {"type", "center", "radius", "scale", "rotate", "translate", "matrix"}},
