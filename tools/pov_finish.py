@@ -4,7 +4,9 @@
 Each case is three blended spheres (tools/pov_scene.py's `blob`: murakami soft objects over
 spheres at iso 0.5, POV's blob of the same spheres, strength 1, threshold 0.5) under the same
 camera and lights, with one finish term or one kind of light set, or (case "components") with
-its own material on some of the spheres, which POV-Ray gets as the components' textures. Both renderers write linear
+its own material on some of the spheres, which POV-Ray gets as the components' textures; the
+transparent cases (glass, filter_shadow, transmit) add a ground plane, which the tinted shadows
+and the refracted rays show. Both renderers write linear
 EXR (POV-Ray with assumed_gamma 1.0, +FE): softtrace `render --flatten --spp 1`, POV-Ray
 without anti-aliasing. `softtrace diff` compares R,G,B. A case passes when the mean absolute
 difference is at most 1/255 and at most 1% of the pixels differ by more than 4/255 in a channel

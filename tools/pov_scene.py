@@ -100,8 +100,9 @@ def material(obj):
     if m.get("metallic", 0):
         finish.append("metallic %g" % m["metallic"])
     if m.get("reflection", 0):
-        if m.get("fresnel"):  # the mirror reflection is the maximum, 0 the minimum
-            finish.append("reflection { 0, %s fresnel on }" % grey_or_rgb(m["reflection"]))
+        if m.get("fresnel"):  # the mirror reflection is the maximum
+            finish.append("reflection { %s, %s fresnel on }" % (
+                grey_or_rgb(m.get("reflection_min", 0.0)), grey_or_rgb(m["reflection"])))
         else:
             finish.append("reflection { %s }" % grey_or_rgb(m["reflection"]))
     if m.get("conserve_energy"):

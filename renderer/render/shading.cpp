@@ -95,7 +95,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       if (seen == 0) continue;
       if (seen != 1) arrived = at.light * seen;
     } else {
-      // Shadow rays pass transparent surfaces, tinted by each (docs/math.md, "Transparency").
+      // Shadow rays pass transparent surfaces, tinted by each (docs/math.md §12.6).
       const Vec3 f =
           light_filter(scene, l, at, origin, cone0, ray.cone, here, rt, secondary, cancel);
       if (f.x == 0 && f.y == 0 && f.z == 0) continue;
@@ -119,8 +119,9 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   const double cos_i = -dot(ray.d, n);
   // The mirror reflection, weighed by Fresnel's reflectance where the material asks.
   const auto reflectivity = [&](const Material& mk) {
-    return mk.fresnel ? mk.reflection * fresnel_reflectance(cos_i, from_inside ? 1 / ior : ior)
-                      : mk.reflection;
+    if (!mk.fresnel) return mk.reflection;
+    const double f = fresnel_reflectance(cos_i, from_inside ? 1 / ior : ior);
+    return mk.reflection * f + mk.reflection_min * (1 - f);
   };
   // What of the light behind passes (POV's filter colour), less what is reflected where energy
   // is conserved.

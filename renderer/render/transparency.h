@@ -1,4 +1,4 @@
-// Transparent materials, POV-Ray 3.7's way (docs/math.md, "Transparency"): the light behind a
+// Transparent materials, POV-Ray 3.7's way (docs/math.md §12.6): the light behind a
 // surface passes tinted by its filter and untinted by its transmit (POV's rgbft); a transmitted
 // ray bends by Snell's law where the interior's ior differs from the air's, or reflects whole
 // (total internal reflection); Fresnel's reflectance can weigh the mirror reflection; shadow rays

@@ -47,6 +47,10 @@ Material load_material(const Params& m) {
   mat.metallic = load_in(m, "metallic", mat.metallic, 0, 1, "a metallic amount in [0, 1]");
   mat.reflection = load_rgb(m, "reflection", mat.reflection, 1);
   mat.fresnel = m.boolean("fresnel", mat.fresnel);
+  mat.reflection_min = load_rgb(m, "reflection_min", mat.reflection_min, 1);
+  // Without fresnel POV-Ray's two reflection values follow another law (its falloff).
+  m.check(mat.fresnel || !m.has("reflection_min"), "reflection_min",
+          "expected \"fresnel\": true with reflection_min");
   mat.conserve_energy = m.boolean("conserve_energy", mat.conserve_energy);
   mat.filter = load_in(m, "filter", mat.filter, 0, 1, "a filter amount in [0, 1]");
   mat.transmit = load_in(m, "transmit", mat.transmit, 0, 1, "a transmit amount in [0, 1]");

@@ -19,9 +19,11 @@ struct Material {
   double specular = 0, roughness = 0.05;  // the specular exponent is 1 / roughness
   double metallic = 0;                    // 0: highlights take the light's colour; 1: the surface's
   Vec3 reflection{0, 0, 0};               // mirror reflection, per channel
-  // POV's reflection { 0, reflection fresnel on }: the mirror reflection is `reflection` times
-  // the Fresnel reflectance of the surface for `ior` (docs/math.md, "Transparency").
+  // POV's reflection { reflection_min, reflection fresnel on }: the mirror reflection runs from
+  // reflection_min to `reflection` by the Fresnel reflectance F of the surface for `ior`:
+  // F reflection + (1 - F) reflection_min (docs/math.md §12.6).
   bool fresnel = false;
+  Vec3 reflection_min{0, 0, 0};
   bool conserve_energy = false;  // the transmitted light loses what is reflected
   // The pigment's filter and transmit (POV's rgbft): the share of the light behind that passes
   // tinted by `color`, and untinted. 0 and 0: opaque.
