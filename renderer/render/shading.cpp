@@ -18,6 +18,18 @@ namespace {
 // at most this many in a row, so that no chain of them runs unbounded.
 constexpr int kMaxContinued = 64;
 thread_local int continued = 0;
+
+// Counts one continued ray for as long as it is shaded (also when an EmbreeError leaves early).
+class ContinuedRay {
+ public:
+  explicit ContinuedRay(bool counts) : counts_(counts) { continued += counts_; }
+  ~ContinuedRay() { continued -= counts_; }
+  ContinuedRay(const ContinuedRay&) = delete;
+  ContinuedRay& operator=(const ContinuedRay&) = delete;
+
+ private:
+  const bool counts_;
+};
 }  // namespace
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
@@ -168,18 +180,17 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       // Total internal reflection: all of the light reflects, untinted, staying inside.
       total_reflection = true;
       next = {origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
-      inside = here;
+      inside = from_inside ? hit.object : -1;
     }
     if (next_level > level || continued < kMaxContinued) {
       const TraceHit far =
           rt.intersect(next, 0, std::numeric_limits<double>::infinity(), nullptr, inside);
       secondary.add(far.work);
-      continued += next_level == level;
+      const ContinuedRay count(next_level == level);
       const Vec3 seen =
           far.hit     ? shade(scene, tracers, rt, next, far, secondary, cancel, next_level).color
           : scene.sky ? scene.sky->seen(next.d)
                       : scene.background;
-      continued -= next_level == level;
       color += total_reflection ? seen : mul(filter, seen);
     }
   }
