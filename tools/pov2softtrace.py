@@ -6,9 +6,11 @@ loops, macros, conditionals and rand() are refused. Carried across: `camera` (lo
 angle, direction, up, right, sky, orthographic, focal blur), `light_source` (point, `parallel`, `spotlight`, `area_light`,
 fading, `shadowless`), `background`, `global_settings { ambient_light }`, `blob` objects (sphere
 and cylinder components with their strengths, the threshold, translate/rotate/scale/matrix/
-transform on components and on the blob, the blob's pigment and finish), and plane, box, sphere,
-cylinder, cone and disc objects, and `mesh`/`mesh2` objects, whose triangles go to OUTPUT-STEM_NAME.obj
-beside the output (so a scene with meshes needs -o). POV-Ray's y-up left-handed frame becomes softtrace's z-up
+transform on components and on the blob, the blob's pigment and finish), transparency (a
+pigment's filter and transmit, `reflection { [MIN,] MAX fresnel on }`, `conserve_energy`,
+`interior { ior }`), plane, box, sphere, cylinder, cone and disc objects, and `mesh`/`mesh2`
+objects, whose triangles go to OUTPUT-STEM_NAME.obj beside the output (so a scene with meshes
+needs -o). POV-Ray's y-up left-handed frame becomes softtrace's z-up
 right-handed one by swapping y and z, which keeps the picture unmirrored (tools/povsdl/affine.py).
 POV-Ray's `angle` is horizontal, softtrace's `fov` vertical. docs/pov.md has the details.
 

@@ -100,8 +100,21 @@ def material(obj):
     if m.get("metallic", 0):
         finish.append("metallic %g" % m["metallic"])
     if m.get("reflection", 0):
-        finish.append("reflection { %s }" % grey_or_rgb(m["reflection"]))
-    return "  pigment { rgb <%g, %g, %g> } finish { %s }" % (*c, " ".join(finish))
+        if m.get("fresnel"):  # the mirror reflection is the maximum
+            finish.append("reflection { %s, %s fresnel on }" % (
+                grey_or_rgb(m.get("reflection_min", 0.0)), grey_or_rgb(m["reflection"])))
+        else:
+            finish.append("reflection { %s }" % grey_or_rgb(m["reflection"]))
+    if m.get("conserve_energy"):
+        finish.append("conserve_energy")
+    return "  pigment { rgbft <%g, %g, %g, %g, %g> } finish { %s }" % (
+        *c, m.get("filter", 0.0), m.get("transmit", 0.0), " ".join(finish))
+
+
+def interior(obj):
+    """The object's interior (its ior), or nothing where its material keeps the default 1."""
+    ior = obj.get("material", {}).get("ior", 1.0)
+    return "  interior { ior %.9g }\n" % ior if ior != 1.0 else ""
 
 
 def blob(scene):
@@ -122,6 +135,8 @@ def blob(scene):
         lines.append("  sphere { %s, %.9g, 1%s }" % (pov_vec(child.get("translate", [0, 0, 0])),
                                                      radii[0], own))
     lines.append(material(obj))
+    if interior(obj):
+        lines.append(interior(obj).rstrip("\n"))
     lines.append("}")
     return "\n".join(lines) + "\n"
 

@@ -80,22 +80,10 @@ class AreaSamples {
   static constexpr int kMax = 64;  // the loader's limit per axis
 
  private:
-  // The sample's place: the grid spans the rectangle's edges (POV-Ray's layout), a jittered
-  // sample moves within +-half a cell by a hash of the point and the sample.
+  // Whether the sample (placed by area_sample) is seen from the origin.
   bool trace(int i, int j) {
     if (cancel_requested(cancel_)) return true;  // up to 4096 rays per light: stop between them
-    const AreaLight& a = l_.area;
-    double u = a.size1 > 1 ? double(i) / (a.size1 - 1) - 0.5 : 0;
-    double v = a.size2 > 1 ? double(j) / (a.size2 - 1) - 0.5 : 0;
-    if (a.jitter) {
-      const uint64_t h = splitmix(seed_ ^ (uint64_t(i) << 32 | uint64_t(j)));
-      const double ju = double(h >> 11) * 0x1p-53 - 0.5,
-                   jv = double(splitmix(h) >> 11) * 0x1p-53 - 0.5;
-      if (a.size1 > 1) u += ju / (a.size1 - 1);
-      if (a.size2 > 1) v += jv / (a.size2 - 1);
-    }
-    const Vec3 target = l_.position + a.axis1 * u + a.axis2 * v;
-    const Vec3 to = target - origin_;
+    const Vec3 to = area_sample(l_, seed_, i, j) - origin_;
     const double distance = length(to);
     if (distance == 0) return true;
     TraceCounters work;
@@ -115,6 +103,20 @@ class AreaSamples {
 };
 
 }  // namespace
+
+Vec3 area_sample(const Light& l, uint64_t seed, int i, int j) {
+  const AreaLight& a = l.area;
+  double u = a.size1 > 1 ? double(i) / (a.size1 - 1) - 0.5 : 0;
+  double v = a.size2 > 1 ? double(j) / (a.size2 - 1) - 0.5 : 0;
+  if (a.jitter) {
+    const uint64_t h = splitmix(seed ^ (uint64_t(i) << 32 | uint64_t(j)));
+    const double ju = double(h >> 11) * 0x1p-53 - 0.5,
+                 jv = double(splitmix(h) >> 11) * 0x1p-53 - 0.5;
+    if (a.size1 > 1) u += ju / (a.size1 - 1);
+    if (a.size2 > 1) v += jv / (a.size2 - 1);
+  }
+  return l.position + a.axis1 * u + a.axis2 * v;
+}
 
 bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out) {
   out.light = l.color * l.intensity;

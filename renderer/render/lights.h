@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 
 #include "scene/light.h"
 #include "trace/embree_scene.h"
@@ -15,6 +16,11 @@ struct LightArrival {
   double distance;  // to the light's centre; +inf for a directional light
   Vec3 light;       // colour * intensity * spot * fading, before shadows
 };
+
+// Where sample (i, j) of the area light `l` lies for a point whose point_seed (point_hash.h) is
+// `seed`: the grid spans the rectangle's edges (POV-Ray's layout); a jittered sample moves within
+// +-half a cell by a hash of the point and the sample.
+Vec3 area_sample(const Light& l, uint64_t seed, int i, int j);
 
 // The light `l` (not ambient) at the surface point `p`, whose shadow rays start at `origin`: the
 // direction and distance are taken from `origin`, the spot's cone and the fading at `p`. False

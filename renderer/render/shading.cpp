@@ -8,9 +8,29 @@
 #include "render/finish.h"
 #include "render/lights.h"
 #include "render/occlusion.h"
+#include "render/transparency.h"
 #include "scene/traced_objects.h"
 
 namespace softtrace {
+
+namespace {
+// Transmitted rays through surfaces of ior 1 keep their trace level (POV-Ray's continued rays):
+// at most this many in a row, so that no chain of them runs unbounded.
+constexpr int kMaxContinued = 64;
+thread_local int continued = 0;
+
+// Counts one continued ray for as long as it is shaded (also when an EmbreeError leaves early).
+class ContinuedRay {
+ public:
+  explicit ContinuedRay(bool counts) : counts_(counts) { continued += counts_; }
+  ~ContinuedRay() { continued -= counts_; }
+  ContinuedRay(const ContinuedRay&) = delete;
+  ContinuedRay& operator=(const ContinuedRay&) = delete;
+
+ private:
+  const bool counts_;
+};
+}  // namespace
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
@@ -21,7 +41,12 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A primitive's or a CSG's normal came with its hit.
   Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
-  if (dot(n, ray.d) > 0) n = -n;   // seen from inside (clipped solids): shade the side we see
+  // Seen from inside (clipped solids, transparent ones): shade the side we see.
+  const bool from_inside = dot(n, ray.d) > 0;
+  if (from_inside) n = -n;
+  // The field object whose solid the shadow and mirror rays start in (transparent scenes only:
+  // the others keep their rays as they were).
+  const int here = scene.transparent && from_inside ? hit.object : -1;
 
   // Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave
   // the surface by that footprint's radius (at least 1e-4 of the object's box), far more than the
@@ -68,7 +93,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
         light += mul(m.ambient, c);
       else
         each([&](const Material& mk, double wk) {
-          mixed += mul(mk.color, mul(mk.ambient, c)) * wk;
+          mixed += mul(mk.color, mul(mk.ambient, c)) * (wk * opacity(mk));
         });
       continue;
     }
@@ -76,9 +101,18 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     if (!light_arrival(l, p, origin, at)) continue;
     const double cosine = dot(n, at.to_light);
     if (cosine <= 0) continue;
-    const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
-    if (seen == 0) continue;
-    const Vec3 arrived = seen == 1 ? at.light : at.light * seen;
+    Vec3 arrived = at.light;
+    if (!scene.transparent) {
+      const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
+      if (seen == 0) continue;
+      if (seen != 1) arrived = at.light * seen;
+    } else {
+      // Shadow rays pass transparent surfaces, tinted by each (docs/math.md §12.6).
+      const Vec3 f =
+          light_filter(scene, l, at, origin, cone0, ray.cone, here, rt, secondary, cancel);
+      if (f.x == 0 && f.y == 0 && f.z == 0) continue;
+      arrived = mul(at.light, f);
+    }
     // As in POV-Ray, lights without shadows (its fill lights) make no highlights.
     if (!blended) {
       light += diffuse_light(m, cosine, arrived);
@@ -86,27 +120,87 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       continue;
     }
     each([&](const Material& mk, double wk) {
-      Vec3 c = mul(mk.color, diffuse_light(mk, cosine, arrived));
+      Vec3 c = mul(mk.color, diffuse_light(mk, cosine, arrived)) * opacity(mk);
       if (l.shadows) c += highlights(mk, n, ray.d, at.to_light, arrived);
       mixed += c * wk;
     });
   }
+  // The interior's index of refraction is the object's (POV-Ray's interior), whatever material
+  // shows at the point; seen from inside, the light leaves it for the air.
+  const double ior = obj.material.ior;
+  const double cos_i = -dot(ray.d, n);
+  // The mirror reflection, weighed by Fresnel's reflectance where the material asks.
+  const auto reflectivity = [&](const Material& mk) {
+    if (!mk.fresnel) return mk.reflection;
+    const double f = fresnel_reflectance(cos_i, from_inside ? 1 / ior : ior);
+    return mk.reflection * f + mk.reflection_min * (1 - f);
+  };
+  // What of the light behind passes (POV's filter colour), less what is reflected where energy
+  // is conserved.
+  const auto passing = [&](const Material& mk) {
+    Vec3 f = transmitted_color(mk);
+    if (mk.conserve_energy) f = mul(f, Vec3{1, 1, 1} - reflectivity(mk));
+    return f;
+  };
   Vec3 color = mixed;
-  Vec3 reflection = m.reflection, albedo = m.color;
+  Vec3 reflection = reflectivity(m), albedo = m.color;
+  Vec3 filter{0, 0, 0};
+  bool see_through = false;
   if (!blended) {
+    if (transparent(m)) {
+      light = light * opacity(m);
+      see_through = true;
+      filter = passing(m);
+    }
     color = mul(m.color, light);
     if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
   } else {
     reflection = albedo = Vec3{0, 0, 0};
     each([&](const Material& mk, double wk) {
-      reflection += mk.reflection * wk;
+      reflection += reflectivity(mk) * wk;
       albedo += mk.color * wk;
+      if (transparent(mk)) {
+        see_through = true;
+        filter += passing(mk) * wk;
+      }
     });
   }
+  // `weights` is read for the last time above: the rays below shade other points.
 
-  if (reflects(reflection) && level < scene.image.max_trace_level && !cancel_requested(cancel)) {
+  // The transmitted ray (POV-Ray traces it first), where enough light passes to matter.
+  bool total_reflection = false;
+  if (see_through && std::min(1.0, std::abs(grey(filter))) > kAdcBailout &&
+      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
+    const double eta = from_inside ? ior : 1 / ior;  // n_incident / n_transmitted
+    Ray next{p - n * offset, ray.d, cone0, ray.cone};
+    int next_level = level + 1, inside = from_inside ? -1 : hit.object;
+    if (std::abs(eta - 1) < 1e-10) {
+      next_level = level;  // a straight transmitted ray continues the ray
+    } else if (!refract(ray.d, n, eta, next.d)) {
+      // Total internal reflection: all of the light reflects, untinted, staying inside.
+      total_reflection = true;
+      next = {origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
+      inside = from_inside ? hit.object : -1;
+    }
+    if (next_level > level || continued < kMaxContinued) {
+      const TraceHit far =
+          rt.intersect(next, 0, std::numeric_limits<double>::infinity(), nullptr, inside);
+      secondary.add(far.work);
+      const ContinuedRay count(next_level == level);
+      const Vec3 seen =
+          far.hit     ? shade(scene, tracers, rt, next, far, secondary, cancel, next_level).color
+          : scene.sky ? scene.sky->seen(next.d)
+                      : scene.background;
+      color += total_reflection ? seen : mul(filter, seen);
+    }
+  }
+
+  // The mirror reflection (which total internal reflection has replaced).
+  if (!total_reflection && reflects(reflection) && level < scene.image.max_trace_level &&
+      !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
-    const TraceHit next = rt.intersect(mirror, 0, std::numeric_limits<double>::infinity());
+    const TraceHit next =
+        rt.intersect(mirror, 0, std::numeric_limits<double>::infinity(), nullptr, here);
     secondary.add(next.work);
     const Vec3 seen =
         next.hit    ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color

@@ -46,6 +46,18 @@ Material load_material(const Params& m) {
   }
   mat.metallic = load_in(m, "metallic", mat.metallic, 0, 1, "a metallic amount in [0, 1]");
   mat.reflection = load_rgb(m, "reflection", mat.reflection, 1);
+  mat.fresnel = m.boolean("fresnel", mat.fresnel);
+  mat.reflection_min = load_rgb(m, "reflection_min", mat.reflection_min, 1);
+  // Without fresnel POV-Ray's two reflection values follow another law (its falloff).
+  m.check(mat.fresnel || !m.has("reflection_min"), "reflection_min",
+          "expected \"fresnel\": true with reflection_min");
+  mat.conserve_energy = m.boolean("conserve_energy", mat.conserve_energy);
+  mat.filter = load_in(m, "filter", mat.filter, 0, 1, "a filter amount in [0, 1]");
+  mat.transmit = load_in(m, "transmit", mat.transmit, 0, 1, "a transmit amount in [0, 1]");
+  // POV-Ray adds the two; more than all the light cannot pass.
+  m.check(mat.filter + mat.transmit <= 1, m.has("transmit") ? "transmit" : "filter",
+          "expected filter + transmit <= 1");
+  mat.ior = load_in(m, "ior", mat.ior, 0.01, 100, "an ior in [0.01, 100]");
   m.finish();
   return mat;
 }

@@ -19,7 +19,22 @@ struct Material {
   double specular = 0, roughness = 0.05;  // the specular exponent is 1 / roughness
   double metallic = 0;                    // 0: highlights take the light's colour; 1: the surface's
   Vec3 reflection{0, 0, 0};               // mirror reflection, per channel
+  // POV's reflection { reflection_min, reflection fresnel on }: the mirror reflection runs from
+  // reflection_min to `reflection` by the Fresnel reflectance F of the surface for `ior`:
+  // F reflection + (1 - F) reflection_min (docs/math.md §12.6).
+  bool fresnel = false;
+  Vec3 reflection_min{0, 0, 0};
+  bool conserve_energy = false;  // the transmitted light loses what is reflected
+  // The pigment's filter and transmit (POV's rgbft): the share of the light behind that passes
+  // tinted by `color`, and untinted. 0 and 0: opaque.
+  double filter = 0, transmit = 0;
+  double ior = 1;  // index of refraction of the interior (POV's interior { ior })
 };
+
+// Whether light passes through a material (POV-Ray then traces a transmitted ray).
+inline bool transparent(const Material& m) {
+  return m.filter > 0 || m.transmit > 0;
+}
 
 // Whether a reflection (a material's, or the weighted mix of a blend's) sends a mirror ray.
 inline bool reflects(const Vec3& reflection) {

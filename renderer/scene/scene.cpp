@@ -109,6 +109,18 @@ Convention load_convention(const Params& p) {
   p.fail("convention", "unknown convention '" + c + "' (expected soft, zero or constructive)");
 }
 
+// Whether any material of `o` (its own, its components', its operands') lets light through.
+bool see_through(const SceneObject& o) {
+  if (transparent(o.material)) return true;
+  if (o.components)
+    for (const Material& m : o.components->materials())
+      if (transparent(m)) return true;
+  if (o.csg)
+    for (const SceneObject& operand : o.csg->operands)
+      if (see_through(operand)) return true;
+  return false;
+}
+
 // `inherited`: the material of the nearest enclosing CSG object that has one (null: none).
 SceneObject load_object(const Params& p, size_t index, const Material* inherited = nullptr) {
   p.check_keys(scene_keys("object"));
@@ -256,6 +268,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   std::unordered_set<std::string> names;
   for (size_t i = 0; i < objects.size(); ++i) {
     s.objects.push_back(load_object(objects[i], i));
+    s.transparent = s.transparent || see_through(s.objects[i]);
     if (!names.insert(s.objects[i].name).second)
       objects[i].fail("name", "duplicate object name '" + s.objects[i].name + "'");
   }

@@ -146,6 +146,9 @@ struct Scene {
   std::optional<SkyGradient> sky;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;
+  // Some material lets light through (Material's filter or transmit, on an object, a CSG operand
+  // or a component): shadow rays then pass through such surfaces, tinted. Set by the loader.
+  bool transparent = false;
 
   Box bounds() const;  // union of the objects' boxes
   // With no "camera" in the file: the camera is camera_framing(the union of the objects'

@@ -26,6 +26,7 @@ struct RayContext {
   const BeamClear* beam = nullptr;
   double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
   int object = -1;
+  int inside = -1;  // EmbreeScene::intersect's `inside`
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
   int face = -1;
@@ -34,6 +35,7 @@ struct RayContext {
 
 struct GeometryData {
   const ObjectTracer* tracer;  // null for a primitive, a CSG or a mesh
+  const ObjectTracer* exit;    // the complement's tracer, where `tracer` is set
   const CsgTracer* csg;        // null but for a CSG
   const TracedObject* object_data;
   int object;
@@ -73,6 +75,20 @@ void record_hit(const RTCIntersectFunctionNArguments* args, RayContext* ctx, int
   rh->hit.Ng_x = rh->hit.Ng_y = rh->hit.Ng_z = 0;
 }
 
+// A ray inside a field's solid: its hit is the first point of the complement, or where it leaves
+// through the solid's box (a solid its bounds clip), which is a surface too.
+void exit_callback(const RTCIntersectFunctionNArguments* args, const GeometryData* data,
+                   RayContext* ctx) {
+  const MarchResult m = data->exit->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
+  if (m.hit) {
+    if (m.t < ctx->t) record_hit(args, ctx, data->object, m.t, false, Vec3{0, 0, 0}, -1);
+    return;
+  }
+  double t0 = ctx->tnear, t1 = ctx->t;
+  if (!clip_to_box(ctx->ray, data->object_data->bounds, t0, t1) || t1 >= ctx->t) return;
+  record_hit(args, ctx, data->object, t1, true, Vec3{0, 0, 0}, -1);
+}
+
 void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
@@ -80,6 +96,10 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
   // The beam's depth along its axis is depth / cos along the ray.
   const double clear_to = ctx->beam ? ctx->beam->depth[data->object] / ctx->beam_cos : 0;
+  if (data->object == ctx->inside) {
+    exit_callback(args, data, ctx);
+    return;
+  }
   const MarchResult m =
       data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Nearest, clear_to);
   if (!m.hit || m.t >= ctx->t) return;
@@ -190,7 +210,7 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
   for (int i = 0; i < tracers.size(); ++i) {
     const ObjectTracer* tracer = tracers.tracer(i);
     const CsgTracer* csg = tracers.csg(i);
-    impl_->data.push_back({tracer, csg, &tracers.object(i), i});
+    impl_->data.push_back({tracer, tracers.exit_tracer(i), csg, &tracers.object(i), i});
     if (const TriangleMesh* mesh = tracers.object(i).mesh.get()) {
       RTCGeometry geom = mesh_geometry(device, *mesh);
       rtcSetGeometryUserData(geom, &impl_->data.back());
@@ -239,11 +259,12 @@ RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
 }
 }  // namespace
 
-TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar,
-                                const BeamClear* beam) const {
+TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
+                                int inside) const {
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
+  ctx.inside = inside;
   // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
   if (beam) {
     const double cos = dot(ray.d, beam->forward);

@@ -44,9 +44,13 @@ Workspace& ObjectTracer::workspace() const {
 SceneTracers::SceneTracers(const std::vector<TracedObject>& objects, LipschitzMode mode)
     : objects_(&objects) {
   tracers_.reserve(objects.size());
+  exits_.reserve(objects.size());
   for (const TracedObject& o : objects) {
     index_.push_back(o.field ? static_cast<int>(tracers_.size()) : -1);
-    if (o.field) tracers_.emplace_back(*o.field, mode);
+    if (o.field) {
+      tracers_.emplace_back(*o.field, mode);
+      exits_.emplace_back(*o.field, mode, true);
+    }
     csg_.push_back(o.csg() ? std::make_shared<const CsgTracer>(o, mode) : nullptr);
   }
 }

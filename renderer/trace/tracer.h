@@ -252,6 +252,12 @@ class SceneTracers {
   const ObjectTracer* tracer(int object) const {
     return index_[object] < 0 ? nullptr : &tracers_[index_[object]];
   }
+  // The tracer of the complement of a field object's solid (null where tracer() is): from a point
+  // inside the solid its first hit is where the ray leaves it (refracted and shadow rays through
+  // transparent objects).
+  const ObjectTracer* exit_tracer(int object) const {
+    return index_[object] < 0 ? nullptr : &exits_[index_[object]];
+  }
   // A CSG object's tracer, or null for any other.
   const CsgTracer* csg(int object) const { return csg_[object].get(); }
   const TracedObject& object(int object) const { return (*objects_)[object]; }
@@ -260,6 +266,7 @@ class SceneTracers {
  private:
   const std::vector<TracedObject>* objects_;
   std::vector<ObjectTracer> tracers_;
+  std::vector<ObjectTracer> exits_;  // tracers_'s complements, in the same order
   std::vector<int> index_;  // per object: its tracer's index, -1 for a primitive, a CSG or a mesh
   std::vector<std::shared_ptr<const CsgTracer>> csg_;  // per object: a CSG's tracer, or null
 };

@@ -156,7 +156,40 @@ def test_lights_background_and_finish():
                                             "phong": 0.7}
 
 
+def test_transparency_filter_transmit_ior_and_fresnel():
+    # rgbft's filter and transmit, reflection { min, max fresnel on }, conserve_energy and the
+    # interior's ior: POV-Ray's glass.
+    glass = scene_of("blob { sphere { 0, 1, 1 } pigment { rgbft <0.9, 1, 0.95, 0.1, 0.8> }\n"
+                     "  finish { reflection { 0.1, 1 fresnel on } conserve_energy phong 0.8 }\n"
+                     "  interior { ior 1.5 caustics 0.5 } }")["objects"][0]["material"]
+    assert glass == {"color": [0.9, 1, 0.95], "ambient": 0.1, "diffuse": 0.6, "phong": 0.8,
+                     "reflection": 1, "fresnel": True, "reflection_min": 0.1,
+                     "conserve_energy": True, "filter": 0.1, "transmit": 0.8, "ior": 1.5}
+    # rgbf, rgbt and the filter/transmit words; one reflection value with fresnel is its maximum.
+    rgbf = scene_of("sphere { 0, 1 pigment { rgbf <1, 0, 0, 0.6> } "
+                    "finish { reflection { 0.5 fresnel } } }")["objects"][0]["material"]
+    assert rgbf["filter"] == 0.6 and "transmit" not in rgbf
+    assert rgbf["reflection"] == 0.5 and rgbf["fresnel"] and "reflection_min" not in rgbf
+    rgbt = scene_of("box { 0, 1 pigment { rgbt <0, 1, 0, 0.4> } }")["objects"][0]["material"]
+    assert rgbt["transmit"] == 0.4 and "filter" not in rgbt
+    words = scene_of("sphere { 0, 1 pigment { color red 1 filter 0.25 transmit 0.5 } "
+                     "finish { reflection { 0.3 fresnel off } } }")["objects"][0]["material"]
+    assert words["filter"] == 0.25 and words["transmit"] == 0.5
+    assert words["reflection"] == 0.3 and "fresnel" not in words
+    # Opaque, without an interior: nothing new is written.
+    plain = scene_of("sphere { 0, 1 pigment { rgb 1 } }")["objects"][0]["material"]
+    assert set(plain) == {"color", "ambient", "diffuse"}
+
+
 REFUSALS = [
+    ("sphere { 0, 1 pigment { rgbft <1, 1, 1, 0.7, 0.7> } }", 2, 23, "filter + transmit <= 1"),
+    ("sphere { 0, 1 pigment { rgb 1 } finish { reflection { 0.1, 0.9 } } }", 2, 42,
+     "varies with the angle"),
+    ("sphere { 0, 1 pigment { rgb 1 } finish { reflection { 1 falloff 2 } } }", 2, 57,
+     "reflection { falloff }"),
+    ("sphere { 0, 1 pigment { rgbt 0.5 } interior { ior 1.5 fade_distance 2 } }", 2, 55,
+     "interior { fade_distance }"),
+    ("sphere { 0, 1 pigment { rgbt 0.5 } interior { ior 0 } }", 2, 47, "ior 0"),
     ("#while (I < 3) sphere { 0, 1 } #end", 2, 1, "#while: loops are not supported"),
     ("blob { sphere { <rand(S), 0, 0>, 1, 1 } }", 2, 18, "unknown identifier 'rand'"),
     ("blob { sphere { 0, 1, 1 finish { phong 1 } } sphere { x, 1, 1 } pigment { rgb 1 } }", 2,

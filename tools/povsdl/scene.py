@@ -8,7 +8,9 @@ and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, `me
 files beside the scene), and `blob` objects:
 sphere and cylinder components (and the old `component` form) with strength, threshold,
 per-component and whole-blob translate/rotate/scale/matrix/transform, pigment, finish and texture.
-Everything else is refused with its line and column.
+Transparency: a pigment's filter and transmit (rgbf, rgbt, rgbft, `filter`, `transmit`), the
+finish's `reflection { [MIN,] MAX fresnel on }` and `conserve_energy`, an object's
+`interior { ior }`. Everything else is refused with its line and column.
 """
 import math
 import os
@@ -48,6 +50,7 @@ class Modifiers:
         self.matrix = affine.IDENTITY
         self.pigment = None
         self.finish = {}
+        self.ior = 1.0  # interior { ior }
 
 
 class Converter:
@@ -424,10 +427,12 @@ class Converter:
             s.expect("}")
             return dict(ref)
         c = parse_color(ex, "the pigment")
-        if c[3] or c[4]:
-            raise s.error(tok, "filter and transmit (transparent pigments) are not supported")
+        if not (0 <= c[3] <= 1 and 0 <= c[4] <= 1 and c[3] + c[4] <= 1):
+            raise s.error(tok, "filter %g and transmit %g: softtrace takes each in [0, 1] with "
+                          "filter + transmit <= 1" % (c[3], c[4]))
         s.expect("}", "(only a plain colour pigment is supported)")
-        return {"kind": "pigment", "color": c[:3]}
+        # r, g, b, filter, transmit (POV's rgbft); _material splits them.
+        return {"kind": "pigment", "color": list(c[:5])}
 
     def _finish(self, s, ex):
         s.expect("{")
@@ -442,13 +447,64 @@ class Converter:
                 f[w] = ex.number(w) if w != "metallic" or self._number_follows(s) else 1.0
             elif w == "reflection":
                 if s.accept("{"):
-                    f[w] = parse_color(ex, "reflection")[0]
-                    s.expect("}", "(only a constant reflection is supported)")
+                    self._reflection_block(s, ex, tok, f)
                 else:
                     f[w] = parse_color(ex, "reflection")[0]
+            elif w == "conserve_energy":
+                f[w] = self._flag(s)
             else:
                 raise s.error(tok, "finish { %s } is not supported" % w)
         return f
+
+    def _reflection_block(self, s, ex, tok, f):
+        """reflection { [MIN,] MAX [fresnel [on|off]] }: a constant reflection, or with fresnel
+        the Fresnel reflectance's blend from MIN (0 where only MAX is given) to MAX."""
+        first = parse_color(ex, "reflection")[0]
+        second = parse_color(ex, "reflection")[0] if s.accept(",") else None
+        fresnel = False
+        while not s.closes("reflection"):
+            t = s.next()
+            if t.text != "fresnel":
+                raise s.error(t, "reflection { %s } is not supported" % t.text)
+            fresnel = self._flag(s)
+        low, high = (0.0, first) if second is None else (first, second)
+        if not fresnel:
+            if second is not None and first != second:
+                raise s.error(tok, "a reflection that varies with the angle is supported with "
+                              "fresnel only")
+            f["reflection"], f["fresnel"] = high, False
+            f.pop("reflection_min", None)
+            return
+        f["reflection"], f["fresnel"], f["reflection_min"] = high, True, low
+
+    @staticmethod
+    def _flag(s):
+        """An optional on/off (true/false, yes/no, 1/0) after a keyword; on where absent."""
+        t = s.peek()
+        if t.kind == "name" and t.text in ("on", "off", "true", "false", "yes", "no"):
+            s.next()
+            return t.text in ("on", "true", "yes")
+        if t.kind == "number" and t.text in ("0", "1"):
+            s.next()
+            return t.text == "1"
+        return True
+
+    def _interior(self, s, ex, tok):
+        """interior { ior N }: the object's index of refraction (caustics, which softtrace does
+        not draw, is taken and left out)."""
+        s.expect("{")
+        ior = 1.0
+        while not s.closes("interior"):
+            t = s.next()
+            if t.text == "ior":
+                ior = ex.number("ior")
+                if not 0.01 <= ior <= 100:
+                    raise s.error(t, "ior %g: softtrace takes 0.01 to 100" % ior)
+            elif t.text == "caustics":
+                ex.number("caustics")
+            else:
+                raise s.error(t, "interior { %s } is not supported" % t.text)
+        return ior
 
     @staticmethod
     def _number_follows(s):
@@ -516,7 +572,7 @@ class Converter:
             return self._transform(s, ex)["matrix"]
         return self._reference(s, "transform")["matrix"]
 
-    def _material(self, pigment, finish, at, s):
+    def _material(self, pigment, finish, at, s, ior=1.0):
         """The object's material; None for an object inside a CSG without a pigment of its own,
         which takes the enclosing CSG's (docs/scene-format.md "CSG of objects")."""
         if pigment is None:
@@ -529,11 +585,23 @@ class Converter:
             raise s.error(at, "the %s has no pigment" % at.text)
         f = dict(self.default_finish)
         f.update({k: v for k, v in finish.items() if k != "kind"})
-        material = {"color": [float(c) for c in pigment]}
+        material = {"color": [float(c) for c in pigment[:3]]}
         for key in FINISH_KEYS + ("reflection",):
             value = f[key]
             if key in ("ambient", "diffuse") or value != FINISH_DEFAULTS[key]:
                 material[key] = value
+        if f.get("fresnel"):
+            material["fresnel"] = True
+            if f.get("reflection_min"):
+                material["reflection_min"] = f["reflection_min"]
+        if f.get("conserve_energy"):
+            material["conserve_energy"] = True
+        # POV's rgbft: the light behind passes filtered by the colour, and transmitted as it is.
+        for key, value in zip(("filter", "transmit"), list(pigment[3:5]) + [0.0, 0.0]):
+            if value:
+                material[key] = float(value)
+        if ior != 1.0:
+            material["ior"] = ior
         return material
 
     def _modifier(self, s, ex, tok, mods):
@@ -550,6 +618,8 @@ class Converter:
             t = self._texture(s, ex)
             mods.pigment = t.get("color", mods.pigment)
             mods.finish.update(t.get("finish", {}))
+        elif w == "interior":
+            mods.ior = self._interior(s, ex, tok)
         else:
             return False
         return True
@@ -607,7 +677,8 @@ class Converter:
                 shape["translate"] = [full[i][3] for i in range(3)]
             else:
                 shape["matrix"] = [list(full[i]) for i in range(3)]
-        return self._named(word, self._material(mods.pigment, mods.finish, at, s), shape=shape)
+        material = self._material(mods.pigment, mods.finish, at, s, mods.ior)
+        return self._named(word, material, shape=shape)
 
     # ---- triangle meshes -----------------------------------------------------------------
     def _mesh(self, s, ex, at, operand=False):
@@ -769,7 +840,7 @@ class Converter:
         elif mods.pigment is None and children and all("material" in c for c in children):
             material = None
         else:
-            material = self._material(mods.pigment, mods.finish, at, s)
+            material = self._material(mods.pigment, mods.finish, at, s, mods.ior)
         field = children[0] if len(children) == 1 else {"type": "soft_blend",
                                                           "children": children}
         return self._named("blob", material, convention="soft", iso=threshold, field=field)
@@ -826,7 +897,7 @@ class Converter:
         if mods.pigment is None and self.csg_depth == 0 and all(map(textured, operands)):
             material = None
         else:
-            material = self._material(mods.pigment, mods.finish, at, s)
+            material = self._material(mods.pigment, mods.finish, at, s, mods.ior)
         return self._named(word, material, csg=word, operands=operands)
 
     def _component(self, s, ex, tok):

@@ -39,7 +39,9 @@ const std::string kEveryKeyCameras = std::string(R"({
      "fade_power": 1, "area": {"axis1": [1, 0, 0], "axis2": [0, 1, 0], "size1": 2, "size2": 2}}],
   "objects": [{"name": "ball", "material": {"color": [1, 0, 0], "ambient": 0.1, "diffuse": 0.6,
                "brilliance": 2, "phong": 0.5, "phong_size": 60, "specular": 0.3, "roughness": 0.02,
-               "metallic": 0.5, "reflection": [0.1, 0.2, 0.3]}, "convention": "soft", "iso": 0.4,
+               "metallic": 0.5, "reflection": [0.1, 0.2, 0.3], "fresnel": true,
+               "reflection_min": 0.05, "conserve_energy": true, "filter": 0.1, "transmit": 0.2,
+               "ior": 1.3}, "convention": "soft", "iso": 0.4,
                "bounds": [[-3, -3, -3], [3, 3, 3]], "field": )") +
                                      kKeysBall +
                                      R"(},
