@@ -5,7 +5,10 @@ Cases: `blobN` (tools/blob_scene.py: N murakami spheres blended at iso 0.5, POV'
 same spheres with strength 1 and threshold 0.5), `fig12b` (scenes/fig000_12b_soft_blend.json, POV's
 `isosurface` of the same blend), and POV-Ray scenes converted by tools/pov2softtrace.py:
 `pov:NAME` (tools/pov_cases/NAME.pov or POV-Ray's sample objects/NAME.pov) and `cloudN` (N mixed
-sphere and cylinder components, tools/pov_cloud.py); `real` names the whole real-world-like set. Both renderers get the same size, 1 sample per pixel and the same
+sphere and cylinder components, tools/pov_cloud.py); `real` names the whole real-world-like set;
+`segtrace` is the Segment Tracing paper's 1001 `cubic` blobs (tools/segment_tracing_scene.py),
+exact in softtrace, against POV-Ray's blob of the closest `murakami` fit: not the same surface, so
+its IoU is reported but not held to 0.999. Both renderers get the same size, 1 sample per pixel and the same
 number of threads. Rounds are interleaved (every case once, then again) so that a load spike on a
 shared machine hits every case alike; the medians over --repeat rounds are reported.
 
@@ -21,7 +24,8 @@ With --plot it draws the blob cases' time per primary ray against N, both render
 
 Uses Debian's python3 and installs povray, python3-pil and gnuplot-nox when missing.
 
-usage: tools/pov_compare.py [--cases blob10,blob100,blob1000,blob10000,fig12b|real|pov:NAME,cloudN]
+usage: tools/pov_compare.py [--cases blob10,blob100,blob1000,blob10000,fig12b|real|pov:NAME,cloudN,
+                                   segtrace]
            [--width 160] [--height 120] [--threads 2] [--repeat 3] [--max-gradient 0.4]
            [--build build] [--work DIR] [--json results.json] [--plot time_per_ray.png]
 """
@@ -41,6 +45,7 @@ import blob_scene  # noqa: E402
 import pov2softtrace  # noqa: E402
 import pov_cloud  # noqa: E402
 import pov_scene  # noqa: E402
+import segment_tracing_scene  # noqa: E402
 from povsdl.lexer import PovError  # noqa: E402
 from povsdl.scene import convert, obj_text  # noqa: E402
 
@@ -109,6 +114,9 @@ def write_case(case, a, work):
         pov = head + pov_scene.isosurface_fig12b(sc, a.max_gradient, a.accuracy)
         with open(base + "_safe.pov", "w") as f:
             f.write(head + pov_scene.isosurface_fig12b(sc, SAFE_MAX_GRADIENT, a.accuracy))
+    elif case == "segtrace":
+        sc = segment_tracing_scene.scene(1, a.width, a.height)
+        pov = pov_scene.header(sc, a.width, a.height) + segment_tracing_scene.pov_blob(sc)
     elif case.startswith("pov:") or case.startswith("cloud"):
         if case.startswith("cloud"):
             text = pov_cloud.scene(int(case[5:]), seed=1)
@@ -132,7 +140,8 @@ def write_case(case, a, work):
         # POV-Ray's alpha (+UA) is the coverage only where the background is transparent.
         pov = text + "\nbackground { rgbt <0, 0, 0, 1> }\n"
     else:
-        sys.exit("pov_compare: unknown case '%s' (blobN, fig12b, cloudN or pov:NAME)" % case)
+        sys.exit("pov_compare: unknown case '%s' (blobN, fig12b, cloudN, pov:NAME or segtrace)" %
+                 case)
     sc["image"] = {"width": a.width, "height": a.height, "spp": 1}
     with open(base + ".json", "w") as f:
         json.dump(sc, f)
@@ -301,7 +310,8 @@ def main():
                 " (POV warns: found %g)" % res["pov_gradient_found"]))
     if a.plot:
         plot(results, a.plot)
-    bad = [r["case"] for r in results if r["iou"] < 0.999]
+    # segtrace's POV-Ray blob is a fit of another kernel: its IoU measures the fit, not a fault.
+    bad = [r["case"] for r in results if r["iou"] < 0.999 and r["case"] != "segtrace"]
     if bad:
         print("silhouettes differ (IoU < 0.999): " + ", ".join(bad))
     if a.json:
