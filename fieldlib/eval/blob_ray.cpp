@@ -229,6 +229,11 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     next = c.end;
   }
   if (next != group.op_index) return std::nullopt;
+  if (s.size() <= kListed) {
+    s.listed_walk_ = group.bvh.tree_order();
+    s.listed_sorted_ = s.listed_walk_;
+    std::sort(s.listed_sorted_.begin(), s.listed_sorted_.end());
+  }
   // sqrt(3 / |L|_F^2) = sqrt(3 / Σ 1/a_i^2) for radii a_i, rotations aside: a mean of the radii
   // (a ball's radius for a ball).
   std::vector<double> radii;
@@ -298,12 +303,18 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
 
 int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
                    Term* out, int32_t* ids) const {
-  const Vec3 e = o + d * len;
-  const int found = p.groups[group_].bvh.segment_items(o, e, pad, ids);
+  // A listed blob the stretch misses fails its own support test below (h2 > 0, enter < exit),
+  // which the BVH's box test only anticipates.
+  const int32_t* found_ids = listed_walk_.data();
+  int found = static_cast<int>(listed_walk_.size());
+  if (size() > kListed) {
+    found = p.groups[group_].bvh.segment_items(o, o + d * len, pad, ids);
+    found_ids = ids;
+  }
   const double dd = dot(d, d);
   int n = 0;
   for (int i = 0; i < found; ++i) {
-    const Blob& b = blobs_[ids[i]];
+    const Blob& b = blobs_[found_ids[i]];
     if (b.inv_r2 > 0) {
       // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
       const Vec3 oc = o - b.centre;
@@ -320,7 +331,7 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
                   h2,    b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
       continue;
     }
-    const Frame& f = frames_[ids[i]];
+    const Frame& f = frames_[found_ids[i]];
     const Vec3 w = f.L * o + f.k, v = f.L * d;
     if (f.inv_axis2 > 0) {
       n += capsule_terms(f, b, w, v, len, out + n);
@@ -333,12 +344,18 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const {
-  const int found = p.groups[group_].kept_at(x, ids);
+  // As in terms(): a listed blob that does not hold x fails r > 0.
+  const int32_t* found_ids = listed_sorted_.data();
+  int found = static_cast<int>(listed_sorted_.size());
+  if (size() > kListed) {
+    found = p.groups[group_].kept_at(x, ids);
+    found_ids = ids;
+  }
   double f = 0;
   Vec3 g;
   for (int i = 0; i < found; ++i) {
-    const Frame& frame = frames_[ids[i]];
-    const Blob& b = blobs_[ids[i]];
+    const Frame& frame = frames_[found_ids[i]];
+    const Blob& b = blobs_[found_ids[i]];
     Vec3 w = frame.L * x + frame.k;
     // A capsule's q: w less its nearest point of the axis.
     if (frame.inv_axis2 > 0)
