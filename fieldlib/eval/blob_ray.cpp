@@ -9,6 +9,7 @@
 #include "kernels/lp_metric.h"
 #include "kernels/potentials.h"
 #include "kernels/skeletal.h"
+#include "math/affine.h"
 #include "program/ops/gauge_ops.h"
 #include "program/ops/placement_ops.h"
 #include "program/ops/potential_ops.h"
@@ -140,6 +141,23 @@ bool read_distance(const Instr& metric, const double* K, BlobSum::Frame* frame, 
   std::abort();  // not reached: the switch names every role
 }
 
+// A sphere around a blob's support |L x + k - s axis| <= 1, s in [0, 1]: x = L^-1 (y + s axis - k)
+// with |y| <= 1 lies within |L^-1|_2 (1 + |axis| / 2) <= |L^-1|_F (1 + |axis| / 2) of
+// L^-1 (axis / 2 - k). 1 % on the radius holds the inverse's rounding where L is well
+// conditioned (|L|_F |L^-1|_F < 1e8); otherwise reach2 stays infinite (no sphere).
+void set_reach(const BlobSum::Frame& f, BlobSum::Blob* blob) {
+  const Mat3 inv = inverse(f.L);
+  double norm2 = 0, inv_norm2 = 0;
+  for (int r = 0; r < 3; ++r) {
+    norm2 += dot(f.L.r[r], f.L.r[r]);
+    inv_norm2 += dot(inv.r[r], inv.r[r]);
+  }
+  if (!(norm2 * inv_norm2 < 1e16)) return;
+  blob->centre = inv * (f.axis * 0.5 - f.k);
+  const double reach = 1.01 * std::sqrt(inv_norm2) * (1 + 0.5 * std::sqrt(dot(f.axis, f.axis)));
+  blob->reach2 = reach * reach;
+}
+
 bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::Frame* frame,
                BlobSum::Blob* blob) {
   if (c.end - c.begin == 1 && blob_part(p.code[c.begin].op).role == BlobRole::Oracle) {
@@ -223,6 +241,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     Frame frame;
     Blob blob;
     if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
+    if (!(blob.inv_r2 > 0)) set_reach(frame, &blob);
     s.capsules_ += frame.inv_axis2 > 0;
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
@@ -299,22 +318,16 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
   n += term(w - f.axis, v, lo[2], hi[2], len, b, out + n);
   return n;
 }
-}  // namespace
 
-int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
-                   Term* out, int32_t* ids) const {
-  // A listed blob the stretch misses fails its own support test below (h2 > 0, enter < exit),
-  // which the BVH's box test only anticipates.
-  const int32_t* found_ids = listed_walk_.data();
-  int found = static_cast<int>(listed_walk_.size());
-  if (size() > kListed) {
-    found = p.groups[group_].bvh.segment_items(o, o + d * len, pad, ids);
-    found_ids = ids;
-  }
+// The terms of blobs[ids[i]], i < found (BlobSum::terms). kSpheres: the ids are the listed blobs,
+// not the BVH's answer, and a blob that is no ball first takes its sphere's test.
+template <bool kSpheres>
+int blob_terms(const BlobSum::Blob* blobs, const BlobSum::Frame* frames, const int32_t* ids,
+               int found, const Vec3& o, const Vec3& d, double len, BlobSum::Term* out) {
   const double dd = dot(d, d);
   int n = 0;
   for (int i = 0; i < found; ++i) {
-    const Blob& b = blobs_[found_ids[i]];
+    const BlobSum::Blob& b = blobs[ids[i]];
     if (b.inv_r2 > 0) {
       // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
       const Vec3 oc = o - b.centre;
@@ -331,7 +344,14 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
                   h2,    b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
       continue;
     }
-    const Frame& f = frames_[found_ids[i]];
+    if (kSpheres) {
+      // Is the stretch within the blob's sphere? (The nearest point's distance is rounded to a
+      // few ulps of |oc|^2 + len^2; 1e-12 of that is room.)
+      const Vec3 oc = o - b.centre;
+      const Vec3 nearest = oc + d * std::clamp(-dot(oc, d) / dd, 0.0, len);
+      if (dot(nearest, nearest) > b.reach2 + 1e-12 * (dot(oc, oc) + len * len)) continue;
+    }
+    const BlobSum::Frame& f = frames[ids[i]];
     const Vec3 w = f.L * o + f.k, v = f.L * d;
     if (f.inv_axis2 > 0) {
       n += capsule_terms(f, b, w, v, len, out + n);
@@ -341,6 +361,18 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
     }
   }
   return n;
+}
+}  // namespace
+
+int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
+                   Term* out, int32_t* ids) const {
+  // A listed blob the stretch misses fails its own support test (h2 > 0, enter < exit), which
+  // the BVH's box test only anticipates.
+  if (size() <= kListed)
+    return blob_terms<true>(blobs_.data(), frames_.data(), listed_walk_.data(),
+                            static_cast<int>(listed_walk_.size()), o, d, len, out);
+  const int found = p.groups[group_].bvh.segment_items(o, o + d * len, pad, ids);
+  return blob_terms<false>(blobs_.data(), frames_.data(), ids, found, o, d, len, out);
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const {

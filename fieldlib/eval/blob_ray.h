@@ -15,6 +15,7 @@
 // capsule's three parts are three such terms, each over its own part of the ray.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -69,10 +70,13 @@ class BlobSum {
   // What terms() reads first, in half a Frame's memory: the potential, and for a ball
   // (translations only, equal radii) its centre and 1 / radius^2, with which a ray's nearest
   // point to it costs a third of what L's does.
+  // For any other blob, a sphere (centre, reach2 its radius squared) holding its support: a listed
+  // blob (kListed) that a stretch passes farther from is skipped before its frame is read.
   struct Blob {
     Vec3 centre;
     double inv_r2;  // 0 where the blob is no ball
     double c2, c3;
+    double reach2 = std::numeric_limits<double>::infinity();
   };
 
  private:
