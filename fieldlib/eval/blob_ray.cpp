@@ -345,10 +345,11 @@ int blob_terms(const BlobSum::Blob* blobs, const BlobSum::Frame* frames, const i
       continue;
     }
     if (kSpheres) {
-      // Is the stretch within the blob's sphere? (The nearest point's distance is rounded to a
-      // few ulps of |oc|^2 + len^2; 1e-12 of that is room.)
+      // Is the stretch within the blob's sphere? d is a unit vector to rounding, so -oc.d is the
+      // nearest point's u to a few ulps of |oc|, which moves its distance by their square; the
+      // distance is rounded to a few ulps of |oc|^2 + len^2: 1e-12 of that is room.
       const Vec3 oc = o - b.centre;
-      const Vec3 nearest = oc + d * std::clamp(-dot(oc, d) / dd, 0.0, len);
+      const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
       if (dot(nearest, nearest) > b.reach2 + 1e-12 * (dot(oc, oc) + len * len)) continue;
     }
     const BlobSum::Frame& f = frames[ids[i]];
