@@ -319,15 +319,32 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
   return n;
 }
 
-// The terms of blobs[ids[i]], i < found (BlobSum::terms). kSpheres: the ids are the listed blobs,
-// not the BVH's answer, and a blob that is no ball first takes its sphere's test.
-template <bool kSpheres>
-int blob_terms(const BlobSum::Blob* blobs, const BlobSum::Frame* frames, const int32_t* ids,
-               int found, const Vec3& o, const Vec3& d, double len, BlobSum::Term* out) {
+// Does the stretch o + u d, u in [0, len], pass within a listed blob's sphere (Blob::reach2)? d is
+// a unit vector to rounding, so -oc.d is the nearest point's u to a few ulps of |oc|, which moves
+// its distance by their square; the distance is rounded to a few ulps of |oc|^2 + len^2: 1e-12
+// of that is room.
+bool within_reach(const BlobSum::Blob& b, const Vec3& o, const Vec3& d, double len) {
+  const Vec3 oc = o - b.centre;
+  const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
+  return dot(nearest, nearest) <= b.reach2 + 1e-12 * (dot(oc, oc) + len * len);
+}
+}  // namespace
+
+int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
+                   Term* out, int32_t* ids) const {
+  int found = 0;
+  if (size() <= kListed) {
+    // A listed ball takes its own support test below (h2 > 0, enter < exit), as cheap as a box
+    // test; any other blob first its sphere's. Either keeps every blob the BVH's query would.
+    for (const int32_t id : listed_walk_)
+      if (blobs_[id].inv_r2 > 0 || within_reach(blobs_[id], o, d, len)) ids[found++] = id;
+  } else {
+    found = p.groups[group_].bvh.segment_items(o, o + d * len, pad, ids);
+  }
   const double dd = dot(d, d);
   int n = 0;
   for (int i = 0; i < found; ++i) {
-    const BlobSum::Blob& b = blobs[ids[i]];
+    const Blob& b = blobs_[ids[i]];
     if (b.inv_r2 > 0) {
       // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
       const Vec3 oc = o - b.centre;
@@ -344,15 +361,7 @@ int blob_terms(const BlobSum::Blob* blobs, const BlobSum::Frame* frames, const i
                   h2,    b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
       continue;
     }
-    if (kSpheres) {
-      // Is the stretch within the blob's sphere? d is a unit vector to rounding, so -oc.d is the
-      // nearest point's u to a few ulps of |oc|, which moves its distance by their square; the
-      // distance is rounded to a few ulps of |oc|^2 + len^2: 1e-12 of that is room.
-      const Vec3 oc = o - b.centre;
-      const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
-      if (dot(nearest, nearest) > b.reach2 + 1e-12 * (dot(oc, oc) + len * len)) continue;
-    }
-    const BlobSum::Frame& f = frames[ids[i]];
+    const Frame& f = frames_[ids[i]];
     const Vec3 w = f.L * o + f.k, v = f.L * d;
     if (f.inv_axis2 > 0) {
       n += capsule_terms(f, b, w, v, len, out + n);
@@ -362,18 +371,6 @@ int blob_terms(const BlobSum::Blob* blobs, const BlobSum::Frame* frames, const i
     }
   }
   return n;
-}
-}  // namespace
-
-int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
-                   Term* out, int32_t* ids) const {
-  // A listed blob the stretch misses fails its own support test (h2 > 0, enter < exit), which
-  // the BVH's box test only anticipates.
-  if (size() <= kListed)
-    return blob_terms<true>(blobs_.data(), frames_.data(), listed_walk_.data(),
-                            static_cast<int>(listed_walk_.size()), o, d, len, out);
-  const int found = p.groups[group_].bvh.segment_items(o, o + d * len, pad, ids);
-  return blob_terms<false>(blobs_.data(), frames_.data(), ids, found, o, d, len, out);
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const {
