@@ -212,10 +212,12 @@ class FrameTracer {
 };
 
 // Runs `pass` over the full-frame tiles that meet `area`, one tile per task; a cancel is noticed
-// before the next sample (FrameTracer::samples). Progress counts the data window's pixels.
+// before the next sample (FrameTracer::samples). Progress counts in first-pass pixels: the data
+// window's pixels, then, with `refined`, each pixel traced again as `weight` of them (its share of
+// the samples).
 void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass,
               const PixelRect& window, const RenderOptions& opt, Progress* progress,
-              tbb::combinable<Work>& work_total) {
+              const AdaptivePixels* refined, long weight, tbb::combinable<Work>& work_total) {
   const int gx0 = area.x0 / kTile, gy0 = area.y0 / kTile;
   const int tiles_x = (area.x1 + kTile - 1) / kTile - gx0;
   const int tiles_y = (area.y1 + kTile - 1) / kTile - gy0;
@@ -228,9 +230,12 @@ void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pas
           const int tx = (gx0 + t % tiles_x) * kTile, ty = (gy0 + t / tiles_x) * kTile;
           tracer.tile(tx, ty, area, pass, work);
           if (progress) {
-            const int w = std::min(tx + kTile, window.x1) - std::max(tx, window.x0);
-            const int h = std::min(ty + kTile, window.y1) - std::max(ty, window.y0);
-            if (w > 0 && h > 0) progress->advance(long(w) * h);
+            const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
+                                 std::min(tx + kTile, window.x1), std::min(ty + kTile, window.y1)};
+            const long units = seen.empty() ? 0
+                               : refined    ? long(refined->count(seen)) * weight
+                                            : long(seen.x1 - seen.x0) * (seen.y1 - seen.y0);
+            if (units > 0) progress->advance(units);
           }
         }
       },
@@ -248,10 +253,15 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
   const FrameTracer tracer(scene, rt, film, opt, adaptive ? &*adaptive : nullptr);
   tbb::combinable<Work> work_total;
   run_pass(tracer, adaptive ? adaptive->apron() : window, FrameTracer::Pass::First, window, opt,
-           progress, work_total);
+           progress, nullptr, 0, work_total);
   if (adaptive && !(opt.cancel && *opt.cancel)) {
     adaptive->decide();
-    run_pass(tracer, window, FrameTracer::Pass::Refine, window, opt, nullptr, work_total);
+    // A pixel traced again costs depth^2 first-pass pixels' samples; the time left counts them
+    // from now on.
+    const long weight = long(scene.image.antialias.depth) * scene.image.antialias.depth;
+    if (progress) progress->add_total(long(adaptive->refined()) * weight);
+    run_pass(tracer, window, FrameTracer::Pass::Refine, window, opt, progress, &*adaptive, weight,
+             work_total);
   }
 
   if (stats) {

@@ -8,6 +8,7 @@
 #include "cli_util.h"
 #include "io/image_file.h"
 #include "render/frame.h"
+#include "render/progress.h"
 #include "render/shading.h"
 
 namespace softtrace {
@@ -106,7 +107,8 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
   const TracedScene rt(scene, LipschitzMode::Local);
   Film adaptive(64, 48), plain(64, 48);
   FrameStats stats;
-  ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, adaptive, nullptr, &stats));
+  Progress progress("rendering", 64 * 48, false);
+  ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, adaptive, &progress, &stats));
   const double threshold = scene.image.antialias.threshold;
   scene.image.antialias = Antialias{};
   ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, plain, nullptr, nullptr));
@@ -139,6 +141,9 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
   EXPECT_GT(flat, 64 * 48 / 2);
   EXPECT_GT(changed, edges / 2);
   EXPECT_EQ(stats.primary_rays, 64 * 48 + edges * 9);  // depth 3: 9 samples each
+  // The progress bar counts both passes: the second's pixels, known after the first, as 9 each.
+  EXPECT_EQ(progress.total(), 64 * 48 + edges * 9);
+  EXPECT_EQ(progress.done(), progress.total());
 }
 
 // The showcase scene (sky, occlusion, adaptive anti-aliasing): 1 and 2 threads, and three tiles
