@@ -140,20 +140,36 @@ class FrameTracer {
       }
       case Pass::Refine: {
         float rgba[4];
+        SampleMeans means;
         if (!adaptive_->refine(x, y) ||
-            !samples(x, y, refined_spp_, certified, nullptr, work, rgba))
+            !samples(x, y, refined_spp_, certified, nullptr, work, rgba, &means))
           return;
         std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+        // The colour is now the refined samples' mean: so are the albedo and the normal, as a
+        // denoiser pairs them with it (an edge pixel's albedo mixes the two sides as its colour
+        // does). Z and steps stay the pixel-centre ray's.
+        for (int k = 0; k < 3 && !film_.normal.empty(); ++k)
+          film_.normal[i * 3 + k] = static_cast<float>(means.normal[k]);
+        for (int k = 0; k < 3 && !film_.albedo.empty(); ++k)
+          film_.albedo[i * 3 + k] = static_cast<float>(means.albedo[k]);
         return;
       }
     }
   }
 
+  // The mean over a pixel's samples of the shaded normal and albedo (0 for a sample that meets
+  // nothing, as the background adds nothing to the premultiplied colour).
+  struct SampleMeans {
+    Vec3 normal{0, 0, 0}, albedo{0, 0, 0};
+  };
+
   // Pixel (x, y) traced with `spp` samples into `rgba` (premultiplied); the pixel-centre ray's
-  // AOVs go to the film's pixel `*aov` when given. False when cancelled.
+  // AOVs go to the film's pixel `*aov` when given, the samples' means to `*means`. False when
+  // cancelled.
   bool samples(int x, int y, int spp, const BeamClear* certified, const size_t* aov, Work& work,
-               float rgba[4]) const {
+               float rgba[4], SampleMeans* means = nullptr) const {
     Vec3 sum{0, 0, 0};
+    SampleMeans sums;
     int covered = 0;
     for (int s = 0; s < spp; ++s) {
       // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
@@ -179,8 +195,11 @@ class FrameTracer {
         ++covered;
       }
       if (s == 0 && aov) aovs(*aov, hit, normal, albedo, shadow);
+      sums.normal += normal;
+      sums.albedo += albedo;
       work.shadow += shadow;
     }
+    if (means) *means = {sums.normal / spp, sums.albedo / spp};
     for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k] / spp);
     rgba[3] = static_cast<float>(covered) / spp;
     return true;
