@@ -417,3 +417,19 @@ def test_antialias_options_become_the_image_antialias(tmp_path):
         p = run_tool(str(scene), "-o", str(tmp_path / "never.json"), *bad)
         assert p.returncode == 2 and p.stderr.count("\n") == 1, (bad, p.stderr)
         assert not (tmp_path / "never.json").exists()
+
+
+def test_sky_and_antialias_render_in_softtrace(tmp_path):
+    exe = softtrace()
+    scene = tmp_path / "s.pov"
+    scene.write_text(CAMERA.replace("angle 40", "angle 40 right x*4/3") +
+                     "sky_sphere { pigment { gradient y color_map { [0 rgb <0.3, 0.2, 0.1>] "
+                     "[1 rgb <0.1, 0.3, 0.9>] } scale 2 translate -y } }\n"
+                     "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }\n")
+    out = tmp_path / "s.json"
+    p = run_tool(str(scene), "-o", str(out), "--width", "40", "--height", "30",
+                 "--antialias", "0.3")
+    assert p.returncode == 0, p.stderr
+    r = subprocess.run([exe, "render", str(out), "-q", "-o", str(tmp_path / "s.exr")],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
