@@ -11,9 +11,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "describe/building.h"
 #include "eval/blob_ray.h"
 #include "eval/eval.h"
-#include "describe/building.h"
 #include "model/program_builder.h"
 
 namespace softtrace::test {
