@@ -71,6 +71,7 @@ BlobPart blob_part(Op op) {
     case Op::SuperIntersect:
     case Op::Perlin:
     case Op::Ricci:
+    case Op::Scale:
       return {BlobRole::None};
   }
   std::abort();  // not reached: the switch names every op, and -Werror=switch keeps it so
