@@ -35,6 +35,11 @@ class ScaleOperator {
   Interval slope(Interval x1, Interval x2, Interval D1, Interval D2) const;
   // 0 or 1 where h is x1 or x2 all over x1 × x2 (outside region III, the sharp pick), else -1.
   int sharp_everywhere(Interval x1, Interval x2) const;
+  // range() and, with D1 and D2, slope() in one: where h is one argument all over x1 × x2
+  // (sharp_everywhere, decided once) its range is that argument's ends widened as range() widens
+  // h at them (the same bits: there h is that argument at both corners), with no quadratic solved.
+  Interval range_and_slope(Interval x1, Interval x2, const Interval* D1, const Interval* D2,
+                           Interval* slope) const;
 
  private:
   ScaleOperator() = default;
