@@ -3,8 +3,9 @@
 
 The scene must be written out literally: numbers, vectors and colours may be `#declare`d, but
 loops, macros, conditionals and rand() are refused. Carried across: `camera` (location, look_at,
-angle, direction, up, right, sky, orthographic, focal blur), `light_source` (point, `parallel`, `spotlight`, `area_light`,
-fading, `shadowless`), `background`, `global_settings { ambient_light }`, `blob` objects (sphere
+angle, direction, up, right, sky, orthographic, focal blur), `light_source` (point, `parallel`,
+`spotlight`, `area_light`, fading, `shadowless`), `background`, `sky_sphere` (a vertical
+two-colour gradient), `global_settings { ambient_light }`, `blob` objects (sphere
 and cylinder components with their strengths, the threshold, translate/rotate/scale/matrix/
 transform on components and on the blob, the blob's pigment and finish), transparency (a
 pigment's filter and transmit, `reflection { [MIN,] MAX fresnel on }`, `conserve_energy`,
@@ -20,6 +21,9 @@ warning: ...`. Anything it cannot carry is refused with one line, `SCENE.pov:LIN
 the output file is then left as it was.
 
 usage: tools/pov2softtrace.py SCENE.pov [-o SCENE.json] [--width 320] [--height 240]
+                              [--antialias T] [--antialias-depth R]
+POV-Ray's anti-aliasing is a command-line (or .ini) option, not scene syntax: give +A0.3 +R3 as
+`--antialias 0.3 --antialias-depth 3`.
 """
 import argparse
 import json
@@ -71,9 +75,20 @@ def main(argv=None):
                     help="image width: the scene's image size and POV-Ray's image_width (320)")
     ap.add_argument("--height", type=int, default=240,
                     help="image height, and POV-Ray's image_height (240)")
+    ap.add_argument("--antialias", type=float, metavar="T",
+                    help="POV-Ray's +AT (+A alone is +A0.3): adaptive anti-aliasing with that "
+                    "threshold, the scene's image.antialias (default: off)")
+    ap.add_argument("--antialias-depth", type=int, default=3, metavar="R",
+                    help="POV-Ray's +R (3): a refined pixel takes R*R times the samples")
     a = ap.parse_args(argv)
     if not (1 <= a.width <= 16384 and 1 <= a.height <= 16384):
         print("pov2softtrace.py: --width and --height must be 1 to 16384", file=sys.stderr)
+        return 2
+    if a.antialias is not None and not 0 <= a.antialias <= 1e6:
+        print("pov2softtrace.py: --antialias must be 0 to 1e6", file=sys.stderr)
+        return 2
+    if not 1 <= a.antialias_depth <= 9:
+        print("pov2softtrace.py: --antialias-depth must be 1 to 9", file=sys.stderr)
         return 2
     try:
         with open(a.scene, encoding="utf-8", errors="replace") as f:
@@ -91,6 +106,8 @@ def main(argv=None):
         print("%s: the scene has %d mesh object(s), whose triangles go to OBJ files beside the "
               "output: give -o" % (a.scene, len(meshes)), file=sys.stderr)
         return 2
+    if a.antialias is not None:
+        scene["image"]["antialias"] = {"threshold": a.antialias, "depth": a.antialias_depth}
     for line, col, message in warnings:
         print("%s:%d:%d: warning: %s" % (a.scene, line, col, message), file=sys.stderr)
     out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (

@@ -10,6 +10,19 @@
 
 namespace softtrace {
 
+class FieldNode;
+
+// Told of each node built, after its placement, with the parameters it was built from (p.raw()
+// is the JSON object's address): how a caller finds the node that one part of a field became
+// (the renderer's component materials).
+class BuildObserver {
+ public:
+  virtual void built(const Params& p, const FieldNode& node) = 0;
+
+ protected:
+  ~BuildObserver() = default;
+};
+
 struct BuildContext {
   Convention convention = Convention::Soft;
   int depth = 0;  // nodes above the one being built
@@ -23,6 +36,8 @@ struct BuildContext {
   std::string skeleton;
   // Where warnings about an accepted scene go (one line each, located); stderr when null.
   void (*warn)(const std::string& line) = nullptr;
+  // Told of every node built; null when nobody asks.
+  BuildObserver* observer = nullptr;
 };
 
 }  // namespace softtrace

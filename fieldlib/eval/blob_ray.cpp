@@ -332,8 +332,12 @@ int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, d
   return n;
 }
 
-double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const {
-  const int found = p.groups[group_].kept_at(x, ids);
+double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,
+                         double* terms) const {
+  const Group& sum = p.groups[group_];
+  const int found = sum.kept_at(x, ids);
+  const bool reports = terms && !sum.terms.empty();
+  if (terms) std::fill(terms, terms + p.terms, 0.0);
   double f = 0;
   Vec3 g;
   for (int i = 0; i < found; ++i) {
@@ -345,7 +349,9 @@ double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* i
       w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
-    f += r * r * (b.c2 + b.c3 * r);
+    const double term = r * r * (b.c2 + b.c3 * r);
+    f += term;
+    if (reports && sum.terms[ids[i]] >= 0) terms[sum.terms[ids[i]]] = term;
     // dP/dr times ∇r = -2 L^T q.
     g += frame.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
   }

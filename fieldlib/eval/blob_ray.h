@@ -46,8 +46,11 @@ class BlobSum {
             int32_t* ids) const;
   // f(x) and ∇f(x) from the blobs whose supports hold x (∇ of c2 r^2 + c3 r^3 with r = 1 - |q|^2,
   // q = Lx + k less its nearest point of the axis): the compiled gradient's value without pruning
-  // the program first. `ids` as for terms.
-  double gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids) const;
+  // the program first. `ids` as for terms. With `terms`, the program's terms (Program::terms,
+  // children of the sum) at x as gradient_terms gives them: each blob's potential, 0 outside
+  // its support.
+  double gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,
+                  double* terms = nullptr) const;
   int size() const { return static_cast<int>(blobs_.size()); }
   // The most terms one stretch can have: one per ellipsoid, three per capsule.
   int max_terms() const { return size() + 2 * capsules_; }

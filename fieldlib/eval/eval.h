@@ -85,6 +85,13 @@ double gradient(Code c, const Vec3& p, Vec3* grad, Workspace& ws);
 // value_pruned does. `ws` must fit p.
 double gradient_pruned(const Program& p, const Vec3& point, Vec3* grad, Workspace& ws);
 
+// gradient_pruned's f(p) and ∇f(p), with each of the program's terms (Program::terms: children of
+// sums that compile was asked to number) at p in terms[0, p.terms): the value its sum adds, 0
+// where the sum skips it (outside its support). One walk gives the normal and the values that
+// weigh per-component materials. Fits ws to p.
+double gradient_terms(const Program& p, const Vec3& point, Vec3* grad, double* terms,
+                      Workspace& ws);
+
 // A stretch of a ray: the points between a and b, or within `pad` of them (the caller's
 // rounding of the points it will evaluate).
 struct Segment {

@@ -75,6 +75,7 @@ NodePtr build_field(const Params& p, const BuildContext& ctx) {
   inner.kind = &kind;
   NodePtr node = apply_placement(kind.create_node(p, inner), p, kind);
   p.finish();
+  if (ctx.observer) ctx.observer->built(p, *node);
   return node;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "model/node_util.h"
 
@@ -107,6 +109,14 @@ int ProgramBuilder::nary(Op op, const std::vector<std::unique_ptr<FieldNode>>& c
       ids.push_back(static_cast<int32_t>(k));
     }
     prunable.push_back(drop_ok);
+    if (op == Op::Sum && !terms_.empty()) {
+      const auto it = std::find(terms_.begin(), terms_.end(), children[order[k]].get());
+      if (it != terms_.end()) {
+        prog_.groups[g].terms.resize(children.size(), -1);
+        prog_.groups[g].terms[k] = static_cast<int32_t>(it - terms_.begin());
+        ++prog_.terms;
+      }
+    }
   }
 
   Instr combine{op};
@@ -141,10 +151,14 @@ Program ProgramBuilder::finish(int result) {
   return std::move(prog_);
 }
 
-Program compile(const FieldNode& root) {
-  ProgramBuilder b;
+Program compile(const FieldNode& root, const std::vector<const FieldNode*>& terms) {
+  ProgramBuilder b(terms);
   const int result = b.compile(root, 0);
-  return b.finish(result);
+  Program p = b.finish(result);
+  if (p.terms != static_cast<int32_t>(terms.size()))
+    throw std::logic_error("compile: " + std::to_string(terms.size() - size_t(p.terms)) +
+                           " of the terms asked for are no sum's children");
+  return p;
 }
 
 }  // namespace softtrace

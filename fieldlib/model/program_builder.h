@@ -15,6 +15,10 @@ namespace softtrace {
 // Builds a program from a model node; FieldNode::compile calls back into it.
 class ProgramBuilder {
  public:
+  // `terms`: nodes that are children of sums, whose values the evaluators can report beside f
+  // (Program::terms, Group::terms), term i being terms[i].
+  explicit ProgramBuilder(std::vector<const FieldNode*> terms = {}) : terms_(std::move(terms)) {}
+
   // Emits the subtree of `node` reading point register `reg`; returns its result slot.
   int compile(const FieldNode& node, int reg);
 
@@ -48,8 +52,11 @@ class ProgramBuilder {
   static constexpr size_t kSpatialOrder = 32;
 
   Program prog_;
+  std::vector<const FieldNode*> terms_;
 };
 
-Program compile(const FieldNode& root);
+// `root` compiled; each of `terms` must be a child of a soft_blend (a sum) in it, and becomes the
+// program's term of its index (std::logic_error otherwise).
+Program compile(const FieldNode& root, const std::vector<const FieldNode*>& terms = {});
 
 }  // namespace softtrace

@@ -96,6 +96,9 @@ struct Group {
   std::vector<uint8_t> prunable;
   std::vector<int32_t> always;  // children that are never dropped, in order
   BoxBvh bvh;                   // over the prunable children's support boxes
+  // Sum only: child i is the program's term terms[i] (compile's `terms`), or -1; empty when no
+  // child is one.
+  std::vector<int32_t> terms;
 
   // The children that may be non-zero at p (p in the frame of `reg`: those whose supports hold
   // it, and those never dropped), ascending, into out[] (room for every child); returns their
@@ -115,6 +118,9 @@ struct Program {
   int32_t result = 0;        // the slot holding f
   int32_t children = 0;      // Σ children over the groups (the pruning stack's depth)
   bool has_pruning = false;  // some sum can drop children: pruning pays even for one point
+  // Terms: children of sums whose own values a caller reads beside f (gradient_terms), numbered
+  // as compile's `terms` lists their nodes.
+  int32_t terms = 0;
 };
 
 // A program valid inside one box: the instructions the bounds pass kept, with their own argument

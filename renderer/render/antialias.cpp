@@ -47,4 +47,12 @@ bool AdaptivePixels::any(const PixelRect& r) const {
   return false;
 }
 
+long long AdaptivePixels::count(const PixelRect& r) const {
+  long long n = 0;
+  for (int y = std::max(r.y0, window_.y0); y < std::min(r.y1, window_.y1); ++y)
+    for (int x = std::max(r.x0, window_.x0); x < std::min(r.x1, window_.x1); ++x)
+      n += refine_[index(x, y)];
+  return n;
+}
+
 }  // namespace softtrace

@@ -33,6 +33,8 @@ class AdaptivePixels {
   bool refine(int x, int y) const { return refine_[index(x, y)] != 0; }
   // Whether any pixel of `r` (inside the window) is to be traced again.
   bool any(const PixelRect& r) const;
+  // How many pixels of `r` (inside the window) are to be traced again.
+  long long count(const PixelRect& r) const;
   long long refined() const { return refined_; }
 
  private:

@@ -140,20 +140,36 @@ class FrameTracer {
       }
       case Pass::Refine: {
         float rgba[4];
+        SampleMeans means;
         if (!adaptive_->refine(x, y) ||
-            !samples(x, y, refined_spp_, certified, nullptr, work, rgba))
+            !samples(x, y, refined_spp_, certified, nullptr, work, rgba, &means))
           return;
         std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+        // The colour is now the refined samples' mean: so are the albedo and the normal, as a
+        // denoiser pairs them with it (an edge pixel's albedo mixes the two sides as its colour
+        // does). Z and steps stay the pixel-centre ray's.
+        for (int k = 0; k < 3 && !film_.normal.empty(); ++k)
+          film_.normal[i * 3 + k] = static_cast<float>(means.normal[k]);
+        for (int k = 0; k < 3 && !film_.albedo.empty(); ++k)
+          film_.albedo[i * 3 + k] = static_cast<float>(means.albedo[k]);
         return;
       }
     }
   }
 
+  // The mean over a pixel's samples of the shaded normal and albedo (0 for a sample that meets
+  // nothing, as the background adds nothing to the premultiplied colour).
+  struct SampleMeans {
+    Vec3 normal{0, 0, 0}, albedo{0, 0, 0};
+  };
+
   // Pixel (x, y) traced with `spp` samples into `rgba` (premultiplied); the pixel-centre ray's
-  // AOVs go to the film's pixel `*aov` when given. False when cancelled.
+  // AOVs go to the film's pixel `*aov` when given, the samples' means to `*means`. False when
+  // cancelled.
   bool samples(int x, int y, int spp, const BeamClear* certified, const size_t* aov, Work& work,
-               float rgba[4]) const {
+               float rgba[4], SampleMeans* means = nullptr) const {
     Vec3 sum{0, 0, 0};
+    SampleMeans sums;
     int covered = 0;
     for (int s = 0; s < spp; ++s) {
       // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
@@ -179,8 +195,11 @@ class FrameTracer {
         ++covered;
       }
       if (s == 0 && aov) aovs(*aov, hit, normal, albedo, shadow);
+      sums.normal += normal;
+      sums.albedo += albedo;
       work.shadow += shadow;
     }
+    if (means) *means = {sums.normal / spp, sums.albedo / spp};
     for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k] / spp);
     rgba[3] = static_cast<float>(covered) / spp;
     return true;
@@ -212,10 +231,12 @@ class FrameTracer {
 };
 
 // Runs `pass` over the full-frame tiles that meet `area`, one tile per task; a cancel is noticed
-// before the next sample (FrameTracer::samples). Progress counts the data window's pixels.
+// before the next sample (FrameTracer::samples). Progress counts in first-pass pixels: the data
+// window's pixels, then, with `refined`, each pixel traced again as `weight` of them (its share of
+// the samples).
 void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass,
               const PixelRect& window, const RenderOptions& opt, Progress* progress,
-              tbb::combinable<Work>& work_total) {
+              const AdaptivePixels* refined, long weight, tbb::combinable<Work>& work_total) {
   const int gx0 = area.x0 / kTile, gy0 = area.y0 / kTile;
   const int tiles_x = (area.x1 + kTile - 1) / kTile - gx0;
   const int tiles_y = (area.y1 + kTile - 1) / kTile - gy0;
@@ -228,9 +249,12 @@ void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pas
           const int tx = (gx0 + t % tiles_x) * kTile, ty = (gy0 + t / tiles_x) * kTile;
           tracer.tile(tx, ty, area, pass, work);
           if (progress) {
-            const int w = std::min(tx + kTile, window.x1) - std::max(tx, window.x0);
-            const int h = std::min(ty + kTile, window.y1) - std::max(ty, window.y0);
-            if (w > 0 && h > 0) progress->advance(long(w) * h);
+            const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
+                                 std::min(tx + kTile, window.x1), std::min(ty + kTile, window.y1)};
+            const long units = seen.empty() ? 0
+                               : refined    ? long(refined->count(seen)) * weight
+                                            : long(seen.x1 - seen.x0) * (seen.y1 - seen.y0);
+            if (units > 0) progress->advance(units);
           }
         }
       },
@@ -248,10 +272,15 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
   const FrameTracer tracer(scene, rt, film, opt, adaptive ? &*adaptive : nullptr);
   tbb::combinable<Work> work_total;
   run_pass(tracer, adaptive ? adaptive->apron() : window, FrameTracer::Pass::First, window, opt,
-           progress, work_total);
+           progress, nullptr, 0, work_total);
   if (adaptive && !(opt.cancel && *opt.cancel)) {
     adaptive->decide();
-    run_pass(tracer, window, FrameTracer::Pass::Refine, window, opt, nullptr, work_total);
+    // A pixel traced again costs depth^2 first-pass pixels' samples; the time left counts them
+    // from now on.
+    const long weight = long(scene.image.antialias.depth) * scene.image.antialias.depth;
+    if (progress) progress->add_total(long(adaptive->refined()) * weight);
+    run_pass(tracer, window, FrameTracer::Pass::Refine, window, opt, progress, &*adaptive, weight,
+             work_total);
   }
 
   if (stats) {

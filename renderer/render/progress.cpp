@@ -43,7 +43,8 @@ std::string Progress::duration(double seconds) {
 
 void Progress::draw(long done) {
   constexpr int kWidth = 40;
-  const double frac = total_ > 0 ? static_cast<double>(done) / total_ : 1;
+  const long total = total_;
+  const double frac = total > 0 ? static_cast<double>(done) / total : 1;
   const int filled = static_cast<int>(frac * kWidth);
   std::string bar(filled, '=');
   if (filled < kWidth && done > 0) bar += '>';
@@ -54,7 +55,7 @@ void Progress::draw(long done) {
   const bool known = done > 0 && secs > 0;
   char rate[32] = "      ?";
   if (known) std::snprintf(rate, sizeof rate, "%7.2f", done * rays_per_unit_ / secs * 1e-6);
-  const std::string left = known ? duration(secs * (total_ - done) / done) : "?";
+  const std::string left = known ? duration(secs * (total - done) / done) : "?";
   char line[256];
   const int n = std::snprintf(line, sizeof line, "%s [%s] %3d%% %s %s (%s|%s)", label_.c_str(),
                               bar.c_str(), static_cast<int>(frac * 100), rate, rate_unit_.c_str(),

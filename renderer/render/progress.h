@@ -18,6 +18,10 @@ class Progress {
   Progress(std::string label, long total, bool enabled, double rays_per_unit = 1,
            std::string rate_unit = "Mrays/s");
   void advance(long n = 1);
+  // More work found on the way (adaptive anti-aliasing's second pass, known after the first):
+  // the bar and the time left count it from now on.
+  void add_total(long n) { total_ += n; }
+  long total() const { return total_; }
   void finish();                       // ends the bar's line
   long done() const { return done_; }  // units advanced so far, from any thread
 
@@ -28,7 +32,7 @@ class Progress {
   void draw(long done);
 
   std::string label_;
-  long total_;
+  std::atomic<long> total_;
   bool enabled_;
   double rays_per_unit_;
   std::string rate_unit_;

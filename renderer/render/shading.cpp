@@ -38,8 +38,14 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
   const Vec3 p = ray.o + ray.d * hit.t;
-  // A primitive's or a CSG's normal came with its hit.
-  Vec3 n = !tracer ? hit.normal : hit.on_box_face ? tracer->box_face_normal(p) : tracer->normal(p);
+  // A primitive's or a CSG's normal came with its hit. A field's gradient walk also gives its
+  // components' values, which weigh their materials below (`terms`).
+  thread_local std::vector<double> terms;
+  const bool fused = obj.components && tracer && !hit.on_box_face;
+  if (fused) terms.resize(size_t(obj.components->size()));
+  Vec3 n = !tracer           ? hit.normal
+           : hit.on_box_face ? tracer->box_face_normal(p)
+                             : tracer->normal(p, fused ? terms.data() : nullptr);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   // Seen from inside (clipped solids, transparent ones): shade the side we see.
   const bool from_inside = dot(n, ray.d) > 0;
@@ -63,10 +69,13 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A blend whose components carry materials: POV-Ray shades the point with each component's
   // material and sums the colours with weights |s_i f_i(p)|, normalised (docs/math.md, "Blended
   // materials"). One material with a non-zero weight is shaded as a plain object. The reflected
-  // ray's shade() below reuses `weights`: it is read only before that call.
+  // ray's shade() below reuses `weights` and `terms`: they are read only before that call.
   thread_local std::vector<ComponentMaterials::Weight> weights;
   weights.clear();
-  if (obj.components) obj.components->weights(hit.face > 0 ? hit.face_point : p, weights);
+  if (fused)
+    obj.components->weights(terms.data(), weights);
+  else if (obj.components)
+    obj.components->weights(hit.face > 0 ? hit.face_point : p, weights);
   const bool blended = weights.size() > 1;
   const Material& m =
       weights.size() == 1 ? obj.components->materials()[weights[0].material] : obj.material;

@@ -2,6 +2,10 @@
 
 #include <cmath>
 #include <string>
+#include <unordered_map>
+
+#include "eval/eval.h"
+#include "model/program_builder.h"
 
 namespace softtrace {
 
@@ -10,11 +14,9 @@ namespace {
 using json = nlohmann::json;
 
 // A component found under the soft_blends: where it is (child indices from the field's root) and
-// the soft_blends above it, outermost first.
+// its material.
 struct Found {
   std::vector<size_t> path;
-  std::vector<const json*> blends;
-  const json* node;
   int material;
 };
 
@@ -25,8 +27,8 @@ std::string type_of(const json& node) {
 }
 
 // Walks the soft_blends from `p`, reading each soft_object child's "material" into `materials`.
-void collect(const Params& p, std::vector<size_t>& path, std::vector<const json*>& blends,
-             std::vector<Material>& materials, std::vector<Found>& found) {
+void collect(const Params& p, std::vector<size_t>& path, std::vector<Material>& materials,
+             std::vector<Found>& found) {
   const json& raw = p.raw();
   if (type_of(raw) != "soft_blend") {
     int material = 0;
@@ -34,55 +36,64 @@ void collect(const Params& p, std::vector<size_t>& path, std::vector<const json*
       materials.push_back(load_material(p.object("material")));
       material = static_cast<int>(materials.size()) - 1;
     }
-    found.push_back({path, blends, &raw, material});
+    found.push_back({path, material});
     return;
   }
   // A malformed soft_blend is left to fieldlib's loader, which says what is wrong.
   if (!raw.contains("children") || !raw.at("children").is_array()) return;
   const std::vector<Params> children = p.objects("children");
-  blends.push_back(&raw);
   for (size_t i = 0; i < children.size(); ++i) {
     path.push_back(i);
-    collect(children[i], path, blends, materials, found);
+    collect(children[i], path, materials, found);
     path.pop_back();
   }
-  blends.pop_back();
 }
 
-// The component alone, inside copies of its soft_blends that keep only it: Σ of one term is the
-// term, and the soft_blends' placements still apply.
-json alone(const Found& f) {
-  json node = *f.node;
-  node.erase("material");
-  for (auto it = f.blends.rbegin(); it != f.blends.rend(); ++it) {
-    json blend = **it;
-    blend["children"] = json::array({std::move(node)});
-    node = std::move(blend);
+// Records the nodes that fieldlib builds from the components' JSON objects (by address).
+class FindComponents final : public BuildObserver {
+ public:
+  explicit FindComponents(const std::vector<const json*>& objects) : nodes_(objects.size()) {
+    for (size_t i = 0; i < objects.size(); ++i) index_[objects[i]] = i;
   }
-  return node;
-}
+  void built(const Params& p, const FieldNode& node) override {
+    const auto it = index_.find(&p.raw());
+    if (it != index_.end()) nodes_[it->second] = &node;
+  }
+  const std::vector<const FieldNode*>& nodes() const { return nodes_; }
+
+ private:
+  std::unordered_map<const json*, size_t> index_;
+  std::vector<const FieldNode*> nodes_;
+};
 
 }  // namespace
 
-void ComponentMaterials::weights(const Vec3& p, std::vector<Weight>& out) const {
+void ComponentMaterials::weights(const double* terms, std::vector<Weight>& out) const {
   out.clear();
   double total = 0;
-  for (const Component& c : components_) {
-    if (!c.support.contains(p)) continue;
+  for (size_t i = 0; i < material_of_.size(); ++i) {
     // POV-Ray's weight: the component's own field value s_i f_i(p), taken absolutely.
-    const double w = std::abs(c.field->value(p));
+    const double w = std::abs(terms[i]);
     if (!(w > 0)) continue;
     total += w;
     bool merged = false;
     for (Weight& e : out)
-      if (e.material == c.material) {
+      if (e.material == material_of_[i]) {
         e.weight += w;
         merged = true;
         break;
       }
-    if (!merged) out.push_back({c.material, w});
+    if (!merged) out.push_back({material_of_[i], w});
   }
   for (Weight& e : out) e.weight /= total;
+}
+
+void ComponentMaterials::weights(const Vec3& p, std::vector<Weight>& out) const {
+  thread_local Workspace ws;
+  thread_local std::vector<double> terms;
+  terms.resize(material_of_.size());
+  gradient_terms(*program_, p, nullptr, terms.data(), ws);
+  weights(terms.data(), out);
 }
 
 NodePtr build_object_field(const Params& field, const BuildContext& ctx,
@@ -92,32 +103,28 @@ NodePtr build_object_field(const Params& field, const BuildContext& ctx,
   std::vector<Material> materials{object_material};
   std::vector<Found> found;
   std::vector<size_t> path;
-  std::vector<const json*> blends;
-  if (type_of(field.raw()) == "soft_blend") collect(field, path, blends, materials, found);
+  if (type_of(field.raw()) == "soft_blend") collect(field, path, materials, found);
   if (materials.size() == 1) return build_field(field, ctx);
 
   // fieldlib builds the field without the materials; errors keep their pointers (only the
-  // "material" keys are gone).
+  // "material" keys are gone). The components' nodes are found as they are built.
   json stripped = field.raw();
+  std::vector<const json*> objects;
   for (const Found& f : found) {
     json* node = &stripped;
     for (size_t i : f.path) node = &(*node)["children"][i];
     node->erase("material");
+    objects.push_back(node);
   }
-  NodePtr built = build_field(Params(stripped, field.pointer(), field.file()), ctx);
+  FindComponents finder(objects);
+  BuildContext observed = ctx;
+  observed.observer = &finder;
+  NodePtr built = build_field(Params(stripped, field.pointer(), field.file()), observed);
 
   auto out = std::make_shared<ComponentMaterials>();
   out->materials_ = std::move(materials);
-  for (const Found& f : found) {
-    const json one = alone(f);
-    NodePtr node = build_field(Params(one, field.pointer(), field.file()), ctx);
-    // The support: where s f > 0 for a positive strength, s f < 0 for a negative one.
-    const double s = f.node->value("strength", 1.0);
-    const Box support =
-        s > 0 ? node->region(1e-300, Side::Above) : node->region(-1e-300, Side::Below);
-    out->components_.push_back(
-        {std::move(node), support.bounded() ? support : Box::unbounded(), f.material});
-  }
+  for (const Found& f : found) out->material_of_.push_back(f.material);
+  out->program_ = std::make_shared<const Program>(compile(*built, finder.nodes()));
   *components = std::move(out);
   return built;
 }

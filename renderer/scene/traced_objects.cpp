@@ -39,7 +39,9 @@ const SceneObject* find(const SceneObject& o, int face, int& at) {
 
 TraceTarget trace_target(const SceneObject& o) {
   TraceTarget t;
-  t.program = std::make_shared<const Program>(compile(*o.field));
+  // With component materials, the program that also reports the components' values.
+  t.program =
+      o.components ? o.components->program() : std::make_shared<const Program>(compile(*o.field));
   t.lipschitz = o.field->lipschitz();
   t.iso = o.iso;
   t.inside_sign = o.inside_sign;

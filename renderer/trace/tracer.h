@@ -130,7 +130,9 @@ class ObjectTracer {
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
-  Vec3 normal(const Vec3& p) const;
+  // With `terms`, the same walk leaves the program's terms (Program::terms: the values of the
+  // components whose materials mix there) in terms[0, program terms).
+  Vec3 normal(const Vec3& p, double* terms = nullptr) const;
   // The outward normal of the object box's face nearest to p (for hits on_box_face).
   Vec3 box_face_normal(const Vec3& p) const;
   // Whether p is inside the solid.
@@ -221,7 +223,7 @@ class ObjectTracer {
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
                               Query query) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
-  Vec3 blob_gradient(const Vec3& p) const;
+  Vec3 blob_gradient(const Vec3& p, double* terms) const;
 
   TraceTarget target_;
   double inside_sign_;      // the target's, or its opposite for the complement

@@ -60,9 +60,9 @@ BlobScratch& blob_scratch(const BlobSum& blobs) {
 }
 }  // namespace
 
-Vec3 ObjectTracer::blob_gradient(const Vec3& p) const {
+Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms) const {
   Vec3 grad;
-  blobs_->gradient(program_, p, &grad, blob_scratch(*blobs_).ids.data());
+  blobs_->gradient(program_, p, &grad, blob_scratch(*blobs_).ids.data(), terms);
   return grad;
 }
 

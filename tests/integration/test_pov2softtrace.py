@@ -6,6 +6,7 @@ blob samples is converted, loaded by softtrace and, where POV-Ray is installed, 
 with the silhouettes compared (IoU >= 0.999).
 """
 import glob
+import json
 import math
 import os
 import shutil
@@ -214,6 +215,23 @@ REFUSALS = [
      "a disc in a difference"),
     ("intersection { sphere { 0, 1 } box { 0, 1 finish { phong 1 } } pigment { rgb 1 } }", 2,
      32, "a finish but no pigment"),
+    # sky_sphere: only what softtrace's vertical two-colour gradient expresses.
+    ("sky_sphere { pigment { gradient x color_map { [0 rgb 0] [1 rgb 1] } } }", 2, 24,
+     "only gradient y"),
+    ("sky_sphere { pigment { gradient y color_map { [0 rgb 0] [1 rgb 1] } } }", 2, 14,
+     "runs over [-1, 1] across the sky and POV-Ray wraps it"),
+    ("sky_sphere { pigment { gradient y color_map { [0.2 rgb 0] [1 rgb 1] } scale 2 "
+     "translate -y } }", 2, 14, "beyond the color_map's [0.2, 1]"),
+    ("sky_sphere { pigment { gradient y color_map { [0 rgb 0] [0.5 rgb 1] [1 rgb 0] } } }", 2,
+     35, "has 3 entries"),
+    ("sky_sphere { pigment { gradient y color_map { [0 rgb 0] [1 rgb 1] } rotate 90*x } }", 2,
+     69, "pigment { rotate } is not supported"),
+    ("sky_sphere { pigment { rgb 1 } }", 2, 24, "pigment { rgb } is not supported"),
+    ("sky_sphere { pigment { gradient y color_map { [0 rgb 0] [1 rgb 1] } scale 2 "
+     "translate -y } pigment { rgb 1 } }", 2, 92, "sky_sphere { pigment } is not supported"),
+    ("sky_sphere { pigment { gradient y color_map { [0 rgbt <0, 0, 0, 0.5>] [1 rgb 1] } } }", 2,
+     50, "filter and transmit"),
+    ("sky_sphere { }", 2, 1, "sky_sphere has no pigment"),
 ]
 
 
@@ -477,3 +495,61 @@ def test_spot_area_and_fading_lights():
                             "adaptive": 1, "jitter": True}
     with pytest.raises(PovError, match="circular"):
         scene_of("light_source { 0, 1 area_light x, y, 2, 2 circular }")
+
+
+def test_sky_sphere_becomes_the_gradient_background():
+    # The exact case: the pattern's value (1 + d.y) / 2 runs from 0 straight down to 1 straight
+    # up, softtrace's t; the colours are the color_map's.
+    sky = ("sky_sphere { pigment { gradient y color_map { [0 color rgb <0.3, 0.2, 0.1>] "
+           "[1 color rgb <0.1, 0.3, 0.9>] } scale 2 translate -y } }\n"
+           "background { rgb 1 }\nblob { sphere { 0, 1, 1 } pigment { rgb 1 } }")
+    bottom, top = scene_of(sky)["background"]["gradient"]
+    assert close(bottom, [0.3, 0.2, 0.1]) and close(top, [0.1, 0.3, 0.9])
+    # Translated first, then scaled by a half: the pattern's value is 2 d.y + 1, which runs
+    # over [-1, 3] and wraps, whatever the map.
+    other = ("sky_sphere { pigment { gradient y color_map { [-3 rgb 0] [5 rgb 1] } "
+             "translate -y scale 0.5 } }\nblob { sphere { 0, 1, 1 } pigment { rgb 1 } }")
+    with pytest.raises(PovError, match="wraps it"):
+        scene_of(other)
+    quarter = ("sky_sphere { pigment { gradient y color_map { [-0.5 rgb 0] [1.5 rgb 1] } "
+               "scale 4 translate -2*y } }\nblob { sphere { 0, 1, 1 } pigment { rgb 1 } }")
+    bottom, top = scene_of(quarter)["background"]["gradient"]
+    # value (d.y + 2) / 4: 0.25 straight down, 0.75 straight up, inside the map's [-0.5, 1.5],
+    # so the map's colours three eighths and five eighths of the way.
+    assert close(bottom, [0.375] * 3) and close(top, [0.625] * 3)
+
+
+def test_antialias_options_become_the_image_antialias(tmp_path):
+    scene = tmp_path / "s.pov"
+    scene.write_text(CAMERA.replace("angle 40", "angle 40 right x*4/3") +
+                     "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }\n")
+    out = tmp_path / "s.json"
+    p = run_tool(str(scene), "-o", str(out), "--antialias", "0.2", "--antialias-depth", "4")
+    assert p.returncode == 0, p.stderr
+    text = out.read_text()
+    image = json.loads(text[text.index("{"):])["image"]
+    assert image["antialias"] == {"threshold": 0.2, "depth": 4}
+    p = run_tool(str(scene), "-o", str(out))
+    assert p.returncode == 0, p.stderr
+    text = out.read_text()
+    assert "antialias" not in json.loads(text[text.index("{"):])["image"]
+    for bad in (["--antialias", "-1"], ["--antialias-depth", "10"], ["--antialias-depth", "0"]):
+        p = run_tool(str(scene), "-o", str(tmp_path / "never.json"), *bad)
+        assert p.returncode == 2 and p.stderr.count("\n") == 1, (bad, p.stderr)
+        assert not (tmp_path / "never.json").exists()
+
+
+def test_sky_and_antialias_render_in_softtrace(tmp_path):
+    exe = softtrace()
+    scene = tmp_path / "s.pov"
+    scene.write_text(CAMERA.replace("angle 40", "angle 40 right x*4/3") +
+                     "sky_sphere { pigment { gradient y color_map { [0 rgb <0.3, 0.2, 0.1>] "
+                     "[1 rgb <0.1, 0.3, 0.9>] } scale 2 translate -y } }\n"
+                     "blob { sphere { 0, 1, 1 } pigment { rgb 1 } }\n")
+    out = tmp_path / "s.json"
+    p = run_tool(str(scene), "-o", str(out), "--width", "40", "--height", "30",
+                 "--antialias", "0.3")
+    assert p.returncode == 0, p.stderr
+    r = subprocess.run([exe, "render", str(out), "-q", "-o", str(tmp_path / "s.exr")],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr

@@ -2,7 +2,7 @@
 
 Carried across: `camera` (location, look_at, angle, direction, up, right, sky, orthographic,
 focal blur's aperture, focal_point and blur_samples), `light_source`
-(point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, plane/box/sphere/cylinder/cone/disc objects, `global_settings` (ambient_light,
+(point, `parallel`, `spotlight`, `area_light`, `fade_distance`/`fade_power`, `shadowless`), `background`, `sky_sphere` (a vertical two-colour gradient), plane/box/sphere/cylinder/cone/disc objects, `global_settings` (ambient_light,
 assumed_gamma 1), `#declare`/`#local` of numbers, vectors, colours, pigments, finishes, textures
 and transforms, `#default { finish }`, `#include` of POV-Ray's colour names, `mesh` and `mesh2` objects (their triangles written to OBJ
 files beside the scene), and `blob` objects:
@@ -17,6 +17,7 @@ import os
 
 from . import affine
 from .lexer import PovError, Stream, describe, tokenize
+from .sky import sky_sphere
 from .values import Expressions, Symbols, parse_color
 
 POV_INCLUDE_DIRS = ["/usr/share/povray-3.7/include"]
@@ -63,6 +64,7 @@ class Converter:
         self.camera = None
         self.lights = []
         self.background = None
+        self.sky = None  # a sky_sphere's gradient background, which hides `background`
         self.ambient_light = (1.0, 1.0, 1.0)
         self.objects = []
         self.names = {}
@@ -81,7 +83,8 @@ class Converter:
         if any(c > 0 for c in self.ambient_light):
             lights.append({"type": "ambient", "color": list(self.ambient_light)})
         scene = {"camera": self.camera, "image": {"width": self.width, "height": self.height},
-                 "background": list(self.background or (0.0, 0.0, 0.0)), "lights": lights,
+                 "background": self.sky or list(self.background or (0.0, 0.0, 0.0)),
+                 "lights": lights,
                  "objects": self.objects}
         return scene
 
@@ -202,6 +205,8 @@ class Converter:
             c = parse_color(ex, "the background")
             s.expect("}")
             self.background = c[:3]
+        elif word == "sky_sphere":
+            self.sky = sky_sphere(s, ex, tok)
         elif word == "global_settings":
             self._global_settings(s, ex)
         elif word == "blob":
@@ -214,9 +219,9 @@ class Converter:
             self.objects.append(self._mesh(s, ex, tok))
         else:
             raise s.error(tok, "'%s' is not supported (this converter takes blob, plane, box, "
-                          "sphere, cylinder, cone, disc, mesh and mesh2 objects, their union, merge, "
-                          "intersection and difference, camera, light_source, background and "
-                          "global_settings)" % word)
+                          "sphere, cylinder, cone, disc, mesh and mesh2 objects, their union, "
+                          "merge, intersection and difference, camera, light_source, background, "
+                          "sky_sphere and global_settings)" % word)
 
     def _global_settings(self, s, ex):
         s.expect("{")

@@ -8,6 +8,7 @@
 #include "cli_util.h"
 #include "io/image_file.h"
 #include "render/frame.h"
+#include "render/progress.h"
 #include "render/shading.h"
 
 namespace softtrace {
@@ -104,9 +105,11 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
   scene.image.height = 48;
   scene.image.occlusion = AmbientOcclusion{};  // faster; the edges are the geometry's
   const TracedScene rt(scene, LipschitzMode::Local);
-  Film adaptive(64, 48), plain(64, 48);
+  const AovSelection aovs{true, true, true, true};
+  Film adaptive(64, 48, aovs), plain(64, 48, aovs);
   FrameStats stats;
-  ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, adaptive, nullptr, &stats));
+  Progress progress("rendering", 64 * 48, false);
+  ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, adaptive, &progress, &stats));
   const double threshold = scene.image.antialias.threshold;
   scene.image.antialias = Antialias{};
   ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, plain, nullptr, nullptr));
@@ -119,7 +122,7 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
                      plain.rgba[(y1 * 64 + x1) * 4 + k]);
     return d > threshold;
   };
-  long long flat = 0, edges = 0, changed = 0;
+  long long flat = 0, edges = 0, changed = 0, mixed_normals = 0;
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 64; ++x) {
       const bool edge = differ(x, y, x - 1, y) || differ(x, y, x + 1, y) ||
@@ -133,20 +136,39 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
       if (!edge) {
         EXPECT_TRUE(same) << "a flat pixel was refined: " << x << "," << y;
       }
+      // Albedo and normal: a flat pixel keeps its centre ray's; a refined one takes the mean of
+      // its refined samples', which across an edge is a mix (a normal shorter than 1).
+      const size_t j = size_t(y * 64 + x) * 3;
+      double length2 = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (!edge) {
+          EXPECT_EQ(adaptive.normal[j + k], plain.normal[j + k]);
+          EXPECT_EQ(adaptive.albedo[j + k], plain.albedo[j + k]);
+        }
+        length2 += double(adaptive.normal[j + k]) * adaptive.normal[j + k];
+        EXPECT_GE(adaptive.albedo[j + k], 0.0f);
+        EXPECT_LE(adaptive.albedo[j + k], 1.0f);
+      }
+      EXPECT_LE(length2, 1 + 1e-5);
+      mixed_normals += edge && length2 > 0 && length2 < 0.98;
     }
   EXPECT_EQ(stats.refined_pixels, edges);
   EXPECT_GT(edges, 20);
   EXPECT_GT(flat, 64 * 48 / 2);
   EXPECT_GT(changed, edges / 2);
+  EXPECT_GT(mixed_normals, edges / 10);
   EXPECT_EQ(stats.primary_rays, 64 * 48 + edges * 9);  // depth 3: 9 samples each
+  // The progress bar counts both passes: the second's pixels, known after the first, as 9 each.
+  EXPECT_EQ(progress.total(), 64 * 48 + edges * 9);
+  EXPECT_EQ(progress.done(), progress.total());
 }
 
 // The showcase scene (sky, occlusion, adaptive anti-aliasing): 1 and 2 threads, and three tiles
 // merged, give the same bits; --antialias overrides the scene's threshold.
 TEST(AdaptiveAntialias, SameBitsForThreadsAndTileSplits) {
   const std::string dir = test::temp_dir("sky_sampling");
-  const std::string base =
-      "render " + test::source_path(kScene) + " -q --width 64 --height 48 --aov depth ";
+  const std::string base = "render " + test::source_path(kScene) +
+                           " -q --width 64 --height 48 --aov depth,normal,albedo ";
   ASSERT_EQ(test::run_softtrace(base + "--threads 1 -o " + dir + "/one.exr").status, 0);
   ASSERT_EQ(test::run_softtrace(base + "--threads 2 -o " + dir + "/two.exr").status, 0);
   ASSERT_EQ(test::render_tiles_and_merge(base, dir, 3), dir + "/merged.exr");

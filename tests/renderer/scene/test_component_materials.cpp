@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/traced_objects.h"
+#include "trace/tracer.h"
 
 namespace softtrace {
 namespace {
@@ -33,6 +35,17 @@ Weights weights_at(const Scene& s, const Vec3& p) {
   Weights w;
   s.objects[0].components->weights(p, w);
   return w;
+}
+
+// A component's own field value s f(p): the ball alone as an object's field (with bounds: a
+// negative strength alone has no surface to bound).
+double alone(const std::string& component, const Vec3& p) {
+  return parse_scene(R"({"camera":{"eye":[10,-20,0],"target":[0,0,0]},"objects":[)"
+                     R"({"bounds":[[-9,-9,-9],[9,9,9]],"field":)" +
+                         component + "}]}",
+                     "alone.json")
+      .objects[0]
+      .field->value(p);
 }
 
 TEST(ComponentMaterials, NoneGivenKeepsThePlainObject) {
@@ -78,8 +91,7 @@ TEST(ComponentMaterials, WeightsFollowTheFieldValuesAndSumToOne) {
   const Scene s = scene_of(R"({"type":"soft_blend","children":[)" + ball(-1.5, kRed) + "," +
                            ball(1.5, kBlue) + "]}");
   const Vec3 p{-0.4, 0.1, 0};
-  const auto& c = s.objects[0].components->components();
-  const double red = c[0].field->value(p), blue = c[1].field->value(p);
+  const double red = alone(ball(-1.5, ""), p), blue = alone(ball(1.5, ""), p);
   ASSERT_GT(red, blue);
   const Weights w = weights_at(s, p);
   ASSERT_EQ(w.size(), 2u);
@@ -101,8 +113,7 @@ TEST(ComponentMaterials, ANegativeStrengthWeighsByItsMagnitude) {
   const Scene s = scene_of(R"({"type":"soft_blend","children":[)" + ball(-1.5, kRed) + "," +
                            ball(0.5, kBlue + R"(,"strength":-0.5)") + "]}");
   const Vec3 p{-0.5, 0, 0};
-  const auto& c = s.objects[0].components->components();
-  const double red = c[0].field->value(p), dent = c[1].field->value(p);
+  const double red = alone(ball(-1.5, ""), p), dent = alone(ball(0.5, R"("strength":-0.5)"), p);
   ASSERT_LT(dent, 0);
   const Weights w = weights_at(s, p);
   ASSERT_EQ(w.size(), 2u);
@@ -122,6 +133,51 @@ TEST(ComponentMaterials, NestedBlendsKeepTheirPlacement) {
   w = weights_at(s, {0.4, 0, 0});
   ASSERT_EQ(w.size(), 1u);
   EXPECT_EQ(w[0].material, 1);
+}
+
+// The renderer's way: the tracer's normal walk (the compiled gradient, or BlobSum's for a sum of
+// polynomial blobs) leaves the components' values, whose weights are those of a walk of its own,
+// and the normal is the plain one.
+TEST(ComponentMaterials, TheNormalsWalkGivesTheSameWeights) {
+  const std::string murakami = R"("potential":{"type":"murakami"})";
+  for (const bool blob : {false, true}) {
+    const std::string extra = blob ? "," + murakami : "";
+    // BlobSum takes a flat sum; the compiled walk is tried with a nested, placed soft_blend.
+    const std::string fourth =
+        blob ? ball(0.5, kRed + extra)
+             : R"({"type":"soft_blend","translate":[0,1,0],"children":[)" + ball(0.5, kRed) + "]}";
+    const Scene s =
+        scene_of(R"({"type":"soft_blend","children":[)" + ball(-1.5, kRed + extra) + "," +
+                 ball(1.5, kBlue + extra) + "," + ball(0, murakami) + "," + fourth + "]}");
+    const SceneObject& obj = s.objects[0];
+    ASSERT_NE(obj.components, nullptr);
+    ASSERT_EQ(obj.components->size(), 4);
+    const ObjectTracer tracer(trace_target(obj), LipschitzMode::Local);
+    EXPECT_EQ(tracer.blob_sum(), blob);
+    std::vector<double> terms(4);
+    int blended = 0;
+    for (double x = -3.5; x <= 3.5; x += 0.25)
+      for (double y = -2; y <= 3; y += 0.5) {
+        const Vec3 p{x, y, 0.3};
+        const Vec3 n = tracer.normal(p, terms.data()), plain = tracer.normal(p);
+        EXPECT_EQ(n.x, plain.x);
+        EXPECT_EQ(n.y, plain.y);
+        EXPECT_EQ(n.z, plain.z);
+        Weights fused;
+        obj.components->weights(terms.data(), fused);
+        const Weights own = weights_at(s, p);
+        ASSERT_EQ(fused.size(), own.size()) << x << "," << y;
+        for (size_t k = 0; k < own.size(); ++k) {
+          EXPECT_EQ(fused[k].material, own[k].material);
+          if (blob)  // BlobSum's polynomial rounds differently from the compiled potential
+            EXPECT_NEAR(fused[k].weight, own[k].weight, 1e-14);
+          else
+            EXPECT_EQ(fused[k].weight, own[k].weight);
+        }
+        blended += own.size() > 1;
+      }
+    EXPECT_GT(blended, 20);
+  }
 }
 
 }  // namespace
