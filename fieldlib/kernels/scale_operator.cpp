@@ -103,12 +103,6 @@ int ScaleOperator::sharp_everywhere(Interval x1, Interval x2) const {
   return -1;
 }
 
-Interval ScaleOperator::slope(Interval x1, Interval x2, Interval D1, Interval D2) const {
-  const int sharp = sharp_everywhere(x1, x2);
-  if (sharp >= 0) return sharp == 0 ? D1 : D2;
-  return Interval(sum_lo_, sum_hi_) * hull(D1, D2);
-}
-
 Interval ScaleOperator::range_and_slope(Interval x1, Interval x2, const Interval* D1,
                                         const Interval* D2, Interval* slope) const {
   const int sharp = sharp_everywhere(x1, x2);

@@ -305,20 +305,10 @@ struct ScaleOp : Combination<ScaleOp> {
     *grad = g[0] * dh[0] + g[1] * dh[1];
     return h;
   }
-  // The model's bounds (blends_scale.cpp): h at the ends; max L_k times the gain.
-  static Interval interval(const double* c, const Interval* x, const double* L, int,
-                           double* lipschitz) {
-    const ScaleOperator op = load(c);
-    *lipschitz = std::max(L[0], L[1]) * op.gain() * (1 + 1e-12);
-    return op.range(x[0], x[1]);
-  }
-  static Interval slope(const double* c, const Interval* x, const Interval* D, int) {
-    return load(c).slope(x[0], x[1], D[0], D[1]);
-  }
-  // Combination's bounds with the two children read in place, the operator loaded once and its
-  // sharp pick decided once for range and slope: the same bits, without the gathers (nested scale
-  // unions walk one of these per level; on fig000_5b the generic path took 16 % of the
-  // instructions).
+  // Not Combination's bounds: the two children read in place, the operator loaded once and its
+  // sharp pick decided once for range and slope (nested scale unions walk one of these per level;
+  // on fig000_5b the generic path took 16 % of the instructions). The model's bounds
+  // (blends_scale.cpp): h at the ends, max L_k times the gain; the slope of docs/math.md §8.
   static void bounds(const Instr& out, const BoundsIO& io) {
     const int s1 = io.child(0).slot, s2 = io.child(1).slot;
     const ScaleOperator op = load(io.K + out.in);
