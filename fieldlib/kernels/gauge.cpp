@@ -102,33 +102,64 @@ double power_sum_partial_bound(Interval ui, Interval f_range, double n) {
   return std::pow(std::max(f_range.hi, ui.lo) / ui.lo, 1 - n) * (1 + 1e-13);
 }
 
-Interval power_sum_partial(Interval ui, Interval f_range, double n) {
-  if (n < 1) return {0, kInf};
-  if (n == 1) return {1, 1};
-  const double hi = power_sum_partial_bound(ui, f_range, n);
-  // (u/f)^(n-1) rises with u/f; pow_fast errs by a few ulps, far inside the margin.
+namespace {
+
+// The lower end of ∂f/∂u_i = (u_i/f)^(n-1) over ui and f_range, n > 1: (u_lo/f_hi)^(n-1), as it
+// rises with u/f; pow_fast errs by a few ulps, far inside the margin.
+double power_sum_partial_lower(Interval ui, Interval f_range, double n) {
   const double q = std::max(0.0, ui.lo) / f_range.hi;
   const double lo = q > 0 ? pow_fast(std::min(1.0, q), n - 1) * (1 - 1e-13) : 0.0;
-  return {std::max(0.0, lo), hi};
+  return std::max(0.0, lo);
 }
 
-Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n) {
-  if (n < 1) return Interval::entire();
+// Σ w_i du_i over w_i in [w_lo(i), w_hi(i)] (>= 0) and du_i in du[i]: each end of du takes the w
+// that moves it outward, and each end of w is computed only where one of du's ends takes it (a
+// rate of either sign takes only w_hi). Widened for the k products and sums, each within a few
+// ulps of at most mag.
+template <class Lo, class Hi>
+Interval weighted_rate_sum(const Interval* du, int k, const Lo& w_lo, const Hi& w_hi) {
   double lo = 0, hi = 0, mag = 0;
   for (int i = 0; i < k; ++i) {
     if (du[i].lo == 0 && du[i].hi == 0) continue;  // a constant term (whatever its partial)
-    const Interval w = power_sum_partial(u[i], f_range, n);  // in [0, 1]
-    // w · du over the two ranges, w >= 0: each end of du takes the w that moves it outward.
-    const double l = du[i].lo * (du[i].lo < 0 ? w.hi : w.lo);
-    const double h = du[i].hi * (du[i].hi > 0 ? w.hi : w.lo);
+    const bool lo_takes_hi = du[i].lo<0, hi_takes_hi = du[i].hi> 0;
+    const double wh = lo_takes_hi || hi_takes_hi ? w_hi(i) : 0.0;
+    const double wl = !lo_takes_hi || !hi_takes_hi ? w_lo(i) : 0.0;
+    const double l = du[i].lo * (lo_takes_hi ? wh : wl);
+    const double h = du[i].hi * (hi_takes_hi ? wh : wl);
     lo += l;
     hi += h;
     mag += std::abs(l) + std::abs(h);
   }
-  // k products and sums, each within a few ulps of at most mag.
   const double grow = 1e-12 * mag + 1e-300;
   if (!(std::isfinite(lo) && std::isfinite(hi))) return Interval::entire();
   return {lo - grow, hi + grow};
+}
+
+}  // namespace
+
+Interval power_sum_partial(Interval ui, Interval f_range, double n) {
+  if (n < 1) return {0, kInf};
+  if (n == 1) return {1, 1};
+  return {power_sum_partial_lower(ui, f_range, n), power_sum_partial_bound(ui, f_range, n)};
+}
+
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n) {
+  if (n < 1) return Interval::entire();
+  if (n == 1) {
+    const auto one = [](int) { return 1.0; };
+    return weighted_rate_sum(du, k, one, one);
+  }
+  return weighted_rate_sum(
+      du, k, [&](int i) { return power_sum_partial_lower(u[i], f_range, n); },
+      [&](int i) { return power_sum_partial_bound(u[i], f_range, n); });
+}
+
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n,
+                         const double* partial_hi) {
+  if (!(n > 1)) return power_sum_slope(u, du, k, f_range, n);
+  return weighted_rate_sum(
+      du, k, [&](int i) { return power_sum_partial_lower(u[i], f_range, n); },
+      [&](int i) { return partial_hi[i]; });
 }
 
 double gauge_lipschitz(const double* w, int k, double n) {

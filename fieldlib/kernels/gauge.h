@@ -32,6 +32,11 @@ Interval power_sum_partial(Interval ui, Interval f_range, double n);
 // (the chain rule wherever f is differentiable, which is almost everywhere). Widened for the
 // products' and the sum's rounding. Entire for n < 1 or where a rate is not finite.
 Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n);
+// power_sum_slope with each term's power_sum_partial_bound already computed (a Lipschitz bound over
+// the same box computes them): the same interval without its pows again. partial_hi is read only
+// for n > 1.
+Interval power_sum_slope(const Interval* u, const Interval* du, int k, Interval f_range, double n,
+                         const double* partial_hi);
 
 // The global Lipschitz constant of g(v) = (Σ |w_i v_i|^n)^(1/n) over R^k (Euclidean): the
 // l_q -> l_2 norm of diag(w) with 1/n + 1/q = 1, i.e. max_i w_i for n >= 2 and

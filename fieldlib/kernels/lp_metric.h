@@ -109,21 +109,27 @@ inline void lp_metric_bounds(const LpMetricParams& m, const Box& b, Interval* va
   }
   *value = f;
   if (!lipschitz) return;
+  // The terms' upper partials: the Lipschitz bound's, and the slope's again (not recomputed).
+  double partial_hi[3];
+  bool partials_known = false;
   if (m.n == 2 && m.a.x == m.a.y && m.a.y == m.a.z) {
     // A ball: |∇(|x|/a)| = 1/a everywhere, the global bound.
     *lipschitz = m.global_L;
   } else {
     double s = 0;
     for (int i = 0; i < 3; ++i) {
-      const double g = power_sum_partial_bound(u[i], f, m.n) / m.a[i];
+      partial_hi[i] = power_sum_partial_bound(u[i], f, m.n);
+      const double g = partial_hi[i] / m.a[i];
       s += g * g;
     }
+    partials_known = true;
     *lipschitz = std::min(m.global_L, std::sqrt(s) * (1 + 1e-13));
   }
   if (!rate) return;
   Interval du[3];
   for (int i = 0; i < 3; ++i) du[i] = OneSidedTerm{m.a[i], m.a[i], 0}.rate(b.axis(i), rate[i]);
-  *slope = power_sum_slope(u, du, 3, f, m.n);
+  *slope = partials_known ? power_sum_slope(u, du, 3, f, m.n, partial_hi)
+                          : power_sum_slope(u, du, 3, f, m.n);
 }
 
 }  // namespace softtrace

@@ -103,10 +103,14 @@ int ScaleOperator::sharp_everywhere(Interval x1, Interval x2) const {
   return -1;
 }
 
-Interval ScaleOperator::slope(Interval x1, Interval x2, Interval D1, Interval D2) const {
+Interval ScaleOperator::range_and_slope(Interval x1, Interval x2, const Interval* D1,
+                                        const Interval* D2, Interval* slope) const {
   const int sharp = sharp_everywhere(x1, x2);
-  if (sharp >= 0) return sharp == 0 ? D1 : D2;
-  return Interval(sum_lo_, sum_hi_) * hull(D1, D2);
+  if (D1) *slope = sharp < 0 ? Interval(sum_lo_, sum_hi_) * hull(*D1, *D2) : sharp == 0 ? *D1 : *D2;
+  if (sharp < 0) return range(x1, x2);
+  // sharp_everywhere's margin keeps both corners outside region III, so h there is the argument.
+  const Interval x = sharp == 0 ? x1 : x2;
+  return iv::out(x.lo - 1e-13 * std::abs(x.lo), x.hi + 1e-13 * std::abs(x.hi));
 }
 
 }  // namespace softtrace

@@ -27,14 +27,17 @@ class ScaleOperator {
   Interval range(Interval x1, Interval x2) const;
   // The bound on |∇h| from the children's bounds L1, L2 (blends_scale.cpp): max L_k times gain().
   double gain() const { return gain_; }
-  // d h(x1(t), x2(t))/dt over a segment where the arguments lie in x1, x2 and their slopes in
-  // D1, D2 (docs/math.md §8, "Slopes along a segment"): the one argument's slope where h is that
-  // argument all along (sharp_everywhere); else h' = a1 x1' + a2 x2' with a_k = ∂h/∂x_k >= 0 and
-  // a1 + a2 in [sum_lo, sum_hi], so h' = (a1 + a2)(λ x1' + (1 - λ) x2'), λ in [0, 1], lies in
-  // [sum_lo, sum_hi] · hull(D1, D2).
-  Interval slope(Interval x1, Interval x2, Interval D1, Interval D2) const;
   // 0 or 1 where h is x1 or x2 all over x1 × x2 (outside region III, the sharp pick), else -1.
   int sharp_everywhere(Interval x1, Interval x2) const;
+  // range(), and with D1, D2 (non-null) into *slope d h(x1(t), x2(t))/dt over a segment where the
+  // arguments lie in x1, x2 and their slopes in D1, D2 (docs/math.md §8, "Slopes along a
+  // segment"): the one argument's slope where h is that argument all along (sharp_everywhere);
+  // else h' = a1 x1' + a2 x2' with a_k = ∂h/∂x_k >= 0 and a1 + a2 in [sum_lo, sum_hi], so h' =
+  // (a1 + a2)(λ x1' + (1 - λ) x2'), λ in [0, 1], lies in [sum_lo, sum_hi] · hull(D1, D2). The sharp
+  // pick is decided once for both: where it holds, the range is that argument's ends widened as
+  // range() widens h at them (the same bits: h is that argument at both corners), no quadratic.
+  Interval range_and_slope(Interval x1, Interval x2, const Interval* D1, const Interval* D2,
+                           Interval* slope) const;
 
  private:
   ScaleOperator() = default;

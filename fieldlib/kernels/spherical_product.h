@@ -42,17 +42,22 @@ inline void spherical_product_bounds(const SphericalProductParams& m, const Box&
   const Interval f = power_sum(um, 2, m.n2);
   *value = f;
   if (!lipschitz) return;
-  const double bx = chain(power_sum_partial_bound(uh[0], um[0], m.n1), m.t[0].slope(b.axis(0)));
-  const double by = chain(power_sum_partial_bound(uh[1], um[0], m.n1), m.t[1].slope(b.axis(1)));
-  const double gh = chain(power_sum_partial_bound(um[0], f, m.n2), std::sqrt(bx * bx + by * by));
-  const double gz = chain(power_sum_partial_bound(um[1], f, m.n2), m.t[2].slope(b.axis(2)));
+  // The partials' upper ends: the Lipschitz bound's, and the slope's again (not recomputed).
+  const double ph[2] = {power_sum_partial_bound(uh[0], um[0], m.n1),
+                        power_sum_partial_bound(uh[1], um[0], m.n1)};
+  const double pm[2] = {power_sum_partial_bound(um[0], f, m.n2),
+                        power_sum_partial_bound(um[1], f, m.n2)};
+  const double bx = chain(ph[0], m.t[0].slope(b.axis(0)));
+  const double by = chain(ph[1], m.t[1].slope(b.axis(1)));
+  const double gh = chain(pm[0], std::sqrt(bx * bx + by * by));
+  const double gz = chain(pm[1], m.t[2].slope(b.axis(2)));
   const double L = std::sqrt(gh * gh + gz * gz) * (1 + 1e-13);
   *lipschitz = std::isnan(L) ? m.global_L : std::min(m.global_L, L);
   if (!rate) return;
   const Interval duh[2] = {m.t[0].rate(b.axis(0), rate[0]), m.t[1].rate(b.axis(1), rate[1])};
-  const Interval dum[2] = {power_sum_slope(uh, duh, 2, um[0], m.n1),
+  const Interval dum[2] = {power_sum_slope(uh, duh, 2, um[0], m.n1, ph),
                            m.t[2].rate(b.axis(2), rate[2])};
-  *slope = power_sum_slope(um, dum, 2, f, m.n2);
+  *slope = power_sum_slope(um, dum, 2, f, m.n2, pm);
 }
 
 }  // namespace softtrace

@@ -314,6 +314,43 @@ TEST(Scale, RayLinearMonotoneAndEuler) {  // [SC-4], and the facts behind the Li
   }
 }
 
+// range_and_slope: the range has range()'s bits (where the sharp pick holds it skips the
+// quadratic), and the slope is the one argument's where the pick holds, else it holds
+// (a1 + a2) · hull(D1, D2) for a1 + a2 up to the gain.
+TEST(Scale, RangeAndSlopeAgreeWithRange) {
+  for (bool bsa : {true, false}) {
+    int sharp = 0, mixed = 0;
+    for_scale_samples(bsa, [&](const ScaleSample& s) {
+      const ScaleOperator op(s.r1, s.r2, s.p, bsa);
+      const Interval x1{s.x1, s.x1 * 1.05}, x2{s.x2, s.x2 * 1.05};
+      const Interval D1{-0.3, 0.7}, D2{0.2, 0.9};
+      Interval slope;
+      const Interval r = op.range_and_slope(x1, x2, &D1, &D2, &slope);
+      const Interval ref = op.range(x1, x2);
+      ASSERT_EQ(r.lo, ref.lo);
+      ASSERT_EQ(r.hi, ref.hi);
+      const Interval alone = op.range_and_slope(x1, x2, nullptr, nullptr, nullptr);
+      ASSERT_EQ(alone.lo, ref.lo);
+      ASSERT_EQ(alone.hi, ref.hi);
+      const int pick = op.sharp_everywhere(x1, x2);
+      if (pick >= 0) {
+        ++sharp;
+        const Interval D = pick == 0 ? D1 : D2;
+        ASSERT_EQ(slope.lo, D.lo);
+        ASSERT_EQ(slope.hi, D.hi);
+      } else {
+        ++mixed;
+        // Holds a1 x1' + a2 x2' at its extremes: a1 + a2 at the gain with all weight on one end.
+        const double gain = bsa ? 1.0 : 1 / (1 - std::max(s.r1, s.r2));
+        ASSERT_LE(slope.lo, -0.3 * gain * (1 - 1e-9));
+        ASSERT_GE(slope.hi, 0.9 * gain * (1 - 1e-9));
+      }
+    });
+    EXPECT_GT(sharp, 1000);
+    EXPECT_GT(mixed, 1000);
+  }
+}
+
 TEST(Scale, ConventionDecidesTheOperator) {  // [CONV-2], §6.3.4
   const std::string prm = R"(,"r1":0.5,"r2":0.4,"p":0.1)";
   const Vec3 X{0.1, 0.2, 0};

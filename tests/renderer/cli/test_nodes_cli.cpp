@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 std::set<std::string> types_in_scenes() {
   std::set<std::string> types;
   for (const auto& entry : fs::directory_iterator(source_path("scenes"))) {
+    if (entry.path().extension() != ".json") continue;  // scenes/meshes/ holds their OBJ files
     const nlohmann::json j =
         nlohmann::json::parse(read_file(entry.path().string()), nullptr, true, true);
     for (const auto& o : j.at("objects"))
