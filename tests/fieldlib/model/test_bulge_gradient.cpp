@@ -21,12 +21,6 @@ namespace softtrace::test::bulge_gradient {
 namespace {
 
 using Rng = std::mt19937_64;
-double uni(Rng& g, double a, double b) {
-  return std::uniform_real_distribution<double>(a, b)(g);
-}
-Vec3 point_in(Rng& g, const Box& b) {
-  return {uni(g, b.lo.x, b.hi.x), uni(g, b.lo.y, b.hi.y), uni(g, b.lo.z, b.hi.z)};
-}
 
 double degrees_between(const Vec3& a, const Vec3& b) {
   const double c = dot(a, b) / (length(a) * length(b));
@@ -78,7 +72,7 @@ TEST(ExactHessian, MatchesDifferencedGradients) {
     const NodePtr n = build_from_json(c.json, Convention::Zero);
     int checked = 0;
     for (int s = 0; s < 2000; ++s) {
-      const Vec3 X = point_in(g, c.domain);
+      const Vec3 X = uniform_in(g, c.domain);
       Mat3 H;
       if (!n->hessian(X, &H)) continue;
       // The kinks: differenced gradients across them disagree at two steps, which skips them.
@@ -173,7 +167,7 @@ std::vector<Vec3> near_surface(const FieldNode& f, const Box& domain, int count,
                                Rng& g) {
   std::vector<Vec3> out;
   for (int s = 0; s < 50 * count && static_cast<int>(out.size()) < count; ++s) {
-    Vec3 X = point_in(g, domain), grad;
+    Vec3 X = uniform_in(g, domain), grad;
     double v = 0;
     for (int it = 0; it < 20; ++it) {
       v = f.eval(X, &grad);
@@ -183,7 +177,7 @@ std::vector<Vec3> near_surface(const FieldNode& f, const Box& domain, int count,
     }
     v = f.eval(X, &grad);
     if (!(std::abs(v) < 1e-9) || !domain.contains(X)) continue;
-    out.push_back(X + normalize(grad) * uni(g, -offset, offset));
+    out.push_back(X + normalize(grad) * std::uniform_real_distribution<double>(-offset, offset)(g));
   }
   return out;
 }
