@@ -11,7 +11,7 @@ namespace softtrace {
 namespace {
 
 // Σ f_i   — soft blend B_SUk, 000 Eq. 12, 002 Eq. 3, docs/math.md §5.1
-class SoftBlend final : public NaryNode {
+class SoftBlend final : public NaryNode<SoftBlend> {
  public:
   explicit SoftBlend(std::vector<NodePtr> children) : NaryNode(std::move(children)) {}
 
@@ -40,8 +40,10 @@ class SoftBlend final : public NaryNode {
   int compile(ProgramBuilder& b, int reg) const override { return b.nary(Op::Sum, c_, reg); }
 
  private:
+  friend NaryNode;
+
   // Σ [f_i] and Σ L_i, summed in the children's order.
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     NodeBounds s{Interval(0), 0};
     for (size_t i = 0; i < c_.size(); ++i) {
       s.value = s.value + I[i];

@@ -26,7 +26,7 @@ Interval signed_interval(int sigma, Interval a) {
 
 // R = τ·BT_k(σ_1 f_1, ..., σ_k f_k) — 003 Eqs. 2–5 and §3.3, docs/math.md §7.1–§7.4 (§7.6 with
 // bulge)
-class BtBlend final : public NaryNode {
+class BtBlend final : public NaryNode<BtBlend> {
  public:
   BtBlend(std::vector<NodePtr> children, BtOperator op, int tau, std::vector<int> sigma,
           double omega)
@@ -80,17 +80,19 @@ class BtBlend final : public NaryNode {
   }
 
  private:
+  friend NaryNode;
+
   // From the children's intervals I and bounds L over b: BT at the ends of X_i = σ_i [f_i], and the
   // largest L_i/m_i among the children that can be active in the box; with bulge elimination,
   // bulge_bounds.
-  NodeBounds combine(const Box& b, const Interval* I, const double* L) const override {
+  NodeBounds combine(const Box& b, const Interval* I, const double* L) const {
     const int k = op_.k();
-    Scratch<Interval> X(k);
-    Scratch<double> lo(k), hi(k);
+    Slots<Interval> X(k);
+    Slots<double> lo(k), hi(k);
     for (int i = 0; i < k; ++i) {
-      X[i] = signed_interval(sigma_[i], I[i]);
-      lo[i] = X[i].lo;
-      hi[i] = X[i].hi;
+      X.set(i, signed_interval(sigma_[i], I[i]));
+      lo.set(i, X[i].lo);
+      hi.set(i, X[i].hi);
     }
     if (bulge()) return bulge_bounds(b, X.data(), lo.data(), hi.data(), L);
     const Interval bt = monotone_enclosure(lo.data(), hi.data());

@@ -19,7 +19,7 @@ namespace softtrace {
 namespace {
 
 // (Σ g_i^q)^(1/q)   — 000 Eq. 6, 002 Eqs. 7–8 (ricci.h)
-class Ricci final : public NaryNode {
+class Ricci final : public NaryNode<Ricci> {
  public:
   Ricci(std::vector<NodePtr> c, RicciParams m) : NaryNode(std::move(c)), m_(m) {
     std::vector<Interval> f;
@@ -64,8 +64,10 @@ class Ricci final : public NaryNode {
   }
 
  private:
+  friend NaryNode;
+
   // B at the ends of the children's intervals, and the bound of ricci.h, from the children's.
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     const size_t k = c_.size();
     return {ricci_interval(m_, I, k), ricci_lipschitz(m_, I, L, k, global_L_)};
   }

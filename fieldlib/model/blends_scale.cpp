@@ -30,7 +30,7 @@ namespace softtrace {
 namespace {
 
 // BSA2 or BSS2 of two children   — 000 §II.C.3, docs/math.md §6.3.2, §6.3.3
-class Scale final : public NaryNode {
+class Scale final : public NaryNode<Scale> {
  public:
   // `children`: exactly two (the kinds table).
   Scale(std::vector<NodePtr> children, double r1, double r2, double p, bool bsa)
@@ -69,7 +69,9 @@ class Scale final : public NaryNode {
   }
 
  private:
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  friend NaryNode;
+
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     return {op_.range(I[0], I[1]), std::max(L[0], L[1]) * gain_ * (1 + 1e-12)};
   }
 

@@ -20,7 +20,7 @@ namespace softtrace {
 namespace {
 
 // 1 - Π(1 - f_i), Π f_i, f_1 Π_{i>=2} (1 - f_i)   — 002 Eqs. 4–6, docs/math.md §5.2 (perlin.h).
-class Perlin final : public NaryNode {
+class Perlin final : public NaryNode<Perlin> {
  public:
   using Mode = PerlinMode;
   Perlin(std::vector<NodePtr> c, Mode m) : NaryNode(std::move(c)), mode_(m) {
@@ -60,8 +60,10 @@ class Perlin final : public NaryNode {
   }
 
  private:
+  friend NaryNode;
+
   // Interval arithmetic on the product, and [PE-3]'s bound, from the children's (perlin.h).
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     const size_t k = c_.size();
     return {perlin_interval(mode_, I, k), perlin_lipschitz(mode_, I, L, k, global_L_)};
   }
@@ -71,7 +73,7 @@ class Perlin final : public NaryNode {
 };
 
 // min / max of the children (sharp union/intersection baselines, docs/math.md §1)
-class MinMax final : public NaryNode {
+class MinMax final : public NaryNode<MinMax> {
  public:
   MinMax(std::vector<NodePtr> c, bool is_min) : NaryNode(std::move(c)), min_(is_min) {}
 
@@ -108,9 +110,11 @@ class MinMax final : public NaryNode {
   }
 
  private:
+  friend NaryNode;
+
   // The interval min/max of the intervals; over a box only children that can be the extreme
   // somewhere in it (their interval reaches the result's interval) count towards the bound.
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     const size_t k = c_.size();
     Interval r = I[0];
     for (size_t i = 1; i < k; ++i) r = min_ ? min(r, I[i]) : max(r, I[i]);

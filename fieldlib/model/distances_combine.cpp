@@ -24,7 +24,7 @@ namespace {
 // non-decreasing in every x_i: the interval is U at the children's lower and upper ends.
 // region: U <= min x_i, and U >= min x_i / k^(1/n), so {U <= c} ⊂ ∪ {x_i <= c k^(1/n)} and
 // {U >= c} ⊂ ∩ {x_i >= c}.
-class SuperEllipsoidalUnion final : public NaryNode {
+class SuperEllipsoidalUnion final : public NaryNode<SuperEllipsoidalUnion> {
  public:
   SuperEllipsoidalUnion(std::vector<NodePtr> children, double n)
       : NaryNode(std::move(children)), n_(n) {}
@@ -61,7 +61,9 @@ class SuperEllipsoidalUnion final : public NaryNode {
   }
 
  private:
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  friend NaryNode;
+
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     const size_t k = c_.size();
     const Interval U = super_union_interval(I, k, n_);
     return {U, super_union_lipschitz(I, L, k, n_, U)};
@@ -76,7 +78,7 @@ class SuperEllipsoidalUnion final : public NaryNode {
 // partials come from power_sum_partial_bound. Monotone, so the interval is the power sum of the
 // children's intervals. region: I >= max x_i, so {I <= c} ⊂ ∩ {x_i <= c}; I <= k^(1/n) max x_i,
 // so {I >= c} ⊂ ∪ {x_i >= c / k^(1/n)}.
-class SuperEllipsoidalIntersection final : public NaryNode {
+class SuperEllipsoidalIntersection final : public NaryNode<SuperEllipsoidalIntersection> {
  public:
   SuperEllipsoidalIntersection(std::vector<NodePtr> children, double n)
       : NaryNode(std::move(children)), n_(n) {
@@ -115,7 +117,9 @@ class SuperEllipsoidalIntersection final : public NaryNode {
   }
 
  private:
-  NodeBounds combine(const Box&, const Interval* I, const double* L) const override {
+  friend NaryNode;
+
+  NodeBounds combine(const Box&, const Interval* I, const double* L) const {
     const size_t k = c_.size();
     const Interval f = power_sum(I, static_cast<int>(k), n_);
     return {f, super_intersection_lipschitz(I, L, k, n_, f, global_L_)};

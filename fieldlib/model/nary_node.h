@@ -5,25 +5,84 @@
 // half of the answer (a blend of blends would otherwise ask its grandchildren twice per level).
 #pragma once
 
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <vector>
 
 #include "model/node.h"
 
 namespace softtrace {
 
+// k values of a trivially copyable T for one call, on the stack up to 16 as in Scratch
+// (math/scratch.h) but not initialised, and without Scratch's std::vector member: each slot is
+// written before it is read (set() or through data()). Scratch<Interval> zeroes all 16 first, and
+// both set up and tear down the vector, which an oracle blend pays for every box it is asked.
+template <class T>
+class Slots {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+
+ public:
+  static constexpr size_t kStack = 16;
+
+  explicit Slots(size_t k) : heap_(k > kStack ? new T[k] : nullptr) {
+    p_ = heap_ ? heap_.get() : reinterpret_cast<T*>(stack_);
+  }
+  Slots(const Slots&) = delete;
+  Slots& operator=(const Slots&) = delete;
+
+  void set(size_t i, const T& v) { new (p_ + i) T(v); }
+  T& operator[](size_t i) { return p_[i]; }  // after set(i, ...)
+  T* data() { return p_; }
+
+ private:
+  alignas(T) unsigned char stack_[kStack * sizeof(T)];
+  std::unique_ptr<T[]> heap_;
+  T* p_;
+};
+
+// Kind is the derived class (class Kind final : public NaryNode<Kind>), which writes
+//   NodeBounds combine(const Box& b, const Interval* I, const double* L) const;
+// its bounds over b from its children's there (I and L of c_.size() each; b for kinds that ask
+// the children more than their bounds, BT_k's bulge elimination), and declares `friend NaryNode;`
+// when combine is private. The gather calls it directly: an oracle blend answers this for every
+// box, and a virtual combine plus heap-capable scratch arrays cost the conic BT scenes about 85
+// instructions per call (docs/performance.md, issue 29).
+template <class Kind>
 class NaryNode : public FieldNode {
  protected:
   explicit NaryNode(std::vector<NodePtr> children) : c_(std::move(children)) {}
 
-  // The children's bounds over b, child i's interval in I[i] and Lipschitz bound in L[i], handed to
-  // combine(); the arrays live on the stack for up to 16 children (math/scratch.h).
-  NodeBounds box_bounds(const Box& b) const final;
-
-  // The kind's bounds over b from its children's there (I and L of c_.size() each). b is passed
-  // for kinds that ask the children more than their bounds (BT_k's bulge elimination).
-  virtual NodeBounds combine(const Box& b, const Interval* I, const double* L) const = 0;
+  // The children's bounds over b, child i's interval in I[i] and Lipschitz bound in L[i], handed
+  // to Kind::combine(). Up to 16 children the arrays are plain stack arrays, left unset until
+  // each slot is written (every one is, before combine reads it); beyond, on the heap.
+  NodeBounds box_bounds(const Box& b) const final {
+    const size_t k = c_.size();
+    if (k > kStack) {
+      std::vector<Interval> I(k);
+      std::vector<double> L(k);
+      gather(b, I.data(), L.data());
+      return static_cast<const Kind&>(*this).combine(b, I.data(), L.data());
+    }
+    alignas(Interval) unsigned char slots[kStack * sizeof(Interval)];
+    double L[kStack];
+    Interval* I = reinterpret_cast<Interval*>(slots);
+    gather(b, I, L);
+    return static_cast<const Kind&>(*this).combine(b, I, L);
+  }
 
   std::vector<NodePtr> c_;  // the children, in the scene's order
+
+ private:
+  static constexpr size_t kStack = 16;
+
+  void gather(const Box& b, Interval* I, double* L) const {
+    for (size_t i = 0; i < c_.size(); ++i) {
+      const NodeBounds child = c_[i]->bounds(b);
+      new (I + i) Interval(child.value);  // trivially destructible: no destructor owed
+      L[i] = child.lipschitz;
+    }
+  }
 };
 
 }  // namespace softtrace
