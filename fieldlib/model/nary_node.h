@@ -5,41 +5,12 @@
 // half of the answer (a blend of blends would otherwise ask its grandchildren twice per level).
 #pragma once
 
-#include <memory>
-#include <new>
-#include <type_traits>
 #include <vector>
 
+#include "math/scratch.h"
 #include "model/node.h"
 
 namespace softtrace {
-
-// k values of a trivially copyable T for one call, on the stack up to 16 as in Scratch
-// (math/scratch.h) but not initialised, and without Scratch's std::vector member: each slot is
-// written before it is read (set() or through data()). Scratch<Interval> zeroes all 16 first, and
-// both set up and tear down the vector, which an oracle blend pays for every box it is asked.
-template <class T>
-class Slots {
-  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
-
- public:
-  static constexpr size_t kStack = 16;
-
-  explicit Slots(size_t k) : heap_(k > kStack ? new T[k] : nullptr) {
-    p_ = heap_ ? heap_.get() : reinterpret_cast<T*>(stack_);
-  }
-  Slots(const Slots&) = delete;
-  Slots& operator=(const Slots&) = delete;
-
-  void set(size_t i, const T& v) { new (p_ + i) T(v); }
-  T& operator[](size_t i) { return p_[i]; }  // after set(i, ...)
-  T* data() { return p_; }
-
- private:
-  alignas(T) unsigned char stack_[kStack * sizeof(T)];
-  std::unique_ptr<T[]> heap_;
-  T* p_;
-};
 
 // Kind is the derived class (class Kind final : public NaryNode<Kind>), which writes
 //   NodeBounds combine(const Box& b, const Interval* I, const double* L) const;
