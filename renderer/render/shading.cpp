@@ -64,7 +64,15 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   const double offset = std::max(
       obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
       cone0);
-  const Vec3 origin = p + n * offset;
+  // Ambient occlusion's rays, and in scenes without transparency every ray, start that far along
+  // the normal.
+  const Vec3 lifted = p + n * offset;
+  // In a scene with transparency the shadow, mirror and transmitted rays start at the hit itself
+  // and ignore what lies nearer than `offset` along them (POV-Ray's way, docs/math.md §12.6): a
+  // ray moved sideways by the footprint is moved again by every lens it passes through, so the
+  // refracted views and the shadows seen through the glass would part from POV-Ray's by a pixel.
+  const Vec3 origin = scene.transparent ? p : lifted;
+  const double tnear = scene.transparent ? offset : 0;
 
   // A blend whose components carry materials: POV-Ray shades the point with each component's
   // material and sums the colours with weights |s_i f_i(p)|, normalised (docs/math.md, "Blended
@@ -96,7 +104,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       // With ambient occlusion the ambient lights reach the point through its open sky, traced
       // once for all of them.
       if (occlusion.samples > 0 && open < 0)
-        open = open_sky(occlusion, origin, n, cone0, ray.cone, rt, secondary, cancel);
+        open = open_sky(occlusion, lifted, n, cone0, ray.cone, rt, secondary, cancel);
       const Vec3 c = open < 0 ? l.color * l.intensity : l.color * (l.intensity * open);
       if (!blended)
         light += mul(m.ambient, c);
@@ -118,7 +126,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     } else {
       // Shadow rays pass transparent surfaces, tinted by each (docs/math.md §12.6).
       const Vec3 f =
-          light_filter(scene, l, at, origin, cone0, ray.cone, here, rt, secondary, cancel);
+          light_filter(scene, l, at, origin, tnear, cone0, ray.cone, here, rt, secondary, cancel);
       if (f.x == 0 && f.y == 0 && f.z == 0) continue;
       arrived = mul(at.light, f);
     }
@@ -181,19 +189,19 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   if (see_through && std::min(1.0, std::abs(grey(filter))) > kAdcBailout &&
       level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const double eta = from_inside ? ior : 1 / ior;  // n_incident / n_transmitted
-    Ray next{p - n * offset, ray.d, cone0, ray.cone};
+    Ray next{p, ray.d, cone0, ray.cone};
     int next_level = level + 1, inside = from_inside ? -1 : hit.object;
     if (std::abs(eta - 1) < 1e-10) {
       next_level = level;  // a straight transmitted ray continues the ray
     } else if (!refract(ray.d, n, eta, next.d)) {
       // Total internal reflection: all of the light reflects, untinted, staying inside.
       total_reflection = true;
-      next = {origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
+      next = {p, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
       inside = from_inside ? hit.object : -1;
     }
     if (next_level > level || continued < kMaxContinued) {
       const TraceHit far =
-          rt.intersect(next, 0, std::numeric_limits<double>::infinity(), nullptr, inside);
+          rt.intersect(next, offset, std::numeric_limits<double>::infinity(), nullptr, inside);
       secondary.add(far.work);
       const ContinuedRay count(next_level == level);
       const Vec3 seen =
@@ -209,7 +217,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next =
-        rt.intersect(mirror, 0, std::numeric_limits<double>::infinity(), nullptr, here);
+        rt.intersect(mirror, tnear, std::numeric_limits<double>::infinity(), nullptr, here);
     secondary.add(next.work);
     const Vec3 seen =
         next.hit    ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color

@@ -53,8 +53,8 @@ Vec3 surface_transmission(const Scene& scene, const Ray& ray, const TraceHit& hi
   return sum;
 }
 
-Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, double distance,
-                   int inside, RayWork& shadow) {
+Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, double tnear,
+                   double distance, int inside, RayWork& shadow) {
   TraceCounters work;
   const auto count = [&](const TraceCounters& c) {
     work.point_evals += c.point_evals;
@@ -65,7 +65,7 @@ Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, do
     work.entered_box = work.entered_box || c.entered_box;
   };
   Vec3 f{1, 1, 1};
-  double t = 0;
+  double t = tnear;
   for (int k = 0;; ++k) {
     if (k == kMaxSurfaces) {
       f = {0, 0, 0};
@@ -90,11 +90,11 @@ Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, do
 }
 
 Vec3 light_filter(const Scene& scene, const Light& l, const LightArrival& at, const Vec3& origin,
-                  double cone0, double cone, int inside, const EmbreeScene& rt, RayWork& shadow,
-                  const std::atomic<bool>* cancel) {
+                  double tnear, double cone0, double cone, int inside, const EmbreeScene& rt,
+                  RayWork& shadow, const std::atomic<bool>* cancel) {
   if (!l.shadows) return {1, 1, 1};
   if (!l.has_area)
-    return shadow_filter(scene, rt, {origin, at.to_light, cone0, cone}, at.distance, inside,
+    return shadow_filter(scene, rt, {origin, at.to_light, cone0, cone}, tnear, at.distance, inside,
                          shadow);
   const uint64_t seed = point_seed(origin);
   Vec3 sum{0, 0, 0};
@@ -104,7 +104,7 @@ Vec3 light_filter(const Scene& scene, const Light& l, const LightArrival& at, co
       const Vec3 to = area_sample(l, seed, i, j) - origin;
       const double distance = length(to);
       sum += distance == 0 ? Vec3{1, 1, 1}
-                           : shadow_filter(scene, rt, {origin, to / distance, cone0, cone},
+                           : shadow_filter(scene, rt, {origin, to / distance, cone0, cone}, tnear,
                                            distance, inside, shadow);
     }
   return sum * (1.0 / (l.area.size1 * l.area.size2));

@@ -53,19 +53,19 @@ double leave_distance(const SceneObject& obj, const Vec3& p, double cone0);
 // weights there).
 Vec3 surface_transmission(const Scene& scene, const Ray& ray, const TraceHit& hit);
 
-// The colour of the light that travels `distance` along `ray` (unit direction): 1 where nothing
-// is in the way, 0 past an opaque surface, else the product of the transmitted colours of the
-// transparent surfaces it crosses. `inside`: the field object whose solid the ray starts in, or
-// -1. The ray's work is added to `shadow` as one ray. Overlapping transparent solids are crossed
-// surface by surface (past 64 surfaces the light counts as blocked).
-Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, double distance,
-                   int inside, RayWork& shadow);
+// The colour of the light that travels from `tnear` to `distance` along `ray` (unit direction):
+// 1 where nothing is in the way, 0 past an opaque surface, else the product of the transmitted
+// colours of the transparent surfaces it crosses. `inside`: the field object whose solid the ray
+// starts in, or -1. The ray's work is added to `shadow` as one ray. Overlapping transparent solids
+// are crossed surface by surface (past 64 surfaces the light counts as blocked).
+Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, double tnear,
+                   double distance, int inside, RayWork& shadow);
 
 // light_visibility (lights.h) as a colour, for scenes with transparent materials: each shadow
-// ray's shadow_filter; an area light's mean over its whole grid of samples (not adaptively:
-// the samples' colours need not agree where their visibility does).
+// ray's shadow_filter from `tnear` along it; an area light's mean over its whole grid of samples
+// (not adaptively: the samples' colours need not agree where their visibility does).
 Vec3 light_filter(const Scene& scene, const Light& l, const LightArrival& at, const Vec3& origin,
-                  double cone0, double cone, int inside, const EmbreeScene& rt, RayWork& shadow,
-                  const std::atomic<bool>* cancel = nullptr);
+                  double tnear, double cone0, double cone, int inside, const EmbreeScene& rt,
+                  RayWork& shadow, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace softtrace

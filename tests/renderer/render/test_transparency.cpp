@@ -187,6 +187,37 @@ TEST(Transparency, ShadowsAreTintedByEachSurfaceCrossed) {
   }
 }
 
+TEST(Transparency, ShadowRaysStartAtTheHitNotAFootprintAboveIt) {
+  // A clear primitive ball (exact hits) over the floor, lit at 45 degrees: the shadow ray from
+  // floor point (x, 0, 0) passes the ball where |x - 8| < 4 sqrt 2. With a footprint of radius 1
+  // a ray that started 1 above the floor would see that shadow moved by 1 in x; it starts at the
+  // hit (docs/math.md §12.6), so a point 0.5 outside the outline is lit and 0.5 inside is not.
+  const Scene scene = parse_scene(
+      R"({"camera": {"eye": [0, -40, 20], "target": [0, 0, 0]},
+      "lights": [{"type": "directional", "direction": [1, 0, -1], "intensity": 1}],
+      "objects": [
+        {"name": "floor", "material": {"color": [1, 1, 1]},
+         "shape": {"type": "plane", "normal": [0, 0, 1], "distance": 0}},
+        {"name": "ball", "material": {"transmit": 0.6},
+         "shape": {"type": "sphere", "center": [0, 0, 8], "radius": 4}}]})",
+      "slanted.json");
+  ASSERT_TRUE(scene.transparent);
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const auto floor_seen = [&](double x) {
+    const Ray ray{{x, 0, 1}, {0, 0, -1}, 1, 0};
+    const TraceHit hit = rt.embree.intersect(ray, 0, kInf);
+    EXPECT_TRUE(hit.hit);
+    EXPECT_EQ(hit.object, 0);
+    RayWork work;
+    return shade(scene, rt.tracers, rt.embree, ray, hit, work).color.x;
+  };
+  const double lit = std::sqrt(0.5), edge = 4 * std::sqrt(2.0);
+  EXPECT_NEAR(floor_seen(8 - edge - 0.5), lit, 1e-12);
+  EXPECT_NEAR(floor_seen(8 - edge + 0.5), 0.36 * lit, 1e-12);
+  EXPECT_NEAR(floor_seen(8 + edge - 0.5), 0.36 * lit, 1e-12);
+  EXPECT_NEAR(floor_seen(8 + edge + 0.5), lit, 1e-12);
+}
+
 // A clear ball (transmit 1: no colour of its own) in front of a flat background, seen through
 // its centre, where the rays pass straight whatever the ior.
 Vec3 through_centre(const std::string& material, int max_trace_level) {
