@@ -17,7 +17,13 @@ AdaptivePixels::AdaptivePixels(const Antialias& a, const PixelRect& window, int 
 }
 
 void AdaptivePixels::set_first(int x, int y, const float rgba[4]) {
-  std::copy(rgba, rgba + 4, first_.begin() + index(x, y) * 4);
+  // POV-Ray 3.7 compares the colours gamma-encoded by its Antialias_Gamma, 2.5 by default
+  // (backend/render/tracetask.cpp, NonAdaptiveSupersamplingForOnePixel): c^(1/2.5) of the linear
+  // R, G and B (negatives as 0), A as it is. A dark edge then differs as much as a bright one
+  // that looks as different.
+  float* first = &first_[index(x, y) * 4];
+  for (int k = 0; k < 3; ++k) first[k] = std::pow(std::max(rgba[k], 0.0f), 1 / 2.5f);
+  first[3] = rgba[3];
 }
 
 void AdaptivePixels::decide() {

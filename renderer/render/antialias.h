@@ -26,7 +26,8 @@ class AdaptivePixels {
 
   // The window and its apron, within the frame: the first pass's pixels.
   const PixelRect& apron() const { return apron_; }
-  // The first pass's colour of pixel (x, y) of the apron: R, G, B over the background, and A.
+  // The first pass's colour of pixel (x, y) of the apron: R, G, B over the background, and A
+  // (kept gamma-encoded, as POV-Ray compares them).
   void set_first(int x, int y, const float rgba[4]);
   // After the first pass: marks the window's pixels to trace again.
   void decide();
