@@ -33,7 +33,8 @@ class ContinuedRay {
 }  // namespace
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level) {
+             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
+             double weight) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
@@ -184,10 +185,13 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   }
   // `weights` is read for the last time above: the rays below shade other points.
 
-  // The transmitted ray (POV-Ray traces it first), where enough light passes to matter.
+  // The transmitted ray (POV-Ray traces it first), where enough light passes to matter: its grey
+  // here, and its weight down the chain of rays (docs/math.md §12.6, "Ray weights").
   bool total_reflection = false;
+  const double transmitted_weight = weight * max_abs(filter);
   if (see_through && std::min(1.0, std::abs(grey(filter))) > kAdcBailout &&
-      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
+      transmitted_weight >= kAdcBailout && level < scene.image.max_trace_level &&
+      !cancel_requested(cancel)) {
     const double eta = from_inside ? ior : 1 / ior;  // n_incident / n_transmitted
     Ray next{p, ray.d, cone0, ray.cone};
     int next_level = level + 1, inside = from_inside ? -1 : hit.object;
@@ -204,25 +208,28 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
           rt.intersect(next, offset, std::numeric_limits<double>::infinity(), nullptr, inside);
       secondary.add(far.work);
       const ContinuedRay count(next_level == level);
-      const Vec3 seen =
-          far.hit     ? shade(scene, tracers, rt, next, far, secondary, cancel, next_level).color
-          : scene.sky ? scene.sky->seen(next.d)
-                      : scene.background;
+      const Vec3 seen = far.hit ? shade(scene, tracers, rt, next, far, secondary, cancel,
+                                        next_level, transmitted_weight)
+                                      .color
+                        : scene.sky ? scene.sky->seen(next.d)
+                                    : scene.background;
       color += total_reflection ? seen : mul(filter, seen);
     }
   }
 
-  // The mirror reflection (which total internal reflection has replaced).
-  if (!total_reflection && reflects(reflection) && level < scene.image.max_trace_level &&
-      !cancel_requested(cancel)) {
+  // The mirror reflection (which total internal reflection has replaced), while its weight lasts.
+  const double reflected_weight = weight * max_abs(reflection);
+  if (!total_reflection && reflects(reflection) && reflected_weight >= kAdcBailout &&
+      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
     const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
     const TraceHit next =
         rt.intersect(mirror, tnear, std::numeric_limits<double>::infinity(), nullptr, here);
     secondary.add(next.work);
-    const Vec3 seen =
-        next.hit    ? shade(scene, tracers, rt, mirror, next, secondary, cancel, level + 1).color
-        : scene.sky ? scene.sky->seen(mirror.d)
-                    : scene.background;
+    const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel,
+                                       level + 1, reflected_weight)
+                                     .color
+                      : scene.sky ? scene.sky->seen(mirror.d)
+                                  : scene.background;
     color += mul(reflection, seen);
   }
   return {color, n, albedo};

@@ -19,9 +19,11 @@ struct Shaded {
 
 // The normal comes from the hit object's tracer; shadow and reflected rays go through `rt`, each
 // one's work added to `secondary`. Once `cancel` (render/cancel.h) is set no more rays are cast
-// and the colour is moot. `level` is POV-Ray's trace level: 1 for a camera ray.
+// and the colour is moot. `level` is POV-Ray's trace level: 1 for a camera ray. `weight` is
+// POV-Ray's ray weight, the most this ray's colour can count in the pixel (1 for a camera ray):
+// a mirror or transmitted ray whose weight would fall below adc_bailout is not traced.
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel = nullptr,
-             int level = 1);
+             int level = 1, double weight = 1);
 
 }  // namespace softtrace

@@ -14,7 +14,7 @@
 namespace softtrace {
 
 // POV-Ray's default adc_bailout: a transmitted ray whose light would be less than this (in grey)
-// is not traced.
+// is not traced, nor a mirror or transmitted ray whose weight (shade()) falls below it.
 constexpr double kAdcBailout = 1.0 / 255;
 
 // What of the light behind a surface of material `m` passes it, per channel: POV's

@@ -252,6 +252,42 @@ TEST(Transparency, TheTraceLevelLimitsRefractedRaysNotStraightOnes) {
   EXPECT_TRUE(same(through_centre(R"({"transmit": 1, "ior": 1.5})", 3), background));
 }
 
+// Between two facing mirrors of reflection r lit by an ambient light alone, each surface shows 1
+// and passes r of what its mirror ray sees: 1 + r + r^2 + ... up to max_trace_level terms. The
+// k-th mirror ray weighs r^k (POV-Ray's ray weight) and is not traced below adc_bailout (1/255).
+double between_mirrors(double r, int max_trace_level) {
+  const std::string mirror = R"({"color": [1, 1, 1], "reflection": )" + std::to_string(r) + "}";
+  const Scene scene = parse_scene(
+      R"({"camera": {"eye": [0, -30, 2], "target": [0, 0, 2]},
+          "image": {"max_trace_level": )" +
+          std::to_string(max_trace_level) + R"(},
+          "lights": [{"type": "ambient", "intensity": 1}],
+          "objects": [
+            {"name": "floor", "material": )" +
+          mirror + R"(, "shape": {"type": "plane", "normal": [0, 0, 1], "distance": 0}},
+            {"name": "ceiling", "material": )" +
+          mirror + R"(, "shape": {"type": "plane", "normal": [0, 0, -1], "distance": -4}}]})",
+      "mirrors.json");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const Ray ray{{0, 0, 2}, normalize(Vec3{1, 0, -1}), 0, 1e-6};
+  const TraceHit hit = rt.embree.intersect(ray, 0, kInf);
+  EXPECT_TRUE(hit.hit);
+  RayWork work;
+  return shade(scene, rt.tracers, rt.embree, ray, hit, work).color.x;
+}
+
+TEST(Transparency, ChainsOfRaysStopWhereTheirWeightFallsBelowAdcBailout) {
+  // r = 0.05: the second mirror ray would weigh 0.0025 < 1/255: 1 + r at any depth from 2.
+  EXPECT_NEAR(between_mirrors(0.05, 2), 1.05, 1e-12);
+  EXPECT_EQ(between_mirrors(0.05, 2), between_mirrors(0.05, 8));
+  // r = 0.1: the second weighs 0.01 and is traced, the third 0.001 is not.
+  EXPECT_NEAR(between_mirrors(0.1, 2), 1.1, 1e-12);
+  EXPECT_NEAR(between_mirrors(0.1, 3), 1.11, 1e-12);
+  EXPECT_EQ(between_mirrors(0.1, 3), between_mirrors(0.1, 8));
+  // r = 0.5: every level up to the limit (0.5^7 = 0.0078 > 1/255).
+  EXPECT_NEAR(between_mirrors(0.5, 8), 2 - std::pow(0.5, 7), 1e-12);
+}
+
 TEST(TransparencyRender, SameBitsForOneAndTwoThreads) {
   const std::string dir = test::temp_dir("transparency_threads");
   {
