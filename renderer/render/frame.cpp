@@ -120,7 +120,11 @@ class FrameTracer {
 
   // The full-frame pixel (x, y) of the pass's area. The first pass writes the pixels of the data
   // window (colour and AOVs) and, with adaptive anti-aliasing, tells it every pixel's colour; the
-  // second traces a marked pixel again with refined_spp_ samples, which replace its colour.
+  // second traces a marked pixel again with refined_spp_ samples, which replace its colour. The
+  // albedo and normal AOVs are the mean over the samples that made the colour, as a denoiser
+  // pairs them with it (an edge pixel's albedo mixes the two sides as its colour does; its normal
+  // is then shorter than 1); Z and steps are the pixel-centre ray's (a mean depth across an edge
+  // is nobody's depth).
   // `certified`: what the pixel's beam certified (none for a camera without a single eye).
   void pixel(int x, int y, const BeamClear* certified, Pass pass, Work& work) const {
     const bool in_film = window_.contains(x, y);
@@ -128,8 +132,12 @@ class FrameTracer {
     switch (pass) {
       case Pass::First: {
         float rgba[4];
-        if (!samples(x, y, spp_, certified, in_film ? &i : nullptr, work, rgba)) return;
-        if (in_film) std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+        SampleMeans means;
+        if (!samples(x, y, spp_, certified, in_film ? &i : nullptr, work, rgba, &means)) return;
+        if (in_film) {
+          std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+          mean_aovs(i, means);
+        }
         if (adaptive_) {
           // Compared as seen: over the plain background (a gradient sky is in rgba already).
           for (int k = 0; k < 3; ++k)
@@ -145,13 +153,7 @@ class FrameTracer {
             !samples(x, y, refined_spp_, certified, nullptr, work, rgba, &means))
           return;
         std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
-        // The colour is now the refined samples' mean: so are the albedo and the normal, as a
-        // denoiser pairs them with it (an edge pixel's albedo mixes the two sides as its colour
-        // does). Z and steps stay the pixel-centre ray's.
-        for (int k = 0; k < 3 && !film_.normal.empty(); ++k)
-          film_.normal[i * 3 + k] = static_cast<float>(means.normal[k]);
-        for (int k = 0; k < 3 && !film_.albedo.empty(); ++k)
-          film_.albedo[i * 3 + k] = static_cast<float>(means.albedo[k]);
+        mean_aovs(i, means);  // Z and steps stay the first pass's pixel-centre ray's
         return;
       }
     }
@@ -164,8 +166,8 @@ class FrameTracer {
   };
 
   // Pixel (x, y) traced with `spp` samples into `rgba` (premultiplied); the pixel-centre ray's
-  // AOVs go to the film's pixel `*aov` when given, the samples' means to `*means`. False when
-  // cancelled.
+  // Z and steps go to the film's pixel `*aov` when given, the samples' means to `*means`. False
+  // when cancelled.
   bool samples(int x, int y, int spp, const BeamClear* certified, const size_t* aov, Work& work,
                float rgba[4], SampleMeans* means = nullptr) const {
     Vec3 sum{0, 0, 0};
@@ -194,7 +196,7 @@ class FrameTracer {
         sum += scene_.sky->seen(ray.d);  // opaque: a gradient sky is part of the picture
         ++covered;
       }
-      if (s == 0 && aov) aovs(*aov, hit, normal, albedo, shadow);
+      if (s == 0 && aov) centre_aovs(*aov, hit, shadow);
       sums.normal += normal;
       sums.albedo += albedo;
       work.shadow += shadow;
@@ -205,18 +207,21 @@ class FrameTracer {
     return true;
   }
 
-  // The pixel-centre ray's AOVs, into the planes the film has. The background adds nothing to
-  // rgba (premultiplied); its depth is +inf.
-  void aovs(size_t i, const TraceHit& hit, const Vec3& normal, const Vec3& albedo,
-            const RayWork& shadow) const {
+  // The pixel-centre ray's Z and steps, into the planes the film has. The background's depth is
+  // +inf.
+  void centre_aovs(size_t i, const TraceHit& hit, const RayWork& shadow) const {
     if (!film_.depth.empty())
       film_.depth[i] = hit.hit ? static_cast<float>(hit.t) : std::numeric_limits<float>::infinity();
-    if (!film_.normal.empty())
-      for (int k = 0; k < 3; ++k) film_.normal[i * 3 + k] = static_cast<float>(normal[k]);
     if (!film_.steps.empty())
       film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
-    if (!film_.albedo.empty())
-      for (int k = 0; k < 3; ++k) film_.albedo[i * 3 + k] = static_cast<float>(albedo[k]);
+  }
+
+  // The samples' mean normal and albedo, into the planes the film has.
+  void mean_aovs(size_t i, const SampleMeans& means) const {
+    for (int k = 0; k < 3 && !film_.normal.empty(); ++k)
+      film_.normal[i * 3 + k] = static_cast<float>(means.normal[k]);
+    for (int k = 0; k < 3 && !film_.albedo.empty(); ++k)
+      film_.albedo[i * 3 + k] = static_cast<float>(means.albedo[k]);
   }
 
   const Scene& scene_;

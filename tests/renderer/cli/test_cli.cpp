@@ -186,8 +186,9 @@ OIIO::ImageBuf read_image(const std::string& path) {
 
 TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
   const std::string dir = temp_dir("threads");
-  const std::string base = std::string("render ") + source_path(kDefaultScene) +
-                           " --width 96 --height 72 --spp 2 --quiet --aov depth,normal,steps";
+  const std::string base =
+      std::string("render ") + source_path(kDefaultScene) +
+      " --width 96 --height 72 --spp 2 --quiet --aov depth,normal,steps,albedo";
   ASSERT_EQ(run_softtrace(base + " --threads 1 -o " + dir + "/t1.exr").status, 0);
   ASSERT_EQ(run_softtrace(base + " --threads 2 -o " + dir + "/t2.exr").status, 0);
   ASSERT_EQ(
@@ -195,7 +196,8 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
 
   const OIIO::ImageBuf a = read_image(dir + "/t1.exr"), b = read_image(dir + "/t2.exr"),
                        c = read_image(dir + "/t2b.exr");
-  const std::vector<std::string> expected = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "steps"};
+  const std::vector<std::string> expected = {
+      "R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "steps", "albedo.R", "albedo.G", "albedo.B"};
   std::vector<std::string> names = a.spec().channelnames;
   std::sort(names.begin(), names.end());
   std::vector<std::string> sorted = expected;
@@ -210,14 +212,25 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
       << "--threads 1 and --threads 2 differ";
   EXPECT_EQ(0, std::memcmp(pb.data(), pc.data(), pb.size() * sizeof(float)))
       << "two runs in a row differ";
-  int hits = 0, nonfinite = 0;
+  int hits = 0, nonfinite = 0, edges = 0;
   const int zc = a.spec().channelindex("Z"), ac = a.spec().channelindex("A");
+  const int nx = a.spec().channelindex("N.X");
   for (size_t i = 0; i < a.spec().image_pixels(); ++i) {
-    hits += pa[i * a.nchannels() + ac] > 0;
+    const float* p = &pa[i * a.nchannels()];
+    hits += p[ac] > 0;
     for (int k = 0; k < a.nchannels(); ++k)
-      if (k != zc && !std::isfinite(pa[i * a.nchannels() + k])) ++nonfinite;
+      if (k != zc && !std::isfinite(p[k])) ++nonfinite;
+    // The normal is the mean of the pixel's 2 samples: where only one meets the object it is
+    // half a unit normal (as the albedo is half the colour and A is 1/2).
+    const double n2 =
+        double(p[nx]) * p[nx] + double(p[nx + 1]) * p[nx + 1] + double(p[nx + 2]) * p[nx + 2];
+    if (p[ac] == 0.5f) {
+      ++edges;
+      EXPECT_NEAR(n2, 0.25, 1e-5) << "pixel " << i;
+    }
   }
   EXPECT_GT(hits, 96 * 72 / 5) << "the object should cover a good part of the frame";
+  EXPECT_GT(edges, 10) << "half-covered pixels along the silhouette";
   EXPECT_EQ(nonfinite, 0);
   EXPECT_TRUE(fs::exists(dir + "/t2.png"));
 }
