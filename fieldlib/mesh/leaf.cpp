@@ -20,7 +20,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
   out->keys.clear();
   out->place.clear();
   out->positions.clear();
-  out->edge.clear();
+  out->normals.clear();
   out->cuts.clear();
   edges_.clear();
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
@@ -32,9 +32,9 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
   // The corners' values, a batch at a time, in the order of the local points.
   values_.resize(points);
   inside_.resize(points);
-  double x[kBatch], y[kBatch], z[kBatch];
-  for (int first = 0; first < points; first += kBatch) {
-    const int n = std::min(kBatch, points - first);
+  double x[kSamplerBatch], y[kSamplerBatch], z[kSamplerBatch];
+  for (int first = 0, batch = sampler_.batch(); first < points; first += batch) {
+    const int n = std::min(batch, points - first);
     for (int l = 0; l < n; ++l) {
       const int p = first + l;
       x[l] = lattice_.coordinate(0, c0[0] + p % m_[0]);
@@ -162,11 +162,12 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     else
       st.t = 0;  // ga == 0: the inside end is on the surface
   }
-  double x[kBatch], y[kBatch], z[kBatch], f[kBatch], at[kBatch];
+  double x[kSamplerBatch], y[kSamplerBatch], z[kSamplerBatch], f[kSamplerBatch], at[kSamplerBatch];
+  const size_t batch = size_t(sampler_.batch());
   // A queue: an edge not done goes to the back, so that every batch but the leaf's last is full
   // (the evaluator's cost is mostly per batch). Each edge's steps are the same in any order.
   for (size_t first = 0, m; first < active.size(); first += m) {
-    m = std::min<size_t>(kBatch, active.size() - first);
+    m = std::min(batch, active.size() - first);
     for (size_t l = 0; l < m; ++l) {
       const State& st = state[active[first + l]];
       const IllinoisBracket& b = st.bracket;
@@ -212,14 +213,20 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     }
   }
 
+  // Positions, and the normals of the vertices solved here (a borrowed one's come with its
+  // position in the weld): the sampler's gradient is exact only inside this leaf's box.
   out->positions.resize(n);
-  out->edge.resize(n);
+  out->normals.resize(n);
   for (size_t id = 0; id < n; ++id) {
-    const double s =
-        edges_[id].solve ? std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin) : state[id].t;
     const Edge& e = edges_[id];
+    if (!e.solve) {
+      out->positions[id] = out->normals[id] = e.a + state[id].t * (e.b - e.a);  // not a number
+      continue;
+    }
+    const double s = std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin);
     out->positions[id] = e.a + s * (e.b - e.a);
-    out->edge[id] = e.code;
+    out->normals[id] =
+        vertex_normal(field_, sampler_, lattice_, out->positions[id], e.code, scratch);
   }
 }
 

@@ -32,10 +32,9 @@ enum class EdgePlace : uint8_t {
   Borrowed,  // on a lower face: its position is the solving leaf's (mesh.cpp's weld)
 };
 
-// What the normal needs of a vertex's lattice edge, in a byte (a vertex keeps it until the
-// normals are taken, after the weld): the edge's axes (bits 0-2, its key's direction), whether it
-// runs down them from its inside end to its outside end (kEdgeDown) and whether an end is a
-// padding point (kEdgeCapped).
+// What the normal needs of a vertex's lattice edge, in a byte: the edge's axes (bits 0-2, its key's
+// direction), whether it runs down them from its inside end to its outside end (kEdgeDown) and
+// whether an end is a padding point (kEdgeCapped).
 constexpr uint8_t kEdgeDown = 8, kEdgeCapped = 16;
 // The direction from the edge's inside end to its outside end (not of unit length).
 inline Vec3 edge_outward(uint8_t code) {
@@ -54,14 +53,14 @@ struct LeafMesh {
   std::vector<uint64_t> keys;  // each vertex's lattice edge
   std::vector<EdgePlace> place;
   std::vector<Vec3> positions;  // not a number where Borrowed
-  std::vector<uint8_t> edge;    // each vertex's EdgeCode
+  std::vector<Vec3> normals;    // vertex_normal; not a number where Borrowed
   std::vector<LeafCut> cuts;
 };
 
 // The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
 // the cap's face axis where the cap (the vertex's edge reaches the padding) is what p lies on,
 // and the edge's direction out at a critical point of the field. `edge` is the vertex's EdgeCode.
-// Computed once per welded vertex (mesh.cpp).
+// Computed once per vertex, by the leaf that solves it, with the sampler prepared for that leaf.
 Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
                    const Vec3& p, uint8_t edge, SamplerScratch& scratch);
 

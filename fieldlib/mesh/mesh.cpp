@@ -157,12 +157,12 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   const FieldSampler sampler(*field.program);
   parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
     LeafMesher(field, sampler, lattice).run(leaves[i].lo, leaves[i].hi, s, &parts[i]);
-    report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
+    report(0.1 + 0.85 * double(++leaves_done) / double(leaves.size()));
   });
 
   // Pass 3: weld. A vertex on a leaf's boundary is in the neighbours too, with the same key; the
-  // first in leaf order names it, and its position is the one leaf's that solved it. Interior
-  // vertices are unique already.
+  // first in leaf order names it, and its position and normal are the one leaf's that solved it.
+  // Interior vertices are unique already.
   std::vector<size_t> first(parts.size() + 1, 0);
   for (size_t i = 0; i < parts.size(); ++i) first[i + 1] = first[i] + parts[i].keys.size();
   auto part_of = [&](uint64_t g) {
@@ -184,18 +184,20 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
   for (size_t b = 0, end; b < boundary.size(); b = end) {
     const uint64_t name = boundary[b].second;
-    const Vec3* solved = nullptr;
+    const LeafMesh* solver = nullptr;
+    size_t solved = 0;
     for (end = b; end < boundary.size() && boundary[end].first == boundary[b].first; ++end) {
       const uint64_t g = boundary[end].second;
       const size_t i = part_of(g);
       if (parts[i].place[g - first[i]] == EdgePlace::Solved)
-        solved = &parts[i].positions[g - first[i]];
+        solver = &parts[i], solved = g - first[i];
       if (end > b) same[g] = name;
     }
-    if (!solved)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
+    if (!solver)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
       throw std::logic_error("mesh: a boundary vertex that no leaf solved");
     const size_t i = part_of(name);
-    parts[i].positions[name - first[i]] = *solved;
+    parts[i].positions[name - first[i]] = solver->positions[solved];
+    parts[i].normals[name - first[i]] = solver->normals[solved];
   }
   boundary = {};
   // The welded vertices and the faces, numbered in leaf order, written by chunks of leaves on the
@@ -222,7 +224,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   m.lattice = lattice.box;
   m.voxel = lattice.h;
   m.vertices.resize(vertex_at.back());
-  std::vector<uint8_t> edge(vertex_at.back());  // each welded vertex's EdgeCode (vertex_normal)
+  m.normals.resize(vertex_at.back());
   std::vector<uint32_t> index(first.back());
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
     const auto [begin, end] = chunk_parts(c);
@@ -233,7 +235,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
         if (same[g] != kKeep) continue;
         index[g] = uint32_t(next);
         m.vertices[next] = parts[i].positions[v];
-        edge[next++] = parts[i].edge[v];
+        m.normals[next++] = parts[i].normals[v];
       }
   });
   // A duplicate's vertex comes before it in leaf order, in this chunk or an earlier one: its
@@ -273,16 +275,6 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   parts = {};
   index = {};
 
-  // Normals, once per welded vertex, in chunks over the threads.
-  constexpr size_t kChunk = 4096;
-  m.normals.resize(m.vertices.size());
-  const size_t chunks = (m.vertices.size() + kChunk - 1) / kChunk;
-  std::atomic<size_t> chunks_done{0};
-  parallel_for(chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch& s) {
-    for (size_t v = c * kChunk; v < std::min(m.vertices.size(), (c + 1) * kChunk); ++v)
-      m.normals[v] = vertex_normal(field, sampler, lattice, m.vertices[v], edge[v], s);
-    report(0.9 + 0.1 * double(++chunks_done) / double(chunks));
-  });
   m.colors.assign(m.vertices.size(), options.color);
   report(1);
   return m;
