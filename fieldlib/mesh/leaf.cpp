@@ -29,24 +29,18 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
 
   sampler_.prepare(lattice_.span(c0, c1), scratch);
 
-  // The corners' values, a batch at a time, in the order of the local points.
+  // The corners' values, in the order of the local points.
   values_.resize(points);
   inside_.resize(points);
-  double x[kSamplerBatch], y[kSamplerBatch], z[kSamplerBatch];
-  for (int first = 0, batch = sampler_.batch(); first < points; first += batch) {
-    const int n = std::min(batch, points - first);
-    for (int l = 0; l < n; ++l) {
-      const int p = first + l;
-      x[l] = lattice_.coordinate(0, c0[0] + p % m_[0]);
-      y[l] = lattice_.coordinate(1, c0[1] + p / m_[0] % m_[1]);
-      z[l] = lattice_.coordinate(2, c0[2] + p / stride[2]);
-    }
-    sampler_.values(x, y, z, n, values_.data() + first, scratch);
+  for (int a = 0; a < 3; ++a) {
+    axis_[a].resize(size_t(m_[a]));
+    for (int i = 0; i < m_[a]; ++i) axis_[a][size_t(i)] = lattice_.coordinate(a, c0[a] + i);
   }
-  for (int p = 0; p < points; ++p) {
-    const int i = c0[0] + p % m_[0], j = c0[1] + p / m_[0] % m_[1], k = c0[2] + p / stride[2];
-    inside_[p] = !lattice_.padding(i, j, k) && inside(values_[p]);
-  }
+  sampler_.grid(axis_[0].data(), axis_[1].data(), axis_[2].data(), m_, values_.data(), scratch);
+  for (int k = 0, p = 0; k < m_[2]; ++k)
+    for (int j = 0; j < m_[1]; ++j)
+      for (int i = 0; i < m_[0]; ++i, ++p)
+        inside_[p] = !lattice_.padding(c0[0] + i, c0[1] + j, c0[2] + k) && inside(values_[p]);
 
   slot_.assign(size_t(points) * 8, -1);
   auto local = [&](int base, int corner) {

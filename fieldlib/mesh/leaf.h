@@ -82,7 +82,8 @@ class LeafMesher {
   const MeshField& field_;
   const FieldSampler& sampler_;
   const Lattice& lattice_;
-  int m_[3] = {0, 0, 0};  // points per axis in the block
+  int m_[3] = {0, 0, 0};         // points per axis in the block
+  std::vector<double> axis_[3];  // the block's points' coordinates along each axis
   std::vector<double> values_;
   std::vector<uint8_t> inside_;
   std::vector<int32_t> slot_;  // local point * 8 + direction -> vertex, or -1

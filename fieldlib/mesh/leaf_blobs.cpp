@@ -29,29 +29,70 @@ void LeafBlobs::select(const BlobSum& sum, const Program& p, const Box& box) {
 
 void LeafBlobs::values(const double* x, const double* y, const double* z, int n, double* f) const {
   std::fill(f, f + n, 0.0);
+  for (const int32_t id : ids_) add(id, x, y, z, n, f);
+}
+
+void LeafBlobs::add(int32_t id, const double* x, const double* y, const double* z, int n,
+                    double* f) const {
+  const BlobSum::Blob& b = sum_->blobs()[size_t(id)];
+  const double c2 = b.c2, c3 = b.c3;
+  if (b.inv_r2 > 0) {
+    // A ball: |q|^2 = |x - centre|^2 / radius^2.
+    const double cx = b.centre.x, cy = b.centre.y, cz = b.centre.z, s = b.inv_r2;
+    for (int l = 0; l < n; ++l) {
+      const double dx = x[l] - cx, dy = y[l] - cy, dz = z[l] - cz;
+      const double r = 1 - (dx * dx + dy * dy + dz * dz) * s;
+      f[l] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+    }
+    return;
+  }
+  // Any other blob: q = L x + k, less its nearest point of a capsule's axis.
+  const BlobSum::Frame& fr = sum_->frames()[size_t(id)];
+  const Mat3& L = fr.L;
+  for (int l = 0; l < n; ++l) {
+    Vec3 w{L.r[0].x * x[l] + L.r[0].y * y[l] + L.r[0].z * z[l] + fr.k.x,
+           L.r[1].x * x[l] + L.r[1].y * y[l] + L.r[1].z * z[l] + fr.k.y,
+           L.r[2].x * x[l] + L.r[2].y * y[l] + L.r[2].z * z[l] + fr.k.z};
+    if (fr.inv_axis2 > 0) w = w - fr.axis * std::clamp(dot(w, fr.axis) * fr.inv_axis2, 0.0, 1.0);
+    const double r = 1 - dot(w, w);
+    f[l] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+  }
+}
+
+void LeafBlobs::grid(const double* xs, const double* ys, const double* zs, const int m[3],
+                     double* f) {
+  const int row = m[0], plane = m[0] * m[1];
+  std::fill(f, f + plane * m[2], 0.0);
   for (const int32_t id : ids_) {
     const BlobSum::Blob& b = sum_->blobs()[size_t(id)];
-    const double c2 = b.c2, c3 = b.c3;
-    if (b.inv_r2 > 0) {
-      // A ball: |q|^2 = |x - centre|^2 / radius^2.
-      const double cx = b.centre.x, cy = b.centre.y, cz = b.centre.z, s = b.inv_r2;
-      for (int l = 0; l < n; ++l) {
-        const double dx = x[l] - cx, dy = y[l] - cy, dz = z[l] - cz;
-        const double r = 1 - (dx * dx + dy * dy + dz * dz) * s;
-        f[l] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
-      }
+    if (!(b.inv_r2 > 0)) {  // no ball: every point, a row at a time
+      row_y_.resize(size_t(row));
+      row_z_.resize(size_t(row));
+      for (int k = 0; k < m[2]; ++k)
+        for (int j = 0; j < m[1]; ++j) {
+          std::fill(row_y_.begin(), row_y_.end(), ys[j]);
+          std::fill(row_z_.begin(), row_z_.end(), zs[k]);
+          add(id, xs, row_y_.data(), row_z_.data(), row, f + k * plane + j * row);
+        }
       continue;
     }
-    // Any other blob: q = L x + k, less its nearest point of a capsule's axis.
-    const BlobSum::Frame& fr = sum_->frames()[size_t(id)];
-    const Mat3& L = fr.L;
-    for (int l = 0; l < n; ++l) {
-      Vec3 w{L.r[0].x * x[l] + L.r[0].y * y[l] + L.r[0].z * z[l] + fr.k.x,
-             L.r[1].x * x[l] + L.r[1].y * y[l] + L.r[1].z * z[l] + fr.k.y,
-             L.r[2].x * x[l] + L.r[2].y * y[l] + L.r[2].z * z[l] + fr.k.z};
-      if (fr.inv_axis2 > 0) w = w - fr.axis * std::clamp(dot(w, fr.axis) * fr.inv_axis2, 0.0, 1.0);
-      const double r = 1 - dot(w, w);
-      f[l] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+    // values()'s sum (dx^2 + dy^2) + dz^2 is at least dy^2 + dz^2 as rounded (rounding is
+    // monotone), so where (dy^2 + dz^2) s >= 1 every point of the row has r <= 0 and adds 0.
+    const double cx = b.centre.x, cy = b.centre.y, cz = b.centre.z, s = b.inv_r2;
+    const double c2 = b.c2, c3 = b.c3;
+    for (int k = 0; k < m[2]; ++k) {
+      const double dz = zs[k] - cz, dz2 = dz * dz;
+      if (dz2 * s >= 1) continue;
+      for (int j = 0; j < m[1]; ++j) {
+        const double dy = ys[j] - cy, dy2 = dy * dy;
+        if ((dy2 + dz2) * s >= 1) continue;
+        double* out = f + k * plane + j * row;
+        for (int i = 0; i < row; ++i) {
+          const double dx = xs[i] - cx;
+          const double r = 1 - (dx * dx + dy2 + dz2) * s;
+          out[i] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+        }
+      }
     }
   }
 }

@@ -26,14 +26,22 @@ class LeafBlobs {
   void select(const BlobSum& sum, const Program& p, const Box& box);
   // f at (x[i], y[i], z[i]), i < n, points inside the box of the last select().
   void values(const double* x, const double* y, const double* z, int n, double* f) const;
+  // f at the points (xs[i], ys[j], zs[k]) of a grid inside the box, into f[i + m0 (j + m1 k)]. A
+  // ball skips the planes and rows of the grid that its sphere misses (r <= 0 there, as values()
+  // computes it: the same bits as values() at every point).
+  void grid(const double* xs, const double* ys, const double* zs, const int m[3], double* f);
   // f(x) and ∇f(x) at a point inside the box: BlobSum::gradient's sum over the same blobs in the
   // same order, so the same bits.
   double gradient(const Vec3& x, Vec3* grad) const;
   int size() const { return static_cast<int>(ids_.size()); }
 
  private:
+  // Adds blob `id`'s potential at the n points to f[].
+  void add(int32_t id, const double* x, const double* y, const double* z, int n, double* f) const;
+
   const BlobSum* sum_ = nullptr;
-  std::vector<int32_t> ids_;  // ascending
+  std::vector<int32_t> ids_;           // ascending
+  std::vector<double> row_y_, row_z_;  // grid(): a row's y and z, for blobs that are not balls
 };
 
 }  // namespace softtrace

@@ -38,11 +38,17 @@ class FieldSampler {
 
   // Readies `s` for points inside `box` (the general path prunes the program to it).
   void prepare(const Box& box, SamplerScratch& s) const;
+  // The program's blobs where it is a sum of polynomial blobs, else null.
+  const BlobSum* blobs() const { return blobs_ ? &*blobs_ : nullptr; }
   // How many points values() takes at a time: kSamplerBatch for a sum of blobs, else kBatch.
   int batch() const { return blobs_ ? kSamplerBatch : kBatch; }
   // f at (x[i], y[i], z[i]), i < n <= batch(), all inside the box of the last prepare().
   void values(const double* x, const double* y, const double* z, int n, double* f,
               SamplerScratch& s) const;
+  // f at the grid of points (xs[i], ys[j], zs[k]), i < m[0], j < m[1], k < m[2], inside the box
+  // of the last prepare(), into f[i + m[0] (j + m[1] k)].
+  void grid(const double* xs, const double* ys, const double* zs, const int m[3], double* f,
+            SamplerScratch& s) const;
   // f(p) and ∇f(p) at p inside the box of the last prepare(): the exact gradient (the whole
   // program's, pruned to the point, for any field but a sum of blobs).
   double gradient(const Vec3& p, Vec3* grad, SamplerScratch& s) const;
