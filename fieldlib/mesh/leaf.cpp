@@ -20,7 +20,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
   out->keys.clear();
   out->place.clear();
   out->positions.clear();
-  out->normals.clear();
+  out->edge.clear();
   out->cuts.clear();
   edges_.clear();
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
@@ -47,14 +47,18 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
     return base + (corner & 1) * stride[0] + (corner >> 1 & 1) * stride[1] +
            (corner >> 2 & 1) * stride[2];
   };
-  auto vertex = [&](int base, int in, int outside) -> uint32_t {
+  // The vertex on the edge from cube corner `in` to `outside` of the cell at local (i, j, k).
+  auto vertex = [&](const int cell[3], int in, int outside) -> uint32_t {
     const int lo = in & outside, d = in ^ outside;
-    const int p = local(base, lo);
+    auto corner = [&](int c, int q[3]) {
+      for (int a = 0; a < 3; ++a) q[a] = cell[a] + (c >> a & 1);
+      return q[0] + q[1] * stride[1] + q[2] * stride[2];
+    };
+    int q[3], qa[3], qb[3];
+    const int p = corner(lo, q);
     int32_t& s = slot_[size_t(p) * 8 + d];
     if (s >= 0) return uint32_t(s);
     s = int32_t(edges_.size());
-    const int q[3] = {p % m_[0], p / m_[0] % m_[1], p / stride[2]};
-    const int g[3] = {c0[0] + q[0], c0[1] + q[1], c0[2] + q[2]};
     EdgePlace place = EdgePlace::Interior;
     for (int a = 0; a < 3; ++a) {
       if (d >> a & 1) continue;
@@ -64,20 +68,15 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
       }
       if (q[a] == 0 || q[a] == m_[a] - 1) place = EdgePlace::Solved;
     }
-    out->keys.push_back(lattice_.edge_key(g[0], g[1], g[2], d));
+    out->keys.push_back(lattice_.edge_key(c0[0] + q[0], c0[1] + q[1], c0[2] + q[2], d));
     out->place.push_back(place);
-    const int pa = local(base, in), pb = local(base, outside);
-    auto at = [&](int lp) {
-      return lattice_.point(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1], c0[2] + lp / stride[2]);
-    };
-    auto padded = [&](int lp) {
-      return lattice_.padding(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1],
-                              c0[2] + lp / stride[2]);
-    };
+    const int pa = corner(in, qa), pb = corner(outside, qb);
+    const int ga[3] = {c0[0] + qa[0], c0[1] + qa[1], c0[2] + qa[2]};
+    const int gb[3] = {c0[0] + qb[0], c0[1] + qb[1], c0[2] + qb[2]};
     Edge e;
-    e.a = at(pa);
-    e.b = at(pb);
-    e.capped = padded(pa) || padded(pb);
+    e.a = lattice_.point(ga[0], ga[1], ga[2]);
+    e.b = lattice_.point(gb[0], gb[1], gb[2]);
+    e.capped = lattice_.padding(ga[0], ga[1], ga[2]) || lattice_.padding(gb[0], gb[1], gb[2]);
     e.code = uint8_t(d | (lo == in ? 0 : kEdgeDown) | (e.capped ? kEdgeCapped : 0));
     e.ga = solved(values_[pa], e.a, e.capped);
     e.gb = solved(values_[pb], e.b, e.capped);
@@ -99,7 +98,8 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
           const TetCut& cut = tet_cut(t, in);
           if (cut.count == 0) continue;
           LeafCut c{{0, 0, 0, 0}, cut.count == 4};
-          for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(base, cut.in[e], cut.out[e]);
+          const int cell[3] = {i, j, k};
+          for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(cell, cut.in[e], cut.out[e]);
           out->cuts.push_back(c);
         }
       }
@@ -207,20 +207,14 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     }
   }
 
-  // Positions, and the normals of the vertices solved here (a borrowed one's come with its
-  // position in the weld): the sampler's gradient is exact only inside this leaf's box.
   out->positions.resize(n);
-  out->normals.resize(n);
+  out->edge.resize(n);
   for (size_t id = 0; id < n; ++id) {
+    const double s =
+        edges_[id].solve ? std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin) : state[id].t;
     const Edge& e = edges_[id];
-    if (!e.solve) {
-      out->positions[id] = out->normals[id] = e.a + state[id].t * (e.b - e.a);  // not a number
-      continue;
-    }
-    const double s = std::clamp(state[id].t, kEdgeMargin, 1 - kEdgeMargin);
     out->positions[id] = e.a + s * (e.b - e.a);
-    out->normals[id] =
-        vertex_normal(field_, sampler_, lattice_, out->positions[id], e.code, scratch);
+    out->edge[id] = e.code;
   }
 }
 

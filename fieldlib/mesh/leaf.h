@@ -53,14 +53,15 @@ struct LeafMesh {
   std::vector<uint64_t> keys;  // each vertex's lattice edge
   std::vector<EdgePlace> place;
   std::vector<Vec3> positions;  // not a number where Borrowed
-  std::vector<Vec3> normals;    // vertex_normal; not a number where Borrowed
+  std::vector<uint8_t> edge;    // each vertex's EdgeCode (its normal's, taken after the weld)
   std::vector<LeafCut> cuts;
 };
 
 // The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
 // the cap's face axis where the cap (the vertex's edge reaches the padding) is what p lies on,
 // and the edge's direction out at a critical point of the field. `edge` is the vertex's EdgeCode.
-// Computed once per vertex, by the leaf that solves it, with the sampler prepared for that leaf.
+// Computed once per welded vertex, after the weld, with the sampler prepared for the leaf that
+// solved it (mesh.cpp).
 Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
                    const Vec3& p, uint8_t edge, SamplerScratch& scratch);
 

@@ -101,8 +101,14 @@ double LeafBlobs::gradient(const Vec3& x, Vec3* grad) const {
   double f = 0;
   Vec3 g;
   for (const int32_t id : ids_) {
-    const BlobSum::Frame& frame = sum_->frames()[size_t(id)];
     const BlobSum::Blob& b = sum_->blobs()[size_t(id)];
+    // A ball that clearly misses x (by a relative 1e-9, more than the two forms' rounding apart)
+    // has r <= 0 in the frame's form too: skipped before its frame is read.
+    if (b.inv_r2 > 0) {
+      const Vec3 d = x - b.centre;
+      if (dot(d, d) * b.inv_r2 > 1 + 1e-9) continue;
+    }
+    const BlobSum::Frame& frame = sum_->frames()[size_t(id)];
     Vec3 w = frame.L * x + frame.k;
     if (frame.inv_axis2 > 0)
       w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);

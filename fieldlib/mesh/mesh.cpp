@@ -195,11 +195,11 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   std::atomic<size_t> leaves_done{0};
   parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
     LeafMesher(field, sampler, lattice).run(leaves[i].lo, leaves[i].hi, s, &parts[i]);
-    report(0.1 + 0.85 * double(++leaves_done) / double(leaves.size()));
+    report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
   });
 
   // Pass 3: weld. A vertex on a leaf's boundary is in the neighbours too, with the same key; the
-  // first in leaf order names it, and its position and normal are the one leaf's that solved it.
+  // first in leaf order names it, and its position is the one leaf's that solved it.
   // Interior vertices are unique already.
   std::vector<size_t> first(parts.size() + 1, 0);
   for (size_t i = 0; i < parts.size(); ++i) first[i + 1] = first[i] + parts[i].keys.size();
@@ -222,20 +222,18 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
   for (size_t b = 0, end; b < boundary.size(); b = end) {
     const uint64_t name = boundary[b].second;
-    const LeafMesh* solver = nullptr;
-    size_t solved = 0;
+    const Vec3* solved = nullptr;
     for (end = b; end < boundary.size() && boundary[end].first == boundary[b].first; ++end) {
       const uint64_t g = boundary[end].second;
       const size_t i = part_of(g);
       if (parts[i].place[g - first[i]] == EdgePlace::Solved)
-        solver = &parts[i], solved = g - first[i];
+        solved = &parts[i].positions[g - first[i]];
       if (end > b) same[g] = name;
     }
-    if (!solver)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
+    if (!solved)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
       throw std::logic_error("mesh: a boundary vertex that no leaf solved");
     const size_t i = part_of(name);
-    parts[i].positions[name - first[i]] = solver->positions[solved];
-    parts[i].normals[name - first[i]] = solver->normals[solved];
+    parts[i].positions[name - first[i]] = *solved;
   }
   boundary = {};
   // The welded vertices and the faces, numbered in leaf order, written by chunks of leaves on the
@@ -262,7 +260,6 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   m.lattice = lattice.box;
   m.voxel = lattice.h;
   m.vertices.resize(vertex_at.back());
-  m.normals.resize(vertex_at.back());
   std::vector<uint32_t> index(first.back());
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
     const auto [begin, end] = chunk_parts(c);
@@ -272,8 +269,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
         const size_t g = first[i] + v;
         if (same[g] != kKeep) continue;
         index[g] = uint32_t(next);
-        m.vertices[next] = parts[i].positions[v];
-        m.normals[next++] = parts[i].normals[v];
+        m.vertices[next++] = parts[i].positions[v];
       }
   });
   // A duplicate's vertex comes before it in leaf order, in this chunk or an earlier one: its
@@ -307,8 +303,30 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
           m.faces[next++] = {v[1], v[2], v[3]};
         }
       }
+      // What the normals need stays: which vertices the leaf solved, and their edges.
+      parts[i].cuts = {};
+      parts[i].keys = {};
+      parts[i].positions = {};
+    }
+  });
+
+  // Normals, once per welded vertex, by the leaf that solved it: the sampler prepared for the
+  // leaf's box (for a sum of blobs, the few blobs there), in chunks of leaves over the threads.
+  m.normals.resize(m.vertices.size());
+  std::atomic<size_t> chunks_done{0};
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch& s) {
+    const auto [begin, end] = chunk_parts(c);
+    for (size_t i = begin; i < end; ++i) {
+      const int pmax[3] = {leaves[i].hi[0], leaves[i].hi[1], leaves[i].hi[2]};
+      sampler.prepare_gradients(lattice.span(leaves[i].lo, pmax), s);
+      for (size_t v = 0; v < parts[i].place.size(); ++v) {
+        if (parts[i].place[v] == EdgePlace::Borrowed) continue;
+        const uint32_t n = index[first[i] + v];
+        m.normals[n] = vertex_normal(field, sampler, lattice, m.vertices[n], parts[i].edge[v], s);
+      }
       parts[i] = LeafMesh();
     }
+    report(0.9 + 0.1 * double(++chunks_done) / double(part_chunks));
   });
   parts = {};
   index = {};

@@ -8,6 +8,10 @@ void FieldSampler::prepare(const Box& box, SamplerScratch& s) const {
   prune(program_, box, s.ws);
 }
 
+void FieldSampler::prepare_gradients(const Box& box, SamplerScratch& s) const {
+  if (blobs_) s.blobs.select(*blobs_, program_, box);
+}
+
 void FieldSampler::values(const double* x, const double* y, const double* z, int n, double* f,
                           SamplerScratch& s) const {
   if (blobs_) return s.blobs.values(x, y, z, n, f);

@@ -38,6 +38,8 @@ class FieldSampler {
 
   // Readies `s` for points inside `box` (the general path prunes the program to it).
   void prepare(const Box& box, SamplerScratch& s) const;
+  // Readies `s` for gradient() only, at points inside `box` (the general path needs nothing).
+  void prepare_gradients(const Box& box, SamplerScratch& s) const;
   // The program's blobs where it is a sum of polynomial blobs, else null.
   const BlobSum* blobs() const { return blobs_ ? &*blobs_ : nullptr; }
   // How many points values() takes at a time: kSamplerBatch for a sum of blobs, else kBatch.
