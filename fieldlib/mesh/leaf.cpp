@@ -131,19 +131,12 @@ double inverse_quadratic(double x0, double g0, double x1, double g1, double x2, 
 // depend on its own values only, so a vertex has the same bits whichever block solves it.
 void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
   const size_t n = edges_.size();
-  struct State {
-    IllinoisBracket bracket;
-    double px, pg;          // the previous evaluation (an end, at first)
-    double qx, qg;          // the one before (the inside end, at first)
-    double rx = 0, rg = 0;  // and the one before that (none before the first step)
-    double t = -1;          // the solution, once found
-    uint8_t slow = 0;       // steps in a row that did not halve the bracket
-    uint8_t steps = 0;      // steps taken
-  };
-  std::vector<State> state(n);
-  std::vector<uint32_t> active;
+  std::vector<EdgeState>& state = state_;
+  std::vector<uint32_t>& active = active_;
+  state.assign(n, EdgeState());
+  active.clear();
   for (size_t e = 0; e < n; ++e) {
-    State& st = state[e];
+    EdgeState& st = state[e];
     st.bracket = {1, edges_[e].gb, 0, edges_[e].ga};
     st.px = 1;
     st.pg = edges_[e].gb;
@@ -163,7 +156,7 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
   for (size_t first = 0, m; first < active.size(); first += m) {
     m = std::min(batch, active.size() - first);
     for (size_t l = 0; l < m; ++l) {
-      const State& st = state[active[first + l]];
+      const EdgeState& st = state[active[first + l]];
       const IllinoisBracket& b = st.bracket;
       double s = st.steps > 0 ? inverse_quadratic(st.rx, st.rg, st.qx, st.qg, st.px, st.pg)
                               : b.false_position();
@@ -177,7 +170,7 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     sampler_.values(x, y, z, int(m), f, scratch);
     for (size_t l = 0; l < m; ++l) {
       const uint32_t id = active[first + l];
-      State& st = state[id];
+      EdgeState& st = state[id];
       IllinoisBracket& b = st.bracket;
       const double g = solved(f[l], {x[l], y[l], z[l]}, edges_[id].capped);
       const double width = b.lo - b.hi;

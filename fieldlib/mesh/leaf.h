@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "math/illinois.h"
 #include "mesh/lattice.h"
 #include "mesh/mesh.h"
 #include "mesh/sampler.h"
@@ -65,6 +66,7 @@ struct LeafMesh {
 Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
                    const Vec3& p, uint8_t edge, SamplerScratch& scratch);
 
+// Meshes leaves one after another, keeping its buffers from one to the next (one per thread).
 class LeafMesher {
  public:
   LeafMesher(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice)
@@ -99,6 +101,18 @@ class LeafMesher {
         gc;  // a third point of the edge's line (at a + tc (b - a)) and its value; tc 0: none
   };
   std::vector<Edge> edges_;
+  // solve_edges' state of each edge's search, and the queue of edges not done.
+  struct EdgeState {
+    IllinoisBracket bracket;
+    double px, pg;          // the previous evaluation (an end, at first)
+    double qx, qg;          // the one before (the inside end, at first)
+    double rx = 0, rg = 0;  // and the one before that (none before the first step)
+    double t = -1;          // the solution, once found
+    uint8_t slow = 0;       // steps in a row that did not halve the bracket
+    uint8_t steps = 0;      // steps taken
+  };
+  std::vector<EdgeState> state_;
+  std::vector<uint32_t> active_;
 };
 
 }  // namespace softtrace

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "mesh/blob_bounds.h"
@@ -24,14 +25,15 @@ struct Block {
   int lo[3], hi[3];  // cells [lo, hi) per axis
 };
 
-// Runs job(i, scratch) for i < count on `threads` threads; rethrows the first exception.
-template <class Job>
+// Runs job(i, scratch) for i < count on `threads` threads, each with its own Scratch; rethrows
+// the first exception.
+template <class Scratch = SamplerScratch, class Job>
 void parallel_for(size_t count, int threads, const std::atomic<bool>* cancel, Job job) {
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto work = [&] {
-    SamplerScratch scratch;
+    Scratch scratch;
     try {
       for (size_t i; (i = next++) < count;) {
         if (cancel && cancel->load(std::memory_order_relaxed)) throw MeshCancelled();
@@ -193,10 +195,16 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   // Pass 2: the leaves, each on its own.
   std::vector<LeafMesh> parts(leaves.size());
   std::atomic<size_t> leaves_done{0};
-  parallel_for(leaves.size(), options.threads, options.cancel, [&](size_t i, SamplerScratch& s) {
-    LeafMesher(field, sampler, lattice).run(leaves[i].lo, leaves[i].hi, s, &parts[i]);
-    report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
-  });
+  struct LeafWorker {
+    SamplerScratch scratch;
+    std::optional<LeafMesher> mesher;
+  };
+  parallel_for<LeafWorker>(leaves.size(), options.threads, options.cancel,
+                           [&](size_t i, LeafWorker& w) {
+                             if (!w.mesher) w.mesher.emplace(field, sampler, lattice);
+                             w.mesher->run(leaves[i].lo, leaves[i].hi, w.scratch, &parts[i]);
+                             report(0.1 + 0.8 * double(++leaves_done) / double(leaves.size()));
+                           });
 
   // Pass 3: weld. A vertex on a leaf's boundary is in the neighbours too, with the same key; the
   // first in leaf order names it, and its position is the one leaf's that solved it.
