@@ -267,8 +267,14 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   Mesh m;
   m.lattice = lattice.box;
   m.voxel = lattice.h;
-  m.vertices.resize(vertex_at.back());
-  std::vector<uint32_t> index(first.back());
+  // Large arrays are first written (zero-filled) where they are made, at about 1 s a gigabyte
+  // on this machine's fresh pages: two at a time where they are made together, one on each
+  // thread (at 512^3 the main thread's CPU fell from 1.8 to 1.4 s).
+  std::vector<uint32_t> index;
+  parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
+    if (h == 0) m.vertices.resize(vertex_at.back());
+    if (h == 1) index.resize(first.back());
+  });
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
     const auto [begin, end] = chunk_parts(c);
     size_t next = vertex_at[c];
@@ -288,8 +294,8 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
       if (same[g] != kKeep) index[g] = index[same[g]];
   });
   same = {};
-  // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
   m.faces.resize(face_at.back());
+  // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
     const auto [begin, end] = chunk_parts(c);
     size_t next = face_at[c];
@@ -338,8 +344,8 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   });
   parts = {};
   index = {};
-
   m.colors.assign(m.vertices.size(), options.color);
+
   report(1);
   return m;
 }
