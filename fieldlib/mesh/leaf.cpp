@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "math/illinois.h"
 #include "mesh/tetra.h"
@@ -26,6 +27,8 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
   const int stride[3] = {1, m_[0], m_[0] * m_[1]};
   const int points = m_[0] * m_[1] * m_[2];
+  if (points > kMaxLeafPoints)  // mesh.cpp's leaves have at most 9^3
+    throw std::logic_error("mesh: a leaf of more than 8,192 points");
 
   sampler_.prepare(lattice_.span(c0, c1), scratch);
 
@@ -48,7 +51,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
            (corner >> 2 & 1) * stride[2];
   };
   // The vertex on the edge from cube corner `in` to `outside` of the cell at local (i, j, k).
-  auto vertex = [&](const int cell[3], int in, int outside) -> uint32_t {
+  auto vertex = [&](const int cell[3], int in, int outside) -> uint16_t {
     const int lo = in & outside, d = in ^ outside;
     auto corner = [&](int c, int q[3]) {
       for (int a = 0; a < 3; ++a) q[a] = cell[a] + (c >> a & 1);
@@ -57,7 +60,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
     int q[3], qa[3], qb[3];
     const int p = corner(lo, q);
     int32_t& s = slot_[size_t(p) * 8 + d];
-    if (s >= 0) return uint32_t(s);
+    if (s >= 0) return uint16_t(s);
     s = int32_t(edges_.size());
     EdgePlace place = EdgePlace::Interior;
     for (int a = 0; a < 3; ++a) {
@@ -82,7 +85,7 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
     e.gb = solved(values_[pb], e.b, e.capped);
     e.solve = place != EdgePlace::Borrowed;
     edges_.push_back(e);
-    return uint32_t(s);
+    return uint16_t(s);
   };
 
   for (int k = 0; k + 1 < m_[2]; ++k)

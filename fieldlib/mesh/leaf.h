@@ -45,8 +45,12 @@ inline Vec3 edge_outward(uint8_t code) {
 
 // The polygon a tetrahedron cuts: a triangle, or a quadrilateral (v[3] too) that the mesher splits
 // along its shorter diagonal once every position is known (after the weld).
+// A leaf's vertices are numbered in 16 bits (a cut in 10 bytes: the leaves' cuts are the largest
+// part of what the mesher holds before the weld): a leaf has at most kMaxLeafPoints points, each
+// the lower end of at most 7 edges.
+constexpr int kMaxLeafPoints = 65536 / 8;
 struct LeafCut {
-  uint32_t v[4];  // indices into the leaf's vertices, counter-clockwise seen from outside
+  uint16_t v[4];  // indices into the leaf's vertices, counter-clockwise seen from outside
   bool quad;
 };
 
@@ -72,7 +76,7 @@ class LeafMesher {
   LeafMesher(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice)
       : field_(field), sampler_(sampler), lattice_(lattice) {}
 
-  // Meshes cells c0..c1-1 (per axis) into *out (cleared first).
+  // Meshes cells c0..c1-1 (per axis), at most kMaxLeafPoints points, into *out (cleared first).
   void run(const int c0[3], const int c1[3], SamplerScratch& scratch, LeafMesh* out);
 
  private:
