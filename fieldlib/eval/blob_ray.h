@@ -81,6 +81,11 @@ class BlobSum {
     double c2, c3;
     double reach2 = std::numeric_limits<double>::infinity();
   };
+  // Each child's frame and potential, and the sum's group in the program (its BVH indexes the
+  // children's support boxes): what a caller needs to sum the blobs itself (the mesher's leaves).
+  const std::vector<Frame>& frames() const { return frames_; }
+  const std::vector<Blob>& blobs() const { return blobs_; }
+  int group() const { return group_; }
 
  private:
   std::vector<Frame> frames_;  // by child of the sum

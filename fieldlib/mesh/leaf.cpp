@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "math/illinois.h"
 #include "mesh/tetra.h"
@@ -26,41 +27,41 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
   const int stride[3] = {1, m_[0], m_[0] * m_[1]};
   const int points = m_[0] * m_[1] * m_[2];
+  if (points > kMaxLeafPoints)  // mesh.cpp's leaves have at most 9^3
+    throw std::logic_error("mesh: a leaf of more than 8,192 points");
 
   sampler_.prepare(lattice_.span(c0, c1), scratch);
 
-  // The corners' values, a batch at a time, in the order of the local points.
+  // The corners' values, in the order of the local points.
   values_.resize(points);
   inside_.resize(points);
-  double x[kBatch], y[kBatch], z[kBatch];
-  for (int first = 0; first < points; first += kBatch) {
-    const int n = std::min(kBatch, points - first);
-    for (int l = 0; l < n; ++l) {
-      const int p = first + l;
-      x[l] = lattice_.coordinate(0, c0[0] + p % m_[0]);
-      y[l] = lattice_.coordinate(1, c0[1] + p / m_[0] % m_[1]);
-      z[l] = lattice_.coordinate(2, c0[2] + p / stride[2]);
-    }
-    sampler_.values(x, y, z, n, values_.data() + first, scratch);
+  for (int a = 0; a < 3; ++a) {
+    axis_[a].resize(size_t(m_[a]));
+    for (int i = 0; i < m_[a]; ++i) axis_[a][size_t(i)] = lattice_.coordinate(a, c0[a] + i);
   }
-  for (int p = 0; p < points; ++p) {
-    const int i = c0[0] + p % m_[0], j = c0[1] + p / m_[0] % m_[1], k = c0[2] + p / stride[2];
-    inside_[p] = !lattice_.padding(i, j, k) && inside(values_[p]);
-  }
+  sampler_.grid(axis_[0].data(), axis_[1].data(), axis_[2].data(), m_, values_.data(), scratch);
+  for (int k = 0, p = 0; k < m_[2]; ++k)
+    for (int j = 0; j < m_[1]; ++j)
+      for (int i = 0; i < m_[0]; ++i, ++p)
+        inside_[p] = !lattice_.padding(c0[0] + i, c0[1] + j, c0[2] + k) && inside(values_[p]);
 
   slot_.assign(size_t(points) * 8, -1);
   auto local = [&](int base, int corner) {
     return base + (corner & 1) * stride[0] + (corner >> 1 & 1) * stride[1] +
            (corner >> 2 & 1) * stride[2];
   };
-  auto vertex = [&](int base, int in, int outside) -> uint32_t {
+  // The vertex on the edge from cube corner `in` to `outside` of the cell at local (i, j, k).
+  auto vertex = [&](const int cell[3], int in, int outside) -> uint16_t {
     const int lo = in & outside, d = in ^ outside;
-    const int p = local(base, lo);
+    auto corner = [&](int c, int q[3]) {
+      for (int a = 0; a < 3; ++a) q[a] = cell[a] + (c >> a & 1);
+      return q[0] + q[1] * stride[1] + q[2] * stride[2];
+    };
+    int q[3], qa[3], qb[3];
+    const int p = corner(lo, q);
     int32_t& s = slot_[size_t(p) * 8 + d];
-    if (s >= 0) return uint32_t(s);
+    if (s >= 0) return uint16_t(s);
     s = int32_t(edges_.size());
-    const int q[3] = {p % m_[0], p / m_[0] % m_[1], p / stride[2]};
-    const int g[3] = {c0[0] + q[0], c0[1] + q[1], c0[2] + q[2]};
     EdgePlace place = EdgePlace::Interior;
     for (int a = 0; a < 3; ++a) {
       if (d >> a & 1) continue;
@@ -70,26 +71,21 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
       }
       if (q[a] == 0 || q[a] == m_[a] - 1) place = EdgePlace::Solved;
     }
-    out->keys.push_back(lattice_.edge_key(g[0], g[1], g[2], d));
+    out->keys.push_back(lattice_.edge_key(c0[0] + q[0], c0[1] + q[1], c0[2] + q[2], d));
     out->place.push_back(place);
-    const int pa = local(base, in), pb = local(base, outside);
-    auto at = [&](int lp) {
-      return lattice_.point(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1], c0[2] + lp / stride[2]);
-    };
-    auto padded = [&](int lp) {
-      return lattice_.padding(c0[0] + lp % m_[0], c0[1] + lp / m_[0] % m_[1],
-                              c0[2] + lp / stride[2]);
-    };
+    const int pa = corner(in, qa), pb = corner(outside, qb);
+    const int ga[3] = {c0[0] + qa[0], c0[1] + qa[1], c0[2] + qa[2]};
+    const int gb[3] = {c0[0] + qb[0], c0[1] + qb[1], c0[2] + qb[2]};
     Edge e;
-    e.a = at(pa);
-    e.b = at(pb);
-    e.capped = padded(pa) || padded(pb);
+    e.a = lattice_.point(ga[0], ga[1], ga[2]);
+    e.b = lattice_.point(gb[0], gb[1], gb[2]);
+    e.capped = lattice_.padding(ga[0], ga[1], ga[2]) || lattice_.padding(gb[0], gb[1], gb[2]);
     e.code = uint8_t(d | (lo == in ? 0 : kEdgeDown) | (e.capped ? kEdgeCapped : 0));
     e.ga = solved(values_[pa], e.a, e.capped);
     e.gb = solved(values_[pb], e.b, e.capped);
     e.solve = place != EdgePlace::Borrowed;
     edges_.push_back(e);
-    return uint32_t(s);
+    return uint16_t(s);
   };
 
   for (int k = 0; k + 1 < m_[2]; ++k)
@@ -105,7 +101,8 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
           const TetCut& cut = tet_cut(t, in);
           if (cut.count == 0) continue;
           LeafCut c{{0, 0, 0, 0}, cut.count == 4};
-          for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(base, cut.in[e], cut.out[e]);
+          const int cell[3] = {i, j, k};
+          for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(cell, cut.in[e], cut.out[e]);
           out->cuts.push_back(c);
         }
       }
@@ -137,19 +134,12 @@ double inverse_quadratic(double x0, double g0, double x1, double g1, double x2, 
 // depend on its own values only, so a vertex has the same bits whichever block solves it.
 void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
   const size_t n = edges_.size();
-  struct State {
-    IllinoisBracket bracket;
-    double px, pg;          // the previous evaluation (an end, at first)
-    double qx, qg;          // the one before (the inside end, at first)
-    double rx = 0, rg = 0;  // and the one before that (none before the first step)
-    double t = -1;          // the solution, once found
-    uint8_t slow = 0;       // steps in a row that did not halve the bracket
-    uint8_t steps = 0;      // steps taken
-  };
-  std::vector<State> state(n);
-  std::vector<uint32_t> active;
+  std::vector<EdgeState>& state = state_;
+  std::vector<uint32_t>& active = active_;
+  state.assign(n, EdgeState());
+  active.clear();
   for (size_t e = 0; e < n; ++e) {
-    State& st = state[e];
+    EdgeState& st = state[e];
     st.bracket = {1, edges_[e].gb, 0, edges_[e].ga};
     st.px = 1;
     st.pg = edges_[e].gb;
@@ -162,13 +152,14 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     else
       st.t = 0;  // ga == 0: the inside end is on the surface
   }
-  double x[kBatch], y[kBatch], z[kBatch], f[kBatch], at[kBatch];
+  double x[kSamplerBatch], y[kSamplerBatch], z[kSamplerBatch], f[kSamplerBatch], at[kSamplerBatch];
+  const size_t batch = size_t(sampler_.batch());
   // A queue: an edge not done goes to the back, so that every batch but the leaf's last is full
   // (the evaluator's cost is mostly per batch). Each edge's steps are the same in any order.
   for (size_t first = 0, m; first < active.size(); first += m) {
-    m = std::min<size_t>(kBatch, active.size() - first);
+    m = std::min(batch, active.size() - first);
     for (size_t l = 0; l < m; ++l) {
-      const State& st = state[active[first + l]];
+      const EdgeState& st = state[active[first + l]];
       const IllinoisBracket& b = st.bracket;
       double s = st.steps > 0 ? inverse_quadratic(st.rx, st.rg, st.qx, st.qg, st.px, st.pg)
                               : b.false_position();
@@ -182,7 +173,7 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     sampler_.values(x, y, z, int(m), f, scratch);
     for (size_t l = 0; l < m; ++l) {
       const uint32_t id = active[first + l];
-      State& st = state[id];
+      EdgeState& st = state[id];
       IllinoisBracket& b = st.bracket;
       const double g = solved(f[l], {x[l], y[l], z[l]}, edges_[id].capped);
       const double width = b.lo - b.hi;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "math/illinois.h"
 #include "mesh/lattice.h"
 #include "mesh/mesh.h"
 #include "mesh/sampler.h"
@@ -32,10 +33,9 @@ enum class EdgePlace : uint8_t {
   Borrowed,  // on a lower face: its position is the solving leaf's (mesh.cpp's weld)
 };
 
-// What the normal needs of a vertex's lattice edge, in a byte (a vertex keeps it until the
-// normals are taken, after the weld): the edge's axes (bits 0-2, its key's direction), whether it
-// runs down them from its inside end to its outside end (kEdgeDown) and whether an end is a
-// padding point (kEdgeCapped).
+// What the normal needs of a vertex's lattice edge, in a byte: the edge's axes (bits 0-2, its key's
+// direction), whether it runs down them from its inside end to its outside end (kEdgeDown) and
+// whether an end is a padding point (kEdgeCapped).
 constexpr uint8_t kEdgeDown = 8, kEdgeCapped = 16;
 // The direction from the edge's inside end to its outside end (not of unit length).
 inline Vec3 edge_outward(uint8_t code) {
@@ -45,8 +45,12 @@ inline Vec3 edge_outward(uint8_t code) {
 
 // The polygon a tetrahedron cuts: a triangle, or a quadrilateral (v[3] too) that the mesher splits
 // along its shorter diagonal once every position is known (after the weld).
+// A leaf's vertices are numbered in 16 bits (a cut in 10 bytes: the leaves' cuts are the largest
+// part of what the mesher holds before the weld): a leaf has at most kMaxLeafPoints points, each
+// the lower end of at most 7 edges.
+constexpr int kMaxLeafPoints = 65536 / 8;
 struct LeafCut {
-  uint32_t v[4];  // indices into the leaf's vertices, counter-clockwise seen from outside
+  uint16_t v[4];  // indices into the leaf's vertices, counter-clockwise seen from outside
   bool quad;
 };
 
@@ -54,23 +58,25 @@ struct LeafMesh {
   std::vector<uint64_t> keys;  // each vertex's lattice edge
   std::vector<EdgePlace> place;
   std::vector<Vec3> positions;  // not a number where Borrowed
-  std::vector<uint8_t> edge;    // each vertex's EdgeCode
+  std::vector<uint8_t> edge;    // each vertex's EdgeCode (its normal's, taken after the weld)
   std::vector<LeafCut> cuts;
 };
 
 // The unit outward normal at vertex p: -inside_sign grad f / |grad f| from the exact gradient,
 // the cap's face axis where the cap (the vertex's edge reaches the padding) is what p lies on,
 // and the edge's direction out at a critical point of the field. `edge` is the vertex's EdgeCode.
-// Computed once per welded vertex (mesh.cpp).
+// Computed once per welded vertex, after the weld, with the sampler prepared for the leaf that
+// solved it (mesh.cpp).
 Vec3 vertex_normal(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice,
                    const Vec3& p, uint8_t edge, SamplerScratch& scratch);
 
+// Meshes leaves one after another, keeping its buffers from one to the next (one per thread).
 class LeafMesher {
  public:
   LeafMesher(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice)
       : field_(field), sampler_(sampler), lattice_(lattice) {}
 
-  // Meshes cells c0..c1-1 (per axis) into *out (cleared first).
+  // Meshes cells c0..c1-1 (per axis), at most kMaxLeafPoints points, into *out (cleared first).
   void run(const int c0[3], const int c1[3], SamplerScratch& scratch, LeafMesh* out);
 
  private:
@@ -83,7 +89,8 @@ class LeafMesher {
   const MeshField& field_;
   const FieldSampler& sampler_;
   const Lattice& lattice_;
-  int m_[3] = {0, 0, 0};  // points per axis in the block
+  int m_[3] = {0, 0, 0};         // points per axis in the block
+  std::vector<double> axis_[3];  // the block's points' coordinates along each axis
   std::vector<double> values_;
   std::vector<uint8_t> inside_;
   std::vector<int32_t> slot_;  // local point * 8 + direction -> vertex, or -1
@@ -98,6 +105,18 @@ class LeafMesher {
         gc;  // a third point of the edge's line (at a + tc (b - a)) and its value; tc 0: none
   };
   std::vector<Edge> edges_;
+  // solve_edges' state of each edge's search, and the queue of edges not done.
+  struct EdgeState {
+    IllinoisBracket bracket;
+    double px, pg;          // the previous evaluation (an end, at first)
+    double qx, qg;          // the one before (the inside end, at first)
+    double rx = 0, rg = 0;  // and the one before that (none before the first step)
+    double t = -1;          // the solution, once found
+    uint8_t slow = 0;       // steps in a row that did not halve the bracket
+    uint8_t steps = 0;      // steps taken
+  };
+  std::vector<EdgeState> state_;
+  std::vector<uint32_t> active_;
 };
 
 }  // namespace softtrace
