@@ -57,6 +57,34 @@ inline Interval line_segment_interval(const LineSegmentParams& m, const Box& b) 
   return iv::out(std::max(0.0, c - h) / m.r, (c + h) / m.r);
 }
 
+// The segment distance along the segment [A, B] (the register's, s in [0, 1], `len` long in the
+// world, its computed points within `pad` of it), narrowing the box's range in *range:
+// - the distance to a convex set is convex along a line, so its largest value is at an end (grown
+//   by pad / r, the distance being 1/r-Lipschitz, and by the ends' rounding);
+// - for the same reason its derivative q·e/|q| (q = X - closest(X), e = B - A) only grows with s,
+//   so the ends' one-sided derivatives bound it; an end on the segment itself (q = 0), or so close
+//   that the rounding of q (a few ulps of the coordinates) turns its direction by more than 1e-11,
+//   takes -|e| or |e|, the subgradient's extreme. Widened by 1e-9 |e| as ellipsoid_on_segment.
+inline void line_segment_on_segment(const LineSegmentParams& m, const Vec3& A, const Vec3& B,
+                                    double pad, double len, Interval* range, Interval* slope) {
+  const Vec3 q0 = A - line_segment_closest(m, A), q1 = B - line_segment_closest(m, B);
+  const Vec3 e = B - A;
+  const double n0 = length(q0), n1 = length(q1), ne = length(e);
+  const double scale = std::max({max_abs(A), max_abs(B), max_abs(m.a), max_abs(m.a + m.ab)});
+  const double hi = (std::max(n0, n1) + pad + 1e-12 * scale) / m.r * (1 + 1e-15);
+  range->hi = std::min(range->hi, hi);
+  if (!(len > 0)) {
+    *slope = Interval::entire();
+    return;
+  }
+  const double tiny = 1e-4 * scale;
+  const double lo_end = n0 > tiny ? dot(q0, e) / n0 : -ne,
+               hi_end = n1 > tiny ? dot(q1, e) / n1 : ne;
+  const double spad = 1e-9 * ne + 1e-300;
+  *slope = {std::max(-ne, lo_end - spad) / (m.r * len) * (1 + 1e-12),
+            std::min(ne, hi_end + spad) / (m.r * len) * (1 + 1e-12)};
+}
+
 // ρ = |(x, y)| over a box: exact image by interval arithmetic.
 inline Interval rho_range(const Box& b) {
   return sqrt(sqr(b.axis(0)) + sqr(b.axis(1)));

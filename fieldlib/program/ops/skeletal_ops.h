@@ -54,7 +54,14 @@ struct LineSegmentOp : RegisterToSlot {
     const LineSegmentParams m = load(io.K + in.a);
     io.I[in.out] = line_segment_interval(m, io.box(in.in));
     io.L[in.out] = 1 / m.r;
-    io.segment_facts_from_box(in.out);
+    if (!io.segment) {
+      io.segment_facts_from_box(in.out);
+      return;
+    }
+    const Vec3* S = io.segs + 2 * in.in;
+    line_segment_on_segment(m, S[0], S[1], io.seg_pads[in.in], io.seg_length, &io.I[in.out],
+                            &io.D[in.out]);
+    io.gauge_segment_facts(in.out);
   }
 };
 
