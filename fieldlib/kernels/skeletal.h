@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "kernels/gauge.h"
+#include "kernels/one_sided.h"
 #include "math/bound_util.h"
 #include "math/box.h"
 
@@ -112,11 +113,30 @@ inline double torus(const TorusParams& m, const Vec3& p, Vec3* grad) {
   return f;
 }
 
+// The rate of ρ along the segment [A, B] per unit of s ∈ [0, 1]: ρ, the distance to the z axis, is
+// convex along a line, so ρ' = (X·e)_xy / ρ only grows with s and the ends bound it; an end on the
+// axis, or so near it that the rounding of its coordinates turns (x, y)/ρ by more than 1e-11, takes
+// -|e_xy| or |e_xy|, the subgradient's extreme. Widened by 1e-9 |e_xy| as ellipsoid_on_segment.
+inline Interval rho_rate_on_segment(const Vec3& A, const Vec3& B) {
+  const double ex = B.x - A.x, ey = B.y - A.y, ne = std::hypot(ex, ey);
+  const double rA = std::hypot(A.x, A.y), rB = std::hypot(B.x, B.y);
+  const double tiny = 1e-4 * std::max(max_abs(A), max_abs(B));
+  const double lo = rA > tiny ? (A.x * ex + A.y * ey) / rA : -ne;
+  const double hi = rB > tiny ? (B.x * ex + B.y * ey) / rB : ne;
+  const double pad = 1e-9 * ne + 1e-300;
+  return {std::max(-ne, lo - pad), std::min(ne, hi + pad)};
+}
+
 // The value interval and the Lipschitz bound over `b` from one computation of the terms: ∇f has
 // the orthogonal parts ∂_1/a (along ∇ρ) and ∂_2/b (along z), each bounded from the intervals.
-inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, double* lipschitz) {
-  const Interval u[2] = {abs(rho_range(b) - Interval(m.R)) / Interval(m.a),
-                         abs(b.axis(2)) / Interval(m.b)};
+// torus_bounds_along with `seg` (the segment [seg[0], seg[1]] inside b, `len` long in the world)
+// also the slope along it: the chain rule through |ρ - R|/a and |z|/b (OneSidedTerm::rate, each
+// piecewise linear in its argument) into the power sum's partials (power_sum_slope), per unit of
+// the world's t.
+inline void torus_bounds_along(const TorusParams& m, const Box& b, Interval* value,
+                               double* lipschitz, const Vec3* seg, double len, Interval* slope) {
+  const Interval s = rho_range(b) - Interval(m.R), z = b.axis(2);
+  const Interval u[2] = {abs(s) / Interval(m.a), abs(z) / Interval(m.b)};
   const Interval f = power_sum(u, 2, m.n);
   *value = f;
   if (!lipschitz) return;
@@ -124,6 +144,22 @@ inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, do
   const double g2 = power_sum_partial_bound(u[1], f, m.n) / m.b;
   const double L = std::sqrt(g1 * g1 + g2 * g2) * (1 + 1e-13);
   *lipschitz = std::isnan(L) ? m.global_L : std::min(m.global_L, L);
+  if (!seg) return;
+  if (!(len > 0)) {
+    *slope = Interval::entire();
+    return;
+  }
+  const double ez = seg[1].z - seg[0].z, zpad = 1e-9 * std::abs(ez) + 1e-300;
+  const Interval inv_len = Interval(1.0) / Interval(len);
+  const Interval du[2] = {
+      OneSidedTerm{m.a, m.a, 0}.rate(s, rho_rate_on_segment(seg[0], seg[1]) * inv_len),
+      OneSidedTerm{m.b, m.b, 0}.rate(z, Interval(ez - zpad, ez + zpad) * inv_len)};
+  *slope = power_sum_slope(u, du, 2, f, m.n);
+}
+
+// Over the box only.
+inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, double* lipschitz) {
+  torus_bounds_along(m, b, value, lipschitz, nullptr, 0, nullptr);
 }
 
 }  // namespace softtrace

@@ -162,9 +162,9 @@ TEST_P(NodeSweep, ProgramSegmentSlopeHoldsCentralDifferences) {
   }
 }
 
-// The combinations whose slope along a segment is derived (docs/math.md §8, "Slopes along a
-// segment") must show it one-signed where the field rises or falls through a short segment: a
-// slope of [-L, L] never is. Counts such segments among 400 short ones.
+// The combinations and distances whose slope along a segment is derived (docs/math.md §8, "Slopes
+// along a segment") must show it one-signed where the field rises or falls through a short segment:
+// a slope of [-L, L] never is. Counts such segments among 400 short ones.
 TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
   const char* soft_a =
       R"({"type":"soft_object","translate":[-0.4,0,0],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2}})";
@@ -191,6 +191,13 @@ TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
        Convention::Soft},
       {"perlin_difference", pair(R"({"type":"perlin_difference")", soft_a, soft_b),
        Convention::Soft},
+      // Distances whose slope is derived from their own convexity along a line.
+      {"segment", R"({"type":"segment","p0":[-0.5,0,0],"p1":[0.5,0.3,0.2],"radius":0.7})",
+       Convention::Constructive},
+      {"torus", R"({"type":"torus","major_radius":0.8,"radii":[0.3,0.4]})",
+       Convention::Constructive},
+      {"torus_n1_5", R"({"type":"torus","major_radius":1,"radii":[0.5,0.3],"n":1.5})",
+       Convention::Constructive},
   };
   const Box domain({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
   for (const Kind& k : kinds) {
