@@ -136,8 +136,14 @@ struct PolarPrismOp : RegisterToSlot {
     io.local(in, [&](const Vec3& q, Vec3* g) { return polar_prism(load(io.K + in.a), q, g); });
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
-    polar_prism_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
-    io.segment_facts_from_box(in.out);
+    if (!io.segment) {
+      polar_prism_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      io.segment_facts_from_box(in.out);
+      return;
+    }
+    polar_prism_bounds_along(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out],
+                             io.segs + 2 * in.in, io.seg_length, &io.D[in.out]);
+    io.gauge_segment_facts(in.out);
   }
 };
 

@@ -198,6 +198,12 @@ TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
        Convention::Constructive},
       {"torus_n1_5", R"({"type":"torus","major_radius":1,"radii":[0.5,0.3],"n":1.5})",
        Convention::Constructive},
+      {"polar_prism_rose",
+       R"({"type":"polar_prism","radius":0.8,"lobes":5,"amplitude":0.3,"profile":"cosine","half_height":0.6})",
+       Convention::Constructive},
+      {"polar_prism_star",
+       R"({"type":"polar_prism","radius":0.8,"lobes":5,"amplitude":0.35,"profile":"triangle","half_height":0.6})",
+       Convention::Constructive},
   };
   const Box domain({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
   for (const Kind& k : kinds) {
