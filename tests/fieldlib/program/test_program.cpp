@@ -1034,21 +1034,25 @@ TEST(Program, RicciBlendsAreOneInstructionAfterTheirChildren) {
     bounds(prog, Box::around({5, 5, 5}, 0.1), ws);
     EXPECT_EQ(ws.view.code.size(), prog.code.size() - prog.groups.size()) << json;
     EXPECT_EQ(ws.view.code.back().n, c.children) << json;
-    // Along a segment: the slope is [-L, L], which bounds the differences of values along it.
+    // Along a segment: the slope (the chain rule's, ricci_slope) lies in [-L, L] and bounds the
+    // difference quotients of values along it.
     std::mt19937_64 rng(23);
     std::uniform_real_distribution<double> u(-2, 2);
     for (int i = 0; i < 100; ++i) {
       const Segment seg{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
       const BoxBounds bb = bounds(prog, seg, ws);
-      ASSERT_TRUE(same_bits(bb.slope.lo, -bb.lipschitz) && same_bits(bb.slope.hi, bb.lipschitz))
-          << json;
+      ASSERT_TRUE(bb.slope.lo >= -bb.lipschitz && bb.slope.hi <= bb.lipschitz) << json;
       EXPECT_EQ(bb.quiet, 0) << json;
       const double len = length(seg.b - seg.a);
       double prev = node->value(seg.a);
       for (int j = 0; j <= 16; ++j) {
         const double v = node->value(seg.a + (seg.b - seg.a) * (j / 16.0));
         ASSERT_TRUE(bb.value.contains(v)) << json << ": " << v;
-        ASSERT_LE(std::abs(v - prev), bb.lipschitz * len / 16 * (1 + 1e-9) + 1e-15) << json;
+        if (j > 0 && std::isfinite(v) && std::isfinite(prev)) {
+          const double q = (v - prev) / (len / 16), slack = 1e-9 * bb.lipschitz + 1e-12;
+          ASSERT_TRUE(q >= bb.slope.lo - slack && q <= bb.slope.hi + slack)
+              << json << ": " << q << " outside [" << bb.slope.lo << ", " << bb.slope.hi << "]";
+        }
         prev = v;
       }
     }
