@@ -19,6 +19,7 @@
 #include <cmath>
 
 #include "kernels/gauge.h"
+#include "kernels/one_sided.h"
 #include "kernels/skeletal.h"
 #include "math/bound_util.h"
 #include "math/box.h"
@@ -124,40 +125,93 @@ inline Interval polar_prism_profile_range(PolarProfile kind, double t0, double t
   return {std::max(-1.0, lo - 1e-12), std::min(1.0, hi + 1e-12)};
 }
 
+// The range of kφ over the box, padded for atan2's rounding, into [*t0, *t1]; false where the
+// (x, y) rectangle meets the axis (or is unbounded), where φ takes every value.
+inline bool polar_prism_theta_range(const PolarPrismParams& m, const Box& b, double* t0,
+                                    double* t1) {
+  const bool misses_axis = b.lo.x > 0 || b.hi.x < 0 || b.lo.y > 0 || b.hi.y < 0;
+  if (!misses_axis || !b.bounded()) return false;
+  const Vec3 c = b.center();
+  const double phi_c = std::atan2(c.y, c.x);
+  double lo = 0, hi = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double x = (i & 1) ? b.hi.x : b.lo.x, y = (i & 2) ? b.hi.y : b.lo.y;
+    const double d = std::remainder(std::atan2(y, x) - phi_c, 2 * M_PI);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  const double pad = 1e-12 * (1 + std::abs(phi_c));  // atan2 and the subtraction's rounding
+  *t0 = m.k * (phi_c + lo - pad);
+  *t1 = m.k * (phi_c + hi + pad);
+  return true;
+}
+
 // R(φ) over the box: [Rmin, Rmax] unless the rectangle misses the axis.
 inline Interval polar_prism_radius_range(const PolarPrismParams& m, const Box& b) {
   Interval g(-1, 1);
-  const bool misses_axis = b.lo.x > 0 || b.hi.x < 0 || b.lo.y > 0 || b.hi.y < 0;
-  if (misses_axis && b.bounded()) {
-    const Vec3 c = b.center();
-    const double phi_c = std::atan2(c.y, c.x);
-    double lo = 0, hi = 0;
-    for (int i = 0; i < 4; ++i) {
-      const double x = (i & 1) ? b.hi.x : b.lo.x, y = (i & 2) ? b.hi.y : b.lo.y;
-      const double d = std::remainder(std::atan2(y, x) - phi_c, 2 * M_PI);
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-    const double pad = 1e-12 * (1 + std::abs(phi_c));  // atan2 and the subtraction's rounding
-    g = polar_prism_profile_range(m.kind, m.k * (phi_c + lo - pad), m.k * (phi_c + hi + pad));
-  }
+  double t0, t1;
+  if (polar_prism_theta_range(m, b, &t0, &t1)) g = polar_prism_profile_range(m.kind, t0, t1);
   return {iv::down(m.r0 * (1 + m.A * g.lo) * (1 - 1e-15)),
           iv::up(m.r0 * (1 + m.A * g.hi) * (1 + 1e-15))};
 }
 
-// The value interval over `b`, and the Lipschitz bound into *lipschitz when non-null.
-inline void polar_prism_bounds(const PolarPrismParams& m, const Box& b, Interval* value,
-                               double* lipschitz) {
-  const Interval u[2] = {rho_range(b) / polar_prism_radius_range(m, b),
-                         abs(b.axis(2)) / Interval(m.c)};
+// R'(φ) = r0 A k g'(kφ) over the box: g' = -sin θ = cos(θ + π/2) for the rose, and for the star
+// -2/π sgn(θ) (θ wrapped to [-π, π]), one-signed between multiples of π. The whole
+// [-dR_max, dR_max] where φ takes every value.
+inline Interval polar_prism_radius_rate(const PolarPrismParams& m, const Box& b) {
+  double t0, t1;
+  if (!polar_prism_theta_range(m, b, &t0, &t1)) return {-m.dR_max, m.dR_max};
+  Interval dg(-1, 1);
+  if (m.kind == PolarProfile::Cosine) {
+    dg = polar_prism_profile_range(PolarProfile::Cosine, t0 + M_PI / 2, t1 + M_PI / 2);
+  } else if (std::floor(t0 / M_PI) == std::floor(t1 / M_PI)) {
+    dg = std::remainder(0.5 * (t0 + t1), 2 * M_PI) > 0 ? Interval(-1) : Interval(1);
+  }
+  const double scale = m.dR_max * (1 + 1e-12);
+  return {dg.lo * scale, dg.hi * scale};
+}
+
+// The value interval and the Lipschitz bound over `b` (when lipschitz is non-null); with `seg`
+// (the segment [seg[0], seg[1]] inside b, `len` long in the world) also the slope along it, per
+// unit of the world's t. Along the line X = A + s e, h = ρ/R(φ) changes at
+//   h' = ρ'/R - (ρ φ') R'(φ)/R²,  ρ φ' = (x e_y - y e_x)/ρ = L_z/ρ,  L_z = A_x e_y - A_y e_x,
+// L_z being constant along a line (X × e = A × e); ρ' is bounded by its ends (ρ convex along a
+// line, rho_rate_on_segment), ρ, R and R' by their ranges over the box. |z|/c changes at ±e_z/c
+// (OneSidedTerm::rate); the power sum's partials chain them (power_sum_slope).
+inline void polar_prism_bounds_along(const PolarPrismParams& m, const Box& b, Interval* value,
+                                     double* lipschitz, const Vec3* seg, double len,
+                                     Interval* slope) {
+  const Interval rho = rho_range(b), R = polar_prism_radius_range(m, b), z = b.axis(2);
+  const Interval u[2] = {rho / R, abs(z) / Interval(m.c)};
   const Interval f = power_sum(u, 2, m.n);
   *value = f;
   if (!lipschitz) return;
-  const double g1 = power_sum_partial_bound(u[0], f, m.n) *
-                    polar_prism_h_slope(m, polar_prism_radius_range(m, b));
+  const double g1 = power_sum_partial_bound(u[0], f, m.n) * polar_prism_h_slope(m, R);
   const double g2 = power_sum_partial_bound(u[1], f, m.n) / m.c;
   const double L = std::sqrt(g1 * g1 + g2 * g2) * (1 + 1e-13);
   *lipschitz = std::isnan(L) ? m.global : std::min(m.global, L);
+  if (!seg) return;
+  if (!(len > 0)) {
+    *slope = Interval::entire();
+    return;
+  }
+  const Vec3 A = seg[0], e = seg[1] - seg[0];
+  const double lz = A.x * e.y - A.y * e.x;
+  const double lz_pad = 1e-12 * (std::abs(A.x * e.y) + std::abs(A.y * e.x)) + 1e-300;
+  const Interval Lz(lz - lz_pad, lz + lz_pad);
+  const Interval dh =
+      rho_rate_on_segment(seg[0], seg[1]) / R - Lz * polar_prism_radius_rate(m, b) / (rho * sqr(R));
+  const double zpad = 1e-9 * std::abs(e.z) + 1e-300;
+  const Interval inv_len = Interval(1.0) / Interval(len);
+  const Interval du[2] = {
+      dh * inv_len, OneSidedTerm{m.c, m.c, 0}.rate(z, Interval(e.z - zpad, e.z + zpad) * inv_len)};
+  *slope = power_sum_slope(u, du, 2, f, m.n);
+}
+
+// Over the box only.
+inline void polar_prism_bounds(const PolarPrismParams& m, const Box& b, Interval* value,
+                               double* lipschitz) {
+  polar_prism_bounds_along(m, b, value, lipschitz, nullptr, 0, nullptr);
 }
 
 }  // namespace softtrace

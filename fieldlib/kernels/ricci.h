@@ -19,6 +19,7 @@
 
 #include "kernels/complement.h"
 #include "kernels/gauge.h"
+#include "kernels/super_ellipsoidal.h"
 #include "math/bound_util.h"
 #include "math/interval.h"
 #include "math/scratch.h"
@@ -179,6 +180,39 @@ inline double ricci_lipschitz(const RicciParams& m, const Interval* f, const dou
     s += flat_product(a, cL[i]);
   }
   return std::min({global_L, ricci_combine(m, cL.data(), k), s * (1 + 1e-12)});
+}
+
+// B's slope along a segment (docs/math.md §8, "Slopes along a segment") from the children's ranges
+// f and slopes D there: each argument's slope by the chain rule (g = f: D; 1 - f: -D; 1/f: -D/f²
+// with 1/f² between its ends' values, and 0 where f is at the floor), then the power mean's, which
+// is the super-ellipsoidal intersection's for q = n and the union's for q = -n.
+inline Interval ricci_slope(const RicciParams& m, const Interval* f, const Interval* D, size_t k) {
+  Scratch<Interval> G(k), dG(k);
+  for (size_t i = 0; i < k; ++i) {
+    G[i] = ricci_arg_range(m, i, f[i]);
+    switch (ricci_arg_kind(m, i)) {
+      case RicciArg::Same:
+        dG[i] = D[i];
+        break;
+      case RicciArg::SoftComplement:
+        dG[i] = -D[i];
+        break;
+      case RicciArg::CgComplement: {
+        if (f[i].hi <= kCgFloor) {
+          dG[i] = 0.0;
+          break;
+        }
+        const double lo = std::max(f[i].lo, kCgFloor);
+        const Interval inv_sq(1 / (f[i].hi * f[i].hi) * (1 - 1e-12), 1 / (lo * lo) * (1 + 1e-12));
+        dG[i] = -(D[i] * inv_sq);
+        if (f[i].lo <= kCgFloor) dG[i] = hull(dG[i], 0.0);
+        break;
+      }
+    }
+  }
+  const Interval B = ricci_range(m, G.data(), k);
+  return m.positive ? super_intersection_slope(G.data(), dG.data(), k, m.n, B)
+                    : super_union_slope(G.data(), dG.data(), k, m.n, B);
 }
 
 }  // namespace softtrace

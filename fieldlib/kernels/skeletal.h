@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "kernels/gauge.h"
+#include "kernels/one_sided.h"
 #include "math/bound_util.h"
 #include "math/box.h"
 
@@ -57,6 +58,34 @@ inline Interval line_segment_interval(const LineSegmentParams& m, const Box& b) 
   return iv::out(std::max(0.0, c - h) / m.r, (c + h) / m.r);
 }
 
+// The segment distance along the segment [A, B] (the register's, s in [0, 1], `len` long in the
+// world, its computed points within `pad` of it), narrowing the box's range in *range:
+// - the distance to a convex set is convex along a line, so its largest value is at an end (grown
+//   by pad / r, the distance being 1/r-Lipschitz, and by the ends' rounding);
+// - for the same reason its derivative q·e/|q| (q = X - closest(X), e = B - A) only grows with s,
+//   so the ends' one-sided derivatives bound it; an end on the segment itself (q = 0), or so close
+//   that the rounding of q (a few ulps of the coordinates) turns its direction by more than 1e-11,
+//   takes -|e| or |e|, the subgradient's extreme. Widened by 1e-9 |e| as ellipsoid_on_segment.
+inline void line_segment_on_segment(const LineSegmentParams& m, const Vec3& A, const Vec3& B,
+                                    double pad, double len, Interval* range, Interval* slope) {
+  const Vec3 q0 = A - line_segment_closest(m, A), q1 = B - line_segment_closest(m, B);
+  const Vec3 e = B - A;
+  const double n0 = length(q0), n1 = length(q1), ne = length(e);
+  const double scale = std::max({max_abs(A), max_abs(B), max_abs(m.a), max_abs(m.a + m.ab)});
+  const double hi = (std::max(n0, n1) + pad + 1e-12 * scale) / m.r * (1 + 1e-15);
+  range->hi = std::min(range->hi, hi);
+  if (!(len > 0)) {
+    *slope = Interval::entire();
+    return;
+  }
+  const double tiny = 1e-4 * scale;
+  const double lo_end = n0 > tiny ? dot(q0, e) / n0 : -ne,
+               hi_end = n1 > tiny ? dot(q1, e) / n1 : ne;
+  const double spad = 1e-9 * ne + 1e-300;
+  *slope = {std::max(-ne, lo_end - spad) / (m.r * len) * (1 + 1e-12),
+            std::min(ne, hi_end + spad) / (m.r * len) * (1 + 1e-12)};
+}
+
 // ρ = |(x, y)| over a box: exact image by interval arithmetic.
 inline Interval rho_range(const Box& b) {
   return sqrt(sqr(b.axis(0)) + sqr(b.axis(1)));
@@ -84,11 +113,30 @@ inline double torus(const TorusParams& m, const Vec3& p, Vec3* grad) {
   return f;
 }
 
+// The rate of ρ along the segment [A, B] per unit of s ∈ [0, 1]: ρ, the distance to the z axis, is
+// convex along a line, so ρ' = (X·e)_xy / ρ only grows with s and the ends bound it; an end on the
+// axis, or so near it that the rounding of its coordinates turns (x, y)/ρ by more than 1e-11, takes
+// -|e_xy| or |e_xy|, the subgradient's extreme. Widened by 1e-9 |e_xy| as ellipsoid_on_segment.
+inline Interval rho_rate_on_segment(const Vec3& A, const Vec3& B) {
+  const double ex = B.x - A.x, ey = B.y - A.y, ne = std::hypot(ex, ey);
+  const double rA = std::hypot(A.x, A.y), rB = std::hypot(B.x, B.y);
+  const double tiny = 1e-4 * std::max(max_abs(A), max_abs(B));
+  const double lo = rA > tiny ? (A.x * ex + A.y * ey) / rA : -ne;
+  const double hi = rB > tiny ? (B.x * ex + B.y * ey) / rB : ne;
+  const double pad = 1e-9 * ne + 1e-300;
+  return {std::max(-ne, lo - pad), std::min(ne, hi + pad)};
+}
+
 // The value interval and the Lipschitz bound over `b` from one computation of the terms: ∇f has
 // the orthogonal parts ∂_1/a (along ∇ρ) and ∂_2/b (along z), each bounded from the intervals.
-inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, double* lipschitz) {
-  const Interval u[2] = {abs(rho_range(b) - Interval(m.R)) / Interval(m.a),
-                         abs(b.axis(2)) / Interval(m.b)};
+// torus_bounds_along with `seg` (the segment [seg[0], seg[1]] inside b, `len` long in the world)
+// also the slope along it: the chain rule through |ρ - R|/a and |z|/b (OneSidedTerm::rate, each
+// piecewise linear in its argument) into the power sum's partials (power_sum_slope), per unit of
+// the world's t.
+inline void torus_bounds_along(const TorusParams& m, const Box& b, Interval* value,
+                               double* lipschitz, const Vec3* seg, double len, Interval* slope) {
+  const Interval s = rho_range(b) - Interval(m.R), z = b.axis(2);
+  const Interval u[2] = {abs(s) / Interval(m.a), abs(z) / Interval(m.b)};
   const Interval f = power_sum(u, 2, m.n);
   *value = f;
   if (!lipschitz) return;
@@ -96,6 +144,22 @@ inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, do
   const double g2 = power_sum_partial_bound(u[1], f, m.n) / m.b;
   const double L = std::sqrt(g1 * g1 + g2 * g2) * (1 + 1e-13);
   *lipschitz = std::isnan(L) ? m.global_L : std::min(m.global_L, L);
+  if (!seg) return;
+  if (!(len > 0)) {
+    *slope = Interval::entire();
+    return;
+  }
+  const double ez = seg[1].z - seg[0].z, zpad = 1e-9 * std::abs(ez) + 1e-300;
+  const Interval inv_len = Interval(1.0) / Interval(len);
+  const Interval du[2] = {
+      OneSidedTerm{m.a, m.a, 0}.rate(s, rho_rate_on_segment(seg[0], seg[1]) * inv_len),
+      OneSidedTerm{m.b, m.b, 0}.rate(z, Interval(ez - zpad, ez + zpad) * inv_len)};
+  *slope = power_sum_slope(u, du, 2, f, m.n);
+}
+
+// Over the box only.
+inline void torus_bounds(const TorusParams& m, const Box& b, Interval* value, double* lipschitz) {
+  torus_bounds_along(m, b, value, lipschitz, nullptr, 0, nullptr);
 }
 
 }  // namespace softtrace

@@ -65,6 +65,32 @@ inline double super_union_lipschitz(const Interval* x, const double* L, size_t k
   return std::min(L_max, sum * (1 + 1e-13));
 }
 
+// U's slope along a segment (docs/math.md §8, "Slopes along a segment"), from the children's
+// ranges x and slopes D there, U in `U`: the chain rule Σ v_i x_i' with v_i = ∂U/∂x_i =
+// (U/x_i)^(n+1) between (U_lo/x_i,hi)^(n+1) and min(1, (U_hi/x_i,lo)^(n+1)); where some child may
+// be <= 0, U = 0 with slope 0 there and is continuous across, so 0 joins the hull. And since
+// v_i >= 0 with Σ v_i <= 1 (the lipschitz bound's argument), U' is a convex combination of 0 and
+// the children's slopes: within the hull of 0 and their ends.
+inline Interval super_union_slope(const Interval* x, const Interval* D, size_t k, double n,
+                                  Interval U) {
+  Interval s(0.0);
+  double lo = 0, hi = 0;
+  bool may_vanish = false;
+  for (size_t i = 0; i < k; ++i) {
+    const double v_hi =
+        x[i].lo > 0 ? std::min(1.0, std::pow(U.hi / x[i].lo, n + 1) * (1 + 1e-13)) : 1.0;
+    const double v_lo = x[i].hi > 0 && U.lo > 0
+                            ? std::min(v_hi, std::pow(U.lo / x[i].hi, n + 1) * (1 - 1e-13))
+                            : 0.0;
+    s = s + Interval(v_lo, v_hi) * D[i];
+    lo = std::min(lo, D[i].lo);
+    hi = std::max(hi, D[i].hi);
+    may_vanish = may_vanish || x[i].lo <= 0;
+  }
+  if (may_vanish) s = hull(s, 0.0);
+  return {std::max(s.lo, lo), std::min(s.hi, hi)};
+}
+
 // (Σ x_i^n)^(1/n) with x_i clamped at 0 — 000 Eq. 6 B_RI^cg. x holds the children's values and
 // is clamped in place; the gradient Σ g_i (x_i/I)^(n-1) into grad when it is non-null.
 inline double super_intersection(double* x, const Vec3* g, size_t k, double n, Vec3* grad) {
@@ -88,6 +114,17 @@ inline double super_intersection_lipschitz(const Interval* x, const double* L, s
   double bound = sum * (1 + 1e-13);
   if (n >= 1) bound = std::min(bound, power_sum(L, static_cast<int>(k), n, nullptr) * (1 + 1e-13));
   return std::isnan(bound) ? global_L : std::min(global_L, bound);
+}
+
+// The intersection's slope along a segment from the children's ranges x and slopes D there, f its
+// range: the power sum's (power_sum_slope) of the terms [x_i]_+, whose rate is x_i' where x_i > 0,
+// 0 where x_i <= 0 all along, and between the two where it may cross 0 (a kink).
+inline Interval super_intersection_slope(const Interval* x, const Interval* D, size_t k, double n,
+                                         Interval f) {
+  Scratch<Interval> du(k);
+  for (size_t i = 0; i < k; ++i)
+    du[i] = x[i].lo > 0 ? D[i] : x[i].hi <= 0 ? Interval(0.0) : hull(D[i], 0.0);
+  return power_sum_slope(x, du.data(), static_cast<int>(k), f, n);
 }
 
 }  // namespace softtrace

@@ -241,6 +241,9 @@ struct SuperUnionOp : Combination<SuperUnionOp> {
     *lipschitz = super_union_lipschitz(x, L, n, c[0], f);
     return f;
   }
+  static Interval slope(const double* c, const Interval* x, const Interval* D, int n) {
+    return super_union_slope(x, D, n, c[0], super_union_interval(x, n, c[0]));
+  }
 };
 
 // (Σ [args]_+^n)^(1/n), B_RI^cg. Constants (at in): n, the global bound.
@@ -257,6 +260,9 @@ struct SuperIntersectOp : Combination<SuperIntersectOp> {
     const Interval f = power_sum(x, n, c[0]);
     *lipschitz = super_intersection_lipschitz(x, L, n, c[0], f, c[1]);
     return f;
+  }
+  static Interval slope(const double* c, const Interval* x, const Interval* D, int n) {
+    return super_intersection_slope(x, D, n, c[0], power_sum(x, n, c[0]));
   }
 };
 
@@ -344,6 +350,9 @@ struct RicciOp : Combination<RicciOp> {
                            double* lipschitz) {
     *lipschitz = ricci_lipschitz(load(c), x, L, n, c[3]);
     return ricci_interval(load(c), x, n);
+  }
+  static Interval slope(const double* c, const Interval* x, const Interval* D, int n) {
+    return ricci_slope(load(c), x, D, n);
   }
 };
 

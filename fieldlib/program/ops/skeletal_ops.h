@@ -54,7 +54,14 @@ struct LineSegmentOp : RegisterToSlot {
     const LineSegmentParams m = load(io.K + in.a);
     io.I[in.out] = line_segment_interval(m, io.box(in.in));
     io.L[in.out] = 1 / m.r;
-    io.segment_facts_from_box(in.out);
+    if (!io.segment) {
+      io.segment_facts_from_box(in.out);
+      return;
+    }
+    const Vec3* S = io.segs + 2 * in.in;
+    line_segment_on_segment(m, S[0], S[1], io.seg_pads[in.in], io.seg_length, &io.I[in.out],
+                            &io.D[in.out]);
+    io.gauge_segment_facts(in.out);
   }
 };
 
@@ -85,8 +92,14 @@ struct TorusOp : RegisterToSlot {
     io.local(in, [&](const Vec3& q, Vec3* g) { return torus(load(io.K + in.a), q, g); });
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
-    torus_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
-    io.segment_facts_from_box(in.out);
+    if (!io.segment) {
+      torus_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      io.segment_facts_from_box(in.out);
+      return;
+    }
+    torus_bounds_along(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out],
+                       io.segs + 2 * in.in, io.seg_length, &io.D[in.out]);
+    io.gauge_segment_facts(in.out);
   }
 };
 
@@ -123,8 +136,14 @@ struct PolarPrismOp : RegisterToSlot {
     io.local(in, [&](const Vec3& q, Vec3* g) { return polar_prism(load(io.K + in.a), q, g); });
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
-    polar_prism_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
-    io.segment_facts_from_box(in.out);
+    if (!io.segment) {
+      polar_prism_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      io.segment_facts_from_box(in.out);
+      return;
+    }
+    polar_prism_bounds_along(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out],
+                             io.segs + 2 * in.in, io.seg_length, &io.D[in.out]);
+    io.gauge_segment_facts(in.out);
   }
 };
 

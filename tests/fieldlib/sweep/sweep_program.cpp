@@ -162,9 +162,9 @@ TEST_P(NodeSweep, ProgramSegmentSlopeHoldsCentralDifferences) {
   }
 }
 
-// The combinations whose slope along a segment is derived (docs/math.md §8, "Slopes along a
-// segment") must show it one-signed where the field rises or falls through a short segment: a
-// slope of [-L, L] never is. Counts such segments among 400 short ones.
+// The combinations and distances whose slope along a segment is derived (docs/math.md §8, "Slopes
+// along a segment") must show it one-signed where the field rises or falls through a short segment:
+// a slope of [-L, L] never is. Counts such segments among 400 short ones.
 TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
   const char* soft_a =
       R"({"type":"soft_object","translate":[-0.4,0,0],"distance":{"type":"lp_metric","radii":[1,0.8,1.1],"n":2}})";
@@ -191,6 +191,28 @@ TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
        Convention::Soft},
       {"perlin_difference", pair(R"({"type":"perlin_difference")", soft_a, soft_b),
        Convention::Soft},
+      {"ricci_union", pair(R"({"type":"ricci_union","n":3)", soft_a, soft_b), Convention::Soft},
+      {"ricci_difference_cg", pair(R"({"type":"ricci_difference","n":4)", dist_a, dist_b),
+       Convention::Constructive},
+      {"super_ellipsoidal_union",
+       pair(R"({"type":"super_ellipsoidal_union","n":4)", dist_a, dist_b),
+       Convention::Constructive},
+      {"super_ellipsoidal_intersection",
+       pair(R"({"type":"super_ellipsoidal_intersection","n":4)", dist_a, dist_b),
+       Convention::Constructive},
+      // Distances whose slope is derived from their own convexity along a line.
+      {"segment", R"({"type":"segment","p0":[-0.5,0,0],"p1":[0.5,0.3,0.2],"radius":0.7})",
+       Convention::Constructive},
+      {"torus", R"({"type":"torus","major_radius":0.8,"radii":[0.3,0.4]})",
+       Convention::Constructive},
+      {"torus_n1_5", R"({"type":"torus","major_radius":1,"radii":[0.5,0.3],"n":1.5})",
+       Convention::Constructive},
+      {"polar_prism_rose",
+       R"({"type":"polar_prism","radius":0.8,"lobes":5,"amplitude":0.3,"profile":"cosine","half_height":0.6})",
+       Convention::Constructive},
+      {"polar_prism_star",
+       R"({"type":"polar_prism","radius":0.8,"lobes":5,"amplitude":0.35,"profile":"triangle","half_height":0.6})",
+       Convention::Constructive},
   };
   const Box domain({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5});
   for (const Kind& k : kinds) {
