@@ -16,6 +16,16 @@ std::string describe(const nlohmann::json& v) {
   return s;
 }
 
+// The finite number array[i] of the array `key` of `p`, or the located error.
+double element(const Params& p, const std::string& key, const nlohmann::json& array, size_t i) {
+  const nlohmann::json& e = array[i];
+  if (!e.is_number()) p.fail_at(key, std::to_string(i), "expected a number, got " + describe(e));
+  const double d = e.get<double>();
+  if (!std::isfinite(d))
+    p.fail_at(key, std::to_string(i), "expected a finite number, got " + describe(e));
+  return d;
+}
+
 }  // namespace
 
 std::string json_excerpt(const nlohmann::json& v) {
@@ -85,7 +95,9 @@ namespace {
 // An object has a handful of keys: a vector searched from the front beats a set's allocations
 // (the loader asks some 20 times per node of a 1000-component scene).
 void remember(std::vector<std::string>& keys, const std::string& key) {
-  if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  if (std::find(keys.begin(), keys.end(), key) != keys.end()) return;
+  if (keys.empty()) keys.reserve(8);  // one allocation for the handful, not four
+  keys.push_back(key);
 }
 
 }  // namespace
@@ -162,13 +174,8 @@ std::vector<double> Params::numbers(const std::string& key) const {
   const json& v = at(key);
   if (!v.is_array() || v.empty()) fail(key, "expected a non-empty array of numbers");
   std::vector<double> out;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const std::string sub = std::to_string(i);
-    if (!v[i].is_number()) fail_at(key, sub, "expected a number, got " + describe(v[i]));
-    const double d = v[i].get<double>();
-    if (!std::isfinite(d)) fail_at(key, sub, "expected a finite number, got " + describe(v[i]));
-    out.push_back(d);
-  }
+  out.reserve(v.size());
+  for (size_t i = 0; i < v.size(); ++i) out.push_back(element(*this, key, v, i));
   return out;
 }
 
@@ -184,8 +191,7 @@ std::vector<double> Params::numbers_or_scalar(const std::string& key, size_t cou
 Vec3 Params::vec3(const std::string& key) const {
   const json& v = at(key);
   if (!v.is_array() || v.size() != 3) fail(key, "expected [x, y, z], got " + describe(v));
-  std::vector<double> n = numbers(key);
-  return {n[0], n[1], n[2]};
+  return {element(*this, key, v, 0), element(*this, key, v, 1), element(*this, key, v, 2)};
 }
 Vec3 Params::vec3(const std::string& key, const Vec3& fallback) const {
   return has(key) ? vec3(key) : fallback;

@@ -130,18 +130,26 @@ void check_value(const Params& p, const ParamSpec& spec, const json& v) {
 }  // namespace
 
 void check_params(const KindInfo& kind, const Params& p, bool placement) {
-  std::vector<std::string> known = {"type"};
-  if (placement) known.insert(known.end(), {"translate", "rotate", "scale", "matrix"});
-  for (const auto& spec : kind.params) known.push_back(spec.name);
+  static const char* const kPlacement[] = {"translate", "rotate", "scale", "matrix"};
   const json& j = p.raw();
   for (auto it = j.begin(); it != j.end(); ++it) {
-    bool ok = false;
-    for (const auto& k : known) ok |= k == it.key();
-    if (!ok) p.fail(json_pointer_escape(it.key()), unknown_key_message(it.key(), known));
+    const std::string& key = it.key();
+    // The first letters decide most comparisons without a strlen.
+    const auto is = [&key](const char* name) { return key[0] == name[0] && key == name; };
+    bool ok = is("type");
+    for (const char* k : kPlacement) ok = ok || (placement && is(k));
+    for (const auto& spec : kind.params) ok = ok || is(spec.name);
+    if (ok) continue;
+    // The list is built only for the message: every node of a scene passes here.
+    std::vector<std::string> known = {"type"};
+    if (placement) known.insert(known.end(), std::begin(kPlacement), std::end(kPlacement));
+    for (const auto& spec : kind.params) known.push_back(spec.name);
+    p.fail(json_pointer_escape(key), unknown_key_message(key, known));
   }
   for (const auto& spec : kind.params) {
-    if (j.contains(spec.name))
-      check_value(p, spec, j.at(spec.name));
+    const auto at = j.find(spec.name);
+    if (at != j.end())
+      check_value(p, spec, *at);
     else if (spec.need == Need::Required)
       p.fail(spec.name, "missing required parameter '" + std::string(spec.name) + "'");
   }

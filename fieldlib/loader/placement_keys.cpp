@@ -22,9 +22,11 @@ Mat3 rotation_of(const Params& r) {
   return Mat3::rotation(axis, std::fmod(r.number("deg"), 360.0));
 }
 
-void check_magnitude(const Params& p, const std::string& key, double v) {
-  p.check(std::abs(v) <= kMaxMagnitude, key,
-          "expected a number of magnitude at most 1e150 (docs/scene-format.md)");
+// `key`'s element `i` (its pointer is built only for an error: every component reads these).
+void check_magnitude(const Params& p, const char* key, int i, double v) {
+  if (!(std::abs(v) <= kMaxMagnitude))
+    p.fail(key + ("/" + std::to_string(i)),
+           "expected a number of magnitude at most 1e150 (docs/scene-format.md)");
 }
 
 // `matrix`: three rows [a, b, c, t], the object-to-world map x -> A x + t.
@@ -61,7 +63,7 @@ NodePtr apply_placement(NodePtr node, const Params& p, const KindInfo& kind) {
                              "' (fold it into the matrix; docs/scene-format.md \"Placement\")");
   Vec3 translate = p.vec3("translate", {});
   if (p.has("translate"))
-    for (int i = 0; i < 3; ++i) check_magnitude(p, "translate/" + std::to_string(i), translate[i]);
+    for (int i = 0; i < 3; ++i) check_magnitude(p, "translate", i, translate[i]);
   Mat3 A;  // object to world: R diag(scale), or the matrix
   bool rotated = false, affine = false;
   if (p.has("rotate")) {
@@ -73,11 +75,11 @@ NodePtr apply_placement(NodePtr node, const Params& p, const KindInfo& kind) {
   if (has_scale) {
     const Vec3 s = p.vec3("scale");
     for (int i = 0; i < 3; ++i) {
-      const std::string at = "scale/" + std::to_string(i);
-      check_magnitude(p, at, s[i]);
-      p.check(s[i] != 0, at, "expected a non-zero scale factor");
-      p.check(std::abs(s[i]) >= kMinPositive, at,
-              "expected a scale factor of magnitude at least 1e-150");
+      check_magnitude(p, "scale", i, s[i]);
+      if (s[i] == 0) p.fail_at("scale", std::to_string(i), "expected a non-zero scale factor");
+      if (!(std::abs(s[i]) >= kMinPositive))
+        p.fail_at("scale", std::to_string(i),
+                  "expected a scale factor of magnitude at least 1e-150");
     }
     affine = s.x != 1 || s.y != 1 || s.z != 1;
     for (int i = 0; i < 3; ++i)

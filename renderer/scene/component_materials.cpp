@@ -41,10 +41,20 @@ void collect(const Params& p, std::vector<size_t>& path, std::vector<Material>& 
   }
   // A malformed soft_blend is left to fieldlib's loader, which says what is wrong.
   if (!raw.contains("children") || !raw.at("children").is_array()) return;
-  const std::vector<Params> children = p.objects("children");
+  const json& children = raw.at("children");
+  for (const json& c : children)
+    if (!c.is_object()) p.objects("children");  // its located error, before any child's
   for (size_t i = 0; i < children.size(); ++i) {
     path.push_back(i);
-    collect(children[i], path, materials, found);
+    const json& c = children[i];
+    const std::string type = type_of(c);
+    // A component without a material of its own is recorded as collect would record it, without
+    // a Params and its pointer for each of a large blend's components.
+    if (type == "soft_blend" || (type == "soft_object" && c.contains("material")))
+      collect(Params(c, p.pointer() + "/children/" + std::to_string(i), p.file()), path, materials,
+              found);
+    else
+      found.push_back({path, 0});
     path.pop_back();
   }
 }

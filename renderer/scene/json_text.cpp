@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "describe/params.h"
+#include "scene/json_fast.h"
 #include "scene/json_location.h"
 #include "scene/json_nesting.h"
 
@@ -70,6 +71,12 @@ class LocatingParser : public nlohmann::detail::json_sax_dom_parser<json> {
 }  // namespace
 
 json parse_json_text(const std::string& text, const std::string& name) {
+  json doc;
+  if (parse_json_fast(text, doc)) return doc;
+  return parse_json_located(text, name);
+}
+
+json parse_json_located(const std::string& text, const std::string& name) {
   check_json_nesting(text, name);
   json doc;
   LocatingParser parser(doc, text);

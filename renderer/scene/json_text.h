@@ -9,7 +9,11 @@ namespace softtrace {
 
 // Throws SceneError "name:LINE:COL: ..." for nesting deeper than kMaxJsonNesting, a syntax error,
 // a number beyond the double range, and a key repeated in one object (also when spelled with
-// escapes, "f\u006fv" after "fov"): nlohmann would silently keep the last value.
+// escapes, "f\u006fv" after "fov"): nlohmann would silently keep the last value. A well-formed
+// file takes json_fast.h's parser; anything else this one's located parser, below.
 nlohmann::json parse_json_text(const std::string& text, const std::string& name);
+
+// The located parser alone: the same document or the same error, at several times the cost.
+nlohmann::json parse_json_located(const std::string& text, const std::string& name);
 
 }  // namespace softtrace

@@ -1,0 +1,199 @@
+#include "scene/json_fast.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <system_error>
+
+#include "scene/json_nesting.h"
+
+namespace softtrace {
+
+namespace {
+
+using json = nlohmann::json;
+
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+// Recursive descent over the text, building nlohmann's document in place. Depth is bounded by
+// kMaxJsonNesting, as check_json_nesting bounds the located parser's input, so the recursion is.
+// Every `false` means "leave it to the located parser", never "the text is wrong".
+class FastParser {
+ public:
+  explicit FastParser(const std::string& text) : p_(text.data()), end_(text.data() + text.size()) {}
+
+  bool document(json& out) { return space() && value(out, 0) && space() && p_ == end_; }
+
+ private:
+  // Whitespace and comments, as nlohmann's lexer skips them with comments allowed. A NUL ends a
+  // line comment there; such a file is left to it.
+  bool space() {
+    for (;;) {
+      while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
+      if (p_ == end_ || *p_ != '/') return true;
+      if (end_ - p_ < 2) return false;
+      if (p_[1] == '/') {
+        for (p_ += 2; p_ < end_ && *p_ != '\n' && *p_ != '\r'; ++p_)
+          if (*p_ == '\0') return false;
+      } else if (p_[1] == '*') {
+        for (p_ += 2;; ++p_) {
+          if (end_ - p_ < 2 || *p_ == '\0') return false;
+          if (p_[0] == '*' && p_[1] == '/') break;
+        }
+        p_ += 2;
+      } else {
+        return false;
+      }
+    }
+  }
+
+  bool value(json& out, int depth) {
+    if (p_ == end_) return false;
+    switch (*p_) {
+      case '{':
+        return object(out, depth + 1);
+      case '[':
+        return array(out, depth + 1);
+      case '"': {
+        std::string s;
+        if (!string(s)) return false;
+        out = std::move(s);
+        return true;
+      }
+      case 't':
+        return literal("true", json(true), out);
+      case 'f':
+        return literal("false", json(false), out);
+      case 'n':
+        return literal("null", json(nullptr), out);
+      default:
+        return number(out);
+    }
+  }
+
+  template <size_t N>
+  bool literal(const char (&word)[N], json v, json& out) {
+    if (size_t(end_ - p_) < N - 1 || std::memcmp(p_, word, N - 1) != 0) return false;
+    p_ += N - 1;
+    out = std::move(v);
+    return true;
+  }
+
+  // Printable ASCII only: escapes and UTF-8 (which the located parser validates) are left to it.
+  bool string(std::string& s) {
+    const char* q = ++p_;
+    for (; q < end_ && *q != '"'; ++q) {
+      const unsigned char c = static_cast<unsigned char>(*q);
+      if (c < 0x20 || c >= 0x80 || c == '\\') return false;
+    }
+    if (q == end_) return false;
+    s.assign(p_, q);
+    p_ = q + 1;
+    return true;
+  }
+
+  // JSON's number grammar. nlohmann types a token without '.', 'e' or 'E' as unsigned (no sign)
+  // or signed (a minus) when it fits 64 bits, and otherwise reads it with strtod; from_chars
+  // rounds as strtod does (both correctly). What does not fit, either way, is left to it.
+  bool number(json& out) {
+    const char* start = p_;
+    const char* q = p_;
+    if (q < end_ && *q == '-') ++q;
+    if (q == end_ || !is_digit(*q)) return false;
+    if (*q == '0')
+      ++q;
+    else
+      while (q < end_ && is_digit(*q)) ++q;
+    bool integral = true;
+    if (q < end_ && *q == '.') {
+      integral = false;
+      if (++q == end_ || !is_digit(*q)) return false;
+      while (q < end_ && is_digit(*q)) ++q;
+    }
+    if (q < end_ && (*q == 'e' || *q == 'E')) {
+      integral = false;
+      if (++q < end_ && (*q == '+' || *q == '-')) ++q;
+      if (q == end_ || !is_digit(*q)) return false;
+      while (q < end_ && is_digit(*q)) ++q;
+    }
+    p_ = q;
+    if (integral && *start == '-') return read<std::int64_t>(start, q, out);
+    if (integral) return read<std::uint64_t>(start, q, out);
+    double v = 0;
+    const auto r = std::from_chars(start, q, v);
+    if (r.ec != std::errc() || r.ptr != q || !std::isfinite(v) ||
+        (v != 0 && std::fpclassify(v) == FP_SUBNORMAL))
+      return false;
+    out = v;
+    return true;
+  }
+
+  template <class Int>
+  static bool read(const char* start, const char* end, json& out) {
+    Int v = 0;
+    const auto r = std::from_chars(start, end, v);
+    if (r.ec != std::errc() || r.ptr != end) return false;
+    out = v;
+    return true;
+  }
+
+  bool object(json& out, int depth) {
+    if (depth > kMaxJsonNesting) return false;
+    ++p_;
+    out = json::object();
+    auto& members = out.get_ref<json::object_t&>();
+    if (!space() || p_ == end_) return false;
+    if (*p_ == '}') {
+      ++p_;
+      return true;
+    }
+    for (;;) {
+      std::string key;
+      if (*p_ != '"' || !string(key) || !space() || p_ == end_ || *p_ != ':') return false;
+      ++p_;
+      const auto placed = members.emplace(std::move(key), nullptr);
+      if (!placed.second) return false;  // a repeated key: the located parser names it
+      if (!space() || !value(placed.first->second, depth) || !space() || p_ == end_) return false;
+      if (*p_ == '}') {
+        ++p_;
+        return true;
+      }
+      if (*p_++ != ',' || !space() || p_ == end_) return false;
+    }
+  }
+
+  bool array(json& out, int depth) {
+    if (depth > kMaxJsonNesting) return false;
+    ++p_;
+    out = json::array();
+    auto& items = out.get_ref<json::array_t&>();
+    if (!space() || p_ == end_) return false;
+    if (*p_ == ']') {
+      ++p_;
+      return true;
+    }
+    for (;;) {
+      items.emplace_back();
+      if (!value(items.back(), depth) || !space() || p_ == end_) return false;
+      if (*p_ == ']') {
+        ++p_;
+        return true;
+      }
+      if (*p_++ != ',' || !space()) return false;
+    }
+  }
+
+  const char* p_;
+  const char* end_;
+};
+
+}  // namespace
+
+bool parse_json_fast(const std::string& text, json& out) {
+  return FastParser(text).document(out);
+}
+
+}  // namespace softtrace

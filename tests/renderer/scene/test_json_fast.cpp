@@ -1,0 +1,211 @@
+// The fast JSON parser against the located one: wherever the fast one answers, the two documents
+// are the same value for value and type for type; where the located one refuses, the fast one
+// gives up; and every committed scene takes the fast path.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "describe/params.h"
+#include "scene/json_fast.h"
+#include "scene/json_text.h"
+
+namespace softtrace {
+namespace {
+
+using json = nlohmann::json;
+
+// nlohmann's == calls 1, 1u and 1.0 equal; the scene's readers do not all (integers are checked
+// as integers), so the type counts here, and a float's bits (-0.0 is not 0).
+bool same(const json& a, const json& b) {
+  if (a.type() != b.type()) return false;
+  switch (a.type()) {
+    case json::value_t::object: {
+      if (a.size() != b.size()) return false;
+      for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j)
+        if (i.key() != j.key() || !same(*i, *j)) return false;
+      return true;
+    }
+    case json::value_t::array: {
+      if (a.size() != b.size()) return false;
+      for (size_t i = 0; i < a.size(); ++i)
+        if (!same(a[i], b[i])) return false;
+      return true;
+    }
+    case json::value_t::number_float: {
+      const double x = a.get<double>(), y = b.get<double>();
+      return std::memcmp(&x, &y, sizeof x) == 0;
+    }
+    case json::value_t::null:
+    case json::value_t::string:
+    case json::value_t::boolean:
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::binary:
+    case json::value_t::discarded:
+      return a == b;
+  }
+  return false;
+}
+
+enum class Outcome { Fast, LeftToLocated, Refused };
+
+// Checks the contract on one text and says which way it went.
+Outcome check(const std::string& text) {
+  json fast;
+  const bool took = parse_json_fast(text, fast);
+  json located;
+  try {
+    located = parse_json_located(text, "t.json");
+  } catch (const SceneError& e) {
+    EXPECT_FALSE(took) << "the fast parser took what the located one refuses (" << e.what()
+                       << "): " << text;
+    return Outcome::Refused;
+  }
+  if (!took) return Outcome::LeftToLocated;
+  EXPECT_TRUE(same(fast, located))
+      << text << "\n fast:    " << fast.dump() << "\n located: " << located.dump();
+  return Outcome::Fast;
+}
+
+TEST(JsonFast, EveryCommittedSceneTakesTheFastPathToTheSameDocument) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(SOFTTRACE_SOURCE_DIR) + "/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_EQ(check(text.str()), Outcome::Fast) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 30);
+}
+
+TEST(JsonFast, NumbersAreTypedAndRoundedAsTheLocatedParserDoes) {
+  const char* numbers[] = {"0",
+                           "-0",
+                           "7",
+                           "-7",
+                           "0.0",
+                           "-0.0",
+                           "1e2",
+                           "1E2",
+                           "1e+2",
+                           "-1e-2",
+                           "0.1",
+                           "0.30000000000000004",
+                           "2.2250738585072014e-308",
+                           "1.7976931348623157e308",
+                           "9007199254740993",
+                           "18446744073709551615",
+                           "-9223372036854775808",
+                           "9223372036854775807",
+                           "9223372036854775808",
+                           "123456789012345678901234567890e-10",
+                           "4.9406564584124654e-324",
+                           "1e-400",
+                           "-1e-400",
+                           "2.4703282292062327e-324",
+                           "1e308",
+                           "0.5e-1",
+                           "3.14159265358979323846264338327950288"};
+  for (const char* n : numbers) {
+    const Outcome o = check(std::string("[") + n + "]");
+    EXPECT_NE(o, Outcome::Refused) << n;
+  }
+  EXPECT_EQ(check("[18446744073709551615]"), Outcome::Fast);
+  EXPECT_EQ(check("[-0]"), Outcome::Fast);
+  EXPECT_EQ(check("[0.30000000000000004]"), Outcome::Fast);
+}
+
+TEST(JsonFast, WhatItTakesAndWhatItLeaves) {
+  const char* fast[] = {"{}",
+                        "[]",
+                        " [ 1 , 2 ] ",
+                        "{\"a\":[true,false,null],\"b\":{\"c\":\"d e\"}}",
+                        "// a comment\n{\"a\": 1 /* inside */, \"b\" : 2} // end",
+                        "/**/[/***/1/* * / */]\r\n",
+                        "[\"\x7f\", \"\"]",
+                        "{\"\": 0}\n// no line break at the end"};
+  for (const char* t : fast) EXPECT_EQ(check(t), Outcome::Fast) << t;
+  // Valid, but the located parser's to read: escapes, UTF-8, a byte order mark, a NUL ending a
+  // line comment, integers beyond 64 bits, subnormal numbers.
+  const std::string left[] = {"[\"a\\nb\"]",
+                              "[\"f\\u006fv\"]",
+                              "[\"caf\xc3\xa9\"]",
+                              "\xef\xbb\xbf[1]",
+                              std::string("[1]// a\0\n", 9),
+                              "[-9223372036854775809]",
+                              "[18446744073709551616]",
+                              "[4.9406564584124654e-324]"};
+  for (const std::string& t : left) EXPECT_EQ(check(t), Outcome::LeftToLocated) << t;
+  // Refused: every one must be left to the located parser for its message.
+  const std::string refused[] = {"",
+                                 "[1,]",
+                                 "{\"a\":1,}",
+                                 "{\"a\":1,\"a\":2}",
+                                 "[01]",
+                                 "[1.]",
+                                 "[.5]",
+                                 "[+1]",
+                                 "[1e]",
+                                 "[-]",
+                                 "[1e400]",
+                                 "[tru]",
+                                 "[nul]",
+                                 "[\"a\tb\"]",
+                                 "[\"abc]",
+                                 "[1] [2]",
+                                 "[1] /",
+                                 "[1] /* open",
+                                 "/* a */* b */ [1]",
+                                 std::string("[1, /* \0 */ 2]", 14),
+                                 std::string("[\0]", 3),
+                                 "{\"a\" 1}",
+                                 "{1:2}",
+                                 "[1 2]",
+                                 "\xef\xbb[1]",
+                                 std::string(1001, '[') + std::string(1001, ']')};
+  for (const std::string& t : refused) EXPECT_EQ(check(t), Outcome::Refused) << t;
+  EXPECT_EQ(check(std::string(1000, '[') + std::string(1000, ']')), Outcome::Fast);
+}
+
+// Single-byte edits of a scene (fixed seed): the contract holds on each, and the edits reach all
+// three outcomes, so the check above is exercised on texts nobody wrote by hand.
+TEST(JsonFast, RandomEditsOfASceneKeepTheContract) {
+  const std::string base = R"(// a scene
+{"camera": {"eye": [10, -2.5e0, 0.125], "target": [0, 0, 0], "fov": 30},
+ /* objects */ "objects": [{"name": "ball", "iso": 0.5, "flags": [true, false, null],
+   "field": {"type": "soft_object", "radius": 1.0E-1, "n": -3}}]})";
+  const char alphabet[] = "{}[],:\"0123456789.eE+-/*\\ \n\ttfn\x80";
+  std::mt19937 rng(1);
+  int counts[3] = {0, 0, 0};
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string t = base;
+    for (int edits = 1 + int(rng() % 3); edits > 0; --edits) {
+      const size_t at = rng() % t.size();
+      const char c = alphabet[rng() % (sizeof alphabet - 1)];
+      switch (rng() % 3) {
+        case 0:
+          t[at] = c;
+          break;
+        case 1:
+          t.insert(t.begin() + at, c);
+          break;
+        default:
+          t.erase(at, 1);
+      }
+    }
+    ++counts[int(check(t))];
+  }
+  EXPECT_GT(counts[int(Outcome::Fast)], 100);
+  EXPECT_GT(counts[int(Outcome::LeftToLocated)], 0);
+  EXPECT_GT(counts[int(Outcome::Refused)], 1000);
+}
+
+}  // namespace
+}  // namespace softtrace
