@@ -4,7 +4,8 @@
 // front to back. A piece whose blobs' peaks cannot reach iso is skipped unread; any other is
 // decided by its Bernstein form (bernstein.h), and a crossing refined on the polynomial itself,
 // with no evaluation of the field. So every skip is certified by the hull of the exact
-// polynomial, not by a Lipschitz bound.
+// polynomial, not by a Lipschitz bound. A shadow ray (Query::Any) stops at the first stretch
+// whose blobs certainly hold one of its points (surely_inside), before reading any piece.
 #include <algorithm>
 #include <cmath>
 #include <optional>
