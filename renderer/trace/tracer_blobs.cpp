@@ -73,7 +73,8 @@ std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double is
     if (best < 0 || terms[i].peak > terms[best].peak) best = i;
   }
   if (best < 0 || peaks < iso) return std::nullopt;
-  const double u = std::clamp(terms[best].mid, terms[best].enter, terms[best].exit);
+  const BlobSum::Term& b = terms[best];
+  const double u = std::min(std::max(b.mid, b.enter), b.exit);  // its range's point nearest mid
   double sum = 0, magnitude = iso;
   for (int i = 0; i < n; ++i) {
     const BlobSum::Term& k = terms[i];
