@@ -29,9 +29,10 @@ std::optional<HalfSpace> half_space(const SceneObject& o) {
   return HalfSpace{n, p.distance + dot(n, p.to_world.offset)};
 }
 
-// The bounding box of box ∩ h, exact: along axis i the largest x_i of the intersection is where
-// the other coordinates take dot(n, x) at its least over the box (a linear programme over a box
-// and one half-space), so each side moves in to (offset - the others' least) / n_i or stays.
+// The bounding box of box ∩ h (exact but for rounding): along axis i the largest x_i of the
+// intersection is where the other coordinates take dot(n, x) at its least over the box (a linear
+// programme over a box and one half-space), so each side moves in to (offset - the others' least) /
+// n_i or stays.
 Box clipped(const Box& box, const HalfSpace& h) {
   double least = 0;  // the least of dot(n, x) over the box
   for (int i = 0; i < 3; ++i) least += std::min(h.normal[i] * box.lo[i], h.normal[i] * box.hi[i]);
