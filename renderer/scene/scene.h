@@ -130,8 +130,9 @@ const char* csg_name(Csg::Op op);
 // nothing (nullopt), and neither does an object whose box reaches kMaxPosition (ranges.h): a
 // CSG's box is built from its operands' own framing boxes instead, a union's from those that
 // have one (a floor under a blob frames the blob), an intersection's as the intersection of
-// those that have one (a blob cut by a plane: the blob's, within the object's box), a
-// difference's as its first operand's, a placed CSG's placed.
+// those that have one cut to each plane operand's half-space (a blob cut by a plane: the box of
+// the blob's box on the plane's inside), a difference's as its first operand's cut to the
+// outside of each plane it takes away, a placed CSG's placed.
 std::optional<Box> framing_box(const SceneObject& o);
 
 struct Scene {

@@ -15,6 +15,40 @@ namespace {
 // lens's disc, reaches that far from the eye and rays start all over it.
 constexpr double kMaxAspect = 16384;
 
+// The half-space {x : dot(normal, x) <= offset} of a plane operand, in its CSG's frame.
+struct HalfSpace {
+  Vec3 normal;
+  double offset;
+};
+
+std::optional<HalfSpace> half_space(const SceneObject& o) {
+  if (o.csg || !o.shape || o.shape->shape != Primitive::Shape::Plane) return std::nullopt;
+  // Inside is dot(n, p) <= d for p = to_object (x - offset): dot(to_object^T n, x - offset) <= d.
+  const Primitive& p = *o.shape;
+  const Vec3 n = p.to_object.transposed_times(p.normal);
+  return HalfSpace{n, p.distance + dot(n, p.to_world.offset)};
+}
+
+// The bounding box of box ∩ h (exact but for rounding): along axis i the largest x_i of the
+// intersection is where the other coordinates take dot(n, x) at its least over the box (a linear
+// programme over a box and one half-space), so each side moves in to (offset - the others' least) /
+// n_i or stays.
+Box clipped(const Box& box, const HalfSpace& h) {
+  double least = 0;  // the least of dot(n, x) over the box
+  for (int i = 0; i < 3; ++i) least += std::min(h.normal[i] * box.lo[i], h.normal[i] * box.hi[i]);
+  if (!(least <= h.offset)) return Box();  // the box lies wholly outside
+  Box b = box;
+  for (int i = 0; i < 3; ++i) {
+    const double n = h.normal[i];
+    if (n == 0) continue;
+    const double others = least - std::min(n * box.lo[i], n * box.hi[i]);
+    const double edge = (h.offset - others) / n;
+    if (n > 0) b.hi[i] = std::min(b.hi[i], edge);
+    if (n < 0) b.lo[i] = std::max(b.lo[i], edge);
+  }
+  return b;
+}
+
 }  // namespace
 
 CameraProblem camera_problem(const Camera& c) {
@@ -83,9 +117,17 @@ std::optional<Box> framing_box(const SceneObject& o) {
       for (const SceneObject& a : operands)
         if (const std::optional<Box> b = framing_box(a))
           inner = inner ? inner->intersected(*b) : *b;
+      // A plane operand frames nothing alone but cuts the others' box to its half-space.
+      for (const SceneObject& a : operands)
+        if (const std::optional<HalfSpace> h = half_space(a); h && inner)
+          inner = clipped(*inner, *h);
       break;
     case Csg::Op::Difference:
       inner = framing_box(operands[0]);
+      // Taking a plane's solid away leaves the first operand within the other half-space.
+      for (size_t k = 1; k < operands.size(); ++k)
+        if (const std::optional<HalfSpace> h = half_space(operands[k]); h && inner)
+          inner = clipped(*inner, {-h->normal, -h->offset});
       break;
   }
   if (!inner || inner->empty()) return std::nullopt;

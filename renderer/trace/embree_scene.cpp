@@ -129,7 +129,7 @@ void primitive_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t).hit) r->tfar = -INFINITY;
+  if (occludes(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t)) r->tfar = -INFINITY;
 }
 
 void csg_intersect_callback(const RTCIntersectFunctionNArguments* args) {

@@ -169,9 +169,7 @@ LocalSpan cone(const Primitive& s, const Vec3& o, const Vec3& d) {
   return best;
 }
 
-}  // namespace
-
-SolidSpan solid_span(const Primitive& shape, const Ray& ray) {
+LocalSpan local_span(const Primitive& shape, const Ray& ray) {
   const Vec3 o = shape.to_object * (ray.o - shape.to_world.offset);
   const Vec3 d = shape.to_object * ray.d;
   LocalSpan local;
@@ -193,25 +191,46 @@ SolidSpan solid_span(const Primitive& shape, const Ray& ray) {
       local = disc(shape, o, d);
       break;
   }
-  // Normals go to the world by the inverse transpose.
-  const auto world = [&](const Vec3& n) {
-    const Vec3 w = shape.to_object.transposed_times(n);
-    const double l = length(w);
-    return l > 0 ? w / l : w;
-  };
-  return {local.t0, local.t1, world(local.n0), world(local.n1)};
+  return local;
 }
 
-PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
-  const SolidSpan span = solid_span(shape, ray);
-  if (span.empty()) return {};
+// Normals go to the world by the inverse transpose.
+Vec3 world_normal(const Primitive& shape, const Vec3& n) {
+  const Vec3 w = shape.to_object.transposed_times(n);
+  const double l = length(w);
+  return l > 0 ? w / l : w;
+}
+
+// The end of the span that is the first surface point in [tnear, tfar] (within kMaxPosition of
+// the origin): 0 or 1, or -1 where there is none.
+int first_end(const LocalSpan& span, const Ray& ray, double tnear, double tfar) {
+  if (!(span.t0 <= span.t1)) return -1;
   const auto reachable = [&](double t) {
     return t >= tnear && t <= tfar && std::isfinite(t) &&
            max_abs(ray.o + ray.d * t) <= kMaxPosition;
   };
-  if (reachable(span.t0)) return {true, span.t0, span.n0};
-  if (reachable(span.t1)) return {true, span.t1, span.n1};
+  if (reachable(span.t0)) return 0;
+  if (reachable(span.t1)) return 1;
+  return -1;
+}
+
+}  // namespace
+
+SolidSpan solid_span(const Primitive& shape, const Ray& ray) {
+  const LocalSpan local = local_span(shape, ray);
+  return {local.t0, local.t1, world_normal(shape, local.n0), world_normal(shape, local.n1)};
+}
+
+PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
+  const LocalSpan span = local_span(shape, ray);
+  const int end = first_end(span, ray, tnear, tfar);
+  if (end == 0) return {true, span.t0, world_normal(shape, span.n0)};
+  if (end == 1) return {true, span.t1, world_normal(shape, span.n1)};
   return {};
+}
+
+bool occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
+  return first_end(local_span(shape, ray), ray, tnear, tfar) >= 0;
 }
 
 }  // namespace softtrace

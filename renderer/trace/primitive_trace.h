@@ -27,5 +27,8 @@ struct PrimitiveHit {
 // The nearest surface point in [tnear, tfar], within kMaxPosition of the origin (an infinite
 // plane is drawn to there: scene/primitive.h).
 PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar);
+// Whether first_hit finds a surface point: a shadow ray's question, answered without turning a
+// normal to the world (a square root and a division for each end of the span).
+bool occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar);
 
 }  // namespace softtrace

@@ -114,7 +114,8 @@ class ObjectTracer {
   ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool complement = false);
 
   // The first t in [tnear, tfar] where the ray is inside the solid, if any (for Query::Any, some
-  // t where it is: the search stops at the first sign change, unrefined). The work is added to
+  // t where it is: the search stops at the first sign change, unrefined, or for a sum of
+  // polynomial blobs at a point a stretch's blobs certainly hold). The work is added to
   // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
   // `clear_to`: the caller has certified that the ray meets no solid before it (clear_depth).
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,

@@ -4,7 +4,8 @@
 // front to back. A piece whose blobs' peaks cannot reach iso is skipped unread; any other is
 // decided by its Bernstein form (bernstein.h), and a crossing refined on the polynomial itself,
 // with no evaluation of the field. So every skip is certified by the hull of the exact
-// polynomial, not by a Lipschitz bound.
+// polynomial, not by a Lipschitz bound. A shadow ray (Query::Any) stops at the first stretch
+// whose blobs certainly hold one of its points (surely_inside), before reading any piece.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -57,6 +58,34 @@ BlobScratch& blob_scratch(const BlobSum& blobs) {
   thread_local BlobScratch scratch;
   scratch.fit(blobs);
   return scratch;
+}
+
+// A point u of a stretch certainly in the solid, if this finds one: the sum at u of the polynomials
+// the pieces are read from (stretch_polynomial's P(r(u)) of every term whose range holds u) is
+// above iso by far more than its rounding. A shadow ray needs no more: any point of the solid on it
+// blocks the light, and the pieces before u, searched front to back, would find a crossing there
+// or before it. Tried where the strongest blob comes nearest the ray.
+std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double iso) {
+  int best = -1;
+  double peaks = 0;
+  for (int i = 0; i < n; ++i) {
+    peaks += terms[i].peak;
+    if (best < 0 || terms[i].peak > terms[best].peak) best = i;
+  }
+  if (best < 0 || peaks < iso) return std::nullopt;
+  const BlobSum::Term& b = terms[best];
+  const double u = std::min(std::max(b.mid, b.enter), b.exit);  // its range's point nearest mid
+  double sum = 0, magnitude = iso;
+  for (int i = 0; i < n; ++i) {
+    const BlobSum::Term& k = terms[i];
+    if (!(u >= k.enter && u <= k.exit)) continue;
+    const double r = k.h2 - k.alpha * (u - k.mid) * (u - k.mid);
+    const double p = r * r * (k.c2 + k.c3 * r);
+    sum += p;
+    magnitude += std::abs(p);
+  }
+  if (sum - iso > 1e-9 * magnitude) return u;
+  return std::nullopt;
 }
 }  // namespace
 
@@ -114,6 +143,11 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     ++work.box_evals;
     const Segment seg = segment(ray, t, t + len);
     const int n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
+    if (query == Query::Any)
+      if (const std::optional<double> u = surely_inside(terms, n, iso)) {
+        ++work.point_evals;
+        return MarchResult{true, t + *u};
+      }
     for (int i = 0; i < n; ++i) {
       events[2 * i] = {terms[i].enter, i, true};
       events[2 * i + 1] = {terms[i].exit, i, false};

@@ -103,10 +103,10 @@ TEST(Camera, ASceneWithoutACameraFramesItsObjects) {
   EXPECT_EQ(checked, 8);
 }
 
-// A scene without a camera whose CSGs hold infinite planes frames their finite parts, as if the
-// planes were not there: a union with a floor frames the ball on it, an intersection with a
-// half-space the ball, a difference from a plane nothing (the other object alone is framed), a
-// placed CSG its ball placed.
+// A scene without a camera whose CSGs hold infinite planes frames their finite parts: a union
+// with a floor frames the ball on it, an intersection with a half-space the part of the ball's
+// box inside it, a difference from a plane nothing (the other object alone is framed), a placed
+// CSG its ball placed.
 TEST(Camera, ACsgWithAnInfinitePlaneFramesItsFiniteOperands) {
   const std::string ball = R"({"shape": {"type": "sphere", "center": [5, 0, 0], "radius": 2}})";
   const std::string floor = R"({"shape": {"type": "plane", "normal": [0, 0, 1], "distance": 0}})";
@@ -115,17 +115,44 @@ TEST(Camera, ACsgWithAnInfinitePlaneFramesItsFiniteOperands) {
                        "frame.json")
         .camera;
   };
-  const auto expect_frames = [&](const std::string& objects, const std::string& alone) {
+  // `tol`: where a rotated or tilted plane's normal is rounded, the box's edge is too.
+  const auto expect_frames = [&](const std::string& objects, const std::string& alone,
+                                 double tol = 0) {
     SCOPED_TRACE(objects);
     const Camera got = camera_of(objects), want = camera_of(alone);
     for (int i = 0; i < 3; ++i) {
-      EXPECT_EQ(got.target[i], want.target[i]);
-      EXPECT_EQ(got.eye[i], want.eye[i]);
+      EXPECT_NEAR(got.target[i], want.target[i], tol);
+      EXPECT_NEAR(got.eye[i], want.eye[i], tol);
     }
   };
   expect_frames(R"({"csg": "union", "operands": [)" + ball + ", " + floor + "]}", ball);
   expect_frames(R"({"csg": "merge", "operands": [)" + floor + ", " + ball + "]}", ball);
-  expect_frames(R"({"csg": "intersection", "operands": [)" + ball + ", " + floor + "]}", ball);
+  const std::string lower_half =
+      R"({"shape": {"type": "box", "corner1": [3, -2, -2], "corner2": [7, 2, 0]}})";
+  expect_frames(R"({"csg": "intersection", "operands": [)" + ball + ", " + floor + "]}",
+                lower_half);
+  // Taking the floor's solid away leaves the upper half.
+  expect_frames(R"({"csg": "difference", "operands": [)" + ball + ", " + floor + "]}",
+                R"({"shape": {"type": "box", "corner1": [3, -2, 0], "corner2": [7, 2, 2]}})");
+  // A tilted plane cuts the box to the box of what lies inside it: x + z <= 4 on
+  // [3, 7] x [-2, 2] x [-2, 2] reaches x = 4 - (-2) and z = 4 - 3.
+  const std::string tilted =
+      R"({"shape": {"type": "plane", "normal": [1, 0, 1], "distance": 2.8284271247461903}})";
+  expect_frames(R"({"csg": "intersection", "operands": [)" + tilted + ", " + ball + "]}",
+                R"({"shape": {"type": "box", "corner1": [3, -2, -2], "corner2": [6, 2, 1]}})",
+                1e-12);
+  // A placed plane: x <= 0 turned a quarter about z is y <= 0, moved up by 1 y <= 1.
+  expect_frames(R"({"csg": "intersection", "operands": [)" + ball + R"(, {"shape": {"type":
+      "plane", "normal": [1, 0, 0], "rotate": {"axis": [0, 0, 1], "deg": 90},
+      "translate": [0, 1, 0]}}]})",
+                R"({"shape": {"type": "box", "corner1": [3, -2, -2], "corner2": [7, 1, 2]}})",
+                1e-12);
+  // A half-space that misses the ball leaves nothing to frame but the other object.
+  expect_frames(R"({"csg": "intersection", "operands": [)" + ball + R"(, {"shape": {"type":
+      "plane", "normal": [1, 0, 0], "distance": 2}}]}, )" +
+                    R"({"shape": {"type": "sphere",
+      "center": [0, 9, 0], "radius": 1}})",
+                R"({"shape": {"type": "sphere", "center": [0, 9, 0], "radius": 1}})");
   const std::string small = R"({"shape": {"type": "sphere", "center": [0, 9, 0], "radius": 1}})";
   expect_frames(R"({"csg": "difference", "operands": [)" + floor + ", " + ball + "]}, " + small,
                 small);

@@ -63,7 +63,7 @@ TEST(Primitives, SpansAgreeWithPointMembershipAndNormalsPointOut) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (const std::string& json : kSolids) {
     const Primitive s = shape_from(json);
-    int rays_hit = 0, points = 0, normals = 0;
+    int rays_hit = 0, points = 0, normals = 0, answers = 0;
     for (int k = 0; k < 400; ++k) {
       const Vec3 o{6 * u(rng), 6 * u(rng), 6 * u(rng)};
       const Vec3 target{1.5 * u(rng), 1.5 * u(rng), 1.5 * u(rng)};
@@ -76,6 +76,19 @@ TEST(Primitives, SpansAgreeWithPointMembershipAndNormalsPointOut) {
         const bool in_span = !span.empty() && t >= span.t0 && t <= span.t1;
         ASSERT_EQ(inside(s, ray.o + ray.d * t), in_span) << json << " ray " << k << " t " << t;
         ++points;
+      }
+      // A shadow ray's question (no normal) has first_hit's answer, and first_hit the span's end.
+      for (const auto& [tnear, tfar] :
+           {std::pair{0.0, 1e9}, std::pair{2.0, 9.0}, std::pair{-3.0, 1.0}}) {
+        const PrimitiveHit h = first_hit(s, ray, tnear, tfar);
+        ASSERT_EQ(occludes(s, ray, tnear, tfar), h.hit) << json << " ray " << k;
+        if (!h.hit) continue;
+        const Vec3 n = h.t == span.t0 ? span.n0 : span.n1;
+        EXPECT_TRUE(h.t == span.t0 || h.t == span.t1) << json << " ray " << k;
+        EXPECT_EQ(h.normal.x, n.x);
+        EXPECT_EQ(h.normal.y, n.y);
+        EXPECT_EQ(h.normal.z, n.z);
+        ++answers;
       }
       if (span.empty()) continue;
       ++rays_hit;
@@ -91,6 +104,7 @@ TEST(Primitives, SpansAgreeWithPointMembershipAndNormalsPointOut) {
     EXPECT_GT(rays_hit, 40) << json;
     EXPECT_GT(points, 100000) << json;
     EXPECT_GT(normals, 40) << json;
+    EXPECT_GT(answers, 40) << json;
   }
 }
 

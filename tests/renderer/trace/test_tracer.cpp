@@ -94,7 +94,7 @@ TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   const double R = obj.bounds.diagonal();
-  int hits = 0;
+  int hits = 0, certified = 0;
   for (int i = 0; i < 300; ++i) {
     const Vec3 d = normalize({u(rng), u(rng), u(rng)});
     const Vec3 target = obj.bounds.center() + Vec3{u(rng), u(rng), u(rng)} * 6;
@@ -104,13 +104,20 @@ TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
     const MarchResult g = segments.first_hit(ray, 0, 2 * R, b);
     EXPECT_EQ(a.point_evals, 0);
     ASSERT_EQ(m.hit, g.hit) << "ray " << i;
-    EXPECT_EQ(blobs.first_hit(ray, 0, 2 * R, any, Query::Any).hit, m.hit) << "ray " << i;
+    const MarchResult y = blobs.first_hit(ray, 0, 2 * R, any, Query::Any);
+    EXPECT_EQ(y.hit, m.hit) << "ray " << i;
+    // A shadow ray may end on a point the blobs' sum certainly holds (one point evaluation).
+    if (any.point_evals > 0) {
+      ++certified;
+      EXPECT_TRUE(y.hit && blobs.inside(ray.o + ray.d * y.t)) << "ray " << i;
+    }
     if (!m.hit) continue;
     ++hits;
     EXPECT_FALSE(m.gave_up);
     EXPECT_NEAR(m.t, g.t, 2e-8 * R) << "ray " << i;
   }
   EXPECT_GT(hits, 100);
+  EXPECT_GT(certified, 50);
 }
 
 // Capsules on the polynomial path: a chain of them, one of negative strength cutting a sphere, a
@@ -137,7 +144,7 @@ TEST(BlobTracer, CapsulesAgreeWithTheSegmentTracerAndTheReference) {
   std::uniform_real_distribution<double> u(-1, 1);
   const Box& b = obj.bounds;
   const double R = b.diagonal();
-  int hits = 0, grazing = 0;
+  int hits = 0, grazing = 0, certified = 0;
   for (int i = 0; i < 600; ++i) {
     const Vec3 dir0 = normalize({u(rng), u(rng), u(rng)});
     Vec3 target = b.center() +
@@ -175,6 +182,14 @@ TEST(BlobTracer, CapsulesAgreeWithTheSegmentTracerAndTheReference) {
     }
     if (m.gave_up || s.gave_up) continue;  // a tangency neither can certify (grazing rays)
     ASSERT_EQ(m.hit, s.hit) << "ray " << i;
+    // The shadow ray's question (a negative capsule among them: a point's sum, not one blob's).
+    TraceCounters any;
+    const MarchResult y = blobs.first_hit(ray, 0, 3 * R, any, Query::Any);
+    ASSERT_EQ(y.hit, m.hit) << "ray " << i;
+    if (any.point_evals > 0) {
+      ++certified;
+      ASSERT_TRUE(blobs.inside(ray.o + ray.d * y.t)) << "ray " << i;
+    }
     if (!m.hit) continue;
     ASSERT_TRUE(blobs.inside(ray.o + ray.d * m.t)) << "ray " << i << ": reported hit is outside";
     if (std::isfinite(ref)) {
@@ -184,6 +199,7 @@ TEST(BlobTracer, CapsulesAgreeWithTheSegmentTracerAndTheReference) {
   }
   EXPECT_GT(hits, 150);
   EXPECT_GT(grazing, 20);
+  EXPECT_GT(certified, 50);
 }
 
 // A solid cut by its object's bounds shows the cut as a flat face: the hit is flagged so
