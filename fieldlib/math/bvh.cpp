@@ -301,7 +301,8 @@ class SegmentTest {
 };
 
 // A box lies wholly outside the half-space dot(x - apex, n) >= -pad where its corner farthest
-// along n does; that corner takes each axis's hi where n is positive, its lo elsewhere.
+// along n does; that corner takes each axis's hi where n is positive, its lo where negative. An
+// axis n does not move along adds nothing (a box unbounded along it would add 0 times infinity).
 class ConeTest {
  public:
   ConeTest(const Vec3& apex, const Vec3 (&normals)[4], double pad) : apex_(apex), pad_(pad) {
@@ -315,6 +316,7 @@ class ConeTest {
       for (const Vec3& normal : n_) {
         V2 reach = {0, 0};
         for (int i = 0; i < 3; ++i) {
+          if (normal[i] == 0) continue;
           const double* side = normal[i] > 0 ? n.hi[i] : n.lo[i];
           reach += (load(side + 2 * h) - apex_[i]) * normal[i];
         }
