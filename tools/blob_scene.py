@@ -11,19 +11,30 @@ total volume stays the same).
 With --pov FILE it also writes the same picture as a POV-Ray scene (tools/pov_scene.py): the
 blob of the same spheres, strength 1, threshold 0.5, with the same camera, lights and size.
 
-usage: tools/blob_scene.py N [--seed S] [--width W] [--height H] [-o scene.json] [--pov scene.pov]
+With --meets K the radius is instead the one at which a ray crossing the cube passes through K
+supports on average (meets_radius): a denser cloud at the same N.
+
+usage: tools/blob_scene.py N [--meets K] [--seed S] [--width W] [--height H] [-o scene.json] [--pov scene.pov]
 """
 import argparse
 import json
+import math
 import random
 import sys
 
 import pov_scene
 
 
-def blobs(n, seed):
+def meets_radius(n, meets):
+    """The radius at which a ray crossing the cube of side 40 passes, on average, through `meets`
+    of n blobs' supports: n pi r^2 / 40^2 = meets (the blob1000 of the default radius, 6, is 71)."""
+    return 40.0 * math.sqrt(meets / (n * math.pi))
+
+
+def blobs(n, seed, radius=None):
     rng = random.Random(seed)
-    radius = 12.0 * (1000.0 / n) ** (1.0 / 3.0) * 0.5
+    if radius is None:
+        radius = 12.0 * (1000.0 / n) ** (1.0 / 3.0) * 0.5
     out = []
     for _ in range(n):
         c = [round(rng.uniform(-20, 20), 6) for _ in range(3)]
@@ -31,10 +42,10 @@ def blobs(n, seed):
     return out
 
 
-def scene(n, seed, width, height):
+def scene(n, seed, width, height, radius=None):
     children = [{"type": "soft_object", "potential": {"type": "murakami"},
                  "distance": {"type": "lp_metric", "radii": [r, r, r], "n": 2},
-                 "translate": c} for c, r in blobs(n, seed)]
+                 "translate": c} for c, r in blobs(n, seed, radius)]
     return {
         "camera": {"eye": [70, -95, 60], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 30},
         "image": {"width": width, "height": height, "spp": 1},
@@ -51,6 +62,7 @@ def scene(n, seed, width, height):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("n", type=int, help="number of blobs (2 to 10000)")
+    ap.add_argument("--meets", type=float, help="blobs a ray through the cube passes through")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--width", type=int, default=640)
     ap.add_argument("--height", type=int, default=480)
@@ -59,7 +71,8 @@ def main():
     a = ap.parse_args()
     if not 2 <= a.n <= 10000:
         ap.error("N must be in [2, 10000] (a soft_blend takes at most 10,000 children)")
-    sc = scene(a.n, a.seed, a.width, a.height)
+    radius = meets_radius(a.n, a.meets) if a.meets else None
+    sc = scene(a.n, a.seed, a.width, a.height, radius)
     text = json.dumps(sc, indent=1) + "\n"
     if a.pov:
         with open(a.pov, "w") as f:

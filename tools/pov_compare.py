@@ -2,7 +2,8 @@
 """Renders the same pictures with softtrace and POV-Ray 3.7 and compares silhouettes and times.
 
 Cases: `blobN` (tools/blob_scene.py: N murakami spheres blended at iso 0.5, POV's `blob` of the
-same spheres with strength 1 and threshold 0.5), `fig12b` (scenes/fig000_12b_soft_blend.json, POV's
+same spheres with strength 1 and threshold 0.5), `meetsK` (1000 such spheres of the radius at which
+a ray through their cube passes through K supports on average: blob_scene.py --meets K), `fig12b` (scenes/fig000_12b_soft_blend.json, POV's
 `isosurface` of the same blend), and POV-Ray scenes converted by tools/pov2softtrace.py:
 `pov:NAME` (tools/pov_cases/NAME.pov or POV-Ray's sample objects/NAME.pov) and `cloudN` (N mixed
 sphere and cylinder components, tools/pov_cloud.py); `real` names the whole real-world-like set;
@@ -25,7 +26,7 @@ With --plot it draws the blob cases' time per primary ray against N, both render
 Uses Debian's python3 and installs povray, python3-pil and gnuplot-nox when missing.
 
 usage: tools/pov_compare.py [--cases blob10,blob100,blob1000,blob10000,fig12b|real|pov:NAME,cloudN,
-                                   segtrace]
+                                   meetsK,segtrace]
            [--width 160] [--height 120] [--threads 2] [--repeat 3] [--max-gradient 0.4]
            [--build build] [--work DIR] [--json results.json] [--plot time_per_ray.png]
 """
@@ -108,6 +109,10 @@ def write_case(case, a, work):
     if case.startswith("blob"):
         sc = blob_scene.scene(int(case[4:]), 1, a.width, a.height)
         pov = pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc)
+    elif case.startswith("meets"):
+        sc = blob_scene.scene(1000, 1, a.width, a.height,
+                              blob_scene.meets_radius(1000, float(case[5:])))
+        pov = pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc)
     elif case == "fig12b":
         sc = read_json_scene(os.path.join(ROOT, "scenes", "fig000_12b_soft_blend.json"))
         head = pov_scene.header(sc, a.width, a.height)
@@ -140,8 +145,8 @@ def write_case(case, a, work):
         # POV-Ray's alpha (+UA) is the coverage only where the background is transparent.
         pov = text + "\nbackground { rgbt <0, 0, 0, 1> }\n"
     else:
-        sys.exit("pov_compare: unknown case '%s' (blobN, fig12b, cloudN, pov:NAME or segtrace)" %
-                 case)
+        sys.exit("pov_compare: unknown case '%s' (blobN, meetsK, fig12b, cloudN, pov:NAME or "
+                 "segtrace)" % case)
     sc["image"] = {"width": a.width, "height": a.height, "spp": 1}
     with open(base + ".json", "w") as f:
         json.dump(sc, f)

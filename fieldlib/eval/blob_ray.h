@@ -45,6 +45,23 @@ class BlobSum {
   // returns their number. `ids` needs room for size() entries, `out` for max_terms().
   int terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad, Term* out,
             int32_t* ids) const;
+  // The same from the blobs ids[0, found) instead of the query, which must hold every blob whose
+  // support the stretch passes through, in the order the query reports them (the sum's BVH's
+  // tree order: then the terms, and the sums made of them, are the same to the bit).
+  int terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
+               Term* out) const;
+  // The blobs whose support boxes meet the pyramid of cone_items (math/bvh.h), in that tree
+  // order; for a sum of at most kListed blobs, which have no BVH query, all of them in the order
+  // terms() takes them.
+  int cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals)[4], double pad,
+                 int32_t* out) const;
+  // A sphere holding blob `id`'s support: its centre and squared radius (+inf where no sphere is
+  // known: BlobSum::Blob's reach2).
+  double bounding_sphere(int id, Vec3* centre) const {
+    const Blob& b = blobs_[id];
+    *centre = b.centre;
+    return b.inv_r2 > 0 ? 1 / b.inv_r2 : b.reach2;
+  }
   // f(x) and ∇f(x) from the blobs whose supports hold x (∇ of c2 r^2 + c3 r^3 with r = 1 - |q|^2,
   // q = Lx + k less its nearest point of the axis): the compiled gradient's value without pruning
   // the program first. `ids` as for terms. With `terms`, the program's terms (Program::terms,

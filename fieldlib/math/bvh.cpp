@@ -299,6 +299,37 @@ class SegmentTest {
   double a_[3], inv_[3], pad_;
   bool flat_[3];
 };
+
+// A box lies wholly outside the half-space dot(x - apex, n) >= -pad where its corner farthest
+// along n does; that corner takes each axis's hi where n is positive, its lo where negative. An
+// axis n does not move along adds nothing (a box unbounded along it would add 0 times infinity).
+class ConeTest {
+ public:
+  ConeTest(const Vec3& apex, const Vec3 (&normals)[4], double pad) : apex_(apex), pad_(pad) {
+    for (int i = 0; i < 4; ++i) n_[i] = normals[i];
+  }
+  // Bit c set where slot c's box is inside no plane's outside.
+  int meets(const BoxBvh::Node& n) const {
+    M2 in[2];
+    for (int h = 0; h < 2; ++h) {
+      in[h] = M2{-1, -1};
+      for (const Vec3& normal : n_) {
+        V2 reach = {0, 0};
+        for (int i = 0; i < 3; ++i) {
+          if (normal[i] == 0) continue;
+          const double* side = normal[i] > 0 ? n.hi[i] : n.lo[i];
+          reach += (load(side + 2 * h) - apex_[i]) * normal[i];
+        }
+        in[h] &= reach >= -pad_;
+      }
+    }
+    return bits(in[0], in[1]);
+  }
+
+ private:
+  Vec3 apex_, n_[4];
+  double pad_;
+};
 }  // namespace
 
 void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
@@ -406,6 +437,11 @@ int BoxBvh::query(const Box& q, const Vec3& a, const Vec3& b, double pad, int32_
 int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const {
   const SegmentTest segment(a, b, pad);
   return walk<false>([&](const Node& n) { return segment.meets(n); }, out, 0);
+}
+
+int BoxBvh::cone_items(const Vec3& apex, const Vec3 (&normals)[4], double pad, int32_t* out) const {
+  const ConeTest cone(apex, normals, pad);
+  return walk<false>([&](const Node& n) { return cone.meets(n); }, out, 0);
 }
 
 }  // namespace softtrace

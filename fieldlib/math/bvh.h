@@ -40,6 +40,10 @@ class BoxBvh {
   // segment itself, which pays on long segments, whose bounding box holds far more nodes than
   // the segment meets (blob_ray.h's stretches of a ray). Returns how many were written to out.
   int segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out) const;
+  // The items whose boxes are not wholly outside one of the four half-spaces dot(x - apex,
+  // normals[i]) >= -pad (a pyramid: the frustum of a block of camera rays), in the order of the
+  // tree, as segment_items reports them. Returns how many were written to out.
+  int cone_items(const Vec3& apex, const Vec3 (&normals)[4], double pad, int32_t* out) const;
 
   static constexpr int kWidth = 4;
   static constexpr int kLeafItems = 16;

@@ -40,6 +40,8 @@ struct Work {
   RayWork primary, shadow;
   // Each beam level's certified depth per object ([level * objects + object]).
   std::vector<double> clear;
+  // Each beam level's blobs per object, for sums of polynomial blobs (the same indexing).
+  std::vector<BlobBeam> blobs;
 };
 
 // One frame's pixels, traced beam by beam. Tiles and beams are aligned to the full frame, never
@@ -69,6 +71,7 @@ class FrameTracer {
   // The full-frame tile at (tx, ty) (in pixels), where it meets `area`: the pass's pixels.
   void tile(int tx, int ty, const PixelRect& area, Pass pass, Work& work) const {
     work.clear.resize(size_t(kBeamLevels) * objects_);
+    work.blobs.resize(size_t(kBeamLevels) * objects_);
     beam(tx, ty, 0, nullptr, area, pass, work);
   }
 
@@ -100,13 +103,21 @@ class FrameTracer {
     }
     // The beam's work is the primary rays' (its passes are counted, not its rays).
     work.primary.box_evals += beam_work.box_evals;
+    BlobBeam* blobs = work.blobs.data() + size_t(level) * objects_;
+    for (int o = 0; o < objects_; ++o) {
+      const ObjectTracer* tracer = rt_.tracers.tracer(o);
+      if (tracer && tracer->blob_sum())
+        tracer->blob_beam(fr, level > 0 ? blobs - objects_ + o : nullptr, blobs + o);
+      else
+        blobs[o].valid = false;
+    }
     if (level + 1 < kBeamLevels) {
       const int h = size / 2;
       for (int q = 0; q < 4; ++q)
         beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, area, pass, work);
       return;
     }
-    const BeamClear certified{fr.forward, clear};
+    const BeamClear certified{fr.forward, clear, blobs};
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         pixel(px, py, &certified, pass, work);

@@ -100,8 +100,9 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
     exit_callback(args, data, ctx);
     return;
   }
-  const MarchResult m =
-      data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Nearest, clear_to);
+  const BlobBeam* blobs = ctx->beam && ctx->beam->blobs ? &ctx->beam->blobs[data->object] : nullptr;
+  const MarchResult m = data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work,
+                                                Query::Nearest, clear_to, blobs);
   if (!m.hit || m.t >= ctx->t) return;
   record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, -1);
 }

@@ -29,8 +29,9 @@ struct TraceHit {
 // What a beam certified for the rays through its block of pixels: per object, the forward depth
 // before which they meet no solid (ObjectTracer::clear_depth).
 struct BeamClear {
-  Vec3 forward;         // the camera's, unit length
-  const double* depth;  // one per object
+  Vec3 forward;                     // the camera's, unit length
+  const double* depth;              // one per object
+  const BlobBeam* blobs = nullptr;  // one per object, or none: the blob sums' lists
 };
 
 // An error Embree reported (embree_device.h), in Embree's words: out of memory while building

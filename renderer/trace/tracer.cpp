@@ -358,7 +358,7 @@ double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double 
 }
 
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
-                                    Query query, double clear_to) const {
+                                    Query query, double clear_to, const BlobBeam* blob_beam) const {
   double t0 = tnear, t1 = tfar;
   if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
   work.entered_box = true;
@@ -366,7 +366,7 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   const bool face = t0 > tnear && t0 >= clear_to;
   t0 = std::max(t0, clear_to);
   if (t0 > t1) return {};
-  if (blobs_) return first_hit_blobs(ray, face, t0, t1, work, query);
+  if (blobs_) return first_hit_blobs(ray, face, t0, t1, work, query, blob_beam);
   const auto at = [&](double t) { return ray.o + ray.d * t; };
   // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].
   // `rates`: slope bounds over [a, b], if known.

@@ -47,6 +47,24 @@ struct Frustum {
   Vec3 corner[4];     // directions through the rectangle's corners, with forward component 1
 };
 
+// For a sum of polynomial blobs, the blobs whose supports may meet a ray of a frustum (a block of
+// pixels, from its eye): each ray of the block takes its stretches' blobs from this short list
+// instead of a walk of the sum's BVH (the tile-level active list of Zanni's Synchronized Tracing,
+// 2025). `near`, `far`: the range of distances from the eye at which the blob's support lies.
+// The blobs are in the order the BVH's queries report them, so each stretch's terms, and the
+// picture, are the same to the bit as the walk's.
+struct BlobBeam {
+  struct Entry {
+    double near, far;
+    int32_t id;
+  };
+  bool valid = false;  // false: no list (the object is no blob sum, or no frustum holds the rays)
+  Vec3 eye;
+  std::vector<Entry> entries;
+  // Whether the list holds for rays from o: from its eye, to the bit.
+  bool from(const Vec3& o) const { return valid && o.x == eye.x && o.y == eye.y && o.z == eye.z; }
+};
+
 // A camera ray wants the nearest hit; a shadow ray only whether there is any.
 enum class Query { Nearest, Any };
 
@@ -118,8 +136,11 @@ class ObjectTracer {
   // polynomial blobs at a point a stretch's blobs certainly hold). The work is added to
   // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
   // `clear_to`: the caller has certified that the ray meets no solid before it (clear_depth).
+  // `blob_beam`: for a sum of polynomial blobs, the list of a frustum holding the ray
+  // (blob_beam()); any ray from another origin ignores it.
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
-                        Query query = Query::Nearest, double clear_to = 0) const;
+                        Query query = Query::Nearest, double clear_to = 0,
+                        const BlobBeam* blob_beam = nullptr) const;
 
   // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
   // certified by the interval of g over boxes around slices of the frustum: the work of the
@@ -127,6 +148,9 @@ class ObjectTracer {
   // no ray of it meets the solid at all.
   // `from`: a depth already certified (by a beam holding this one); the search starts there.
   double clear_depth(const Frustum& f, double from, TraceCounters& work) const;
+  // The blobs of frustum f (BlobBeam) into *out, from the BVH or, where given, from the list of a
+  // frustum holding f (tracer_blob_beam.cpp). Not valid for a tracer that is no blob sum.
+  void blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out) const;
 
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
@@ -222,7 +246,7 @@ class ObjectTracer {
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
   // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
-                              Query query) const;
+                              Query query, const BlobBeam* beam) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
   Vec3 blob_gradient(const Vec3& p, double* terms) const;
 

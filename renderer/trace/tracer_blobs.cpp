@@ -96,7 +96,8 @@ Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms) const {
 }
 
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
-                                          TraceCounters& work, Query query) const {
+                                          TraceCounters& work, Query query,
+                                          const BlobBeam* beam) const {
   BlobScratch& scratch = blob_scratch(*blobs_);
   BlobSum::Term* terms = scratch.terms.data();
   Event* events = scratch.events.data();
@@ -133,6 +134,13 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
                        at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
   };
 
+  // A camera ray of a block with a list (tracer_blob_beam.cpp) takes its stretches' blobs from it.
+  const BlobBeam::Entry* listed = nullptr;
+  int n_listed = 0;
+  if (beam && beam->from(ray.o)) {
+    listed = beam->entries.data();
+    n_listed = static_cast<int>(beam->entries.size());
+  }
   double t = t0, s = std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) {
@@ -142,7 +150,20 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     const double len = std::min(t + s, t1) - t;
     ++work.box_evals;
     const Segment seg = segment(ray, t, t + len);
-    const int n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
+    int n;
+    if (listed) {
+      // The list's blobs whose distances from the eye meet the stretch's, in the list's order.
+      int32_t* ids = scratch.ids.data();
+      const double lo = t - seg.pad, hi = t + len + seg.pad;
+      int found = 0;
+      for (int i = 0; i < n_listed; ++i) {
+        ids[found] = listed[i].id;
+        found += listed[i].near <= hi && listed[i].far >= lo;
+      }
+      n = blobs_->terms_of(ids, found, seg.a, ray.d, len, terms);
+    } else {
+      n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
+    }
     if (query == Query::Any)
       if (const std::optional<double> u = surely_inside(terms, n, iso)) {
         ++work.point_evals;

@@ -130,6 +130,47 @@ TEST(BoxBvh, ReportsExactlyTheItemsAScanFinds) {
 
 // Equal centres leave the surface-area heuristic nothing to split; boxes nested like onion
 // layers make it cut one item at a time, so the tree's depth must be capped for the walk's stack.
+// cone_items against the scalar test of every item's farthest corner along each plane's normal,
+// in the order of the tree: pyramids from random apexes, some with a normal along an axis (so a
+// box unbounded across it is neither kept nor dropped by a 0 times infinity).
+TEST(BoxBvh, ConeItemsAreTheScansInTreeOrder) {
+  const Items items = random_items(700, 17);
+  const std::vector<int32_t> order = items.bvh.tree_order();
+  std::vector<int32_t> out(items.boxes.size());
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> c(-12, 12), u(-1, 1);
+  int kept = 0, dropped = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Vec3 apex{c(rng), c(rng), c(rng)};
+    Vec3 normals[4];
+    for (Vec3& n : normals) n = normalize({u(rng), u(rng), u(rng)});
+    if (q % 3 == 0) normals[q % 4] = {0, 0, q % 2 ? 1.0 : -1.0};
+    const double pad = q % 2 ? 0 : 1e-6;
+    std::vector<bool> in(items.ids.size() + 1, false);  // by id
+    for (size_t i = 0; i < items.boxes.size(); ++i) {
+      const Box& b = items.boxes[i];
+      if (b.empty()) continue;
+      bool inside = true;
+      for (const Vec3& n : normals) {
+        double reach = 0;
+        for (int k = 0; k < 3; ++k)
+          if (n[k] != 0) reach += ((n[k] > 0 ? b.hi[k] : b.lo[k]) - apex[k]) * n[k];
+        inside = inside && reach >= -pad;
+      }
+      if (inside) in[items.ids[i]] = true;
+    }
+    std::vector<int32_t> want;
+    for (const int32_t id : order)
+      if (in[id]) want.push_back(id);
+    const int end = items.bvh.cone_items(apex, normals, pad, out.data());
+    EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + end), want) << "query " << q;
+    kept += end;
+    dropped += static_cast<int>(order.size()) - end;
+  }
+  EXPECT_GT(kept, 0);
+  EXPECT_GT(dropped, 0);
+}
+
 TEST(BoxBvh, DegenerateSetsStillSplit) {
   Items same;
   for (int i = 0; i < 300; ++i) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
 #include "render/camera.h"
 #include "scene/traced_objects.h"
@@ -108,6 +109,93 @@ TEST(Beams, NotForTheGlobalModeNorForPolynomialBlobs) {
   EXPECT_EQ(
       ObjectTracer(trace_target(blobs.objects[0]), LipschitzMode::Local).clear_depth(fr, 0, work),
       0);
+}
+
+// A sum of polynomial blobs takes a list of blobs per block instead (ObjectTracer::blob_beam):
+// every camera ray of a block, its list from the block's tile and quarters as the frame nests
+// them, finds the same hit to the bit as the walk of the sum's BVH. The cloud mixes balls,
+// rotated ellipsoids, capsules, a sheared capsule and negative strengths, some 40 of each, in a
+// cube the camera sees from outside and from inside.
+TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> c(-20, 20), u(0, 1);
+  std::string children;
+  for (int i = 0; i < 160; ++i) {
+    const auto v = [&] {
+      return "[" + std::to_string(c(rng)) + "," + std::to_string(c(rng)) + "," +
+             std::to_string(c(rng)) + "]";
+    };
+    const std::string r = std::to_string(1.5 + 3 * u(rng));
+    std::string child = R"({"type":"soft_object","potential":{"type":"murakami"},)";
+    switch (i % 4) {
+      case 0:  // a ball
+        child += R"("translate":)" + v() + R"(,"distance":{"type":"lp_metric","radii":[)" + r +
+                 "," + r + "," + r + R"(],"n":2}})";
+        break;
+      case 1:  // a rotated ellipsoid, some of negative strength
+        child += R"("strength":)" + std::string(i % 8 == 1 ? "-0.5" : "1") +
+                 R"(,"rotate":{"axis":[1,2,3],"deg":)" + std::to_string(90 * u(rng)) +
+                 R"(},"translate":)" + v() + R"(,"distance":{"type":"lp_metric","radii":[)" + r +
+                 ",2,1],\"n\":2}}";
+        break;
+      case 2:  // a capsule
+        child += R"("distance":{"type":"segment","p0":)" + v() + R"(,"p1":)" + v() +
+                 R"(,"radius":)" + r + "}}";
+        break;
+      case 3:  // a sheared capsule
+        child += R"("matrix":[[1,0.9,0,)" + std::to_string(c(rng)) + R"(],[0,0.5,0,)" +
+                 std::to_string(c(rng)) + R"(],[0.3,0,1,)" + std::to_string(c(rng)) +
+                 R"(]],"distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":)" + r +
+                 "}}";
+        break;
+    }
+    children += (i ? "," : "") + child;
+  }
+  const Scene scene = parse_scene(
+      R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" + children + "]}}]}",
+      "<test>");
+  const ObjectTracer tr(trace_target(scene.objects[0]), LipschitzMode::Local);
+  ASSERT_TRUE(tr.blob_sum());
+  constexpr int kW = 96, kH = 64;
+  int rays = 0, hits = 0, listed = 0, nested = 0;
+  for (const Vec3& eye : {Vec3{60, -80, 50}, Vec3{2, 3, 1}}) {
+    const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 50}, kW, kH);
+    BlobBeam level[3];
+    for (int y = 0; y < kH; y += 16)
+      for (int x = 0; x < kW; x += 16) {
+        tr.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &level[0]);
+        for (int q = 0; q < 4; ++q) {
+          const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
+          tr.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &level[0], &level[1]);
+          for (int k = 0; k < 4; ++k) {
+            const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
+            tr.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &level[1], &level[2]);
+            ASSERT_TRUE(level[2].valid);
+            listed += static_cast<int>(level[2].entries.size());
+            nested += level[2].entries.size() < level[0].entries.size();
+            for (int py = y4; py < y4 + 4; ++py)
+              for (int px = x4; px < x4 + 4; ++px) {
+                const Ray ray = camera.generate(px + u(rng), py + u(rng));
+                TraceCounters a, b;
+                const MarchResult walk = tr.first_hit(ray, 0, 1e3, a);
+                const MarchResult list = tr.first_hit(ray, 0, 1e3, b, Query::Nearest, 0, &level[2]);
+                ++rays;
+                hits += walk.hit;
+                ASSERT_EQ(list.hit, walk.hit) << "ray " << rays;
+                if (walk.hit) {
+                  ASSERT_EQ(list.t, walk.t) << "ray " << rays;
+                }
+                ASSERT_EQ(b.box_evals, a.box_evals) << "ray " << rays;
+              }
+          }
+        }
+      }
+  }
+  EXPECT_GT(hits, rays / 10);
+  EXPECT_LT(hits, rays);
+  // The lists are short (the 4-pixel blocks' a few of the 160 blobs) and narrow as blocks shrink.
+  EXPECT_LT(listed, rays / 16 * 40);
+  EXPECT_GT(nested, 0);
 }
 
 }  // namespace

@@ -1,0 +1,78 @@
+// ObjectTracer::blob_beam: the blobs a block of camera rays may meet, listed once for the block
+// (the tile-level active list of Zanni's Synchronized Tracing, 2025). A ray of the block then
+// finds each stretch's blobs by two comparisons per listed blob (its range of distances from the
+// eye) instead of a walk of the sum's BVH, whose node tests were a third of a dense cloud's frame.
+// A tile's list comes from one walk of the BVH with the frustum's side planes; each quarter of it
+// keeps the parent's blobs whose bounding spheres meet its own frustum.
+//
+// Why it keeps every blob a ray of the block meets: a point x of a blob's support lies in its
+// sphere (centre c, radius R), and a ray from the eye through the block lies inside the frustum
+// (its direction is a convex combination of the corners'), at distance t = |x - eye| from the eye
+// (d has unit length). So the sphere reaches inside every side plane, and t lies in
+// [|c - eye| - R, |c - eye| + R]. Rounding moves the ray's points by a few ulps of |eye| + t;
+// every test has a slack of 1e-9 of the magnitudes involved, far above that.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "trace/tracer.h"
+
+namespace softtrace {
+
+namespace {
+// The frustum's four side planes through the eye, with unit normals pointing inside (a zero
+// normal where two corners coincide: that plane then cuts nothing).
+void side_normals(const Frustum& f, Vec3 (&normals)[4]) {
+  // corner[0..3] are the rectangle's (x0, y0), (x1, y0), (x0, y1), (x1, y1): around it 0, 1, 3, 2.
+  static constexpr int kAround[5] = {0, 1, 3, 2, 0};
+  const Vec3 middle = f.corner[0] + f.corner[1] + f.corner[2] + f.corner[3];
+  for (int i = 0; i < 4; ++i) {
+    Vec3 n = cross(f.corner[kAround[i]], f.corner[kAround[i + 1]]);
+    const double len = length(n);
+    if (!(len > 0)) {
+      normals[i] = {0, 0, 0};
+      continue;
+    }
+    if (dot(n, middle) < 0) n = -n;
+    normals[i] = n / len;
+  }
+}
+}  // namespace
+
+void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out) const {
+  out->valid = false;
+  out->entries.clear();
+  if (!blobs_) return;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 normals[4];
+  side_normals(f, normals);
+  const double eye = max_abs(f.eye);
+  const auto keep = [&](int32_t id) {
+    Vec3 centre;
+    const double r2 = blobs_->bounding_sphere(id, &centre);
+    if (!(r2 < kInf)) {  // no sphere known: the blob stays on every ray's list
+      out->entries.push_back({-kInf, kInf, id});
+      return;
+    }
+    const double r = std::sqrt(r2);
+    const Vec3 v = centre - f.eye;
+    const double distance = length(v);
+    const double slack = 1e-9 * (distance + r + eye);
+    for (const Vec3& n : normals)
+      if (dot(v, n) < -r - slack) return;
+    out->entries.push_back({distance - r - slack, distance + r + slack, id});
+  };
+  if (parent && parent->from(f.eye)) {
+    for (const BlobBeam::Entry& e : parent->entries) keep(e.id);
+  } else {
+    thread_local std::vector<int32_t> ids;
+    if (static_cast<int>(ids.size()) < blobs_->size()) ids.resize(blobs_->size());
+    const int found =
+        blobs_->cone_items(program_, f.eye, normals, 1e-9 * (scale_ + eye), ids.data());
+    for (int i = 0; i < found; ++i) keep(ids[i]);
+  }
+  out->eye = f.eye;
+  out->valid = true;
+}
+
+}  // namespace softtrace
