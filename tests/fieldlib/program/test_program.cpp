@@ -657,11 +657,9 @@ TEST(Program, RadiusTransformBoundsAreTheModelsUnrefined) {
       Interval I(0);
       double L = 0;
       if (!t.outside_support(b)) {
-        Interval Id, If;
-        double Ld, Lf = 0;
-        d->bounds(b, &Id, &Ld);
-        if (f) f->bounds(b, &If, &Lf);
-        const TransformedPotential::Bounds B = t.bounds(Id, Ld, If, Lf);
+        const NodeBounds D = d->bounds(b);
+        const NodeBounds F = f ? f->bounds(b) : NodeBounds{};
+        const TransformedPotential::Bounds B = t.bounds(D.value, D.lipschitz, F.value, F.lipschitz);
         I = t.interval(B);
         L = t.slope_bound(B);
       }
@@ -669,9 +667,9 @@ TEST(Program, RadiusTransformBoundsAreTheModelsUnrefined) {
           << "box " << i << ": [" << bb.value.lo << ", " << bb.value.hi << "] vs [" << I.lo << ", "
           << I.hi << "]";
       ASSERT_TRUE(same_bits(bb.lipschitz, L)) << "box " << i << ": " << bb.lipschitz << " vs " << L;
-      Interval In;
-      double Ln;
-      node->bounds(b, &In, &Ln);
+      const NodeBounds N = node->bounds(b);
+      const Interval In = N.value;
+      const double Ln = N.lipschitz;
       ASSERT_LE(bb.value.lo, In.lo) << "box " << i;
       ASSERT_GE(bb.value.hi, In.hi) << "box " << i;
       ASSERT_GE(bb.lipschitz, Ln) << "box " << i;
