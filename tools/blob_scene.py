@@ -14,9 +14,7 @@ blob of the same spheres, strength 1, threshold 0.5, with the same camera, light
 usage: tools/blob_scene.py N [--seed S] [--width W] [--height H] [-o scene.json] [--pov scene.pov]
 """
 import argparse
-import json
 import random
-import sys
 
 import pov_scene
 
@@ -60,15 +58,7 @@ def main():
     if not 2 <= a.n <= 10000:
         ap.error("N must be in [2, 10000] (a soft_blend takes at most 10,000 children)")
     sc = scene(a.n, a.seed, a.width, a.height)
-    text = json.dumps(sc, indent=1) + "\n"
-    if a.pov:
-        with open(a.pov, "w") as f:
-            f.write(pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc))
-    if a.output:
-        with open(a.output, "w") as f:
-            f.write(text)
-    else:
-        sys.stdout.write(text)
+    pov_scene.write_scene(sc, a.output, a.pov, pov_scene.blob, a.width, a.height)
 
 
 if __name__ == "__main__":
