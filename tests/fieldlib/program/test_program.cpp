@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "compiled_case.h"
 #include "eval/eval.h"
 #include "kernels/transformed_potential.h"
 #include "model/program_builder.h"
@@ -150,10 +151,10 @@ template <class Special>
 void expect_models_bits(const std::string& json, Convention convention, const Special& special,
                         bool bound_bits = true) {
   constexpr int kLanes = 13;
-  const NodePtr node = build_from_json(json, convention);
-  const Program prog = compile(*node);
-  Workspace ws;
-  ws.fit(prog);
+  CompiledCase cc(json, convention);
+  const NodePtr& node = cc.node;
+  const Program& prog = cc.prog;
+  Workspace& ws = cc.ws;
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(-2, 2);
   for (int i = 0; i < 200; ++i) {
@@ -1110,10 +1111,10 @@ TEST(Program, PlaneSlopeAlongASegmentIsItsRate) {
           {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7,
            "rotate":{"axis":[1,1,0],"deg":40}}]})"};
   for (const char* json : kJson) {
-    const NodePtr node = build_from_json(json, Convention::Zero);
-    const Program prog = compile(*node);
-    Workspace ws;
-    ws.fit(prog);
+    CompiledCase cc(json, Convention::Zero);
+    const NodePtr& node = cc.node;
+    const Program& prog = cc.prog;
+    Workspace& ws = cc.ws;
     std::mt19937_64 rng(19);
     std::uniform_real_distribution<double> u(-2, 2);
     int one_side = 0, crossing = 0;
