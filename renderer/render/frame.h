@@ -44,8 +44,8 @@ struct FrameStats {
 };
 
 // The first pass's parallel tasks over a data window of width x height pixels at (x0, y0) of the
-// frame: the tiles it meets. Threads beyond that only cost their start-up (Embree's build starts
-// them too): a 1x1 render took 10.9 ms with two threads against 6.5 ms with one.
+// frame: the tiles it meets. Threads beyond that only cost their start-up (with two allowed,
+// Embree's build started a TBB worker for a 1x1 frame before its one tile was traced).
 int frame_tasks(int x0, int y0, int width, int height);
 
 // Renders the film's data window of its full_width x full_height frame at opt.spp (or
