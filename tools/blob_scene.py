@@ -17,10 +17,8 @@ supports on average (meets_radius): a denser cloud at the same N.
 usage: tools/blob_scene.py N [--meets K] [--seed S] [--width W] [--height H] [-o scene.json] [--pov scene.pov]
 """
 import argparse
-import json
 import math
 import random
-import sys
 
 import pov_scene
 
@@ -73,15 +71,7 @@ def main():
         ap.error("N must be in [2, 10000] (a soft_blend takes at most 10,000 children)")
     radius = meets_radius(a.n, a.meets) if a.meets else None
     sc = scene(a.n, a.seed, a.width, a.height, radius)
-    text = json.dumps(sc, indent=1) + "\n"
-    if a.pov:
-        with open(a.pov, "w") as f:
-            f.write(pov_scene.header(sc, a.width, a.height) + pov_scene.blob(sc))
-    if a.output:
-        with open(a.output, "w") as f:
-            f.write(text)
-    else:
-        sys.stdout.write(text)
+    pov_scene.write_scene(sc, a.output, a.pov, pov_scene.blob, a.width, a.height)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,8 @@ usage: tools/pov_cloud.py N [--seed S] [-o cloud.pov]
 """
 import argparse
 import random
-import sys
+
+import pov_scene
 
 
 def scene(n, seed=1):
@@ -53,12 +54,7 @@ def main():
     a = ap.parse_args()
     if not 1 <= a.n <= 10000:
         ap.error("N must be in [1, 10000] (a soft_blend takes at most 10,000 children)")
-    text = scene(a.n, a.seed)
-    if a.output:
-        with open(a.output, "w") as f:
-            f.write(text)
-    else:
-        sys.stdout.write(text)
+    pov_scene.write_text(scene(a.n, a.seed), a.output)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-"""POV-Ray 3.7 versions of softtrace scenes, for tools/pov_compare.py and tools/blob_scene.py.
+"""POV-Ray 3.7 versions of softtrace scenes, for tools/pov_compare.py and the scene generators
+(tools/blob_scene.py, tools/segment_tracing_scene.py, tools/pov_cloud.py), and their output.
 
 softtrace is right-handed with z up; POV-Ray is left-handed with y up. Swapping y and z turns one
 into the other (a swap of two axes flips the handedness), so a softtrace point (x, y, z) is POV's
@@ -12,7 +13,9 @@ Two kinds of object are written:
 - `isosurface`: the Fig. 12(b) blend (scenes/fig000_12b_soft_blend.json), written out in POV's
   function syntax.
 """
+import json
 import math
+import sys
 
 
 def pov_vec(v):
@@ -172,3 +175,20 @@ def isosurface_fig12b(scene, max_gradient, accuracy):
         "  accuracy %.9g" % accuracy,
         material(obj),
         "}"]) + "\n"
+
+
+def write_text(text, path):
+    """text to the file at path, or to standard output without one (the generators' -o)."""
+    if path:
+        with open(path, "w") as f:
+            f.write(text)
+    else:
+        sys.stdout.write(text)
+
+
+def write_scene(scene, output, pov, pov_object, width, height):
+    """A generated softtrace scene as JSON (write_text's output), and with `pov` POV-Ray's
+    version of it there: header() at width x height and pov_object(scene)."""
+    if pov:
+        write_text(header(scene, width, height) + pov_object(scene), pov)
+    write_text(json.dumps(scene, indent=1) + "\n", output)

@@ -21,10 +21,8 @@ usage: tools/segment_tracing_scene.py [--seed S] [--width W] [--height H] [-o sc
            [--pov scene.pov]
 """
 import argparse
-import json
 import math
 import random
-import sys
 
 import pov_scene
 
@@ -152,15 +150,7 @@ def main():
     if a.width < 1 or a.height < 1:
         ap.error("--width and --height must be positive")
     sc = scene(a.seed, a.width, a.height)
-    text = json.dumps(sc, indent=1) + "\n"
-    if a.pov:
-        with open(a.pov, "w") as f:
-            f.write(pov_scene.header(sc, a.width, a.height) + pov_blob(sc))
-    if a.output:
-        with open(a.output, "w") as f:
-            f.write(text)
-    else:
-        sys.stdout.write(text)
+    pov_scene.write_scene(sc, a.output, a.pov, pov_blob, a.width, a.height)
 
 
 if __name__ == "__main__":

@@ -87,18 +87,17 @@ class BtBlend final : public NaryNode<BtBlend> {
   // bulge_bounds.
   NodeBounds combine(const Box& b, const Interval* I, const double* L) const {
     const int k = op_.k();
-    Slots<Interval> X(k);
-    Slots<double> lo(k), hi(k);
+    Slots<double> lo(k), hi(k);  // the ends of X_i
     for (int i = 0; i < k; ++i) {
-      X.set(i, signed_interval(sigma_[i], I[i]));
-      lo.set(i, X[i].lo);
-      hi.set(i, X[i].hi);
+      const Interval X = signed_interval(sigma_[i], I[i]);
+      lo.set(i, X.lo);
+      hi.set(i, X.hi);
     }
-    if (bulge()) return bulge_bounds(b, X.data(), lo.data(), hi.data(), L);
+    if (bulge()) return bulge_bounds(b, lo.data(), hi.data(), L);
     const Interval bt = monotone_enclosure(lo.data(), hi.data());
     double Lr = 0;
     for (int i = 0; i < k; ++i)
-      if (can_be_active(i, X.data(), op_.r().data(), op_.m().data()))
+      if (can_be_active(i, lo.data(), hi.data(), op_.r().data(), op_.m().data()))
         Lr = std::max(Lr, iv::up(L[i] / op_.m()[i]));
     return {tau_ > 0 ? bt : -bt, Lr};
   }
@@ -176,14 +175,13 @@ class BtBlend final : public NaryNode<BtBlend> {
   }
 
   // With bulge elimination, over b: the enclosure and the bound of blends_bt.h, both from one
-  // computation of the position functions' ranges (X_i = σ_i [f_i] with ends lo, hi; L the
+  // computation of the position functions' ranges (lo, hi the ends of X_i = σ_i [f_i]; L the
   // children's box bounds).
-  NodeBounds bulge_bounds(const Box& b, const Interval* X, const double* lo, const double* hi,
-                          const double* L) const {
+  NodeBounds bulge_bounds(const Box& b, const double* lo, const double* hi, const double* L) const {
     BulgeOperand g[2];
     const BulgeBox B = position_ranges(b, L, g);
     const Interval bt = bulge_enclosure(lo, hi, B);
-    return {tau_ > 0 ? bt : -bt, bulge_lipschitz(X, g, B, bt)};
+    return {tau_ > 0 ? bt : -bt, bulge_lipschitz(lo, hi, g, B, bt)};
   }
 
   // The position functions' ranges and slopes over the box, from the operands' gradient
@@ -251,15 +249,15 @@ class BtBlend final : public NaryNode<BtBlend> {
   // |∇BT| <= max_i L_i/m_i + max_i (r_i/m_i)|∇cosθ| + |BT| max_i |∇M_i|/m_i (blends_bt.h), the
   // first two maxima over the children that can be active in the box; `bt` is BT's enclosure
   // over it, `g` the operands' bounds (their grad_hi the children's box Lipschitz bounds).
-  double bulge_lipschitz(const Interval* X, const BulgeOperand* g, const BulgeBox& B,
-                         Interval bt) const {
+  double bulge_lipschitz(const double* lo, const double* hi, const BulgeOperand* g,
+                         const BulgeBox& B, Interval bt) const {
     if (!homogeneous()) return kInf;
     double slope = 0, range = 0, weight = 0;
     int active = 0;
     for (int i = 0; i < 2; ++i) {
       const double m = op_.m()[i];
       weight = std::max(weight, iv::up(B.dM[i] / m));
-      if (!can_be_active(i, X, B.P_hi, B.M_hi)) continue;
+      if (!can_be_active(i, lo, hi, B.P_hi, B.M_hi)) continue;
       ++active;
       slope = std::max(slope, iv::up(g[i].grad_hi / m));
       range = std::max(range, iv::up(op_.r()[i] / m));
@@ -271,14 +269,16 @@ class BtBlend final : public NaryNode<BtBlend> {
 
   // Whether ∂_iBT can be non-zero in the box: it is zero wherever x_i - M_i·min_{j≠i} x_j/M_j >=
   // P_i (the hyper-ellipsoid term i is 0 since h <= min_j x_j/M_j; for the conic, x is outside
-  // region II with another arg-min), checked with interval ends, P_i <= P_hi, M_i ∈ [m_i, M_hi].
-  bool can_be_active(int i, const Interval* X, const double* P_hi, const double* M_hi) const {
+  // region II with another arg-min), checked with interval ends (x_j ∈ [lo_j, hi_j]), P_i <= P_hi,
+  // M_i ∈ [m_i, M_hi].
+  bool can_be_active(int i, const double* lo, const double* hi, const double* P_hi,
+                     const double* M_hi) const {
     const double* m = op_.m().data();
     double others = kInf;  // an upper bound of min_{j≠i} x_j/M_j over the box
     for (int j = 0; j < op_.k(); ++j)
-      if (j != i) others = std::min(others, iv::up(X[j].hi / (X[j].hi >= 0 ? m[j] : M_hi[j])));
+      if (j != i) others = std::min(others, iv::up(hi[j] / (hi[j] >= 0 ? m[j] : M_hi[j])));
     const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
-    return !(iv::down(X[i].lo - reach) > P_hi[i]);
+    return !(iv::down(lo[i] - reach) > P_hi[i]);
   }
 
   BtOperator op_;

@@ -25,35 +25,22 @@ class NaryNode : public FieldNode {
   explicit NaryNode(std::vector<NodePtr> children) : c_(std::move(children)) {}
 
   // The children's bounds over b, child i's interval in I[i] and Lipschitz bound in L[i], handed
-  // to Kind::combine(). Up to 16 children the arrays are plain stack arrays, left unset until
-  // each slot is written (every one is, before combine reads it); beyond, on the heap.
+  // to Kind::combine() (Slots: on the stack up to 16 children, each slot written before combine
+  // reads it). combine has this one call site, so the compiler inlines it here: the oracle's
+  // box question on a BT blend is then one call, as it was before NaryNode (issue 29).
   NodeBounds box_bounds(const Box& b) const final {
     const size_t k = c_.size();
-    if (k > kStack) {
-      std::vector<Interval> I(k);
-      std::vector<double> L(k);
-      gather(b, I.data(), L.data());
-      return static_cast<const Kind&>(*this).combine(b, I.data(), L.data());
+    Slots<Interval> I(k);
+    Slots<double> L(k);
+    for (size_t i = 0; i < k; ++i) {
+      const NodeBounds child = c_[i]->bounds(b);
+      I.set(i, child.value);
+      L.set(i, child.lipschitz);
     }
-    alignas(Interval) unsigned char slots[kStack * sizeof(Interval)];
-    double L[kStack];
-    Interval* I = reinterpret_cast<Interval*>(slots);
-    gather(b, I, L);
-    return static_cast<const Kind&>(*this).combine(b, I, L);
+    return static_cast<const Kind&>(*this).combine(b, I.data(), L.data());
   }
 
   std::vector<NodePtr> c_;  // the children, in the scene's order
-
- private:
-  static constexpr size_t kStack = 16;
-
-  void gather(const Box& b, Interval* I, double* L) const {
-    for (size_t i = 0; i < c_.size(); ++i) {
-      const NodeBounds child = c_[i]->bounds(b);
-      new (I + i) Interval(child.value);  // trivially destructible: no destructor owed
-      L[i] = child.lipschitz;
-    }
-  }
 };
 
 }  // namespace softtrace

@@ -17,13 +17,6 @@ namespace softtrace {
 
 class ProgramBuilder;
 
-// A node's answer to the box question: f's range and a bound on |∇f| over one box. (The program's
-// BoxBounds, eval/eval.h, adds what a ray segment needs; a node answers over boxes only.)
-struct NodeBounds {
-  Interval value;        // contains f over the box
-  double lipschitz = 0;  // >= |∇f| over the box; +inf where no bound exists
-};
-
 class FieldNode : public Oracle {
  public:
   // f(p), and ∇f(p) into *grad when grad is non-null. Where f is not differentiable (kinks of
@@ -37,8 +30,6 @@ class FieldNode : public Oracle {
   NodeBounds bounds(const Box& b) const { return box_bounds(b); }
   Interval interval(const Box& b) const { return box_bounds(b).value; }
   double lipschitz(const Box& b) const { return box_bounds(b).lipschitz; }
-  // The same question as an oracle instruction asks it (program/oracle.h).
-  void bounds(const Box& b, Interval* value, double* lipschitz) const final;
 
   // A different question: a bound on |∇f| over all of space, fixed when the node is built (the
   // tracer's step bound, and what the blends' global bounds and the program's constants are made
@@ -81,8 +72,9 @@ class FieldNode : public Oracle {
   // Each kind's answer to bounds(b): the value interval and the box Lipschitz bound from one pass
   // over the kind's terms, asking each child's bounds() once (a kind with no box bound of its own
   // gives its global one). Blends over a list of children derive from NaryNode (nary_node.h),
-  // which gathers the children's bounds for them.
-  virtual NodeBounds box_bounds(const Box& b) const = 0;
+  // which gathers the children's bounds for them. An oracle instruction calls it directly, as
+  // Oracle::box_bounds (public there: the program asks the question it stands for).
+  NodeBounds box_bounds(const Box& b) const override = 0;
 };
 
 using NodePtr = std::unique_ptr<FieldNode>;

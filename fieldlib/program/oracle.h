@@ -22,13 +22,22 @@ struct PolynomialBlob {
   double c2 = 0, c3 = 0;
 };
 
+// A node's answer to the box question: f's range and a bound on |∇f| over one box. (The program's
+// BoxBounds, eval/eval.h, adds what a ray segment needs; a node answers over boxes only.)
+struct NodeBounds {
+  Interval value;        // contains f over the box
+  double lipschitz = 0;  // >= |∇f| over the box; +inf where no bound exists
+};
+
 class Oracle {
  public:
   virtual ~Oracle() = default;
   // f(p), and ∇f(p) into *grad when grad is non-null.
   virtual double eval(const Vec3& p, Vec3* grad) const = 0;
-  // A sound enclosure of f over the box and a Lipschitz bound there, together.
-  virtual void bounds(const Box& b, Interval* value, double* lipschitz) const = 0;
+  // A sound enclosure of f over the box and a Lipschitz bound there, together: the node kind's
+  // own answer (FieldNode::box_bounds), called with no adapter between, since an oracle blend is
+  // asked it for every box of every ray segment (docs/performance.md, "One box question").
+  virtual NodeBounds box_bounds(const Box& b) const = 0;
   // Whether the node is a polynomial blob, and which (into *b): what lets the blob ray path read
   // an affinely placed blob, which compiles to one oracle instruction. No by default.
   virtual bool polynomial_blob(PolynomialBlob* b) const { return false; }

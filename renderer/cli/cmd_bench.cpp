@@ -12,6 +12,7 @@
 #include "cli/cmd_common.h"
 #include "cli/commands.h"
 #include "commit.h"
+#include "render/camera.h"
 #include "render/frame.h"
 #include "render/threads.h"
 
@@ -69,7 +70,8 @@ int run_bench(const BenchArgs& a) {
     FrameStats stats;  // the same every frame: each pixel's work depends on the pixel alone
     // One bar for all frames; drawing it costs a few microseconds ten times a second.
     Progress progress("bench", long(a.repeat) * scene.image.width * scene.image.height,
-                      !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
+                      !a.quiet && (a.progress || ::isatty(2)),
+                      samples_per_pixel(scene.camera, scene.image.spp));
     for (int i = 0; i < a.repeat; ++i) {
       Film film(scene.image.width, scene.image.height, AovSelection{});
       const double c0 = process_cpu_seconds();

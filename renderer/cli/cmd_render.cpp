@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "film/film.h"
+#include "render/camera.h"
 #include "render/frame.h"
 #include "render/frame_metadata.h"
 #include "render/threads.h"
@@ -118,7 +119,10 @@ int run_render(const RenderArgs& a) {
         std::none_of(outputs.begin(), outputs.end(), is_exr_path))
       throw std::invalid_argument("--aov needs an .exr output");
 
-    const auto threads = limit_threads(a.threads);
+    // No more threads than the frame has tiles (the same bits for any count, frame.h).
+    const int tasks = frame_tasks(window.x0, window.y0, window.width(), window.height());
+    const int wanted = a.threads ? a.threads : default_threads();
+    const auto threads = limit_threads(wanted > tasks ? tasks : a.threads);
 
     const auto start = std::chrono::steady_clock::now();
     const TracedScene rt(scene, a.lipschitz);
@@ -150,7 +154,8 @@ int run_render(const RenderArgs& a) {
     if (a.tile) film.attributes["softtrace/tile"] = *a.tile;
     if (a.frame >= 0) film.attributes["softtrace/frame"] = std::to_string(a.frame);
     Progress progress("rendering", long(film.width) * film.height,
-                      !a.quiet && (a.progress || ::isatty(2)), scene.image.spp);
+                      !a.quiet && (a.progress || ::isatty(2)),
+                      samples_per_pixel(scene.camera, scene.image.spp));
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;

@@ -334,10 +334,10 @@ void write_exr(const std::string& path, const ImageFile& img, const ExrExtras& e
   } catch (const std::exception& e) {
     error = e.what();
   }
-  // The destructor above wrote the offset table: only now is the file complete, or not.
+  // The destructor above wrote the offset table: only now is the file complete, or not. The data
+  // reaches the disk in commit_temp (output_file.h), which syncs every output once before its
+  // rename.
   if (error.empty() && !stream.error().empty()) error = "cannot write the file: " + stream.error();
-  if (error.empty() && ::fsync(fd) != 0)
-    error = std::string("cannot write the file: ") + std::strerror(errno);
   if (::close(fd) != 0 && error.empty())
     error = std::string("cannot write the file: ") + std::strerror(errno);
   if (!error.empty()) throw std::runtime_error(error);

@@ -29,7 +29,9 @@ int remove_stale_temporaries(const std::string& target, double started);
 // Throws std::runtime_error naming `display` when it cannot.
 std::string create_pending_temp(const std::string& target, const std::string& display);
 
-// Renames a finished temporary file over `target` (with a new file's usual permissions).
+// Renames a finished temporary file over `target` (with a new file's usual permissions), after
+// one fsync of it: the writers only check their writes and close, so this is the output's one
+// sync, and the rename never makes a file the output before its data is on the disk.
 // Throws std::runtime_error naming `display`; the temporary file is then removed.
 void commit_temp(const std::string& tmp, const std::string& target, const std::string& display);
 

@@ -1,6 +1,5 @@
 // 8-bit PNG through libpng's simplified API (png_image).
 #include <png.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -153,8 +152,9 @@ void write_png(const std::string& path, const PngPixels& img, bool srgb) {
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw std::runtime_error("cannot open the file for writing");
   const bool written = png_image_write_to_stdio(&p.image, f, 0, img.bytes.data(), 0, nullptr);
-  // A full disk may show only when the buffer is flushed, or when the data reaches the disk.
-  const bool flushed = written && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+  // A full disk may show only when the buffer is flushed (or when the data reaches the disk: in
+  // commit_temp, output_file.h, which syncs every output once before its rename).
+  const bool flushed = written && std::fflush(f) == 0;
   const int flush_errno = errno;
   const bool closed = std::fclose(f) == 0;
   if (!written) throw std::runtime_error(p.image.message);

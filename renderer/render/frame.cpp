@@ -246,6 +246,11 @@ class FrameTracer {
   AdaptivePixels* const adaptive_;
 };
 
+int tiles_meeting(const PixelRect& area) {
+  return ((area.x1 + kTile - 1) / kTile - area.x0 / kTile) *
+         ((area.y1 + kTile - 1) / kTile - area.y0 / kTile);
+}
+
 // Runs `pass` over the full-frame tiles that meet `area`, one tile per task; a cancel is noticed
 // before the next sample (FrameTracer::samples). Progress counts in first-pass pixels: the data
 // window's pixels, then, with `refined`, each pixel traced again as `weight` of them (its share of
@@ -278,6 +283,10 @@ void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pas
 }
 
 }  // namespace
+
+int frame_tasks(int x0, int y0, int width, int height) {
+  return tiles_meeting({x0, y0, x0 + width, y0 + height});
+}
 
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
                   Progress* progress, FrameStats* stats) {

@@ -43,6 +43,11 @@ struct FrameStats {
   RayWork primary, shadow;
 };
 
+// The first pass's parallel tasks over a data window of width x height pixels at (x0, y0) of the
+// frame: the tiles it meets. Threads beyond that only cost their start-up (with two allowed,
+// Embree's build started a TBB worker for a 1x1 frame before its one tile was traced).
+int frame_tasks(int x0, int y0, int width, int height);
+
 // Renders the film's data window of its full_width x full_height frame at opt.spp (or
 // scene.image.spp); never changes the scene. Returns false if cancelled.
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,

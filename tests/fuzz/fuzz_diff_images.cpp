@@ -4,32 +4,16 @@
 // must end in a std::runtime_error, never a crash or a sanitizer report. Built by tools/dev.sh
 // test in build-fuzz/ and run there for a bounded time, seeded with images softtrace wrote and
 // reference_images/.
-#include <unistd.h>
-
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
-#include <string>
 
+#include "fuzz_image_input.h"
 #include "io/image_compare.h"
 #include "io/image_file.h"
 
 using namespace softtrace;
 
 namespace {
-
-const std::string& input_path() {
-  static const std::string path = "/tmp/softtrace-fuzz-diff-" + std::to_string(::getpid());
-  return path;
-}
-
-bool write_input(const uint8_t* data, size_t size) {
-  FILE* f = std::fopen(input_path().c_str(), "wb");
-  if (!f) return false;
-  const bool ok = std::fwrite(data, 1, size, f) == size;
-  return std::fclose(f) == 0 && ok;
-}
 
 // 3x2 R,G,B,A in the middle of a 5x4 frame.
 ImageFile reference() {
@@ -64,13 +48,9 @@ void require(bool ok) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  if (!write_input(data, size)) return 0;
+  static const FuzzImageInput input("diff");
   ImageFile img;
-  try {
-    img = read_image(input_path());
-  } catch (const std::runtime_error&) {
-    return 0;  // the expected outcome for almost every input
-  }
+  if (!input.read(data, size, &img)) return 0;
   require(img.width > 0 && img.height > 0 && !img.channels.empty() &&
           img.pixels.size() == size_t(img.width) * img.height * img.channels.size());
   // Against itself no pixel fails but for NaN and infinities.

@@ -4,33 +4,18 @@
 // must end in a std::runtime_error, never a crash, a sanitizer report or an allocation the size
 // of a tampered header. Built by tools/dev.sh test in build-fuzz/ and run there for a bounded
 // time, seeded with tiles softtrace rendered (tools/dev.sh fuzz_seeds).
-#include <unistd.h>
-
 #include <cstdint>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "fuzz_image_input.h"
 #include "io/image_file.h"
 #include "render/tile_merge.h"
 
 using namespace softtrace;
 
 namespace {
-
-// read_image reads files: each input goes to this one, per process.
-const std::string& input_path() {
-  static const std::string path = "/tmp/softtrace-fuzz-merge-" + std::to_string(::getpid());
-  return path;
-}
-
-bool write_input(const uint8_t* data, size_t size) {
-  FILE* f = std::fopen(input_path().c_str(), "wb");
-  if (!f) return false;
-  const bool ok = std::fwrite(data, 1, size, f) == size;
-  return std::fclose(f) == 0 && ok;
-}
 
 void try_merge(const std::vector<ImageFile>& tiles) {
   const std::vector<std::string> paths(tiles.size(), "fuzz.exr");
@@ -43,13 +28,9 @@ void try_merge(const std::vector<ImageFile>& tiles) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  if (!write_input(data, size)) return 0;
+  static const FuzzImageInput input("merge");
   ImageFile tile;
-  try {
-    tile = read_image(input_path());
-  } catch (const std::runtime_error&) {
-    return 0;  // the expected outcome for almost every input
-  }
+  if (!input.read(data, size, &tile)) return 0;
   try_merge({tile});
   try_merge({tile, tile});
   // One pixel at the frame's origin with the same channels and attributes: gets past the

@@ -1,8 +1,6 @@
 #include "mesh_scenes.h"
 
-#include <algorithm>
-#include <filesystem>
-
+#include "scene_files.h"
 #include "tracer_scenes.h"
 
 namespace softtrace::mesh_scenes {
@@ -15,11 +13,7 @@ std::vector<Case> all_cases() {
       if (scene->objects[i].field)  // a plain primitive or a CSG has no field to mesh
         cases.push_back({name + "#" + std::to_string(i), scene, int(i)});
   };
-  std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(SOFTTRACE_SOURCE_DIR "/scenes"))
-    if (e.path().extension() == ".json") files.push_back(e.path().string());
-  std::sort(files.begin(), files.end());
-  for (const auto& f : files) add(std::filesystem::path(f).filename().string(), load_scene(f));
+  for (const auto& f : test::scene_files()) add(f.filename().string(), load_scene(f.string()));
   for (int i = 0; i < tracer_scenes::kCount; ++i)
     add("tracer_" + std::to_string(i), parse_scene(tracer_scenes::kScenes[i], "tracer"));
   return cases;

@@ -22,7 +22,9 @@ struct OracleOp : RegisterToSlot {
     io.local(in, [&](const Vec3& q, Vec3* g) { return in.node->eval(q, g); });
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
-    in.node->bounds(io.box(in.in), &io.I[in.out], &io.L[in.out]);
+    const NodeBounds nb = in.node->box_bounds(io.box(in.in));
+    io.I[in.out] = nb.value;
+    io.L[in.out] = nb.lipschitz;
     io.D[in.out] = {-io.L[in.out], io.L[in.out]};
     io.Q[in.out] = 0;
   }

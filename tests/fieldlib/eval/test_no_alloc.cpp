@@ -10,7 +10,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <functional>
 #include <new>
 #include <random>
@@ -21,6 +20,7 @@
 #include "model/node.h"
 #include "model/program_builder.h"
 #include "scene/scene.h"
+#include "scene_files.h"
 #include "sweep.h"
 
 namespace {
@@ -240,9 +240,7 @@ INSTANTIATE_TEST_SUITE_P(Sweep, SweepNoAlloc, testing::ValuesIn(test::sweep_case
 
 std::vector<std::string> scene_names() {
   std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(SOFTTRACE_SOURCE_DIR "/scenes"))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
+  for (const auto& f : test::scene_files()) names.push_back(f.stem().string());
   return names;
 }
 

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "kernels/bt_base.h"
+#include "scene_files.h"
 #include "sweep.h"
 
 // A namespace of its own: the unity build joins this file with test_bt_nodes.cpp.
@@ -133,11 +133,7 @@ struct SceneField {
 
 std::vector<SceneField> bulge_fields() {
   std::vector<SceneField> out;
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(SOFTTRACE_SOURCE_DIR "/scenes"))
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (const auto& path : files) {
+  for (const auto& path : scene_files()) {
     std::ifstream in(path);
     std::stringstream ss;
     ss << in.rdbuf();

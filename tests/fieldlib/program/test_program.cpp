@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "compiled_case.h"
 #include "eval/eval.h"
 #include "kernels/transformed_potential.h"
 #include "model/program_builder.h"
@@ -150,10 +151,10 @@ template <class Special>
 void expect_models_bits(const std::string& json, Convention convention, const Special& special,
                         bool bound_bits = true) {
   constexpr int kLanes = 13;
-  const NodePtr node = build_from_json(json, convention);
-  const Program prog = compile(*node);
-  Workspace ws;
-  ws.fit(prog);
+  CompiledCase cc(json, convention);
+  const NodePtr& node = cc.node;
+  const Program& prog = cc.prog;
+  Workspace& ws = cc.ws;
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(-2, 2);
   for (int i = 0; i < 200; ++i) {
@@ -657,11 +658,9 @@ TEST(Program, RadiusTransformBoundsAreTheModelsUnrefined) {
       Interval I(0);
       double L = 0;
       if (!t.outside_support(b)) {
-        Interval Id, If;
-        double Ld, Lf = 0;
-        d->bounds(b, &Id, &Ld);
-        if (f) f->bounds(b, &If, &Lf);
-        const TransformedPotential::Bounds B = t.bounds(Id, Ld, If, Lf);
+        const NodeBounds D = d->bounds(b);
+        const NodeBounds F = f ? f->bounds(b) : NodeBounds{};
+        const TransformedPotential::Bounds B = t.bounds(D.value, D.lipschitz, F.value, F.lipschitz);
         I = t.interval(B);
         L = t.slope_bound(B);
       }
@@ -669,9 +668,9 @@ TEST(Program, RadiusTransformBoundsAreTheModelsUnrefined) {
           << "box " << i << ": [" << bb.value.lo << ", " << bb.value.hi << "] vs [" << I.lo << ", "
           << I.hi << "]";
       ASSERT_TRUE(same_bits(bb.lipschitz, L)) << "box " << i << ": " << bb.lipschitz << " vs " << L;
-      Interval In;
-      double Ln;
-      node->bounds(b, &In, &Ln);
+      const NodeBounds N = node->bounds(b);
+      const Interval In = N.value;
+      const double Ln = N.lipschitz;
       ASSERT_LE(bb.value.lo, In.lo) << "box " << i;
       ASSERT_GE(bb.value.hi, In.hi) << "box " << i;
       ASSERT_GE(bb.lipschitz, Ln) << "box " << i;
@@ -1116,10 +1115,10 @@ TEST(Program, PlaneSlopeAlongASegmentIsItsRate) {
           {"type":"parallel_planes","normal":[1,2,-0.5],"a":0.7,
            "rotate":{"axis":[1,1,0],"deg":40}}]})"};
   for (const char* json : kJson) {
-    const NodePtr node = build_from_json(json, Convention::Zero);
-    const Program prog = compile(*node);
-    Workspace ws;
-    ws.fit(prog);
+    CompiledCase cc(json, Convention::Zero);
+    const NodePtr& node = cc.node;
+    const Program& prog = cc.prog;
+    Workspace& ws = cc.ws;
     std::mt19937_64 rng(19);
     std::uniform_real_distribution<double> u(-2, 2);
     int one_side = 0, crossing = 0;

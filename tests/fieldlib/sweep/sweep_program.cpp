@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "compiled_case.h"
 #include "eval/eval.h"
-#include "model/program_builder.h"
 #include "sweep.h"
 
 namespace softtrace::test {
@@ -19,22 +19,11 @@ bool near(double a, double b) {
   return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
 }
 
-// A case's model, the program compiled from it and a workspace fitted to that.
-struct Compiled {
-  explicit Compiled(const SweepCase& c)
-      : node(build_from_json(c.json, c.convention)), prog(compile(*node)) {
-    ws.fit(prog);
-  }
-  NodePtr node;
-  Program prog;
-  Workspace ws;
-};
-
 }  // namespace
 
 TEST_P(NodeSweep, ProgramValuesAndGradientsMatchTheModel) {
   const SweepCase& c = GetParam();
-  Compiled cc(c);
+  CompiledCase cc(c.json, c.convention);
   const NodePtr& n = cc.node;
   const Program& prog = cc.prog;
   Workspace& ws = cc.ws;
@@ -63,7 +52,7 @@ TEST_P(NodeSweep, ProgramValuesAndGradientsMatchTheModel) {
 
 TEST_P(NodeSweep, ProgramBoxPassEnclosesSamplesAndPrunesExactly) {
   const SweepCase& c = GetParam();
-  Compiled cc(c);
+  CompiledCase cc(c.json, c.convention);
   const NodePtr& n = cc.node;
   const Program& prog = cc.prog;
   Workspace& ws = cc.ws;
@@ -92,17 +81,17 @@ TEST_P(NodeSweep, ProgramSegmentPassEnclosesSamplesAndSlopes) {
   // The tracer's pass over a stretch of a ray: the values, the zero of the quiet start, and the
   // difference quotients along it against the slope interval, at points on the segment.
   const SweepCase& c = GetParam();
-  Compiled cc(c);
+  CompiledCase cc(c.json, c.convention);
   const NodePtr& n = cc.node;
   const Program& prog = cc.prog;
   Workspace& ws = cc.ws;
   std::mt19937_64 rng(8);
   for (int i = 0; i < 200; ++i) {
-    const Box box = random_box(rng, c.domain);
-    const Segment seg{uniform_in(rng, box), uniform_in(rng, box)};
-    const double len = length(seg.b - seg.a);
-    if (!(len > 0)) continue;
-    const Vec3 dir = (seg.b - seg.a) / len;
+    const RandomSegment s = random_segment(rng, c.domain);
+    if (!(s.len > 0)) continue;
+    const Segment& seg = s.seg;
+    const double len = s.len;
+    const Vec3 dir = s.dir;
     const BoxBounds bb = bounds(prog, seg, ws);
     const ProgramView view = ws.view;
     std::uniform_real_distribution<double> u(0, len);
@@ -133,16 +122,16 @@ TEST_P(NodeSweep, ProgramSegmentSlopeHoldsCentralDifferences) {
   // The slope along a segment against the derivative d f(a + t u)/dt sampled by central
   // differences at points inside it, where the step stays inside (the derivative, not a chord).
   const SweepCase& c = GetParam();
-  Compiled cc(c);
+  CompiledCase cc(c.json, c.convention);
   const NodePtr& n = cc.node;
   Workspace& ws = cc.ws;
   std::mt19937_64 rng(9);
   for (int i = 0; i < 200; ++i) {
-    const Box box = random_box(rng, c.domain);
-    const Segment seg{uniform_in(rng, box), uniform_in(rng, box)};
-    const double len = length(seg.b - seg.a);
-    if (!(len > 0)) continue;
-    const Vec3 dir = (seg.b - seg.a) / len;
+    const RandomSegment s = random_segment(rng, c.domain);
+    if (!(s.len > 0)) continue;
+    const Segment& seg = s.seg;
+    const double len = s.len;
+    const Vec3 dir = s.dir;
     const BoxBounds bb = bounds(cc.prog, seg, ws);
     const double h = 1e-6 * len;
     std::uniform_real_distribution<double> u(h, len - h);

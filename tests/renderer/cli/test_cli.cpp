@@ -14,6 +14,7 @@
 #include "model/program_builder.h"
 #include "render/progress.h"
 #include "scene/scene.h"
+#include "scene_files.h"
 
 namespace softtrace::test {
 namespace {
@@ -272,9 +273,8 @@ TEST(Render, HugeOrTinyDirectionsGiveTheSamePicture) {
 // node sweep, the property tests and the figure tests.
 TEST(Eval, EveryScenePrintsTheLibraryValues) {
   int scenes = 0;
-  for (const auto& entry : fs::directory_iterator(source_path("scenes"))) {
-    if (entry.path().extension() != ".json") continue;  // scenes/meshes/ holds their OBJ files
-    const std::string path = entry.path().string();
+  for (const auto& file : scene_files()) {
+    const std::string path = file.string();
     const Scene scene = load_scene(path);
     const auto field = std::find_if(scene.objects.begin(), scene.objects.end(),
                                     [](const SceneObject& o) { return o.field != nullptr; });

@@ -3,7 +3,6 @@
 // transforms, with their parameters), and the fuzzer dictionary must hold every one of them.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -11,18 +10,15 @@
 
 #include "cli_util.h"
 #include "json_types.h"
+#include "scene_files.h"
 
 namespace softtrace::test {
 namespace {
 
-namespace fs = std::filesystem;
-
 std::set<std::string> types_in_scenes() {
   std::set<std::string> types;
-  for (const auto& entry : fs::directory_iterator(source_path("scenes"))) {
-    if (entry.path().extension() != ".json") continue;  // scenes/meshes/ holds their OBJ files
-    const nlohmann::json j =
-        nlohmann::json::parse(read_file(entry.path().string()), nullptr, true, true);
+  for (const auto& path : scene_files()) {
+    const nlohmann::json j = nlohmann::json::parse(read_file(path.string()), nullptr, true, true);
     for (const auto& o : j.at("objects"))
       if (o.contains("field")) collect_types(o.at("field"), types);  // not a shape
   }

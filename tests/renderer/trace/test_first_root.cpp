@@ -18,7 +18,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <memory>
 #include <string>
@@ -26,6 +25,7 @@
 
 #include "render/camera.h"
 #include "render/frame.h"
+#include "scene_files.h"
 #include "tracer_scenes.h"
 
 namespace softtrace {
@@ -98,13 +98,9 @@ std::vector<Case> all_cases() {
     const int stride = std::max(1, int(std::sqrt(double(w) * h / kRaysPerImage)));
     cases.push_back({name, s, w, h, stride});
   };
-  std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(SOFTTRACE_SOURCE_DIR "/scenes"))
-    if (e.path().extension() == ".json") files.push_back(e.path().string());
-  std::sort(files.begin(), files.end());
-  for (const auto& f : files) {
-    auto s = std::make_shared<Scene>(load_scene(f));
-    const std::string name = std::filesystem::path(f).stem().string();
+  for (const auto& f : test::scene_files()) {
+    auto s = std::make_shared<Scene>(load_scene(f.string()));
+    const std::string name = f.stem().string();
     add(name, s, s->image.width, s->image.height);
     add(name + "_4x", s, 2 * s->image.width, 2 * s->image.height);
   }
