@@ -214,11 +214,38 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   auto part_of = [&](uint64_t g) {
     return size_t(std::upper_bound(first.begin(), first.end(), g) - first.begin()) - 1;
   };
-  std::vector<std::pair<uint64_t, uint64_t>> boundary;  // (key, vertex before welding)
-  for (size_t i = 0; i < parts.size(); ++i)
-    for (size_t v = 0; v < parts[i].keys.size(); ++v)
-      if (parts[i].place[v] != EdgePlace::Interior)
-        boundary.emplace_back(parts[i].keys[v], first[i] + v);
+  // The boundary vertices, (key, vertex before welding), counted and then written by chunks of
+  // leaves on the threads (one array of the final size: no copies as it grows).
+  constexpr size_t kPartChunk = 256;
+  const size_t part_chunks = (parts.size() + kPartChunk - 1) / kPartChunk;
+  auto chunk_parts = [&](size_t c) {
+    return std::make_pair(c * kPartChunk, std::min(parts.size(), (c + 1) * kPartChunk));
+  };
+  std::vector<size_t> boundary_at(part_chunks + 1, 0);
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    const auto [begin, end] = chunk_parts(c);
+    for (size_t i = begin; i < end; ++i)
+      for (const EdgePlace place : parts[i].place)
+        boundary_at[c + 1] += place != EdgePlace::Interior;
+  });
+  for (size_t c = 0; c < part_chunks; ++c) boundary_at[c + 1] += boundary_at[c];
+  std::vector<std::pair<uint64_t, uint64_t>> boundary(boundary_at.back());
+  // The weld's map is made (filled, on fresh pages) on one thread while the other starts on the
+  // chunks; it is held with the pairs in any case, so the peak heap does not change.
+  constexpr uint64_t kKeep = ~uint64_t(0);
+  std::vector<uint64_t> same;  // the vertex a duplicate stands for
+  parallel_for(part_chunks + 1, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    if (c-- == 0) {
+      same.assign(first.back(), kKeep);
+      return;
+    }
+    const auto [begin, end] = chunk_parts(c);
+    size_t next = boundary_at[c];
+    for (size_t i = begin; i < end; ++i)
+      for (size_t v = 0; v < parts[i].keys.size(); ++v)
+        if (parts[i].place[v] != EdgePlace::Interior)
+          boundary[next++] = {parts[i].keys[v], first[i] + v};
+  });
   // Sorted in halves on two threads, then merged (the pairs are distinct: one order).
   const auto half = boundary.begin() + std::ptrdiff_t(boundary.size() / 2);
   parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
@@ -226,31 +253,32 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     if (h == 1) std::sort(half, boundary.end());
   });
   std::inplace_merge(boundary.begin(), half, boundary.end());
-  constexpr uint64_t kKeep = ~uint64_t(0);
-  std::vector<uint64_t> same(first.back(), kKeep);  // the vertex a duplicate stands for
-  for (size_t b = 0, end; b < boundary.size(); b = end) {
-    const uint64_t name = boundary[b].second;
-    const Vec3* solved = nullptr;
-    for (end = b; end < boundary.size() && boundary[end].first == boundary[b].first; ++end) {
-      const uint64_t g = boundary[end].second;
-      const size_t i = part_of(g);
-      if (parts[i].place[g - first[i]] == EdgePlace::Solved)
-        solved = &parts[i].positions[g - first[i]];
-      if (end > b) same[g] = name;
+  // Each key's group is welded on its own (it writes only its own vertices): the groups in two
+  // halves, split where the key changes, one on each thread.
+  size_t split = boundary.size() / 2;
+  while (split > 0 && split < boundary.size() && boundary[split].first == boundary[split - 1].first)
+    ++split;
+  parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
+    const size_t stop = h == 0 ? split : boundary.size();
+    for (size_t b = h == 0 ? 0 : split, end; b < stop; b = end) {
+      const uint64_t name = boundary[b].second;
+      const Vec3* solved = nullptr;
+      for (end = b; end < stop && boundary[end].first == boundary[b].first; ++end) {
+        const uint64_t g = boundary[end].second;
+        const size_t i = part_of(g);
+        if (parts[i].place[g - first[i]] == EdgePlace::Solved)
+          solved = &parts[i].positions[g - first[i]];
+        if (end > b) same[g] = name;
+      }
+      if (!solved)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
+        throw std::logic_error("mesh: a boundary vertex that no leaf solved");
+      const size_t i = part_of(name);
+      parts[i].positions[name - first[i]] = *solved;
     }
-    if (!solved)  // the leaves below hold every boundary edge (leaf.h): a broken invariant
-      throw std::logic_error("mesh: a boundary vertex that no leaf solved");
-    const size_t i = part_of(name);
-    parts[i].positions[name - first[i]] = *solved;
-  }
+  });
   boundary = {};
   // The welded vertices and the faces, numbered in leaf order, written by chunks of leaves on the
   // threads at offsets counted first (the same mesh for any thread count).
-  constexpr size_t kPartChunk = 256;
-  const size_t part_chunks = (parts.size() + kPartChunk - 1) / kPartChunk;
-  auto chunk_parts = [&](size_t c) {
-    return std::make_pair(c * kPartChunk, std::min(parts.size(), (c + 1) * kPartChunk));
-  };
   std::vector<size_t> vertex_at(part_chunks + 1, 0), face_at(part_chunks + 1, 0);
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
     const auto [begin, end] = chunk_parts(c);
