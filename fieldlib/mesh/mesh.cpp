@@ -53,6 +53,13 @@ void parallel_for(size_t count, int threads, const std::atomic<bool>* cancel, Jo
   if (error) std::rethrow_exception(error);
 }
 
+// Frees a vector's storage now: `v = {}` would not (it assigns an empty initializer list, which
+// keeps the capacity), and the weld's arrays would be held to the end.
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
 Lattice make_lattice(const Box& region, const MeshOptions& o) {
   if (!region.bounded()) throw std::invalid_argument("the region to mesh is not a bounded box");
   const Vec3 ext = region.extent();
@@ -190,7 +197,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   });
   std::vector<Block> leaves;
   for (const auto& f : found) leaves.insert(leaves.end(), f.begin(), f.end());
-  found = {};
+  release(found);
 
   // Pass 2: the leaves, each on its own.
   std::vector<LeafMesh> parts(leaves.size());
@@ -276,7 +283,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
       parts[i].positions[name - first[i]] = *solved;
     }
   });
-  boundary = {};
+  release(boundary);
   // The welded vertices and the faces, numbered in leaf order, written by chunks of leaves on the
   // threads at offsets counted first (the same mesh for any thread count).
   std::vector<size_t> vertex_at(part_chunks + 1, 0), face_at(part_chunks + 1, 0);
@@ -321,7 +328,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     for (size_t g = first[begin]; g < first[end]; ++g)
       if (same[g] != kKeep) index[g] = index[same[g]];
   });
-  same = {};
+  release(same);
   m.faces.resize(face_at.back());
   // A quadrilateral is split along its shorter diagonal (the better-shaped pair).
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
@@ -346,9 +353,9 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
         }
       }
       // What the normals need stays: which vertices the leaf solved, and their edges.
-      parts[i].cuts = {};
-      parts[i].keys = {};
-      parts[i].positions = {};
+      release(parts[i].cuts);
+      release(parts[i].keys);
+      release(parts[i].positions);
     }
   });
 
@@ -370,8 +377,8 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
     }
     report(0.9 + 0.1 * double(++chunks_done) / double(part_chunks));
   });
-  parts = {};
-  index = {};
+  release(parts);
+  release(index);
   m.colors.assign(m.vertices.size(), options.color);
 
   report(1);
