@@ -18,11 +18,9 @@ double LeafMesher::solved(double f, const Vec3& p, bool capped) const {
 }
 
 void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, LeafMesh* out) {
-  out->keys.clear();
-  out->place.clear();
-  out->positions.clear();
-  out->edge.clear();
-  out->cuts.clear();
+  keys_.clear();
+  place_.clear();
+  cuts_.clear();
   edges_.clear();
   for (int a = 0; a < 3; ++a) m_[a] = c1[a] - c0[a] + 1;
   const int stride[3] = {1, m_[0], m_[0] * m_[1]};
@@ -71,8 +69,8 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
       }
       if (q[a] == 0 || q[a] == m_[a] - 1) place = EdgePlace::Solved;
     }
-    out->keys.push_back(lattice_.edge_key(c0[0] + q[0], c0[1] + q[1], c0[2] + q[2], d));
-    out->place.push_back(place);
+    keys_.push_back(lattice_.edge_key(c0[0] + q[0], c0[1] + q[1], c0[2] + q[2], d));
+    place_.push_back(place);
     const int pa = corner(in, qa), pb = corner(outside, qb);
     const int ga[3] = {c0[0] + qa[0], c0[1] + qa[1], c0[2] + qa[2]};
     const int gb[3] = {c0[0] + qb[0], c0[1] + qb[1], c0[2] + qb[2]};
@@ -103,15 +101,16 @@ void LeafMesher::run(const int c0[3], const int c1[3], SamplerScratch& scratch, 
           LeafCut c{{0, 0, 0, 0}, cut.count == 4};
           const int cell[3] = {i, j, k};
           for (int e = 0; e < cut.count; ++e) c.v[e] = vertex(cell, cut.in[e], cut.out[e]);
-          out->cuts.push_back(c);
+          cuts_.push_back(c);
         }
       }
 
+  // Every leaf's mesh is kept until the weld: copied from this mesher's buffers at its size, in
+  // one allocation each (growing the leaf's own arrays, then trimming them, copied them twice).
+  out->keys.assign(keys_.begin(), keys_.end());
+  out->place.assign(place_.begin(), place_.end());
+  out->cuts.assign(cuts_.begin(), cuts_.end());
   solve_edges(scratch, out);
-  // Every leaf's mesh is kept until the weld: without the growth's slack.
-  out->keys.shrink_to_fit();
-  out->place.shrink_to_fit();
-  out->cuts.shrink_to_fit();
 }
 
 namespace {
@@ -203,7 +202,7 @@ void LeafMesher::solve_edges(SamplerScratch& scratch, LeafMesh* out) {
     }
   }
 
-  out->positions.resize(n);
+  out->positions.resize(n);  // one allocation each where *out is a new LeafMesh (mesh.cpp)
   out->edge.resize(n);
   for (size_t id = 0; id < n; ++id) {
     const double s =

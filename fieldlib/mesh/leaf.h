@@ -76,7 +76,7 @@ class LeafMesher {
   LeafMesher(const MeshField& field, const FieldSampler& sampler, const Lattice& lattice)
       : field_(field), sampler_(sampler), lattice_(lattice) {}
 
-  // Meshes cells c0..c1-1 (per axis), at most kMaxLeafPoints points, into *out (cleared first).
+  // Meshes cells c0..c1-1 (per axis), at most kMaxLeafPoints points, into *out (replaced).
   void run(const int c0[3], const int c1[3], SamplerScratch& scratch, LeafMesh* out);
 
  private:
@@ -95,6 +95,11 @@ class LeafMesher {
   std::vector<uint8_t> inside_;
   std::vector<int32_t> slot_;  // local point * 8 + direction -> vertex, or -1
   std::vector<int32_t> touched_;
+  // The leaf's vertices' keys and places and its cuts, as they are found (copied to the LeafMesh
+  // at their size once the leaf is done).
+  std::vector<uint64_t> keys_;
+  std::vector<EdgePlace> place_;
+  std::vector<LeafCut> cuts_;
   struct Edge {
     Vec3 a, b;  // inside end, outside end
     double ga, gb;
