@@ -94,7 +94,6 @@ class LeafMesher {
   std::vector<double> values_;
   std::vector<uint8_t> inside_;
   std::vector<int32_t> slot_;  // local point * 8 + direction -> vertex, or -1
-  std::vector<int32_t> touched_;
   // The leaf's vertices' keys and places and its cuts, as they are found (copied to the LeafMesh
   // at their size once the leaf is done).
   std::vector<uint64_t> keys_;
