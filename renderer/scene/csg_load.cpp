@@ -26,6 +26,58 @@ namespace {
 // Operands per CSG object: each costs every ray through the object's box a search.
 constexpr size_t kMaxOperands = 1000;
 
+// Whether two materials are the same in every key (the cut objects must show one material).
+bool same(const Material& a, const Material& b) {
+  const auto eq = [](const Vec3& u, const Vec3& v) {
+    return u.x == v.x && u.y == v.y && u.z == v.z;
+  };
+  return eq(a.color, b.color) && eq(a.ambient, b.ambient) && a.diffuse == b.diffuse &&
+         a.brilliance == b.brilliance && a.phong == b.phong && a.phong_size == b.phong_size &&
+         a.specular == b.specular && a.roughness == b.roughness && a.metallic == b.metallic &&
+         eq(a.reflection, b.reflection) && a.fresnel == b.fresnel &&
+         eq(a.reflection_min, b.reflection_min) && a.conserve_energy == b.conserve_energy &&
+         a.filter == b.filter && a.transmit == b.transmit && a.ior == b.ior;
+}
+
+bool cuts(Csg::Op op) {
+  return op == Csg::Op::Intersection || op == Csg::Op::Difference;
+}
+
+// The materials POV-Ray's cutaway_textures may show on an untextured part's face: the textures
+// of the objects the face lies in, found as its CSG::Determine_Textures finds them (a
+// difference's first operand only, every operand of the other operations). `bare`: the operands
+// are the untextured parts of a cutting CSG, which have none of their own (POV-Ray gives them no
+// default); a union's parts have the default or their union's.
+void cut_materials(const Params& p, const Csg& csg, bool bare, std::vector<Material>& out) {
+  const std::vector<Params> operands = p.objects("operands");
+  const size_t n = csg.op == Csg::Op::Difference ? 1 : operands.size();
+  for (size_t i = 0; i < n; ++i) {
+    const SceneObject& operand = csg.operands[i];
+    const bool own = operands[i].has("material");
+    if (!operand.csg) {
+      if (own || !bare) out.push_back(operand.material);
+      continue;
+    }
+    cut_materials(operands[i], *operand.csg, bare && !own && cuts(operand.csg->op), out);
+  }
+}
+
+// Gives `cut` to the untextured parts of a cutting CSG without a material, down through the
+// intersections and differences among them (POV-Ray passes the flag down).
+void cut_away(const Params& p, Csg& csg, const Material& cut) {
+  const std::vector<Params> operands = p.objects("operands");
+  for (size_t i = 0; i < operands.size(); ++i) {
+    SceneObject& operand = csg.operands[i];
+    if (operands[i].has("material")) continue;
+    if (!operand.csg) {
+      operand.material = cut;
+    } else if (cuts(operand.csg->op)) {
+      // load_csg made it and nothing shares it yet: it may still be changed.
+      cut_away(operands[i], *std::const_pointer_cast<Csg>(operand.csg), cut);
+    }
+  }
+}
+
 Csg::Op load_op(const Params& p) {
   const std::string name = p.string("csg");
   for (const Csg::Op op :
@@ -57,6 +109,21 @@ void load_csg(const Params& p, SceneObject& o, const Material* passed_on,
                          "CSG combines), but " +
                              problem);
     }
+  }
+  // POV-Ray's cutaway_textures: an untextured part's face shows the texture of what it cuts.
+  // Where nothing above passes a material on, the untextured parts take the one material the
+  // cut objects show; objects showing several (mixed point by point in POV-Ray) are refused.
+  if (p.has("cutaway_textures") && !cuts(csg->op))
+    p.fail("cutaway_textures", "cutaway_textures belongs to an intersection or a difference");
+  if (p.boolean("cutaway_textures", false) && !passed_on) {
+    std::vector<Material> shown;
+    cut_materials(p, *csg, true, shown);
+    for (const Material& m : shown)
+      if (!same(m, shown.front()))
+        p.fail("cutaway_textures",
+               "the cut objects show more than one material here (POV-Ray mixes them point by "
+               "point): not supported, give the cutting parts materials instead");
+    if (!shown.empty()) cut_away(p, *csg, shown.front());
   }
   Box box = csg->operands[0].bounds;
   for (size_t i = 1; i < csg->operands.size(); ++i) {

@@ -112,7 +112,8 @@ struct SceneObject {
 // inner surfaces of transparent objects, and materials here are opaque). Its box: the union of
 // the operands' (union, merge), their intersection (intersection), the first's (difference).
 // An operand without a material takes the nearest enclosing CSG object's that has one, as a
-// POV-Ray CSG's texture passes to its untextured parts: a cut face keeps the cutter's material.
+// POV-Ray CSG's texture passes to its untextured parts: a cut face keeps the cutter's material,
+// or with `cutaway_textures` (csg_load.h) the material of what it cuts.
 // A CSG object's placement keys move the whole tree: its operands (and their boxes, a field's
 // `bounds` included) are in the CSG's own frame, `to_parent` takes that frame to its parent's
 // (the world's at the top), and the object's `bounds` are in the parent's frame.

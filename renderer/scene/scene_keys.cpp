@@ -24,7 +24,7 @@ const std::vector<SceneKeyList>& scene_key_lists() {
       {"area light", {"axis1", "axis2", "size1", "size2", "adaptive", "jitter"}},
       {"object",
        {"name", "material", "convention", "iso", "bounds", "field", "shape", "csg", "operands",
-        "mesh", "scale", "rotate", "translate", "matrix"}},
+        "cutaway_textures", "mesh", "scale", "rotate", "translate", "matrix"}},
       {"material",
        {"color", "ambient", "diffuse", "brilliance", "phong", "phong_size", "specular", "roughness",
         "metallic", "reflection", "fresnel", "reflection_min", "conserve_energy", "filter",

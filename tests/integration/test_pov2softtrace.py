@@ -211,6 +211,10 @@ REFUSALS = [
     ("merge { sphere { 0, 1 pigment { rgb 1 } } }", 2, 1, "softtrace needs at least two"),
     ("union { sphere { 0, 1 pigment { rgb 1 } } box { 0, 1 } }", 2, 1,
      "the union has no pigment"),
+    ("union { sphere { 0, 1 pigment { rgb 1 } } box { 0, 1 } cutaway_textures }", 2, 56,
+     "cutaway_textures can only be used with intersection and difference"),
+    ("difference { sphere { 0, 1 pigment { rgb 1 } } box { 0, 1 } }", 2, 1,
+     "the difference has no pigment"),
     ("difference { sphere { 0, 1 } disc { 0, y, 1 } pigment { rgb 1 } }", 2, 1,
      "a disc in a difference"),
     ("intersection { sphere { 0, 1 } box { 0, 1 finish { phong 1 } } pigment { rgb 1 } }", 2,
@@ -294,6 +298,21 @@ def test_csg_nests_blobs_and_shapes_and_passes_its_pigment_on():
     assert cut["material"]["color"] == [0, 0, 1]
     # Every part has its own pigment: the merge needs none.
     assert merged["csg"] == "merge" and "material" not in merged
+
+
+def test_cutaway_textures_is_carried_across_and_needs_no_pigment_of_the_csg():
+    objs = scene_of("difference {\n"
+                    "  blob { sphere { 0, 2, 1 } pigment { rgb <1, 0, 0> } }\n"
+                    "  box { <0, -3, -3>, <3, 3, 3> }\n"
+                    "  cutaway_textures }")["objects"]
+    cut, = objs
+    assert cut["csg"] == "difference" and cut["cutaway_textures"] is True
+    assert "material" not in cut  # the box shows the blob's red: softtrace's loader finds it
+    blob, box = cut["operands"]
+    assert blob["material"]["color"] == [1, 0, 0] and "material" not in box
+    # Without the keyword the difference carries none.
+    plain = scene_of("difference { sphere { 0, 1 } box { 0, 1 } pigment { rgb 1 } }")
+    assert "cutaway_textures" not in plain["objects"][0]
 
 
 def test_camera_refusals_are_located():

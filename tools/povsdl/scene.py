@@ -870,11 +870,17 @@ class Converter:
         s.expect("{")
         operands = []
         mods = Modifiers()
+        cutaway = False
         self.csg_depth += 1
         while not s.closes(word):
             tok = s.next()
             w = tok.text
-            if w == "blob":
+            if w == "cutaway_textures":
+                if word not in ("intersection", "difference"):
+                    raise s.error(tok, "cutaway_textures can only be used with intersection "
+                                  "and difference")
+                cutaway = True
+            elif w == "blob":
                 operands.append(self._blob(s, ex, tok))
             elif w in SHAPES:
                 operands.append(self._shape(s, ex, tok))
@@ -899,11 +905,17 @@ class Converter:
         # A top-level CSG needs no pigment where every part has one of its own.
         def textured(obj):
             return "material" in obj or ("csg" in obj and all(map(textured, obj["operands"])))
-        if mods.pigment is None and self.csg_depth == 0 and all(map(textured, operands)):
+        # With cutaway_textures an untextured part shows what it cuts (softtrace's loader finds
+        # it), so a CSG with any textured part needs no pigment either.
+        def any_textured(obj):
+            return "material" in obj or ("csg" in obj and any(map(any_textured, obj["operands"])))
+        if mods.pigment is None and self.csg_depth == 0 and (
+                all(map(textured, operands)) or (cutaway and any(map(any_textured, operands)))):
             material = None
         else:
             material = self._material(mods.pigment, mods.finish, at, s, mods.ior)
-        return self._named(word, material, csg=word, operands=operands)
+        keys = {"cutaway_textures": True} if cutaway else {}
+        return self._named(word, material, csg=word, **keys, operands=operands)
 
     def _component(self, s, ex, tok):
         w = tok.text

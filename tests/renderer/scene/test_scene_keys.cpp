@@ -60,7 +60,8 @@ const std::string kEveryKeyCameras = std::string(R"({
     {"shape": {"type": "disc", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 1, "hole_radius": 0.5,
      "scale": [1, 2, 1], "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}},
-    {"name": "cut", "material": {"color": [1, 1, 1]}, "csg": "difference", "scale": [1, 1, 1],
+    {"name": "cut", "material": {"color": [1, 1, 1]}, "csg": "difference", "cutaway_textures": true,
+     "scale": [1, 1, 1],
      "rotate": {"axis": [0, 0, 1], "deg": 5}, "translate": [0, 0, 1],
      "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]], "operands": [
      {"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 2}},

@@ -284,6 +284,73 @@ TEST(Csg, ACutFaceTakesTheCuttersTurnedNormalAndMaterial) {
   }
 }
 
+// POV-Ray's cutaway_textures: the face an untextured box cuts into a red blob shows the blob's
+// material with the key, the default (grey) without; the traced hit names that box.
+TEST(Csg, CutawayTexturesGiveTheCutFaceTheCutObjectsMaterial) {
+  const auto cut_face_material = [](const std::string& key) {
+    const Scene s = parse_scene(R"({"camera": {"eye": [30, 0, 0], "target": [0, 0, 0]},
+      "objects": [{"csg": "difference", )" +
+                                    key +
+                                    R"("operands": [
+        {"name": "ball", "material": {"color": [1, 0, 0]}, "field": )" +
+                                    kBlob + R"(},
+        {"name": "cutter",
+         "shape": {"type": "box", "corner1": [-1, -20, -20], "corner2": [40, 20, 20]}}]}]})",
+                                "cutaway.json");
+    const CsgTracer tracer(traced_object(s.objects[0]), LipschitzMode::Local);
+    TraceCounters work;
+    const CsgHit h = tracer.first_hit({{30, 0.5, 0.5}, {-1, 0, 0}, 0, 0}, 0, 100, work);
+    EXPECT_TRUE(h.hit);
+    const SceneObject& face = face_object(s.objects[0], h.face);
+    EXPECT_EQ(face.name, "cutter");
+    return face.material.color;
+  };
+  const Vec3 with = cut_face_material(R"("cutaway_textures": true, )");
+  EXPECT_EQ(with.x, 1);
+  EXPECT_EQ(with.y, 0);
+  const Vec3 grey = Material{}.color;
+  for (const std::string key : {"", R"("cutaway_textures": false, )"}) {
+    const Vec3 without = cut_face_material(key);
+    EXPECT_EQ(without.x, grey.x);
+    EXPECT_EQ(without.y, grey.y);
+  }
+}
+
+// cutaway_textures follows POV-Ray's Determine_Textures through nested cutting CSGs (an
+// intersection's face shows what all its other operands show), leaves a cutter with its own
+// material and a union's parts alone, and refuses cut objects that show two materials.
+TEST(Csg, CutawayTexturesNestAsInPovRay) {
+  const auto load = [](const std::string& operands) {
+    return parse_scene(R"({"camera": {"eye": [30, 0, 0], "target": [0, 0, 0]},
+      "objects": [{"csg": "difference", "cutaway_textures": true, "operands": [)" +
+                           operands + "]}]}",
+                       "nest.json");
+  };
+  const std::string red =
+      R"({"material": {"color": [1, 0, 0]}, "shape": {"type": "sphere", "radius": 3}})";
+  const std::string bare = R"({"shape": {"type": "sphere", "radius": 2}})";
+  const std::string blue =
+      R"({"material": {"color": [0, 0, 1]}, "shape": {"type": "box", "corner1": [0, 0, 0],
+          "corner2": [1, 1, 1]}})";
+  const Scene s = load(R"({"csg": "intersection", "operands": [)" + red + ", " + bare + "]}, " +
+                       R"({"csg": "difference", "operands": [)" + bare + ", " + bare + "]}, " +
+                       blue + R"(, {"csg": "union", "operands": [)" + bare + ", " + bare + "]}");
+  const auto& ops = s.objects[0].csg->operands;
+  EXPECT_EQ(ops[0].csg->operands[1].material.color.x, 1);  // in the red sphere
+  EXPECT_EQ(ops[1].csg->operands[0].material.color.x, 1);
+  EXPECT_EQ(ops[1].csg->operands[1].material.color.x, 1);
+  EXPECT_EQ(ops[2].material.color.z, 1);                     // its own
+  EXPECT_EQ(ops[3].csg->operands[0].material.color.x, 0.8);  // the default
+  EXPECT_THROW(load(R"({"csg": "union", "operands": [)" + red + ", " + blue + "]}, " + bare),
+               SceneError);
+  try {
+    load(R"({"csg": "union", "operands": [)" + red + ", " + blue + "]}, " + bare);
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/objects/0/cutaway_textures"), std::string::npos)
+        << e.what();
+  }
+}
+
 // A red ball in front of a green CSG, inside the CSG's box (which a small box off to the side
 // stretches towards the camera, so that Embree may well try the CSG first): each pixel's material
 // is the surface it shows (a nearer hit keeps nothing of a farther CSG's face), with the objects
