@@ -246,10 +246,16 @@ class FrameTracer {
   AdaptivePixels* const adaptive_;
 };
 
-int tiles_meeting(const PixelRect& area) {
-  return ((area.x1 + kTile - 1) / kTile - area.x0 / kTile) *
-         ((area.y1 + kTile - 1) / kTile - area.y0 / kTile);
-}
+// The full-frame tiles that meet `area`: the first one's grid position and how many a side.
+struct TileGrid {
+  explicit TileGrid(const PixelRect& area)
+      : gx0(area.x0 / kTile),
+        gy0(area.y0 / kTile),
+        tiles_x((area.x1 + kTile - 1) / kTile - gx0),
+        tiles_y((area.y1 + kTile - 1) / kTile - gy0) {}
+  int count() const { return tiles_x * tiles_y; }
+  const int gx0, gy0, tiles_x, tiles_y;
+};
 
 // Runs `pass` over the full-frame tiles that meet `area`, one tile per task; a cancel is noticed
 // before the next sample (FrameTracer::samples). Progress counts in first-pass pixels: the data
@@ -258,16 +264,15 @@ int tiles_meeting(const PixelRect& area) {
 void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass,
               const PixelRect& window, const RenderOptions& opt, Progress* progress,
               const AdaptivePixels* refined, long weight, tbb::combinable<Work>& work_total) {
-  const int gx0 = area.x0 / kTile, gy0 = area.y0 / kTile;
-  const int tiles_x = (area.x1 + kTile - 1) / kTile - gx0;
-  const int tiles_y = (area.y1 + kTile - 1) / kTile - gy0;
+  const TileGrid grid(area);
   tbb::parallel_for(
-      tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+      tbb::blocked_range<int>(0, grid.count(), 1),
       [&](const tbb::blocked_range<int>& tiles) {
         Work& work = work_total.local();
         for (int t = tiles.begin(); t < tiles.end(); ++t) {
           if (opt.cancel && *opt.cancel) return;
-          const int tx = (gx0 + t % tiles_x) * kTile, ty = (gy0 + t / tiles_x) * kTile;
+          const int tx = (grid.gx0 + t % grid.tiles_x) * kTile;
+          const int ty = (grid.gy0 + t / grid.tiles_x) * kTile;
           tracer.tile(tx, ty, area, pass, work);
           if (progress) {
             const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
@@ -285,7 +290,7 @@ void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pas
 }  // namespace
 
 int frame_tasks(int x0, int y0, int width, int height) {
-  return tiles_meeting({x0, y0, x0 + width, y0 + height});
+  return TileGrid({x0, y0, x0 + width, y0 + height}).count();
 }
 
 bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions& opt, Film& film,
