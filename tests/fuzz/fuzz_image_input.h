@@ -1,5 +1,6 @@
 // The image fuzzers' input: read_image reads files, so each input's bytes go to one file per
-// process (/tmp/softtrace-fuzz-<name>-<pid>) and are read back from there.
+// process (/tmp/softtrace-fuzz-<name>-<pid>), are read back from there and the file is removed
+// (libFuzzer may end the process without running static destructors, so none would clean up).
 #pragma once
 
 #include <unistd.h>
@@ -24,13 +25,16 @@ class FuzzImageInput {
     FILE* f = std::fopen(path_.c_str(), "wb");
     if (!f) return false;
     const bool written = std::fwrite(data, 1, size, f) == size;
-    if (std::fclose(f) != 0 || !written) return false;
-    try {
-      *img = read_image(path_);
-    } catch (const std::runtime_error&) {
-      return false;
+    bool ok = std::fclose(f) == 0 && written;
+    if (ok) {
+      try {
+        *img = read_image(path_);
+      } catch (const std::runtime_error&) {
+        ok = false;
+      }
     }
-    return true;
+    std::remove(path_.c_str());
+    return ok;
   }
 
  private:
