@@ -91,16 +91,17 @@ void exit_callback(const RTCIntersectFunctionNArguments* args, const GeometryDat
   record_hit(args, ctx, data->object, t1, true, Vec3{0, 0, 0}, -1);
 }
 
-// A field's first hit on the context's ray before ctx->t (the closest hit so far, not this
-// geometry's box exit: the tracer clips to its box), with the beam's help where it has one, and
-// the blob list its normal may take (TraceHit::blobs).
-MarchResult field_hit(const GeometryData& data, RayContext& ctx, const BlobBeam** list) {
+// A field's first hit on `ray` in [tnear, t] (t: the closest hit so far, not this geometry's box
+// exit: the tracer clips to its box), with the beam's help where it has one (beam_cos: the cosine
+// between the ray and its forward axis), and the blob list its normal may take (TraceHit::blobs).
+MarchResult field_hit(const GeometryData& data, const Ray& ray, double tnear, double t,
+                      const BeamClear* beam, double beam_cos, TraceCounters& work,
+                      const BlobBeam** list) {
   // The beam's depth along its axis is depth / cos along the ray.
-  const double clear_to = ctx.beam ? ctx.beam->depth[data.object] / ctx.beam_cos : 0;
-  const BlobBeam* blobs = ctx.beam && ctx.beam->blobs ? &ctx.beam->blobs[data.object] : nullptr;
-  *list = blobs && blobs->from(ctx.ray.o) ? blobs : nullptr;
-  return data.tracer->first_hit(ctx.ray, ctx.tnear, ctx.t, ctx.work, Query::Nearest, clear_to,
-                                blobs);
+  const double clear_to = beam ? beam->depth[data.object] / beam_cos : 0;
+  const BlobBeam* blobs = beam && beam->blobs ? &beam->blobs[data.object] : nullptr;
+  *list = blobs && blobs->from(ray.o) ? blobs : nullptr;
+  return data.tracer->first_hit(ray, tnear, t, work, Query::Nearest, clear_to, blobs);
 }
 
 void intersect_callback(const RTCIntersectFunctionNArguments* args) {
@@ -112,7 +113,8 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
     return;
   }
   const BlobBeam* list;
-  const MarchResult m = field_hit(*data, *ctx, &list);
+  const MarchResult m =
+      field_hit(*data, ctx->ray, ctx->tnear, ctx->t, ctx->beam, ctx->beam_cos, ctx->work, &list);
   if (!m.hit || m.t >= ctx->t) return;
   record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, -1);
   ctx->blobs = list;
@@ -280,26 +282,14 @@ RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
 
 TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
                                 int inside) const {
-  RayContext ctx;
-  rtcInitIntersectContext(&ctx.rtc);
-  ctx.ray = ray;
-  ctx.inside = inside;
   // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
-  if (beam) {
-    const double cos = dot(ray.d, beam->forward);
-    if (cos > 0) {
-      ctx.beam = beam;
-      ctx.beam_cos = cos;
-    }
-  }
-  ctx.tnear = tnear;
-  ctx.t = tfar;
-  if (impl_->lone_field && inside != 0) {
-    const BlobBeam* list;
-    const MarchResult m = field_hit(impl_->data[0], ctx, &list);
+  const double cos = beam ? dot(ray.d, beam->forward) : 0;
+  if (!(cos > 0)) beam = nullptr;
+  if (impl_->lone_field && inside != 0) {  // no Embree, and none of its context to fill
     TraceHit h;
-    h.work = ctx.work;
-    if (m.hit && m.t < ctx.t) {
+    const BlobBeam* list;
+    const MarchResult m = field_hit(impl_->data[0], ray, tnear, tfar, beam, cos, h.work, &list);
+    if (m.hit && m.t < tfar) {
       h.hit = true;
       h.t = m.t;
       h.object = 0;
@@ -308,6 +298,16 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
     }
     return h;
   }
+  RayContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = ray;
+  ctx.inside = inside;
+  if (beam) {
+    ctx.beam = beam;
+    ctx.beam_cos = cos;
+  }
+  ctx.tnear = tnear;
+  ctx.t = tfar;
   RTCRayHit rh{};
   rh.ray = make_ray(ray, tnear, tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
