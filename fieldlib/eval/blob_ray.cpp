@@ -397,6 +397,30 @@ double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* i
     found = sum.kept_at(x, ids);
     found_ids = ids;
   }
+  return sum_gradient(p, x, found_ids, found, grad, terms);
+}
+
+double BlobSum::gradient_among(const Program& p, const Vec3& x, int32_t* ids, int n, Vec3* grad,
+                               double* terms) const {
+  if (size() <= kListed) return gradient(p, x, grad, ids, terms);
+  // Kept: the blobs x is inside or within rounding of (r > -1e-9); sum_gradient's own test r > 0
+  // then takes exactly the point query's blobs, whatever rounding this test had.
+  int found = 0;
+  for (int i = 0; i < n; ++i) {
+    const Frame& frame = frames_[ids[i]];
+    Vec3 w = frame.L * x + frame.k;
+    if (frame.inv_axis2 > 0)
+      w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);
+    ids[found] = ids[i];
+    found += 1 - dot(w, w) > -1e-9;
+  }
+  std::sort(ids, ids + found);
+  return sum_gradient(p, x, ids, found, grad, terms);
+}
+
+double BlobSum::sum_gradient(const Program& p, const Vec3& x, const int32_t* found_ids, int found,
+                             Vec3* grad, double* terms) const {
+  const Group& sum = p.groups[group_];
   const bool reports = terms && !sum.terms.empty();
   if (terms) std::fill(terms, terms + p.terms, 0.0);
   double f = 0;

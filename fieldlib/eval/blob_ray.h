@@ -69,6 +69,12 @@ class BlobSum {
   // its support.
   double gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,
                   double* terms = nullptr) const;
+  // The same from the blobs ids[0, n), in any order, instead of the point query: they must hold
+  // every blob whose support holds x (a camera ray's list, BlobBeam). The ones whose supports
+  // hold x are kept in ids (overwritten) and summed in increasing order, as the query's are: the
+  // same f and ∇f to the bit.
+  double gradient_among(const Program& p, const Vec3& x, int32_t* ids, int n, Vec3* grad,
+                        double* terms = nullptr) const;
   int size() const { return static_cast<int>(blobs_.size()); }
   // The most terms one stretch can have: one per ellipsoid, three per capsule.
   int max_terms() const { return size() + 2 * capsules_; }
@@ -112,6 +118,9 @@ class BlobSum {
   // the order its segment query reports them, and in increasing order as its point query does:
   // the same terms in the same order, so the same sums to the bit. Empty for more blobs.
   std::vector<int32_t> listed_walk_, listed_sorted_;
+  // gradient()'s sum over ids[0, found), in that order (increasing).
+  double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
+                      double* terms) const;
   int capsules_ = 0;  // frames with an axis
   double typical_radius_ = 0;
 };

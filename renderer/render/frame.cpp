@@ -32,6 +32,10 @@ static_assert(kTile == kBeam << (kBeamLevels - 1));
 // Sample s of a pixel: s = 0 is the centre (its hit feeds the AOVs); the rest follow the R2
 // low-discrepancy sequence, so results need no random state.
 void sample_offset(int s, double& dx, double& dy) {
+  if (s == 0) {  // fmod's value for s = 0, without its call (two were 2 % of a dense cloud's frame)
+    dx = dy = 0.5;
+    return;
+  }
   dx = std::fmod(0.5 + s * 0.7548776662466927, 1.0);
   dy = std::fmod(0.5 + s * 0.5698402909980532, 1.0);
 }

@@ -46,7 +46,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   if (fused) terms.resize(size_t(obj.components->size()));
   Vec3 n = !tracer           ? hit.normal
            : hit.on_box_face ? tracer->box_face_normal(p)
-                             : tracer->normal(p, fused ? terms.data() : nullptr);
+                             : tracer->normal(p, fused ? terms.data() : nullptr, hit.blobs);
   if (length(n) == 0) n = -ray.d;  // a flat spot of the field: face the viewer
   // Seen from inside (clipped solids, transparent ones): shade the side we see.
   const bool from_inside = dot(n, ray.d) > 0;

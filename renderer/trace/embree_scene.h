@@ -24,6 +24,9 @@ struct TraceHit {
   int face = -1;
   Vec3 face_point{0, 0, 0};  // a CSG's hit: the point in the face's own frame (CsgHit)
   TraceCounters work;        // what the ray cost, over every object it met
+  // A blob sum's hit by a camera ray of a beam with a list (BlobBeam::from the ray's origin):
+  // the list, which holds every blob whose support holds the hit (its normal's blobs); else null.
+  const BlobBeam* blobs = nullptr;
 };
 
 // What a beam certified for the rays through its block of pixels: per object, the forward depth

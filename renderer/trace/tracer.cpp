@@ -97,10 +97,10 @@ double ObjectTracer::g_view(const Vec3& p) const {
   return inside_sign_ * (value(ws.view, p, ws) - target_.iso);
 }
 
-Vec3 ObjectTracer::normal(const Vec3& p, double* terms) const {
+Vec3 ObjectTracer::normal(const Vec3& p, double* terms, const BlobBeam* list) const {
   Vec3 grad;
   if (blobs_) {
-    grad = blob_gradient(p, terms);
+    grad = blob_gradient(p, terms, list);
   } else if (terms) {
     gradient_terms(program_, p, &grad, terms, workspace());
   } else {

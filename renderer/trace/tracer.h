@@ -156,8 +156,10 @@ class ObjectTracer {
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
   // With `terms`, the same walk leaves the program's terms (Program::terms: the values of the
-  // components whose materials mix there) in terms[0, program terms).
-  Vec3 normal(const Vec3& p, double* terms = nullptr) const;
+  // components whose materials mix there) in terms[0, program terms). `list`: a blob sum's hit
+  // by a camera ray of that list's beam (TraceHit::blobs), whose blobs replace the point query;
+  // the same normal to the bit.
+  Vec3 normal(const Vec3& p, double* terms = nullptr, const BlobBeam* list = nullptr) const;
   // The outward normal of the object box's face nearest to p (for hits on_box_face).
   Vec3 box_face_normal(const Vec3& p) const;
   // Whether p is inside the solid.
@@ -248,7 +250,8 @@ class ObjectTracer {
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
                               Query query, const BlobBeam* beam) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
-  Vec3 blob_gradient(const Vec3& p, double* terms) const;
+  // With `list` (see normal), from its blobs whose ranges of distances hold p's from the eye.
+  Vec3 blob_gradient(const Vec3& p, double* terms, const BlobBeam* list) const;
 
   TraceTarget target_;
   double inside_sign_;      // the target's, or its opposite for the complement

@@ -89,9 +89,24 @@ std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double is
 }
 }  // namespace
 
-Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms) const {
+Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms, const BlobBeam* list) const {
   Vec3 grad;
-  blobs_->gradient(program_, p, &grad, blob_scratch(*blobs_).ids.data(), terms);
+  int32_t* ids = blob_scratch(*blobs_).ids.data();
+  if (!list) {
+    blobs_->gradient(program_, p, &grad, ids, terms);
+    return grad;
+  }
+  // A blob whose support holds p is on the list, and p's distance from the eye lies in its range
+  // (tracer_blob_beam.cpp; the ranges' slack is far above p's rounding): the list's blobs whose
+  // ranges hold it are all the point query could give, for a few comparisons each (the query's
+  // walk was 8 % of a dense cloud's frame).
+  const double dist = length(p - list->eye);
+  int n = 0;
+  for (const BlobBeam::Entry& e : list->entries) {
+    ids[n] = e.id;
+    n += e.near <= dist && e.far >= dist;
+  }
+  blobs_->gradient_among(program_, p, ids, n, &grad, terms);
   return grad;
 }
 

@@ -370,6 +370,57 @@ TEST(BlobSum, ListedBlobsGradientIsTheCompiledOne) {
   expect_gradient_is_the_compiled_one(cloud, 1e-13, 150);
 }
 
+// A camera ray's normal takes its beam's list instead of the point query (gradient_among): any
+// superset of the blobs whose supports hold x, in any order, gives the query's f, ∇f and terms to
+// the bit (the same blobs, summed in the same increasing order).
+void expect_gradient_among_is_the_querys(Cloud& cloud) {
+  ASSERT_TRUE(cloud.blobs.has_value());
+  const BlobSum& blobs = *cloud.blobs;
+  ASSERT_GT(blobs.size(), BlobSum::kListed);  // the query's path, not the listed one
+  const Program& prog = cloud.prog;
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> u(-12, 12);
+  std::vector<int32_t> among(blobs.size());
+  std::vector<double> terms_query(prog.terms), terms_among(prog.terms);
+  int inside = 0, several = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 x{u(rng), u(rng), u(rng)};
+    Vec3 g_query, g_among;
+    const double f_query = blobs.gradient(prog, x, &g_query, cloud.ids.data(), terms_query.data());
+    // The blobs whose bounding spheres hold x (a beam's list keeps those), shuffled.
+    int n = 0;
+    for (int id = 0; id < blobs.size(); ++id) {
+      Vec3 c;
+      const double r2 = blobs.bounding_sphere(id, &c);
+      if (dot(x - c, x - c) <= r2) among[n++] = id;
+    }
+    several += n > 1;
+    std::shuffle(among.begin(), among.begin() + n, rng);
+    const double f_among =
+        blobs.gradient_among(prog, x, among.data(), n, &g_among, terms_among.data());
+    ASSERT_EQ(f_among, f_query) << "at point " << i;
+    ASSERT_EQ(g_among.x, g_query.x) << "at point " << i;
+    ASSERT_EQ(g_among.y, g_query.y) << "at point " << i;
+    ASSERT_EQ(g_among.z, g_query.z) << "at point " << i;
+    ASSERT_EQ(terms_among, terms_query) << "at point " << i;
+    inside += f_query != 0;
+  }
+  EXPECT_GT(inside, 300);
+  EXPECT_GT(several, 300);
+}
+TEST(BlobSum, GradientAmongAListIsTheQuerysToTheBit) {
+  Cloud cloud(3);
+  expect_gradient_among_is_the_querys(cloud);
+}
+TEST(BlobSum, AffineBlobsGradientAmongAListIsTheQuerysToTheBit) {
+  Cloud cloud(affine_cloud(40, 5));
+  expect_gradient_among_is_the_querys(cloud);
+}
+TEST(BlobSum, CapsulesGradientAmongAListIsTheQuerysToTheBit) {
+  Cloud cloud(capsule_cloud(40, 7));
+  expect_gradient_among_is_the_querys(cloud);
+}
+
 TEST(FirstRise, FindsTheFirstCrossingOnly) {
   // (x - 0.3)(x - 0.6)(x - 0.9): up through 0 at 0.3, down at 0.6, up again at 0.9.
   const double three[4] = {-0.162, 0.99, -1.8, 1};

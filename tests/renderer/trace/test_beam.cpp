@@ -113,9 +113,10 @@ TEST(Beams, NotForTheGlobalModeNorForPolynomialBlobs) {
 
 // A sum of polynomial blobs takes a list of blobs per block instead (ObjectTracer::blob_beam):
 // every camera ray of a block, its list from the block's tile and quarters as the frame nests
-// them, finds the same hit to the bit as the walk of the sum's BVH. The cloud mixes balls,
-// rotated ellipsoids, capsules, a sheared capsule and negative strengths, some 40 of each, in a
-// cube the camera sees from outside and from inside.
+// them, finds the same hit to the bit as the walk of the sum's BVH, and the same normal there as
+// the point query (ObjectTracer::normal with the list). The cloud mixes balls, rotated
+// ellipsoids, capsules, a sheared capsule and negative strengths, some 40 of each, in a cube the
+// camera sees from outside and from inside.
 TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> c(-20, 20), u(0, 1);
@@ -157,7 +158,7 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   const ObjectTracer tr(trace_target(scene.objects[0]), LipschitzMode::Local);
   ASSERT_TRUE(tr.blob_sum());
   constexpr int kW = 96, kH = 64;
-  int rays = 0, hits = 0, listed = 0, nested = 0;
+  int rays = 0, hits = 0, listed = 0, nested = 0, normals = 0;
   for (const Vec3& eye : {Vec3{60, -80, 50}, Vec3{2, 3, 1}}) {
     const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 50}, kW, kH);
     BlobBeam level[3];
@@ -184,6 +185,13 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
                 ASSERT_EQ(list.hit, walk.hit) << "ray " << rays;
                 if (walk.hit) {
                   ASSERT_EQ(list.t, walk.t) << "ray " << rays;
+                  // The hit's normal from the list (TraceHit::blobs) is the point query's.
+                  const Vec3 p = ray.o + ray.d * walk.t;
+                  const Vec3 n_query = tr.normal(p), n_list = tr.normal(p, nullptr, &level[2]);
+                  ASSERT_EQ(n_list.x, n_query.x) << "ray " << rays;
+                  ASSERT_EQ(n_list.y, n_query.y) << "ray " << rays;
+                  ASSERT_EQ(n_list.z, n_query.z) << "ray " << rays;
+                  normals += length(n_query) > 0;
                 }
                 ASSERT_EQ(b.box_evals, a.box_evals) << "ray " << rays;
               }
@@ -193,6 +201,7 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   }
   EXPECT_GT(hits, rays / 10);
   EXPECT_LT(hits, rays);
+  EXPECT_GT(normals, hits / 2);
   // The lists are short (the 4-pixel blocks' a few of the 160 blobs) and narrow as blocks shrink.
   EXPECT_LT(listed, rays / 16 * 40);
   EXPECT_GT(nested, 0);
