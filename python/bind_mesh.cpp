@@ -28,7 +28,7 @@ namespace {
 using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 
-py::array_t<double> vectors(const std::vector<Vec3>& v) {
+py::array_t<double> vectors(const MeshArray<Vec3>& v) {
   py::array_t<double> out({py::ssize_t(v.size()), py::ssize_t(3)});
   double* p = out.mutable_data();
   for (size_t i = 0; i < v.size(); ++i)
@@ -97,11 +97,11 @@ mesh_scene(const std::shared_ptr<const Scene>& scene, const std::optional<std::s
   return {vectors(m.vertices), faces, vectors(m.normals), vectors(m.colors)};
 }
 
-std::vector<Vec3> read_vectors(const Doubles& a, const char* name, py::ssize_t rows) {
+MeshArray<Vec3> read_vectors(const Doubles& a, const char* name, py::ssize_t rows) {
   if (a.ndim() != 2 || a.shape(1) != 3 || (rows >= 0 && a.shape(0) != rows))
     throw py::value_error(std::string(name) + ": expected an array of shape (" +
                           (rows >= 0 ? std::to_string(rows) : std::string("N")) + ", 3)");
-  std::vector<Vec3> v(size_t(a.shape(0)));
+  MeshArray<Vec3> v(size_t(a.shape(0)));
   const double* p = a.data();
   for (size_t i = 0; i < v.size(); ++i) v[i] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
   return v;
@@ -136,7 +136,7 @@ void write_mesh_file(const std::string& path, const Doubles& vertices, const Ind
     for (Vec3& n : m.normals) n = length(n) > 0 ? normalize(n) : Vec3{0, 0, 1};
   }
   m.colors = colors ? read_vectors(*colors, "colors", nv)
-                    : std::vector<Vec3>(m.vertices.size(), Vec3{0.8, 0.8, 0.8});
+                    : MeshArray<Vec3>(m.vertices.size(), Vec3{0.8, 0.8, 0.8});
   try {
     mesh_format(path);
   } catch (const std::invalid_argument& e) {

@@ -55,9 +55,9 @@ void parallel_for(size_t count, int threads, const std::atomic<bool>* cancel, Jo
 
 // Frees a vector's storage now: `v = {}` would not (it assigns an empty initializer list, which
 // keeps the capacity), and the weld's arrays would be held to the end.
-template <class T>
-void release(std::vector<T>& v) {
-  std::vector<T>().swap(v);
+template <class T, class A>
+void release(std::vector<T, A>& v) {
+  std::vector<T, A>().swap(v);
 }
 
 Lattice make_lattice(const Box& region, const MeshOptions& o) {
@@ -221,57 +221,81 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   auto part_of = [&](uint64_t g) {
     return size_t(std::upper_bound(first.begin(), first.end(), g) - first.begin()) - 1;
   };
-  // The boundary vertices, (key, vertex before welding), counted and then written by chunks of
-  // leaves on the threads (one array of the final size: no copies as it grows).
+  // The boundary vertices, (key, vertex before welding), sorted by key on two threads with no
+  // merge after: the keys below a pivot (the median of every kSampleEvery-th key) and the others
+  // are written to the two ends of one array, and each end is sorted on its own. The pairs are
+  // distinct, so the sorted order is one for any pivot and thread count.
   constexpr size_t kPartChunk = 256;
+  constexpr size_t kSampleEvery = 64;
   const size_t part_chunks = (parts.size() + kPartChunk - 1) / kPartChunk;
   auto chunk_parts = [&](size_t c) {
     return std::make_pair(c * kPartChunk, std::min(parts.size(), (c + 1) * kPartChunk));
   };
-  std::vector<size_t> boundary_at(part_chunks + 1, 0);
-  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+  auto for_boundary = [&](size_t c, auto visit) {
     const auto [begin, end] = chunk_parts(c);
-    for (size_t i = begin; i < end; ++i)
-      for (const EdgePlace place : parts[i].place)
-        boundary_at[c + 1] += place != EdgePlace::Interior;
-  });
-  for (size_t c = 0; c < part_chunks; ++c) boundary_at[c + 1] += boundary_at[c];
-  std::vector<std::pair<uint64_t, uint64_t>> boundary(boundary_at.back());
-  // The weld's map is made (filled, on fresh pages) on one thread while the other starts on the
-  // chunks; it is held with the pairs in any case, so the peak heap does not change.
-  constexpr uint64_t kKeep = ~uint64_t(0);
-  std::vector<uint64_t> same;  // the vertex a duplicate stands for
-  parallel_for(part_chunks + 1, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
-    if (c-- == 0) {
-      same.assign(first.back(), kKeep);
-      return;
-    }
-    const auto [begin, end] = chunk_parts(c);
-    size_t next = boundary_at[c];
     for (size_t i = begin; i < end; ++i)
       for (size_t v = 0; v < parts[i].keys.size(); ++v)
-        if (parts[i].place[v] != EdgePlace::Interior)
-          boundary[next++] = {parts[i].keys[v], first[i] + v};
+        if (parts[i].place[v] != EdgePlace::Interior) visit(parts[i].keys[v], first[i] + v);
+  };
+  std::vector<std::vector<uint64_t>> samples(part_chunks);
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    size_t seen = 0;
+    for_boundary(c, [&](uint64_t key, uint64_t) {
+      if (seen++ % kSampleEvery == 0) samples[c].push_back(key);
+    });
   });
-  // Sorted in halves on two threads, then merged (the pairs are distinct: one order).
-  const auto half = boundary.begin() + std::ptrdiff_t(boundary.size() / 2);
+  std::vector<uint64_t> sample;
+  for (const auto& s : samples) sample.insert(sample.end(), s.begin(), s.end());
+  release(samples);
+  const auto middle = sample.begin() + std::ptrdiff_t(sample.size() / 2);
+  std::nth_element(sample.begin(), middle, sample.end());
+  const uint64_t pivot = sample.empty() ? 0 : *middle;
+  release(sample);
+  std::vector<size_t> below_at(part_chunks + 1, 0), above_at(part_chunks + 1, 0);
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    for_boundary(c, [&](uint64_t key, uint64_t) { ++(key < pivot ? below_at : above_at)[c + 1]; });
+  });
+  for (size_t c = 0; c < part_chunks; ++c) {
+    below_at[c + 1] += below_at[c];
+    above_at[c + 1] += above_at[c];
+  }
+  const size_t below = below_at.back();
+  struct Shared {
+    uint64_t key, vertex;
+    bool operator<(const Shared& o) const {
+      return key < o.key || (key == o.key && vertex < o.vertex);
+    }
+  };
+  MeshArray<Shared> boundary;  // written by the chunks: not filled first (mesh_array.h)
+  boundary.resize(below + above_at.back());
+  // The weld's map, the vertex a duplicate stands for (kKeep: none), filled by the same chunks.
+  constexpr uint64_t kKeep = ~uint64_t(0);
+  MeshArray<uint64_t> same;
+  same.resize(first.back());
+  parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
+    const auto [begin, end] = chunk_parts(c);
+    std::fill(same.begin() + std::ptrdiff_t(first[begin]),
+              same.begin() + std::ptrdiff_t(first[end]), kKeep);
+    size_t lo = below_at[c], hi = below + above_at[c];
+    for_boundary(c, [&](uint64_t key, uint64_t g) {
+      boundary[key < pivot ? lo++ : hi++] = {key, g};
+    });
+  });
+  const auto split_at = boundary.begin() + std::ptrdiff_t(below);
   parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
-    if (h == 0) std::sort(boundary.begin(), half);
-    if (h == 1) std::sort(half, boundary.end());
+    if (h == 0) std::sort(boundary.begin(), split_at);
+    if (h == 1) std::sort(split_at, boundary.end());
   });
-  std::inplace_merge(boundary.begin(), half, boundary.end());
-  // Each key's group is welded on its own (it writes only its own vertices): the groups in two
-  // halves, split where the key changes, one on each thread.
-  size_t split = boundary.size() / 2;
-  while (split > 0 && split < boundary.size() && boundary[split].first == boundary[split - 1].first)
-    ++split;
+  // Each key's group is welded on its own (it writes only its own vertices): the groups below
+  // the pivot on one thread, the others on the other.
+  const size_t split = below;
   parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
     const size_t stop = h == 0 ? split : boundary.size();
     for (size_t b = h == 0 ? 0 : split, end; b < stop; b = end) {
-      const uint64_t name = boundary[b].second;
+      const uint64_t name = boundary[b].vertex;
       const Vec3* solved = nullptr;
-      for (end = b; end < stop && boundary[end].first == boundary[b].first; ++end) {
-        const uint64_t g = boundary[end].second;
+      for (end = b; end < stop && boundary[end].key == boundary[b].key; ++end) {
+        const uint64_t g = boundary[end].vertex;
         const size_t i = part_of(g);
         if (parts[i].place[g - first[i]] == EdgePlace::Solved)
           solved = &parts[i].positions[g - first[i]];
@@ -302,14 +326,11 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   Mesh m;
   m.lattice = lattice.box;
   m.voxel = lattice.h;
-  // Large arrays are first written (zero-filled) where they are made, at about 1 s a gigabyte
-  // on this machine's fresh pages: two at a time where they are made together, one on each
-  // thread (at 512^3 the main thread's CPU fell from 1.8 to 1.4 s).
-  std::vector<uint32_t> index;
-  parallel_for(2, options.threads, options.cancel, [&](size_t h, SamplerScratch&) {
-    if (h == 0) m.vertices.resize(vertex_at.back());
-    if (h == 1) index.resize(first.back());
-  });
+  // The large arrays are sized without being filled (mesh_array.h) and each element written once
+  // by the chunks on the threads, which share the first writes to fresh pages.
+  MeshArray<uint32_t> index;
+  m.vertices.resize(vertex_at.back());
+  index.resize(first.back());
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch&) {
     const auto [begin, end] = chunk_parts(c);
     size_t next = vertex_at[c];
@@ -361,7 +382,7 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
 
   // Normals, once per welded vertex, by the leaf that solved it: the sampler prepared for the
   // leaf's box (for a sum of blobs, the few blobs there), in chunks of leaves over the threads.
-  m.normals.resize(m.vertices.size());
+  m.normals.resize(m.vertices.size());  // every welded vertex's, by the one leaf that solved it
   std::atomic<size_t> chunks_done{0};
   parallel_for(part_chunks, options.threads, options.cancel, [&](size_t c, SamplerScratch& s) {
     const auto [begin, end] = chunk_parts(c);
@@ -379,7 +400,16 @@ Mesh mesh(const MeshField& field, const Box& region, const MeshOptions& options)
   });
   release(parts);
   release(index);
-  m.colors.assign(m.vertices.size(), options.color);
+  m.colors.resize(m.vertices.size());
+  constexpr size_t kColorChunk = size_t(1) << 16;
+  parallel_for(
+      (m.colors.size() + kColorChunk - 1) / kColorChunk, options.threads, options.cancel,
+      [&](size_t c, SamplerScratch&) {
+        const auto begin = m.colors.begin() + std::ptrdiff_t(c * kColorChunk);
+        std::fill(begin,
+                  begin + std::ptrdiff_t(std::min(kColorChunk, m.colors.size() - c * kColorChunk)),
+                  options.color);
+      });
 
   report(1);
   return m;

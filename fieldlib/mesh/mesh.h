@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "math/box.h"
+#include "mesh/mesh_array.h"
 #include "program/program.h"
 
 namespace softtrace {
@@ -48,11 +49,12 @@ struct MeshOptions {
   const std::atomic<bool>* cancel = nullptr;
 };
 
+// The arrays are std::vectors whose resize(n) leaves the new elements unwritten (mesh_array.h).
 struct Mesh {
-  std::vector<Vec3> vertices;
-  std::vector<std::array<uint32_t, 3>> faces;  // counter-clockwise seen from outside
-  std::vector<Vec3> normals;                   // unit, outward, one per vertex
-  std::vector<Vec3> colors;                    // linear RGB, one per vertex
+  MeshArray<Vec3> vertices;
+  MeshArray<std::array<uint32_t, 3>> faces;  // counter-clockwise seen from outside
+  MeshArray<Vec3> normals;                   // unit, outward, one per vertex
+  MeshArray<Vec3> colors;                    // linear RGB, one per vertex
   Box lattice;  // the region rounded out to whole cells (the cap lies on its faces)
   double voxel = 0;
 };

@@ -92,7 +92,7 @@ void write_glb(std::FILE* out, const Mesh& m) {
 
   std::vector<float> buffer;
   buffer.reserve(std::min<size_t>(nv, 1 << 16) * 3);
-  auto flush_vectors = [&](const std::vector<Vec3>& vs, bool rotate) {
+  auto flush_vectors = [&](const MeshArray<Vec3>& vs, bool rotate) {
     for (size_t first = 0; first < vs.size(); first += 1 << 16) {
       buffer.clear();
       for (size_t i = first; i < std::min(vs.size(), first + (1 << 16)); ++i) {

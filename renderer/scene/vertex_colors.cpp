@@ -23,9 +23,9 @@ Vec3 mixed_color(const SceneObject& obj, const Vec3& p,
 
 }  // namespace
 
-std::vector<Vec3> vertex_colors(const SceneObject& obj, const std::vector<Vec3>& vertices,
-                                int threads) {
-  std::vector<Vec3> colors(vertices.size(), obj.material.color);
+MeshArray<Vec3> vertex_colors(const SceneObject& obj, const MeshArray<Vec3>& vertices,
+                              int threads) {
+  MeshArray<Vec3> colors(vertices.size(), obj.material.color);
   if (!obj.components) return colors;
   // Contiguous slices, one per thread: each writes only its own vertices' colours.
   const size_t parts = size_t(std::max(threads, 1));

@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "math/vec.h"
+#include "mesh/mesh_array.h"
 #include "scene/scene.h"
 
 namespace softtrace {
 
 // One linear RGB colour per vertex of `vertices`, on `threads` threads (each vertex's colour
 // depends on its position alone, so the result is the same for any thread count).
-std::vector<Vec3> vertex_colors(const SceneObject& obj, const std::vector<Vec3>& vertices,
-                                int threads);
+MeshArray<Vec3> vertex_colors(const SceneObject& obj, const MeshArray<Vec3>& vertices, int threads);
 
 }  // namespace softtrace

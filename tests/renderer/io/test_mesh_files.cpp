@@ -77,7 +77,7 @@ TEST(MeshFiles, ObjSharesVerticesAndNormals) {
   write_mesh(tmp("m.obj"), m);
   std::ifstream in(tmp("m.obj"));
   std::vector<Vec3> v, n;
-  std::vector<std::array<uint32_t, 3>> faces;
+  MeshArray<std::array<uint32_t, 3>> faces;
   for (std::string line; std::getline(in, line);) {
     std::istringstream ls(line);
     std::string tag;
