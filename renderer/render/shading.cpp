@@ -34,7 +34,7 @@ class ContinuedRay {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
-             double weight) {
+             double weight, const Interiors* interiors) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
@@ -51,9 +51,11 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // Seen from inside (clipped solids, transparent ones): shade the side we see.
   const bool from_inside = dot(n, ray.d) > 0;
   if (from_inside) n = -n;
-  // The field object whose solid the shadow and mirror rays start in (transparent scenes only:
-  // the others keep their rays as they were).
-  const int here = scene.transparent && from_inside ? hit.object : -1;
+  // The interiors the ray travels in, which its shadow and mirror rays start in (POV-Ray's
+  // interior list: only transmitted rays enter any, so in a scene without transparency it is
+  // empty).
+  static const Interiors kAir{};
+  const Interiors& here = interiors ? *interiors : kAir;
 
   // Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave
   // the surface by that footprint's radius (at least 1e-4 of the object's box), far more than the
@@ -144,13 +146,14 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     });
   }
   // The interior's index of refraction is the object's (POV-Ray's interior), whatever material
-  // shows at the point; seen from inside, the light leaves it for the air.
+  // shows at the point. Which side is which comes from the ray's interior list, not from the
+  // normal (POV-Ray's way): leaving the object, the light passes into the next interior out.
   const double ior = obj.material.ior;
   const double cos_i = -dot(ray.d, n);
   // The mirror reflection, weighed by Fresnel's reflectance where the material asks.
   const auto reflectivity = [&](const Material& mk) {
     if (!mk.fresnel) return mk.reflection;
-    const double f = fresnel_reflectance(cos_i, from_inside ? 1 / ior : ior);
+    const double f = fresnel_reflectance(cos_i, fresnel_ratio(here, hit.object, ior));
     return mk.reflection * f + mk.reflection_min * (1 - f);
   };
   // What of the light behind passes (POV's filter colour), less what is reflected where energy
@@ -189,27 +192,30 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // here, and its weight down the chain of rays (docs/math.md §12.6, "Ray weights").
   bool total_reflection = false;
   const double transmitted_weight = weight * max_abs(filter);
+  // The transmitted ray's interiors and index ratio (POV-Ray's interior list, transparency.h).
+  Crossing crossing;
   if (see_through && std::min(1.0, std::abs(grey(filter))) > kAdcBailout &&
       transmitted_weight >= kAdcBailout && level < scene.image.max_trace_level &&
-      !cancel_requested(cancel)) {
-    const double eta = from_inside ? ior : 1 / ior;  // n_incident / n_transmitted
+      !cancel_requested(cancel) && cross(here, hit.object, ior, crossing)) {
+    const double eta = crossing.eta;  // n_incident / n_transmitted
     Ray next{p, ray.d, cone0, ray.cone};
-    int next_level = level + 1, inside = from_inside ? -1 : hit.object;
+    int next_level = level + 1;
+    const Interiors* inside = &crossing.next;
     if (std::abs(eta - 1) < 1e-10) {
       next_level = level;  // a straight transmitted ray continues the ray
     } else if (!refract(ray.d, n, eta, next.d)) {
-      // Total internal reflection: all of the light reflects, untinted, staying inside.
+      // Total internal reflection: all of the light reflects, untinted, in the ray's interiors.
       total_reflection = true;
       next = {p, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
-      inside = from_inside ? hit.object : -1;
+      inside = &here;
     }
     if (next_level > level || continued < kMaxContinued) {
       const TraceHit far =
-          rt.intersect(next, offset, std::numeric_limits<double>::infinity(), nullptr, inside);
+          rt.intersect(next, offset, std::numeric_limits<double>::infinity(), nullptr, *inside);
       secondary.add(far.work);
       const ContinuedRay count(next_level == level);
       const Vec3 seen = far.hit ? shade(scene, tracers, rt, next, far, secondary, cancel,
-                                        next_level, transmitted_weight)
+                                        next_level, transmitted_weight, inside)
                                       .color
                         : scene.sky ? scene.sky->seen(next.d)
                                     : scene.background;
@@ -226,7 +232,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
         rt.intersect(mirror, tnear, std::numeric_limits<double>::infinity(), nullptr, here);
     secondary.add(next.work);
     const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel,
-                                       level + 1, reflected_weight)
+                                       level + 1, reflected_weight, &here)
                                      .color
                       : scene.sky ? scene.sky->seen(mirror.d)
                                   : scene.background;

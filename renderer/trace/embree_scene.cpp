@@ -26,7 +26,7 @@ struct RayContext {
   const BeamClear* beam = nullptr;
   double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
   int object = -1;
-  int inside = -1;  // EmbreeScene::intersect's `inside`
+  const Interiors* inside = nullptr;  // EmbreeScene::intersect's `inside`, if any
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
   int face = -1;
@@ -96,7 +96,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   // ctx->t is the closest hit so far, not this geometry's box exit: the tracer clips to its box.
   // The beam's depth along its axis is depth / cos along the ray.
   const double clear_to = ctx->beam ? ctx->beam->depth[data->object] / ctx->beam_cos : 0;
-  if (data->object == ctx->inside) {
+  if (ctx->inside && ctx->inside->contains(data->object)) {
     exit_callback(args, data, ctx);
     return;
   }
@@ -262,10 +262,19 @@ RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
 
 TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
                                 int inside) const {
+  static const Interiors kOutside{};
+  if (inside < 0) return intersect(ray, tnear, tfar, beam, kOutside);
+  Interiors in;
+  in.push(inside, 1);
+  return intersect(ray, tnear, tfar, beam, in);
+}
+
+TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
+                                const Interiors& inside) const {
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
-  ctx.inside = inside;
+  if (!inside.empty()) ctx.inside = &inside;
   // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
   if (beam) {
     const double cos = dot(ray.d, beam->forward);
