@@ -74,8 +74,19 @@ COMPONENT_CASES = {
                      "roughness": 0.03},
                     None], [KEY, AMBIENT]),
 }
+# A blend of a glass sphere, a mirror sphere and one of the object's (opaque, faintly
+# reflective) material over the ground: POV-Ray traces each texture's transmitted and mirror
+# rays with its own ray weight and adds them by the textures' weights.
+COMPONENT_CASES["components_glass"] = (
+    {"color": [0.8, 0.3, 0.25], "diffuse": 0.7, "phong": 0.5, "reflection": 0.03, "ior": 1.5},
+    [{"color": [0.9, 0.95, 1.0], "diffuse": 0.1, "phong": 0.8, "phong_size": 80, "filter": 0.1,
+      "transmit": 0.8, "reflection": 0.1},
+     {"color": [0.85, 0.85, 0.8], "diffuse": 0.3, "reflection": 0.6, "phong": 0.9,
+      "phong_size": 120},
+     None], [KEY, AMBIENT])
 for _name, (_object, _components, _lights) in COMPONENT_CASES.items():
     CASES[_name] = (_object, _lights, {})
+CASES["components_glass"] = CASES["components_glass"][:2] + ({"max_trace_level": 8},)
 
 # A gradient sky (POV's sky_sphere), seen around the blob and in its reflection.
 CASES["sky"] = ({"diffuse": 0.6, "reflection": 0.4}, [KEY, AMBIENT], {"max_trace_level": 3})
@@ -88,7 +99,7 @@ POV_ANTIALIAS = {"antialias": ["+A0.3", "+AM1", "+R3", "-J"]}
 # grey ground plane below the blob, so that the tinted shadows and what the refracted rays see
 # are compared too: name -> the ground's height (softtrace z, POV's y).
 GROUND = {"color": [0.75, 0.75, 0.7], "diffuse": 0.8}
-GROUND_CASES = {"glass": -1.9, "filter_shadow": -1.9, "transmit": -1.9}
+GROUND_CASES = {"glass": -1.9, "filter_shadow": -1.9, "transmit": -1.9, "components_glass": -1.9}
 CASES["glass"] = ({"color": [0.9, 0.95, 1.0], "diffuse": 0.1, "phong": 0.8, "phong_size": 80,
                    "filter": 0.1, "transmit": 0.8, "ior": 1.5, "reflection": 1.0,
                    "fresnel": True, "conserve_energy": True},
