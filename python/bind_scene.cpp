@@ -170,7 +170,8 @@ void bind_scene(py::module_& m) {
             // The sampling options the scene turned on (off has no value in the file).
             if (i.antialias.on())
               d["antialias"] = py::dict(py::arg("threshold") = i.antialias.threshold,
-                                        py::arg("depth") = i.antialias.depth);
+                                        py::arg("depth") = i.antialias.depth,
+                                        py::arg("gamma") = i.antialias.gamma);
             if (i.occlusion.samples > 0)
               d["ambient_occlusion"] = py::dict(py::arg("samples") = i.occlusion.samples,
                                                 py::arg("distance") = i.occlusion.distance);

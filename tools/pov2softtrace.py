@@ -21,9 +21,9 @@ warning: ...`. Anything it cannot carry is refused with one line, `SCENE.pov:LIN
 the output file is then left as it was.
 
 usage: tools/pov2softtrace.py SCENE.pov [-o SCENE.json] [--width 320] [--height 240]
-                              [--antialias T] [--antialias-depth R]
+                              [--antialias T] [--antialias-depth R] [--antialias-gamma G]
 POV-Ray's anti-aliasing is a command-line (or .ini) option, not scene syntax: give +A0.3 +R3 as
-`--antialias 0.3 --antialias-depth 3`.
+`--antialias 0.3 --antialias-depth 3`, and an .ini's Antialias_Gamma=G as `--antialias-gamma G`.
 """
 import argparse
 import json
@@ -80,6 +80,9 @@ def main(argv=None):
                     "threshold, the scene's image.antialias (default: off)")
     ap.add_argument("--antialias-depth", type=int, default=3, metavar="R",
                     help="POV-Ray's +R (3): a refined pixel takes R*R times the samples")
+    ap.add_argument("--antialias-gamma", type=float, metavar="G",
+                    help="POV-Ray's Antialias_Gamma (an .ini option; 2.5 when not given): the "
+                    "colours are compared as c^(1/G), the scene's image.antialias.gamma")
     a = ap.parse_args(argv)
     if not (1 <= a.width <= 16384 and 1 <= a.height <= 16384):
         print("pov2softtrace.py: --width and --height must be 1 to 16384", file=sys.stderr)
@@ -89,6 +92,13 @@ def main(argv=None):
         return 2
     if not 1 <= a.antialias_depth <= 9:
         print("pov2softtrace.py: --antialias-depth must be 1 to 9", file=sys.stderr)
+        return 2
+    if a.antialias_gamma is not None and not 0.01 <= a.antialias_gamma <= 100:
+        print("pov2softtrace.py: --antialias-gamma must be 0.01 to 100", file=sys.stderr)
+        return 2
+    if a.antialias_gamma is not None and a.antialias is None:
+        print("pov2softtrace.py: --antialias-gamma needs --antialias (POV-Ray's +A)",
+              file=sys.stderr)
         return 2
     try:
         with open(a.scene, encoding="utf-8", errors="replace") as f:
@@ -108,6 +118,8 @@ def main(argv=None):
         return 2
     if a.antialias is not None:
         scene["image"]["antialias"] = {"threshold": a.antialias, "depth": a.antialias_depth}
+        if a.antialias_gamma is not None:
+            scene["image"]["antialias"]["gamma"] = a.antialias_gamma
     for line, col, message in warnings:
         print("%s:%d:%d: warning: %s" % (a.scene, line, col, message), file=sys.stderr)
     out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (

@@ -6,7 +6,8 @@ spheres at iso 0.5, POV's blob of the same spheres, strength 1, threshold 0.5) u
 camera and lights, with one finish term or one kind of light set, or (case "components") with
 its own material on some of the spheres, which POV-Ray gets as the components' textures; the
 transparent cases (glass, filter_shadow, transmit) add a ground plane, which the tinted shadows
-and the refracted rays show. Both renderers write linear
+and the refracted rays show; glass_in_glass, overlapping_glass and glass_in_csg add a second
+transparent object around or across the glass blob (POV-Ray's interior list). Both renderers write linear
 EXR (POV-Ray with assumed_gamma 1.0, +FE): softtrace `render --flatten --spp 1`, POV-Ray
 without anti-aliasing. `softtrace diff` compares R,G,B. A case passes when the mean absolute
 difference is at most 1/255 and at most 1% of the pixels differ by more than 4/255 in a channel
@@ -73,8 +74,19 @@ COMPONENT_CASES = {
                      "roughness": 0.03},
                     None], [KEY, AMBIENT]),
 }
+# A blend of a glass sphere, a mirror sphere and one of the object's (opaque, faintly
+# reflective) material over the ground: POV-Ray traces each texture's transmitted and mirror
+# rays with its own ray weight and adds them by the textures' weights.
+COMPONENT_CASES["components_glass"] = (
+    {"color": [0.8, 0.3, 0.25], "diffuse": 0.7, "phong": 0.5, "reflection": 0.03, "ior": 1.5},
+    [{"color": [0.9, 0.95, 1.0], "diffuse": 0.1, "phong": 0.8, "phong_size": 80, "filter": 0.1,
+      "transmit": 0.8, "reflection": 0.1},
+     {"color": [0.85, 0.85, 0.8], "diffuse": 0.3, "reflection": 0.6, "phong": 0.9,
+      "phong_size": 120},
+     None], [KEY, AMBIENT])
 for _name, (_object, _components, _lights) in COMPONENT_CASES.items():
     CASES[_name] = (_object, _lights, {})
+CASES["components_glass"] = CASES["components_glass"][:2] + ({"max_trace_level": 8},)
 
 # A gradient sky (POV's sky_sphere), seen around the blob and in its reflection.
 CASES["sky"] = ({"diffuse": 0.6, "reflection": 0.4}, [KEY, AMBIENT], {"max_trace_level": 3})
@@ -87,7 +99,7 @@ POV_ANTIALIAS = {"antialias": ["+A0.3", "+AM1", "+R3", "-J"]}
 # grey ground plane below the blob, so that the tinted shadows and what the refracted rays see
 # are compared too: name -> the ground's height (softtrace z, POV's y).
 GROUND = {"color": [0.75, 0.75, 0.7], "diffuse": 0.8}
-GROUND_CASES = {"glass": -1.9, "filter_shadow": -1.9, "transmit": -1.9}
+GROUND_CASES = {"glass": -1.9, "filter_shadow": -1.9, "transmit": -1.9, "components_glass": -1.9}
 CASES["glass"] = ({"color": [0.9, 0.95, 1.0], "diffuse": 0.1, "phong": 0.8, "phong_size": 80,
                    "filter": 0.1, "transmit": 0.8, "ior": 1.5, "reflection": 1.0,
                    "fresnel": True, "conserve_energy": True},
@@ -95,6 +107,46 @@ CASES["glass"] = ({"color": [0.9, 0.95, 1.0], "diffuse": 0.1, "phong": 0.8, "pho
 CASES["filter_shadow"] = ({"color": [0.2, 0.8, 0.3], "diffuse": 0.6, "phong": 0.5,
                            "filter": 0.7}, [KEY, AMBIENT], {})
 CASES["transmit"] = ({"color": [0.8, 0.3, 0.25], "transmit": 0.6}, [KEY, AMBIENT], {})
+
+# Nested and overlapping transparent objects (POV-Ray's interior list: the ior ratio at each
+# surface is the current medium's over the next one's): the glass blob inside a glass ball (a
+# second soft object), overlapping a glass ball, and inside a glass CSG (a ball cut by a box).
+# The cases that hold the blob inside something look from farther back (CAMERAS).
+GLASS_BLOB = {"color": [0.95, 0.9, 0.8], "diffuse": 0.1, "phong": 0.8, "phong_size": 80,
+              "filter": 0.2, "transmit": 0.7, "ior": 1.5, "reflection": 1.0, "fresnel": True,
+              "conserve_energy": True}
+# A single murakami component of radius R has its iso-0.5 surface at R sqrt(1 - sqrt(0.5)).
+SURFACE_PER_RADIUS = (1 - 0.5 ** 0.5) ** 0.5
+
+
+def ball(center, surface_radius, material):
+    return {"name": "ball", "material": material, "convention": "soft", "iso": 0.5,
+            "field": {"type": "soft_object", "potential": {"type": "murakami"},
+                      "distance": {"type": "lp_metric", "n": 2,
+                                   "radii": [surface_radius / SURFACE_PER_RADIUS] * 3},
+                      "translate": center}}
+
+
+FAR_EYE = [0 + 1.75 * 1.5, 1.75 * -9, 0.4 + 1.75 * 3.6]
+CAMERAS = {"glass_in_glass": FAR_EYE, "glass_in_csg": FAR_EYE}
+EXTRA_OBJECTS = {
+    "glass_in_glass": [ball([0, 0, 0.3], 3.6,
+                            {"color": [0.9, 1.0, 0.95], "diffuse": 0.05, "phong": 0.6,
+                             "phong_size": 100, "transmit": 0.9, "ior": 1.2})],
+    "overlapping_glass": [ball([1.6, -1.4, 1.0], 1.3,
+                               {"color": [0.6, 0.75, 1.0], "diffuse": 0.1, "phong": 0.5,
+                                "filter": 0.5, "transmit": 0.4, "ior": 1.25})],
+    "glass_in_csg": [{"name": "cut_ball", "csg": "intersection",
+                      "material": {"color": [1.0, 0.95, 0.9], "diffuse": 0.05, "phong": 0.6,
+                                   "phong_size": 60, "transmit": 0.85, "ior": 1.3},
+                      "operands": [
+                          {"shape": {"type": "sphere", "center": [0, 0, 0.2], "radius": 3.4}},
+                          {"shape": {"type": "box", "corner1": [-3, -3, -2.5],
+                                     "corner2": [3, 3, 3]}}]}],
+}
+GROUND_CASES.update({"glass_in_glass": -3.5, "overlapping_glass": -1.9, "glass_in_csg": -2.8})
+for _name in EXTRA_OBJECTS:
+    CASES[_name] = (GLASS_BLOB, [KEY, AMBIENT], {"max_trace_level": 10})
 
 # Both refine the same kind of pixels (POV-Ray 452 at 160x120, softtrace 444: the colour distance
 # of gamma-encoded colours, docs/math.md §12.5), but the refined pixels' samples lie elsewhere
@@ -119,14 +171,41 @@ def scene(case, width, height):
                    "shape": {"type": "plane", "normal": [0, 0, 1],
                              "distance": GROUND_CASES[case]}}]
     return {
-        "camera": {"eye": [1.5, -9, 4], "target": [0, 0, 0.4], "up": [0, 0, 1], "fov": 30},
+        "camera": {"eye": CAMERAS.get(case, [1.5, -9, 4]), "target": [0, 0, 0.4],
+                   "up": [0, 0, 1], "fov": 30},
         "image": dict({"width": width, "height": height, "spp": 1}, **image),
         "background": copy.deepcopy(BACKGROUNDS.get(case, [0.2, 0.3, 0.45])),
         "lights": copy.deepcopy(lights),
         "objects": [{"name": case, "material": dict({"color": [0.8, 0.3, 0.25]}, **material),
                      "convention": "soft", "iso": 0.5,
-                     "field": {"type": "soft_blend", "children": children}}] + ground,
+                     "field": {"type": "soft_blend", "children": children}}] +
+        copy.deepcopy(EXTRA_OBJECTS.get(case, [])) + ground,
     }
+
+
+def pov_extra(case):
+    """EXTRA_OBJECTS' objects in POV's words: a soft object over one sphere is a blob of that
+    sphere; a CSG of spheres and boxes is the same CSG; each with its material and interior."""
+    out = []
+    for obj in EXTRA_OBJECTS.get(case, []):
+        texture = pov_scene.material(obj) + "\n" + pov_scene.interior(obj)
+        if "field" in obj:
+            f = obj["field"]
+            out.append("blob { threshold %.9g\n  sphere { %s, %.9g, 1 }\n%s}\n" % (
+                obj["iso"], pov_scene.pov_vec(f["translate"]), f["distance"]["radii"][0],
+                texture))
+            continue
+        parts = []
+        for operand in obj["operands"]:
+            s = operand["shape"]
+            if s["type"] == "sphere":
+                parts.append("  sphere { %s, %.9g }" % (pov_scene.pov_vec(s["center"]),
+                                                         s["radius"]))
+            else:
+                parts.append("  box { %s, %s }" % (pov_scene.pov_vec(s["corner1"]),
+                                                   pov_scene.pov_vec(s["corner2"])))
+        out.append("%s {\n%s\n%s}\n" % (obj["csg"], "\n".join(parts), texture))
+    return "".join(out)
 
 
 def pov_ground(case):
@@ -204,7 +283,7 @@ def main():
             json.dump(sc, f, indent=1)
         with open(base + ".pov", "w") as f:
             f.write(pov_scene.header(sc, a.width, a.height, alpha=False) + pov_scene.blob(sc) +
-                    pov_ground(c))
+                    pov_extra(c) + pov_ground(c))
         run([softtrace, "render", base + ".json", "-o", base + ".exr", "--flatten", "--quiet"])
         run(["povray", "+I" + base + ".pov", "+O" + base + "_pov.exr", "+FE",
              "+W%d" % a.width, "+H%d" % a.height, "-D", "-P", "+WT2"] +

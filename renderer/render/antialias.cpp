@@ -8,6 +8,7 @@ namespace softtrace {
 AdaptivePixels::AdaptivePixels(const Antialias& a, const PixelRect& window, int full_width,
                                int full_height)
     : threshold_(a.threshold),
+      inverse_gamma_(float(1 / a.gamma)),
       window_(window),
       apron_{std::max(window.x0 - 1, 0), std::max(window.y0 - 1, 0),
              std::min(window.x1 + 1, full_width), std::min(window.y1 + 1, full_height)} {
@@ -18,11 +19,11 @@ AdaptivePixels::AdaptivePixels(const Antialias& a, const PixelRect& window, int 
 
 void AdaptivePixels::set_first(int x, int y, const float rgba[4]) {
   // POV-Ray 3.7 compares the colours gamma-encoded by its Antialias_Gamma, 2.5 by default
-  // (backend/render/tracetask.cpp, NonAdaptiveSupersamplingForOnePixel): c^(1/2.5) of the linear
-  // R, G and B (negatives as 0), A as it is. A dark edge then differs as much as a bright one
-  // that looks as different.
+  // (backend/render/tracetask.cpp, NonAdaptiveSupersamplingForOnePixel): c^(1/gamma) of the
+  // linear R, G and B (negatives as 0), A as it is. A dark edge then differs as much as a bright
+  // one that looks as different.
   float* first = &first_[index(x, y) * 4];
-  for (int k = 0; k < 3; ++k) first[k] = std::pow(std::max(rgba[k], 0.0f), 1 / 2.5f);
+  for (int k = 0; k < 3; ++k) first[k] = std::pow(std::max(rgba[k], 0.0f), inverse_gamma_);
   first[3] = rgba[3];
 }
 

@@ -44,6 +44,7 @@ class AdaptivePixels {
   }
 
   double threshold_;
+  float inverse_gamma_;  // 1 / Antialias_Gamma
   PixelRect window_, apron_;
   std::vector<float> first_;  // 4 per apron pixel
   std::vector<char> refine_;  // 1 per apron pixel; only the window's are set

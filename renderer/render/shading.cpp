@@ -34,7 +34,7 @@ class ContinuedRay {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
-             double weight) {
+             double weight, const Interiors* interiors) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
@@ -51,9 +51,11 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // Seen from inside (clipped solids, transparent ones): shade the side we see.
   const bool from_inside = dot(n, ray.d) > 0;
   if (from_inside) n = -n;
-  // The field object whose solid the shadow and mirror rays start in (transparent scenes only:
-  // the others keep their rays as they were).
-  const int here = scene.transparent && from_inside ? hit.object : -1;
+  // The interiors the ray travels in, which its shadow and mirror rays start in (POV-Ray's
+  // interior list: only transmitted rays enter any, so in a scene without transparency it is
+  // empty).
+  static const Interiors kAir{};
+  const Interiors& here = interiors ? *interiors : kAir;
 
   // Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave
   // the surface by that footprint's radius (at least 1e-4 of the object's box), far more than the
@@ -144,13 +146,14 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     });
   }
   // The interior's index of refraction is the object's (POV-Ray's interior), whatever material
-  // shows at the point; seen from inside, the light leaves it for the air.
+  // shows at the point. Which side is which comes from the ray's interior list, not from the
+  // normal (POV-Ray's way): leaving the object, the light passes into the next interior out.
   const double ior = obj.material.ior;
   const double cos_i = -dot(ray.d, n);
   // The mirror reflection, weighed by Fresnel's reflectance where the material asks.
   const auto reflectivity = [&](const Material& mk) {
     if (!mk.fresnel) return mk.reflection;
-    const double f = fresnel_reflectance(cos_i, from_inside ? 1 / ior : ior);
+    const double f = fresnel_reflectance(cos_i, fresnel_ratio(here, hit.object, ior));
     return mk.reflection * f + mk.reflection_min * (1 - f);
   };
   // What of the light behind passes (POV's filter colour), less what is reflected where energy
@@ -161,76 +164,128 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     return f;
   };
   Vec3 color = mixed;
-  Vec3 reflection = reflectivity(m), albedo = m.color;
-  Vec3 filter{0, 0, 0};
-  bool see_through = false;
+  Vec3 albedo = m.color;
+  // What each material sends on (docs/math.md §12.3): POV-Ray shades a blended point once per
+  // texture, each tracing its own transmitted and mirror rays with its own weight, and sums the
+  // colours with the textures' weights. The rays are the same for every material (one normal,
+  // the object's interior), so each is traced once and shaded once per distinct ray weight.
+  struct Onward {
+    double weight;    // the material's share of the point (1 for a plain one)
+    Vec3 reflection;  // its reflectivity
+    Vec3 filter;      // what of the light behind passes it (see_through)
+    bool see_through;
+    bool total_reflection;  // its transmitted ray reflected whole: no mirror ray of its own
+  };
+  Onward single{1, reflectivity(m), {0, 0, 0}, false, false};
+  std::vector<Onward> many;  // a blended point's, one per material
   if (!blended) {
     if (transparent(m)) {
       light = light * opacity(m);
-      see_through = true;
-      filter = passing(m);
+      single.see_through = true;
+      single.filter = passing(m);
     }
     color = mul(m.color, light);
     if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
   } else {
-    reflection = albedo = Vec3{0, 0, 0};
+    albedo = Vec3{0, 0, 0};
+    many.reserve(weights.size());
     each([&](const Material& mk, double wk) {
-      reflection += reflectivity(mk) * wk;
       albedo += mk.color * wk;
-      if (transparent(mk)) {
-        see_through = true;
-        filter += passing(mk) * wk;
-      }
+      many.push_back({wk, reflectivity(mk), transparent(mk) ? passing(mk) : Vec3{0, 0, 0},
+                      transparent(mk), false});
     });
   }
   // `weights` is read for the last time above: the rays below shade other points.
+  Onward* const onward = blended ? many.data() : &single;
+  const size_t materials = blended ? many.size() : 1;
+  const bool deeper = level < scene.image.max_trace_level;
+
+  // A ray's colour for each weight it is shaded with (the weight bounds the chain of rays below
+  // it, docs/math.md §12.6, "Ray weights").
+  struct Seen {
+    double weight;
+    Vec3 color;
+  };
+  const auto seen_with = [&](std::vector<Seen>& cache, double w, const auto& trace) {
+    for (const Seen& c : cache)
+      if (c.weight == w) return c.color;
+    cache.push_back({w, trace(w)});
+    return cache.back().color;
+  };
 
   // The transmitted ray (POV-Ray traces it first), where enough light passes to matter: its grey
-  // here, and its weight down the chain of rays (docs/math.md §12.6, "Ray weights").
+  // here, and its weight down the chain of rays.
+  Crossing crossing;  // the transmitted ray's interiors and index ratio (transparency.h)
+  int crossed = -1;   // -1: not yet tried; 0: no ray (too deep a list); 1: `next` holds it
+  Ray next;
+  int next_level = level + 1;
+  const Interiors* inside = &crossing.next;
   bool total_reflection = false;
-  const double transmitted_weight = weight * max_abs(filter);
-  if (see_through && std::min(1.0, std::abs(grey(filter))) > kAdcBailout &&
-      transmitted_weight >= kAdcBailout && level < scene.image.max_trace_level &&
-      !cancel_requested(cancel)) {
-    const double eta = from_inside ? ior : 1 / ior;  // n_incident / n_transmitted
-    Ray next{p, ray.d, cone0, ray.cone};
-    int next_level = level + 1, inside = from_inside ? -1 : hit.object;
-    if (std::abs(eta - 1) < 1e-10) {
-      next_level = level;  // a straight transmitted ray continues the ray
-    } else if (!refract(ray.d, n, eta, next.d)) {
-      // Total internal reflection: all of the light reflects, untinted, staying inside.
-      total_reflection = true;
-      next = {p, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
-      inside = from_inside ? hit.object : -1;
+  TraceHit far;
+  std::vector<Seen> transmitted;
+  for (size_t k = 0; k < materials; ++k) {
+    Onward& o = onward[k];
+    const double transmitted_weight = weight * max_abs(o.filter);
+    if (!o.see_through || !(std::min(1.0, std::abs(grey(o.filter))) > kAdcBailout) ||
+        transmitted_weight < kAdcBailout || !deeper || cancel_requested(cancel))
+      continue;
+    if (crossed < 0) {
+      crossed = cross(here, hit.object, ior, crossing) ? 1 : 0;
+      const double eta = crossing.eta;  // n_incident / n_transmitted
+      next = {p, ray.d, cone0, ray.cone};
+      if (crossed && std::abs(eta - 1) < 1e-10) {
+        next_level = level;  // a straight transmitted ray continues the ray
+      } else if (crossed && !refract(ray.d, n, eta, next.d)) {
+        // Total internal reflection: all of the light reflects, untinted, in the ray's interiors.
+        total_reflection = true;
+        next = {p, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
+        inside = &here;
+      }
+      if (crossed && (next_level > level || continued < kMaxContinued)) {
+        far = rt.intersect(next, offset, std::numeric_limits<double>::infinity(), nullptr, *inside);
+        secondary.add(far.work);
+      } else {
+        crossed = 0;
+      }
     }
-    if (next_level > level || continued < kMaxContinued) {
-      const TraceHit far =
-          rt.intersect(next, offset, std::numeric_limits<double>::infinity(), nullptr, inside);
-      secondary.add(far.work);
+    if (!crossed) continue;
+    o.total_reflection = total_reflection;
+    const Vec3 seen = seen_with(transmitted, transmitted_weight, [&](double w) {
       const ContinuedRay count(next_level == level);
-      const Vec3 seen = far.hit ? shade(scene, tracers, rt, next, far, secondary, cancel,
-                                        next_level, transmitted_weight)
-                                      .color
-                        : scene.sky ? scene.sky->seen(next.d)
-                                    : scene.background;
-      color += total_reflection ? seen : mul(filter, seen);
-    }
+      return far.hit
+                 ? shade(scene, tracers, rt, next, far, secondary, cancel, next_level, w, inside)
+                       .color
+             : scene.sky ? scene.sky->seen(next.d)
+                         : scene.background;
+    });
+    color += (total_reflection ? seen : mul(o.filter, seen)) * o.weight;
   }
 
   // The mirror reflection (which total internal reflection has replaced), while its weight lasts.
-  const double reflected_weight = weight * max_abs(reflection);
-  if (!total_reflection && reflects(reflection) && reflected_weight >= kAdcBailout &&
-      level < scene.image.max_trace_level && !cancel_requested(cancel)) {
-    const Ray mirror{origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
-    const TraceHit next =
-        rt.intersect(mirror, tnear, std::numeric_limits<double>::infinity(), nullptr, here);
-    secondary.add(next.work);
-    const Vec3 seen = next.hit ? shade(scene, tracers, rt, mirror, next, secondary, cancel,
-                                       level + 1, reflected_weight)
-                                     .color
-                      : scene.sky ? scene.sky->seen(mirror.d)
-                                  : scene.background;
-    color += mul(reflection, seen);
+  bool mirrored = false;
+  Ray mirror;
+  TraceHit bounced;
+  std::vector<Seen> reflected;
+  for (size_t k = 0; k < materials; ++k) {
+    const Onward& o = onward[k];
+    const double reflected_weight = weight * max_abs(o.reflection);
+    if (o.total_reflection || !reflects(o.reflection) || reflected_weight < kAdcBailout ||
+        !deeper || cancel_requested(cancel))
+      continue;
+    if (!mirrored) {
+      mirrored = true;
+      mirror = {origin, normalize(ray.d - n * (2 * dot(ray.d, n))), cone0, ray.cone};
+      bounced = rt.intersect(mirror, tnear, std::numeric_limits<double>::infinity(), nullptr, here);
+      secondary.add(bounced.work);
+    }
+    const Vec3 seen = seen_with(reflected, reflected_weight, [&](double w) {
+      return bounced.hit ? shade(scene, tracers, rt, mirror, bounced, secondary, cancel, level + 1,
+                                 w, &here)
+                               .color
+             : scene.sky ? scene.sky->seen(mirror.d)
+                         : scene.background;
+    });
+    color += mul(o.reflection, seen) * o.weight;
   }
   return {color, n, albedo};
 }

@@ -22,8 +22,10 @@ struct Shaded {
 // and the colour is moot. `level` is POV-Ray's trace level: 1 for a camera ray. `weight` is
 // POV-Ray's ray weight, the most this ray's colour can count in the pixel (1 for a camera ray):
 // a mirror or transmitted ray whose weight would fall below adc_bailout is not traced.
+// `interiors`: the ray's interior list (trace/interiors.h; none for a camera ray), which its
+// shadow, mirror and transmitted rays take on.
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel = nullptr,
-             int level = 1, double weight = 1);
+             int level = 1, double weight = 1, const Interiors* interiors = nullptr);
 
 }  // namespace softtrace

@@ -54,7 +54,7 @@ Vec3 surface_transmission(const Scene& scene, const Ray& ray, const TraceHit& hi
 }
 
 Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, double tnear,
-                   double distance, int inside, RayWork& shadow) {
+                   double distance, const Interiors& inside, RayWork& shadow) {
   TraceCounters work;
   const auto count = [&](const TraceCounters& c) {
     work.point_evals += c.point_evals;
@@ -66,12 +66,13 @@ Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, do
   };
   Vec3 f{1, 1, 1};
   double t = tnear;
+  Interiors in = inside;
   for (int k = 0;; ++k) {
     if (k == kMaxSurfaces) {
       f = {0, 0, 0};
       break;
     }
-    const TraceHit h = rt.intersect(ray, t, distance, nullptr, inside);
+    const TraceHit h = rt.intersect(ray, t, distance, nullptr, in);
     count(h.work);
     if (!h.hit) break;
     f = mul(f, surface_transmission(scene, ray, h));
@@ -79,8 +80,11 @@ Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, do
       f = {0, 0, 0};
       break;
     }
-    // Past the surface: into the object's solid, or out of it.
-    inside = inside == h.object ? -1 : h.object;
+    // Past the surface: out of the object's solid, or into it (POV-Ray's ComputeShadowMedia).
+    if (!in.remove(h.object) && !in.push(h.object, 1)) {
+      f = {0, 0, 0};
+      break;
+    }
     const Vec3 p = ray.o + ray.d * h.t;
     t = h.t + leave_distance(scene.objects[h.object], p, ray.cone0 + ray.cone * h.t);
     if (!(t < distance)) break;
@@ -89,9 +93,34 @@ Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, do
   return f;
 }
 
+bool cross(const Interiors& in, int object, double ior, Crossing& out) {
+  out.next = in;
+  if (in.empty()) {  // from the air
+    out.eta = 1 / ior;
+    return out.next.push(object, ior);
+  }
+  if (in.back().object == object) {  // out of the innermost, into the next one out or the air
+    out.next.remove(object);
+    out.eta = ior / (out.next.empty() ? 1 : out.next.back().ior);
+    return true;
+  }
+  if (out.next.remove(object)) {  // out of an overlapped one: the overlap was the inner's
+    out.eta = 1;
+    return true;
+  }
+  out.eta = in.back().ior / ior;  // into it from the innermost
+  return out.next.push(object, ior);
+}
+
+double fresnel_ratio(const Interiors& in, int object, double ior) {
+  if (in.empty()) return ior;
+  if (in.contains(object)) return in.size() == 1 ? 1 / ior : in.back().ior / ior;
+  return ior / in.back().ior;
+}
+
 Vec3 light_filter(const Scene& scene, const Light& l, const LightArrival& at, const Vec3& origin,
-                  double tnear, double cone0, double cone, int inside, const EmbreeScene& rt,
-                  RayWork& shadow, const std::atomic<bool>* cancel) {
+                  double tnear, double cone0, double cone, const Interiors& inside,
+                  const EmbreeScene& rt, RayWork& shadow, const std::atomic<bool>* cancel) {
   if (!l.shadows) return {1, 1, 1};
   if (!l.has_area)
     return shadow_filter(scene, rt, {origin, at.to_light, cone0, cone}, tnear, at.distance, inside,

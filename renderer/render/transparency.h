@@ -55,17 +55,39 @@ Vec3 surface_transmission(const Scene& scene, const Ray& ray, const TraceHit& hi
 
 // The colour of the light that travels from `tnear` to `distance` along `ray` (unit direction):
 // 1 where nothing is in the way, 0 past an opaque surface, else the product of the transmitted
-// colours of the transparent surfaces it crosses. `inside`: the field object whose solid the ray
-// starts in, or -1. The ray's work is added to `shadow` as one ray. Overlapping transparent solids
-// are crossed surface by surface (past 64 surfaces the light counts as blocked).
+// colours of the transparent surfaces it crosses. `inside`: the interiors the ray starts in (the
+// shaded ray's, interiors.h), entered or left at each surface as POV-Ray's shadow rays do. The
+// ray's work is added to `shadow` as one ray. Nested and overlapping transparent solids are
+// crossed surface by surface (past 64 surfaces, or Interiors::kMax deep, the light counts as
+// blocked).
 Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, double tnear,
-                   double distance, int inside, RayWork& shadow);
+                   double distance, const Interiors& inside, RayWork& shadow);
+
+// Where a transmitted ray goes at a surface of `object` (its interior's index of refraction
+// `ior`) that a ray travelling in `in` crosses, by POV-Ray 3.7's interior list
+// (Trace::ComputeRefraction): from the air into it; out of the innermost interior into the next
+// one out (or the air); out of an interior that is not the innermost (overlapping objects: the
+// overlap counts as the one entered last, so the ray stays in its medium, ratio 1); or into it
+// from the innermost. `eta`: n_incident / n_transmitted. False where `in` is Interiors::kMax
+// deep and the object is not in it (no ray is traced).
+struct Crossing {
+  Interiors next;  // the transmitted ray's list
+  double eta;
+};
+bool cross(const Interiors& in, int object, double ior, Crossing& out);
+
+// The index of refraction of the far side over the near one's that Fresnel's reflectance takes at
+// a surface of `object` (ior `ior`) that a ray travelling in `in` meets: POV-Ray 3.7's
+// Trace::ComputeRelativeIOR, to the letter (leaving an inner object for an outer one it takes the
+// innermost interior's ior over the object's, which is 1 where the object is the innermost).
+double fresnel_ratio(const Interiors& in, int object, double ior);
 
 // light_visibility (lights.h) as a colour, for scenes with transparent materials: each shadow
 // ray's shadow_filter from `tnear` along it; an area light's mean over its whole grid of samples
 // (not adaptively: the samples' colours need not agree where their visibility does).
 Vec3 light_filter(const Scene& scene, const Light& l, const LightArrival& at, const Vec3& origin,
-                  double tnear, double cone0, double cone, int inside, const EmbreeScene& rt,
-                  RayWork& shadow, const std::atomic<bool>* cancel = nullptr);
+                  double tnear, double cone0, double cone, const Interiors& inside,
+                  const EmbreeScene& rt, RayWork& shadow,
+                  const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace softtrace

@@ -9,6 +9,8 @@ namespace {
 
 // POV-Ray's +R: a refined pixel takes depth^2 times its samples; the image's spp is at most 4096.
 constexpr int kMaxAntialiasDepth = 9;
+// Antialias_Gamma: c^(1/gamma) must stay a finite, increasing encoding of colours up to 1e6.
+constexpr double kMinAntialiasGamma = 0.01, kMaxAntialiasGamma = 100;
 // Each occlusion sample is a shadow ray at every shaded point.
 constexpr int kMaxOcclusionSamples = 1024;
 
@@ -21,6 +23,9 @@ Antialias load_antialias(const Params& p) {
   p.check(a.threshold >= 0 && a.threshold <= 1e6, "threshold",
           "expected a colour difference in [0, 1e6] (POV-Ray's +A0.3 is 0.3)");
   a.depth = p.integer("depth", 1, kMaxAntialiasDepth, a.depth);
+  a.gamma = p.number("gamma", a.gamma);
+  p.check(a.gamma >= kMinAntialiasGamma && a.gamma <= kMaxAntialiasGamma, "gamma",
+          "expected a gamma in [0.01, 100] (POV-Ray's Antialias_Gamma, 2.5 by default)");
   p.finish();
   return a;
 }

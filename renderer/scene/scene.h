@@ -62,9 +62,11 @@ struct Animation {
 // docs/scene-format.md "image", "antialias": POV-Ray's adaptive anti-aliasing (+A, method 1).
 // A pixel whose colour differs from a neighbour's by more than `threshold` (the sum of the
 // absolute differences of R, G, B over the background and A) takes spp * depth^2 samples.
+// R, G and B are compared gamma-encoded, c^(1/gamma) (POV-Ray's Antialias_Gamma).
 struct Antialias {
   double threshold = -1;  // < 0: off
   int depth = 3;
+  double gamma = 2.5;
   bool on() const { return threshold >= 0; }
 };
 

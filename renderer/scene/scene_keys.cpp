@@ -10,7 +10,7 @@ const std::vector<SceneKeyList>& scene_key_lists() {
       {"camera",
        {"projection", "eye", "target", "up", "fov", "aperture", "focal_distance", "blur_samples"}},
       {"image", {"width", "height", "spp", "max_trace_level", "antialias", "ambient_occlusion"}},
-      {"antialias", {"threshold", "depth"}},
+      {"antialias", {"threshold", "depth", "gamma"}},
       {"ambient_occlusion", {"samples", "distance"}},
       {"background", {"gradient", "up"}},
       {"light: directional", {"type", "direction", "intensity", "color", "shadows"}},

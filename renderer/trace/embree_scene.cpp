@@ -26,7 +26,7 @@ struct RayContext {
   const BeamClear* beam = nullptr;
   double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
   int object = -1;
-  int inside = -1;  // EmbreeScene::intersect's `inside`
+  const Interiors* inside = nullptr;  // EmbreeScene::intersect's `inside`, if any
   bool on_box_face = false;
   Vec3 normal{0, 0, 0};
   int face = -1;
@@ -108,7 +108,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  if (data->object == ctx->inside) {
+  if (ctx->inside && ctx->inside->contains(data->object)) {
     exit_callback(args, data, ctx);
     return;
   }
@@ -282,10 +282,19 @@ RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
 
 TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
                                 int inside) const {
+  static const Interiors kOutside{};
+  if (inside < 0) return intersect(ray, tnear, tfar, beam, kOutside);
+  Interiors in;
+  in.push(inside, 1);
+  return intersect(ray, tnear, tfar, beam, in);
+}
+
+TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
+                                const Interiors& inside) const {
   // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
   const double cos = beam ? dot(ray.d, beam->forward) : 0;
   if (!(cos > 0)) beam = nullptr;
-  if (impl_->lone_field && inside != 0) {  // no Embree, and none of its context to fill
+  if (impl_->lone_field && !inside.contains(0)) {  // no Embree, and none of its context to fill
     TraceHit h;
     const BlobBeam* list;
     const MarchResult m = field_hit(impl_->data[0], ray, tnear, tfar, beam, cos, h.work, &list);
@@ -301,7 +310,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
-  ctx.inside = inside;
+  if (!inside.empty()) ctx.inside = &inside;
   if (beam) {
     ctx.beam = beam;
     ctx.beam_cos = cos;

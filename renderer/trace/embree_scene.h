@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "trace/interiors.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -55,9 +56,13 @@ class EmbreeScene {
   // Closest hit along the ray in [tnear, tfar]; thread-safe. Throws EmbreeError if Embree
   // reported an error while tracing it (so no ray passes for one Embree could not trace). `beam`,
   // if given, holds for this ray: each object's search starts where it certified. `inside`: the
-  // field object whose solid the ray starts in (a refracted or shadow ray through a transparent
-  // object), whose hit is then where the ray leaves it (its solid's complement's first point, or
-  // its box's face, on_box_face); CSGs and primitives find their exits from inside on their own.
+  // objects whose solids the ray starts in (a refracted or shadow ray through transparent
+  // objects: interiors.h); a field object's hit is then where the ray leaves it (its solid's
+  // complement's first point, or its box's face, on_box_face); CSGs and primitives find their
+  // exits from inside on their own.
+  TraceHit intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
+                     const Interiors& inside) const;
+  // The same for a ray inside at most one object's solid, `inside` (-1: none).
   TraceHit intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam = nullptr,
                      int inside = -1) const;
   // Whether anything lies along the ray in [tnear, tfar]; thread-safe. The ray's work is added to

@@ -548,11 +548,17 @@ def test_antialias_options_become_the_image_antialias(tmp_path):
     text = out.read_text()
     image = json.loads(text[text.index("{"):])["image"]
     assert image["antialias"] == {"threshold": 0.2, "depth": 4}
+    p = run_tool(str(scene), "-o", str(out), "--antialias", "0.2", "--antialias-gamma", "2.2")
+    assert p.returncode == 0, p.stderr
+    text = out.read_text()
+    image = json.loads(text[text.index("{"):])["image"]
+    assert image["antialias"] == {"threshold": 0.2, "depth": 3, "gamma": 2.2}
     p = run_tool(str(scene), "-o", str(out))
     assert p.returncode == 0, p.stderr
     text = out.read_text()
     assert "antialias" not in json.loads(text[text.index("{"):])["image"]
-    for bad in (["--antialias", "-1"], ["--antialias-depth", "10"], ["--antialias-depth", "0"]):
+    for bad in (["--antialias", "-1"], ["--antialias-depth", "10"], ["--antialias-depth", "0"],
+                ["--antialias", "0.3", "--antialias-gamma", "0"], ["--antialias-gamma", "2.2"]):
         p = run_tool(str(scene), "-o", str(tmp_path / "never.json"), *bad)
         assert p.returncode == 2 and p.stderr.count("\n") == 1, (bad, p.stderr)
         assert not (tmp_path / "never.json").exists()

@@ -8,6 +8,7 @@
 
 #include "cli_util.h"
 #include "io/image_file.h"
+#include "render/antialias.h"
 #include "render/frame.h"
 #include "render/progress.h"
 #include "render/shading.h"
@@ -165,6 +166,29 @@ TEST(AdaptiveAntialias, OnlyPixelsThatDifferFromANeighbourAreRefined) {
   // The progress bar counts both passes: the second's pixels, known after the first, as 9 each.
   EXPECT_EQ(progress.total(), 64 * 48 + edges * 9);
   EXPECT_EQ(progress.done(), progress.total());
+}
+
+// The colours are compared gamma-encoded by the scene's Antialias_Gamma ("gamma"): two dark
+// pixels, 0.001 and 0.01 linear, differ by 0.095 at POV-Ray's 2.5 (0.01^0.4 - 0.001^0.4) and by
+// 0.009 at gamma 1, so a threshold of 0.05 refines them at 2.5 and not at 1; a bright pair
+// (0.5, 0.56) differs by 0.06 at gamma 1 and by 0.035 at 2.5: the other way round.
+TEST(AdaptiveAntialias, GammaEncodesTheColoursCompared) {
+  const auto refined = [](double gamma, float a, float b) {
+    Antialias aa;
+    aa.threshold = 0.05;
+    aa.gamma = gamma;
+    AdaptivePixels pixels(aa, PixelRect{0, 0, 2, 1}, 2, 1);
+    const float left[4] = {a, a, 0, 1}, right[4] = {b, a, 0, 1};
+    pixels.set_first(0, 0, left);
+    pixels.set_first(1, 0, right);
+    pixels.decide();
+    return pixels.refined();
+  };
+  EXPECT_EQ(refined(2.5, 0.001f, 0.01f), 2);
+  EXPECT_EQ(refined(1, 0.001f, 0.01f), 0);
+  EXPECT_EQ(refined(2.5, 0.5f, 0.56f), 0);
+  EXPECT_EQ(refined(1, 0.5f, 0.56f), 2);
+  EXPECT_EQ(Antialias{}.gamma, 2.5);  // POV-Ray's default
 }
 
 // The showcase scene (sky, occlusion, adaptive anti-aliasing): 1 and 2 threads, and three tiles

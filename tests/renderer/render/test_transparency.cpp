@@ -288,6 +288,39 @@ TEST(Transparency, ChainsOfRaysStopWhereTheirWeightFallsBelowAdcBailout) {
   EXPECT_NEAR(between_mirrors(0.5, 8), 2 - std::pow(0.5, 7), 1e-12);
 }
 
+// A blend's materials each send their own mirror ray, weighed by their own reflectivity (POV-Ray
+// shades each texture with the point's ray weight): at the top of two equal balls blended, half
+// one component's and half the other's, a reflection of 0.006 on one of them sends a ray of weight
+// 0.006 > 1/255 that adds 0.5 * 0.006 of the sky above; one ray weighed by the mixed reflectivity,
+// 0.003 < 1/255, would not be traced.
+double blended_top(double reflection) {
+  const Scene scene = parse_scene(
+      R"({"camera": {"eye": [0, -30, 10], "target": [0, 0, 0]},
+          "background": [0.2, 0.4, 0.6],
+          "lights": [{"type": "ambient", "intensity": 1}],
+          "objects": [{"name": "blob", "field": {"type": "soft_blend", "children": [
+            {"type": "soft_object", "potential": {"type": "murakami"}, "translate": [-1, 0, 0],
+             "distance": {"type": "lp_metric", "radii": [2, 2, 2], "n": 2},
+             "material": {"color": [1, 1, 1], "reflection": )" +
+          std::to_string(reflection) + R"(}},
+            {"type": "soft_object", "potential": {"type": "murakami"}, "translate": [1, 0, 0],
+             "distance": {"type": "lp_metric", "radii": [2, 2, 2], "n": 2},
+             "material": {"color": [0.5, 0.5, 0.5]}}]}}]})",
+      "blend.json");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const Ray ray{{0, 0.3, 10}, {0, 0, -1}, 0, 1e-6};
+  const TraceHit hit = rt.embree.intersect(ray, 0, kInf);
+  EXPECT_TRUE(hit.hit);
+  RayWork work;
+  return shade(scene, rt.tracers, rt.embree, ray, hit, work).color.x;
+}
+
+TEST(Transparency, EachBlendedMaterialWeighsItsOwnMirrorRay) {
+  EXPECT_NEAR(blended_top(0.006) - blended_top(0), 0.5 * 0.006 * 0.2, 1e-7);
+  // Above adc_bailout either way: 0.5 * 0.1 of the sky.
+  EXPECT_NEAR(blended_top(0.1) - blended_top(0), 0.5 * 0.1 * 0.2, 1e-7);
+}
+
 TEST(TransparencyRender, SameBitsForOneAndTwoThreads) {
   const std::string dir = test::temp_dir("transparency_threads");
   {

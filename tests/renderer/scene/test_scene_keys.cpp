@@ -25,7 +25,7 @@ const std::string kEveryKeyCameras = std::string(R"({
   "camera": {"projection": "perspective", "eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40,
              "aperture": 0.1, "focal_distance": 9, "blur_samples": 2},
   "image": {"width": 8, "height": 6, "spp": 2, "max_trace_level": 3,
-            "antialias": {"threshold": 0.3, "depth": 2},
+            "antialias": {"threshold": 0.3, "depth": 2, "gamma": 2.2},
             "ambient_occlusion": {"samples": 4, "distance": 2}},
   "background": {"gradient": [[0.1, 0.2, 0.3], [0.4, 0.5, 0.9]], "up": [0, 0, 1]},
   "lights": [
