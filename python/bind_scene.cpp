@@ -137,7 +137,7 @@ void bind_scene(py::module_& m) {
            py::arg("text"), py::arg("name"))
       .def_property_readonly("path", [](const PyScene& s) { return s.scene->path; })
       .def_property_readonly("_bytes", [](const PyScene& s) { return py::bytes(s.text); })
-      .def_property_readonly("hash", [](const PyScene& s) { return s.scene->file_hash; })
+      .def_property_readonly("hash", [](const PyScene& s) { return s.scene->file_hash(); })
       .def_property_readonly("objects",
                              [](const PyScene& s) {
                                std::vector<std::string> names;

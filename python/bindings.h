@@ -17,7 +17,7 @@ namespace py = pybind11;
 // A scene as Python holds it, copied on write: `scene` is replaced, never changed, when a setting
 // changes, so a render that took a reference keeps rendering the scene it started with, whatever
 // other threads set meanwhile. `text` is the JSON that was parsed (what pickling and edits start
-// from); scene->file_hash is its hash.
+// from); scene->file_hash() is its hash.
 struct PyScene {
   std::shared_ptr<const Scene> scene;
   std::string text;

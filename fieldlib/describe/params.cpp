@@ -51,6 +51,8 @@ std::string unknown_key_message(const std::string& key, const std::vector<std::s
 }
 
 std::string json_pointer_escape(const std::string& key) {
+  if (std::none_of(key.begin(), key.end(), [](char c) { return c == '~' || c == '/'; }))
+    return key;  // every key the loader names
   std::string out;
   for (char c : key) {
     if (c == '~')
@@ -90,36 +92,37 @@ void Params::check_keys(const std::vector<std::string>& known, const std::string
   known_ = known;
 }
 
-namespace {
-
-// An object has a handful of keys: a vector searched from the front beats a set's allocations
-// (the loader asks some 20 times per node of a 1000-component scene).
-void remember(std::vector<std::string>& keys, const std::string& key) {
-  if (std::find(keys.begin(), keys.end(), key) != keys.end()) return;
-  if (keys.empty()) keys.reserve(8);  // one allocation for the handful, not four
-  keys.push_back(key);
-}
-
-}  // namespace
-
-void Params::note_wanted(const std::string& key) const {
+const nlohmann::json* Params::lookup(const std::string& key) const {
   if (!known_.empty() && std::find(known_.begin(), known_.end(), key) == known_.end())
     throw std::logic_error("the loader reads '" + key + "' at " + where("") +
                            ", which its list of keys does not have");
-  remember(wanted_, key);
+  const auto it = j_->find(key);
+  if (it == j_->end()) {
+    // An object has a handful of keys: a vector searched from the front beats a set.
+    if (std::find(absent_.begin(), absent_.end(), key) == absent_.end()) {
+      if (absent_.empty()) absent_.reserve(4);  // one allocation for the handful
+      absent_.push_back(key);
+    }
+    return nullptr;
+  }
+  const json* v = &*it;
+  for (const Asked& a : asked_)
+    if (a.value == v) return v;
+  if (asked_.empty()) asked_.reserve(8);
+  asked_.push_back({v, false});
+  return v;
 }
 
 bool Params::has(const std::string& key) const {
-  note_wanted(key);
-  return j_->contains(key);
+  return lookup(key) != nullptr;
 }
 
 const nlohmann::json& Params::at(const std::string& key) const {
-  note_wanted(key);
-  auto it = j_->find(key);
-  if (it == j_->end()) fail(key, "missing required parameter '" + key + "'");
-  remember(used_, key);
-  return *it;
+  const json* v = lookup(key);
+  if (!v) fail(key, "missing required parameter '" + key + "'");
+  for (Asked& a : asked_)
+    if (a.value == v) a.read = true;
+  return *v;
 }
 
 double Params::number(const std::string& key) const {
@@ -218,7 +221,12 @@ std::vector<Vec3> Params::vec3s(const std::string& key) const {
 }
 
 Params Params::object(const std::string& key) const {
-  return Params(at(key), pointer_ + "/" + json_pointer_escape(key), file_);
+  const json& v = at(key);
+  const std::string escaped = json_pointer_escape(key);
+  std::string pointer;  // one allocation: a component's pointer is longer than a short string
+  pointer.reserve(pointer_.size() + 1 + escaped.size());
+  pointer.append(pointer_).append(1, '/').append(escaped);
+  return Params(v, std::move(pointer), file_);
 }
 
 std::vector<Params> Params::objects(const std::string& key) const {
@@ -232,9 +240,18 @@ std::vector<Params> Params::objects(const std::string& key) const {
 }
 
 void Params::finish() const {
+  const auto read = [this](const json& v) {
+    for (const Asked& a : asked_)
+      if (a.value == &v) return a.read;
+    return false;
+  };
   for (auto it = j_->begin(); it != j_->end(); ++it)
-    if (std::find(used_.begin(), used_.end(), it.key()) == used_.end()) {
-      std::vector<std::string> known = wanted_;
+    if (!read(it.value())) {
+      // Every key asked for, present or not, is a suggestion.
+      std::vector<std::string> known = absent_;
+      for (auto m = j_->begin(); m != j_->end(); ++m)
+        for (const Asked& a : asked_)
+          if (a.value == &m.value()) known.push_back(m.key());
       std::sort(known.begin(), known.end());  // the suggestion's order among equally near keys
       fail(json_pointer_escape(it.key()), unknown_key_message(it.key(), known));
     }

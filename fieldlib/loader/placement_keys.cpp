@@ -61,9 +61,11 @@ NodePtr apply_placement(NodePtr node, const Params& p, const KindInfo& kind) {
       if (p.has(other) && !(own_scale && std::string(other) == "scale"))
         p.fail("matrix", std::string("'matrix' cannot be combined with '") + other +
                              "' (fold it into the matrix; docs/scene-format.md \"Placement\")");
-  Vec3 translate = p.vec3("translate", {});
-  if (p.has("translate"))
+  Vec3 translate;
+  if (p.has("translate")) {
+    translate = p.vec3("translate");
     for (int i = 0; i < 3; ++i) check_magnitude(p, "translate", i, translate[i]);
+  }
   Mat3 A;  // object to world: R diag(scale), or the matrix
   bool rotated = false, affine = false;
   if (p.has("rotate")) {

@@ -122,7 +122,8 @@ int run_render(const RenderArgs& a) {
     // No more threads than the frame has tiles (the same bits for any count, frame.h).
     const int tasks = frame_tasks(window.x0, window.y0, window.width(), window.height());
     const int wanted = a.threads ? a.threads : default_threads();
-    const auto threads = limit_threads(wanted > tasks ? tasks : a.threads);
+    auto threads = limit_threads(wanted > tasks ? tasks : a.threads);
+    threads.keep_until_exit();  // the process exits after the frame
 
     const auto start = std::chrono::steady_clock::now();
     const TracedScene rt(scene, a.lipschitz);
@@ -134,7 +135,12 @@ int run_render(const RenderArgs& a) {
     film.full_height = scene.image.height;
     film.x0 = window.x0;
     film.y0 = window.y0;
-    FrameInfo info = frame_info(scene, film.full_width, film.full_height);
+    // Only an EXR's header carries the scene's hash and the render hash: a PNG-only run does not
+    // hash the scene's bytes.
+    const bool exr = std::any_of(outputs.begin(), outputs.end(), is_exr_path);
+    FrameInfo info = frame_info(scene, film.full_width, film.full_height, /*with_hash=*/false);
+    const uint64_t file_hash = exr ? scene.file_hash() : 0;
+    if (exr) info.scene_hash = hex64(file_hash);
     // What `merge` checks before it puts tiles together.
     // --flatten and --half change the EXR's pixels: tiles rendered with and without them must not
     // be merged.
@@ -149,13 +155,15 @@ int run_render(const RenderArgs& a) {
       settings += fov;
     }
     if (a.half) settings += " half";
-    film.attributes["softtrace/renderHash"] = render_hash(scene, settings);
+    if (exr) film.attributes["softtrace/renderHash"] = render_hash(file_hash, settings);
     film.attributes["softtrace/render"] = settings;
     if (a.tile) film.attributes["softtrace/tile"] = *a.tile;
     if (a.frame >= 0) film.attributes["softtrace/frame"] = std::to_string(a.frame);
+    // The samples a pixel takes (a lens's blur_samples may exceed the image's spp): what the
+    // progress and the summary's rays/s count.
+    const int spp = samples_per_pixel(scene.camera, scene.image.spp);
     Progress progress("rendering", long(film.width) * film.height,
-                      !a.quiet && (a.progress || ::isatty(2)),
-                      samples_per_pixel(scene.camera, scene.image.spp));
+                      !a.quiet && (a.progress || ::isatty(2)), spp);
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;
@@ -198,8 +206,8 @@ int run_render(const RenderArgs& a) {
       if (film.width != film.full_width || film.height != film.full_height)
         std::fprintf(stderr, " (x %d..%d, y %d..%d of %dx%d)", window.x0, window.x1 - 1, window.y0,
                      window.y1 - 1, film.full_width, film.full_height);
-      std::fprintf(stderr, ", %d spp in %.2f s (%.2f M primary rays/s, %.1f evaluations/ray)",
-                   scene.image.spp, secs, stats.primary_rays / secs * 1e-6,
+      std::fprintf(stderr, ", %d spp in %.2f s (%.2f M primary rays/s, %.1f evaluations/ray)", spp,
+                   secs, stats.primary_rays / secs * 1e-6,
                    static_cast<double>(stats.steps) / std::max(1LL, stats.primary_rays));
       if (scene.image.antialias.on())
         std::fprintf(stderr, ", %lld pixels anti-aliased", stats.refined_pixels);

@@ -1,7 +1,10 @@
 // softtrace: render, evaluate, compare and benchmark implicit soft-object scenes.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,14 +27,30 @@ void add_camera_options(CLI::App* command, CameraArgs& view) {
   command->add_option("--fov", view.fov, "Camera's vertical field of view in degrees (overrides)")
       ->check(finite_number());
 }
-}  // namespace
 
-int main(int argc, char** argv) {
-  block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
+// The command line's parser. Setting up every command's options took 0.9 M instructions at
+// each start; a run that names its command sets up only that command's (the others keep their
+// names and summaries), and anything but a clean parse (an error, --help, --version) is parsed
+// again by the whole parser, so that every message and help text is the one it gives.
+struct CommandLine {
+  explicit CommandLine(const std::string& only);  // only this command's options; "": all
+
   CLI::App app{
       "softtrace: a CPU ray-marching renderer for implicit soft objects and their blends.\n"
       "Scene format and every node: docs/scene-format.md; the maths: docs/math.md; the command "
       "line: docs/cli.md."};
+  RenderArgs r;
+  EvalArgs e;
+  MeshArgs mesh_args;
+  DiffArgs d;
+  BenchArgs b;
+  MergeArgs m;
+  bool dict = false;
+  CLI::App *render, *eval, *mesh, *diff, *bench, *merge, *nodes;
+};
+
+CommandLine::CommandLine(const std::string& only) {
+  const bool all = only.empty();
   app.footer(
       "Exit status: 0 success; 2 bad usage or bad input; 128 + the signal when interrupted (130 "
       "SIGINT, 143 SIGTERM); diff: 0 pass, 1 warning, 2 failure, 4 an image it cannot read or "
@@ -44,173 +63,190 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
                        "Print the version and the commit it was built from");
 
-  RenderArgs r;
-  auto* render = app.add_subcommand("render", "Render a scene to EXR and/or PNG");
-  render->add_option("scene", r.scene, "Scene file (JSON with comments)")->required();
-  render->add_option("-o,--output", r.outputs,
-                     "Output image(s), .exr or .png; repeat for several (default: <scene>.exr)");
-  auto* render_width = render
-                           ->add_option("--width", r.width,
-                                        "Image width; alone, the height follows the scene's aspect")
-                           ->check(integer_in(1, 16384));
-  auto* render_height =
-      render
-          ->add_option("--height", r.height,
-                       "Image height; alone, the width follows the scene's aspect")
-          ->check(integer_in(1, 16384));
-  render->add_option("--scale", r.scale, "Scale the scene's width and height by F")
-      ->check(number_above_zero())
-      ->excludes(render_width, render_height);
-  render->add_option("--spp", r.spp, "Samples per pixel (overrides the scene)")
-      ->check(integer_in(1, 4096));
-  render
-      ->add_option("--antialias", r.antialias,
-                   "Adaptive anti-aliasing threshold, POV-Ray's +A (overrides the scene)")
-      ->check(number_in(0, 1e6));
-  render->add_option("--threads", r.threads, "Worker threads (default: all cores)")
-      ->check(integer_in(1, 1024));
-  render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps,albedo")
-      ->check(aov_list());
-  render
-      ->add_option("--lipschitz", r.lipschitz,
-                   "Sphere-tracing bound: local (per stretch) or global")
-      ->transform(lipschitz_mode());
-  auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
-  render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
-      ->excludes(render_quiet);
-  render->add_flag("--flatten", r.flatten,
-                   "EXR: RGB over the scene's background with A = 1 (default: premultiplied RGBA "
-                   "over transparency)");
-  render->add_flag("--half", r.half, "EXR: half-float R,G,B,A and normals (Z, steps stay float)");
-  render->add_flag("--png-alpha", r.png_alpha,
-                   "PNG: RGBA with straight alpha (default: RGB over the background)");
-  auto* crop = render->add_option("--crop", r.crop,
-                                  "Render fractions X0,X1,Y0,Y1 of the image (pbrt's cropwindow)");
-  auto* bounds = render->add_option("--pixel-bounds", r.pixel_bounds,
-                                    "Render pixels [X0,X1) x [Y0,Y1), given as X0,X1,Y0,Y1");
-  auto* tile = render->add_option("--tile", r.tile,
-                                  "Render tile I of N (I/N, 0 <= I < N) of a balanced split");
-  crop->excludes(bounds, tile);
-  bounds->excludes(tile);
-  render
-      ->add_option("--frame", r.frame,
-                   "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
-      ->check(integer_in(0, 999999));
+  render = app.add_subcommand("render", "Render a scene to EXR and/or PNG");
+  if (all || only == "render") {
+    render->add_option("scene", r.scene, "Scene file (JSON with comments)")->required();
+    render->add_option("-o,--output", r.outputs,
+                       "Output image(s), .exr or .png; repeat for several (default: <scene>.exr)");
+    auto* render_width =
+        render
+            ->add_option("--width", r.width,
+                         "Image width; alone, the height follows the scene's aspect")
+            ->check(integer_in(1, 16384));
+    auto* render_height =
+        render
+            ->add_option("--height", r.height,
+                         "Image height; alone, the width follows the scene's aspect")
+            ->check(integer_in(1, 16384));
+    render->add_option("--scale", r.scale, "Scale the scene's width and height by F")
+        ->check(number_above_zero())
+        ->excludes(render_width, render_height);
+    render->add_option("--spp", r.spp, "Samples per pixel (overrides the scene)")
+        ->check(integer_in(1, 4096));
+    render
+        ->add_option("--antialias", r.antialias,
+                     "Adaptive anti-aliasing threshold, POV-Ray's +A (overrides the scene)")
+        ->check(number_in(0, 1e6));
+    render->add_option("--threads", r.threads, "Worker threads (default: all cores)")
+        ->check(integer_in(1, 1024));
+    render->add_option("--aov", r.aovs, "Extra EXR channels: any of depth,normal,steps,albedo")
+        ->check(aov_list());
+    render
+        ->add_option("--lipschitz", r.lipschitz,
+                     "Sphere-tracing bound: local (per stretch) or global")
+        ->transform(lipschitz_mode());
+    auto* render_quiet = render->add_flag("-q,--quiet", r.quiet, "No progress bar or summary");
+    render->add_flag("--progress", r.progress, "Show the progress bar even when not on a terminal")
+        ->excludes(render_quiet);
+    render->add_flag("--flatten", r.flatten,
+                     "EXR: RGB over the scene's background with A = 1 (default: premultiplied RGBA "
+                     "over transparency)");
+    render->add_flag("--half", r.half, "EXR: half-float R,G,B,A and normals (Z, steps stay float)");
+    render->add_flag("--png-alpha", r.png_alpha,
+                     "PNG: RGBA with straight alpha (default: RGB over the background)");
+    auto* crop = render->add_option(
+        "--crop", r.crop, "Render fractions X0,X1,Y0,Y1 of the image (pbrt's cropwindow)");
+    auto* bounds = render->add_option("--pixel-bounds", r.pixel_bounds,
+                                      "Render pixels [X0,X1) x [Y0,Y1), given as X0,X1,Y0,Y1");
+    auto* tile = render->add_option("--tile", r.tile,
+                                    "Render tile I of N (I/N, 0 <= I < N) of a balanced split");
+    crop->excludes(bounds, tile);
+    bounds->excludes(tile);
+    render
+        ->add_option("--frame", r.frame,
+                     "Render frame F (from 0) of the scene's animation; '#'s in -o become F")
+        ->check(integer_in(0, 999999));
 
-  add_camera_options(render, r.view);
+    add_camera_options(render, r.view);
+  }
 
-  EvalArgs e;
-  auto* eval = app.add_subcommand(
+  eval = app.add_subcommand(
       "eval", "Print 'value gx gy gz' (%.17g) of an object's field for 'x y z' lines");
-  eval->add_option("scene", e.scene, "Scene file")->required();
-  eval->add_option("--object", e.object, "Object name (default: the first object)");
-  eval->add_option("--points", e.points, "File of 'x y z' lines (default: standard input)");
+  if (all || only == "eval") {
+    eval->add_option("scene", e.scene, "Scene file")->required();
+    eval->add_option("--object", e.object, "Object name (default: the first object)");
+    eval->add_option("--points", e.points, "File of 'x y z' lines (default: standard input)");
+  }
 
-  MeshArgs mesh_args;
-  auto* mesh = app.add_subcommand(
-      "mesh", "Write an object's surface as a triangle mesh (.obj .ply .stl .glb)");
-  mesh->add_option("scene", mesh_args.scene, "Scene file")->required();
-  mesh->add_option("-o,--output", mesh_args.output, "Output mesh: .obj, .ply, .stl or .glb")
-      ->required();
-  mesh->add_option("--object", mesh_args.object, "Object name (default: the first object)");
-  auto* voxel = mesh->add_option("--voxel", mesh_args.voxel, "Cell size in scene units")
-                    ->check(number_above_zero());
-  mesh->add_option("--cells", mesh_args.cells,
-                   "Cells along the region's longest side (default 128)")
-      ->check(integer_in(1, 65536))
-      ->excludes(voxel);
-  mesh->add_option(
-      "--bounds", mesh_args.bounds,
-      "Region X0,X1,Y0,Y1,Z0,Z1 (default: the object's bounds); the mesh is capped on it");
-  mesh->add_option("--threads", mesh_args.threads, "Worker threads (default: all cores)")
-      ->check(integer_in(1, 1024));
-  auto* mesh_quiet = mesh->add_flag("-q,--quiet", mesh_args.quiet, "No progress bar or summary");
-  mesh->add_flag("--progress", mesh_args.progress,
-                 "Show the progress bar even when not on a terminal")
-      ->excludes(mesh_quiet);
+  mesh = app.add_subcommand("mesh",
+                            "Write an object's surface as a triangle mesh (.obj .ply .stl .glb)");
+  if (all || only == "mesh") {
+    mesh->add_option("scene", mesh_args.scene, "Scene file")->required();
+    mesh->add_option("-o,--output", mesh_args.output, "Output mesh: .obj, .ply, .stl or .glb")
+        ->required();
+    mesh->add_option("--object", mesh_args.object, "Object name (default: the first object)");
+    auto* voxel = mesh->add_option("--voxel", mesh_args.voxel, "Cell size in scene units")
+                      ->check(number_above_zero());
+    mesh->add_option("--cells", mesh_args.cells,
+                     "Cells along the region's longest side (default 128)")
+        ->check(integer_in(1, 65536))
+        ->excludes(voxel);
+    mesh->add_option(
+        "--bounds", mesh_args.bounds,
+        "Region X0,X1,Y0,Y1,Z0,Z1 (default: the object's bounds); the mesh is capped on it");
+    mesh->add_option("--threads", mesh_args.threads, "Worker threads (default: all cores)")
+        ->check(integer_in(1, 1024));
+    auto* mesh_quiet = mesh->add_flag("-q,--quiet", mesh_args.quiet, "No progress bar or summary");
+    mesh->add_flag("--progress", mesh_args.progress,
+                   "Show the progress bar even when not on a terminal")
+        ->excludes(mesh_quiet);
+  }
 
-  DiffArgs d;
-  const CLI::Validator threshold = threshold_value();
-  auto* diff = app.add_subcommand(
+  diff = app.add_subcommand(
       "diff",
       "Compare two images as OpenImageIO's idiff does (its single-dash options work too); exit 0 "
       "pass, 1 warning, 2 failure, 4 a file it cannot read or write");
-  diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
-  diff->add_option("b", d.b, "Second image")->required();
-  diff->add_option("--fail", d.fail, "A pixel fails when a channel differs by more (default 1e-6)")
-      ->check(threshold);
-  diff->add_option("--failpercent", d.failpercent,
-                   "Allow this percentage of failing pixels (default 0)")
-      ->check(number_in(0, 100));
-  diff->add_option("--failrelative", d.failrelative,
-                   "...and by more than this fraction of the mean magnitude (default 0)")
-      ->check(threshold);
-  diff->add_option("--hardfail", d.hardfail,
-                   "Fail if a pixel differs by more than this (default inf)")
-      ->check(threshold);
-  diff->add_option("--allowfailures", d.allowfailures,
-                   "Pass with up to this many failing pixels (default 0)")
-      ->check(integer_at_least(0));
-  diff->add_option("--warn", d.warn, "A pixel warns when a channel differs by more (default 1e-6)")
-      ->check(threshold);
-  diff->add_option("--warnpercent", d.warnpercent,
-                   "Allow this percentage of warning pixels (default 0)")
-      ->check(number_in(0, 100));
-  diff->add_option("--warnrelative", d.warnrelative,
-                   "...and by more than this fraction of the mean magnitude (default 0)")
-      ->check(threshold);
-  diff->add_option("--hardwarn", d.hardwarn,
-                   "Warn if a pixel differs by more than this (default inf)")
-      ->check(threshold);
-  diff->add_option("-o,--out", d.out,
-                   "Write the difference A-B here: .exr (float) or .png (8-bit RGB)");
-  diff->add_flag("--abs", d.abs, "The difference image holds |A-B|");
-  diff->add_option("--scale", d.scale, "Multiply the difference image by this (default 1)")
-      ->check(finite_number());
-  diff->add_flag("--od", d.out_only_if_different, "Write the difference image only if nonzero");
-  diff->add_option("--channels", d.channels,
-                   "Compare only these channels, e.g. R,G,B (default: those both images have)");
-  diff->add_flag("-q,--quiet", d.quiet, "No report; FAILURE on stderr");
-  // idiff's -v (its report is always printed here) and -a (all subimages: our files have one).
-  diff->add_flag("-v,-a", "Accepted for idiff scripts; no effect");
+  if (all || only == "diff") {
+    const CLI::Validator threshold = threshold_value();
+    diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
+    diff->add_option("b", d.b, "Second image")->required();
+    diff->add_option("--fail", d.fail,
+                     "A pixel fails when a channel differs by more (default 1e-6)")
+        ->check(threshold);
+    diff->add_option("--failpercent", d.failpercent,
+                     "Allow this percentage of failing pixels (default 0)")
+        ->check(number_in(0, 100));
+    diff->add_option("--failrelative", d.failrelative,
+                     "...and by more than this fraction of the mean magnitude (default 0)")
+        ->check(threshold);
+    diff->add_option("--hardfail", d.hardfail,
+                     "Fail if a pixel differs by more than this (default inf)")
+        ->check(threshold);
+    diff->add_option("--allowfailures", d.allowfailures,
+                     "Pass with up to this many failing pixels (default 0)")
+        ->check(integer_at_least(0));
+    diff->add_option("--warn", d.warn,
+                     "A pixel warns when a channel differs by more (default 1e-6)")
+        ->check(threshold);
+    diff->add_option("--warnpercent", d.warnpercent,
+                     "Allow this percentage of warning pixels (default 0)")
+        ->check(number_in(0, 100));
+    diff->add_option("--warnrelative", d.warnrelative,
+                     "...and by more than this fraction of the mean magnitude (default 0)")
+        ->check(threshold);
+    diff->add_option("--hardwarn", d.hardwarn,
+                     "Warn if a pixel differs by more than this (default inf)")
+        ->check(threshold);
+    diff->add_option("-o,--out", d.out,
+                     "Write the difference A-B here: .exr (float) or .png (8-bit RGB)");
+    diff->add_flag("--abs", d.abs, "The difference image holds |A-B|");
+    diff->add_option("--scale", d.scale, "Multiply the difference image by this (default 1)")
+        ->check(finite_number());
+    diff->add_flag("--od", d.out_only_if_different, "Write the difference image only if nonzero");
+    diff->add_option("--channels", d.channels,
+                     "Compare only these channels, e.g. R,G,B (default: those both images have)");
+    diff->add_flag("-q,--quiet", d.quiet, "No report; FAILURE on stderr");
+    // idiff's -v (its report is always printed here) and -a (all subimages: our files have one).
+    diff->add_flag("-v,-a", "Accepted for idiff scripts; no effect");
+  }
 
-  BenchArgs b;
-  auto* bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
-  bench->add_option("scene", b.scene, "Scene file")->required();
-  auto* bench_width = bench
-                          ->add_option("--width", b.width,
-                                       "Image width; alone, the height follows the scene's aspect")
-                          ->check(integer_in(1, 16384));
-  auto* bench_height = bench
-                           ->add_option("--height", b.height,
-                                        "Image height; alone, the width follows the scene's aspect")
-                           ->check(integer_in(1, 16384));
-  bench->add_option("--scale", b.scale, "Scale the scene's width and height by F")
-      ->check(number_above_zero())
-      ->excludes(bench_width, bench_height);
-  bench->add_option("--threads", b.threads, "Worker threads (default: all cores)")
-      ->check(integer_in(1, 1024));
-  bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(integer_in(1, 1000));
-  bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
-      ->transform(lipschitz_mode());
-  add_camera_options(bench, b.view);
-  bench->add_flag("--json", b.json, "Print the results as JSON");
-  auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
-  bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
-      ->excludes(bench_quiet);
+  bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
+  if (all || only == "bench") {
+    bench->add_option("scene", b.scene, "Scene file")->required();
+    auto* bench_width =
+        bench
+            ->add_option("--width", b.width,
+                         "Image width; alone, the height follows the scene's aspect")
+            ->check(integer_in(1, 16384));
+    auto* bench_height =
+        bench
+            ->add_option("--height", b.height,
+                         "Image height; alone, the width follows the scene's aspect")
+            ->check(integer_in(1, 16384));
+    bench->add_option("--scale", b.scale, "Scale the scene's width and height by F")
+        ->check(number_above_zero())
+        ->excludes(bench_width, bench_height);
+    bench->add_option("--threads", b.threads, "Worker threads (default: all cores)")
+        ->check(integer_in(1, 1024));
+    bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(integer_in(1, 1000));
+    bench->add_option("--lipschitz", b.lipschitz, "Sphere-tracing bound: local or global")
+        ->transform(lipschitz_mode());
+    add_camera_options(bench, b.view);
+    bench->add_flag("--json", b.json, "Print the results as JSON");
+    auto* bench_quiet = bench->add_flag("-q,--quiet", b.quiet, "No progress bar");
+    bench->add_flag("--progress", b.progress, "Show the progress bar even when not on a terminal")
+        ->excludes(bench_quiet);
+  }
 
-  MergeArgs m;
-  auto* merge = app.add_subcommand(
+  merge = app.add_subcommand(
       "merge", "Put tiles (render --tile/--crop EXRs of one frame) together into one image");
-  merge->add_option("tiles", m.tiles, "Tile images (.exr)")->required();
-  merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
-  merge->add_flag("-q,--quiet", m.quiet, "No summary line");
+  if (all || only == "merge") {
+    merge->add_option("tiles", m.tiles, "Tile images (.exr)")->required();
+    merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
+    merge->add_flag("-q,--quiet", m.quiet, "No summary line");
+  }
 
-  bool dict = false;
-  auto* nodes = app.add_subcommand(
+  nodes = app.add_subcommand(
       "nodes", "List the node types, potentials and radius transforms with their parameters");
-  nodes->add_flag("--dict", dict, "Print a libFuzzer dictionary of their names instead");
+  if (all || only == "nodes") {
+    nodes->add_flag("--dict", dict, "Print a libFuzzer dictionary of their names instead");
+  }
+}
 
+}  // namespace
+
+int main(int argc, char** argv) {
+  block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
   // Help names the program as users call it, wherever it lies (the launcher execs this one as
@@ -219,29 +255,51 @@ int main(int argc, char** argv) {
   if (argc > 1 && args[1] == "diff") args = idiff_style_arguments(args);
   std::vector<char*> arg_pointers;
   for (auto& arg : args) arg_pointers.push_back(arg.data());
-  try {
-    app.parse(int(arg_pointers.size()), arg_pointers.data());
-  } catch (const CLI::CallForHelp& ex) {
-    return app.exit(ex);
-  } catch (const CLI::CallForAllHelp& ex) {
-    return app.exit(ex);
-  } catch (const CLI::CallForVersion& ex) {
-    return app.exit(ex);
-  } catch (const CLI::ParseError& ex) {
-    // The arguments as parsed: diff's -failpercent is --failpercent there, not an unknown word.
-    const std::string unknown = unknown_word(app, int(arg_pointers.size()), arg_pointers.data());
-    report_error(unknown.empty() ? usage_error_text(ex) + " (see softtrace --help)" : unknown);
-    return 2;
+  static const char* const kCommands[] = {"render", "eval",  "mesh", "diff",
+                                          "bench",  "merge", "nodes"};
+  // Help lists an option's exclusions in the order of their addresses: a request for help or
+  // the version goes straight to the whole parser, laid out in memory as it always was.
+  const bool asks_help = std::any_of(args.begin() + 1, args.end(), [](const std::string& a) {
+    return a == "-h" || a == "--help" || a == "--help-all" || a == "--version";
+  });
+  std::unique_ptr<CommandLine> cli, tried;
+  if (argc > 1 && !asks_help &&
+      std::find(std::begin(kCommands), std::end(kCommands), args[1]) != std::end(kCommands)) {
+    cli = std::make_unique<CommandLine>(args[1]);
+    try {
+      cli->app.parse(int(arg_pointers.size()), arg_pointers.data());
+    } catch (const CLI::Error&) {
+      tried = std::move(cli);  // the whole parser's answer, below (this one kept, as above)
+    }
   }
+  if (!cli) {
+    cli = std::make_unique<CommandLine>("");
+    CLI::App& app = cli->app;
+    try {
+      app.parse(int(arg_pointers.size()), arg_pointers.data());
+    } catch (const CLI::CallForHelp& ex) {
+      return app.exit(ex);
+    } catch (const CLI::CallForAllHelp& ex) {
+      return app.exit(ex);
+    } catch (const CLI::CallForVersion& ex) {
+      return app.exit(ex);
+    } catch (const CLI::ParseError& ex) {
+      // The arguments as parsed: diff's -failpercent is --failpercent there, not an unknown word.
+      const std::string unknown = unknown_word(app, int(arg_pointers.size()), arg_pointers.data());
+      report_error(unknown.empty() ? usage_error_text(ex) + " (see softtrace --help)" : unknown);
+      return 2;
+    }
+  }
+  const CommandLine& c = *cli;
   // The watcher runs before any command starts to work: a signal that came while the libraries
   // were loading is taken now.
-  watch_interrupts(*render ? on_render_interrupt : exit_on_interrupt);
-  if (*render) return run_render(r);
-  if (*eval) return checked_standard_output(run_eval(e), 2);
-  if (*mesh) return run_mesh(mesh_args);
-  if (*diff) return checked_standard_output(run_diff(d), 4);  // idiff's "cannot write"
-  if (*bench) return checked_standard_output(run_bench(b), 2);
-  if (*merge) return run_merge(m);
-  if (*nodes) return checked_standard_output(run_nodes(dict), 2);
+  watch_interrupts(*c.render ? on_render_interrupt : exit_on_interrupt);
+  if (*c.render) return run_render(c.r);
+  if (*c.eval) return checked_standard_output(run_eval(c.e), 2);
+  if (*c.mesh) return run_mesh(c.mesh_args);
+  if (*c.diff) return checked_standard_output(run_diff(c.d), 4);  // idiff's "cannot write"
+  if (*c.bench) return checked_standard_output(run_bench(c.b), 2);
+  if (*c.merge) return run_merge(c.m);
+  if (*c.nodes) return checked_standard_output(run_nodes(c.dict), 2);
   return 2;
 }

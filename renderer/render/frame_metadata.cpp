@@ -37,10 +37,10 @@ std::string fnv1a64_hex(const std::string& bytes) {
   return hex64(fnv1a(bytes));
 }
 
-FrameInfo frame_info(const Scene& scene, int full_width, int full_height) {
+FrameInfo frame_info(const Scene& scene, int full_width, int full_height, bool with_hash) {
   FrameInfo info;
   info.scene_name = std::filesystem::path(scene.path).stem().string();
-  info.scene_hash = hex64(scene.file_hash);
+  if (with_hash) info.scene_hash = hex64(scene.file_hash());
   info.spp = scene.image.spp;
   info.background = scene.background;
 

@@ -19,6 +19,14 @@ ThreadLimit::ThreadLimit(ThreadLimit&&) noexcept = default;
 ThreadLimit& ThreadLimit::operator=(ThreadLimit&&) noexcept = default;
 ThreadLimit::~ThreadLimit() = default;
 
+void ThreadLimit::keep_until_exit() {
+  // Held by a plain pointer, never destroyed (a static unique_ptr's destructor would release it at
+  // exit, starting the worker all the same); reachable, so no leak checker counts it.
+  static Control* kept = nullptr;
+  if (control_) kept = control_.release();
+  (void)kept;
+}
+
 ThreadLimit limit_threads(int threads) {
   ThreadLimit limit;
   if (threads) limit.control_ = std::make_unique<ThreadLimit::Control>(threads);

@@ -18,6 +18,11 @@ class ThreadLimit {
   ThreadLimit& operator=(ThreadLimit&&) noexcept;
   ~ThreadLimit();
 
+  // Keeps the cap until the process ends, for a command that exits after its work: releasing
+  // TBB's global_control raises the scheduler's limit again, and under a cap of one thread that
+  // started a worker thread just before the exit.
+  void keep_until_exit();
+
  private:
   friend ThreadLimit limit_threads(int threads);
   struct Control;

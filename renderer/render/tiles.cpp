@@ -121,10 +121,10 @@ std::string render_settings(const Scene& scene, const std::string& lipschitz, in
   return s;
 }
 
-std::string render_hash(const Scene& scene, const std::string& settings) {
+std::string render_hash(uint64_t file_hash, const std::string& settings) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx",
-                static_cast<unsigned long long>(fnv1a(settings, scene.file_hash)));
+                static_cast<unsigned long long>(fnv1a(settings, file_hash)));
   return hex;
 }
 

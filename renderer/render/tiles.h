@@ -39,6 +39,6 @@ PixelBounds tile_bounds(TileIndex t, int width, int height);
 // size, the samples per pixel, the Lipschitz mode and the frame number (-1: none). The tiles of
 // one frame must agree on it.
 std::string render_settings(const Scene& scene, const std::string& lipschitz, int frame);
-std::string render_hash(const Scene& scene, const std::string& settings);  // 16 hex digits
+std::string render_hash(uint64_t file_hash, const std::string& settings);  // 16 hex digits
 
 }  // namespace softtrace

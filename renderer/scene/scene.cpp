@@ -235,7 +235,10 @@ Box Scene::bounds() const {
   return b;
 }
 
-Scene parse_scene(const std::string& text, const std::string& name) {
+namespace {
+
+Scene parse_scene_text(std::shared_ptr<const std::string> text_ptr, const std::string& name) {
+  const std::string& text = *text_ptr;
   const json doc = parse_json_text(text, name);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
@@ -243,7 +246,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
 
   Scene s;
   s.path = name;
-  s.file_hash = fnv1a(text);
+  s.text = std::move(text_ptr);
   const bool has_camera = root.has("camera");
   if (has_camera) s.camera = load_camera(root.object("camera"));
   if (root.has("animation")) s.animation = load_animation(root.object("animation"));
@@ -285,6 +288,12 @@ Scene parse_scene(const std::string& text, const std::string& name) {
   check_point_light_distances(s, lights);
   root.finish();
   return s;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name) {
+  return parse_scene_text(std::make_shared<const std::string>(text), name);
 }
 
 void set_frame(Scene& scene, int frame) {
@@ -331,6 +340,10 @@ void override_camera(Scene& scene, const CameraOverride& o) {
   if (scene.default_lights) scene.lights = default_lights(scene.camera);
 }
 
+uint64_t Scene::file_hash() const {
+  return text ? fnv1a(*text) : 0;
+}
+
 uint64_t fnv1a(const std::string& bytes, uint64_t hash) {
   for (const unsigned char b : bytes) hash = (hash ^ b) * 0x100000001b3ULL;
   return hash;
@@ -349,7 +362,7 @@ Scene load_scene(const std::string& path) {
   } catch (const FileReadError& e) {
     throw SceneError(e.what());
   }
-  return parse_scene(text, path);
+  return parse_scene_text(std::make_shared<const std::string>(std::move(text)), path);
 }
 
 }  // namespace softtrace

@@ -140,7 +140,10 @@ std::optional<Box> framing_box(const SceneObject& o);
 
 struct Scene {
   std::string path;
-  uint64_t file_hash = 0;  // 64-bit FNV-1a of the bytes parsed (the file's, or the text's)
+  // The bytes parsed (the file's, or the text's), kept for file_hash(): only an EXR's header and
+  // a render hash need it, so a PNG-only run never hashes them (0.4 ms for 319 KB of text).
+  std::shared_ptr<const std::string> text;
+  uint64_t file_hash() const;  // 64-bit FNV-1a of `text` (0 without text)
   Camera camera;
   Animation animation;
   bool default_lights = false;  // the lights follow the camera (no "lights" in the file)

@@ -1,6 +1,7 @@
 // The C++ builders (build.h) and batched evaluation (batch.h).
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 
 #include "describe/building.h"
@@ -43,6 +44,55 @@ TEST(Build, ErrorsAreTheLoadersLocatedOnes) {
   EXPECT_THROW(build(kind("no_such_kind")), SceneError);
   // A distance is not a soft object's field.
   EXPECT_THROW(build(lp_metric({1, 1, 1}, 2)), SceneError);
+}
+
+// Params::finish names a key nobody read and suggests the nearest key that was asked for, present
+// (read or only tested with `has`) or absent, but never the unread key itself.
+TEST(Params, FinishSuggestsTheKeysAskedFor) {
+  const auto file = std::make_shared<const std::string>("t.json");
+  const auto message = [&](const nlohmann::json& j,
+                           const std::function<void(const Params&)>& read) {
+    const Params p(j, "/o", file);
+    read(p);
+    try {
+      p.finish();
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const nlohmann::json j = {{"radius", 1}, {"radus", 2}, {"size", 3}};
+  // Absent keys asked for: the nearest of them.
+  EXPECT_EQ(message(j,
+                    [](const Params& p) {
+                      p.number("radius");
+                      p.number("size");
+                      p.has("sizes");
+                    }),
+            "t.json: /o/radus: unknown key 'radus' (did you mean 'radius'?)");
+  // Only tested with `has`: still unread, and not its own suggestion.
+  EXPECT_EQ(message(j,
+                    [](const Params& p) {
+                      p.has("radus");
+                      p.number("size");
+                    }),
+            "t.json: /o/radius: unknown key 'radius' (did you mean 'radus'?)");
+  EXPECT_EQ(message(j,
+                    [](const Params& p) {
+                      p.has("radius");
+                      p.has("radius");
+                      p.number("radus");
+                      p.number("radus");
+                    }),
+            "t.json: /o/radius: unknown key 'radius' (did you mean 'radus'?)");
+  EXPECT_EQ(message({{"a", 1}}, [](const Params& p) { p.number("a"); }), "no error");
+  // Equally near keys: the first in sorted order, whatever the order they were asked in.
+  EXPECT_EQ(message({{"ab", 1}},
+                    [](const Params& p) {
+                      p.has("xb");
+                      p.has("ax");
+                    }),
+            "t.json: /o/ab: unknown key 'ab' (did you mean 'ax'?)");
 }
 
 TEST(Build, Placement) {

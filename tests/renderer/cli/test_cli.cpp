@@ -373,6 +373,16 @@ TEST(Bench, TextReportsEveryFrameAndTheWorkPerRay) {
     EXPECT_TRUE(std::regex_search(r.out, std::regex(re))) << re << "\n" << r.out;
 }
 
+// A lens's blur_samples beyond the image's spp are what each pixel takes: the summary line's spp
+// is that count, the one its rays/s counts (shapes_blob_floor_dof: spp 4, blur_samples 16).
+TEST(Render, SummaryNamesTheSamplesEachPixelTakes) {
+  const RunResult r =
+      run_softtrace(std::string("render ") + source_path("scenes/shapes_blob_floor_dof.json") +
+                    " --width 8 --height 6 --threads 2 -o " + temp_dir("summary_spp") + "/x.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("8x6, 16 spp in ", 0), 0u) << r.err;
+}
+
 // The progress bar (on a terminal, or forced with --progress) shows the primary-ray rate, the
 // time elapsed and the time left; --quiet or a non-terminal stderr shows none.
 TEST(Progress, RenderAndBenchShowRateElapsedAndTimeLeft) {
