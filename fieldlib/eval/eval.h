@@ -65,9 +65,10 @@ class Workspace {
   // On a segment, over the first fraction quiet[s] of it, slot s is a distance >= 1 or a field
   // that is exactly 0 (a potential of such a distance, a sum of such fields): no support begins.
   std::vector<double> quiet;
-  std::vector<int32_t> kept;   // pruning's stack of chosen children
-  std::vector<int32_t> marks;  // where each kept child's code starts in the view
-  ProgramView view;            // the last pruned program (bounds, prune)
+  std::vector<GaugeEnds> ends;  // the convex gauges' last segment ends (GaugeEnds::kTable)
+  std::vector<int32_t> kept;    // pruning's stack of chosen children
+  std::vector<int32_t> marks;   // where each kept child's code starts in the view
+  ProgramView view;             // the last pruned program (bounds, prune)
 };
 
 // f at points (x[i], y[i], z[i]), i < n <= kBatch, into f[i].

@@ -32,6 +32,7 @@ class Walker {
             ws.quiet.data(),
             ws.segs.data(),
             ws.seg_pads.data(),
+            ws.ends.data(),
             with_bounds,
             seg != nullptr,
             seg && seg->slopes,
@@ -102,6 +103,7 @@ class Walker {
         for (int line = 0; line < 3; ++line) __builtin_prefetch(k + 8 * line);
       }
       marks[j] = static_cast<int32_t>(ws_.view.code.size());
+      if (zero_outside_support(c)) continue;
       walk(c.begin, c.end);
     }
     // The power sums and products keep every child: each one's value moves theirs.
@@ -122,6 +124,22 @@ class Walker {
     }
     top_ = first;
     return g.op_index + 1;
+  }
+
+  // A child ending in a radius transform whose support the box misses is 0 there, whatever its
+  // distance and modulation: its bounds are written without bounding them (RadiusTransformOp::
+  // zero_outside, the same as its own bounds() writes) and its code is kept for the points. Only
+  // for a child of plain instructions (no group, no placement: its register is set before it).
+  bool zero_outside_support(const Group::Child& c) {
+    const Instr& last = p_.code[c.end - 1];
+    if (!io_.bounds || last.op != Op::RadiusTransform) return false;
+    for (int k = c.begin; k < c.end; ++k) {
+      const Op op = p_.code[k].op;
+      if (op == Op::Group || op == Op::Translate || op == Op::Place) return false;
+    }
+    if (!RadiusTransformOp::zero_outside(last, io_)) return false;
+    ws_.view.code.insert(ws_.view.code.end(), p_.code.begin() + c.begin, p_.code.begin() + c.end);
+    return true;
   }
 
   // min/max: a child whose interval lies wholly beyond the extreme's is never the extreme in the

@@ -17,8 +17,9 @@ void Workspace::fit(const Program& p) {
   // all (so a program within what was fitted before costs five comparisons).
   if (slots.size() >= slots_n * kBatch && regs.size() >= regs_n * 3 * kBatch &&
       kept.size() >= size_t(p.children) + 1 && view.code.capacity() >= p.code.size() &&
-      view.args.capacity() >= p.args.size())
+      view.args.capacity() >= p.args.size() && !ends.empty())
     return;
+  grow(ends, GaugeEnds::kTable);
   grow(slots, slots_n * kBatch);
   grow(regs, regs_n * 3 * kBatch);
   grow(points, regs_n);

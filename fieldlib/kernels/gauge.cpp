@@ -78,10 +78,10 @@ void power_sum_lanes(const double* const* u, int k, double n, int lanes, double*
 }
 
 Interval power_sum(const Interval* u, int k, double n) {
-  Scratch<double> lo(k), hi(k);
+  Slots<double> lo(k), hi(k);  // written below before read
   for (int i = 0; i < k; ++i) {
-    lo[i] = std::max(0.0, u[i].lo);
-    hi[i] = std::max(0.0, u[i].hi);
+    lo.set(i, std::max(0.0, u[i].lo));
+    hi.set(i, std::max(0.0, u[i].hi));
   }
   // pow is faithfully but not correctly rounded: widen by a relative margin well above its error.
   const double l = power_sum(lo.data(), k, n, nullptr), h = power_sum(hi.data(), k, n, nullptr);

@@ -55,13 +55,16 @@ struct OneSidedTerm {
   }
   // The range of du/dt along a path where s ∈ [s] changes at a rate in [ds]: ds/r_pos where s may
   // be above the dead zone, -ds/r_neg where below it, 0 inside it (u is piecewise linear in s).
+  // Each half's quotient is computed only where s may be on that half (a bounds pass along a
+  // segment asks this of every gauge term, mostly with s on one side).
   Interval rate(Interval s, Interval ds) const {
-    const Interval up = ds / Interval(r_pos), down = -ds / Interval(r_neg);
-    if (s.lo > dead) return up;
-    if (s.hi < -dead) return down;
+    const auto up = [&] { return ds / Interval(r_pos); };
+    const auto down = [&] { return -ds / Interval(r_neg); };
+    if (s.lo > dead) return up();
+    if (s.hi < -dead) return down();
     Interval d = 0.0;
-    if (s.hi > dead) d = hull(d, up);
-    if (s.lo < -dead) d = hull(d, down);
+    if (s.hi > dead) d = hull(d, up());
+    if (s.lo < -dead) d = hull(d, down());
     return d;
   }
   // The s range of {u <= c} for c >= 0, widened by a relative 1e-12 against rounding.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "kernels/convex_slope.h"
 #include "kernels/gauge.h"
 #include "kernels/lp_metric.h"
 #include "kernels/spherical_product.h"
@@ -105,6 +106,24 @@ struct LpMetricOp : RegisterToSlot {
       ellipsoid_on_segment(m.a, m.ia, S[0], S[1], io.seg_pads[in.in], io.seg_length, &io.I[in.out],
                            &io.D[in.out], &io.Q[in.out]);
       io.L[in.out] = m.global_L;
+    } else if (io.slopes && m.n >= 2) {
+      // Convex and C^1 (‖∇²f‖ <= (n - 1) max(1/a_i)^2 / f): the ends' gradients bound the slope.
+      lp_metric_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      const Vec3* S = io.segs + 2 * in.in;
+      const double ia = std::max({m.ia.x, m.ia.y, m.ia.z});
+      const auto kernel = [&](const Vec3& p, Vec3* g) {
+        // u_i = |p_i|/a_i, ∂f/∂p_i = ∂f/∂u_i sgn(p_i) / a_i.
+        const double u[3] = {std::abs(p.x) * m.ia.x, std::abs(p.y) * m.ia.y,
+                             std::abs(p.z) * m.ia.z};
+        double d[3];
+        const double f = power_sum_partials(u, 3, m.n, d);
+        *g = {d[0] * sgn(p.x) * m.ia.x, d[1] * sgn(p.y) * m.ia.y, d[2] * sgn(p.z) * m.ia.z};
+        return f;
+      };
+      io.D[in.out] = convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
+                                             io.seg_pads[in.in], io.seg_length, m.global_L,
+                                             (m.n - 1) * ia * ia);
+      io.gauge_segment_facts(in.out);
     } else if (io.slopes) {
       Interval rate[3];
       io.axis_rates(in.in, rate);
@@ -159,14 +178,34 @@ struct SphericalProductOp : RegisterToSlot {
              [&](const Vec3& q, Vec3* g) { return spherical_product(load(io.K + in.a), q, g); });
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
-    if (io.slopes) {
+    const SphericalProductParams m = load(io.K + in.a);
+    if (io.slopes && m.n1 >= 2 && m.n2 >= 2) {
+      // Convex and C^1 (‖∇²f‖ <= (n1 + n2 - 2) max(1/r)^2 / f over the terms' radii): the ends'
+      // gradients bound the slope.
+      spherical_product_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      const Vec3* S = io.segs + 2 * in.in;
+      double ir = 0;
+      for (const OneSidedTerm& t : m.t) ir = std::max(ir, t.slope());
+      const auto kernel = [&](const Vec3& p, Vec3* g) {
+        // h = (u_x^n1 + u_y^n1)^(1/n1), then m(h, u_z): the chain rule through both power sums.
+        double dx, dy, dz, ph[2], pm[2];
+        const double uh[2] = {m.t[0].value(p.x, &dx), m.t[1].value(p.y, &dy)};
+        const double um[2] = {power_sum_partials(uh, 2, m.n1, ph), m.t[2].value(p.z, &dz)};
+        const double f = power_sum_partials(um, 2, m.n2, pm);
+        *g = {pm[0] * ph[0] * dx, pm[0] * ph[1] * dy, pm[1] * dz};
+        return f;
+      };
+      io.D[in.out] = convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
+                                             io.seg_pads[in.in], io.seg_length, m.global_L,
+                                             (m.n1 + m.n2 - 2) * ir * ir);
+      io.gauge_segment_facts(in.out);
+    } else if (io.slopes) {
       Interval rate[3];
       io.axis_rates(in.in, rate);
-      spherical_product_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out], rate,
-                               &io.D[in.out]);
+      spherical_product_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out], rate, &io.D[in.out]);
       io.gauge_segment_facts(in.out);
     } else {
-      spherical_product_bounds(load(io.K + in.a), io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      spherical_product_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
       io.segment_facts_from_box(in.out);
     }
   }

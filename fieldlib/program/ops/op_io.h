@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
+#include "kernels/convex_slope.h"
 #include "math/box.h"
 #include "math/interval.h"
 #include "math/vec.h"
@@ -149,6 +151,7 @@ struct BoundsIO {
   double* Q;
   Vec3* segs;  // register r's segment ends at [2r], [2r + 1]
   double* seg_pads;
+  GaugeEnds* ends;    // GaugeEnds::kTable entries (convex_slope.h)
   bool bounds;        // false: only pruning (placements still carry their boxes)
   bool segment;       // along a segment rather than over a box
   bool slopes;        // on a segment that asks for its slope (Segment::slopes)
@@ -248,6 +251,15 @@ struct BoundsIO {
     }
     if (enter > leave) return 1;
     return enter * (1 - 1e-9);
+  }
+
+  // The table entry of a program instruction `in` (an element of program->code), or null.
+  GaugeEnds* ends_of(const Instr& in) const {
+    const uintptr_t k =
+        (reinterpret_cast<uintptr_t>(&in) - reinterpret_cast<uintptr_t>(program->code.data())) /
+        sizeof(Instr);  // an address below the code wraps to a large k
+    if (k >= program->code.size()) return nullptr;
+    return ends + k % GaugeEnds::kTable;
   }
 
   // Child j of the n-ary instruction being combined (j < its kept count).

@@ -269,17 +269,21 @@ struct RadiusTransformOp {
   // segment the slope is the chain rule's on d's and f's slopes (TransformedPotential::slope_along)
   // within [-L, L], and the field is 0 until the segment may enter the support box, or while
   // d >= 1 where that makes T = 1.
+  // Where the register's box misses the support the field is 0 there: writes the bounds that say
+  // so, which read neither operand (the walk then need not bound them), and returns true.
+  static bool zero_outside(const Instr& in, const BoundsIO& io) {
+    if (!load(io.K + in.a).outside_support(io.box(in.reg))) return false;
+    io.I[in.out] = Interval(0);
+    io.L[in.out] = 0;
+    io.D[in.out] = Interval(0);
+    io.Q[in.out] = 1;
+    return true;
+  }
   static void bounds(const Instr& in, const BoundsIO& io) {
+    if (zero_outside(in, io)) return;
     Interval* I = io.I;
     double* L = io.L;
     const TransformedPotential t = load(io.K + in.a);
-    if (t.outside_support(io.box(in.reg))) {
-      I[in.out] = Interval(0);
-      L[in.out] = 0;
-      io.D[in.out] = Interval(0);
-      io.Q[in.out] = 1;
-      return;
-    }
     const TransformedPotential::Bounds B = t.bounds(I[in.in], L[in.in], I[in.n], L[in.n]);
     I[in.out] = t.interval(B);
     L[in.out] = t.slope_bound(B);

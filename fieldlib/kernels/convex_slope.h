@@ -1,0 +1,111 @@
+// The slope of a convex gauge along a segment from the gradients at its two ends (docs/math.md §8,
+// "Slopes along a segment"): the L^p metric for n >= 2 and the spherical product for n1, n2 >= 2
+// are convex (a monotone norm of convex one-sided terms), so along a line their derivative never
+// falls and the ends' one-sided derivatives bound it, as for the segment and the torus
+// (skeletal.h). Two point gradients cost less than the chain rule over the box's partial ranges
+// (power_sum_slope) and give the exact range instead of a hull.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/interval.h"
+#include "math/vec.h"
+
+namespace softtrace {
+
+// f = (Σ u_i^n)^(1/n), u_i >= 0, n >= 2, returned, and ∂f/∂u_i into partial[i]: with m the
+// largest u_i, b_i = u_i/m and s = Σ b_i^n, ∂f/∂u_i = (u_i/f)^(n-1) = b_i^(n-1) s^(1/n)/s, so one
+// power of each b_i serves both the sum and the partials (power_sum with its partials takes two).
+// Within a few ulps per term for the integer exponents, by squaring; 0 partials at f = 0 (the
+// subgradient 0).
+inline double power_sum_partials(const double* u, int k, double n, double* partial) {
+  double m = 0;
+  for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
+  if (!(m > 0)) {
+    std::fill(partial, partial + k, 0.0);
+    return m;
+  }
+  const bool squaring = n <= 65 && n == static_cast<int>(n);
+  double s = 0;
+  for (int i = 0; i < k; ++i) {
+    const double b = u[i] / m;
+    double p = 1;  // b^(n-1)
+    if (squaring) {
+      double x = b;
+      for (int e = static_cast<int>(n) - 1; e; e >>= 1, x *= x)
+        if (e & 1) p *= x;
+    } else {
+      p = std::pow(b, n - 1);
+    }
+    s += p * b;
+    partial[i] = p;
+  }
+  const double root = n == 2 ? std::sqrt(s) : std::pow(s, 1 / n), scale = root / s;
+  for (int i = 0; i < k; ++i) partial[i] *= scale;
+  return m * root;
+}
+
+// The last segment's two ends of one gauge instruction, keyed by its constants' address: a ray's
+// next segment starts where the last ended, and a halved piece shares an end with its parent, so
+// an end's f and gradient (a function of the point alone: the same bits found or computed) are
+// often known. A small table in the workspace, indexed by the instruction's place in its program.
+struct GaugeEnds {
+  static constexpr int kTable = 64;
+  const double* key = nullptr;
+  Vec3 p[2];
+  double f[2] = {0, 0};
+  Vec3 g[2];
+};
+
+// df/dt along [A, B] (t in [0, len], the world length), f convex, C^1 (n >= 2 makes the gauges so)
+// with |∇f| <= L and ‖∇²f‖ <= hess / f: `kernel(p, &g)` gives f(p) and ∇f(p) (found in `ends`
+// where the last segment of the same instruction, `key`, had that end). [∇f(A)·e, ∇f(B)·e] / len
+// (e = B - A) holds every derivative in between; each end's is the exact one's to within
+// 1e-9 |e| L (as ellipsoid_on_segment's), and the ends themselves are known only to within pad
+// (plus the rounding of coordinates of their size), where the gradient may turn by hess / f_near
+// times that distance, f_near the least f there. An end where f may be near 0 takes the
+// subgradient's extreme, -|e| L or |e| L. Entire for a degenerate segment.
+template <class Kernel>
+Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const double* key,
+                                 const Vec3& A, const Vec3& B, double pad, double len, double L,
+                                 double hess) {
+  if (!(len > 0) || !std::isfinite(L)) return Interval::entire();
+  const Vec3 e = B - A;
+  const double ne = length(e), reach = ne * L;
+  const double stray = pad + 1e-12 * std::max(max_abs(A), max_abs(B)) + 1e-300;
+  const bool known = ends && ends->key == key;
+  double f[2];
+  Vec3 g[2];
+  const Vec3* P[2] = {&A, &B};
+  for (int i = 0; i < 2; ++i) {
+    const Vec3& p = *P[i];
+    int j = 0;
+    while (j < 2 && !(known && ends->p[j].x == p.x && ends->p[j].y == p.y && ends->p[j].z == p.z))
+      ++j;
+    if (j < 2) {
+      f[i] = ends->f[j];
+      g[i] = ends->g[j];
+    } else {
+      f[i] = kernel(p, &g[i]);
+    }
+  }
+  if (ends) {
+    ends->key = key;
+    for (int i = 0; i < 2; ++i) {
+      ends->p[i] = *P[i];
+      ends->f[i] = f[i];
+      ends->g[i] = g[i];
+    }
+  }
+  const auto end = [&](int i, double extreme) {
+    const double near = f[i] * (1 - 1e-12) - L * stray;
+    if (!(near > 0) || !std::isfinite(f[i])) return extreme;
+    return dot(g[i], e) + (extreme > 0 ? 1 : -1) * ne * (1e-9 * L + hess * stray / near);
+  };
+  const double lo = std::max(-reach, end(0, -reach)), hi = std::min(reach, end(1, reach));
+  if (!(lo <= hi)) return Interval::entire();  // NaN, or a bound past the other (never exact)
+  return {iv::down(lo / len), iv::up(hi / len)};
+}
+
+}  // namespace softtrace
