@@ -188,23 +188,6 @@ double BtOperator::value_tolerance(const double* x, double value, const double* 
   return bt_value_tolerance(x, k(), value, r, m);
 }
 
-double bt_value_tolerance(const double* x, int k, double value, const double* r, const double* m) {
-  if (!std::isfinite(value)) return 0;
-  double scale = std::abs(value);
-  for (int i = 0; i < k; ++i)
-    if (std::isfinite(x[i])) scale = std::max(scale, (std::abs(x[i]) + r[i]) / m[i]);
-  return 1e-9 * scale + std::numeric_limits<double>::denorm_min();
-}
-
-bool bt_can_be_active(int i, int k, const double* lo, const double* hi, const double* P_hi,
-                      const double* m, const double* M_hi) {
-  double others = kInf;  // an upper bound of min_{j≠i} x_j/M_j over the box
-  for (int j = 0; j < k; ++j)
-    if (j != i) others = std::min(others, iv::up(hi[j] / (hi[j] >= 0 ? m[j] : M_hi[j])));
-  const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
-  return !(iv::down(lo[i] - reach) > P_hi[i]);
-}
-
 void bulge_weights(double m1, double m2, double G, double cos_theta, double M[2]) {
   const double c = std::max(cos_theta, 0.0);
   if (m1 > m2 * G) {

@@ -11,9 +11,12 @@
 // same hull.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
+#include "kernels/bt_base.h"
 #include "math/interval.h"
+#include "math/scratch.h"
 
 namespace softtrace {
 
@@ -36,12 +39,42 @@ struct BtCombination {
   double base(const double* x, double* dx) const;
   // R from the children's values f (k of them), ∂R/∂f_i = τσ_i ∂_iBT into df (nullable).
   double value(const double* f, double* df) const;
-  // From the children's intervals I, Lipschitz bounds L and (nullable) slopes D along a segment:
-  // R's interval (BT at the operands' ends, padded by the root finder's tolerance), the largest
-  // L_i/m_i over the children that can be active into *lipschitz, and R's slope into *slope
-  // (uncapped; untouched when D is null).
-  Interval bounds(const Interval* I, const double* L, const Interval* D, double* lipschitz,
-                  Interval* slope) const;
+  // From child i's interval I(i), Lipschitz bound L(i) and, where `slopes`, slope D(i) along a
+  // segment: R's interval (BT at the operands' ends, padded by the root finder's tolerance), the
+  // largest L_i/m_i over the children that can be active into *lipschitz, and R's slope into
+  // *slope (uncapped; untouched unless `slopes`). Inline, over accessors: the Bt instruction
+  // reads its children's slots in place, on every bounds pass.
+  template <class FI, class FL, class FD>
+  Interval bounds(const FI& I, const FL& L, const FD& D, bool slopes, double* lipschitz,
+                  Interval* slope) const {
+    Slots<double> lo(k), hi(k);  // the ends of X_i = σ_i [f_i]
+    for (int i = 0; i < k; ++i) {
+      const Interval f = I(i);
+      lo.set(i, sigma[i] > 0 ? f.lo : -f.hi);
+      hi.set(i, sigma[i] > 0 ? f.hi : -f.lo);
+    }
+    // BT is non-decreasing in every x_i ([BT-5]): its range is between its values at the ends,
+    // each padded by twice the root finder's tolerance (the end's error and the sample's).
+    const double vlo = base(lo.data(), nullptr), vhi = base(hi.data(), nullptr);
+    const Interval bt = iv::out(vlo - 2 * bt_value_tolerance(lo.data(), k, vlo, r, m),
+                                vhi + 2 * bt_value_tolerance(hi.data(), k, vhi, r, m));
+    double Lr = 0;
+    Interval s{0, 0};
+    bool any = false;
+    for (int i = 0; i < k; ++i) {
+      if (!bt_can_be_active(i, k, lo.data(), hi.data(), r, m, m)) continue;
+      Lr = std::max(Lr, iv::up(L(i) / m[i]));
+      if (!slopes) continue;
+      // τσ_i [f_i']/m_i, rounded outward
+      const Interval d = tau * sigma[i] > 0 ? D(i) : -D(i);
+      const Interval q = iv::out(d.lo / m[i], d.hi / m[i]);
+      s = any ? hull(s, q) : q;
+      any = true;
+    }
+    *lipschitz = Lr;
+    if (slopes) *slope = s;
+    return tau > 0 ? bt : -bt;
+  }
 };
 
 }  // namespace softtrace

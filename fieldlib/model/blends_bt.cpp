@@ -102,7 +102,9 @@ class BtBlend final : public NaryNode<BtBlend> {
   NodeBounds combine(const Box& b, const Interval* I, const double* L) const {
     if (!bulge()) {
       NodeBounds nb;
-      nb.value = BtCombination::load(consts_.data()).bounds(I, L, nullptr, &nb.lipschitz, nullptr);
+      nb.value = BtCombination::load(consts_.data())
+                     .bounds([&](int i) { return I[i]; }, [&](int i) { return L[i]; },
+                             [](int) { return Interval(); }, false, &nb.lipschitz, nullptr);
       return nb;
     }
     Slots<double> lo(2), hi(2);  // the ends of X_i = σ_i [f_i]

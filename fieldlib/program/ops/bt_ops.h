@@ -35,20 +35,13 @@ struct BtOp : Combination<BtOp> {
   // The node's box bounds (model/blends_bt.cpp, the same function) and, on a segment, the hull of
   // the active children's τσ_i f_i'/m_i, capped by the Lipschitz bound.
   static void bounds(const Instr& out, const BoundsIO& io) {
-    const int n = out.n;
-    Slots<Interval> I(n), D(n);
-    Slots<double> L(n);
-    for (int j = 0; j < n; ++j) {
-      const int s = io.child(j).slot;
-      I.set(j, io.I[s]);
-      L.set(j, io.L[s]);
-      D.set(j, io.D[s]);
-    }
     double lipschitz;
     Interval slope;
     const BtCombination bt = BtCombination::load(io.K + out.in);
     io.I[out.out] =
-        bt.bounds(I.data(), L.data(), io.segment ? D.data() : nullptr, &lipschitz, &slope);
+        bt.bounds([&](int j) { return io.I[io.child(j).slot]; },
+                  [&](int j) { return io.L[io.child(j).slot]; },
+                  [&](int j) { return io.D[io.child(j).slot]; }, io.segment, &lipschitz, &slope);
     io.L[out.out] = lipschitz;
     io.Q[out.out] = 0;
     io.D[out.out] =
