@@ -73,6 +73,7 @@ BlobPart blob_part(Op op) {
     case Op::Perlin:
     case Op::Ricci:
     case Op::Scale:
+    case Op::Bt:
       return {BlobRole::None};
   }
   std::abort();  // not reached: the switch names every op, and -Werror=switch keeps it so

@@ -185,11 +185,7 @@ void BtOperator::range_derivatives(const double* x, const double* r, const doubl
 
 double BtOperator::value_tolerance(const double* x, double value, const double* r,
                                    const double* m) const {
-  if (!std::isfinite(value)) return 0;
-  double scale = std::abs(value);
-  for (int i = 0; i < k(); ++i)
-    if (std::isfinite(x[i])) scale = std::max(scale, (std::abs(x[i]) + r[i]) / m[i]);
-  return 1e-9 * scale + std::numeric_limits<double>::denorm_min();
+  return bt_value_tolerance(x, k(), value, r, m);
 }
 
 void bulge_weights(double m1, double m2, double G, double cos_theta, double M[2]) {

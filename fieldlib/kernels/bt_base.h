@@ -22,8 +22,13 @@
 //   after one evaluation of T (tests/fieldlib/kernels/test_bt.cpp, RootResidualAndIterationCounts).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
+#include "math/bound_util.h"
+#include "math/interval.h"
 #include "math/vec.h"
 
 namespace softtrace {
@@ -57,6 +62,30 @@ double bt_hyper(const double* x, int k, const double* r, const double* p, const 
 double bt_lower(const double* x, int k, const double* r, const double* m);
 double bt_upper(const double* x, int k, const double* m);
 
+// Bound on |computed BT(x) - exact BT(x)| for ranges r and weights m (see the header comment).
+// Inline, as bt_can_be_active: the Bt instruction's bounds call both on every pass.
+inline double bt_value_tolerance(const double* x, int k, double value, const double* r,
+                                 const double* m) {
+  if (!std::isfinite(value)) return 0;
+  double scale = std::abs(value);
+  for (int i = 0; i < k; ++i)
+    if (std::isfinite(x[i])) scale = std::max(scale, (std::abs(x[i]) + r[i]) / m[i]);
+  return 1e-9 * scale + std::numeric_limits<double>::denorm_min();
+}
+
+// Whether ∂_iBT can be non-zero where x_j ∈ [lo_j, hi_j]: it is zero wherever x_i - M_i·min_{j≠i}
+// x_j/M_j >= P_i (the hyper-ellipsoid term i is 0 since h <= min_j x_j/M_j; for the conic, x is
+// outside region II with another arg-min), checked with the interval ends, P_i <= P_hi[i] and
+// M_i ∈ [m_i, M_hi[i]] (without bulge elimination P_hi = r, M_hi = m).
+inline bool bt_can_be_active(int i, int k, const double* lo, const double* hi, const double* P_hi,
+                             const double* m, const double* M_hi) {
+  double others = std::numeric_limits<double>::infinity();  // >= min_{j≠i} x_j/M_j over the box
+  for (int j = 0; j < k; ++j)
+    if (j != i) others = std::min(others, iv::up(hi[j] / (hi[j] >= 0 ? m[j] : M_hi[j])));
+  const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
+  return !(iv::down(lo[i] - reach) > P_hi[i]);
+}
+
 // A blending operator: the base with its parameters plus the weights m (003 Eq. 2).
 class BtOperator {
  public:
@@ -69,6 +98,7 @@ class BtOperator {
   const std::vector<double>& r() const { return r_; }  // conic: {r1, r2}
   const std::vector<double>& m() const { return m_; }
   double conic_p() const { return p_.empty() ? 0 : p_[0]; }
+  const std::vector<double>& p() const { return p_; }  // the hyper-ellipsoid: p_i; conic: {p}
 
   double operator()(const double* x, double* dx) const { return eval(x, r_.data(), m_.data(), dx); }
   // With the ranges r and weights m replaced (bulge elimination's position functions, §7.6).

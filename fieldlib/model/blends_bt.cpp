@@ -8,10 +8,13 @@
 
 #include "describe/building.h"
 #include "kernels/bt_base.h"
+#include "kernels/bt_blend.h"
 #include "kernels/bulge_gradient.h"
 #include "math/bound_util.h"
 #include "math/scratch.h"
 #include "model/nary_node.h"
+#include "model/program_builder.h"
+#include "program/ops/bt_ops.h"
 
 namespace softtrace {
 
@@ -34,7 +37,10 @@ class BtBlend final : public NaryNode<BtBlend> {
         op_(std::move(op)),
         tau_(tau),
         sigma_(std::move(sigma)),
-        omega_(omega) {
+        omega_(omega),
+        consts_(BtCombination::constants(
+            op_.is_conic(), tau_, sigma_, op_.r(),
+            op_.is_conic() ? std::vector<double>{op_.conic_p(), 0} : op_.p(), op_.m())) {
     for (int i = 0; i < op_.k(); ++i)  // r_i(2 + ω) rounded as P_i is, so P_i <= r_max_[i]
       r_max_.push_back(bulge() ? op_.r()[i] * (2 + omega_) : op_.r()[i]);
   }
@@ -72,6 +78,14 @@ class BtBlend final : public NaryNode<BtBlend> {
     return L;
   }
 
+  // Without bulge elimination: the children's code as a group (never pruned), then one Bt
+  // instruction, whose slope along a segment is derived from the children's (bt_blend.h). With
+  // it, one oracle instruction (P_i and M_i follow the children's gradients).
+  int compile(ProgramBuilder& b, int reg) const override {
+    if (bulge()) return FieldNode::compile(b, reg);
+    return b.nary(Op::Bt, c_, reg, b.consts(consts_));
+  }
+
   Box region(double level, Side side) const override {
     // R <= c  ⇔  BT <= c (τ = 1) or BT >= -c (τ = -1); R >= c likewise with the sides swapped.
     const bool bt_below = (side == Side::Below) == (tau_ > 0);
@@ -86,20 +100,20 @@ class BtBlend final : public NaryNode<BtBlend> {
   // largest L_i/m_i among the children that can be active in the box; with bulge elimination,
   // bulge_bounds.
   NodeBounds combine(const Box& b, const Interval* I, const double* L) const {
-    const int k = op_.k();
-    Slots<double> lo(k), hi(k);  // the ends of X_i
-    for (int i = 0; i < k; ++i) {
+    if (!bulge()) {
+      NodeBounds nb;
+      nb.value = BtCombination::load(consts_.data())
+                     .bounds([&](int i) { return I[i]; }, [&](int i) { return L[i]; },
+                             [](int) { return Interval(); }, false, &nb.lipschitz, nullptr);
+      return nb;
+    }
+    Slots<double> lo(2), hi(2);  // the ends of X_i = σ_i [f_i]
+    for (int i = 0; i < 2; ++i) {
       const Interval X = signed_interval(sigma_[i], I[i]);
       lo.set(i, X.lo);
       hi.set(i, X.hi);
     }
-    if (bulge()) return bulge_bounds(b, lo.data(), hi.data(), L);
-    const Interval bt = monotone_enclosure(lo.data(), hi.data());
-    double Lr = 0;
-    for (int i = 0; i < k; ++i)
-      if (can_be_active(i, lo.data(), hi.data(), op_.r().data(), op_.m().data()))
-        Lr = std::max(Lr, iv::up(L[i] / op_.m()[i]));
-    return {tau_ > 0 ? bt : -bt, Lr};
+    return bulge_bounds(b, lo.data(), hi.data(), L);
   }
 
   bool bulge() const { return omega_ > 0; }
@@ -164,14 +178,6 @@ class BtBlend final : public NaryNode<BtBlend> {
     for (int i = 0; i < op_.k(); ++i)
       out = out.intersected(child_region(i, iv::down(op_.m()[i] * c), false));
     return out;
-  }
-
-  Interval monotone_enclosure(const double* lo, const double* hi) const {
-    const double* r = op_.r().data();
-    const double* m = op_.m().data();
-    const double vlo = op_(lo, nullptr), vhi = op_(hi, nullptr);
-    return iv::out(vlo - 2 * op_.value_tolerance(lo, vlo, r, m),
-                   vhi + 2 * op_.value_tolerance(hi, vhi, r, m));
   }
 
   // With bulge elimination, over b: the enclosure and the bound of blends_bt.h, both from one
@@ -267,25 +273,18 @@ class BtBlend final : public NaryNode<BtBlend> {
     return iv::up(slope + iv::up(flat_product(range, B.dcos)) + iv::up(flat_product(h, weight)));
   }
 
-  // Whether ∂_iBT can be non-zero in the box: it is zero wherever x_i - M_i·min_{j≠i} x_j/M_j >=
-  // P_i (the hyper-ellipsoid term i is 0 since h <= min_j x_j/M_j; for the conic, x is outside
-  // region II with another arg-min), checked with interval ends (x_j ∈ [lo_j, hi_j]), P_i <= P_hi,
-  // M_i ∈ [m_i, M_hi].
+  // Whether ∂_iBT can be non-zero in the box (bt_base.h).
   bool can_be_active(int i, const double* lo, const double* hi, const double* P_hi,
                      const double* M_hi) const {
-    const double* m = op_.m().data();
-    double others = kInf;  // an upper bound of min_{j≠i} x_j/M_j over the box
-    for (int j = 0; j < op_.k(); ++j)
-      if (j != i) others = std::min(others, iv::up(hi[j] / (hi[j] >= 0 ? m[j] : M_hi[j])));
-    const double reach = iv::up(flat_product(others >= 0 ? M_hi[i] : m[i], others));
-    return !(iv::down(lo[i] - reach) > P_hi[i]);
+    return bt_can_be_active(i, op_.k(), lo, hi, P_hi, op_.m().data(), M_hi);
   }
 
   BtOperator op_;
   int tau_;
   std::vector<int> sigma_;
-  double omega_;               // 0: no bulge elimination
-  std::vector<double> r_max_;  // r_i(2 + ω): the largest P_i, for region()
+  double omega_;                // 0: no bulge elimination
+  std::vector<double> consts_;  // BtCombination's constants (bt_blend.h)
+  std::vector<double> r_max_;   // r_i(2 + ω): the largest P_i, for region()
 };
 
 enum class BtKind { Union, Intersection, Difference, Displacement };

@@ -1,7 +1,8 @@
 // What an oracle instruction (program.h) asks of the model node behind it: the node evaluates its
-// own subtree. The root-defined blends BT_k and bulge elimination stay oracles by design, their
-// bounds derived next to their code (the scale method compiles to an instruction of its own: its
-// slope along a segment needs its children's, docs/math.md §8, "Slopes along a segment"); FieldNode
+// own subtree. Bulge elimination (BT_2 whose ranges follow its children's gradients) stays an
+// oracle by design, its bounds derived next to its code (the scale method and BT_k without it
+// compile to instructions of their own: their slopes along a segment need their children's,
+// docs/math.md §8, "Slopes along a segment"); FieldNode
 // (model/node.h) implements this, so the evaluators call it without knowing the model.
 #pragma once
 

@@ -56,7 +56,8 @@ namespace softtrace {
   X(SuperIntersect)   /* slot out = (Σ [args]_+^n)^(1/n), B_RI^cg          (nary_ops.h) */    \
   X(Perlin)           /* slot out = Perlin blend, 002 Eqs. 4-6             (nary_ops.h) */     \
   X(Ricci)            /* slot out = (Σ g_i^q)^(1/q), 002 Eq. 7             (nary_ops.h) */    \
-  X(Scale)            /* slot out = BSA2/BSS2 of args[a], args[a+1], 000 Eq. 8 (nary_ops.h) */
+  X(Scale)            /* slot out = BSA2/BSS2 of args[a], args[a+1], 000 Eq. 8 (nary_ops.h) */ \
+  X(Bt)               /* slot out = τ BT_k(σ_i args), 003 Eqs. 2-5, §3.3     (bt_ops.h) */
 
 enum class Op : uint8_t {
 #define SOFTTRACE_OP_ENUM(name) name,
@@ -71,7 +72,7 @@ struct Instr {
   int32_t out = 0;  // value slot, or point register for Translate/Place
   int32_t in = 0;   // point register (Translate, Place, distances, Oracle), value slot
                     // (potentials, Offset, Complement, RadiusTransform: the distance) or offset
-                    // into consts (SuperUnion, SuperIntersect, Perlin, Ricci, Scale)
+                    // into consts (SuperUnion, SuperIntersect, Perlin, Ricci, Scale, Bt)
   int32_t a = 0;    // offset into consts (Translate, Place, distances, Blanc, Offset,
                     // RadiusTransform), args (n-ary instructions) or groups
   int32_t n = 0;    // argument count (n-ary instructions), number of normals (GenDistance) or

@@ -18,7 +18,7 @@ constexpr double kDecide = 2;
 // that of the ray, without a sign change seen, for a piece to stay undecided.
 constexpr double kFinest = 1.0 / 1024;
 // A ray grazing a surface at a distance e from it needs pieces about 2e/L long where no slope
-// along the segment is known (oracle nodes: the BT blends): fig003_9a's graze 3e-7 of a
+// along the segment is known (oracles: bulge-eliminated BT blends): fig003_9a's graze 3e-7 of a
 // footprint from its bulge-eliminated blend took 2835 evaluations, beyond the 2000 this was.
 constexpr double kFinestDeep = 1e-9;
 constexpr int kDeepBudget = 20000;

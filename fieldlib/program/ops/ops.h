@@ -17,6 +17,7 @@
 
 #include <cstdlib>
 
+#include "program/ops/bt_ops.h"
 #include "program/ops/gauge_ops.h"
 #include "program/ops/nary_ops.h"
 #include "program/ops/op_io.h"

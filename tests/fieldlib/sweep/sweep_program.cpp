@@ -162,6 +162,11 @@ TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
   const char* dist_a = R"({"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2})";
   const char* dist_b =
       R"({"type":"lp_metric","translate":[0.5,0.2,0],"radii":[0.9,1.2,0.8],"n":4})";
+  // Zero-convention children (inside <= 0) for BT_k: d - 1.
+  const char* zero_a =
+      R"({"type":"offset","children":[{"type":"lp_metric","translate":[-0.4,0,0],"radii":[1,0.8,1.1],"n":2}]})";
+  const char* zero_b =
+      R"({"type":"offset","children":[{"type":"lp_metric","translate":[0.5,0.2,0],"radii":[0.9,1.2,0.8],"n":4}]})";
   struct Kind {
     const char* name;
     std::string json;
@@ -189,6 +194,22 @@ TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
       {"super_ellipsoidal_intersection",
        pair(R"({"type":"super_ellipsoidal_intersection","n":4)", dist_a, dist_b),
        Convention::Constructive},
+      {"bt_union_conic",
+       pair(R"({"type":"bt_union","base":"conic","r1":0.3,"r2":0.5,"p":0,"m":[1,2])", zero_a,
+            zero_b),
+       Convention::Zero},
+      {"bt_intersection_hyperellipsoid",
+       pair(R"({"type":"bt_intersection","base":"hyperellipsoid","r":[0.3,0.4],"p":[2,3])", zero_a,
+            zero_b),
+       Convention::Zero},
+      {"bt_difference_conic",
+       pair(R"({"type":"bt_difference","base":"conic","r1":0.2,"r2":0.3,"p":-0.1,"m":[1,0.5])",
+            zero_a, zero_b),
+       Convention::Zero},
+      {"displacement_union_conic",
+       pair(R"({"type":"displacement_union","base":"conic","r1":0.3,"r2":0.3,"p":-0.2)", zero_a,
+            zero_b),
+       Convention::Zero},
       // Distances whose slope is derived from their own convexity along a line.
       {"segment", R"({"type":"segment","p0":[-0.5,0,0],"p1":[0.5,0.3,0.2],"radius":0.7})",
        Convention::Constructive},

@@ -1,7 +1,7 @@
 // A ray that grazes a surface without entering it is decided, not passed undecided: the primary
 // ray of scenes/fig003_9a_crossing_cylinders.json at 225x90 that runs 3e-7 of its footprint
-// outside the bulge-eliminated blend (g = -1.35e-7 over a stretch). The BT oracle gives no slope
-// along a segment, so only the spheres of points and first-order intervals clear such a
+// outside the bulge-eliminated blend, an oracle (g = -1.35e-7 over a stretch). The BT oracle gives
+// no slope along a segment, so only the spheres of points and first-order intervals clear such a
 // stretch, each a piece about 2|g|/L long: 2835 evaluations for its longest piece, more than the
 // deep halving's old budget of 2000 (tracer_limits.h kDeepBudget).
 #include <gtest/gtest.h>
