@@ -23,7 +23,8 @@ coverage differs from the timed render: 0 means the timed max_gradient leaves no
 
 With --plot it draws the blob cases' time per primary ray against N, both renderers, with gnuplot.
 
-Uses Debian's python3 and installs povray, python3-pil and gnuplot-nox when missing.
+Uses Debian's python3 and installs povray, povray-includes (colors.inc), povray-examples (the
+blob*.pov samples), python3-pil and gnuplot-nox when missing.
 
 usage: tools/pov_compare.py [--cases blob10,blob100,blob1000,blob10000,fig12b|real|pov:NAME,cloudN,
                                    meetsK,segtrace]
@@ -50,7 +51,7 @@ import segment_tracing_scene  # noqa: E402
 from povsdl.lexer import PovError  # noqa: E402
 from povsdl.scene import convert, obj_text  # noqa: E402
 
-PACKAGES = ["povray", "python3-pil", "gnuplot-nox"]
+PACKAGES = ["povray", "povray-includes", "povray-examples", "python3-pil", "gnuplot-nox"]
 SAFE_MAX_GRADIENT = 0.74
 POV_SAMPLES = "/usr/share/povray-3.7/scenes/objects"
 # The real-world-like set: tools/pov_cases/, POV-Ray's own blob samples, and generated clouds of

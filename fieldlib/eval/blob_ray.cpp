@@ -243,7 +243,10 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     Blob blob;
     if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
     if (!(blob.inv_r2 > 0)) set_reach(frame, &blob);
+    blob.l_norm = std::sqrt(dot(frame.L.r[0], frame.L.r[0]) + dot(frame.L.r[1], frame.L.r[1]) +
+                            dot(frame.L.r[2], frame.L.r[2]));
     s.capsules_ += frame.inv_axis2 > 0;
+    s.framed_ += !(blob.inv_r2 > 0);
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
     next = c.end;
@@ -330,6 +333,85 @@ bool within_reach(const BlobSum::Blob& b, const Vec3& o, const Vec3& d, double l
   return dot(nearest, nearest) <= b.reach2 + 1e-12 * (dot(oc, oc) + len * len);
 }
 }  // namespace
+
+namespace {
+// The u at which |w + u v|^2 <= 1 + eps, in [*lo, *hi]; false where there are none. v = 0: all u
+// or none.
+bool line_span(const Vec3& w, const Vec3& v, double eps, double* lo, double* hi) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double alpha = dot(v, v);
+  if (!(alpha > 0)) {
+    *lo = -kInf, *hi = kInf;
+    return dot(w, w) <= 1 + eps;
+  }
+  const double mid = -dot(w, v) / alpha;
+  const Vec3 w_mid = w + v * mid;
+  const double h2 = 1 + eps - dot(w_mid, w_mid);
+  if (!(h2 > 0)) return false;
+  const double half = std::sqrt(h2 / alpha);
+  *lo = mid - half, *hi = mid + half;
+  return true;
+}
+}  // namespace
+
+// The support is taken enlarged from |q|^2 <= 1 to 1 + eps. eps holds, with a thousandfold room,
+// what separates this line's numbers from a stretch's: the cancellation in q's square (a few ulps
+// of |w|^2: 1e-12 |w|^2), the stretch's start point, rounded to a few ulps of |o| + |u| in world
+// units, which L moves by at most |L|_F that much (1e-9 |L|_F reach, |q| being about 1 where it
+// matters), and 1e-6 besides. A term there has r > 0, so its point is inside the enlarged support,
+// whose span along the line is wider than the support's by at least eps / (2 sqrt(1 + eps) |L d|):
+// the rounding of the stretch's entries and exits (a few ulps of |u|) is what span_slack holds.
+// A capsule's span is the hull of its cylinder's between its end planes and its end balls' (below;
+// where a stretch puts a plane elsewhere by rounding, the cylinder and the end ball agree there to
+// the rounding's square, and the planes have 1e-9 of room besides).
+bool BlobSum::span(int id, const Vec3& o, const Vec3& d, double reach, double* lo,
+                   double* hi) const {
+  const Blob& b = blobs_[id];
+  if (b.inv_r2 > 0) {
+    const Vec3 oc = o - b.centre;
+    const double dd = dot(d, d), mid = -dot(oc, d) / dd;
+    const Vec3 nearest = oc + d * mid;
+    const double eps =
+        1e-6 + 1e-12 * dot(oc, oc) * b.inv_r2 + 1e-9 * std::sqrt(3 * b.inv_r2) * reach;
+    const double h2 = 1 + eps - dot(nearest, nearest) * b.inv_r2;
+    if (!(h2 > 0)) return false;
+    const double half = std::sqrt(h2 / (dd * b.inv_r2));
+    *lo = mid - half, *hi = mid + half;
+    return true;
+  }
+  const Frame& f = frames_[id];
+  const Vec3 w = f.L * o + f.k, v = f.L * d;
+  const double eps = 1e-6 + 1e-12 * dot(w, w) + 1e-9 * b.l_norm * reach;
+  if (!(f.inv_axis2 > 0)) return line_span(w, v, eps, lo, hi);
+  // The capsule, enlarged, is its cylinder |q across the axis|^2 <= 1 + eps between the planes
+  // s = 0 and s = 1 and its end balls beyond them, each inside the cylinder: where the cylinder's
+  // span stays between the planes (a ray through a long capsule's side), that is its span; past
+  // a plane, the end ball's span there is.
+  const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
+  double l, h;
+  if (!line_span(w - f.axis * s0, v - f.axis * sv, eps, &l, &h)) return false;
+  const auto end_ball = [&](bool far_end, double* a, double* z) {
+    return line_span(far_end ? w - f.axis : w, v, eps, a, z);
+  };
+  if (sv == 0) {  // the line runs across the axis, at s = s0
+    if (s0 >= 0 && s0 <= 1) {
+      *lo = l, *hi = h;
+      return true;
+    }
+    return end_ball(s0 > 1, lo, hi);
+  }
+  // Where s is 0 and 1, with room for the rounding of where the stretches put them.
+  const double at0 = -s0 / sv, at1 = (1 - s0) / sv;
+  const double room = 1e-9 * (std::abs(at0) + std::abs(at1));
+  const double plane_lo = std::min(at0, at1) - room, plane_hi = std::max(at0, at1) + room;
+  double a, z, span_lo = std::max(l, plane_lo), span_hi = std::min(h, plane_hi);
+  if (l < plane_lo && end_ball(sv < 0, &a, &z))  // s < 0 below the planes where s rises
+    span_lo = std::min(span_lo, a), span_hi = std::max(span_hi, z);
+  if (h > plane_hi && end_ball(sv > 0, &a, &z))
+    span_lo = std::min(span_lo, a), span_hi = std::max(span_hi, z);
+  *lo = span_lo, *hi = span_hi;
+  return span_lo <= span_hi;
+}
 
 int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
                    Term* out, int32_t* ids) const {

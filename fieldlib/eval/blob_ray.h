@@ -75,7 +75,19 @@ class BlobSum {
   // same f and ∇f to the bit.
   double gradient_among(const Program& p, const Vec3& x, int32_t* ids, int n, Vec3* grad,
                         double* terms = nullptr) const;
+  // Where blob `id`'s support may meet the line o + u d (d a unit vector): every u at which
+  // terms() or terms_of() of a stretch of it, taken from the stretch's own (rounded) start point,
+  // give the blob a term lies in [*lo, *hi] widened by 1e-9 of |u| (span_slack); false where the
+  // line passes clear of the support. `reach` bounds |o| + |u| over the points the stretches take.
+  // For a ray's whole way at once: a stretch whose range misses a blob's span needs no term of it.
+  bool span(int id, const Vec3& o, const Vec3& d, double reach, double* lo, double* hi) const;
+  // The slack span()'s caller adds to the ranges it compares: 1e-9 of their magnitudes.
+  static double span_slack(double magnitude) { return 1e-9 * magnitude; }
+  // For a sum of at most kListed blobs, the order terms() takes them in (empty for more).
+  const std::vector<int32_t>& listed() const { return listed_walk_; }
   int size() const { return static_cast<int>(blobs_.size()); }
+  // How many blobs are no balls (terms() reads their frames: 2-3 times a ball's work).
+  int framed() const { return framed_; }
   // The most terms one stretch can have: one per ellipsoid, three per capsule.
   int max_terms() const { return size() + 2 * capsules_; }
   // The median of the blobs' mean support radii: how long a stretch meets a few of them.
@@ -103,6 +115,7 @@ class BlobSum {
     double inv_r2;  // 0 where the blob is no ball
     double c2, c3;
     double reach2 = std::numeric_limits<double>::infinity();
+    double l_norm = 0;  // |L|_F, a bound of how far L moves a point (span()'s rounding)
   };
   // Each child's frame and potential, and the sum's group in the program (its BVH indexes the
   // children's support boxes): what a caller needs to sum the blobs itself (the mesher's leaves).
@@ -122,6 +135,7 @@ class BlobSum {
   double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
                       double* terms) const;
   int capsules_ = 0;  // frames with an axis
+  int framed_ = 0;    // blobs with no ball (Blob::inv_r2 == 0)
   double typical_radius_ = 0;
 };
 

@@ -324,6 +324,88 @@ TEST(BlobSum, CapsulesAlongAndAcrossTheirAxis) {
   EXPECT_GT(outside, 20);
 }
 
+// BlobSum::span: a stretch of a ray, taken from its own rounded start point o + t d, finds terms of
+// a blob only inside the blob's span along the whole ray (widened by span_slack), so a tracer may
+// leave the blob out of every stretch whose range misses its span and get the same terms. Random
+// rays through each kind of cloud, rays grazing a ball and a capsule to within 1e-12 of their
+// radii, along and across a capsule's axis, from nearby and from 1e8 away; every blob, on
+// stretches of random lengths and starts. The spans must also leave blobs out.
+void expect_terms_inside_spans(Cloud& cloud, const Vec3& o, const Vec3& d, double t1,
+                               std::mt19937_64& rng, int* terms_seen, int* missed) {
+  const BlobSum& blobs = *cloud.blobs;
+  std::vector<BlobSum::Term> terms(blobs.max_terms());
+  std::uniform_real_distribution<double> x01(0, 1);
+  const double reach = max_abs(o) + t1;
+  const double slack = BlobSum::span_slack(max_abs(o) + t1);
+  for (int32_t id = 0; id < blobs.size(); ++id) {
+    double lo = 0, hi = 0;
+    const bool spans = blobs.span(id, o, d, reach, &lo, &hi);
+    *missed += !spans;
+    for (int k = 0; k < 40; ++k) {
+      // Stretches from a random start, and from starts just before and after the span's ends.
+      double t = t1 * x01(rng);
+      if (spans && k % 4 == 1) t = std::clamp(lo - 1e-3 * x01(rng), 0.0, t1);
+      if (spans && k % 4 == 2) t = std::clamp(hi - 1e-3 * x01(rng), 0.0, t1);
+      const double len = std::max((t1 - t) * x01(rng) * x01(rng), 1e-9);
+      const int n = blobs.terms_of(&id, 1, o + d * t, d, len, terms.data());
+      for (int i = 0; i < n; ++i) {
+        ++*terms_seen;
+        ASSERT_TRUE(spans) << "blob " << id << " has a term on a stretch from " << t;
+        EXPECT_GE(t + terms[i].enter, lo - slack) << "blob " << id << ", stretch from " << t;
+        EXPECT_LE(t + terms[i].exit, hi + slack) << "blob " << id << ", stretch from " << t;
+      }
+    }
+  }
+}
+
+TEST(BlobSum, StretchesFindTermsOnlyInsideTheBlobsSpans) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const std::string& json :
+       {blob_cloud(40, 2), affine_cloud(40, 4), capsule_cloud(40, 6), capsule_cloud(16, 8)}) {
+    Cloud cloud(json);
+    ASSERT_TRUE(cloud.blobs.has_value());
+    int seen = 0, missed = 0;
+    for (int ray = 0; ray < 60; ++ray) {
+      SCOPED_TRACE("ray " + std::to_string(ray));
+      const bool far = ray % 3 == 2;
+      const Vec3 d = normalize({u(rng), u(rng), u(rng)});
+      const Vec3 o = Vec3{u(rng), u(rng), u(rng)} * 12 - d * (far ? 1e8 : 20);
+      expect_terms_inside_spans(cloud, o, d, far ? 2e8 : 40, rng, &seen, &missed);
+      if (testing::Test::HasFailure()) return;
+    }
+    EXPECT_GT(seen, 1000);
+    EXPECT_GT(missed, 200);
+  }
+  // Grazing: a ball of radius 2 at the origin and a capsule of radius 2 along x from -3 to 3,
+  // rays at distance 2 (1 -/+ 1e-12) from the centre and the axis, and along and across the
+  // capsule's axis, through its end planes.
+  Cloud cloud(R"({"type":"soft_blend","children":[
+      {"type":"soft_object","potential":{"type":"murakami"},
+       "distance":{"type":"lp_metric","n":2,"radii":[2,2,2]},"translate":[0,0,9]},
+      {"type":"soft_object","potential":{"type":"wyvill"},"strength":-0.8,
+       "distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":2}}]})");
+  ASSERT_TRUE(cloud.blobs.has_value());
+  int seen = 0, missed = 0;
+  for (const double far : {20.0, 1e8})
+    for (const double r : {2 * (1 - 1e-12), 2.0, 2 * (1 + 1e-12)}) {
+      SCOPED_TRACE("r " + std::to_string(r) + ", from " + std::to_string(far));
+      const Vec3 dirs[] = {
+          {1, 0, 0}, {0, 1, 0}, normalize(Vec3{1, 1, 0}), normalize(Vec3{1, 0, 1e-9})};
+      for (const Vec3& d : dirs) {
+        // Across the capsule's axis at s = 0 and 1 (its end planes) and between; along it.
+        for (const double x : {-3.0, 0.0, 3.0}) {
+          const Vec3 side = d.x == 1 ? Vec3{0, 0, r} : Vec3{x, 0, r};
+          expect_terms_inside_spans(cloud, side - d * far, d, 2 * far, rng, &seen, &missed);
+          expect_terms_inside_spans(cloud, Vec3{x, r, 9} - d * far, d, 2 * far, rng, &seen,
+                                    &missed);
+        }
+      }
+    }
+  EXPECT_GT(seen, 100);
+  EXPECT_GT(missed, 10);
+}
+
 // The normals of blob sums come from BlobSum::gradient: the compiled gradient's value and
 // direction, to rounding, inside and between supports, and 0 outside all of them.
 // `min_inside`: of the 2000 points, how many at least fall inside a support (fewer blobs, fewer).
