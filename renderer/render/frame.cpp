@@ -61,6 +61,7 @@ struct Work {
   std::vector<TracedSample> samples;
   std::vector<TracedPixel> pixels;
   std::vector<ShadowBeams::Point> points;
+  std::vector<int> point_starts;
   ShadowBeams::Lists shadow_lists;
 };
 
@@ -180,43 +181,41 @@ class FrameTracer {
     std::stable_sort(pixels.begin(), pixels.end(),
                      [](const TracedPixel& a, const TracedPixel& b) { return a.block < b.block; });
     const bool lists = shadow_beams_.active();
-    // The shadow rays' origins near the hits of pixels[i0, i1).
-    const auto points = [&](size_t i0, size_t i1) {
-      work.points.clear();
-      for (size_t i = i0; i < i1; ++i)
-        for (int s = pixels[i].first; s < pixels[i].first + pixels[i].count; ++s) {
-          const TracedSample& t = work.samples[size_t(s)];
-          if (!t.hit.hit) continue;
-          const Vec3 p = t.ray.o + t.ray.d * t.hit.t;
-          const SceneObject& obj = face_object(scene_.objects[t.hit.object], t.hit.face);
-          work.points.push_back({p, ray_offset(obj, p, t.ray.cone0 + t.ray.cone * t.hit.t)});
-        }
-      return static_cast<int>(work.points.size());
+    // The shadow rays' origins lie near the hits: pixel i's in points[starts[i], starts[i + 1]).
+    std::vector<int>& starts = work.point_starts;
+    work.points.clear();
+    starts.clear();
+    for (size_t i = 0; i < pixels.size() && lists; ++i) {
+      starts.push_back(static_cast<int>(work.points.size()));
+      for (int s = pixels[i].first; s < pixels[i].first + pixels[i].count; ++s) {
+        const TracedSample& t = work.samples[size_t(s)];
+        if (!t.hit.hit) continue;
+        const Vec3 p = t.ray.o + t.ray.d * t.hit.t;
+        const SceneObject& obj = face_object(scene_.objects[t.hit.object], t.hit.face);
+        work.points.push_back({p, ray_offset(obj, p, t.ray.cone0 + t.ray.cone * t.hit.t)});
+      }
+    }
+    starts.push_back(static_cast<int>(work.points.size()));
+    // The lists of `level` over the points of pixels[i0, i1).
+    const auto build = [&](int level, size_t i0, size_t i1) {
+      shadow_beams_.build(level, work.points.data() + starts[i0], starts[i1] - starts[i0],
+                          work.shadow_lists);
     };
     // The pixels of blocks [b0, b1) of 16: from `from` on, where they start.
     const auto end_of = [&](size_t from, int b1) {
       while (from < pixels.size() && pixels[from].block < b1) ++from;
       return from;
     };
-    ShadowBeams::Lists& sl = work.shadow_lists;
-    if (lists) {
-      const int n = points(0, pixels.size());
-      shadow_beams_.build(0, work.points.data(), n, sl);
-    }
+    if (lists) build(0, 0, pixels.size());
     size_t i = 0;
     for (int q = 0; q < 4; ++q) {
-      const size_t q_end = end_of(i, (q + 1) * 4);
-      if (lists) {
-        const int n = points(i, q_end);
-        shadow_beams_.build(1, work.points.data(), n, sl);
-      }
+      if (lists) build(1, i, end_of(i, (q + 1) * 4));
       for (int b = q * 4; b < (q + 1) * 4; ++b) {
         const size_t b_end = end_of(i, b + 1);
         ShadowLists view{};
         if (lists) {
-          const int n = points(i, b_end);
-          shadow_beams_.build(2, work.points.data(), n, sl);
-          view = shadow_beams_.view(2, sl);
+          build(2, i, b_end);
+          view = shadow_beams_.view(2, work.shadow_lists);
         }
         for (; i < b_end; ++i) pixel(pixels[i], lists ? &view : nullptr, pass, work);
       }

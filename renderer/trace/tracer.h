@@ -74,6 +74,12 @@ struct BlobBeam {
   // range of z (ShadowPrism) where the blob's support lies.
   bool parallel = false;
   ShadowPrism prism;
+  // A shadow list's entries' x and y (ShadowPrism) and how far from them the blob reaches: a
+  // smaller block's list keeps those whose reach meets its rectangle, with no more arithmetic.
+  struct Across {
+    double x, y, reach;
+  };
+  std::vector<Across> across;
   // Whether the list holds for rays from o: from its eye, to the bit.
   bool from(const Vec3& o) const { return valid && o.x == eye.x && o.y == eye.y && o.z == eye.z; }
   // Whether the list holds for `ray`, and where on the entries' axis the ray starts: its point at

@@ -39,6 +39,7 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
   out->parallel = true;
   out->prism = p;
   out->entries.clear();
+  out->across.clear();
   if (!blobs_) return;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double span =
@@ -49,6 +50,7 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
     const double r2 = blobs_->bounding_sphere(id, &centre);
     if (!(r2 < kInf)) {  // no sphere known: the blob stays on every ray's list
       out->entries.push_back({-kInf, kInf, id});
+      out->across.push_back({0, 0, kInf});
       return;
     }
     const Vec3 q = centre - p.origin;
@@ -59,12 +61,26 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
         z + reach < p.z0)
       return;
     out->entries.push_back({z - reach, z + reach, id});
+    out->across.push_back({x, y, reach});
+  };
+  const auto same = [](const Vec3& a, const Vec3& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
   };
   const bool same_axes = parent && parent->valid && parent->parallel &&
-                         parent->prism.along.x == p.along.x && parent->prism.along.y == p.along.y &&
-                         parent->prism.along.z == p.along.z;
+                         same(parent->prism.origin, p.origin) &&
+                         same(parent->prism.along, p.along) && same(parent->prism.u, p.u) &&
+                         same(parent->prism.v, p.v);
   if (same_axes) {
-    for (const BlobBeam::Entry& e : parent->entries) keep(e.id);
+    // The parent's prism has the same origin and axes: its numbers are what keep() would compute.
+    for (size_t i = 0; i < parent->entries.size(); ++i) {
+      const BlobBeam::Entry& e = parent->entries[i];
+      const BlobBeam::Across& a = parent->across[i];
+      if (a.x < p.x0 - a.reach || a.x > p.x1 + a.reach || a.y < p.y0 - a.reach ||
+          a.y > p.y1 + a.reach || e.far < p.z0)
+        continue;
+      out->entries.push_back(e);
+      out->across.push_back(a);
+    }
   } else {
     // The prism's sides: x >= x0, x <= x1, y >= y0, y <= y1, each as dot(c - origin, n) >= -pad.
     const Vec3 normals[4] = {p.u, -p.u, p.v, -p.v};
