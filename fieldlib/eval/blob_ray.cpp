@@ -436,6 +436,15 @@ int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals
   return p.groups[group_].bvh.cone_items(apex, normals, pad, out);
 }
 
+int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals)[4],
+                        const double (&pads)[4], int32_t* out) const {
+  if (size() <= kListed) {
+    std::copy(listed_walk_.begin(), listed_walk_.end(), out);
+    return static_cast<int>(listed_walk_.size());
+  }
+  return p.groups[group_].bvh.cone_items(apex, normals, pads, out);
+}
+
 int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
                       Term* out) const {
   const double dd = dot(d, d);

@@ -55,6 +55,9 @@ class BlobSum {
   // terms() takes them.
   int cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals)[4], double pad,
                  int32_t* out) const;
+  // The same for the half-spaces dot(x - apex, normals[i]) >= -pads[i] (BoxBvh::cone_items).
+  int cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals)[4],
+                 const double (&pads)[4], int32_t* out) const;
   // A sphere holding blob `id`'s support: its centre and squared radius (+inf where no sphere is
   // known: BlobSum::Blob's reach2).
   double bounding_sphere(int id, Vec3* centre) const {

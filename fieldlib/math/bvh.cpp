@@ -303,24 +303,27 @@ class SegmentTest {
 // A box lies wholly outside the half-space dot(x - apex, n) >= -pad where its corner farthest
 // along n does; that corner takes each axis's hi where n is positive, its lo where negative. An
 // axis n does not move along adds nothing (a box unbounded along it would add 0 times infinity).
+// With a pad per plane the half-spaces need not meet at one point: a prism's sides, each within
+// its own reach of `apex` (the shadow rays of a block of points towards a distant light).
 class ConeTest {
  public:
-  ConeTest(const Vec3& apex, const Vec3 (&normals)[4], double pad) : apex_(apex), pad_(pad) {
-    for (int i = 0; i < 4; ++i) n_[i] = normals[i];
+  ConeTest(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4]) : apex_(apex) {
+    for (int i = 0; i < 4; ++i) n_[i] = normals[i], pad_[i] = pads[i];
   }
   // Bit c set where slot c's box is inside no plane's outside.
   int meets(const BoxBvh::Node& n) const {
     M2 in[2];
     for (int h = 0; h < 2; ++h) {
       in[h] = M2{-1, -1};
-      for (const Vec3& normal : n_) {
+      for (int k = 0; k < 4; ++k) {
+        const Vec3& normal = n_[k];
         V2 reach = {0, 0};
         for (int i = 0; i < 3; ++i) {
           if (normal[i] == 0) continue;
           const double* side = normal[i] > 0 ? n.hi[i] : n.lo[i];
           reach += (load(side + 2 * h) - apex_[i]) * normal[i];
         }
-        in[h] &= reach >= -pad_;
+        in[h] &= reach >= -pad_[k];
       }
     }
     return bits(in[0], in[1]);
@@ -328,7 +331,7 @@ class ConeTest {
 
  private:
   Vec3 apex_, n_[4];
-  double pad_;
+  double pad_[4];
 };
 }  // namespace
 
@@ -440,7 +443,13 @@ int BoxBvh::segment_items(const Vec3& a, const Vec3& b, double pad, int32_t* out
 }
 
 int BoxBvh::cone_items(const Vec3& apex, const Vec3 (&normals)[4], double pad, int32_t* out) const {
-  const ConeTest cone(apex, normals, pad);
+  const double pads[4] = {pad, pad, pad, pad};
+  return cone_items(apex, normals, pads, out);
+}
+
+int BoxBvh::cone_items(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4],
+                       int32_t* out) const {
+  const ConeTest cone(apex, normals, pads);
   return walk<false>([&](const Node& n) { return cone.meets(n); }, out, 0);
 }
 

@@ -44,6 +44,10 @@ class BoxBvh {
   // normals[i]) >= -pad (a pyramid: the frustum of a block of camera rays), in the order of the
   // tree, as segment_items reports them. Returns how many were written to out.
   int cone_items(const Vec3& apex, const Vec3 (&normals)[4], double pad, int32_t* out) const;
+  // The same with a pad per half-space, dot(x - apex, normals[i]) >= -pads[i]: planes that need
+  // not pass through one point (a prism's sides, each pads[i] from `apex`).
+  int cone_items(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4],
+                 int32_t* out) const;
 
   static constexpr int kWidth = 4;
   static constexpr int kLeafItems = 16;

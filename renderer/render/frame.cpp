@@ -14,6 +14,7 @@
 #include "render/camera.h"
 #include "render/cancel.h"
 #include "render/shading.h"
+#include "render/shadow_beams.h"
 
 namespace softtrace {
 
@@ -40,12 +41,32 @@ void sample_offset(int s, double& dx, double& dy) {
   dy = std::fmod(0.5 + s * 0.5698402909980532, 1.0);
 }
 
+// A camera ray traced, waiting for its shading.
+struct TracedSample {
+  Ray ray;
+  TraceHit hit;
+};
+
+// A pixel of the tile whose samples are traced: samples[first, first + count) of its Work.
+struct TracedPixel {
+  int x, y;
+  int first, count;
+  int block;  // its 4-pixel block in the tile, numbered quarter by quarter (ShadowBeams' levels)
+};
+
 struct Work {
   RayWork primary, shadow;
   // Each beam level's certified depth per object ([level * objects + object]).
   std::vector<double> clear;
   // Each beam level's blobs per object, for sums of polynomial blobs (the same indexing).
   std::vector<BlobBeam> blobs;
+  // The tile's camera rays, traced before any is shaded: their hits place the shadow rays'
+  // blocks (ShadowBeams).
+  std::vector<TracedSample> samples;
+  std::vector<TracedPixel> pixels;
+  std::vector<ShadowBeams::Point> points;
+  std::vector<int> point_starts;
+  ShadowBeams::Lists shadow_lists;
 };
 
 // One frame's pixels, traced beam by beam. Tiles and beams are aligned to the full frame, never
@@ -68,15 +89,20 @@ class FrameTracer {
         camera_(scene.camera, film.full_width, film.full_height),
         objects_(rt.tracers.size()),
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
-        adaptive_(adaptive) {}
+        adaptive_(adaptive),
+        shadow_beams_(scene, rt.tracers) {}
 
   int refined_spp() const { return refined_spp_; }
 
   // The full-frame tile at (tx, ty) (in pixels), where it meets `area`: the pass's pixels.
+  // Its camera rays are all traced first, then shaded block by block (shade_tile).
   void tile(int tx, int ty, const PixelRect& area, Pass pass, Work& work) const {
     work.clear.resize(size_t(kBeamLevels) * objects_);
     work.blobs.resize(size_t(kBeamLevels) * objects_);
+    work.samples.clear();
+    work.pixels.clear();
     beam(tx, ty, 0, nullptr, area, pass, work);
+    shade_tile(pass, work);
   }
 
  private:
@@ -94,7 +120,7 @@ class FrameTracer {
     if (!camera_.single_eye()) {
       for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
         for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
-          pixel(px, py, nullptr, pass, work);
+          trace_pixel(px, py, nullptr, pass, work);
       return;
     }
     const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
@@ -124,7 +150,80 @@ class FrameTracer {
     const BeamClear certified{fr.forward, clear, blobs};
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
-        pixel(px, py, &certified, pass, work);
+        trace_pixel(px, py, &certified, pass, work);
+  }
+
+  // The camera rays of pixel (x, y) of the pass, traced into work.samples (none where the pass
+  // leaves the pixel alone; a pixel cancelled part way is left out, never shaded).
+  void trace_pixel(int x, int y, const BeamClear* certified, Pass pass, Work& work) const {
+    if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
+    const int spp = pass == Pass::First ? spp_ : refined_spp_;
+    const int first = static_cast<int>(work.samples.size());
+    for (int s = 0; s < spp; ++s) {
+      // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
+      if (cancelled()) return;
+      double dx, dy;
+      sample_offset(s, dx, dy);
+      double lx, ly;
+      lens_sample(x, y, s, spp, lx, ly);
+      const Ray ray = camera_.generate(x + dx, y + dy, lx, ly);
+      const TraceHit hit =
+          rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
+      work.primary.add(hit.work);
+      work.samples.push_back({ray, hit});
+    }
+    const int bx = (x % kTile) / kBeam, by = (y % kTile) / kBeam;
+    const int quarter = (by >> 1) * 2 + (bx >> 1), within = (by & 1) * 2 + (bx & 1);
+    work.pixels.push_back({x, y, first, spp, quarter * 4 + within});
+  }
+
+  // Shades the tile's traced pixels, a 4-pixel block at a time, with the shadow lists of the
+  // tile, its quarter and the block, where ShadowBeams has any.
+  void shade_tile(Pass pass, Work& work) const {
+    std::vector<TracedPixel>& pixels = work.pixels;
+    // The blocks in ShadowBeams' order: a quarter's four blocks after one another.
+    std::stable_sort(pixels.begin(), pixels.end(),
+                     [](const TracedPixel& a, const TracedPixel& b) { return a.block < b.block; });
+    const bool lists = shadow_beams_.active();
+    // The shadow rays' origins lie near the hits: pixel i's in points[starts[i], starts[i + 1]).
+    std::vector<int>& starts = work.point_starts;
+    work.points.clear();
+    starts.clear();
+    for (size_t i = 0; i < pixels.size() && lists; ++i) {
+      starts.push_back(static_cast<int>(work.points.size()));
+      for (int s = pixels[i].first; s < pixels[i].first + pixels[i].count; ++s) {
+        const TracedSample& t = work.samples[size_t(s)];
+        if (!t.hit.hit) continue;
+        const Vec3 p = t.ray.o + t.ray.d * t.hit.t;
+        const SceneObject& obj = face_object(scene_.objects[t.hit.object], t.hit.face);
+        work.points.push_back({p, ray_offset(obj, p, t.ray.cone0 + t.ray.cone * t.hit.t)});
+      }
+    }
+    starts.push_back(static_cast<int>(work.points.size()));
+    // The lists of `level` over the points of pixels[i0, i1).
+    const auto build = [&](int level, size_t i0, size_t i1) {
+      shadow_beams_.build(level, work.points.data() + starts[i0], starts[i1] - starts[i0],
+                          work.shadow_lists);
+    };
+    // The pixels of blocks [b0, b1) of 16: from `from` on, where they start.
+    const auto end_of = [&](size_t from, int b1) {
+      while (from < pixels.size() && pixels[from].block < b1) ++from;
+      return from;
+    };
+    if (lists) build(0, 0, pixels.size());
+    size_t i = 0;
+    for (int q = 0; q < 4; ++q) {
+      if (lists) build(1, i, end_of(i, (q + 1) * 4));
+      for (int b = q * 4; b < (q + 1) * 4; ++b) {
+        const size_t b_end = end_of(i, b + 1);
+        ShadowLists view{};
+        if (lists) {
+          build(2, i, b_end);
+          view = shadow_beams_.view(2, work.shadow_lists);
+        }
+        for (; i < b_end; ++i) pixel(pixels[i], lists ? &view : nullptr, pass, work);
+      }
+    }
   }
 
   // A tile of a slow field (a blend of thousands of children at many samples) takes minutes:
@@ -140,15 +239,16 @@ class FrameTracer {
   // pairs them with it (an edge pixel's albedo mixes the two sides as its colour does; its normal
   // is then shorter than 1); Z and steps are the pixel-centre ray's (a mean depth across an edge
   // is nobody's depth).
-  // `certified`: what the pixel's beam certified (none for a camera without a single eye).
-  void pixel(int x, int y, const BeamClear* certified, Pass pass, Work& work) const {
+  // `lists`: the shadow lists of the pixel's 4-pixel block (none without ShadowBeams).
+  void pixel(const TracedPixel& tp, const ShadowLists* lists, Pass pass, Work& work) const {
+    const int x = tp.x, y = tp.y;
     const bool in_film = window_.contains(x, y);
     const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
     switch (pass) {
       case Pass::First: {
         float rgba[4];
         SampleMeans means;
-        if (!samples(x, y, spp_, certified, in_film ? &i : nullptr, work, rgba, &means)) return;
+        if (!samples(tp, lists, in_film ? &i : nullptr, work, rgba, &means)) return;
         if (in_film) {
           std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
           mean_aovs(i, means);
@@ -164,9 +264,7 @@ class FrameTracer {
       case Pass::Refine: {
         float rgba[4];
         SampleMeans means;
-        if (!adaptive_->refine(x, y) ||
-            !samples(x, y, refined_spp_, certified, nullptr, work, rgba, &means))
-          return;
+        if (!samples(tp, lists, nullptr, work, rgba, &means)) return;
         std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
         mean_aovs(i, means);  // Z and steps stay the first pass's pixel-centre ray's
         return;
@@ -180,29 +278,24 @@ class FrameTracer {
     Vec3 normal{0, 0, 0}, albedo{0, 0, 0};
   };
 
-  // Pixel (x, y) traced with `spp` samples into `rgba` (premultiplied); the pixel-centre ray's
+  // The traced samples of pixel tp shaded into `rgba` (premultiplied); the pixel-centre ray's
   // Z and steps go to the film's pixel `*aov` when given, the samples' means to `*means`. False
   // when cancelled.
-  bool samples(int x, int y, int spp, const BeamClear* certified, const size_t* aov, Work& work,
+  bool samples(const TracedPixel& tp, const ShadowLists* lists, const size_t* aov, Work& work,
                float rgba[4], SampleMeans* means = nullptr) const {
+    const int spp = tp.count;
     Vec3 sum{0, 0, 0};
     SampleMeans sums;
     int covered = 0;
     for (int s = 0; s < spp; ++s) {
-      // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
       if (cancelled()) return false;
-      double dx, dy;
-      sample_offset(s, dx, dy);
-      double lx, ly;
-      lens_sample(x, y, s, spp, lx, ly);
-      const Ray ray = camera_.generate(x + dx, y + dy, lx, ly);
-      const TraceHit hit =
-          rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
-      work.primary.add(hit.work);
+      const Ray& ray = work.samples[size_t(tp.first + s)].ray;
+      const TraceHit& hit = work.samples[size_t(tp.first + s)].hit;
       RayWork shadow;
       Vec3 normal{0, 0, 0}, albedo{0, 0, 0};  // the background's
       if (hit.hit) {
-        const Shaded sh = shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_);
+        const Shaded sh =
+            shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_, 1, 1, nullptr, lists);
         sum += sh.color;
         ++covered;
         normal = sh.normal;
@@ -248,6 +341,7 @@ class FrameTracer {
   const int objects_;
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
+  const ShadowBeams shadow_beams_;
 };
 
 // The full-frame tiles that meet `area`: the first one's grid position and how many a side.

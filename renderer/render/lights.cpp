@@ -148,7 +148,7 @@ bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArriv
 
 double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
                         double cone, const EmbreeScene& rt, RayWork& shadow,
-                        const std::atomic<bool>* cancel) {
+                        const std::atomic<bool>* cancel, const BlobBeam* blobs) {
   if (!l.shadows) return 1;
   if (l.has_area) {
     AreaSamples samples(l, origin, cone0, cone, rt, shadow, cancel);
@@ -160,7 +160,7 @@ double light_visibility(const Light& l, const LightArrival& at, const Vec3& orig
     return double(seen) / ((n1 + 1) * (n2 + 1));
   }
   TraceCounters work;
-  const bool blocked = rt.occluded({origin, at.to_light, cone0, cone}, 0, at.distance, work);
+  const bool blocked = rt.occluded({origin, at.to_light, cone0, cone}, 0, at.distance, work, blobs);
   shadow.add(work);
   return blocked ? 0 : 1;
 }

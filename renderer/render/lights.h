@@ -31,8 +31,21 @@ bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArriv
 // footprint (cone0, cone) of the ray being shaded; their work is added to `shadow`. Jittered
 // area samples depend only on `origin`, so a pixel's result is the same in any tile or thread.
 // Once `cancel` (render/cancel.h) is set no more shadow rays are cast; the result is then moot.
+// `blobs`: the blob sums' shadow lists of the block of pixels the point is shaded for, one per
+// object (EmbreeScene::occluded), or none.
 double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
                         double cone, const EmbreeScene& rt, RayWork& shadow,
-                        const std::atomic<bool>* cancel = nullptr);
+                        const std::atomic<bool>* cancel = nullptr, const BlobBeam* blobs = nullptr);
+
+// The shadow lists of a block of pixels (render/shadow_beams.h), for shade(): per scene light
+// its lists' slot (-1: none), each slot one list per object.
+struct ShadowLists {
+  const int* slot;
+  const BlobBeam* lists;
+  int objects;
+  const BlobBeam* of(int light) const {
+    return slot[light] < 0 ? nullptr : lists + size_t(slot[light]) * objects;
+  }
+};
 
 }  // namespace softtrace

@@ -32,9 +32,15 @@ class ContinuedRay {
 };
 }  // namespace
 
+double ray_offset(const SceneObject& obj, const Vec3& p, double cone0) {
+  return std::max(
+      obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
+      cone0);
+}
+
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
-             double weight, const Interiors* interiors) {
+             double weight, const Interiors* interiors, const ShadowLists* shadow) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj = face_object(scene.objects[hit.object], hit.face);
@@ -64,9 +70,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
   // coordinates' magnitude (an infinite plane's box says nothing of the scale). A mesh's is
   // Embree's float test: its rays leave as a field's do.
-  const double offset = std::max(
-      obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
-      cone0);
+  const double offset = ray_offset(obj, p, cone0);
   // Ambient occlusion's rays, and in scenes without transparency every ray, start that far along
   // the normal.
   const Vec3 lifted = p + n * offset;
@@ -101,7 +105,8 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   Vec3 light{0, 0, 0}, shine{0, 0, 0}, mixed{0, 0, 0};
   const AmbientOcclusion& occlusion = scene.image.occlusion;
   double open = -1;  // the open fraction of the sky, once traced
-  for (const Light& l : scene.lights) {
+  for (size_t li = 0; li < scene.lights.size(); ++li) {
+    const Light& l = scene.lights[li];
     if (cancel_requested(cancel)) break;  // up to 1,000 lights, each with its shadow rays
     if (l.type == Light::Type::Ambient) {
       // With ambient occlusion the ambient lights reach the point through its open sky, traced
@@ -123,7 +128,8 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     if (cosine <= 0) continue;
     Vec3 arrived = at.light;
     if (!scene.transparent) {
-      const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel);
+      const double seen = light_visibility(l, at, origin, cone0, ray.cone, rt, secondary, cancel,
+                                           shadow ? shadow->of(int(li)) : nullptr);
       if (seen == 0) continue;
       if (seen != 1) arrived = at.light * seen;
     } else {

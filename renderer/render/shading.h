@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "render/lights.h"
 #include "scene/scene.h"
 #include "trace/embree_scene.h"
 #include "trace/tracer.h"
@@ -23,9 +24,15 @@ struct Shaded {
 // POV-Ray's ray weight, the most this ray's colour can count in the pixel (1 for a camera ray):
 // a mirror or transmitted ray whose weight would fall below adc_bailout is not traced.
 // `interiors`: the ray's interior list (trace/interiors.h; none for a camera ray), which its
-// shadow, mirror and transmitted rays take on.
+// shadow, mirror and transmitted rays take on. `shadow`: the shadow lists of the camera ray's
+// block of pixels (lights.h), or none.
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel = nullptr,
-             int level = 1, double weight = 1, const Interiors* interiors = nullptr);
+             int level = 1, double weight = 1, const Interiors* interiors = nullptr,
+             const ShadowLists* shadow = nullptr);
+
+// How far from a hit at p on `obj` (the face's object for a CSG) its shadow and mirror rays start
+// along the normal (shade()), the camera ray's footprint there being cone0.
+double ray_offset(const SceneObject& obj, const Vec3& p, double cone0);
 
 }  // namespace softtrace

@@ -24,7 +24,8 @@ struct RayContext {
   double t = std::numeric_limits<double>::infinity();  // tfar, then the closest hit so far
   TraceCounters work;
   const BeamClear* beam = nullptr;
-  double beam_cos = 1;  // the cosine between the ray and the beam's forward axis
+  const BlobBeam* shadow_blobs = nullptr;  // occluded()'s lists, one per object
+  double beam_cos = 1;                     // the cosine between the ray and the beam's forward axis
   int object = -1;
   const Interiors* inside = nullptr;  // EmbreeScene::intersect's `inside`, if any
   bool on_box_face = false;
@@ -125,7 +126,8 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
   auto* ctx = reinterpret_cast<RayContext*>(args->context);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Any).hit)
+  const BlobBeam* blobs = ctx->shadow_blobs ? &ctx->shadow_blobs[data->object] : nullptr;
+  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Any, 0, blobs).hit)
     r->tfar = -INFINITY;
 }
 
@@ -337,10 +339,12 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
   return h;
 }
 
-bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const {
+bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
+                           const BlobBeam* blobs) const {
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
+  ctx.shadow_blobs = blobs;
   ctx.tnear = tnear;
   ctx.t = tfar;
   RTCRay r = make_ray(ray, tnear, tfar);

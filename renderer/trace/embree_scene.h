@@ -66,8 +66,11 @@ class EmbreeScene {
   TraceHit intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam = nullptr,
                      int inside = -1) const;
   // Whether anything lies along the ray in [tnear, tfar]; thread-safe. The ray's work is added to
-  // `work`. Throws EmbreeError as intersect() does.
-  bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
+  // `work`. Throws EmbreeError as intersect() does. `blobs`, if given, one per object: the blob
+  // sums' shadow lists of a block of rays (ObjectTracer::shadow_beam); a list holding no such ray
+  // is ignored.
+  bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
+                const BlobBeam* blobs = nullptr) const;
 
  private:
   struct Impl;

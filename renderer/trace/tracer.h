@@ -53,6 +53,15 @@ struct Frustum {
 // 2025). `near`, `far`: the range of distances from the eye at which the blob's support lies.
 // The blobs are in the order the BVH's queries report them, so each stretch's terms, and the
 // picture, are the same to the bit as the walk's.
+// A block of shadow rays towards a directional light: rays of direction `along` (unit, to the
+// bit the light's) from points whose coordinates x = (o - origin).u and y = (o - origin).v lie in
+// [x0, x1] x [y0, y1] and z = (o - origin).along >= z0 (u, v and along orthonormal): the rays run
+// inside the prism over that rectangle, each at z = its origin's z + t.
+struct ShadowPrism {
+  Vec3 origin, along, u, v;
+  double x0, x1, y0, y1, z0;
+};
+
 struct BlobBeam {
   struct Entry {
     double near, far;
@@ -61,8 +70,31 @@ struct BlobBeam {
   bool valid = false;  // false: no list (the object is no blob sum, or no frustum holds the rays)
   Vec3 eye;
   std::vector<Entry> entries;
+  // A shadow list (ObjectTracer::shadow_beam) instead of a camera list: `near`, `far` are the
+  // range of z (ShadowPrism) where the blob's support lies.
+  bool parallel = false;
+  ShadowPrism prism;
+  // A shadow list's entries' x and y (ShadowPrism) and how far from them the blob reaches: a
+  // smaller block's list keeps those whose reach meets its rectangle, with no more arithmetic.
+  struct Across {
+    double x, y, reach;
+  };
+  std::vector<Across> across;
   // Whether the list holds for rays from o: from its eye, to the bit.
   bool from(const Vec3& o) const { return valid && o.x == eye.x && o.y == eye.y && o.z == eye.z; }
+  // Whether the list holds for `ray`, and where on the entries' axis the ray starts: its point at
+  // t is at distance t from a camera list's eye (*base = 0), at z = *base + t in a shadow list's
+  // prism (tracer_shadow_beam.cpp).
+  bool holds(const Ray& ray, double* base) const {
+    if (!parallel) {
+      *base = 0;
+      return from(ray.o);
+    }
+    return valid && holds_shadow(ray, base);
+  }
+
+ private:
+  bool holds_shadow(const Ray& ray, double* base) const;
 };
 
 // A camera ray wants the nearest hit; a shadow ray only whether there is any.
@@ -151,6 +183,10 @@ class ObjectTracer {
   // The blobs of frustum f (BlobBeam) into *out, from the BVH or, where given, from the list of a
   // frustum holding f (tracer_blob_beam.cpp). Not valid for a tracer that is no blob sum.
   void blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out) const;
+  // The blobs a shadow ray of the prism p may meet (BlobBeam, parallel), into *out, from the BVH
+  // or from the list of a prism holding p (tracer_shadow_beam.cpp). Not valid for a tracer that
+  // is no blob sum.
+  void shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const;
 
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }

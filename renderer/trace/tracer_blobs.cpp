@@ -199,10 +199,12 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
                        at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
   };
 
-  // A camera ray of a block with a list (tracer_blob_beam.cpp) takes its stretches' blobs from it.
+  // A camera ray of a block with a list (tracer_blob_beam.cpp), or a shadow ray of a block with
+  // one (tracer_shadow_beam.cpp), takes its stretches' blobs from it.
   const BlobBeam::Entry* listed = nullptr;
   int n_listed = 0;
-  if (beam && beam->from(ray.o)) {
+  double base = 0;  // the ray's start on the list's axis
+  if (beam && beam->holds(ray, &base)) {
     listed = beam->entries.data();
     n_listed = static_cast<int>(beam->entries.size());
   }
@@ -233,9 +235,9 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       n = found ? blobs_->terms_of(ids, found, segment(ray, t, t + len).a, ray.d, len, terms) : 0;
     } else if (listed) {
       const Segment seg = segment(ray, t, t + len);
-      // The list's blobs whose distances from the eye meet the stretch's, in the list's order.
+      // The list's blobs whose ranges on its axis meet the stretch's, in the list's order.
       int32_t* ids = scratch.ids.data();
-      const double lo = t - seg.pad, hi = t + len + seg.pad;
+      const double lo = base + t - seg.pad, hi = base + t + len + seg.pad;
       int found = 0;
       for (int i = 0; i < n_listed; ++i) {
         ids[found] = listed[i].id;

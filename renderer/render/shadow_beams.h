@@ -1,0 +1,56 @@
+// The shadow rays of a block of pixels towards a directional light share their approach to a sum
+// of polynomial blobs, as the block's camera rays share theirs: once a tile's camera rays are
+// traced, their lit points are known, and the blobs their shadow rays may meet are listed once for
+// the tile (ObjectTracer::shadow_beam), then narrowed for its quarters and their quarters. Each
+// shadow ray of a block takes its stretches' blobs from the block's list instead of walking the
+// sum's BVH; a ray the list does not hold (BlobBeam::holds) walks as before, so the answers are
+// the walk's to the bit.
+#pragma once
+
+#include <vector>
+
+#include "render/lights.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
+
+namespace softtrace {
+
+class ShadowBeams {
+ public:
+  // A shadow ray's origin: within `margin` of `p` (the lifted point of shade()).
+  struct Point {
+    Vec3 p;
+    double margin;
+  };
+  static constexpr int kLevels = 3;  // a tile, its quarters and theirs, as the camera's beams
+  // One thread's lists: per level, per light with lists, one per object.
+  struct Lists {
+    Vec3 origin;  // the tile's: the prisms' coordinates are taken from it
+    std::vector<BlobBeam> level[kLevels];
+  };
+
+  ShadowBeams(const Scene& scene, const SceneTracers& tracers);
+  // Whether any light and object takes lists: a directional light with shadows (and no area) and
+  // a sum of polynomial blobs.
+  bool active() const { return !lights_.empty() && !blob_objects_.empty(); }
+  // The lists of `level` for the block whose shadow rays start near points[0, n), from those of
+  // the block above it (level - 1), or for level 0 (a tile, whose origin is points[0]) from the
+  // sums' BVHs. A block with no points gets no lists.
+  void build(int level, const Point* points, int n, Lists& lists) const;
+  // The lists of `level` as shade() takes them.
+  ShadowLists view(int level, const Lists& lists) const {
+    return {slot_.data(), lists.level[level].data(), objects_};
+  }
+
+ private:
+  struct Axes {
+    Vec3 along, u, v;  // along: towards the light, to the bit as light_arrival's
+  };
+  const SceneTracers& tracers_;
+  int objects_;
+  std::vector<int> slot_;          // per scene light: its index in lights_, or -1
+  std::vector<Axes> lights_;       // the lights with lists
+  std::vector<int> blob_objects_;  // the objects that are sums of polynomial blobs
+};
+
+}  // namespace softtrace

@@ -1,0 +1,178 @@
+// Shadow lists (render/shadow_beams.h, ObjectTracer::shadow_beam): the shadow rays of a block of
+// pixels towards a directional light take their stretches' blobs from the block's list, built as
+// the frame builds it (the tile from the BVH, its quarters and theirs from their parents', over
+// the points where the rays start). Every such ray must find what the walk of the sum's BVH finds,
+// to the bit: the same answer for a shadow ray (Query::Any, with the same work) and the same first
+// hit (Query::Nearest). The cloud mixes balls, rotated ellipsoids, capsules, a sheared capsule and
+// negative strengths; the points are camera hits on it and on a floor below it, lifted along the
+// normal as shade() lifts them, and the light comes from above and from below (through the cloud
+// onto the floor, and from the floor's side).
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "render/camera.h"
+#include "render/shadow_beams.h"
+#include "scene/scene.h"
+#include "scene/traced_objects.h"
+
+namespace softtrace {
+namespace {
+
+std::string cloud(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> c(-20, 20), u(0, 1);
+  std::string children;
+  for (int i = 0; i < 160; ++i) {
+    const auto v = [&] {
+      return "[" + std::to_string(c(rng)) + "," + std::to_string(c(rng)) + "," +
+             std::to_string(c(rng)) + "]";
+    };
+    const std::string r = std::to_string(1.5 + 3 * u(rng));
+    std::string child = R"({"type":"soft_object","potential":{"type":"murakami"},)";
+    switch (i % 4) {
+      case 0:  // a ball
+        child += R"("translate":)" + v() + R"(,"distance":{"type":"lp_metric","radii":[)" + r +
+                 "," + r + "," + r + R"(],"n":2}})";
+        break;
+      case 1:  // a rotated ellipsoid, some of negative strength
+        child += R"("strength":)" + std::string(i % 8 == 1 ? "-0.5" : "1") +
+                 R"(,"rotate":{"axis":[1,2,3],"deg":)" + std::to_string(90 * u(rng)) +
+                 R"(},"translate":)" + v() + R"(,"distance":{"type":"lp_metric","radii":[)" + r +
+                 ",2,1],\"n\":2}}";
+        break;
+      case 2:  // a capsule
+        child += R"("distance":{"type":"segment","p0":)" + v() + R"(,"p1":)" + v() +
+                 R"(,"radius":)" + r + "}}";
+        break;
+      case 3:  // a sheared capsule
+        child += R"("matrix":[[1,0.9,0,)" + std::to_string(c(rng)) + R"(],[0,0.5,0,)" +
+                 std::to_string(c(rng)) + R"(],[0.3,0,1,)" + std::to_string(c(rng)) +
+                 R"(]],"distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":)" + r +
+                 "}}";
+        break;
+    }
+    children += (i ? "," : "") + child;
+  }
+  return children;
+}
+
+TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
+    const Scene scene = parse_scene(
+        R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" + cloud(rng) +
+            R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
+            "lights": [{"type": "directional", "direction": )" +
+            std::string(direction) + "}]}",
+        "<test>");
+    const std::vector<TracedObject> objects = traced_objects(scene);
+    const SceneTracers tracers(objects, LipschitzMode::Local);
+    const ObjectTracer& tr = tracers[0];
+    ASSERT_TRUE(tr.blob_sum());
+    const ShadowBeams beams(scene, tracers);
+    ASSERT_TRUE(beams.active());
+    const Vec3 along = -scene.lights[0].direction;
+    constexpr int kW = 96, kH = 64;
+    const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, 60}, kW, kH);
+    // The camera hit of a ray, on the cloud (walked) or the floor z = -26, and its lifted point.
+    struct Lit {
+      ShadowBeams::Point point;
+      Vec3 origin;
+    };
+    const auto lit = [&](const Ray& ray, Lit* out) {
+      TraceCounters w;
+      const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
+      const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
+      if (!m.hit && floor_t < 0) return false;
+      const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
+      const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
+      const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
+      const double margin = 0.05 + 0.05 * u(rng);
+      out->point = {p, margin};
+      out->origin = p + n * (margin * u(rng));
+      return true;
+    };
+    int rays = 0, held = 0, blocked = 0, hits = 0;
+    long long listed = 0;
+    ShadowBeams::Lists lists;
+    std::vector<Lit> tile, quarter, block;
+    std::vector<ShadowBeams::Point> points;
+    const auto build = [&](int level, const std::vector<Lit>& of) {
+      points.clear();
+      for (const Lit& l : of) points.push_back(l.point);
+      beams.build(level, points.data(), static_cast<int>(points.size()), lists);
+    };
+    for (int y = 0; y < kH; y += 16)
+      for (int x = 0; x < kW; x += 16) {
+        // The tile's points, quarter by quarter and block by block, as the frame orders them.
+        std::vector<Lit> by_block[16];
+        for (int py = y; py < y + 16; ++py)
+          for (int px = x; px < x + 16; ++px) {
+            Lit l;
+            if (!lit(camera.generate(px + u(rng), py + u(rng)), &l)) continue;
+            const int bx = (px - x) / 4, by = (py - y) / 4;
+            by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(l);
+          }
+        tile.clear();
+        for (const auto& b : by_block) tile.insert(tile.end(), b.begin(), b.end());
+        build(0, tile);
+        for (int q = 0; q < 4; ++q) {
+          quarter.clear();
+          for (int k = 0; k < 4; ++k)
+            quarter.insert(quarter.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
+          build(1, quarter);
+          for (int k = 0; k < 4; ++k) {
+            build(2, by_block[q * 4 + k]);
+            const ShadowLists view = beams.view(2, lists);
+            const BlobBeam* list = view.of(0);
+            ASSERT_NE(list, nullptr);
+            if (list[0].valid) listed += static_cast<long long>(list[0].entries.size());
+            for (const Lit& l : by_block[q * 4 + k]) {
+              const Ray ray{l.origin, along, 0, 0};
+              double base;
+              ++rays;
+              // A block's list holds each of its rays; a block without one sends none into the
+              // cloud's box.
+              if (list[0].valid) {
+                ASSERT_TRUE(list[0].holds(ray, &base)) << "ray " << rays;
+              }
+              held += list[0].valid;
+              TraceCounters a, b;
+              const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
+              const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list[0]);
+              if (!list[0].valid) {
+                ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
+              }
+              ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+              if (walk.hit) {
+                ASSERT_EQ(with.t, walk.t) << "ray " << rays;
+              }
+              ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
+              blocked += walk.hit;
+              TraceCounters c, d;
+              const MarchResult near = tr.first_hit(ray, 0, 1e3, c);
+              const MarchResult near_with =
+                  tr.first_hit(ray, 0, 1e3, d, Query::Nearest, 0, &list[0]);
+              ASSERT_EQ(near_with.hit, near.hit) << "ray " << rays;
+              if (near.hit) {
+                ASSERT_EQ(near_with.t, near.t) << "ray " << rays;
+              }
+              hits += near.hit;
+            }
+          }
+        }
+      }
+    // Many rays go through a list, and both answers occur.
+    EXPECT_GT(held, rays / 6) << direction;
+    EXPECT_GT(blocked, rays / 30) << direction;
+    EXPECT_LT(blocked, rays * 9 / 10) << direction;
+    EXPECT_EQ(hits, blocked) << direction;
+    // The blocks' lists are a few of the 160 blobs.
+    EXPECT_LT(listed, 16LL * (kW / 16) * (kH / 16) * 60) << direction;
+  }
+}
+
+}  // namespace
+}  // namespace softtrace
