@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -45,6 +46,7 @@ void sample_offset(int s, double& dx, double& dy) {
 struct TracedSample {
   Ray ray;
   TraceHit hit;
+  int list = -1;  // the kept copy (Work::kept) of the blob list hit.blobs points at, if any
 };
 
 // A pixel of the tile whose samples are traced: samples[first, first + count) of its Work.
@@ -67,6 +69,12 @@ struct Work {
   std::vector<ShadowBeams::Point> points;
   std::vector<int> point_starts;
   ShadowBeams::Lists shadow_lists;
+  // The blob lists the tile's hits take their normals from (TraceHit::blobs): a beam's list is
+  // overwritten by the next beam of its level before the tile is shaded, so the lists hits point
+  // at are copied here, one per object per smallest beam; kept[0, n_kept) are this tile's.
+  std::vector<BlobBeam> kept;
+  std::vector<int> kept_object;
+  size_t n_kept = 0;
 };
 
 // One frame's pixels, traced beam by beam. Tiles and beams are aligned to the full frame, never
@@ -101,7 +109,11 @@ class FrameTracer {
     work.blobs.resize(size_t(kBeamLevels) * objects_);
     work.samples.clear();
     work.pixels.clear();
+    work.n_kept = 0;
     beam(tx, ty, 0, nullptr, area, pass, work);
+    // The copies are all made (Work::kept no longer grows): the hits may point at them.
+    for (TracedSample& t : work.samples)
+      if (t.list >= 0) t.hit.blobs = &work.kept[size_t(t.list)];
     shade_tile(pass, work);
   }
 
@@ -148,9 +160,39 @@ class FrameTracer {
       return;
     }
     const BeamClear certified{fr.forward, clear, blobs};
+    const size_t first = work.samples.size();
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
+    keep_lists(blobs, first, work);
+  }
+
+  // The hits of samples [first, end) whose normals take a list of `blobs` (this beam's, one per
+  // object) point at a kept copy of it instead (TracedSample::list): the next beam of this level
+  // overwrites `blobs` before the tile is shaded.
+  void keep_lists(const BlobBeam* blobs, size_t first, Work& work) const {
+    const size_t k0 = work.n_kept;
+    for (size_t s = first; s < work.samples.size(); ++s) {
+      TraceHit& hit = work.samples[s].hit;
+      if (!hit.blobs) continue;
+      const BlobBeam* list = hit.blobs;
+      hit.blobs = nullptr;
+      const std::less<const BlobBeam*> before;  // a total order, also for unrelated pointers
+      if (before(list, blobs) || !before(list, blobs + objects_)) continue;  // the normal queries
+      const int o = static_cast<int>(list - blobs);
+      size_t k = k0;
+      while (k < work.n_kept && work.kept_object[k] != o) ++k;
+      if (k == work.n_kept) {
+        if (work.kept.size() == k) {
+          work.kept.emplace_back();
+          work.kept_object.push_back(0);
+        }
+        work.kept[k] = blobs[o];  // reuses the copy's storage from earlier tiles
+        work.kept_object[k] = o;
+        ++work.n_kept;
+      }
+      work.samples[s].list = static_cast<int>(k);
+    }
   }
 
   // The camera rays of pixel (x, y) of the pass, traced into work.samples (none where the pass
