@@ -28,6 +28,21 @@ void add_camera_options(CLI::App* command, CameraArgs& view) {
       ->check(finite_number());
 }
 
+// --width, --height and --scale (which excludes the other two), as render and bench take them.
+void add_size_options(CLI::App* command, int& width, int& height, double& scale) {
+  auto* w = command
+                ->add_option("--width", width,
+                             "Image width; alone, the height follows the scene's aspect")
+                ->check(integer_in(1, 16384));
+  auto* h = command
+                ->add_option("--height", height,
+                             "Image height; alone, the width follows the scene's aspect")
+                ->check(integer_in(1, 16384));
+  command->add_option("--scale", scale, "Scale the scene's width and height by F")
+      ->check(number_above_zero())
+      ->excludes(w, h);
+}
+
 // The command line's parser. Setting up every command's options took 0.9 M instructions at
 // each start; a run that names its command sets up only that command's (the others keep their
 // names and summaries), and anything but a clean parse (an error, --help, --version) is parsed
@@ -68,19 +83,7 @@ CommandLine::CommandLine(const std::string& only) {
     render->add_option("scene", r.scene, "Scene file (JSON with comments)")->required();
     render->add_option("-o,--output", r.outputs,
                        "Output image(s), .exr or .png; repeat for several (default: <scene>.exr)");
-    auto* render_width =
-        render
-            ->add_option("--width", r.width,
-                         "Image width; alone, the height follows the scene's aspect")
-            ->check(integer_in(1, 16384));
-    auto* render_height =
-        render
-            ->add_option("--height", r.height,
-                         "Image height; alone, the width follows the scene's aspect")
-            ->check(integer_in(1, 16384));
-    render->add_option("--scale", r.scale, "Scale the scene's width and height by F")
-        ->check(number_above_zero())
-        ->excludes(render_width, render_height);
+    add_size_options(render, r.width, r.height, r.scale);
     render->add_option("--spp", r.spp, "Samples per pixel (overrides the scene)")
         ->check(integer_in(1, 4096));
     render
@@ -203,19 +206,7 @@ CommandLine::CommandLine(const std::string& only) {
   bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
   if (all || only == "bench") {
     bench->add_option("scene", b.scene, "Scene file")->required();
-    auto* bench_width =
-        bench
-            ->add_option("--width", b.width,
-                         "Image width; alone, the height follows the scene's aspect")
-            ->check(integer_in(1, 16384));
-    auto* bench_height =
-        bench
-            ->add_option("--height", b.height,
-                         "Image height; alone, the width follows the scene's aspect")
-            ->check(integer_in(1, 16384));
-    bench->add_option("--scale", b.scale, "Scale the scene's width and height by F")
-        ->check(number_above_zero())
-        ->excludes(bench_width, bench_height);
+    add_size_options(bench, b.width, b.height, b.scale);
     bench->add_option("--threads", b.threads, "Worker threads (default: all cores)")
         ->check(integer_in(1, 1024));
     bench->add_option("--repeat", b.repeat, "Timed frames (default 3)")->check(integer_in(1, 1000));

@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "mixed_blob_cloud.h"
 #include "render/camera.h"
 #include "render/shadow_beams.h"
 #include "scene/scene.h"
@@ -20,53 +21,17 @@
 namespace softtrace {
 namespace {
 
-std::string cloud(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> c(-20, 20), u(0, 1);
-  std::string children;
-  for (int i = 0; i < 160; ++i) {
-    const auto v = [&] {
-      return "[" + std::to_string(c(rng)) + "," + std::to_string(c(rng)) + "," +
-             std::to_string(c(rng)) + "]";
-    };
-    const std::string r = std::to_string(1.5 + 3 * u(rng));
-    std::string child = R"({"type":"soft_object","potential":{"type":"murakami"},)";
-    switch (i % 4) {
-      case 0:  // a ball
-        child += R"("translate":)" + v() + R"(,"distance":{"type":"lp_metric","radii":[)" + r +
-                 "," + r + "," + r + R"(],"n":2}})";
-        break;
-      case 1:  // a rotated ellipsoid, some of negative strength
-        child += R"("strength":)" + std::string(i % 8 == 1 ? "-0.5" : "1") +
-                 R"(,"rotate":{"axis":[1,2,3],"deg":)" + std::to_string(90 * u(rng)) +
-                 R"(},"translate":)" + v() + R"(,"distance":{"type":"lp_metric","radii":[)" + r +
-                 ",2,1],\"n\":2}}";
-        break;
-      case 2:  // a capsule
-        child += R"("distance":{"type":"segment","p0":)" + v() + R"(,"p1":)" + v() +
-                 R"(,"radius":)" + r + "}}";
-        break;
-      case 3:  // a sheared capsule
-        child += R"("matrix":[[1,0.9,0,)" + std::to_string(c(rng)) + R"(],[0,0.5,0,)" +
-                 std::to_string(c(rng)) + R"(],[0.3,0,1,)" + std::to_string(c(rng)) +
-                 R"(]],"distance":{"type":"segment","p0":[-3,0,0],"p1":[3,0,0],"radius":)" + r +
-                 "}}";
-        break;
-    }
-    children += (i ? "," : "") + child;
-  }
-  return children;
-}
-
 TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
   for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
-    const Scene scene = parse_scene(
-        R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" + cloud(rng) +
-            R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
+    const Scene scene =
+        parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+                        mixed_blob_cloud(rng) +
+                        R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
             "lights": [{"type": "directional", "direction": )" +
-            std::string(direction) + "}]}",
-        "<test>");
+                        std::string(direction) + "}]}",
+                    "<test>");
     const std::vector<TracedObject> objects = traced_objects(scene);
     const SceneTracers tracers(objects, LipschitzMode::Local);
     const ObjectTracer& tr = tracers[0];
