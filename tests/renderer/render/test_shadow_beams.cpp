@@ -6,12 +6,17 @@
 // hit (Query::Nearest). The cloud mixes balls, rotated ellipsoids, capsules, a sheared capsule and
 // negative strengths; the points are camera hits on it and on a floor below it, lifted along the
 // normal as shade() lifts them, and the light comes from above and from below (through the cloud
-// onto the floor, and from the floor's side).
+// onto the floor, and from the floor's side). And the frame, which traces a tile before shading
+// it, gives every pixel the point query's normal.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
 #include <random>
 #include <string>
 
+#include "cli_util.h"
+#include "io/image_file.h"
 #include "mixed_blob_cloud.h"
 #include "render/camera.h"
 #include "render/shadow_beams.h"
@@ -137,6 +142,49 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
     // The blocks' lists are a few of the 160 blobs.
     EXPECT_LT(listed, 16LL * (kW / 16) * (kH / 16) * 60) << direction;
   }
+}
+
+// The frame traces a whole tile's camera rays before it shades any (the shadow lists need their
+// hits), and a hit's normal takes the blob list of the 4-pixel beam that traced it
+// (TraceHit::blobs): the next beam of the tile overwrites that list before shading unless the
+// frame keeps it. Every pixel's normal must be the point query's at its hit.
+TEST(FrameNormals, EveryPixelsNormalIsThePointQuerysAtItsHit) {
+  std::mt19937_64 rng(5);
+  const std::string text =
+      R"({"camera":{"eye":[60,-80,50],"target":[0,0,0],"up":[0,0,1],"fov":50},)"
+      R"("objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+      mixed_blob_cloud(rng) + "]}}]}";
+  const std::string dir = test::temp_dir("frame_normals");
+  { std::ofstream(dir + "/cloud.json") << text; }
+  constexpr int kW = 96, kH = 64;
+  const test::RunResult r = test::run_softtrace(
+      "render " + dir + "/cloud.json -q --width " + std::to_string(kW) + " --height " +
+      std::to_string(kH) + " --aov depth,normal -o " + dir + "/n.exr");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const ImageFile img = read_image(dir + "/n.exr");
+  const int z = img.channel("Z"), nx = img.channel("N.X"), ny = img.channel("N.Y"),
+            nz = img.channel("N.Z");
+  ASSERT_TRUE(z >= 0 && nx >= 0 && ny >= 0 && nz >= 0);
+  const Scene scene = parse_scene(text, "<test>");
+  const ObjectTracer tr(trace_target(scene.objects[0]), LipschitzMode::Local);
+  ASSERT_TRUE(tr.blob_sum());
+  const ViewCamera camera(scene.camera, kW, kH);
+  int hits = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float t = img.at(x, y, z);
+      if (!std::isfinite(t)) continue;
+      ++hits;
+      const Ray ray = camera.generate(x + 0.5, y + 0.5);
+      // Z is stored as a float: the point is off the hit by ~1e-7 of its distance, which moves
+      // the normal far less than the tolerance; a wrong list's normal is off by ~1.
+      Vec3 n = tr.normal(ray.o + ray.d * double(t));
+      if (dot(n, ray.d) > 0) n = n * -1.0;
+      ASSERT_NEAR(img.at(x, y, nx), n.x, 1e-3) << "pixel " << x << "," << y;
+      ASSERT_NEAR(img.at(x, y, ny), n.y, 1e-3) << "pixel " << x << "," << y;
+      ASSERT_NEAR(img.at(x, y, nz), n.z, 1e-3) << "pixel " << x << "," << y;
+    }
+  EXPECT_GT(hits, kW * kH / 10);
 }
 
 }  // namespace
