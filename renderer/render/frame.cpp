@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <functional>
 #include <optional>
 #include <vector>
 
@@ -30,6 +29,8 @@ constexpr int kTile = 16;  // a task's pixels a side
 constexpr int kBeam = 4;
 constexpr int kBeamLevels = 3;  // 16, 8, 4
 static_assert(kTile == kBeam << (kBeamLevels - 1));
+// The tile, its quarters and theirs: 1 + 4 + 16 (the sum of 4^level over the levels).
+constexpr int kBeamsPerTile = ((1 << (2 * kBeamLevels)) - 1) / 3;
 
 // Sample s of a pixel: s = 0 is the centre (its hit feeds the AOVs); the rest follow the R2
 // low-discrepancy sequence, so results need no random state.
@@ -46,7 +47,6 @@ void sample_offset(int s, double& dx, double& dy) {
 struct TracedSample {
   Ray ray;
   TraceHit hit;
-  int list = -1;  // the kept copy (Work::kept) of the blob list hit.blobs points at, if any
 };
 
 // A pixel of the tile whose samples are traced: samples[first, first + count) of its Work.
@@ -60,8 +60,12 @@ struct Work {
   RayWork primary, shadow;
   // Each beam level's certified depth per object ([level * objects + object]).
   std::vector<double> clear;
-  // Each beam level's blobs per object, for sums of polynomial blobs (the same indexing).
+  // Each beam's blobs per object, for sums of polynomial blobs ([beam * objects + object], the
+  // tile's beams numbered as beam() visits them). One slot per beam, not per level: a hit's
+  // normal takes its beam's list (TraceHit::blobs) when the tile is shaded, after the tile's
+  // other beams are traced.
   std::vector<BlobBeam> blobs;
+  int beams = 0;  // the slots of `blobs` this tile has taken
   // The tile's camera rays, traced before any is shaded: their hits place the shadow rays'
   // blocks (ShadowBeams).
   std::vector<TracedSample> samples;
@@ -69,12 +73,6 @@ struct Work {
   std::vector<ShadowBeams::Point> points;
   std::vector<int> point_starts;
   ShadowBeams::Lists shadow_lists;
-  // The blob lists the tile's hits take their normals from (TraceHit::blobs): a beam's list is
-  // overwritten by the next beam of its level before the tile is shaded, so the lists hits point
-  // at are copied here, one per object per smallest beam; kept[0, n_kept) are this tile's.
-  std::vector<BlobBeam> kept;
-  std::vector<int> kept_object;
-  size_t n_kept = 0;
 };
 
 // One frame's pixels, traced beam by beam. Tiles and beams are aligned to the full frame, never
@@ -106,23 +104,20 @@ class FrameTracer {
   // Its camera rays are all traced first, then shaded block by block (shade_tile).
   void tile(int tx, int ty, const PixelRect& area, Pass pass, Work& work) const {
     work.clear.resize(size_t(kBeamLevels) * objects_);
-    work.blobs.resize(size_t(kBeamLevels) * objects_);
+    work.blobs.resize(size_t(kBeamsPerTile) * objects_);
+    work.beams = 0;
     work.samples.clear();
     work.pixels.clear();
-    work.n_kept = 0;
-    beam(tx, ty, 0, nullptr, area, pass, work);
-    // The copies are all made (Work::kept no longer grows): the hits may point at them.
-    for (TracedSample& t : work.samples)
-      if (t.list >= 0) t.hit.blobs = &work.kept[size_t(t.list)];
+    beam(tx, ty, 0, nullptr, nullptr, area, pass, work);
     shade_tile(pass, work);
   }
 
  private:
   // The pixels [x, x + size) x [y, y + size) of the full frame, size = kTile >> level, from the
-  // depths `from` (per object) that the beam holding it certified. A beam's place and its
-  // certified depths depend only on where it is in the full frame, not on `area`.
-  void beam(int x, int y, int level, const double* from, const PixelRect& area, Pass pass,
-            Work& work) const {
+  // depths `from` and the blob lists `parent` (per object) of the beam holding it. A beam's place
+  // and its certified depths depend only on where it is in the full frame, not on `area`.
+  void beam(int x, int y, int level, const double* from, const BlobBeam* parent,
+            const PixelRect& area, Pass pass, Work& work) const {
     const int size = kTile >> level;
     if (x >= area.x1 || x + size <= area.x0 || y >= area.y1 || y + size <= area.y0 || cancelled())
       return;
@@ -145,54 +140,24 @@ class FrameTracer {
     }
     // The beam's work is the primary rays' (its passes are counted, not its rays).
     work.primary.box_evals += beam_work.box_evals;
-    BlobBeam* blobs = work.blobs.data() + size_t(level) * objects_;
+    BlobBeam* blobs = work.blobs.data() + size_t(work.beams++) * objects_;
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt_.tracers.tracer(o);
       if (tracer && tracer->blob_sum())
-        tracer->blob_beam(fr, level > 0 ? blobs - objects_ + o : nullptr, blobs + o);
+        tracer->blob_beam(fr, parent ? parent + o : nullptr, blobs + o);
       else
         blobs[o].valid = false;
     }
     if (level + 1 < kBeamLevels) {
       const int h = size / 2;
       for (int q = 0; q < 4; ++q)
-        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, area, pass, work);
+        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, area, pass, work);
       return;
     }
     const BeamClear certified{fr.forward, clear, blobs};
-    const size_t first = work.samples.size();
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
-    keep_lists(blobs, first, work);
-  }
-
-  // The hits of samples [first, end) whose normals take a list of `blobs` (this beam's, one per
-  // object) point at a kept copy of it instead (TracedSample::list): the next beam of this level
-  // overwrites `blobs` before the tile is shaded.
-  void keep_lists(const BlobBeam* blobs, size_t first, Work& work) const {
-    const size_t k0 = work.n_kept;
-    for (size_t s = first; s < work.samples.size(); ++s) {
-      TraceHit& hit = work.samples[s].hit;
-      if (!hit.blobs) continue;
-      const BlobBeam* list = hit.blobs;
-      hit.blobs = nullptr;
-      const std::less<const BlobBeam*> before;  // a total order, also for unrelated pointers
-      if (before(list, blobs) || !before(list, blobs + objects_)) continue;  // the normal queries
-      const int o = static_cast<int>(list - blobs);
-      size_t k = k0;
-      while (k < work.n_kept && work.kept_object[k] != o) ++k;
-      if (k == work.n_kept) {
-        if (work.kept.size() == k) {
-          work.kept.emplace_back();
-          work.kept_object.push_back(0);
-        }
-        work.kept[k] = blobs[o];  // reuses the copy's storage from earlier tiles
-        work.kept_object[k] = o;
-        ++work.n_kept;
-      }
-      work.samples[s].list = static_cast<int>(k);
-    }
   }
 
   // The camera rays of pixel (x, y) of the pass, traced into work.samples (none where the pass
