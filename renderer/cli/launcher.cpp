@@ -4,6 +4,8 @@
 // block anything; a signal then would kill it without a word. A signal mask survives exec, so a
 // signal in that time waits for the renderer's watcher thread (signals.h). Plain libc and linked
 // statically where the build allows: this program's own start-up is the only unguarded moment.
+// A static build normally never gets here: launcher_entry.cpp does the same before the C library
+// starts, and only what it did not expect reaches main(), which then reports it.
 #include <unistd.h>
 
 #include <cerrno>
