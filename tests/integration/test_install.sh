@@ -17,7 +17,7 @@ fail() {
 rm -rf "$work"
 mkdir -p "$work"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log"
-for f in bin/softtrace bin/softtrace-core include/softtrace/eval/eval.h include/softtrace/loader/build.h \
+for f in bin/softtrace bin/softtrace-core bin/softtrace-exr.so include/softtrace/eval/eval.h include/softtrace/loader/build.h \
   include/softtrace/scene/scene.h lib/cmake/softtrace/softtraceConfig.cmake \
   lib/cmake/softtrace/softtraceConfigVersion.cmake lib/pkgconfig/softtrace-fieldlib.pc \
   share/man/man1/softtrace.1 share/doc/softtrace/README.md; do
@@ -36,6 +36,11 @@ MANPATH=$prefix/share/man man -w softtrace | grep -qx "$prefix/share/man/man1/so
   fail "man does not find softtrace.1 under the prefix"
 "$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig000_12b_soft_blend.json" --scale 0.1 -q \
   -o "$work/installed_scene.png" || fail "the installed binary cannot render an installed scene"
+# EXR goes through bin/softtrace-exr.so, which softtrace-core opens beside itself.
+"$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig000_12b_soft_blend.json" --scale 0.1 -q \
+  -o "$work/installed_scene.exr" || fail "the installed binary cannot write an EXR"
+"$prefix/bin/softtrace" diff "$work/installed_scene.exr" "$work/installed_scene.exr" >/dev/null ||
+  fail "the installed binary cannot read its EXR back"
 # Every fieldlib header is installed, and every installed header compiles on its own (an
 # installed header that includes one left out would not).
 # Headers sit in their layer folders and include each other rooted there ("eval/eval.h").
