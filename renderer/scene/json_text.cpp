@@ -86,4 +86,16 @@ json parse_json_located(const std::string& text, const std::string& name) {
   return doc;
 }
 
+void release_json(nlohmann::json& doc) {
+  if (doc.is_object()) {
+    auto& members = doc.get_ref<nlohmann::json::object_t&>();
+    for (auto& member : members) release_json(member.second);
+    members.clear();
+  } else if (doc.is_array()) {
+    auto& items = doc.get_ref<nlohmann::json::array_t&>();
+    for (auto& item : items) release_json(item);
+    items.clear();
+  }
+}
+
 }  // namespace softtrace

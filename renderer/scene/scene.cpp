@@ -239,7 +239,8 @@ namespace {
 
 Scene parse_scene_text(std::shared_ptr<const std::string> text_ptr, const std::string& name) {
   const std::string& text = *text_ptr;
-  const json doc = parse_json_text(text, name);
+  json doc = parse_json_text(text, name);
+  const ReleasedAtScopeEnd release(doc);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
   root.check_keys(scene_keys("top level"));
