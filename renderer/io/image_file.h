@@ -2,7 +2,9 @@
 // (`softtrace diff`, tests) and the two writers (film.cpp, diff's difference image).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -53,8 +55,14 @@ struct PngPixels {
   int width = 0, height = 0, channels = 0;
   std::vector<uint8_t> bytes;
 };
-// The byte that stores v (clamped to [0,1], NaN as 0), as write_png stores every value.
-uint8_t png_sample(float v);
+// The byte that stores v (clamped to [0,1], NaN as 0), as write_png stores every value. Inline:
+// a render's PNG with alpha takes one a pixel (0.3 ms of a 320x240 frame's write as a call).
+inline uint8_t png_sample(float v) {
+  v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+  // std::lround(v * 255.0f) without the library call: the float product plus 0.5 is exact in a
+  // double, and the floor of a non-negative x + 0.5 rounds halves away from zero as lround does.
+  return uint8_t(std::floor(double(v * 255.0f) + 0.5));
+}
 void write_png(const std::string& path, const PngPixels& image, bool srgb);
 
 }  // namespace softtrace

@@ -122,13 +122,6 @@ ImageFile read_png(const std::string& path) {
   return img;
 }
 
-uint8_t png_sample(float v) {
-  v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-  // std::lround(v * 255.0f) without the library call: the float product plus 0.5 is exact in a
-  // double, and the floor of a non-negative x + 0.5 rounds halves away from zero as lround does.
-  return uint8_t(std::floor(double(v * 255.0f) + 0.5));
-}
-
 void write_png(const std::string& path, const ImageFile& img, bool srgb) {
   PngPixels png{img.width, img.height, int(img.channels.size()), {}};
   png.bytes.resize(img.pixels.size());
