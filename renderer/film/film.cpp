@@ -69,9 +69,22 @@ PngPixels png_pixels(const Film& film, const OutputOptions& opt, const FrameInfo
   const size_t npix = size_t(film.width) * film.height;
   png.bytes.resize(npix * nc);
   const SrgbBytes& srgb_byte = SrgbBytes::get();
+  // A pixel nothing covers (most of a sparse frame) takes the bytes below, which are what the
+  // loop's expressions give it: with straight alpha its colour is 0 and png_sample(0) is 0;
+  // flattened, 0 + background * (1 - 0) is the background.
+  const bool straight = opt.png_alpha && !opt.flatten;
+  uint8_t empty[4] = {0, 0, 0, 0};
+  if (!straight) {
+    for (int k = 0; k < 3; ++k) empty[k] = srgb_byte(0.0f + float(info.background[k]) * (1 - 0.0f));
+    empty[3] = png_sample(1.0f);
+  }
   for (size_t i = 0; i < npix; ++i) {
     uint8_t* out = &png.bytes[i * nc];
     const float* in = &film.rgba[i * 4];
+    if (straight ? !(in[3] > 0) : in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
+      std::copy(empty, empty + nc, out);
+      continue;
+    }
     // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
     for (int k = 0; k < 3; ++k)
       out[k] = srgb_byte(opt.png_alpha && !opt.flatten
