@@ -227,8 +227,8 @@ struct EmbreeScene::Impl {
   // a third of what a ground plane added to the 1000-blob frame (callgrind: 108 M of the camera
   // rays' instructions, 105 M of the shadow rays', against 2,190 M for the cloud alone), and an
   // unbounded plane's box culls nothing. The field is searched up to the nearest primitive hit,
-  // as Embree's walk asks it when it has visited the primitives first (an unbounded plane's box
-  // is entered first); the same pictures to the bit on the scenes with a field and primitives.
+  // as Embree's walk asks it when it has visited the primitives first; the same pictures to the
+  // bit on the scenes with a field and primitives (61 scenes and the floor frame checked).
   std::vector<int> direct_primitives;
   int direct_field = -1;
   ~Impl() {
