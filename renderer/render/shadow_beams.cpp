@@ -70,6 +70,8 @@ void ShadowBeams::build(int level, const Point* points, int n, Lists& lists) con
         continue;
       const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
       tracers_[o].shadow_beam(prism, parent, &list);
+      // The blocks' lists, which their rays take, pick the blobs that may decide them alone.
+      if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
     }
   }
 }

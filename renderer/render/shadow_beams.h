@@ -4,7 +4,8 @@
 // the tile (ObjectTracer::shadow_beam), then narrowed for its quarters and their quarters. Each
 // shadow ray of a block takes its stretches' blobs from the block's list instead of walking the
 // sum's BVH; a ray the list does not hold (BlobBeam::holds) walks as before, so the answers are
-// the walk's to the bit.
+// the walk's to the bit. A block's list of positive blobs also names up to two balls that may
+// block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first.
 #pragma once
 
 #include <vector>

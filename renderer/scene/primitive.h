@@ -21,6 +21,8 @@ struct Primitive {
   double distance = 0, r0 = 1, r1 = 1, hole = 0;
   Affine to_world;
   Mat3 to_object;  // the inverse of to_world.linear
+  // to_world and to_object are the identity (place_primitive): the tracer takes the ray as it is.
+  bool unplaced = false;
   // Where the renderer looks for it: its box in the world, an infinite plane's clipped to within
   // kMaxPosition (the tracer drops hits beyond; seen from any eye within the scene's ranges, that
   // edge lies far below a pixel from the horizon).

@@ -54,6 +54,15 @@ std::string place_primitive(Primitive& s, const Affine& m) {
   s.to_world = compose(m, s.to_world);
   if (!invert(s.to_world.linear, s.to_object))
     return "expected an invertible placement (scale and matrix)";
+  const auto identity = [](const Mat3& m) {
+    const Mat3 one;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        if (!(m.r[r][c] == one.r[r][c])) return false;
+    return true;
+  };
+  s.unplaced =
+      identity(s.to_world.linear) && identity(s.to_object) && max_abs(s.to_world.offset) == 0;
   const Box local = local_box(s);
   if (local.bounded()) {
     s.world_box = Box();

@@ -14,6 +14,10 @@ namespace softtrace {
 
 namespace {
 
+// At most this many primitives beside one field are asked directly (EmbreeScene::Impl): each
+// costs its exact test on every ray, where Embree's boxes would cull the bounded ones.
+constexpr size_t kDirectPrimitives = 4;
+
 // Extends Embree's context with what our callbacks report back; Embree passes the pointer to
 // the callbacks unchanged, so the context must be the first member.
 // The callbacks trace the double-precision ray kept here; Embree's float copy only culls.
@@ -218,6 +222,15 @@ struct EmbreeScene::Impl {
   // round trip were 8 % of a dense blob cloud's frame (1000 blobs, 640x480); the tracer clips the
   // ray to the box in double itself.
   bool lone_field = false;
+  // The scene is one field and a few primitives (a blob on a floor): a camera or shadow ray asks
+  // each of them directly, the primitives first. Embree's walk and its callbacks' round trips were
+  // a third of what a ground plane added to the 1000-blob frame (callgrind: 108 M of the camera
+  // rays' instructions, 105 M of the shadow rays', against 2,190 M for the cloud alone), and an
+  // unbounded plane's box culls nothing. The field is searched up to the nearest primitive hit,
+  // as Embree's walk asks it when it has visited the primitives first; the same pictures to the
+  // bit on the scenes with a field and primitives (61 scenes and the floor frame checked).
+  std::vector<int> direct_primitives;
+  int direct_field = -1;
   ~Impl() {
     if (scene) rtcReleaseScene(scene);  // before the device (`device` is destroyed after)
   }
@@ -261,6 +274,23 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
   rtcCommitScene(impl_->scene);
   device.check("building the scene");
   impl_->lone_field = impl_->data.size() == 1 && impl_->data[0].tracer && !tracers.object(0).mesh;
+  int fields = 0, others = 0;
+  std::vector<int> primitives;
+  for (int i = 0; i < tracers.size(); ++i) {
+    const TracedObject& o = tracers.object(i);
+    if (impl_->data[i].tracer && !o.mesh) {
+      ++fields;
+      impl_->direct_field = i;
+    } else if (o.shape && !o.mesh && !o.csg()) {
+      primitives.push_back(i);
+    } else {
+      ++others;
+    }
+  }
+  if (fields == 1 && others == 0 && !primitives.empty() && primitives.size() <= kDirectPrimitives)
+    impl_->direct_primitives = primitives;
+  else
+    impl_->direct_field = -1;
 }
 
 EmbreeScene::~EmbreeScene() = default;
@@ -309,6 +339,31 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
     }
     return h;
   }
+  if (impl_->direct_field >= 0 && inside.empty()) {
+    TraceHit h;
+    double t = tfar;
+    for (const int o : impl_->direct_primitives) {
+      const PrimitiveHit p = first_hit(*impl_->data[o].object_data->shape, ray, tnear, t);
+      if (!p.hit || p.t >= t) continue;
+      t = p.t;
+      h.hit = true;
+      h.t = p.t;
+      h.object = o;
+      h.normal = p.normal;
+    }
+    const BlobBeam* list;
+    const MarchResult m =
+        field_hit(impl_->data[impl_->direct_field], ray, tnear, t, beam, cos, h.work, &list);
+    if (m.hit && m.t < t) {
+      h.hit = true;
+      h.t = m.t;
+      h.object = impl_->direct_field;
+      h.on_box_face = m.on_box_face;
+      h.normal = {0, 0, 0};
+      h.blobs = list;
+    }
+    return h;
+  }
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
@@ -341,6 +396,14 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
 
 bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                            const BlobBeam* blobs) const {
+  if (impl_->direct_field >= 0) {  // any object's hit answers: the order changes no answer
+    for (const int o : impl_->direct_primitives)
+      if (occludes(*impl_->data[o].object_data->shape, ray, tnear, tfar)) return true;
+    const int o = impl_->direct_field;
+    return impl_->data[o]
+        .tracer->first_hit(ray, tnear, tfar, work, Query::Any, 0, blobs ? &blobs[o] : nullptr)
+        .hit;
+  }
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;

@@ -80,6 +80,11 @@ struct BlobBeam {
     double x, y, reach;
   };
   std::vector<Across> across;
+  // A shadow list of a 4-pixel block (ObjectTracer::shadow_blockers): balls each of which alone
+  // lifts the field above iso near every ray of the block, where all the list's blobs are
+  // positive (else none); and a bound of the rounding of any piece's polynomial made of them.
+  std::vector<int32_t> blockers;
+  double blockers_err = 0;
   // Whether the list holds for rays from o: from its eye, to the bit.
   bool from(const Vec3& o) const { return valid && o.x == eye.x && o.y == eye.y && o.z == eye.z; }
   // Whether the list holds for `ray`, and where on the entries' axis the ray starts: its point at
@@ -187,6 +192,8 @@ class ObjectTracer {
   // or from the list of a prism holding p (tracer_shadow_beam.cpp). Not valid for a tracer that
   // is no blob sum.
   void shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const;
+  // The blockers of a shadow list (BlobBeam::blockers), picked for the rays of its prism.
+  void shadow_blockers(BlobBeam* list) const;
 
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
@@ -236,6 +243,11 @@ class ObjectTracer {
   SegmentBounds segment_bounds(const Ray& ray, double a, double b, TraceCounters& work) const;
   // The radius of the ray's footprint at t (never below what rounding of t can resolve).
   double footprint(const Ray& ray, double t) const;
+  // A point of [t0, t1] where one of the list's blockers certainly lifts the field above iso, by
+  // far more than the search's rounding and over more than its finest pieces, if one does: the
+  // search of Query::Any would have found a crossing there or before (tracer_shadow_beam.cpp).
+  std::optional<double> blocked_by(const Ray& ray, double t0, double t1,
+                                   const BlobBeam& list) const;
   // Decides [a, c] (g(a) = ga < 0, g(c) = gc; either NaN where not known yet) by intervals and
   // spheres over halvings down to `finest` (and while the ray's work is below `budget`): clear,
   // the first sign change's bracket, or undecided where the halving stopped.

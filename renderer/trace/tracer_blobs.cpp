@@ -207,6 +207,12 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   if (beam && beam->holds(ray, &base)) {
     listed = beam->entries.data();
     n_listed = static_cast<int>(beam->entries.size());
+    // A shadow ray of a block whose blockers certify it ends before any stretch is read.
+    if (query == Query::Any && !beam->blockers.empty())
+      if (const std::optional<double> u = blocked_by(ray, t0, t1, *beam)) {
+        ++work.point_evals;
+        return MarchResult{true, *u};
+      }
   }
   // A ray with few blobs to choose from (a sum of at most kListed, or a short list) takes each
   // one's span along its whole way once (ray_spans), and a stretch then only the blobs whose

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "trace/tracer.h"
+#include "trace/tracer_limits.h"
 
 namespace softtrace {
 
@@ -40,6 +41,7 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
   out->prism = p;
   out->entries.clear();
   out->across.clear();
+  out->blockers.clear();
   if (!blobs_) return;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double span =
@@ -92,6 +94,95 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
     for (int i = 0; i < found; ++i) keep(ids[i]);
   }
   out->valid = true;
+}
+
+// Blockers. The blobs of a sum of positive blobs are non-negative terms, so where one blob's own
+// potential exceeds iso, so does the field: a shadow ray passing near enough to one ball's centre
+// is blocked whatever the others do. Most shadow rays under the 1000-blob cloud (the floor's in
+// its shadow) pass that near a ball; found by the stretches, each cost a query, the terms of its
+// blobs, the events' sort and the pieces before the first one that decided.
+namespace {
+// A block keeps at most this many blockers (the first one usually decides its rays).
+constexpr int kBlockers = 2;
+}  // namespace
+
+void ObjectTracer::shadow_blockers(BlobBeam* list) const {
+  list->blockers.clear();
+  if (!blobs_ || !list->valid || !list->parallel) return;
+  const ShadowPrism& p = list->prism;
+  const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
+  const double iso = target_.iso;
+  // The rounding of a piece's polynomial (stretch_polynomial's err): (128 + n) ulps of the sum of
+  // its terms' magnitudes, each at most |c2| m^2 + |c3| m^3 with m = |R0| + |R1| + |R2| <= 9 over
+  // a piece inside the support (R0 <= h2 <= 1, |R1| and R2 at most 4 h2), and n at most three
+  // terms (a capsule's) per listed blob. Twice that.
+  double magnitude = iso;
+  int32_t best[kBlockers];
+  double best_z[kBlockers];
+  int picked = 0;
+  for (size_t i = 0; i < list->entries.size(); ++i) {
+    const BlobBeam::Entry& e = list->entries[i];
+    const BlobSum::Blob& b = blobs[e.id];
+    // A negative blob may cancel a blocker's potential: no blob certifies alone.
+    if (!(b.c2 >= 0 && b.c3 >= 0)) return;
+    magnitude += 3 * (100 * b.c2 + 1000 * b.c3);
+    if (!(b.inv_r2 > 0)) continue;  // only balls: the rays' nearest points are the across ones
+    // A choice, not a certificate (blocked_by decides each ray): a ball whose potential at the
+    // rectangle's farthest corner from its centre is above iso by 1e-3 of it.
+    const BlobBeam::Across& a = list->across[i];
+    const double dx = std::max(std::abs(a.x - p.x0), std::abs(a.x - p.x1)),
+                 dy = std::max(std::abs(a.y - p.y0), std::abs(a.y - p.y1));
+    const double r = 1 - (dx * dx + dy * dy) * b.inv_r2;
+    if (!(r > 0 && r * r * (b.c2 + b.c3 * r) > iso * (1 + 1e-3))) continue;
+    // The ones farthest towards the light: most likely ahead of rays that start inside the cloud.
+    const double z = 0.5 * (e.near + e.far);
+    int k = picked < kBlockers ? picked++ : kBlockers;
+    while (k > 0 && best_z[k - 1] < z) {
+      if (k < kBlockers) best[k] = best[k - 1], best_z[k] = best_z[k - 1];
+      --k;
+    }
+    if (k < kBlockers) best[k] = e.id, best_z[k] = z;
+  }
+  const double n = 3.0 * static_cast<double>(list->entries.size());
+  list->blockers_err = 2 * (128 + n) * std::numeric_limits<double>::epsilon() * magnitude;
+  list->blockers.assign(best, best + picked);
+}
+
+std::optional<double> ObjectTracer::blocked_by(const Ray& ray, double t0, double t1,
+                                               const BlobBeam& list) const {
+  using namespace tracer_limits;
+  const double iso = target_.iso;
+  // The search halves a piece down to kFinestDeep of its tolerance, kDecide footprints at the
+  // piece's start (between the footprints at t0 and t1: it grows along the ray), and no further
+  // than its stack's 64 levels allow (a piece is at most t1 - t0 long). A stretch of at least
+  // twice that where the field is above iso holds the end of a finest piece, whose last Bernstein
+  // coefficient is the polynomial's value there (a Bracket), or the start of a piece (AtStart),
+  // unless the search found a crossing before it: either way a hit. Such a stretch here is
+  // [u - w, u + w].
+  const double finest = kFinestDeep * kDecide;
+  const double w = 2 * finest * footprint(ray, t1);
+  if (!(t1 - t0 < 0x1p60 * finest * footprint(ray, t0))) return std::nullopt;
+  const Vec3 o = segment(ray, t0, t1).a;
+  const double len = t1 - t0, reach = max_abs(ray.o) + std::abs(t0) + std::abs(t1);
+  for (const int32_t id : list.blockers) {
+    BlobSum::Term term;
+    if (blobs_->terms_of(&id, 1, o, ray.d, len, &term) != 1) continue;  // a ball: one term
+    if (!(term.exit - term.enter > 2 * w)) continue;
+    const BlobSum::Blob& b = blobs_->blobs()[id];
+    // What separates r here from r as a stretch computes it from its own start (BlobSum::span's
+    // eps, with the stretch's start anywhere in [t0, t1]), taken off r.
+    const Vec3 oc = o - b.centre;
+    const double far = length(oc) + len;
+    const double dr = 1e-6 + 1e-12 * far * far * b.inv_r2 + 1e-9 * std::sqrt(3 * b.inv_r2) * reach;
+    const double u = std::clamp(term.mid, term.enter + w, term.exit - w);
+    bool above = true;
+    for (const double x : {u - w, u + w}) {  // r is concave along the ray: its least at an end
+      const double r = term.h2 - term.alpha * (x - term.mid) * (x - term.mid) - dr;
+      above = above && r > 0 && r * r * (term.c2 + term.c3 * r) - iso > list.blockers_err;
+    }
+    if (above) return t0 + u;
+  }
+  return std::nullopt;
 }
 
 }  // namespace softtrace

@@ -26,16 +26,169 @@
 namespace softtrace {
 namespace {
 
+// 60 balls of positive strength in [-20, 20]^3, Murakami's and Wyvill's, the floor seen between
+// them: a sum whose blocks' lists pick blockers (BlobBeam::blockers).
+std::string positive_ball_cloud(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> c(-20, 20), u(0, 1);
+  std::string children;
+  for (int i = 0; i < 60; ++i) {
+    const std::string r = std::to_string(5 + 3 * u(rng));
+    children += std::string(i ? "," : "") + R"({"type":"soft_object","potential":{"type":")" +
+                (i % 3 ? "murakami" : "wyvill") + R"("},"strength":)" +
+                std::to_string(0.8 + 0.4 * u(rng)) + R"(,"translate":[)" + std::to_string(c(rng)) +
+                "," + std::to_string(c(rng)) + "," + std::to_string(c(rng)) +
+                R"(],"distance":{"type":"lp_metric","radii":[)" + r + "," + r + "," + r +
+                R"(],"n":2}})";
+  }
+  return children;
+}
+
 TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
-  for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
-    const Scene scene =
-        parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
-                        mixed_blob_cloud(rng) +
-                        R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
+  for (const int cloud : {0, 1})
+    for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
+      const Scene scene =
+          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+                          (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng)) +
+                          R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
             "lights": [{"type": "directional", "direction": )" +
-                        std::string(direction) + "}]}",
+                          std::string(direction) + "}]}",
+                      "<test>");
+      const std::vector<TracedObject> objects = traced_objects(scene);
+      const SceneTracers tracers(objects, LipschitzMode::Local);
+      const ObjectTracer& tr = tracers[0];
+      ASSERT_TRUE(tr.blob_sum());
+      const ShadowBeams beams(scene, tracers);
+      ASSERT_TRUE(beams.active());
+      const Vec3 along = -scene.lights[0].direction;
+      // The balls' frame finer (a block's rays must pass near enough one ball's centre).
+      const int kW = cloud ? 192 : 96, kH = cloud ? 128 : 64;
+      const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, cloud ? 40.0 : 60.0}, kW,
+                              kH);
+      // The camera hit of a ray, on the cloud (walked) or the floor z = -26, and its lifted point.
+      struct Lit {
+        ShadowBeams::Point point;
+        Vec3 origin;
+      };
+      const auto lit = [&](const Ray& ray, Lit* out) {
+        TraceCounters w;
+        const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
+        const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
+        if (!m.hit && floor_t < 0) return false;
+        const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
+        const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
+        const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
+        const double margin = 0.05 + 0.05 * u(rng);
+        out->point = {p, margin};
+        out->origin = p + n * (margin * u(rng));
+        return true;
+      };
+      int rays = 0, held = 0, blocked = 0, hits = 0, by_blocker = 0;
+      long long listed = 0;
+      ShadowBeams::Lists lists;
+      std::vector<Lit> tile, quarter, block;
+      std::vector<ShadowBeams::Point> points;
+      const auto build = [&](int level, const std::vector<Lit>& of) {
+        points.clear();
+        for (const Lit& l : of) points.push_back(l.point);
+        beams.build(level, points.data(), static_cast<int>(points.size()), lists);
+      };
+      for (int y = 0; y < kH; y += 16)
+        for (int x = 0; x < kW; x += 16) {
+          // The tile's points, quarter by quarter and block by block, as the frame orders them.
+          std::vector<Lit> by_block[16];
+          for (int py = y; py < y + 16; ++py)
+            for (int px = x; px < x + 16; ++px) {
+              Lit l;
+              if (!lit(camera.generate(px + u(rng), py + u(rng)), &l)) continue;
+              const int bx = (px - x) / 4, by = (py - y) / 4;
+              by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(l);
+            }
+          tile.clear();
+          for (const auto& b : by_block) tile.insert(tile.end(), b.begin(), b.end());
+          build(0, tile);
+          for (int q = 0; q < 4; ++q) {
+            quarter.clear();
+            for (int k = 0; k < 4; ++k)
+              quarter.insert(quarter.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
+            build(1, quarter);
+            for (int k = 0; k < 4; ++k) {
+              build(2, by_block[q * 4 + k]);
+              const ShadowLists view = beams.view(2, lists);
+              const BlobBeam* list = view.of(0);
+              ASSERT_NE(list, nullptr);
+              if (list[0].valid) listed += static_cast<long long>(list[0].entries.size());
+              for (const Lit& l : by_block[q * 4 + k]) {
+                const Ray ray{l.origin, along, 0, 0};
+                double base;
+                ++rays;
+                // A block's list holds each of its rays; a block without one sends none into the
+                // cloud's box.
+                if (list[0].valid) {
+                  ASSERT_TRUE(list[0].holds(ray, &base)) << "ray " << rays;
+                }
+                held += list[0].valid;
+                TraceCounters a, b;
+                const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
+                const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list[0]);
+                if (!list[0].valid) {
+                  ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
+                }
+                ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+                // A ray a blocker decides costs one point and no stretch; any other one the same
+                // stretches as the walk, to the bit.
+                const bool decided = !list[0].blockers.empty() && with.hit && b.box_evals == 0 &&
+                                     b.point_evals == 1 && a.box_evals > 0;
+                by_blocker += decided;
+                if (!decided) {
+                  if (walk.hit) {
+                    ASSERT_EQ(with.t, walk.t) << "ray " << rays;
+                  }
+                  ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
+                }
+                blocked += walk.hit;
+                TraceCounters c, d;
+                const MarchResult near = tr.first_hit(ray, 0, 1e3, c);
+                const MarchResult near_with =
+                    tr.first_hit(ray, 0, 1e3, d, Query::Nearest, 0, &list[0]);
+                ASSERT_EQ(near_with.hit, near.hit) << "ray " << rays;
+                if (near.hit) {
+                  ASSERT_EQ(near_with.t, near.t) << "ray " << rays;
+                }
+                hits += near.hit;
+              }
+            }
+          }
+        }
+      // Many rays go through a list, and both answers occur.
+      EXPECT_GT(held, rays / 6) << direction;
+      EXPECT_GT(blocked, rays / 30) << direction;
+      EXPECT_LT(blocked, rays * 9 / 10) << direction;
+      EXPECT_EQ(hits, blocked) << direction;
+      // The blocks' lists are a few of the 160 blobs.
+      EXPECT_LT(listed, 16LL * (kW / 16) * (kH / 16) * 60) << direction;
+      // Over the balls of positive strength, blockers decide many of the blocked rays (the floor's
+      // under a ball).
+      if (cloud == 1) {
+        EXPECT_GT(by_blocker, blocked / 20) << direction;
+      }
+    }
+}
+
+// A blocker is certified by its own potential only where no blob of the list can take from the
+// field: a ball cancelled by a ball of negative strength at the same place (the field is 0 there)
+// blocks no ray, and one beside a positive ball does.
+TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
+  for (const char* strength : {"-1", "0.2"}) {
+    const Scene scene =
+        parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+                    R"({"type":"soft_object","potential":{"type":"murakami"},)"
+                    R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
+                    R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
+                        std::string(strength) +
+                        R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}}]}}],)"
+                        R"("lights": [{"type": "directional", "direction": [0, 0, -1]}]})",
                     "<test>");
     const std::vector<TracedObject> objects = traced_objects(scene);
     const SceneTracers tracers(objects, LipschitzMode::Local);
@@ -43,104 +196,21 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
     ASSERT_TRUE(tr.blob_sum());
     const ShadowBeams beams(scene, tracers);
     ASSERT_TRUE(beams.active());
-    const Vec3 along = -scene.lights[0].direction;
-    constexpr int kW = 96, kH = 64;
-    const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, 60}, kW, kH);
-    // The camera hit of a ray, on the cloud (walked) or the floor z = -26, and its lifted point.
-    struct Lit {
-      ShadowBeams::Point point;
-      Vec3 origin;
-    };
-    const auto lit = [&](const Ray& ray, Lit* out) {
-      TraceCounters w;
-      const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
-      const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
-      if (!m.hit && floor_t < 0) return false;
-      const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
-      const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
-      const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
-      const double margin = 0.05 + 0.05 * u(rng);
-      out->point = {p, margin};
-      out->origin = p + n * (margin * u(rng));
-      return true;
-    };
-    int rays = 0, held = 0, blocked = 0, hits = 0;
-    long long listed = 0;
+    // A block's rays start below the balls, within 0.2 of the axis, and go up through them.
+    const ShadowBeams::Point points[] = {{{0.1, 0, -10}, 0.05}, {{0, -0.1, -10}, 0.05}};
     ShadowBeams::Lists lists;
-    std::vector<Lit> tile, quarter, block;
-    std::vector<ShadowBeams::Point> points;
-    const auto build = [&](int level, const std::vector<Lit>& of) {
-      points.clear();
-      for (const Lit& l : of) points.push_back(l.point);
-      beams.build(level, points.data(), static_cast<int>(points.size()), lists);
-    };
-    for (int y = 0; y < kH; y += 16)
-      for (int x = 0; x < kW; x += 16) {
-        // The tile's points, quarter by quarter and block by block, as the frame orders them.
-        std::vector<Lit> by_block[16];
-        for (int py = y; py < y + 16; ++py)
-          for (int px = x; px < x + 16; ++px) {
-            Lit l;
-            if (!lit(camera.generate(px + u(rng), py + u(rng)), &l)) continue;
-            const int bx = (px - x) / 4, by = (py - y) / 4;
-            by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(l);
-          }
-        tile.clear();
-        for (const auto& b : by_block) tile.insert(tile.end(), b.begin(), b.end());
-        build(0, tile);
-        for (int q = 0; q < 4; ++q) {
-          quarter.clear();
-          for (int k = 0; k < 4; ++k)
-            quarter.insert(quarter.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
-          build(1, quarter);
-          for (int k = 0; k < 4; ++k) {
-            build(2, by_block[q * 4 + k]);
-            const ShadowLists view = beams.view(2, lists);
-            const BlobBeam* list = view.of(0);
-            ASSERT_NE(list, nullptr);
-            if (list[0].valid) listed += static_cast<long long>(list[0].entries.size());
-            for (const Lit& l : by_block[q * 4 + k]) {
-              const Ray ray{l.origin, along, 0, 0};
-              double base;
-              ++rays;
-              // A block's list holds each of its rays; a block without one sends none into the
-              // cloud's box.
-              if (list[0].valid) {
-                ASSERT_TRUE(list[0].holds(ray, &base)) << "ray " << rays;
-              }
-              held += list[0].valid;
-              TraceCounters a, b;
-              const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
-              const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list[0]);
-              if (!list[0].valid) {
-                ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
-              }
-              ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
-              if (walk.hit) {
-                ASSERT_EQ(with.t, walk.t) << "ray " << rays;
-              }
-              ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
-              blocked += walk.hit;
-              TraceCounters c, d;
-              const MarchResult near = tr.first_hit(ray, 0, 1e3, c);
-              const MarchResult near_with =
-                  tr.first_hit(ray, 0, 1e3, d, Query::Nearest, 0, &list[0]);
-              ASSERT_EQ(near_with.hit, near.hit) << "ray " << rays;
-              if (near.hit) {
-                ASSERT_EQ(near_with.t, near.t) << "ray " << rays;
-              }
-              hits += near.hit;
-            }
-          }
-        }
-      }
-    // Many rays go through a list, and both answers occur.
-    EXPECT_GT(held, rays / 6) << direction;
-    EXPECT_GT(blocked, rays / 30) << direction;
-    EXPECT_LT(blocked, rays * 9 / 10) << direction;
-    EXPECT_EQ(hits, blocked) << direction;
-    // The blocks' lists are a few of the 160 blobs.
-    EXPECT_LT(listed, 16LL * (kW / 16) * (kH / 16) * 60) << direction;
+    for (int level = 0; level < ShadowBeams::kLevels; ++level) beams.build(level, points, 2, lists);
+    const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
+    ASSERT_TRUE(list.valid);
+    EXPECT_EQ(list.blockers.empty(), std::string(strength) == "-1") << strength;
+    for (const ShadowBeams::Point& p : points) {
+      const Ray ray{p.p, {0, 0, 1}, 0, 0};
+      TraceCounters a, b;
+      const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
+      const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list);
+      EXPECT_EQ(walk.hit, std::string(strength) != "-1") << strength;
+      EXPECT_EQ(with.hit, walk.hit) << strength;
+    }
   }
 }
 
