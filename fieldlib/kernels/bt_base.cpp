@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "math/bound_util.h"
-#include "math/illinois.h"
 #include "math/interval.h"
 
 namespace softtrace {
@@ -94,6 +93,20 @@ double hyper_T(const double* x, int k, const double* r, const double* p, const d
   return s - 1;
 }
 
+double hyper_T_slope(const double* x, int k, const double* r, const double* p, const double* m,
+                     double h, double* slope) {
+  double s = 0, ds = 0;
+  for (int i = 0; i < k; ++i) {
+    const double t = (r[i] - x[i] + m[i] * h) / r[i];
+    if (!(t > 0)) continue;
+    const double tp = p[i] == 2 ? t * t : std::pow(t, p[i]);  // hyper_T's bits
+    s += tp;
+    ds += p[i] * m[i] / r[i] * (p[i] == 2 ? t : tp / t);  // d/dh t^p = p t^(p-1) m/r
+  }
+  *slope = ds;
+  return s - 1;
+}
+
 double bt_lower(const double* x, int k, const double* r, const double* m) {
   double h = kInf;
   for (int i = 0; i < k; ++i) h = std::min(h, (x[i] - r[i]) / m[i]);
@@ -119,17 +132,28 @@ double bt_hyper(const double* x, int k, const double* r, const double* p, const 
     }
     return h_hi;
   }
-  double h = h_hi, T_hi = hyper_T(x, k, r, p, m, h_hi);
-  if (T_hi > 0) {  // T(h_hi) <= 0 only where the arg-min term alone is active (non-blending)
-    const double lo = bt_lower(x, k, r, m);
-    IllinoisBracket br{lo, hyper_T(x, k, r, p, m, lo), h_hi, T_hi};  // T(lo) = -1 up to rounding
+  double h = h_hi, dT;
+  double T = hyper_T_slope(x, k, r, p, m, h_hi, &dT);
+  if (T > 0) {  // T(h_hi) <= 0 only where the arg-min term alone is active (non-blending)
+    // Newton's method from h_hi (docs/math.md §7.3): T is convex and increasing in h (each term
+    // [t]_+^p, p > 1, of a t rising affinely with h), so a step from a point where T > 0 lands
+    // between the root and that point: the steps fall monotonely onto the root, quadratically
+    // near it (T' > 0 there). [lo, hi] brackets the root; a step that leaves it (rounding past
+    // the root, a slope of 0 or NaN) is replaced by the bracket's middle.
+    double lo = bt_lower(x, k, r, m), hi = h_hi;
     int it = 0;
     while (it < 200) {
+      double next = h - T / dT;
+      if (next == h) break;  // the step is below h's rounding: h is the root to rounding
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       ++it;
-      h = std::min(std::max(br.false_position(), br.lo), br.hi);
-      const double T = hyper_T(x, k, r, p, m, h);
-      if (std::abs(T) <= 1e-14 || br.hi - br.lo <= 1e-14 * std::max(1.0, std::abs(h))) break;
-      br.update(h, T, T > 0);
+      const double step = std::abs(next - h);
+      h = next;
+      T = hyper_T_slope(x, k, r, p, m, h, &dT);
+      if (std::abs(T) <= 1e-14 || step <= 1e-14 * std::max(1.0, std::abs(h)) ||
+          hi - lo <= 1e-14 * std::max(1.0, std::abs(h)))
+        break;
+      (T > 0 ? hi : lo) = h;
     }
     if (iterations) *iterations = it;
   }

@@ -21,7 +21,7 @@ inline Vec3 offset_gradient(double s, const Vec3& g) {
   return g * s;
 }
 inline Interval offset_interval(double s, double c, Interval f) {
-  return Interval(s) * (f - Interval(c));
+  return scaled(s, f - Interval(c));
 }
 inline double offset_lipschitz(double s, double L) {
   return iv::up(std::abs(s) * L);

@@ -58,8 +58,8 @@ struct OneSidedTerm {
   // Each half's quotient is computed only where s may be on that half (a bounds pass along a
   // segment asks this of every gauge term, mostly with s on one side).
   Interval rate(Interval s, Interval ds) const {
-    const auto up = [&] { return ds / Interval(r_pos); };
-    const auto down = [&] { return -ds / Interval(r_neg); };
+    const auto up = [&] { return divided(ds, r_pos); };
+    const auto down = [&] { return divided(-ds, r_neg); };
     if (s.lo > dead) return up();
     if (s.hi < -dead) return down();
     Interval d = 0.0;

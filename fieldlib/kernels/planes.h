@@ -21,7 +21,7 @@ struct PlaneParams {
 
 // The exact image of X·n over a box (interval arithmetic, outward rounded).
 inline Interval dot_range(const Box& b, const Vec3& n) {
-  return Interval(n.x) * b.axis(0) + Interval(n.y) * b.axis(1) + Interval(n.z) * b.axis(2);
+  return scaled(n.x, b.axis(0)) + scaled(n.y, b.axis(1)) + scaled(n.z, b.axis(2));
 }
 
 // |X·n|/a   — 000 Eq. 2 (planes), 002 f_p, docs/math.md §2.3.
@@ -34,7 +34,7 @@ inline double parallel_planes(const PlaneParams& m, const Vec3& p, Vec3* grad) {
 // Value interval and Lipschitz bound of |X·n|/a where X·n lies in `s`: the slope is 1/a anywhere.
 inline void parallel_planes_bounds(const PlaneParams& m, Interval s, Interval* value,
                                    double* lipschitz) {
-  *value = abs(s) / Interval(m.a);
+  *value = divided(abs(s), m.a);
   *lipschitz = 1 / m.a;
 }
 
@@ -49,7 +49,7 @@ inline double one_branch_plane(const PlaneParams& m, const Vec3& p, Vec3* grad) 
 // X·n <= 0 throughout (f is 0 there).
 inline void one_branch_plane_bounds(const PlaneParams& m, Interval s, Interval* value,
                                     double* lipschitz) {
-  *value = max(s, Interval(0)) / Interval(m.a);
+  *value = divided(max(s, Interval(0)), m.a);
   *lipschitz = s.hi > 0 ? 1 / m.a : 0.0;
 }
 

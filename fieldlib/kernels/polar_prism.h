@@ -182,7 +182,7 @@ inline void polar_prism_bounds_along(const PolarPrismParams& m, const Box& b, In
                                      double* lipschitz, const Vec3* seg, double len,
                                      Interval* slope) {
   const Interval rho = rho_range(b), R = polar_prism_radius_range(m, b), z = b.axis(2);
-  const Interval u[2] = {rho / R, abs(z) / Interval(m.c)};
+  const Interval u[2] = {rho / R, divided(abs(z), m.c)};
   const Interval f = power_sum(u, 2, m.n);
   *value = f;
   if (!lipschitz) return;

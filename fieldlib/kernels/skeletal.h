@@ -136,7 +136,7 @@ inline Interval rho_rate_on_segment(const Vec3& A, const Vec3& B) {
 inline void torus_bounds_along(const TorusParams& m, const Box& b, Interval* value,
                                double* lipschitz, const Vec3* seg, double len, Interval* slope) {
   const Interval s = rho_range(b) - Interval(m.R), z = b.axis(2);
-  const Interval u[2] = {abs(s) / Interval(m.a), abs(z) / Interval(m.b)};
+  const Interval u[2] = {divided(abs(s), m.a), divided(abs(z), m.b)};
   const Interval f = power_sum(u, 2, m.n);
   *value = f;
   if (!lipschitz) return;

@@ -146,7 +146,7 @@ struct StrengthOp : SlotToSlot {
     const double s = load(io.K + in.a);
     io.I[in.out] = strength_interval(s, io.I[in.in]);
     io.L[in.out] = strength_lipschitz(s, io.L[in.in]);
-    io.D[in.out] = Interval(s) * io.D[in.in];
+    io.D[in.out] = scaled(s, io.D[in.in]);
     io.Q[in.out] = io.Q[in.in];
   }
 };
@@ -176,7 +176,7 @@ struct OffsetOp : SlotToSlot {
     io.L[in.out] = offset_lipschitz(s, io.L[in.in]);
     // d/dt s·(f - c) = s·df/dt: an interval product, so a negative s swaps the ends. The offset
     // of a distance is no soft field: no quiet start.
-    io.D[in.out] = Interval(s) * io.D[in.in];
+    io.D[in.out] = scaled(s, io.D[in.in]);
     io.Q[in.out] = 0;
   }
 };
