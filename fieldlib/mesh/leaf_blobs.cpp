@@ -49,7 +49,8 @@ void LeafBlobs::add(int32_t id, const double* x, const double* y, const double* 
     return;
   }
   // Any other blob: its frame's q (BlobSum::Frame::q, as the ray path and gradient() take it).
-  const BlobSum::Frame& fr = sum_->frames()[size_t(id)];
+  // A copy: f[] cannot alias it, so its numbers stay in registers across the loop.
+  const BlobSum::Frame fr = sum_->frames()[size_t(id)];
   for (int l = 0; l < n; ++l) {
     const Vec3 w = fr.q({x[l], y[l], z[l]});
     const double r = 1 - dot(w, w);
