@@ -159,6 +159,47 @@ void set_reach(const BlobSum::Frame& f, BlobSum::Blob* blob) {
   blob->reach2 = reach * reach;
 }
 
+// The outline of a blob that is no ball (BlobSum::Outline): with the computed M, p0 and p1 and
+// the exact residuals r0 = L p0 + k, r1 = L p1 + k - axis and R = L M - I, a point x of the
+// support (L x + k - s axis = y, |y| <= 1) is x = p(s) + L^-1 y' with p(s) = p0 + s (p1 - p0)
+// and y' = y - (1 - s) r0 - s r1, so |y' - y| <= e = max |r_i|. Its point p(s) + M y of the
+// outline is then within |L^-1 - M| (1 + e) + |M| e of it, and L^-1 - M = -M R (I + R)^-1 has
+// norm at most |M| rho / (1 - rho) for rho >= |R| < 1 (all norms Frobenius, above the spectral
+// ones). The computed residuals err by at most 4 ulps of the magnitudes summed in them (a dot of
+// three and one addition); e and rho take 8 ulps of those besides, and the slack is doubled for
+// its own rounding. An outline is kept only where L is as well conditioned as set_reach asks
+// and rho < 1/2.
+void set_outline(const BlobSum::Frame& f, BlobSum::Outline* out) {
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  const Mat3 M = inverse(f.L);
+  double l2 = 0, m2 = 0;
+  for (int r = 0; r < 3; ++r) {
+    l2 += dot(f.L.r[r], f.L.r[r]);
+    m2 += dot(M.r[r], M.r[r]);
+  }
+  if (!(l2 * m2 < 1e16)) return;
+  const double l_norm = std::sqrt(l2), m_norm = std::sqrt(m2);
+  const Vec3 p0 = M * (-f.k), p1 = M * (f.axis - f.k);
+  const Vec3 r0 = f.L * p0 + f.k, r1 = f.L * p1 + f.k - f.axis;
+  const double k_norm = length(f.k), axis_norm = length(f.axis);
+  const double e = 1.01 * std::max(length(r0), length(r1)) +
+                   8 * kEps * (l_norm * std::max(length(p0), length(p1)) + k_norm + axis_norm);
+  const Mat3 LM = times(f.L, M);
+  double residual2 = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const double entry = LM.r[r][c] - (r == c ? 1.0 : 0.0);
+      residual2 += entry * entry;
+    }
+  const double rho = 1.01 * std::sqrt(residual2) + 8 * kEps * (l_norm * m_norm + 1);
+  if (!(rho < 0.5) || !std::isfinite(e)) return;
+  out->M = M;
+  out->p0 = p0;
+  out->p1 = p1;
+  out->slack = 2 * m_norm * (rho / (1 - rho) * (1 + e) + e);
+  out->known = true;
+}
+
 bool read_blob(const Program& p, const Group::Child& c, int32_t reg0, BlobSum::Frame* frame,
                BlobSum::Blob* blob) {
   if (c.end - c.begin == 1 && blob_part(p.code[c.begin].op).role == BlobRole::Oracle) {
@@ -242,13 +283,15 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     Frame frame;
     Blob blob;
     if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
-    if (!(blob.inv_r2 > 0)) set_reach(frame, &blob);
-    blob.l_norm = std::sqrt(dot(frame.L.r[0], frame.L.r[0]) + dot(frame.L.r[1], frame.L.r[1]) +
-                            dot(frame.L.r[2], frame.L.r[2]));
+    Outline outline;
+    if (!(blob.inv_r2 > 0)) {
+      set_reach(frame, &blob);
+      set_outline(frame, &outline);
+    }
     s.capsules_ += frame.inv_axis2 > 0;
-    s.framed_ += !(blob.inv_r2 > 0);
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
+    s.outlines_.push_back(outline);
     next = c.end;
   }
   if (next != group.op_index) return std::nullopt;
@@ -269,15 +312,24 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
 }
 
 namespace {
-// The term of d^2 = |w + u v|^2 over the part [lo, hi] of the stretch [0, len], if its support
-// r = 1 - d^2 > 0 meets that part. v = 0 (a capsule's middle part seen along its axis) makes d^2
-// constant over the part.
-bool term(const Vec3& w, const Vec3& v, double lo, double hi, double len, const BlobSum::Blob& b,
-          BlobSum::Term* out) {
+// Where |w + u v|^2 is least along the line: at u = mid, where r = 1 - |w + u v|^2 is h2 (the
+// support's depth there), alpha = |v|^2. v = 0 (a capsule's middle part seen along its axis)
+// makes it constant (mid = 0).
+struct Nearest {
+  double alpha, mid, h2;
+};
+Nearest nearest(const Vec3& w, const Vec3& v) {
   const double alpha = dot(v, v);
   const double mid = alpha > 0 ? -dot(w, v) / alpha : 0.0;
   const Vec3 w_mid = w + v * mid;
-  const double h2 = 1 - dot(w_mid, w_mid);
+  return {alpha, mid, 1 - dot(w_mid, w_mid)};
+}
+
+// The term of d^2 = |w + u v|^2 (its nearest point `m`) over the part [lo, hi] of the stretch
+// [0, len], if its support r = 1 - d^2 > 0 meets that part.
+bool term(const Nearest& m, double lo, double hi, double len, const BlobSum::Blob& b,
+          BlobSum::Term* out) {
+  const double alpha = m.alpha, mid = m.mid, h2 = m.h2;
   if (!(h2 > 0)) return false;
   const double half = alpha > 0 ? std::sqrt(h2 / alpha) : std::numeric_limits<double>::infinity();
   const double enter = std::max({mid - half, lo, 0.0}), exit = std::min({mid + half, hi, len});
@@ -286,7 +338,8 @@ bool term(const Vec3& w, const Vec3& v, double lo, double hi, double len, const 
   const double r = std::max(h2 - alpha * gap * gap, 0.0);
   // The largest value over the stretch: at the largest r for a positive strength, at most 0 for a
   // negative one.
-  *out = {enter, exit, mid, alpha, h2, b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
+  *out = {enter, exit, mid,  alpha,
+          h2,    b.c2, b.c3, std::max(0.0, polynomial_potential(r, b.c2, b.c3))};
   return true;
 }
 
@@ -300,6 +353,15 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
   const Vec3 w_across = w - f.axis * s0, v_across = v - f.axis * sv;
+  // The line's nearest point to the capsule's axis: where it passes clear of the cylinder around
+  // the axis, it passes clear of the end balls inside it, and no part has a term (most rays miss
+  // most long capsules). As computed: each end ball's |w_e + u v| is at least the cylinder's
+  // |w_across + u v_across| less the rounding of s0, sv and the across parts (a few ulps of |w|,
+  // |w_e| and |u v| <= |w_e| + 1 where an end term exists), and each h2 errs by a few ulps of
+  // |w|^2 or |w_e|^2 <= 2 (|w|^2 + |axis|^2); so an end term's h2 > 0 leaves the cylinder's above
+  // -1e-12 (1 + |w|^2 + |axis|^2), a thousandfold room. Below that, term() would find none.
+  const Nearest across = nearest(w_across, v_across);
+  if (across.h2 < -1e-12 * (1 + dot(w, w) + dot(f.axis, f.axis))) return 0;
   // [lo, hi] of each part: the near end's, the middle's, the far end's.
   double lo[3], hi[3];
   if (sv == 0) {  // the ray runs across the axis: one part all along
@@ -317,9 +379,9 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
     }
   }
   int n = 0;
-  n += term(w, v, lo[0], hi[0], len, b, out + n);
-  n += term(w_across, v_across, lo[1], hi[1], len, b, out + n);
-  n += term(w - f.axis, v, lo[2], hi[2], len, b, out + n);
+  n += term(nearest(w, v), lo[0], hi[0], len, b, out + n);
+  n += term(across, lo[1], hi[1], len, b, out + n);
+  n += term(nearest(w - f.axis, v), lo[2], hi[2], len, b, out + n);
   return n;
 }
 
@@ -334,83 +396,10 @@ bool within_reach(const BlobSum::Blob& b, const Vec3& o, const Vec3& d, double l
 }
 }  // namespace
 
-namespace {
-// The u at which |w + u v|^2 <= 1 + eps, in [*lo, *hi]; false where there are none. v = 0: all u
-// or none.
-bool line_span(const Vec3& w, const Vec3& v, double eps, double* lo, double* hi) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double alpha = dot(v, v);
-  if (!(alpha > 0)) {
-    *lo = -kInf, *hi = kInf;
-    return dot(w, w) <= 1 + eps;
-  }
-  const double mid = -dot(w, v) / alpha;
-  const Vec3 w_mid = w + v * mid;
-  const double h2 = 1 + eps - dot(w_mid, w_mid);
-  if (!(h2 > 0)) return false;
-  const double half = std::sqrt(h2 / alpha);
-  *lo = mid - half, *hi = mid + half;
-  return true;
-}
-}  // namespace
-
-// The support is taken enlarged from |q|^2 <= 1 to 1 + eps. eps holds, with a thousandfold room,
-// what separates this line's numbers from a stretch's: the cancellation in q's square (a few ulps
-// of |w|^2: 1e-12 |w|^2), the stretch's start point, rounded to a few ulps of |o| + |u| in world
-// units, which L moves by at most |L|_F that much (1e-9 |L|_F reach, |q| being about 1 where it
-// matters), and 1e-6 besides. A term there has r > 0, so its point is inside the enlarged support,
-// whose span along the line is wider than the support's by at least eps / (2 sqrt(1 + eps) |L d|):
-// the rounding of the stretch's entries and exits (a few ulps of |u|) is what span_slack holds.
-// A capsule's span is the hull of its cylinder's between its end planes and its end balls' (below;
-// where a stretch puts a plane elsewhere by rounding, the cylinder and the end ball agree there to
-// the rounding's square, and the planes have 1e-9 of room besides).
-bool BlobSum::span(int id, const Vec3& o, const Vec3& d, double reach, double* lo,
-                   double* hi) const {
-  const Blob& b = blobs_[id];
-  if (b.inv_r2 > 0) {
-    const Vec3 oc = o - b.centre;
-    const double dd = dot(d, d), mid = -dot(oc, d) / dd;
-    const Vec3 nearest = oc + d * mid;
-    const double eps =
-        1e-6 + 1e-12 * dot(oc, oc) * b.inv_r2 + 1e-9 * std::sqrt(3 * b.inv_r2) * reach;
-    const double h2 = 1 + eps - dot(nearest, nearest) * b.inv_r2;
-    if (!(h2 > 0)) return false;
-    const double half = std::sqrt(h2 / (dd * b.inv_r2));
-    *lo = mid - half, *hi = mid + half;
-    return true;
-  }
-  const Frame& f = frames_[id];
-  const Vec3 w = f.L * o + f.k, v = f.L * d;
-  const double eps = 1e-6 + 1e-12 * dot(w, w) + 1e-9 * b.l_norm * reach;
-  if (!(f.inv_axis2 > 0)) return line_span(w, v, eps, lo, hi);
-  // The capsule, enlarged, is its cylinder |q across the axis|^2 <= 1 + eps between the planes
-  // s = 0 and s = 1 and its end balls beyond them, each inside the cylinder: where the cylinder's
-  // span stays between the planes (a ray through a long capsule's side), that is its span; past
-  // a plane, the end ball's span there is.
-  const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
-  double l, h;
-  if (!line_span(w - f.axis * s0, v - f.axis * sv, eps, &l, &h)) return false;
-  const auto end_ball = [&](bool far_end, double* a, double* z) {
-    return line_span(far_end ? w - f.axis : w, v, eps, a, z);
-  };
-  if (sv == 0) {  // the line runs across the axis, at s = s0
-    if (s0 >= 0 && s0 <= 1) {
-      *lo = l, *hi = h;
-      return true;
-    }
-    return end_ball(s0 > 1, lo, hi);
-  }
-  // Where s is 0 and 1, with room for the rounding of where the stretches put them.
-  const double at0 = -s0 / sv, at1 = (1 - s0) / sv;
-  const double room = 1e-9 * (std::abs(at0) + std::abs(at1));
-  const double plane_lo = std::min(at0, at1) - room, plane_hi = std::max(at0, at1) + room;
-  double a, z, span_lo = std::max(l, plane_lo), span_hi = std::min(h, plane_hi);
-  if (l < plane_lo && end_ball(sv < 0, &a, &z))  // s < 0 below the planes where s rises
-    span_lo = std::min(span_lo, a), span_hi = std::max(span_hi, z);
-  if (h > plane_hi && end_ball(sv > 0, &a, &z))
-    span_lo = std::min(span_lo, a), span_hi = std::max(span_hi, z);
-  *lo = span_lo, *hi = span_hi;
-  return span_lo <= span_hi;
+double BlobSum::support_extent(int id, const Vec3& n) const {
+  const Outline& o = outlines_[id];
+  if (!o.known) return std::numeric_limits<double>::infinity();
+  return std::max(dot(n, o.p0), dot(n, o.p1)) + length(o.M.transposed_times(n)) + o.slack;
 }
 
 int BlobSum::terms(const Program& p, const Vec3& o, const Vec3& d, double len, double pad,
@@ -464,7 +453,7 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
       const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
       const double r = std::max(h2 - alpha * gap * gap, 0.0);
       out[n++] = {enter, exit, mid,  alpha,
-                  h2,    b.c2, b.c3, std::max(0.0, r * r * (b.c2 + b.c3 * r))};
+                  h2,    b.c2, b.c3, std::max(0.0, polynomial_potential(r, b.c2, b.c3))};
       continue;
     }
     const Frame& f = frames_[ids[i]];
@@ -473,7 +462,7 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
       n += capsule_terms(f, b, w, v, len, out + n);
     } else {
       constexpr double kInf = std::numeric_limits<double>::infinity();
-      n += term(w, v, -kInf, kInf, len, b, out + n);
+      n += term(nearest(w, v), -kInf, kInf, len, b, out + n);
     }
   }
   return n;
@@ -494,17 +483,18 @@ double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* i
 
 double BlobSum::gradient_among(const Program& p, const Vec3& x, int32_t* ids, int n, Vec3* grad,
                                double* terms) const {
-  if (size() <= kListed) return gradient(p, x, grad, ids, terms);
-  // Kept: the blobs x is inside or within rounding of (r > -1e-9); sum_gradient's own test r > 0
-  // then takes exactly the point query's blobs, whatever rounding this test had.
-  int found = 0;
-  for (int i = 0; i < n; ++i) {
-    const Frame& frame = frames_[ids[i]];
-    Vec3 w = frame.L * x + frame.k;
-    if (frame.inv_axis2 > 0)
-      w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);
-    ids[found] = ids[i];
-    found += 1 - dot(w, w) > -1e-9;
+  // A long list keeps the blobs x is inside or within rounding of (r > -1e-9) before sorting;
+  // sum_gradient's own test r > 0 then takes exactly the point query's blobs, whatever rounding
+  // this test had. A short one is sorted whole (sum_gradient skips the blobs with r <= 0): a q
+  // per blob costs more than its share of the sort.
+  int found = n;
+  if (n > kListed) {
+    found = 0;
+    for (int i = 0; i < n; ++i) {
+      const Vec3 w = frames_[ids[i]].q(x);
+      ids[found] = ids[i];
+      found += 1 - dot(w, w) > -1e-9;
+    }
   }
   std::sort(ids, ids + found);
   return sum_gradient(p, x, ids, found, grad, terms);
@@ -520,17 +510,14 @@ double BlobSum::sum_gradient(const Program& p, const Vec3& x, const int32_t* fou
   for (int i = 0; i < found; ++i) {
     const Frame& frame = frames_[found_ids[i]];
     const Blob& b = blobs_[found_ids[i]];
-    Vec3 w = frame.L * x + frame.k;
-    // A capsule's q: w less its nearest point of the axis.
-    if (frame.inv_axis2 > 0)
-      w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);
+    const Vec3 w = frame.q(x);
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
-    const double term = r * r * (b.c2 + b.c3 * r);
+    const double term = polynomial_potential(r, b.c2, b.c3);
     f += term;
     if (reports && sum.terms[found_ids[i]] >= 0) terms[sum.terms[found_ids[i]]] = term;
     // dP/dr times ∇r = -2 L^T q.
-    g += frame.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
+    g += frame.L.transposed_times(w) * (-2 * polynomial_potential_slope(r, b.c2, b.c3));
   }
   *grad = g;
   return f;

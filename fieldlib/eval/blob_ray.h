@@ -15,6 +15,7 @@
 // capsule's three parts are three such terms, each over its own part of the ray.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -74,23 +75,19 @@ class BlobSum {
                   double* terms = nullptr) const;
   // The same from the blobs ids[0, n), in any order, instead of the point query: they must hold
   // every blob whose support holds x (a camera ray's list, BlobBeam). The ones whose supports
-  // hold x are kept in ids (overwritten) and summed in increasing order, as the query's are: the
-  // same f and ∇f to the bit.
+  // hold x are summed in increasing order, as the query's are: the same f and ∇f to the bit.
+  // ids is overwritten.
   double gradient_among(const Program& p, const Vec3& x, int32_t* ids, int n, Vec3* grad,
                         double* terms = nullptr) const;
-  // Where blob `id`'s support may meet the line o + u d (d a unit vector): every u at which
-  // terms() or terms_of() of a stretch of it, taken from the stretch's own (rounded) start point,
-  // give the blob a term lies in [*lo, *hi] widened by 1e-9 of |u| (span_slack); false where the
-  // line passes clear of the support. `reach` bounds |o| + |u| over the points the stretches take.
-  // For a ray's whole way at once: a stretch whose range misses a blob's span needs no term of it.
-  bool span(int id, const Vec3& o, const Vec3& d, double reach, double* lo, double* hi) const;
-  // The slack span()'s caller adds to the ranges it compares: 1e-9 of their magnitudes.
-  static double span_slack(double magnitude) { return 1e-9 * magnitude; }
+  // An upper bound of dot(n, x) over blob `id`'s support (its support function at n, |n| = 1,
+  // through Outline below; +inf where none is known). A frustum's side plane with inward normal n
+  // through the eye e holds none of the support where this is below dot(n, e).
+  double support_extent(int id, const Vec3& n) const;
+  // Whether blob `id` is no ball (terms() reads its frame; support_extent may know its outline).
+  bool is_framed(int id) const { return !(blobs_[id].inv_r2 > 0); }
   // For a sum of at most kListed blobs, the order terms() takes them in (empty for more).
   const std::vector<int32_t>& listed() const { return listed_walk_; }
   int size() const { return static_cast<int>(blobs_.size()); }
-  // How many blobs are no balls (terms() reads their frames: 2-3 times a ball's work).
-  int framed() const { return framed_; }
   // The most terms one stretch can have: one per ellipsoid, three per capsule.
   int max_terms() const { return size() + 2 * capsules_; }
   // The median of the blobs' mean support radii: how long a stretch meets a few of them.
@@ -107,6 +104,12 @@ class BlobSum {
     Vec3 k;
     Vec3 axis;
     double inv_axis2 = 0;
+    // q at x: L x + k less its nearest point of the axis; the blob's r = 1 - |q|^2.
+    Vec3 q(const Vec3& x) const {
+      const Vec3 w = L * x + k;
+      if (!(inv_axis2 > 0)) return w;
+      return w - axis * std::clamp(dot(w, axis) * inv_axis2, 0.0, 1.0);
+    }
   };
   // What terms() reads first, in half a Frame's memory: the potential, and for a ball
   // (translations only, equal radii) its centre and 1 / radius^2, with which a ray's nearest
@@ -118,7 +121,16 @@ class BlobSum {
     double inv_r2;  // 0 where the blob is no ball
     double c2, c3;
     double reach2 = std::numeric_limits<double>::infinity();
-    double l_norm = 0;  // |L|_F, a bound of how far L moves a point (span()'s rounding)
+  };
+  // A blob that is no ball, in world space: its support lies within `slack` of the points
+  // p0 + s (p1 - p0) + M y, s in [0, 1], |y| <= 1, with M = L^-1 and p0, p1 the axis's ends
+  // (p0 = p1 for an ellipsoid). `slack` bounds what the rounding of M, p0 and p1 moved, from their
+  // residuals (blob_ray.cpp, set_outline); known is false where L is too ill-conditioned.
+  struct Outline {
+    Mat3 M;
+    Vec3 p0, p1;
+    double slack = 0;
+    bool known = false;
   };
   // Each child's frame and potential, and the sum's group in the program (its BVH indexes the
   // children's support boxes): what a caller needs to sum the blobs itself (the mesher's leaves).
@@ -127,8 +139,9 @@ class BlobSum {
   int group() const { return group_; }
 
  private:
-  std::vector<Frame> frames_;  // by child of the sum
-  std::vector<Blob> blobs_;    // the same
+  std::vector<Frame> frames_;      // by child of the sum
+  std::vector<Blob> blobs_;        // the same
+  std::vector<Outline> outlines_;  // the same (not known for a ball)
   int group_ = 0;
   // For kListed blobs or fewer, the BVH's items (the blobs with a bounded, non-empty support) in
   // the order its segment query reports them, and in increasing order as its point query does:
@@ -138,7 +151,6 @@ class BlobSum {
   double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
                       double* terms) const;
   int capsules_ = 0;  // frames with an axis
-  int framed_ = 0;    // blobs with no ball (Blob::inv_r2 == 0)
   double typical_radius_ = 0;
 };
 

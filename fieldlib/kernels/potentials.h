@@ -212,4 +212,16 @@ inline bool potential_in_r(PotentialType t, double* c2, double* c3) {
   return false;
 }
 
+// P(r) = c2 r^2 + c3 r^3 = r^2 (c2 + c3 r) at r = 1 - d^2 (0 < r <= 1 inside the support), with
+// potential_in_r's coefficients times the blob's strength: Murakami's, Wyvill's or the cubic
+// potential (docs/math.md §3.3-§3.4 and §8, "Sums of polynomial blobs"). The blob path, the
+// tracer's shadow test and the mesher's leaves all sum it in this form.
+inline double polynomial_potential(double r, double c2, double c3) {
+  return r * r * (c2 + c3 * r);
+}
+// dP/dr = r (2 c2 + 3 c3 r): with ∇r = -2 L^T q (r = 1 - |q|^2, q = L x + k), a blob's gradient.
+inline double polynomial_potential_slope(double r, double c2, double c3) {
+  return r * (2 * c2 + 3 * c3 * r);
+}
+
 }  // namespace softtrace

@@ -33,20 +33,35 @@ inline double power_value(const double* a, int degree, double x) {
   return v;
 }
 
+namespace bernstein_detail {
+inline constexpr double kBinom[kMaxDegree + 1][kMaxDegree + 1] = {{1},
+                                                                  {1, 1},
+                                                                  {1, 2, 1},
+                                                                  {1, 3, 3, 1},
+                                                                  {1, 4, 6, 4, 1},
+                                                                  {1, 5, 10, 10, 5, 1},
+                                                                  {1, 6, 15, 20, 15, 6, 1}};
+// C(i,j)/C(m,j) for degree m, row i, column j <= i: the power basis's coefficients' weights in
+// the Bernstein coefficients, b_i = Σ_{j<=i} C(i,j)/C(m,j) a_j. Divided once here, as the
+// compiler rounds a division (to nearest), so each weight is the one a division per use gave.
+struct Weights {
+  double w[kMaxDegree + 1][kMaxDegree + 1][kMaxDegree + 1] = {};
+  constexpr Weights() {
+    for (int m = 0; m <= kMaxDegree; ++m)
+      for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= i; ++j) w[m][i][j] = kBinom[i][j] / kBinom[m][j];
+  }
+};
+inline constexpr Weights kWeights{};
+}  // namespace bernstein_detail
+
 // The first x in [0, 1] where h = Σ a[j] x^j (degree <= kMaxDegree) reaches 0, to within `tol`
 // (a bracket no wider than tol, or one of any width over which h rises), halving down to
 // `finest`; a piece still undecided there is passed and counted (Rise::undecided), and the
 // search goes on past it. `err` bounds |computed - exact| of the coefficients' hulls on every
 // piece.
 inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
-  // b_i = Σ_{j<=i} C(i,j)/C(m,j) a_j.
-  static constexpr double binom[kMaxDegree + 1][kMaxDegree + 1] = {{1},
-                                                                   {1, 1},
-                                                                   {1, 2, 1},
-                                                                   {1, 3, 3, 1},
-                                                                   {1, 4, 6, 4, 1},
-                                                                   {1, 5, 10, 10, 5, 1},
-                                                                   {1, 6, 15, 20, 15, 6, 1}};
+  const auto& weight = bernstein_detail::kWeights.w[degree];
   struct Piece {
     double lo, hi, b[kMaxDegree + 1];
   };
@@ -58,7 +73,7 @@ inline Rise first_rise(const double* a, int degree, double err, double tol, doub
   whole.hi = 1;
   for (int i = 0; i <= degree; ++i) {
     double s = 0;
-    for (int j = 0; j <= i; ++j) s += binom[i][j] / binom[degree][j] * a[j];
+    for (int j = 0; j <= i; ++j) s += weight[i][j] * a[j];
     whole.b[i] = s;
   }
   if (whole.b[0] >= 0) return {Rise::AtStart, 0, 0};

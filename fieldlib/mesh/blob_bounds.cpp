@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/potentials.h"
+
 namespace softtrace {
 
 namespace {
 // P(r) = r^2 (c2 + c3 r) over r in [rlo, rhi], P = 0 where r <= 0 (outside the support):
 // its values at the ends and at its turning point r = -2 c2 / (3 c3) where that lies between.
 Interval potential_range(double c2, double c3, double rlo, double rhi) {
-  auto P = [&](double r) { return r * r * (c2 + c3 * r); };
+  auto P = [&](double r) { return polynomial_potential(r, c2, c3); };
   rlo = std::max(rlo, 0.0);
   rhi = std::max(rhi, 0.0);
   const double a = P(rlo), b = P(rhi);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "kernels/potentials.h"
+
 namespace softtrace {
 
 void LeafBlobs::select(const BlobSum& sum, const Program& p, const Box& box) {
@@ -42,20 +44,17 @@ void LeafBlobs::add(int32_t id, const double* x, const double* y, const double* 
     for (int l = 0; l < n; ++l) {
       const double dx = x[l] - cx, dy = y[l] - cy, dz = z[l] - cz;
       const double r = 1 - (dx * dx + dy * dy + dz * dz) * s;
-      f[l] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+      f[l] += r > 0 ? polynomial_potential(r, c2, c3) : 0.0;
     }
     return;
   }
-  // Any other blob: q = L x + k, less its nearest point of a capsule's axis.
-  const BlobSum::Frame& fr = sum_->frames()[size_t(id)];
-  const Mat3& L = fr.L;
+  // Any other blob: its frame's q (BlobSum::Frame::q, as the ray path and gradient() take it).
+  // A copy: f[] cannot alias it, so its numbers stay in registers across the loop.
+  const BlobSum::Frame fr = sum_->frames()[size_t(id)];
   for (int l = 0; l < n; ++l) {
-    Vec3 w{L.r[0].x * x[l] + L.r[0].y * y[l] + L.r[0].z * z[l] + fr.k.x,
-           L.r[1].x * x[l] + L.r[1].y * y[l] + L.r[1].z * z[l] + fr.k.y,
-           L.r[2].x * x[l] + L.r[2].y * y[l] + L.r[2].z * z[l] + fr.k.z};
-    if (fr.inv_axis2 > 0) w = w - fr.axis * std::clamp(dot(w, fr.axis) * fr.inv_axis2, 0.0, 1.0);
+    const Vec3 w = fr.q({x[l], y[l], z[l]});
     const double r = 1 - dot(w, w);
-    f[l] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+    f[l] += r > 0 ? polynomial_potential(r, c2, c3) : 0.0;
   }
 }
 
@@ -90,7 +89,7 @@ void LeafBlobs::grid(const double* xs, const double* ys, const double* zs, const
         for (int i = 0; i < row; ++i) {
           const double dx = xs[i] - cx;
           const double r = 1 - (dx * dx + dy2 + dz2) * s;
-          out[i] += r > 0 ? r * r * (c2 + c3 * r) : 0.0;
+          out[i] += r > 0 ? polynomial_potential(r, c2, c3) : 0.0;
         }
       }
     }
@@ -109,14 +108,12 @@ double LeafBlobs::gradient(const Vec3& x, Vec3* grad) const {
       if (dot(d, d) * b.inv_r2 > 1 + 1e-9) continue;
     }
     const BlobSum::Frame& frame = sum_->frames()[size_t(id)];
-    Vec3 w = frame.L * x + frame.k;
-    if (frame.inv_axis2 > 0)
-      w = w - frame.axis * std::clamp(dot(w, frame.axis) * frame.inv_axis2, 0.0, 1.0);
+    const Vec3 w = frame.q(x);
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
-    f += r * r * (b.c2 + b.c3 * r);
+    f += polynomial_potential(r, b.c2, b.c3);
     // dP/dr times ∇r = -2 L^T q.
-    g += frame.L.transposed_times(w) * (-2 * r * (2 * b.c2 + 3 * b.c3 * r));
+    g += frame.L.transposed_times(w) * (-2 * polynomial_potential_slope(r, b.c2, b.c3));
   }
   *grad = g;
   return f;

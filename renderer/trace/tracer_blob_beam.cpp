@@ -9,8 +9,10 @@
 // sphere (centre c, radius R), and a ray from the eye through the block lies inside the frustum
 // (its direction is a convex combination of the corners'), at distance t = |x - eye| from the eye
 // (d has unit length). So the sphere reaches inside every side plane, and t lies in
-// [|c - eye| - R, |c - eye| + R]. Rounding moves the ray's points by a few ulps of |eye| + t;
-// every test has a slack of 1e-9 of the magnitudes involved, far above that.
+// [|c - eye| - R, |c - eye| + R]; for a blob that is no ball, the support itself reaches inside
+// every side plane (n.x >= n.eye), so its support function there does. Rounding moves the ray's
+// points by a few ulps of |eye| + t; every test has a slack of 1e-9 of the magnitudes involved, far
+// above that.
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -60,6 +62,12 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
     const double slack = 1e-9 * (distance + r + eye);
     for (const Vec3& n : normals)
       if (dot(v, n) < -r - slack) return;
+    // A blob that is no ball: its support's own extent past each plane (its outline's support
+    // function, BlobSum::support_extent; +inf where none is known). A long capsule's sphere meets
+    // most frusta its support misses (pov:blob1b: 14-unit capsules across the whole frame).
+    if (blobs_->is_framed(id))
+      for (const Vec3& n : normals)
+        if (blobs_->support_extent(id, n) - dot(n, f.eye) < -slack) return;
     out->entries.push_back({distance - r - slack, distance + r + slack, id});
   };
   if (parent && parent->from(f.eye)) {

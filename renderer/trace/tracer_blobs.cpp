@@ -1,5 +1,6 @@
-// first_hit for a sum of polynomial blobs (blob_ray.h): the ray is taken a stretch at a time.
-// One query of the sum's BVH gives the blobs whose supports the stretch passes through, and
+// first_hit for a sum of polynomial blobs (blob_ray.h): the ray is taken a stretch at a time (a
+// sum of a few blobs: its whole way at once). One query of the sum's BVH (or the block's list)
+// gives the blobs whose supports the stretch passes through, and
 // their entries and exits cut it into pieces over which the field is one polynomial, walked
 // front to back. A piece whose blobs' peaks cannot reach iso is skipped unread; any other is
 // decided by its Bernstein form (bernstein.h), and a crossing refined on the polynomial itself,
@@ -11,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "kernels/potentials.h"
 #include "trace/tracer.h"
 #include "trace/tracer_limits.h"
 
@@ -38,26 +40,15 @@ struct Event {
   bool operator<(const Event& o) const { return u < o.u || (u == o.u && enters < o.enters); }
 };
 
-// A blob that may meet the ray, and where (BlobSum::span).
-struct Span {
-  double lo, hi;
-  int32_t id;
-};
-
 // One thread's buffers, grown to the largest sum traced (no allocation per ray after that).
 struct BlobScratch {
   std::vector<BlobSum::Term> terms;
   std::vector<int32_t> ids;
-  std::vector<Span> spans;
-  int n_spans = 0;  // of the ray being traced
   std::vector<Event> events;
   std::vector<int> active;
   void fit(const BlobSum& blobs) {
     const int n = blobs.max_terms();
-    if (static_cast<int>(ids.size()) < blobs.size()) {
-      ids.resize(blobs.size());
-      spans.resize(blobs.size());
-    }
+    if (static_cast<int>(ids.size()) < blobs.size()) ids.resize(blobs.size());
     if (static_cast<int>(terms.size()) >= n) return;
     terms.resize(n);
     events.resize(2 * n);
@@ -69,45 +60,6 @@ BlobScratch& blob_scratch(const BlobSum& blobs) {
   thread_local BlobScratch scratch;
   scratch.fit(blobs);
   return scratch;
-}
-
-// The blobs of a ray's way [t0, t1] that may meet it, with their spans (BlobSum::span), in the
-// order the stretches would take them: the list's, or for a sum of at most kListed blobs the
-// order terms() takes them in. A stretch then takes only the blobs whose spans meet its range;
-// those it leaves out give no term there, so its terms, and all that follows from them, are the
-// same to the bit. Without it every stretch computed every blob's terms (a capsule's three), most
-// of them empty: 60 % of pov:blob1b's frame (11 long capsules and ellipsoids). A sum of mostly
-// balls does without (the caller's test: fewer than a quarter of its blobs not balls): a ball's
-// span costs what its terms do, and a ray takes 2-3 stretches (pov:molecule, 3 balls, and
-// pov:golfball, 140 balls of 143, took 1-3 % more instructions with spans). Kept out of
-// line: the tracer's loop is compiled as before.
-[[gnu::noinline]] int ray_spans(const BlobSum& blobs, const Ray& ray, double t0, double t1,
-                                double slack, const BlobBeam::Entry* listed, int n_listed,
-                                Span* out) {
-  const double reach = max_abs(ray.o) + std::max(std::abs(t0), std::abs(t1));
-  int n = 0;
-  const auto take = [&](int32_t id) {
-    Span& sp = out[n];
-    sp.id = id;
-    n += blobs.span(id, ray.o, ray.d, reach, &sp.lo, &sp.hi) && sp.hi >= t0 - slack &&
-         sp.lo <= t1 + slack;
-  };
-  if (listed) {
-    for (int i = 0; i < n_listed; ++i) take(listed[i].id);
-  } else {
-    for (const int32_t id : blobs.listed()) take(id);
-  }
-  return n;
-}
-
-// The blobs of spans[0, n) whose spans meet [lo, hi], in their order, into ids; their number.
-[[gnu::noinline]] int stretch_blobs(const Span* spans, int n, double lo, double hi, int32_t* ids) {
-  int found = 0;
-  for (int i = 0; i < n; ++i) {
-    ids[found] = spans[i].id;
-    found += spans[i].lo <= hi && spans[i].hi >= lo;
-  }
-  return found;
 }
 
 // A point u of a stretch certainly in the solid, if this finds one: the sum at u of the polynomials
@@ -130,7 +82,7 @@ std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double is
     const BlobSum::Term& k = terms[i];
     if (!(u >= k.enter && u <= k.exit)) continue;
     const double r = k.h2 - k.alpha * (u - k.mid) * (u - k.mid);
-    const double p = r * r * (k.c2 + k.c3 * r);
+    const double p = polynomial_potential(r, k.c2, k.c3);
     sum += p;
     magnitude += std::abs(p);
   }
@@ -214,17 +166,17 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         return MarchResult{true, *u};
       }
   }
-  // A ray with few blobs to choose from (a sum of at most kListed, or a short list) takes each
-  // one's span along its whole way once (ray_spans), and a stretch then only the blobs whose
-  // spans meet its range.
-  const bool by_spans =
-      (listed ? n_listed <= BlobSum::kListed : blobs_->size() <= BlobSum::kListed) &&
-      4 * blobs_->framed() >= blobs_->size();
-  if (by_spans)
-    scratch.n_spans = ray_spans(*blobs_, ray, t0, t1,
-                                BlobSum::span_slack(max_abs(ray.o) + std::abs(t0) + std::abs(t1)),
-                                listed, n_listed, scratch.spans.data());
-  double t = t0, s = std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
+  // A sum of at most kListed blobs takes the ray's whole way as one stretch: each blob's terms
+  // once, not once per stretch. Stretches bound the terms one query gives where a ray may meet
+  // many blobs (1000 blobs: a quarter of the way took 0.16 s, the whole way 0.26 s, above); with
+  // a few, the second and later stretches only computed the same blobs' terms again (pov:blob, 3
+  // balls: 2.7 stretches per camera ray, the terms 17 % of the frame). The rule is the sum's, not
+  // the list's: a ray with a list and one without take the same stretches, so the same terms, to
+  // the bit.
+  const bool whole = blobs_->size() <= BlobSum::kListed;
+  double t = t0;
+  double s =
+      whole ? t1 - t0 : std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) {
       ++work.give_ups;
@@ -233,13 +185,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     const double len = std::min(t + s, t1) - t;
     ++work.box_evals;
     int n;
-    if (by_spans) {
-      int32_t* ids = scratch.ids.data();
-      const double slack = BlobSum::span_slack(max_abs(ray.o) + std::abs(t0) + std::abs(t1));
-      const int found =
-          stretch_blobs(scratch.spans.data(), scratch.n_spans, t - slack, t + len + slack, ids);
-      n = found ? blobs_->terms_of(ids, found, segment(ray, t, t + len).a, ray.d, len, terms) : 0;
-    } else if (listed) {
+    if (listed) {
       const Segment seg = segment(ray, t, t + len);
       // The list's blobs whose ranges on its axis meet the stretch's, in the list's order.
       int32_t* ids = scratch.ids.data();
