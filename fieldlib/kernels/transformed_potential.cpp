@@ -120,7 +120,9 @@ Interval TransformedPotential::slope_along(const Bounds& B, Interval dd, Interva
   if (B.T.hi <= 0 || B.T.lo == B.T.hi) return Interval(0);
   const double LP = P.lipschitz(B.T);
   if (LP == 0) return Interval(0);
-  Interval dT = Interval(0, T.slope_d(B.d, B.w)) * dd;
+  // T_d in [inf, sup]: a positive inf keeps T_d d' one-signed where d' is, so that the w' term
+  // (whose interval spans 0 near the surface, where d and f move together) cannot flip it.
+  Interval dT = Interval(T.slope_d_min(B.d, B.w), T.slope_d(B.d, B.w)) * dd;
   if (src != WSource::Constant) {
     if (!(B.f.lo > 0)) return Interval::entire();
     const Interval dr = (dd - B.r * (dfm * Interval(scale))) / B.f;  // (d/f)' = (d' - r f')/f
@@ -131,7 +133,13 @@ Interval TransformedPotential::slope_along(const Bounds& B, Interval dd, Interva
                                         : Interval(-sw, sw);
     dT = dT + Tw * dw;
   }
-  return Interval(-LP, 0) * dT * Interval(1, 1 + 1e-12);
+  // P' in [-LP, 0] times dT: an end of dT's sign gives an end of exactly 0 (outward rounding of
+  // 0 * x would make it a subnormal of the wrong sign, and the tracer reads a one-signed slope
+  // from the sign alone).
+  if (std::isnan(dT.lo) || std::isnan(dT.hi)) return Interval::entire();
+  const double rise = std::max(0.0, dT.hi), fall = std::min(0.0, dT.lo);
+  return {rise > 0 ? iv::down(-LP * rise * (1 + 1e-12)) : 0.0,
+          fall < 0 ? iv::up(-LP * fall * (1 + 1e-12)) : 0.0};
 }
 
 TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld, Interval fm,
