@@ -143,7 +143,7 @@ Interval TransformedPotential::slope_along(const Bounds& B, Interval dd, Interva
 }
 
 TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld, Interval fm,
-                                                          double Lf) const {
+                                                          double Lf, Interval r_known) const {
   Bounds B;
   B.Ld = Ld;
   B.d = {std::max(0.0, d.lo), std::max(0.0, d.hi)};
@@ -159,6 +159,8 @@ TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld,
   } else {  // f can reach 0 (or below, where w is capped): no upper bound on d/f
     B.r = {B.f.hi > 0 ? iv::down(B.d.lo / B.f.hi) : kInf, kInf};
   }
+  const double r_lo = std::max(B.r.lo, r_known.lo), r_hi = std::min(B.r.hi, r_known.hi);
+  if (r_lo <= r_hi) B.r = {r_lo, r_hi};  // (never empty but through rounding: keep [d]/[f] then)
   const auto clamp = [&](double v, double hi) { return std::min(std::max(v, w_min), hi); };
   if (src == WSource::Outer) {
     B.w = {clamp(iv::down(B.r.lo - 1), kWMax), clamp(iv::up(B.r.hi - 1), kWMax)};

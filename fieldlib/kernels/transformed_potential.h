@@ -45,8 +45,11 @@ struct TransformedPotential {
     double Ld = 0, Lf = 0;   // d's and f's (unscaled) Lipschitz bounds, where asked for
   };
   // From [d] and [f_m] (unscaled; read only for a modulated w), with their Lipschitz bounds
-  // (0 where the slope bound is not asked for).
-  Bounds bounds(Interval d, double Ld, Interval fm, double Lf) const;
+  // (0 where the slope bound is not asked for). `r_known`, where given, also holds d/f over the
+  // same points (along a segment, from its ends: RadiusTransformOp::ratio_along): [d]/[f] is
+  // narrowed to it, since the two ignore that d and f move together.
+  Bounds bounds(Interval d, double Ld, Interval fm, double Lf,
+                Interval r_known = Interval::entire()) const;
   Interval interval(const Bounds& B) const { return P.interval(B.T); }
   // The Lipschitz bound over the box B was taken on (with d's and f's bounds).
   double slope_bound(const Bounds& B) const;
