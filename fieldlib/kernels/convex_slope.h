@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/gauge.h"
 #include "math/interval.h"
 #include "math/vec.h"
 
@@ -41,7 +42,7 @@ inline double power_sum_partials(const double* u, int k, double n, double* parti
     s += p * b;
     partial[i] = p;
   }
-  const double root = n == 2 ? std::sqrt(s) : std::pow(s, 1 / n), scale = root / s;
+  const double root = power_root(s, n), scale = root / s;
   for (int i = 0; i < k; ++i) partial[i] *= scale;
   return m * root;
 }

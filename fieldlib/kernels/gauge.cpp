@@ -28,11 +28,10 @@ double pow_fast(double x, double n) {
   return std::pow(x, n);
 }
 
-// m s^(1/n), s a power sum relative to its largest term m: n = 2 (spheres, ellipsoids: most
-// blobs) takes the correctly rounded square root, and n = 1 (a superquadric's inner sum) none:
-// pow(s, 1) is s.
+// m s^(1/n), s a power sum relative to its largest term m (power_root: n = 2, ellipsoids and
+// most blobs, the correctly rounded square root; n = 1, a superquadric's inner sum, none).
 double scale_root(double m, double s, double n) {
-  return m * (n == 2 ? std::sqrt(s) : n == 1 ? s : std::pow(s, 1 / n));
+  return m * power_root(s, n);
 }
 }  // namespace
 

@@ -2,9 +2,23 @@
 // function (docs/math.md §2.5–§2.10), with the derivative and bound facts of docs/math.md §8.
 #pragma once
 
+#include <cmath>
+
 #include "math/interval.h"
 
 namespace softtrace {
+
+// s^(1/n) for s >= 0, a power sum's root: n = 1 none, n = 2, 4, 8 or 16 by one to four square
+// roots (each correctly rounded, so within an ulp all told, as std::pow; the papers' bars and
+// cylinders take n = 4 and 8), other n by std::pow.
+inline double power_root(double s, double n) {
+  if (n == 2) return std::sqrt(s);
+  if (n == 1) return s;
+  if (n == 4) return std::sqrt(std::sqrt(s));
+  if (n == 8) return std::sqrt(std::sqrt(std::sqrt(s)));
+  if (n == 16) return std::sqrt(std::sqrt(std::sqrt(std::sqrt(s))));
+  return std::pow(s, 1 / n);
+}
 
 // f = (Σ u_i^n)^(1/n), evaluated relative to the largest u_i so n = 20 neither overflows nor
 // underflows. When dfdu is non-null it receives ∂f/∂u_i = (u_i/f)^(n-1) (0 where u_i = 0 and

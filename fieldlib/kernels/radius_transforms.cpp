@@ -141,6 +141,24 @@ double RadiusProfile::slope_d(Interval d, Interval w) const {
   }
 }
 
+double RadiusProfile::slope_d_min(Interval d, Interval w) const {
+  if (kind_ != Kind::N || !(w.lo > 0)) return 0;
+  // The flat branches, with a relative margin for the rounding of their ends: T = 1 from
+  // d = 0.5(1 + w1), T = 0 below d = 0.5(1 - w2), w2 = w2(w1) non-decreasing.
+  const double margin = 1e-12;
+  if (d.hi * (1 + margin) >= 0.5 * (1 + w.lo) * (1 - margin)) return 0;
+  const double w2lo = w2(w.lo);
+  if (d.lo * (1 - margin) <= 0.5 * (1 - w2(w.hi)) * (1 + margin)) return 0;
+  if (rule_ == W2Rule::Fixed && !(w2_ <= 2 * w.lo)) return 0;  // 2/w2 >= 1/w1 needs w2 <= 2 w1
+  double s = kInf;
+  if (d.hi >= 0.5) s = 1 / w.hi;  // the linear branch
+  if (d.lo < 0.5) {               // the quadratic one: at least (1 - τ_hi)/w1_hi
+    const double tau = std::min(1.0, (1 - 2 * d.lo) / w2lo * (1 + margin));
+    s = std::min(s, (1 - tau) / w.hi);
+  }
+  return s * (1 - margin);
+}
+
 double RadiusProfile::slope_w(Interval d, Interval w) const {
   switch (kind_) {
     case Kind::N:

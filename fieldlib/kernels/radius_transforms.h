@@ -16,6 +16,10 @@
 //   T_l: k T/d, with k = ln2/ln(1+w1); k >= 1 (w1 <= 1) gives (2md)^k/d <= 2 m^k <= 2 for d <= 0.5
 //   and k/d <= 2k above, so 2k; otherwise k T.hi/d.lo (infinite at the skeleton: [TL-3]).
 //   T_r: k y^k/u with u = 1-d, y = 2u/(1+w2) <= 1, k >= 1: <= k y/u = 2k/(1+w2).
+// - inf ∂T/∂d (T_n, where [d] × [w] meets neither T = 0 nor T = 1): 1/w1 on the linear branch;
+//   on the quadratic one, with τ = (1 - 2d)/w2 in [0, 1], ∂T/∂d = 1/w1 + 2A(d - 0.5) =
+//   (1 - 2τ)/w1 + 2τ/w2 >= (1 - τ)/w1, as 2/w2 >= 1/w1 (w2 <= 2 w1), so at least
+//   (1 - τ_hi)/w1_hi with τ_hi = (1 - 2 d_lo)/w2(w_lo) (w2 never falls as w1 grows).
 // - |dT/dw| (total, w2 following w1 for T_an, w1 = w2 for T_sn): T_n linear branch
 //   (d-0.5)/w1^2 <= min(d.hi-0.5, w1/2)/w1^2; quadratic branch e(1-2e/w2)/w1^2 <= min(e,
 //   w2/8)/w1^2; under T_an ∂T/∂w2 vanishes (2/w2 - 1/w1 = 0 where w2 = 2 w1 < 1, dw2/dw1 = 0 where
@@ -62,6 +66,10 @@ class RadiusProfile {
   // T and, when non-null, ∂T/∂d and the total dT/dw.
   double eval(double d, double w, double* Td, double* Tw) const;
   double slope_d(Interval d, Interval w) const;
+  // inf ∂T/∂d over [d] × [w] (>= 0; 0 where not derived): T_n's, where [d] reaches neither flat
+  // branch, is 1/w1 on the linear one and (1 - τ)/w1 or more on the quadratic one (header
+  // comment). Along a segment it keeps T_d d' one-signed where d' is.
+  double slope_d_min(Interval d, Interval w) const;
   double slope_w(Interval d, Interval w) const;
   // sup |dT/dw| / d; +inf when not derived for the profile.
   double slope_w_per_d(Interval d, Interval w) const;

@@ -120,7 +120,9 @@ Interval TransformedPotential::slope_along(const Bounds& B, Interval dd, Interva
   if (B.T.hi <= 0 || B.T.lo == B.T.hi) return Interval(0);
   const double LP = P.lipschitz(B.T);
   if (LP == 0) return Interval(0);
-  Interval dT = Interval(0, T.slope_d(B.d, B.w)) * dd;
+  // T_d in [inf, sup]: a positive inf keeps T_d d' one-signed where d' is, so that the w' term
+  // (whose interval spans 0 near the surface, where d and f move together) cannot flip it.
+  Interval dT = Interval(T.slope_d_min(B.d, B.w), T.slope_d(B.d, B.w)) * dd;
   if (src != WSource::Constant) {
     if (!(B.f.lo > 0)) return Interval::entire();
     const Interval dr = (dd - B.r * (dfm * Interval(scale))) / B.f;  // (d/f)' = (d' - r f')/f
@@ -131,11 +133,17 @@ Interval TransformedPotential::slope_along(const Bounds& B, Interval dd, Interva
                                         : Interval(-sw, sw);
     dT = dT + Tw * dw;
   }
-  return Interval(-LP, 0) * dT * Interval(1, 1 + 1e-12);
+  // P' in [-LP, 0] times dT: an end of dT's sign gives an end of exactly 0 (outward rounding of
+  // 0 * x would make it a subnormal of the wrong sign, and the tracer reads a one-signed slope
+  // from the sign alone).
+  if (std::isnan(dT.lo) || std::isnan(dT.hi)) return Interval::entire();
+  const double rise = std::max(0.0, dT.hi), fall = std::min(0.0, dT.lo);
+  return {rise > 0 ? iv::down(-LP * rise * (1 + 1e-12)) : 0.0,
+          fall < 0 ? iv::up(-LP * fall * (1 + 1e-12)) : 0.0};
 }
 
 TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld, Interval fm,
-                                                          double Lf) const {
+                                                          double Lf, Interval r_known) const {
   Bounds B;
   B.Ld = Ld;
   B.d = {std::max(0.0, d.lo), std::max(0.0, d.hi)};
@@ -151,6 +159,8 @@ TransformedPotential::Bounds TransformedPotential::bounds(Interval d, double Ld,
   } else {  // f can reach 0 (or below, where w is capped): no upper bound on d/f
     B.r = {B.f.hi > 0 ? iv::down(B.d.lo / B.f.hi) : kInf, kInf};
   }
+  const double r_lo = std::max(B.r.lo, r_known.lo), r_hi = std::min(B.r.hi, r_known.hi);
+  if (r_lo <= r_hi) B.r = {r_lo, r_hi};  // (never empty but through rounding: keep [d]/[f] then)
   const auto clamp = [&](double v, double hi) { return std::min(std::max(v, w_min), hi); };
   if (src == WSource::Outer) {
     B.w = {clamp(iv::down(B.r.lo - 1), kWMax), clamp(iv::up(B.r.hi - 1), kWMax)};

@@ -45,18 +45,21 @@ struct TransformedPotential {
     double Ld = 0, Lf = 0;   // d's and f's (unscaled) Lipschitz bounds, where asked for
   };
   // From [d] and [f_m] (unscaled; read only for a modulated w), with their Lipschitz bounds
-  // (0 where the slope bound is not asked for).
-  Bounds bounds(Interval d, double Ld, Interval fm, double Lf) const;
+  // (0 where the slope bound is not asked for). `r_known`, where given, also holds d/f over the
+  // same points (along a segment, from its ends: RadiusTransformOp::ratio_along): [d]/[f] is
+  // narrowed to it, since the two ignore that d and f move together.
+  Bounds bounds(Interval d, double Ld, Interval fm, double Lf,
+                Interval r_known = Interval::entire()) const;
   Interval interval(const Bounds& B) const { return P.interval(B.T); }
   // The Lipschitz bound over the box B was taken on (with d's and f's bounds).
   double slope_bound(const Bounds& B) const;
   double lipschitz() const;  // global: +inf for a modulated w (no global bound on ∇w)
   // Over the box B was taken on: an interval holding d(P ∘ T ∘ d)/dt along a segment where d's
   // own derivative lies in `dd` and the modulation's (unscaled) in `dfm`. It is P'(T) dT/dt, with
-  // P' in [-|P'|, 0] (P never rises), dT/dt = T_d d' + T_w w', T_d in [0, sup T_d] (T never falls
-  // with d) and T_w of the sign radius_transforms.h gives it on either side of d = 0.5; w' = 0
-  // where w is clamped, else ±(d' - (d/f) f')/f (w1 = d/f - 1, w2 = 1 - d/f). Entire where f may
-  // reach 0.
+  // P' in [-|P'|, 0] (P never rises), dT/dt = T_d d' + T_w w', T_d in [inf T_d, sup T_d] (T never
+  // falls with d; RadiusProfile::slope_d_min) and T_w of the sign radius_transforms.h gives it on
+  // either side of d = 0.5; w' = 0 where w is clamped, else ±(d' - (d/f) f')/f (w1 = d/f - 1, w2 =
+  // 1 - d/f). Entire where f may reach 0.
   Interval slope_along(const Bounds& B, Interval dd, Interval dfm) const;
 
   bool outside_support(const Box& b) const {

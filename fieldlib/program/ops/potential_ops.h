@@ -7,6 +7,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "kernels/complement.h"
@@ -279,12 +281,72 @@ struct RadiusTransformOp {
     io.Q[in.out] = 1;
     return true;
   }
+  // The values at register `reg`'s segment ends of the convex gauge instruction that wrote
+  // `slot` (the first writer of it before `in` in the code: its consumer's operand), as its slope
+  // left them in GaugeEnds: a function of the gauge's constants and the point alone, so an entry
+  // whose points are this segment's ends holds its values whenever it was written. False where the
+  // writer is no such gauge or its ends are not this segment's. *stray: how far the true ends may
+  // lie from the computed ones (the register's pad and the coordinates' rounding).
+  static bool gauge_ends(const Instr& in, const BoundsIO& io, int slot, double* v, double* stray) {
+    const std::vector<Instr>& code = io.program->code;
+    const std::ptrdiff_t k = &in - code.data();
+    if (k < 0 || k >= static_cast<std::ptrdiff_t>(code.size())) return false;
+    for (std::ptrdiff_t j = k - 1; j >= 0 && j >= k - 64; --j) {
+      const Instr& w = code[j];
+      if (w.op == Op::Translate || w.op == Op::Place || w.op == Op::Group || w.out != slot)
+        continue;  // writes a register, announces a group, or another slot
+      if (w.op != Op::SphericalProduct && w.op != Op::LpMetric) return false;
+      const GaugeEnds* e = io.ends_of(w);
+      if (!e || e->key != io.K + w.a) return false;
+      const Vec3* S = io.segs + 2 * w.in;
+      for (int i = 0; i < 2; ++i)
+        if (!(e->p[i].x == S[i].x && e->p[i].y == S[i].y && e->p[i].z == S[i].z)) return false;
+      v[0] = e->f[0];
+      v[1] = e->f[1];
+      *stray = io.seg_pads[w.in] + 1e-12 * std::max(max_abs(S[0]), max_abs(S[1])) + 1e-300;
+      return std::isfinite(v[0]) && std::isfinite(v[1]);
+    }
+    return false;
+  }
+  // d/f over the segment's points from its two ends: d/f at an end (the gauges' values there,
+  // widened by their Lipschitz bounds over the ends' stray), moved along the segment by the range
+  // of (d/f)' = (d' - r f')/f (B's loose r and f), from either end; then widened by |∇(d/f)| <=
+  // (L_d + r L_f)/f times the stray for the computed points off the true segment. [d]/[f] over
+  // the box ignores that d and f rise together: where the modulation lies close outside d (w
+  // near 0.017 on 002 Fig. 3's cylinders) it takes w down to its clamp. Entire where not known.
+  static Interval ratio_along(const Instr& in, const BoundsIO& io, const TransformedPotential& t,
+                              const TransformedPotential::Bounds& B) {
+    double d[2], f[2], sd, sf;
+    if (!(B.f.lo > 0) || !std::isfinite(B.r.hi) || !gauge_ends(in, io, in.in, d, &sd) ||
+        !gauge_ends(in, io, in.n, f, &sf))
+      return Interval::entire();
+    const double Ld = io.L[in.in], Lf = t.scale * io.L[in.n];
+    if (!(std::isfinite(Ld) && std::isfinite(Lf))) return Interval::entire();
+    const Interval dr = (io.D[in.in] - B.r * (io.D[in.n] * Interval(t.scale))) / B.f;
+    const Interval span = dr * Interval(0, io.seg_length);
+    Interval r = Interval::entire();
+    for (int i = 0; i < 2; ++i) {
+      const double fs = t.scale * f[i];
+      const Interval di{widen_down(d[i] - Ld * sd, 1e-12), widen_up(d[i] + Ld * sd, 1e-12)};
+      const Interval fi{widen_down(fs - Lf * sf, 1e-12), widen_up(fs + Lf * sf, 1e-12)};
+      if (!(fi.lo > 0)) return Interval::entire();
+      const Interval along = di / fi + (i == 0 ? span : -span);  // from A forward, from B back
+      r = {std::max(r.lo, along.lo), std::min(r.hi, along.hi)};
+    }
+    const double off = (Ld + B.r.hi * Lf) / B.f.lo * std::max(sd, sf) * (1 + 1e-9) + 1e-300;
+    if (!(r.lo <= r.hi) || !std::isfinite(off)) return Interval::entire();
+    return {iv::down(r.lo - off), iv::up(r.hi + off)};
+  }
   static void bounds(const Instr& in, const BoundsIO& io) {
     if (zero_outside(in, io)) return;
     Interval* I = io.I;
     double* L = io.L;
     const TransformedPotential t = load(io.K + in.a);
-    const TransformedPotential::Bounds B = t.bounds(I[in.in], L[in.in], I[in.n], L[in.n]);
+    TransformedPotential::Bounds B = t.bounds(I[in.in], L[in.in], I[in.n], L[in.n]);
+    if (io.segment && io.slopes && t.src != WSource::Constant) {
+      const Interval r = ratio_along(in, io, t, B);
+      if (r.lo > B.r.lo || r.hi < B.r.hi) B = t.bounds(I[in.in], L[in.in], I[in.n], L[in.n], r);
+    }
     I[in.out] = t.interval(B);
     L[in.out] = t.slope_bound(B);
     io.D[in.out] = {-L[in.out], L[in.out]};

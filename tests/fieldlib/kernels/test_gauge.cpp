@@ -23,7 +23,7 @@ long double reference(const double* u, int k, double n) {
 TEST(PowerSum, IsWithinAFewUlps) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
-  for (const double n : {0.5, 0.8, 1.5, 2.5, 3.0, 4.0, 7.0, 8.0, 20.0, 50.0, 200.0}) {
+  for (const double n : {0.5, 0.8, 1.5, 2.5, 3.0, 4.0, 7.0, 8.0, 16.0, 20.0, 50.0, 200.0}) {
     double worst = 0;
     for (int i = 0; i < 20000; ++i) {
       const double v[3] = {u(rng), u(rng), i % 3 ? u(rng) : 0.0};
@@ -35,11 +35,31 @@ TEST(PowerSum, IsWithinAFewUlps) {
   }
 }
 
+// The root of a power sum relative to its largest term (s in [1, k]) by square roots for n = 4, 8
+// and 16: within an ulp of the long double root, as std::pow is.
+TEST(PowerRoot, SquareRootsAreWithinAnUlp) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(1, 3);
+  for (const double n : {4.0, 8.0, 16.0}) {
+    double worst = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double s = u(rng);
+      const long double ref =
+          std::pow(static_cast<long double>(s), 1 / static_cast<long double>(n));
+      worst =
+          std::max(worst, static_cast<double>(std::abs(power_root(s, n) - ref) / ref) / 0x1p-53);
+    }
+    EXPECT_LE(worst, 2) << "n = " << n << ": " << worst << " half-ulps";
+  }
+  EXPECT_EQ(power_root(0, 8), 0);
+  EXPECT_EQ(power_root(1, 16), 1);
+}
+
 // The batch gives power_sum's bits lane by lane, zeros, infinities and NaN included.
 TEST(PowerSum, LanesGiveTheSingleCallsBits) {
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(0, 3);
-  for (const double n : {0.5, 1.0, 1.5, 2.0, 3.0, 20.0, -3.0}) {
+  for (const double n : {0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 8.0, 16.0, 20.0, -3.0}) {
     for (const int k : {1, 2, 3}) {
       double terms[3][16];
       for (int i = 0; i < k; ++i)

@@ -1,7 +1,9 @@
 // Radius-transform properties of docs/math.md §4 ([TN-*], [TL-*], [TR-1], [TA-*], [TS-*], [VIR-*]).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "describe/params.h"
@@ -132,6 +134,43 @@ TEST(TransformN, MaximumSlope) {  // [TN-8]
     const auto profile = make_profile_n(W2Rule::Fixed, w[1]);
     EXPECT_NEAR(profile.slope_d({0, 10}, Interval(w[0])), bound, 1e-9 * bound);
   }
+}
+
+// inf ∂T/∂d over a box of (d, w1) (docs/math.md §8, "Slopes along a segment"): below every sampled
+// ∂T/∂d (w2 following w1 by each rule), and not far below where the box is near d = 0.5.
+TEST(TransformN, SlopeDMinHoldsOnSamples) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  int positive = 0;
+  for (W2Rule rule : {W2Rule::Double, W2Rule::Equal, W2Rule::Fixed}) {
+    for (int i = 0; i < 3000; ++i) {
+      const double w_lo = 0.01 + 0.8 * u(rng), w_hi = w_lo * (1 + 0.2 * u(rng));
+      const double w2_fixed = 2 * w_lo * u(rng) + 1e-3;
+      const auto profile = make_profile_n(rule, w2_fixed);
+      const auto w2_of = [&](double w) {
+        return rule == W2Rule::Double ? std::min(1.0, 2 * w) : rule == W2Rule::Equal ? w : w2_fixed;
+      };
+      const double c = 0.5 + (u(rng) - 0.6) * w_lo, r = 0.2 * w_lo * u(rng);
+      const Interval d{std::max(0.0, c - r), c + r}, w{w_lo, w_hi};
+      const double lo = profile.slope_d_min(d, w);
+      ASSERT_GE(lo, 0);
+      double least = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < 50; ++j) {
+        const double x = d.lo + (d.hi - d.lo) * (j % 2 ? u(rng) : j / 2 % 2);
+        const double w1 = w.lo + (w.hi - w.lo) * (j / 4 % 2 ? u(rng) : j / 8 % 2);
+        TPartials p;
+        transform_n(x, w1, w2_of(w1), &p);
+        least = std::min(least, p.d);
+      }
+      ASSERT_LE(lo, least * (1 + 1e-12))
+          << "d [" << d.lo << ", " << d.hi << "] w [" << w.lo << ", " << w.hi << "]";
+      if (lo > 0) ++positive;
+      if (d.lo >= 0.5 && lo > 0) {
+        EXPECT_GE(lo, least / (1 + 0.2 + 1e-9));  // 1/w_hi against 1/w1
+      }
+    }
+  }
+  EXPECT_GT(positive, 3000) << "the bound is mostly 0";
 }
 
 // Partials of docs/math.md §4.2–§4.4 against central differences in d, w1, w2.

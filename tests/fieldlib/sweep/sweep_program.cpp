@@ -244,4 +244,68 @@ TEST(ProgramSegmentSlopes, CombinationsGiveOneSignedSlopes) {
   }
 }
 
+// Modulated radii (002 Fig. 6's levels, scaled: the T_an and T_sn of fig002_6d and 6f, at their
+// levels 0.15 and 0.85): along a short segment that crosses the level surface steeply, P(T(d, w))
+// falls one-signed with d. The w' term's interval spans 0 there, so it is T_d's lower bound
+// (RadiusProfile::slope_d_min) that keeps the slope one-signed: 196, 208 and 200 of 209 segments
+// here; Fig. 6's two 0 of 209 with T_d in [0, sup], T_an_close 110 without ratio_along.
+TEST(ProgramSegmentSlopes, ModulatedTransformsAcrossTheSurfaceAreOneSigned) {
+  struct Kind {
+    const char* name;
+    const char* json;
+    double level;
+  };
+  const Kind kinds[] = {
+      {"T_an_levels",
+       R"({"type":"soft_object","distance":{"type":"superquadric","radii":[1,0.6,2.5],"n1":2,
+           "n2":10},"radii":{"type":"T_an","modulation":{"type":"lp_metric","radii":[2.4,1.5,5],
+           "n":10}}})",
+       0.15},
+      // 002 Fig. 3's cylinder, its modulation 1/60 of a radius outside on five sides: over a
+      // segment [d]/[f] takes w down to its clamp, and only d/f from the gauges' values at the
+      // ends (RadiusTransformOp::ratio_along) keeps the linear branch's T_d >= 1/w usable.
+      {"T_an_close",
+       R"({"type":"soft_object","distance":{"type":"superelliptic_cylinder","radii":[1,1,1],"n":8,
+           "half_length":1.5},"radii":{"type":"T_an","modulation":{"type":"superelliptic_cylinder",
+           "radii":[1,1,1],"n":8,"half_length":1.5,"t":[1.0166666666666667,1.0166666666666667,2,
+           1.0166666666666667,1.0166666666666667,1.0166666666666667]}}})",
+       0.3},
+      {"T_sn_levels",
+       R"({"type":"soft_object","distance":{"type":"superquadric","radii":[1,0.6,2.5],"n1":2,
+           "n2":10},"radii":{"type":"T_sn","modulation":{"type":"superquadric",
+           "radii":[0.4,0.4,1.25],"n1":2,"n2":10}}})",
+       0.85},
+  };
+  for (const Kind& k : kinds) {
+    const NodePtr n = build_from_json(k.json, Convention::Soft);
+    const Program prog = compile(*n);
+    Workspace ws;
+    ws.fit(prog);
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> g(0, 1);
+    int crossing = 0, one_signed = 0;
+    for (int i = 0; i < 400; ++i) {
+      // A point of the level surface on a ray from the centre (the field falls outward), and a
+      // short segment through it within 60 degrees of that ray.
+      const Vec3 u = normalize(Vec3{g(rng), g(rng), g(rng)});
+      double lo = 0.01, hi = 6;
+      if (!(n->value(u * lo) > k.level && n->value(u * hi) < k.level)) continue;
+      for (int j = 0; j < 60; ++j) {
+        const double m = 0.5 * (lo + hi);
+        (n->value(u * m) > k.level ? lo : hi) = m;
+      }
+      Vec3 d = normalize(Vec3{g(rng), g(rng), g(rng)});
+      if (dot(d, u) < 0) d = d * -1;
+      if (dot(d, u) < 0.5) continue;
+      const Vec3 p = u * lo;
+      ++crossing;
+      const BoxBounds bb = bounds(prog, Segment{p - d * 0.005, p + d * 0.005}, ws);
+      if (bb.slope.lo >= 0 || bb.slope.hi <= 0) ++one_signed;  // as the tracer reads it
+    }
+    ASSERT_GT(crossing, 50) << k.name;
+    EXPECT_GE(one_signed, 0.9 * crossing) << k.name << ": " << one_signed << " of " << crossing;
+    RecordProperty(k.name, one_signed);
+  }
+}
+
 }  // namespace softtrace::test

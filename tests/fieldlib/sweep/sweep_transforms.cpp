@@ -38,6 +38,14 @@ const SweepCase kTransformCases[] = {
      R"(,"radii":{"type":"T_an","modulation":
                       {"type":"lp_metric","radii":[1.8,2.2,2],"n":1.5}}})",
      kTransformBox},
+    // The modulation close outside d (w ~ 0.017 on five sides, 002 Fig. 3's cylinders): T_n's
+    // steep linear branch, d and f rising together.
+    {"T_an_close",
+     R"({"type":"soft_object","distance":{"type":"superelliptic_cylinder","radii":[1,1,1],"n":8,
+         "half_length":1.5},"radii":{"type":"T_an","modulation":{"type":"superelliptic_cylinder",
+         "radii":[1,1,1],"n":8,"half_length":1.5,"t":[1.0166666666666667,1.0166666666666667,2,
+         1.0166666666666667,1.0166666666666667,1.0166666666666667]}}})",
+     kTransformBox},
     {"T_al",
      R"({"type":"soft_object","distance":)" SPHERE
      R"(,"radii":{"type":"T_al","modulation":
