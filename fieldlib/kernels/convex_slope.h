@@ -50,12 +50,15 @@ inline double power_sum_partials(const double* u, int k, double n, double* parti
 // next segment starts where the last ended, and a halved piece shares an end with its parent, so
 // an end's f and gradient (a function of the point alone: the same bits found or computed) are
 // often known. A small table in the workspace, indexed by the instruction's place in its program.
+// Four points, the newest written over the oldest: after a halving, the piece's far half ends
+// where the whole did, two segments back.
 struct GaugeEnds {
-  static constexpr int kTable = 64;
+  static constexpr int kTable = 64, kPoints = 4;
   const double* key = nullptr;
-  Vec3 p[2];
-  double f[2] = {0, 0};
-  Vec3 g[2];
+  int next = 0;  // the slot the next new point takes
+  Vec3 p[kPoints];
+  double f[kPoints] = {0, 0, 0, 0};
+  Vec3 g[kPoints];
 };
 
 // df/dt along [A, B] (t in [0, len], the world length), f convex, C^1 (n >= 2 makes the gauges so)
@@ -84,28 +87,32 @@ Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const do
   const Vec3 e = B - A;
   const double ne = length(e), reach = ne * L;
   const double stray = pad + 1e-12 * std::max(max_abs(A), max_abs(B)) + 1e-300;
-  const bool known = ends && ends->key == key;
+  if (ends && ends->key != key) {
+    ends->key = key;
+    ends->next = 0;
+    for (Vec3& p : ends->p) p = {NAN, NAN, NAN};  // matches no point
+  }
   double f[2];
   Vec3 g[2];
   const Vec3* P[2] = {&A, &B};
   for (int i = 0; i < 2; ++i) {
     const Vec3& p = *P[i];
     int j = 0;
-    while (j < 2 && !(known && ends->p[j].x == p.x && ends->p[j].y == p.y && ends->p[j].z == p.z))
+    while (ends && j < GaugeEnds::kPoints &&
+           !(ends->p[j].x == p.x && ends->p[j].y == p.y && ends->p[j].z == p.z))
       ++j;
-    if (j < 2) {
+    if (ends && j < GaugeEnds::kPoints) {
       f[i] = ends->f[j];
       g[i] = ends->g[j];
-    } else {
-      f[i] = kernel(p, &g[i]);
+      continue;
     }
-  }
-  if (ends) {
-    ends->key = key;
-    for (int i = 0; i < 2; ++i) {
-      ends->p[i] = *P[i];
-      ends->f[i] = f[i];
-      ends->g[i] = g[i];
+    f[i] = kernel(p, &g[i]);
+    if (ends) {
+      const int k = ends->next;
+      ends->next = (k + 1) % GaugeEnds::kPoints;
+      ends->p[k] = p;
+      ends->f[k] = f[i];
+      ends->g[k] = g[i];
     }
   }
   const auto end = [&](int i, double extreme) {
