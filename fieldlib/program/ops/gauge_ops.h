@@ -107,8 +107,10 @@ struct LpMetricOp : RegisterToSlot {
                            &io.D[in.out], &io.Q[in.out]);
       io.L[in.out] = m.global_L;
     } else if (io.slopes && m.n >= 2) {
-      // Convex and C^1 (‖∇²f‖ <= (n - 1) max(1/a_i)^2 / f): the ends' gradients bound the slope.
-      lp_metric_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      // Convex and C^1 (‖∇²f‖ <= (n - 1) max(1/a_i)^2 / f): the ends' values and gradients bound
+      // the range and the slope along the segment. The Lipschitz bound is the global one, as the
+      // ellipsoid's: the slope bounds the tracer's steps here, and the partials' bounds over the
+      // box (a power per term) tightened no decision (the same evaluations on fig000_14n).
       const Vec3* S = io.segs + 2 * in.in;
       const double ia = std::max({m.ia.x, m.ia.y, m.ia.z});
       const auto kernel = [&](const Vec3& p, Vec3* g) {
@@ -120,9 +122,17 @@ struct LpMetricOp : RegisterToSlot {
         *g = {d[0] * sgn(p.x) * m.ia.x, d[1] * sgn(p.y) * m.ia.y, d[2] * sgn(p.z) * m.ia.z};
         return f;
       };
+      Interval range;
+      bool along;
       io.D[in.out] = convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
                                              io.seg_pads[in.in], io.seg_length, m.global_L,
-                                             (m.n - 1) * ia * ia);
+                                             (m.n - 1) * ia * ia, &range, &along);
+      if (along) {
+        io.I[in.out] = range;
+        io.L[in.out] = m.global_L;
+      } else {
+        lp_metric_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      }
       io.gauge_segment_facts(in.out);
     } else if (io.slopes) {
       Interval rate[3];
@@ -181,8 +191,8 @@ struct SphericalProductOp : RegisterToSlot {
     const SphericalProductParams m = load(io.K + in.a);
     if (io.slopes && m.n1 >= 2 && m.n2 >= 2) {
       // Convex and C^1 (‖∇²f‖ <= (n1 + n2 - 2) max(1/r)^2 / f over the terms' radii): the ends'
-      // gradients bound the slope.
-      spherical_product_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      // values and gradients bound the range and the slope along the segment, and the Lipschitz
+      // bound is the global one (as the L^p metric's above).
       const Vec3* S = io.segs + 2 * in.in;
       double ir = 0;
       for (const OneSidedTerm& t : m.t) ir = std::max(ir, t.slope());
@@ -195,9 +205,17 @@ struct SphericalProductOp : RegisterToSlot {
         *g = {pm[0] * ph[0] * dx, pm[0] * ph[1] * dy, pm[1] * dz};
         return f;
       };
+      Interval range;
+      bool along;
       io.D[in.out] = convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
                                              io.seg_pads[in.in], io.seg_length, m.global_L,
-                                             (m.n1 + m.n2 - 2) * ir * ir);
+                                             (m.n1 + m.n2 - 2) * ir * ir, &range, &along);
+      if (along) {
+        io.I[in.out] = range;
+        io.L[in.out] = m.global_L;
+      } else {
+        spherical_product_bounds(m, io.box(in.in), &io.I[in.out], &io.L[in.out]);
+      }
       io.gauge_segment_facts(in.out);
     } else if (io.slopes) {
       Interval rate[3];
