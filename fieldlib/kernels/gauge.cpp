@@ -71,12 +71,12 @@ void power_sum_lanes(const double* const* u, int k, double n, int lanes, double*
       for (int l = 0; l < lanes; ++l) s[l] += std::pow(b[l], n);
       continue;
     }
-    const int k = static_cast<int>(n);
-    const bool half = k != n;
+    const int whole = static_cast<int>(n);
+    const bool half = whole != n;
     if (half)
       for (int l = 0; l < lanes; ++l) h[l] = std::sqrt(b[l]);
     for (int l = 0; l < lanes; ++l) r[l] = 1;
-    for (int e = k; e; e >>= 1) {
+    for (int e = whole; e; e >>= 1) {
       if (e & 1)
         for (int l = 0; l < lanes; ++l) r[l] *= b[l];
       if (e == 1) break;
