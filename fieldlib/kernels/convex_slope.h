@@ -60,6 +60,13 @@ struct GaugeEnds {
   Vec3 p[kPoints];
   double f[kPoints] = {0, 0, 0, 0};
   Vec3 g[kPoints];
+  // The latest slope's segment ends, in order, and f there: written by a call that computed both,
+  // cleared by one that did not. A consumer later in the same bounds pass (a radius transform's
+  // d/f, RadiusTransformOp::ratio_along) reads this pass's values or none: whether the points
+  // above still hold an end depends on the thread's earlier rays, and so would its bits.
+  Vec3 last[2];
+  double last_f[2] = {0, 0};
+  bool last_valid = false;
 };
 
 // df/dt along [A, B] (t in [0, len], the world length), f convex, C^1 (n >= 2 makes the gauges so)
@@ -84,15 +91,16 @@ Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const do
                                  double hess, Interval* range = nullptr,
                                  bool* range_written = nullptr) {
   if (range_written) *range_written = false;
-  if (!(len > 0) || !std::isfinite(L)) return Interval::entire();
-  const Vec3 e = B - A;
-  const double ne = length(e), reach = ne * L;
-  const double stray = pad + 1e-12 * std::max(max_abs(A), max_abs(B)) + 1e-300;
   if (ends && ends->key != key) {
     ends->key = key;
     ends->next = 0;
     for (Vec3& p : ends->p) p = {NAN, NAN, NAN};  // matches no point
   }
+  if (ends) ends->last_valid = false;
+  if (!(len > 0) || !std::isfinite(L)) return Interval::entire();
+  const Vec3 e = B - A;
+  const double ne = length(e), reach = ne * L;
+  const double stray = pad + 1e-12 * std::max(max_abs(A), max_abs(B)) + 1e-300;
   double f[2];
   Vec3 g[2];
   const Vec3* P[2] = {&A, &B};
@@ -115,6 +123,13 @@ Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const do
       ends->f[k] = f[i];
       ends->g[k] = g[i];
     }
+  }
+  if (ends) {
+    ends->last[0] = A;
+    ends->last[1] = B;
+    ends->last_f[0] = f[0];
+    ends->last_f[1] = f[1];
+    ends->last_valid = true;
   }
   const auto end = [&](int i, double extreme) {
     const double near = f[i] * (1 - 1e-12) - L * stray;

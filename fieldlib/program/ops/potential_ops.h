@@ -281,12 +281,11 @@ struct RadiusTransformOp {
     io.Q[in.out] = 1;
     return true;
   }
-  // The values at register `reg`'s segment ends of the convex gauge instruction that wrote
-  // `slot` (the first writer of it before `in` in the code: its consumer's operand), as its slope
-  // left them in GaugeEnds: a function of the gauge's constants and the point alone, so an entry
-  // whose points are this segment's ends holds its values whenever it was written. False where the
-  // writer is no such gauge or its ends are not this segment's. *stray: how far the true ends may
-  // lie from the computed ones (the register's pad and the coordinates' rounding).
+  // The values at its segment's ends of the convex gauge instruction that wrote `slot` (the first
+  // writer of it before `in` in the code: its consumer's operand), as its slope in this pass left
+  // them in GaugeEnds (`last`, which a slope that did not compute both ends clears). False where
+  // the writer is no such gauge or did not compute this segment's ends. *stray: how far the true
+  // ends may lie from the computed ones (the register's pad and the coordinates' rounding).
   static bool gauge_ends(const Instr& in, const BoundsIO& io, int slot, double* v, double* stray) {
     const std::vector<Instr>& code = io.program->code;
     const std::ptrdiff_t k = &in - code.data();
@@ -297,12 +296,13 @@ struct RadiusTransformOp {
         continue;  // writes a register, announces a group, or another slot
       if (w.op != Op::SphericalProduct && w.op != Op::LpMetric) return false;
       const GaugeEnds* e = io.ends_of(w);
-      if (!e || e->key != io.K + w.a) return false;
+      if (!e || e->key != io.K + w.a || !e->last_valid) return false;
       const Vec3* S = io.segs + 2 * w.in;
       for (int i = 0; i < 2; ++i)
-        if (!(e->p[i].x == S[i].x && e->p[i].y == S[i].y && e->p[i].z == S[i].z)) return false;
-      v[0] = e->f[0];
-      v[1] = e->f[1];
+        if (!(e->last[i].x == S[i].x && e->last[i].y == S[i].y && e->last[i].z == S[i].z))
+          return false;
+      v[0] = e->last_f[0];
+      v[1] = e->last_f[1];
       *stray = io.seg_pads[w.in] + 1e-12 * std::max(max_abs(S[0]), max_abs(S[1])) + 1e-300;
       return std::isfinite(v[0]) && std::isfinite(v[1]);
     }
