@@ -142,20 +142,29 @@ bool read_distance(const Instr& metric, const double* K, BlobSum::Frame* frame, 
   std::abort();  // not reached: the switch names every role
 }
 
+// A blob frame's inverse M = L^-1 with the squares of the Frobenius norms of L and M: what the
+// reach and the outline below both start from. False where L is ill-conditioned
+// (|L|_F |L^-1|_F >= 1e8), where neither is kept.
+struct FrameInverse {
+  Mat3 M;
+  double l2 = 0, m2 = 0;
+};
+bool frame_inverse(const BlobSum::Frame& f, FrameInverse* fi) {
+  fi->M = inverse(f.L);
+  for (int r = 0; r < 3; ++r) {
+    fi->l2 += dot(f.L.r[r], f.L.r[r]);
+    fi->m2 += dot(fi->M.r[r], fi->M.r[r]);
+  }
+  return fi->l2 * fi->m2 < 1e16;
+}
+
 // A sphere around a blob's support |L x + k - s axis| <= 1, s in [0, 1]: x = L^-1 (y + s axis - k)
 // with |y| <= 1 lies within |L^-1|_2 (1 + |axis| / 2) <= |L^-1|_F (1 + |axis| / 2) of
 // L^-1 (axis / 2 - k). 1 % on the radius holds the inverse's rounding where L is well
-// conditioned (|L|_F |L^-1|_F < 1e8); otherwise reach2 stays infinite (no sphere).
-void set_reach(const BlobSum::Frame& f, BlobSum::Blob* blob) {
-  const Mat3 inv = inverse(f.L);
-  double norm2 = 0, inv_norm2 = 0;
-  for (int r = 0; r < 3; ++r) {
-    norm2 += dot(f.L.r[r], f.L.r[r]);
-    inv_norm2 += dot(inv.r[r], inv.r[r]);
-  }
-  if (!(norm2 * inv_norm2 < 1e16)) return;
-  blob->centre = inv * (f.axis * 0.5 - f.k);
-  const double reach = 1.01 * std::sqrt(inv_norm2) * (1 + 0.5 * std::sqrt(dot(f.axis, f.axis)));
+// conditioned (frame_inverse); otherwise reach2 stays infinite (no sphere).
+void set_reach(const BlobSum::Frame& f, const FrameInverse& fi, BlobSum::Blob* blob) {
+  blob->centre = fi.M * (f.axis * 0.5 - f.k);
+  const double reach = 1.01 * std::sqrt(fi.m2) * (1 + 0.5 * std::sqrt(dot(f.axis, f.axis)));
   blob->reach2 = reach * reach;
 }
 
@@ -167,18 +176,12 @@ void set_reach(const BlobSum::Frame& f, BlobSum::Blob* blob) {
 // norm at most |M| rho / (1 - rho) for rho >= |R| < 1 (all norms Frobenius, above the spectral
 // ones). The computed residuals err by at most 4 ulps of the magnitudes summed in them (a dot of
 // three and one addition); e and rho take 8 ulps of those besides, and the slack is doubled for
-// its own rounding. An outline is kept only where L is as well conditioned as set_reach asks
-// and rho < 1/2.
-void set_outline(const BlobSum::Frame& f, BlobSum::Outline* out) {
+// its own rounding. An outline is kept only where L is well conditioned (frame_inverse) and
+// rho < 1/2.
+void set_outline(const BlobSum::Frame& f, const FrameInverse& fi, BlobSum::Outline* out) {
   constexpr double kEps = std::numeric_limits<double>::epsilon();
-  const Mat3 M = inverse(f.L);
-  double l2 = 0, m2 = 0;
-  for (int r = 0; r < 3; ++r) {
-    l2 += dot(f.L.r[r], f.L.r[r]);
-    m2 += dot(M.r[r], M.r[r]);
-  }
-  if (!(l2 * m2 < 1e16)) return;
-  const double l_norm = std::sqrt(l2), m_norm = std::sqrt(m2);
+  const Mat3& M = fi.M;
+  const double l_norm = std::sqrt(fi.l2), m_norm = std::sqrt(fi.m2);
   const Vec3 p0 = M * (-f.k), p1 = M * (f.axis - f.k);
   const Vec3 r0 = f.L * p0 + f.k, r1 = f.L * p1 + f.k - f.axis;
   const double k_norm = length(f.k), axis_norm = length(f.axis);
@@ -284,9 +287,10 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     Blob blob;
     if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
     Outline outline;
-    if (!(blob.inv_r2 > 0)) {
-      set_reach(frame, &blob);
-      set_outline(frame, &outline);
+    FrameInverse fi;
+    if (!(blob.inv_r2 > 0) && frame_inverse(frame, &fi)) {
+      set_reach(frame, fi, &blob);
+      set_outline(frame, fi, &outline);
     }
     s.capsules_ += frame.inv_axis2 > 0;
     s.frames_.push_back(frame);
