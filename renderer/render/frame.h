@@ -10,6 +10,7 @@
 
 #include "film/film.h"
 #include "render/progress.h"
+#include "render/threads.h"
 #include "scene/traced_objects.h"
 #include "trace/embree_scene.h"
 
@@ -27,10 +28,14 @@ struct RenderOptions {
 };
 
 // What a frame is traced with: the objects as the tracers take them, every object's tracer and
-// the Embree scene over them. The scene must outlive it (shading reads its materials).
+// the Embree scene over them. The scene must outlive it (shading reads its materials). Only a
+// transparent material starts rays inside a solid (transparency.h): without one, a scene that
+// the direct paths trace builds no Embree scene (EmbreeScene's `interiors`).
 struct TracedScene {
   TracedScene(const Scene& scene, LipschitzMode mode)
-      : objects(traced_objects(scene)), tracers(objects, mode), embree(tracers) {}
+      : objects(traced_objects(scene)), tracers(objects, mode), embree(tracers, scene.transparent) {
+    if (!embree.built()) start_threads_as_embree_does();
+  }
   std::vector<TracedObject> objects;
   SceneTracers tracers;
   EmbreeScene embree;

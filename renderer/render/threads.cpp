@@ -5,6 +5,9 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
 
 namespace softtrace {
 
@@ -31,6 +34,18 @@ ThreadLimit limit_threads(int threads) {
   ThreadLimit limit;
   if (threads) limit.control_ = std::make_unique<ThreadLimit::Control>(threads);
   return limit;
+}
+
+void start_threads_as_embree_does() {
+#if defined(__x86_64__) || defined(__i386__)
+  constexpr unsigned kFlushToZero = 1u << 15, kDenormalsAreZero = 1u << 6;  // MXCSR's bits
+  const unsigned mode = _mm_getcsr();
+  _mm_setcsr(mode | kFlushToZero | kDenormalsAreZero);
+#endif
+  tbb::parallel_for(0, 1, [](int) {});  // one task: TBB starts, no worker is woken
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_setcsr(mode);
+#endif
 }
 
 int default_threads() {

@@ -32,6 +32,13 @@ class ThreadLimit {
 // At most `threads` worker threads (0: no cap, all cores) while the result lives.
 ThreadLimit limit_threads(int threads);
 
+// Starts TBB on the calling thread, if nothing has, with flush-to-zero and denormals-are-zero on,
+// as Embree's scene commit starts it: TBB's arena takes the floating-point mode of the moment it
+// starts, and every task of every frame after it (the frame's rays) runs in that mode, on every
+// thread. A scene that builds no Embree scene (EmbreeScene::built) calls this in its place, so
+// that its pictures keep their bits (a denormal flushed or not changes a march's steps).
+void start_threads_as_embree_does();
+
 // The worker threads a parallel loop uses when nothing caps them (TBB's default concurrency: the
 // cores this process may run on).
 int default_threads();

@@ -37,7 +37,11 @@ std::string error_text(const char* what, RTCError code, const std::string& messa
 
 }  // namespace
 
-EmbreeDevice::EmbreeDevice(const char* config) : device_(rtcNewDevice(config)) {
+EmbreeDevice::EmbreeDevice(const char* config) : EmbreeDevice(config, true) {}
+
+EmbreeDevice::EmbreeDevice(const char* config, bool create)
+    : device_(create ? rtcNewDevice(config) : nullptr) {
+  if (!create) return;
   // A device that failed has no callback yet: Embree keeps its error for a null device.
   if (!device_)
     throw EmbreeError(error_text("creating its device", rtcGetDeviceError(nullptr), ""));
@@ -45,7 +49,7 @@ EmbreeDevice::EmbreeDevice(const char* config) : device_(rtcNewDevice(config)) {
 }
 
 EmbreeDevice::~EmbreeDevice() {
-  rtcReleaseDevice(device_);
+  if (device_) rtcReleaseDevice(device_);
 }
 
 void EmbreeDevice::on_error(void* self, RTCError code, const char* message) {

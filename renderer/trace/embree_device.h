@@ -20,6 +20,9 @@ class EmbreeDevice {
   // `config`: rtcNewDevice's configuration string (null: Embree's defaults). Throws EmbreeError
   // when Embree cannot create the device.
   explicit EmbreeDevice(const char* config = nullptr);
+  // No device at all (`create` false): for a scene whose rays never reach Embree
+  // (EmbreeScene's direct paths). get() is then null and failed() false.
+  EmbreeDevice(const char* config, bool create);
   ~EmbreeDevice();
   EmbreeDevice(const EmbreeDevice&) = delete;  // Embree holds `this` for the callback
   EmbreeDevice& operator=(const EmbreeDevice&) = delete;

@@ -231,24 +231,50 @@ struct EmbreeScene::Impl {
   // bit on the scenes with a field and primitives (61 scenes and the floor frame checked).
   std::vector<int> direct_primitives;
   int direct_field = -1;
+  // Without Embree (`device` and `scene` null): every ray takes one of the paths above.
+  explicit Impl(bool embree) : device(nullptr, embree) {}
   ~Impl() {
     if (scene) rtcReleaseScene(scene);  // before the device (`device` is destroyed after)
   }
 };
 
-EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(const SceneTracers& tracers, bool interiors) {
+  // The direct paths (Impl): one field, alone or with at most kDirectPrimitives primitives.
+  int fields = 0, others = 0, field = -1;
+  std::vector<int> primitives;
+  for (int i = 0; i < tracers.size(); ++i) {
+    const TracedObject& o = tracers.object(i);
+    if (tracers.tracer(i) && !o.mesh) {
+      ++fields;
+      field = i;
+    } else if (o.shape && !o.mesh && !o.csg()) {
+      primitives.push_back(i);
+    } else {
+      ++others;
+    }
+  }
+  const bool direct = fields == 1 && others == 0 && primitives.size() <= kDirectPrimitives;
+  // Embree takes only the rays the direct paths leave: those that start inside a solid.
+  impl_ = std::make_unique<Impl>(!direct || interiors);
+  impl_->lone_field = direct && primitives.empty();
+  if (direct) {
+    impl_->direct_field = field;
+    impl_->direct_primitives = primitives;
+  }
   impl_->data.reserve(tracers.size());  // the callbacks hold pointers into it
+  for (int i = 0; i < tracers.size(); ++i)
+    impl_->data.push_back(
+        {tracers.tracer(i), tracers.exit_tracer(i), tracers.csg(i), &tracers.object(i), i});
+  if (!impl_->device.get()) return;
 
   EmbreeDevice& device = impl_->device;
   impl_->scene = rtcNewScene(device.get());
   device.check("creating the scene");
   for (int i = 0; i < tracers.size(); ++i) {
-    const ObjectTracer* tracer = tracers.tracer(i);
-    const CsgTracer* csg = tracers.csg(i);
-    impl_->data.push_back({tracer, tracers.exit_tracer(i), csg, &tracers.object(i), i});
+    GeometryData& data = impl_->data[i];
     if (const TriangleMesh* mesh = tracers.object(i).mesh.get()) {
       RTCGeometry geom = mesh_geometry(device, *mesh);
-      rtcSetGeometryUserData(geom, &impl_->data.back());
+      rtcSetGeometryUserData(geom, &data);
       rtcCommitGeometry(geom);
       rtcAttachGeometry(impl_->scene, geom);
       rtcReleaseGeometry(geom);
@@ -258,14 +284,14 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
     RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
     device.check("creating an object's geometry");
     rtcSetGeometryUserPrimitiveCount(geom, 1);
-    rtcSetGeometryUserData(geom, &impl_->data.back());
+    rtcSetGeometryUserData(geom, &data);
     rtcSetGeometryBoundsFunction(geom, bounds_callback, nullptr);
-    rtcSetGeometryIntersectFunction(geom, tracer ? intersect_callback
-                                          : csg  ? csg_intersect_callback
-                                                 : primitive_intersect_callback);
-    rtcSetGeometryOccludedFunction(geom, tracer ? occluded_callback
-                                         : csg  ? csg_occluded_callback
-                                                : primitive_occluded_callback);
+    rtcSetGeometryIntersectFunction(geom, data.tracer ? intersect_callback
+                                          : data.csg  ? csg_intersect_callback
+                                                      : primitive_intersect_callback);
+    rtcSetGeometryOccludedFunction(geom, data.tracer ? occluded_callback
+                                         : data.csg  ? csg_occluded_callback
+                                                     : primitive_occluded_callback);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);  // the scene holds the reference now
@@ -273,27 +299,13 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers) : impl_(std::make_unique<I
   }
   rtcCommitScene(impl_->scene);
   device.check("building the scene");
-  impl_->lone_field = impl_->data.size() == 1 && impl_->data[0].tracer && !tracers.object(0).mesh;
-  int fields = 0, others = 0;
-  std::vector<int> primitives;
-  for (int i = 0; i < tracers.size(); ++i) {
-    const TracedObject& o = tracers.object(i);
-    if (impl_->data[i].tracer && !o.mesh) {
-      ++fields;
-      impl_->direct_field = i;
-    } else if (o.shape && !o.mesh && !o.csg()) {
-      primitives.push_back(i);
-    } else {
-      ++others;
-    }
-  }
-  if (fields == 1 && others == 0 && !primitives.empty() && primitives.size() <= kDirectPrimitives)
-    impl_->direct_primitives = primitives;
-  else
-    impl_->direct_field = -1;
 }
 
 EmbreeScene::~EmbreeScene() = default;
+
+bool EmbreeScene::built() const {
+  return impl_->scene != nullptr;
+}
 
 namespace {
 RTCRay make_ray(const Ray& ray, double tnear, double tfar) {

@@ -48,7 +48,12 @@ class EmbreeError : public std::runtime_error {
 class EmbreeScene {
  public:
   // The tracers must outlive this object. Throws EmbreeError if Embree fails to build the scene.
-  explicit EmbreeScene(const SceneTracers& tracers);
+  // `interiors`: whether a ray may start inside an object's solid (intersect's `inside`; only a
+  // scene with a transparent material has such rays). Without them, a scene of one field and at
+  // most a few primitives is traced by the direct paths alone and gets no Embree device or scene
+  // (their construction was about 0.7 ms of CPU, a tenth of a small render's process); it must
+  // then never be asked with `inside`.
+  explicit EmbreeScene(const SceneTracers& tracers, bool interiors = true);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -71,6 +76,9 @@ class EmbreeScene {
   // is ignored.
   bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                 const BlobBeam* blobs = nullptr) const;
+
+  // Whether Embree's device and scene were built (false: every ray takes a direct path).
+  bool built() const;
 
  private:
   struct Impl;
