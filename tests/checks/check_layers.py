@@ -38,8 +38,10 @@ MAY_INCLUDE = {
 }
 # Third-party headers and the only places that may include them.
 EXTERNAL = [
-    # The adapter and the device that turns Embree's errors into ours.
-    (re.compile(r"^embree3/"), ["renderer/trace/embree_scene.cpp", "renderer/trace/embree_device."]),
+    # The adapter and the device that turns Embree's errors into ours; the command line's
+    # forwarders that open Embree at its first call.
+    (re.compile(r"^embree3/"), ["renderer/trace/embree_scene.cpp", "renderer/trace/embree_device.",
+                                "renderer/cli/embree_on_demand.cpp"]),
     # The frame loop, and the thread limit and default it runs with.
     (re.compile(r"^tbb/"), ["renderer/render/frame.cpp", "renderer/render/threads.cpp"]),
     (re.compile(r"^(Imf|Iex|half\.h|OpenEXR/|Imath)"), ["renderer/io/exr_io.cpp"]),
