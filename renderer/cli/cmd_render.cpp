@@ -7,11 +7,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cli/cmd_common.h"
 #include "cli/commands.h"
+#include "cli/exr_on_demand.h"
 #include "cli/option_checks.h"
 #include "film/film.h"
 #include "render/camera.h"
@@ -115,6 +117,13 @@ int run_render(const RenderArgs& a) {
           std::filesystem::path(a.scene).stem().string() + (a.frame >= 0 ? ".####.exr" : ".exr"),
           a.frame));
     for (const auto& o : outputs) check_image_output_path(o);  // fail before the work, not after
+    // The EXR module as well, named as the first EXR's write would name it.
+    const auto first_exr = std::find_if(outputs.begin(), outputs.end(), is_exr_path);
+    try {
+      if (first_exr != outputs.end()) load_exr_module();
+    } catch (const std::exception& e) {
+      throw std::runtime_error(*first_exr + ": " + e.what());
+    }
     if ((aovs.depth || aovs.normal || aovs.steps || aovs.albedo) &&
         std::none_of(outputs.begin(), outputs.end(), is_exr_path))
       throw std::invalid_argument("--aov needs an .exr output");

@@ -1,6 +1,8 @@
 // The command line's read_exr and write_exr: they open softtrace-exr.so, beside this program, at
 // the first EXR and call its functions (io/exr_module.h). Linked into softtrace-core ahead of
 // the renderer library, they keep its exr_io.o, and with it OpenEXR, out of the program.
+#include "cli/exr_on_demand.h"
+
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -53,6 +55,10 @@ const ExrFunctions& exr() {
 }
 
 }  // namespace
+
+void load_exr_module() {
+  exr();
+}
 
 ImageFile read_exr(const std::string& path) {
   return exr().read(path);

@@ -36,11 +36,26 @@ MANPATH=$prefix/share/man man -w softtrace | grep -qx "$prefix/share/man/man1/so
   fail "man does not find softtrace.1 under the prefix"
 "$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig000_12b_soft_blend.json" --scale 0.1 -q \
   -o "$work/installed_scene.png" || fail "the installed binary cannot render an installed scene"
+# A scene of several objects: softtrace-core opens Embree then (cli/embree_on_demand.cpp).
+"$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig000_1b_superquadrics.json" --scale 0.1 -q \
+  -o "$work/installed_objects.png" || fail "the installed binary cannot render a scene of several objects"
 # EXR goes through bin/softtrace-exr.so, which softtrace-core opens beside itself.
 "$prefix/bin/softtrace" render "$prefix/share/softtrace/scenes/fig000_12b_soft_blend.json" --scale 0.1 -q \
   -o "$work/installed_scene.exr" || fail "the installed binary cannot write an EXR"
 "$prefix/bin/softtrace" diff "$work/installed_scene.exr" "$work/installed_scene.exr" >/dev/null ||
   fail "the installed binary cannot read its EXR back"
+# Without the module, a render with an EXR output fails before its frame (no progress bar, no
+# image written, not even the PNG beside it), in the one line its write would have given.
+mkdir "$work/no_exr"
+cp "$prefix/bin/softtrace" "$prefix/bin/softtrace-core" "$work/no_exr/"
+status=0
+"$work/no_exr/softtrace" render "$prefix/share/softtrace/scenes/fig000_12b_soft_blend.json" --scale 0.1 \
+  --progress -o "$work/no_exr/scene.png" -o "$work/no_exr/scene.exr" 2>"$work/no_exr/stderr" || status=$?
+[ "$status" = 2 ] || fail "a render to EXR without softtrace-exr.so exited with $status, not 2"
+expected="softtrace: $work/no_exr/scene.exr: cannot load the EXR module: $work/no_exr/softtrace-exr.so:"
+[ "$(wc -l <"$work/no_exr/stderr")" = 1 ] && [[ "$(cat "$work/no_exr/stderr")" == "$expected"* ]] ||
+  fail "a render to EXR without softtrace-exr.so printed: $(head -c 400 "$work/no_exr/stderr")"
+[ ! -e "$work/no_exr/scene.png" ] || fail "a render to EXR without softtrace-exr.so wrote its PNG"
 # Every fieldlib header is installed, and every installed header compiles on its own (an
 # installed header that includes one left out would not).
 # Headers sit in their layer folders and include each other rooted there ("eval/eval.h").
