@@ -42,7 +42,11 @@ void start_threads_as_embree_does() {
   const unsigned mode = _mm_getcsr();
   _mm_setcsr(mode | kFlushToZero | kDenormalsAreZero);
 #endif
-  tbb::parallel_for(0, 1, [](int) {});  // one task: TBB starts, no worker is woken
+  // Two tasks, as Embree's build spawned them: where the cap allows a worker, it starts now, beside
+  // what the caller does before its frame, rather than at the frame's first tile.
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, 2, 1), [](const tbb::blocked_range<int>&) {},
+      tbb::simple_partitioner());
 #if defined(__x86_64__) || defined(__i386__)
   _mm_setcsr(mode);
 #endif

@@ -36,7 +36,8 @@ ThreadLimit limit_threads(int threads);
 // as Embree's scene commit starts it: TBB's arena takes the floating-point mode of the moment it
 // starts, and every task of every frame after it (the frame's rays) runs in that mode, on every
 // thread. A scene that builds no Embree scene (EmbreeScene::built) calls this in its place, so
-// that its pictures keep their bits (a denormal flushed or not changes a march's steps).
+// that its pictures keep their bits (a denormal flushed or not changes a march's steps). A worker
+// thread, where limit_threads allows one, starts then too, as Embree's build started it.
 void start_threads_as_embree_does();
 
 // The worker threads a parallel loop uses when nothing caps them (TBB's default concurrency: the
