@@ -53,7 +53,7 @@ bool plain(const Scene& scene, const SceneObject& obj) {
 
 // shade()'s light loop and colour for a plain() point at p, normal n facing the viewer along d,
 // its shadow rays leaving from `lifted`: the same operations in the same order, without the
-// blends', the transmitted and the mirror rays' state (which cost 170 instructions a point).
+// blends', the transmitted and the mirror rays' state (130 instructions a point less).
 Shaded shade_plain(const Scene& scene, const EmbreeScene& rt, const Vec3& d, const Vec3& p,
                    const Vec3& n, const Vec3& lifted, double cone0, double cone, const Material& m,
                    RayWork& secondary, const std::atomic<bool>* cancel, const ShadowLists* shadow) {
