@@ -127,6 +127,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // and ignore what lies nearer than `offset` along them (POV-Ray's way, docs/math.md §12.6): a
   // ray moved sideways by the footprint is moved again by every lens it passes through, so the
   // refracted views and the shadows seen through the glass would part from POV-Ray's by a pixel.
+  // A plain point (no transparency: its rays start at `lifted`) is done by the short way.
   if (plain(scene, obj))
     return shade_plain(scene, rt, ray.d, p, n, lifted, cone0, ray.cone, obj.material, secondary,
                        cancel, shadow);
