@@ -21,14 +21,8 @@ Vec3 highlight_color(const Material& m, const Vec3& n, const Vec3& to_light, con
 
 }  // namespace
 
-Vec3 diffuse_light(const Material& m, double cosine, const Vec3& light) {
-  // brilliance 1 skips pow, as POV-Ray does: the Lambert scenes keep their bits.
-  const double shape = m.brilliance == 1 ? cosine : std::pow(cosine, m.brilliance);
-  return light * (m.diffuse * shape);
-}
-
-Vec3 highlights(const Material& m, const Vec3& n, const Vec3& d, const Vec3& to_light,
-                const Vec3& light) {
+Vec3 phong_and_specular(const Material& m, const Vec3& n, const Vec3& d, const Vec3& to_light,
+                        const Vec3& light) {
   Vec3 sum{0, 0, 0};
   if (m.phong > 0) {
     // Phong: the mirror direction of the view against the light's.

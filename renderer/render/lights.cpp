@@ -118,19 +118,7 @@ Vec3 area_sample(const Light& l, uint64_t seed, int i, int j) {
   return l.position + a.axis1 * u + a.axis2 * v;
 }
 
-bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out) {
-  out.light = l.color * l.intensity;
-  switch (l.type) {
-    case Light::Type::Ambient:
-      return false;
-    case Light::Type::Directional:
-      out.to_light = -l.direction;
-      out.distance = std::numeric_limits<double>::infinity();
-      return true;
-    case Light::Type::Point:
-    case Light::Type::Spot:
-      break;
-  }
+bool positional_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out) {
   const Vec3 v = l.position - origin;
   out.distance = length(v);
   if (out.distance == 0) return false;
@@ -146,23 +134,15 @@ bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArriv
   return true;
 }
 
-double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
-                        double cone, const EmbreeScene& rt, RayWork& shadow,
-                        const std::atomic<bool>* cancel, const BlobBeam* blobs) {
-  if (!l.shadows) return 1;
-  if (l.has_area) {
-    AreaSamples samples(l, origin, cone0, cone, rt, shadow, cancel);
-    const int n1 = l.area.size1 - 1, n2 = l.area.size2 - 1;
-    if (l.area.adaptive >= 0) return samples.block(0, 0, n1, n2, 0);
-    int seen = 0;
-    for (int i = 0; i <= n1; ++i)
-      for (int j = 0; j <= n2; ++j) seen += samples.visible(i, j);
-    return double(seen) / ((n1 + 1) * (n2 + 1));
-  }
-  TraceCounters work;
-  const bool blocked = rt.occluded({origin, at.to_light, cone0, cone}, 0, at.distance, work, blobs);
-  shadow.add(work);
-  return blocked ? 0 : 1;
+double area_visibility(const Light& l, const Vec3& origin, double cone0, double cone,
+                       const EmbreeScene& rt, RayWork& shadow, const std::atomic<bool>* cancel) {
+  AreaSamples samples(l, origin, cone0, cone, rt, shadow, cancel);
+  const int n1 = l.area.size1 - 1, n2 = l.area.size2 - 1;
+  if (l.area.adaptive >= 0) return samples.block(0, 0, n1, n2, 0);
+  int seen = 0;
+  for (int i = 0; i <= n1; ++i)
+    for (int j = 0; j <= n2; ++j) seen += samples.visible(i, j);
+  return double(seen) / ((n1 + 1) * (n2 + 1));
 }
 
 }  // namespace softtrace

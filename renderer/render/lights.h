@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <limits>
 
 #include "scene/light.h"
 #include "trace/embree_scene.h"
@@ -25,7 +26,17 @@ Vec3 area_sample(const Light& l, uint64_t seed, int i, int j);
 // The light `l` (not ambient) at the surface point `p`, whose shadow rays start at `origin`: the
 // direction and distance are taken from `origin`, the spot's cone and the fading at `p`. False
 // when none of it can arrive (outside a spot's cone, or at the light's very position).
-bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out);
+// Inline for the directional light that every shaded point asks about; the others' work is
+// positional_arrival's.
+bool positional_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out);
+inline bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out) {
+  if (l.type == Light::Type::Ambient) return false;
+  out.light = l.color * l.intensity;
+  if (l.type != Light::Type::Directional) return positional_arrival(l, p, origin, out);
+  out.to_light = -l.direction;
+  out.distance = std::numeric_limits<double>::infinity();
+  return true;
+}
 
 // The fraction of `l` that reaches `origin` past the scene's objects. Shadow rays keep the
 // footprint (cone0, cone) of the ray being shaded; their work is added to `shadow`. Jittered
@@ -33,9 +44,21 @@ bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArriv
 // Once `cancel` (render/cancel.h) is set no more shadow rays are cast; the result is then moot.
 // `blobs`: the blob sums' shadow lists of the block of pixels the point is shaded for, one per
 // object (EmbreeScene::occluded), or none.
-double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin, double cone0,
-                        double cone, const EmbreeScene& rt, RayWork& shadow,
-                        const std::atomic<bool>* cancel = nullptr, const BlobBeam* blobs = nullptr);
+// An area light's share (its grid of samples); light_visibility's for such a light.
+double area_visibility(const Light& l, const Vec3& origin, double cone0, double cone,
+                       const EmbreeScene& rt, RayWork& shadow, const std::atomic<bool>* cancel);
+// Inline: the one shadow ray of a point or directional light is most of a shaded point's calls.
+inline double light_visibility(const Light& l, const LightArrival& at, const Vec3& origin,
+                               double cone0, double cone, const EmbreeScene& rt, RayWork& shadow,
+                               const std::atomic<bool>* cancel = nullptr,
+                               const BlobBeam* blobs = nullptr) {
+  if (!l.shadows) return 1;
+  if (l.has_area) return area_visibility(l, origin, cone0, cone, rt, shadow, cancel);
+  TraceCounters work;
+  const bool blocked = rt.occluded({origin, at.to_light, cone0, cone}, 0, at.distance, work, blobs);
+  shadow.add(work);
+  return blocked ? 0 : 1;
+}
 
 // The shadow lists of a block of pixels (render/shadow_beams.h), for shade(): per scene light
 // its lists' slot (-1: none), each slot one list per object.

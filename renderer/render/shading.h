@@ -3,6 +3,7 @@
 // shadows, and mirror reflection traced up to the scene's max_trace_level.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 
 #include "render/lights.h"
@@ -33,6 +34,11 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
 
 // How far from a hit at p on `obj` (the face's object for a CSG) its shadow and mirror rays start
 // along the normal (shade()), the camera ray's footprint there being cone0.
-double ray_offset(const SceneObject& obj, const Vec3& p, double cone0);
+// Inline: it runs twice for every shaded point (the frame's shadow lists ask it too).
+inline double ray_offset(const SceneObject& obj, const Vec3& p, double cone0) {
+  return std::max(
+      obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
+      cone0);
+}
 
 }  // namespace softtrace

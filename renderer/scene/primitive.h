@@ -23,6 +23,9 @@ struct Primitive {
   Mat3 to_object;  // the inverse of to_world.linear
   // to_world and to_object are the identity (place_primitive): the tracer takes the ray as it is.
   bool unplaced = false;
+  // A plane's outward normal in the world, unit (place_primitive): the same on every hit, which
+  // an unplaced plane (a floor, hit by most camera rays) takes from here.
+  Vec3 world_normal{0, 0, 1};
   // Where the renderer looks for it: its box in the world, an infinite plane's clipped to within
   // kMaxPosition (the tracer drops hits beyond; seen from any eye within the scene's ranges, that
   // edge lies far below a pixel from the horizon).

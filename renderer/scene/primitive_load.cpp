@@ -63,6 +63,10 @@ std::string place_primitive(Primitive& s, const Affine& m) {
   };
   s.unplaced =
       identity(s.to_world.linear) && identity(s.to_object) && max_abs(s.to_world.offset) == 0;
+  // As the tracer turns any normal to the world: by the inverse transpose, then unit.
+  const Vec3 w = s.to_object.transposed_times(s.normal);
+  const double l = length(w);
+  s.world_normal = l > 0 ? w / l : w;
   const Box local = local_box(s);
   if (local.bounded()) {
     s.world_box = Box();

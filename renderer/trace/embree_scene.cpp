@@ -338,43 +338,50 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
   // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
   const double cos = beam ? dot(ray.d, beam->forward) : 0;
   if (!(cos > 0)) beam = nullptr;
+  // The paths without Embree build their hit in the caller's (a lambda's one named result): a
+  // TraceHit filled here and copied out cost about 15 instructions a camera ray.
   if (impl_->lone_field && !inside.contains(0)) {  // no Embree, and none of its context to fill
-    TraceHit h;
-    const BlobBeam* list;
-    const MarchResult m = field_hit(impl_->data[0], ray, tnear, tfar, beam, cos, h.work, &list);
-    if (m.hit && m.t < tfar) {
-      h.hit = true;
-      h.t = m.t;
-      h.object = 0;
-      h.on_box_face = m.on_box_face;
-      h.blobs = list;
-    }
-    return h;
+    return [&] {
+      TraceHit h;
+      const BlobBeam* list;
+      const MarchResult m = field_hit(impl_->data[0], ray, tnear, tfar, beam, cos, h.work, &list);
+      if (m.hit && m.t < tfar) {
+        h.hit = true;
+        h.t = m.t;
+        h.object = 0;
+        h.on_box_face = m.on_box_face;
+        h.blobs = list;
+      }
+      return h;
+    }();
   }
   if (impl_->direct_field >= 0 && inside.empty()) {
-    TraceHit h;
-    double t = tfar;
-    for (const int o : impl_->direct_primitives) {
-      const PrimitiveHit p = first_hit(*impl_->data[o].object_data->shape, ray, tnear, t);
-      if (!p.hit || p.t >= t) continue;
-      t = p.t;
-      h.hit = true;
-      h.t = p.t;
-      h.object = o;
-      h.normal = p.normal;
-    }
-    const BlobBeam* list;
-    const MarchResult m =
-        field_hit(impl_->data[impl_->direct_field], ray, tnear, t, beam, cos, h.work, &list);
-    if (m.hit && m.t < t) {
-      h.hit = true;
-      h.t = m.t;
-      h.object = impl_->direct_field;
-      h.on_box_face = m.on_box_face;
-      h.normal = {0, 0, 0};
-      h.blobs = list;
-    }
-    return h;
+    return [&] {
+      TraceHit h;
+      double t = tfar;
+      for (const int o : impl_->direct_primitives) {
+        const Primitive& shape = *impl_->data[o].object_data->shape;
+        const PrimitiveHit p = first_hit(shape, ray, tnear, t);
+        if (!p.hit || p.t >= t) continue;
+        t = p.t;
+        h.hit = true;
+        h.t = p.t;
+        h.object = o;
+        h.normal = p.normal;
+      }
+      const BlobBeam* list;
+      const MarchResult m =
+          field_hit(impl_->data[impl_->direct_field], ray, tnear, t, beam, cos, h.work, &list);
+      if (m.hit && m.t < t) {
+        h.hit = true;
+        h.t = m.t;
+        h.object = impl_->direct_field;
+        h.on_box_face = m.on_box_face;
+        h.normal = {0, 0, 0};
+        h.blobs = list;
+      }
+      return h;
+    }();
   }
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);

@@ -205,29 +205,11 @@ Vec3 world_normal(const Primitive& shape, const Vec3& n) {
 
 // The end of the span that is the first surface point in [tnear, tfar] (within kMaxPosition of
 // the origin): 0 or 1, or -1 where there is none.
-bool reachable(const Ray& ray, double t, double tnear, double tfar) {
-  return t >= tnear && t <= tfar && std::isfinite(t) && max_abs(ray.o + ray.d * t) <= kMaxPosition;
-}
-
 int first_end(const LocalSpan& span, const Ray& ray, double tnear, double tfar) {
   if (!(span.t0 <= span.t1)) return -1;
   if (reachable(ray, span.t0, tnear, tfar)) return 0;
   if (reachable(ray, span.t1, tnear, tfar)) return 1;
   return -1;
-}
-
-// An unplaced plane (a floor; every camera and shadow ray tests it) without the general span:
-// plane()'s span has one finite end, where the ray crosses the plane, whichever way it goes, and
-// that end's normal is the plane's. Its t if reachable, else NaN.
-double unplaced_plane_end(const Primitive& s, const Ray& ray, double tnear, double tfar) {
-  const double nd = dot(s.normal, ray.d);
-  if (nd == 0) return std::numeric_limits<double>::quiet_NaN();  // all inside or all outside
-  const double t = (s.distance - dot(s.normal, ray.o)) / nd;
-  return reachable(ray, t, tnear, tfar) ? t : std::numeric_limits<double>::quiet_NaN();
-}
-
-bool unplaced_plane(const Primitive& s) {
-  return s.unplaced && s.shape == Primitive::Shape::Plane;
 }
 
 }  // namespace
@@ -237,12 +219,7 @@ SolidSpan solid_span(const Primitive& shape, const Ray& ray) {
   return {local.t0, local.t1, world_normal(shape, local.n0), world_normal(shape, local.n1)};
 }
 
-PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
-  if (unplaced_plane(shape)) {
-    const double t = unplaced_plane_end(shape, ray, tnear, tfar);
-    if (std::isnan(t)) return {};
-    return {true, t, world_normal(shape, shape.normal)};
-  }
+PrimitiveHit spanned_first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
   const LocalSpan span = local_span(shape, ray);
   const int end = first_end(span, ray, tnear, tfar);
   if (end == 0) return {true, span.t0, world_normal(shape, span.n0)};
@@ -250,8 +227,7 @@ PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, dou
   return {};
 }
 
-bool occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
-  if (unplaced_plane(shape)) return !std::isnan(unplaced_plane_end(shape, ray, tnear, tfar));
+bool spanned_occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
   return first_end(local_span(shape, ray), ray, tnear, tfar) >= 0;
 }
 

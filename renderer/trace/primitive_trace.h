@@ -4,7 +4,11 @@
 // slabs.
 #pragma once
 
+#include <cmath>
+#include <limits>
+
 #include "scene/primitive.h"
+#include "scene/ranges.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -24,11 +28,45 @@ struct PrimitiveHit {
   double t = 0;
   Vec3 normal;  // outward, unit, world space
 };
+
+// Whether the point at t is a surface point first_hit may report: in [tnear, tfar], within
+// kMaxPosition of the origin.
+inline bool reachable(const Ray& ray, double t, double tnear, double tfar) {
+  return t >= tnear && t <= tfar && std::isfinite(t) && max_abs(ray.o + ray.d * t) <= kMaxPosition;
+}
+
+// An unplaced plane (a floor; every camera and shadow ray tests it) without the general span:
+// the solid's span on a ray has one finite end, where the ray crosses the plane, whichever way it
+// goes, and that end's normal is the plane's. Its t if reachable, else NaN. Inline, as are
+// first_hit and occludes for it below: a floor's test on each of a frame's 560,000 camera and
+// shadow rays was mostly the calls' own work.
+inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double tnear, double tfar) {
+  const double nd = dot(s.normal, ray.d);
+  if (nd == 0) return std::numeric_limits<double>::quiet_NaN();  // all inside or all outside
+  const double t = (s.distance - dot(s.normal, ray.o)) / nd;
+  return reachable(ray, t, tnear, tfar) ? t : std::numeric_limits<double>::quiet_NaN();
+}
+inline bool unplaced_plane(const Primitive& s) {
+  return s.unplaced && s.shape == Primitive::Shape::Plane;
+}
+
+// first_hit and occludes of any other primitive: from its span in its own space.
+PrimitiveHit spanned_first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar);
+bool spanned_occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar);
+
 // The nearest surface point in [tnear, tfar], within kMaxPosition of the origin (an infinite
 // plane is drawn to there: scene/primitive.h).
-PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar);
+inline PrimitiveHit first_hit(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
+  if (!unplaced_plane(shape)) return spanned_first_hit(shape, ray, tnear, tfar);
+  const double t = unplaced_plane_end(shape, ray, tnear, tfar);
+  if (std::isnan(t)) return {};
+  return {true, t, shape.world_normal};  // world_normal(shape, shape.normal), computed once
+}
 // Whether first_hit finds a surface point: a shadow ray's question, answered without turning a
 // normal to the world (a square root and a division for each end of the span).
-bool occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar);
+inline bool occludes(const Primitive& shape, const Ray& ray, double tnear, double tfar) {
+  if (!unplaced_plane(shape)) return spanned_occludes(shape, ray, tnear, tfar);
+  return !std::isnan(unplaced_plane_end(shape, ray, tnear, tfar));
+}
 
 }  // namespace softtrace

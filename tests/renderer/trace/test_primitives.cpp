@@ -44,8 +44,14 @@ Primitive shape_from(const std::string& json) {
   return load_primitive(Params(j, "/shape", std::make_shared<const std::string>("t.json")));
 }
 
+// The unplaced plane takes first_hit's and occludes' own way (its normal from
+// Primitive::world_normal); the span below still turns its normal to the world on each call.
+const std::string kUnplacedPlane =
+    R"({"type": "plane", "normal": [0.3, -0.2, 1], "distance": 0.5})";
+
 const std::vector<std::string> kSolids = {
     R"({"type": "plane", "normal": [0.3, -0.2, 1], "distance": 0.5, "rotate": {"axis": [1, 0, 0], "deg": 20}})",
+    kUnplacedPlane,
     R"({"type": "box", "corner1": [-1, -2, -0.5], "corner2": [2, 1, 1.5], "scale": [1, 0.5, 2],
         "rotate": {"axis": [1, 1, 0], "deg": 33}, "translate": [0.2, 0, -0.3]})",
     R"({"type": "sphere", "center": [0.5, 0, 0], "radius": 1.7, "scale": [2, 1, 0.7]})",
@@ -106,6 +112,21 @@ TEST(Primitives, SpansAgreeWithPointMembershipAndNormalsPointOut) {
     EXPECT_GT(normals, 40) << json;
     EXPECT_GT(answers, 40) << json;
   }
+}
+
+// The tilted plane without placement is one the tracer takes as unplaced (so the test above
+// compares its own way's normals with the span's), and its hits' normal is its unit normal.
+TEST(Primitives, AnUnplacedPlaneHitsWithItsUnitNormal) {
+  const Primitive s = shape_from(kUnplacedPlane);
+  ASSERT_TRUE(s.unplaced);
+  const Ray down{{0.1, 0.2, 5}, normalize(Vec3{0.1, -0.3, -1})};
+  const PrimitiveHit h = first_hit(s, down, 0, 1e9);
+  ASSERT_TRUE(h.hit);
+  const Vec3 n = normalize(Vec3{0.3, -0.2, 1});
+  EXPECT_NEAR(h.normal.x, n.x, 1e-15);
+  EXPECT_NEAR(h.normal.y, n.y, 1e-15);
+  EXPECT_NEAR(h.normal.z, n.z, 1e-15);
+  EXPECT_NEAR(dot(n, down.o + down.d * h.t), 0.5, 1e-12);  // the plane dot(n, p) = distance
 }
 
 TEST(Primitives, DiscHitsLieOnTheRing) {
