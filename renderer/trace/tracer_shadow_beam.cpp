@@ -35,9 +35,33 @@ bool BlobBeam::holds_shadow(const Ray& ray, double* base) const {
   return true;
 }
 
+// A toward list (render/shadow_beams.cpp builds it with blob_beam over the pyramid from the light,
+// ShadowPrism) holds a ray from o inside the pyramid whose direction is (p - o) / |p - o| to a few
+// ulps, p the pyramid's apex, over [0, t1] with t1 at most |p - o|: every point o + t d of it lies
+// within 1e-14 |p - o| of the segment from o to p, which the pyramid holds (it is convex), at a
+// distance from p within as much of |p - o| - t. With |o| at most 1e3 |p| (the largest
+// coordinates), that is below 1e-10 |p|, far inside blob_beam's slack of 1e-9 |p| on every test.
+bool BlobBeam::holds_toward(const Ray& ray, double t1, double* base) const {
+  const ShadowPrism& p = prism;
+  const double apex = max_abs(p.origin);
+  if (!(max_abs(ray.o) <= 1e3 * apex)) return false;
+  const Vec3 q = ray.o - p.origin;
+  const double s = dot(q, p.along);
+  if (!(s > 0)) return false;
+  const double x = dot(q, p.u) / s, y = dot(q, p.v) / s;
+  if (!(x >= p.x0 && x <= p.x1 && y >= p.y0 && y <= p.y1)) return false;
+  const double distance = length(q);
+  // Towards the apex (light_arrival's direction, to a few ulps), and not past it.
+  if (!(max_abs(ray.d * distance + q) <= 1e-14 * distance)) return false;
+  if (!(t1 <= distance * (1 + 1e-15))) return false;
+  *base = -distance;
+  return true;
+}
+
 void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const {
   out->valid = false;
   out->parallel = true;
+  out->toward = false;
   out->prism = p;
   out->entries.clear();
   out->across.clear();
