@@ -136,17 +136,10 @@ void ShadowBeams::build_pyramid(int level, const Axes& light, size_t k, const Po
   const ShadowPrism pyramid{a.position, a.along, a.u, a.v, x0, x1, y0, y1, 0};
   for (const int o : blob_objects_) {
     BlobBeam& list = out[k * objects_ + o];
+    // The parent's pyramid holds this one (the same axes, a subset of its points).
     const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
-    // The parent's pyramid holds this one (the same axes, a subset of its points): its blobs
-    // are the candidates (blob_beam reads only their ids).
-    tracers_[o].blob_beam(f, parent && parent->valid && parent->toward ? parent : nullptr, &list);
-    list.parallel = false;
-    list.toward = true;
-    list.prism = pyramid;
-    list.across.clear();
-    list.blockers.clear();
-    // From distances to the light to minus them: the axis grows along the rays.
-    for (BlobBeam::Entry& e : list.entries) e = {-e.far, -e.near, e.id};
+    tracers_[o].toward_beam(f, pyramid, parent, &list);
+    if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
   }
 }
 

@@ -9,7 +9,7 @@
 // The shadow rays of a block towards a point or spot light converge on its position: their list
 // is the camera's (ObjectTracer::blob_beam) for the pyramid from the light through the block's
 // lit points, each ray finding its stretches' blobs by their distance from the light
-// (BlobBeam::toward).
+// (BlobBeam::toward); its blocks pick blockers as well.
 #pragma once
 
 #include <vector>

@@ -84,8 +84,10 @@ struct BlobBeam {
   ShadowPrism prism;
   // A shadow list's entries' x and y (ShadowPrism) and how far from them the blob reaches: a
   // smaller block's list keeps those whose reach meets its rectangle, with no more arithmetic.
+  // A toward list's: its sphere's centre's x, y and depth on the pyramid's axes (not divided by
+  // the depth), and its radius with blob_beam's slack.
   struct Across {
-    double x, y, reach;
+    double x, y, reach, depth = 0;
   };
   std::vector<Across> across;
   // A shadow list of a 4-pixel block (ObjectTracer::shadow_blockers): balls each of which alone
@@ -203,7 +205,14 @@ class ObjectTracer {
   // or from the list of a prism holding p (tracer_shadow_beam.cpp). Not valid for a tracer that
   // is no blob sum.
   void shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const;
-  // The blockers of a shadow list (BlobBeam::blockers), picked for the rays of its prism.
+  // The blobs a shadow ray towards the point p.origin may meet inside the pyramid p (BlobBeam,
+  // toward; f is the same pyramid as a frustum from that point), from the BVH (blob_beam) or from
+  // the list of a pyramid on the same axes holding p (tracer_shadow_beam.cpp). Not valid for a
+  // tracer that is no blob sum.
+  void toward_beam(const Frustum& f, const ShadowPrism& p, const BlobBeam* parent,
+                   BlobBeam* out) const;
+  // The blockers of a shadow list (BlobBeam::blockers), picked for the rays of its prism
+  // or pyramid.
   void shadow_blockers(BlobBeam* list) const;
 
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).

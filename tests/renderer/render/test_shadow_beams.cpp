@@ -207,8 +207,10 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
       const ShadowBeams beams(scene, tracers);
       ASSERT_TRUE(beams.active());
       const Light& l = scene.lights[0];
-      constexpr int kW = 96, kH = 64;
-      const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, 60.0}, kW, kH);
+      // The balls' frame finer (a block's rays must pass near enough one ball's centre).
+      const int kW = cloud ? 192 : 96, kH = cloud ? 128 : 64;
+      const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, cloud ? 40.0 : 60.0}, kW,
+                              kH);
       struct Lit {
         ShadowBeams::Point point;
         Vec3 origin;
@@ -226,7 +228,7 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
         out->origin = p + n * (margin * u(rng));
         return true;
       };
-      int rays = 0, held = 0, blocked = 0;
+      int rays = 0, held = 0, blocked = 0, by_blocker = 0;
       long long listed = 0;
       ShadowBeams::Lists lists;
       std::vector<ShadowBeams::Point> points;
@@ -279,11 +281,18 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
                   const MarchResult walk = tr.first_hit(ray, 0, at.distance, a, query);
                   const MarchResult with = tr.first_hit(ray, 0, at.distance, b, query, 0, &list[0]);
                   ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+                  if (query == Query::Any) blocked += walk.hit;
+                  // A ray a blocker decides costs one point and no stretch; any other one the
+                  // same stretches as the walk, to the bit.
+                  const bool decided = query == Query::Any && !list[0].blockers.empty() &&
+                                       with.hit && b.box_evals == 0 && b.point_evals == 1 &&
+                                       a.box_evals > 0;
+                  by_blocker += decided;
+                  if (decided) continue;
                   if (walk.hit) {
                     ASSERT_EQ(with.t, walk.t) << "ray " << rays;
                   }
                   ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
-                  if (query == Query::Any) blocked += walk.hit;
                 }
               }
             }
@@ -294,45 +303,60 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
       EXPECT_GT(blocked, rays / 30) << light;
       EXPECT_LT(blocked, rays * 9 / 10) << light;
       EXPECT_LT(listed, 16LL * (kW / 16) * (kH / 16) * 40) << light;
+      // Over the balls of positive strength, with the light above them, blockers decide many of
+      // the blocked rays (the floor's under a ball).
+      if (cloud == 1 && light == lights[0]) {
+        EXPECT_GT(by_blocker, blocked / 20) << light;
+      }
     }
 }
 
 // A blocker is certified by its own potential only where no blob of the list can take from the
 // field: a ball cancelled by a ball of negative strength at the same place (the field is 0 there)
-// blocks no ray, and one beside a positive ball does.
+// blocks no ray, and one beside a positive ball does; for a directional light and a point light.
 TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
-  for (const char* strength : {"-1", "0.2"}) {
-    const Scene scene =
-        parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
-                    R"({"type":"soft_object","potential":{"type":"murakami"},)"
-                    R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
-                    R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
-                        std::string(strength) +
-                        R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}}]}}],)"
-                        R"("lights": [{"type": "directional", "direction": [0, 0, -1]}]})",
-                    "<test>");
-    const std::vector<TracedObject> objects = traced_objects(scene);
-    const SceneTracers tracers(objects, LipschitzMode::Local);
-    const ObjectTracer& tr = tracers[0];
-    ASSERT_TRUE(tr.blob_sum());
-    const ShadowBeams beams(scene, tracers);
-    ASSERT_TRUE(beams.active());
-    // A block's rays start below the balls, within 0.2 of the axis, and go up through them.
-    const ShadowBeams::Point points[] = {{{0.1, 0, -10}, 0.05}, {{0, -0.1, -10}, 0.05}};
-    ShadowBeams::Lists lists;
-    for (int level = 0; level < ShadowBeams::kLevels; ++level) beams.build(level, points, 2, lists);
-    const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
-    ASSERT_TRUE(list.valid);
-    EXPECT_EQ(list.blockers.empty(), std::string(strength) == "-1") << strength;
-    for (const ShadowBeams::Point& p : points) {
-      const Ray ray{p.p, {0, 0, 1}, 0, 0};
-      TraceCounters a, b;
-      const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
-      const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list);
-      EXPECT_EQ(walk.hit, std::string(strength) != "-1") << strength;
-      EXPECT_EQ(with.hit, walk.hit) << strength;
+  for (const char* light : {R"({"type": "directional", "direction": [0, 0, -1]})",
+                            R"({"type": "point", "position": [0, 0, 30]})"})
+    for (const char* strength : {"-1", "0.2"}) {
+      const Scene scene =
+          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+                      R"({"type":"soft_object","potential":{"type":"murakami"},)"
+                      R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
+                      R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
+                          std::string(strength) +
+                          R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}}]}}],)"
+                          R"("lights": [)" +
+                          light + "]}",
+                      "<test>");
+      const std::vector<TracedObject> objects = traced_objects(scene);
+      const SceneTracers tracers(objects, LipschitzMode::Local);
+      const ObjectTracer& tr = tracers[0];
+      ASSERT_TRUE(tr.blob_sum());
+      const ShadowBeams beams(scene, tracers);
+      ASSERT_TRUE(beams.active());
+      // A block's rays start below the balls, within 0.2 of the axis, and go up through them.
+      const ShadowBeams::Point points[] = {{{0.1, 0, -10}, 0.05}, {{0, -0.1, -10}, 0.05}};
+      ShadowBeams::Lists lists;
+      for (int level = 0; level < ShadowBeams::kLevels; ++level)
+        beams.build(level, points, 2, lists);
+      const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
+      ASSERT_TRUE(list.valid);
+      ASSERT_EQ(list.toward, std::string(light).find("point") != std::string::npos);
+      EXPECT_EQ(list.blockers.empty(), std::string(strength) == "-1") << strength << light;
+      for (const ShadowBeams::Point& p : points) {
+        LightArrival at;
+        ASSERT_TRUE(light_arrival(scene.lights[0], p.p, p.p, at));
+        const double far = std::min(at.distance, 1e3);
+        const Ray ray{p.p, at.to_light, 0, 0};
+        TraceCounters a, b;
+        const MarchResult walk = tr.first_hit(ray, 0, far, a, Query::Any);
+        const MarchResult with = tr.first_hit(ray, 0, far, b, Query::Any, 0, &list);
+        EXPECT_EQ(walk.hit, std::string(strength) != "-1") << strength << light;
+        EXPECT_EQ(with.hit, walk.hit) << strength << light;
+        // Only a blocker decides a ray with one point and no stretch.
+        EXPECT_EQ(b.box_evals == 0, !list.blockers.empty()) << strength << light;
+      }
     }
-  }
 }
 
 // The frame traces a whole tile's camera rays before it shades any (the shadow lists need their
