@@ -12,67 +12,134 @@ ShadowBeams::ShadowBeams(const Scene& scene, const SceneTracers& tracers)
     if (const ObjectTracer* t = tracers.tracer(o); t && t->blob_sum()) blob_objects_.push_back(o);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    if (l.type != Light::Type::Directional || !l.shadows || l.has_area) continue;
+    if (!l.shadows || l.has_area || l.type == Light::Type::Ambient) continue;
     Axes a;
-    a.along = -l.direction;  // light_arrival's to_light
-    // u across the axis least aligned with `along`, v completing the frame.
-    const Vec3 e =
-        std::abs(a.along.x) <= std::abs(a.along.y) && std::abs(a.along.x) <= std::abs(a.along.z)
-            ? Vec3{1, 0, 0}
-        : std::abs(a.along.y) <= std::abs(a.along.z) ? Vec3{0, 1, 0}
-                                                     : Vec3{0, 0, 1};
-    a.u = cross(a.along, e);
-    a.u = a.u / length(a.u);
-    a.v = cross(a.along, a.u);
-    a.v = a.v / length(a.v);
+    a.point = l.type != Light::Type::Directional;
+    a.position = l.position;
+    // A pyramid's apex must be off the origin: its lists hold rays from within 1e3 times its
+    // largest coordinate (BlobBeam::holds_toward).
+    if (a.point && !(max_abs(l.position) > 0)) continue;
+    if (!a.point) a = axes(-l.direction, false, l.position);  // light_arrival's to_light
     slot_[i] = static_cast<int>(lights_.size());
     lights_.push_back(a);
   }
 }
 
+ShadowBeams::Axes ShadowBeams::axes(const Vec3& along, bool point, const Vec3& position) {
+  Axes a;
+  a.along = along;
+  a.point = point;
+  a.position = position;
+  // u across the axis least aligned with `along`, v completing the frame.
+  const Vec3 e =
+      std::abs(a.along.x) <= std::abs(a.along.y) && std::abs(a.along.x) <= std::abs(a.along.z)
+          ? Vec3{1, 0, 0}
+      : std::abs(a.along.y) <= std::abs(a.along.z) ? Vec3{0, 1, 0}
+                                                   : Vec3{0, 0, 1};
+  a.u = cross(a.along, e);
+  a.u = a.u / length(a.u);
+  a.v = cross(a.along, a.u);
+  a.v = a.v / length(a.v);
+  return a;
+}
+
 void ShadowBeams::build(int level, const Point* points, int n, Lists& lists) const {
-  std::vector<BlobBeam>& out = lists.level[level];
-  out.resize(lights_.size() * size_t(objects_));
+  lists.level[level].resize(lights_.size() * size_t(objects_));
   if (level == 0 && n > 0) lists.origin = points[0].p;
+  for (size_t k = 0; k < lights_.size(); ++k)
+    if (lights_[k].point)
+      build_pyramid(level, lights_[k], k, points, n, lists);
+    else
+      build_prism(level, lights_[k], k, points, n, lists);
+}
+
+void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* points, int n,
+                              Lists& lists) const {
+  std::vector<BlobBeam>& out = lists.level[level];
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  for (size_t k = 0; k < lights_.size(); ++k) {
-    const Axes& a = lights_[k];
-    ShadowPrism prism{lists.origin, a.along, a.u, a.v, kInf, -kInf, kInf, -kInf, kInf};
-    for (int i = 0; i < n; ++i) {
-      // The origin lies within the margin of p (grown by 1e-9: the lift's rounding).
-      const Vec3 q = points[i].p - lists.origin;
-      const double m = points[i].margin * (1 + 1e-9);
+  ShadowPrism prism{lists.origin, a.along, a.u, a.v, kInf, -kInf, kInf, -kInf, kInf};
+  for (int i = 0; i < n; ++i) {
+    // The origin lies within the margin of p (grown by 1e-9: the lift's rounding).
+    const Vec3 q = points[i].p - lists.origin;
+    const double m = points[i].margin * (1 + 1e-9);
+    const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
+    prism.x0 = std::min(prism.x0, x - m);
+    prism.x1 = std::max(prism.x1, x + m);
+    prism.y0 = std::min(prism.y0, y - m);
+    prism.y1 = std::max(prism.y1, y + m);
+    prism.z0 = std::min(prism.z0, z - m);
+  }
+  for (const int o : blob_objects_) {
+    BlobBeam& list = out[k * objects_ + o];
+    list.valid = false;
+    if (n == 0) continue;
+    // A prism that misses the object's box sends it no ray: no list, and no walk to build one.
+    const Box& box = tracers_.object(o).bounds;
+    double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z1 = -kInf;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
+                        c & 4 ? box.hi.z : box.lo.z};
+      const Vec3 q = corner - lists.origin;
       const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
-      prism.x0 = std::min(prism.x0, x - m);
-      prism.x1 = std::max(prism.x1, x + m);
-      prism.y0 = std::min(prism.y0, y - m);
-      prism.y1 = std::max(prism.y1, y + m);
-      prism.z0 = std::min(prism.z0, z - m);
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      z1 = std::max(z1, z);
     }
-    for (const int o : blob_objects_) {
-      BlobBeam& list = out[k * objects_ + o];
-      list.valid = false;
-      if (n == 0) continue;
-      // A prism that misses the object's box sends it no ray: no list, and no walk to build one.
-      const Box& box = tracers_.object(o).bounds;
-      double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z1 = -kInf;
-      for (int c = 0; c < 8; ++c) {
-        const Vec3 corner{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
-                          c & 4 ? box.hi.z : box.lo.z};
-        const Vec3 q = corner - lists.origin;
-        const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
-        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-        z1 = std::max(z1, z);
-      }
-      const double slack = 1e-9 * (max_abs(box.lo) + max_abs(box.hi) + max_abs(lists.origin));
-      if (x0 > prism.x1 + slack || x1 < prism.x0 - slack || y0 > prism.y1 + slack ||
-          y1 < prism.y0 - slack || z1 < prism.z0 - slack)
-        continue;
-      const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
-      tracers_[o].shadow_beam(prism, parent, &list);
-      // The blocks' lists, which their rays take, pick the blobs that may decide them alone.
-      if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
-    }
+    const double slack = 1e-9 * (max_abs(box.lo) + max_abs(box.hi) + max_abs(lists.origin));
+    if (x0 > prism.x1 + slack || x1 < prism.x0 - slack || y0 > prism.y1 + slack ||
+        y1 < prism.y0 - slack || z1 < prism.z0 - slack)
+      continue;
+    const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
+    tracers_[o].shadow_beam(prism, parent, &list);
+    // The blocks' lists, which their rays take, pick the blobs that may decide them alone.
+    if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
+  }
+}
+
+// The pyramid from the light through the balls about the block's points (where the rays start),
+// on the tile's axes (along from the light towards the tile's first point, the same at every
+// level, so that a block's pyramid lies in its parent's): a ball of radius m about q (from the
+// light) at depth s = q.along > m has its x = q.u / s between (q.u - m) / (s -+ m) and
+// (q.u + m) / (s -+ m), the denominator taken to make each bound the wider. A block with a point
+// at or behind the light's depth, or farther than 1e3 times the light's largest coordinate, or one
+// seen at more than 10 (84 degrees) off the axis, gets no list (its rays walk the BVH): blob_beam's
+// slack covers the rounding of nearer points and narrower pyramids only.
+void ShadowBeams::build_pyramid(int level, const Axes& light, size_t k, const Point* points, int n,
+                                Lists& lists) const {
+  std::vector<BlobBeam>& out = lists.level[level];
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (const int o : blob_objects_) out[k * objects_ + o].valid = false;
+  if (n == 0) return;
+  const Vec3 to_tile = lists.origin - light.position;
+  const double reach = length(to_tile);
+  if (!(reach > 0)) return;
+  const Axes a = axes(to_tile / reach, true, light.position);
+  const double apex = max_abs(a.position);
+  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 q = points[i].p - a.position;
+    const double m = points[i].margin * (1 + 1e-9);
+    const double s = dot(q, a.along), x = dot(q, a.u), y = dot(q, a.v);
+    if (!(s > 2 * m) || !(max_abs(points[i].p) + m <= 1e3 * apex)) return;
+    const auto low = [&](double c) { return (c - m) / (c - m >= 0 ? s + m : s - m); };
+    const auto high = [&](double c) { return (c + m) / (c + m >= 0 ? s - m : s + m); };
+    x0 = std::min(x0, low(x)), x1 = std::max(x1, high(x));
+    y0 = std::min(y0, low(y)), y1 = std::max(y1, high(y));
+  }
+  if (!(std::max(std::max(-x0, x1), std::max(-y0, y1)) <= 10)) return;
+  Frustum f;
+  f.eye = a.position;
+  f.forward = a.along;
+  f.corner[0] = a.along + a.u * x0 + a.v * y0;
+  f.corner[1] = a.along + a.u * x1 + a.v * y0;
+  f.corner[2] = a.along + a.u * x0 + a.v * y1;
+  f.corner[3] = a.along + a.u * x1 + a.v * y1;
+  const ShadowPrism pyramid{a.position, a.along, a.u, a.v, x0, x1, y0, y1, 0};
+  for (const int o : blob_objects_) {
+    BlobBeam& list = out[k * objects_ + o];
+    // The parent's pyramid holds this one (the same axes, a subset of its points).
+    const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
+    tracers_[o].toward_beam(f, pyramid, parent, &list);
+    if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
   }
 }
 

@@ -6,6 +6,10 @@
 // sum's BVH; a ray the list does not hold (BlobBeam::holds) walks as before, so the answers are
 // the walk's to the bit. A block's list of positive blobs also names up to two balls that may
 // block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first.
+// The shadow rays of a block towards a point or spot light converge on its position: their list
+// is the camera's (ObjectTracer::blob_beam) for the pyramid from the light through the block's
+// lit points, each ray finding its stretches' blobs by their distance from the light
+// (BlobBeam::toward); its blocks pick blockers as well.
 #pragma once
 
 #include <vector>
@@ -31,8 +35,8 @@ class ShadowBeams {
   };
 
   ShadowBeams(const Scene& scene, const SceneTracers& tracers);
-  // Whether any light and object takes lists: a directional light with shadows (and no area) and
-  // a sum of polynomial blobs.
+  // Whether any light and object takes lists: a directional, point or spot light with shadows
+  // (and no area) and a sum of polynomial blobs.
   bool active() const { return !lights_.empty() && !blob_objects_.empty(); }
   // The lists of `level` for the block whose shadow rays start near points[0, n), from those of
   // the block above it (level - 1), or for level 0 (a tile, whose origin is points[0]) from the
@@ -46,7 +50,15 @@ class ShadowBeams {
  private:
   struct Axes {
     Vec3 along, u, v;  // along: towards the light, to the bit as light_arrival's
+    bool point;        // a point or spot light at `position`: along, u and v are the tile's
+    Vec3 position;
   };
+  // The axes about `along` (u across the coordinate axis least aligned with it).
+  static Axes axes(const Vec3& along, bool point, const Vec3& position);
+  void build_prism(int level, const Axes& a, size_t k, const Point* points, int n,
+                   Lists& lists) const;
+  void build_pyramid(int level, const Axes& a, size_t k, const Point* points, int n,
+                     Lists& lists) const;
   const SceneTracers& tracers_;
   int objects_;
   std::vector<int> slot_;          // per scene light: its index in lights_, or -1

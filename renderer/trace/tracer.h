@@ -21,6 +21,7 @@
 // both sides (docs/math.md, "How the tracer uses them").
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -57,6 +58,9 @@ struct Frustum {
 // bit the light's) from points whose coordinates x = (o - origin).u and y = (o - origin).v lie in
 // [x0, x1] x [y0, y1] and z = (o - origin).along >= z0 (u, v and along orthonormal): the rays run
 // inside the prism over that rectangle, each at z = its origin's z + t.
+// A block of shadow rays towards a point (a point or spot light's position) instead: `origin` is
+// the point, and each ray runs from its start o to it inside the pyramid of the points q with
+// q - origin = s (along + x u + y v), s > 0, (x, y) in [x0, x1] x [y0, y1] (z0 unused).
 struct ShadowPrism {
   Vec3 origin, along, u, v;
   double x0, x1, y0, y1, z0;
@@ -73,11 +77,17 @@ struct BlobBeam {
   // A shadow list (ObjectTracer::shadow_beam) instead of a camera list: `near`, `far` are the
   // range of z (ShadowPrism) where the blob's support lies.
   bool parallel = false;
+  // A shadow list of rays towards a point (ObjectTracer::blob_beam over the pyramid from it,
+  // ShadowPrism), instead: `near`, `far` are the range of minus the distance from the point where
+  // the blob's support lies (-|x - origin| grows along each ray, as z along a prism's).
+  bool toward = false;
   ShadowPrism prism;
   // A shadow list's entries' x and y (ShadowPrism) and how far from them the blob reaches: a
   // smaller block's list keeps those whose reach meets its rectangle, with no more arithmetic.
+  // A toward list's: its sphere's centre's x, y and depth on the pyramid's axes (not divided by
+  // the depth), and its radius with blob_beam's slack.
   struct Across {
-    double x, y, reach;
+    double x, y, reach, depth = 0;
   };
   std::vector<Across> across;
   // A shadow list of a 4-pixel block (ObjectTracer::shadow_blockers): balls each of which alone
@@ -87,19 +97,22 @@ struct BlobBeam {
   double blockers_err = 0;
   // Whether the list holds for rays from o: from its eye, to the bit.
   bool from(const Vec3& o) const { return valid && o.x == eye.x && o.y == eye.y && o.z == eye.z; }
-  // Whether the list holds for `ray`, and where on the entries' axis the ray starts: its point at
-  // t is at distance t from a camera list's eye (*base = 0), at z = *base + t in a shadow list's
-  // prism (tracer_shadow_beam.cpp).
-  bool holds(const Ray& ray, double* base) const {
-    if (!parallel) {
+  // Whether the list holds for `ray` over [0, t1], and where on the entries' axis the ray starts:
+  // its point at t is at distance t from a camera list's eye (*base = 0), at z = *base + t in a
+  // shadow list's prism, at minus the distance *base + t from a toward list's point
+  // (tracer_shadow_beam.cpp; t1 at most the distance to it).
+  bool holds(const Ray& ray, double* base,
+             double t1 = std::numeric_limits<double>::infinity()) const {
+    if (!parallel && !toward) {
       *base = 0;
       return from(ray.o);
     }
-    return valid && holds_shadow(ray, base);
+    return valid && (toward ? holds_toward(ray, t1, base) : holds_shadow(ray, base));
   }
 
  private:
   bool holds_shadow(const Ray& ray, double* base) const;
+  bool holds_toward(const Ray& ray, double t1, double* base) const;
 };
 
 // A camera ray wants the nearest hit; a shadow ray only whether there is any.
@@ -192,7 +205,14 @@ class ObjectTracer {
   // or from the list of a prism holding p (tracer_shadow_beam.cpp). Not valid for a tracer that
   // is no blob sum.
   void shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const;
-  // The blockers of a shadow list (BlobBeam::blockers), picked for the rays of its prism.
+  // The blobs a shadow ray towards the point p.origin may meet inside the pyramid p (BlobBeam,
+  // toward; f is the same pyramid as a frustum from that point), from the BVH (blob_beam) or from
+  // the list of a pyramid on the same axes holding p (tracer_shadow_beam.cpp). Not valid for a
+  // tracer that is no blob sum.
+  void toward_beam(const Frustum& f, const ShadowPrism& p, const BlobBeam* parent,
+                   BlobBeam* out) const;
+  // The blockers of a shadow list (BlobBeam::blockers), picked for the rays of its prism
+  // or pyramid.
   void shadow_blockers(BlobBeam* list) const;
 
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).

@@ -156,7 +156,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   const BlobBeam::Entry* listed = nullptr;
   int n_listed = 0;
   double base = 0;  // the ray's start on the list's axis
-  if (beam && beam->holds(ray, &base)) {
+  if (beam && beam->holds(ray, &base, t1)) {
     listed = beam->entries.data();
     n_listed = static_cast<int>(beam->entries.size());
     // A shadow ray of a block whose blockers certify it ends before any stretch is read.

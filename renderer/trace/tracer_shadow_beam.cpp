@@ -35,9 +35,33 @@ bool BlobBeam::holds_shadow(const Ray& ray, double* base) const {
   return true;
 }
 
+// A toward list (render/shadow_beams.cpp builds it with blob_beam over the pyramid from the light,
+// ShadowPrism) holds a ray from o inside the pyramid whose direction is (p - o) / |p - o| to a few
+// ulps, p the pyramid's apex, over [0, t1] with t1 at most |p - o|: every point o + t d of it lies
+// within 1e-14 |p - o| of the segment from o to p, which the pyramid holds (it is convex), at a
+// distance from p within as much of |p - o| - t. With |o| at most 1e3 |p| (the largest
+// coordinates), that is below 1e-10 |p|, far inside blob_beam's slack of 1e-9 |p| on every test.
+bool BlobBeam::holds_toward(const Ray& ray, double t1, double* base) const {
+  const ShadowPrism& p = prism;
+  const double apex = max_abs(p.origin);
+  if (!(max_abs(ray.o) <= 1e3 * apex)) return false;
+  const Vec3 q = ray.o - p.origin;
+  const double s = dot(q, p.along);
+  if (!(s > 0)) return false;
+  const double x = dot(q, p.u) / s, y = dot(q, p.v) / s;
+  if (!(x >= p.x0 && x <= p.x1 && y >= p.y0 && y <= p.y1)) return false;
+  const double distance = length(q);
+  // Towards the apex (light_arrival's direction, to a few ulps), and not past it.
+  if (!(max_abs(ray.d * distance + q) <= 1e-14 * distance)) return false;
+  if (!(t1 <= distance * (1 + 1e-15))) return false;
+  *base = -distance;
+  return true;
+}
+
 void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const {
   out->valid = false;
   out->parallel = true;
+  out->toward = false;
   out->prism = p;
   out->entries.clear();
   out->across.clear();
@@ -96,6 +120,83 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
   out->valid = true;
 }
 
+// A toward list: a tile's pyramid takes blob_beam's list (its frustum from the light), whose
+// distances from the light become minus them, and each blob's sphere on the pyramid's axes. A
+// smaller pyramid on the same axes keeps its parent's blobs whose spheres reach inside its four
+// side planes through the apex: the side x <= x1 s (s the depth) has the inside normal
+// (x1 along - u) / h, h = sqrt(1 + x1^2), so a sphere (x, y, s; radius R) reaches into it where
+// x - x1 s <= R h; and a blob that is no ball where its support does, as blob_beam tests it (the
+// slack there is blob_beam's, from the distance and the radius, taken as the entry's range).
+void ObjectTracer::toward_beam(const Frustum& f, const ShadowPrism& p, const BlobBeam* parent,
+                               BlobBeam* out) const {
+  const auto same = [](const Vec3& a, const Vec3& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+  };
+  const bool narrow = parent && parent->valid && parent->toward &&
+                      same(parent->prism.origin, p.origin) && same(parent->prism.along, p.along) &&
+                      same(parent->prism.u, p.u) && same(parent->prism.v, p.v);
+  out->parallel = false;
+  out->toward = true;
+  out->prism = p;
+  out->blockers.clear();
+  out->across.clear();
+  if (!blobs_) {
+    out->valid = false;
+    out->entries.clear();
+    return;
+  }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!narrow) {
+    blob_beam(f, nullptr, out);
+    const double eye = max_abs(p.origin);
+    for (BlobBeam::Entry& e : out->entries) {
+      e = {-e.far, -e.near, e.id};  // the axis grows along the rays
+      Vec3 centre;
+      const double r2 = blobs_->bounding_sphere(e.id, &centre);
+      if (!(r2 < kInf)) {
+        out->across.push_back({0, 0, kInf, 0});
+        continue;
+      }
+      const Vec3 q = centre - p.origin;
+      const double r = std::sqrt(r2);
+      const double reach = r + 1e-9 * (length(q) + r + eye);
+      out->across.push_back({dot(q, p.u), dot(q, p.v), reach, dot(q, p.along)});
+    }
+    return;
+  }
+  out->valid = false;
+  out->entries.clear();
+  out->eye = p.origin;
+  const double hx0 = std::sqrt(1 + p.x0 * p.x0), hx1 = std::sqrt(1 + p.x1 * p.x1),
+               hy0 = std::sqrt(1 + p.y0 * p.y0), hy1 = std::sqrt(1 + p.y1 * p.y1);
+  const Vec3 normals[4] = {(p.u - p.along * p.x0) / hx0, (p.along * p.x1 - p.u) / hx1,
+                           (p.v - p.along * p.y0) / hy0, (p.along * p.y1 - p.v) / hy1};
+  const double eye = max_abs(p.origin);
+  for (size_t i = 0; i < parent->entries.size(); ++i) {
+    const BlobBeam::Entry& e = parent->entries[i];
+    const BlobBeam::Across& a = parent->across[i];
+    if (!(a.reach < kInf)) {
+      out->entries.push_back(e);
+      out->across.push_back(a);
+      continue;
+    }
+    if (a.x - p.x1 * a.depth > a.reach * hx1 || p.x0 * a.depth - a.x > a.reach * hx0 ||
+        a.y - p.y1 * a.depth > a.reach * hy1 || p.y0 * a.depth - a.y > a.reach * hy0)
+      continue;
+    if (blobs_->is_framed(e.id)) {
+      // blob_beam's slack, 1e-9 (distance + r + eye), with the range's half-width for r.
+      const double slack = 1e-9 * (-0.5 * (e.near + e.far) + 0.5 * (e.far - e.near) + eye);
+      bool outside = false;
+      for (const Vec3& n : normals)
+        outside = outside || blobs_->support_extent(e.id, n) - dot(n, p.origin) < -slack;
+      if (outside) continue;
+    }
+    out->entries.push_back(e);
+    out->across.push_back(a);
+  }
+  out->valid = true;
+}
+
 // Blockers. The blobs of a sum of positive blobs are non-negative terms, so where one blob's own
 // potential exceeds iso, so does the field: a shadow ray passing near enough to one ball's centre
 // is blocked whatever the others do. Most shadow rays under the 1000-blob cloud (the floor's in
@@ -108,7 +209,7 @@ constexpr int kBlockers = 2;
 
 void ObjectTracer::shadow_blockers(BlobBeam* list) const {
   list->blockers.clear();
-  if (!blobs_ || !list->valid || !list->parallel) return;
+  if (!blobs_ || !list->valid || !(list->parallel || list->toward)) return;
   const ShadowPrism& p = list->prism;
   const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
   const double iso = target_.iso;
@@ -128,13 +229,24 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
     magnitude += 3 * (100 * b.c2 + 1000 * b.c3);
     if (!(b.inv_r2 > 0)) continue;  // only balls: the rays' nearest points are the across ones
     // A choice, not a certificate (blocked_by decides each ray): a ball whose potential at the
-    // rectangle's farthest corner from its centre is above iso by 1e-3 of it.
-    const BlobBeam::Across& a = list->across[i];
-    const double dx = std::max(std::abs(a.x - p.x0), std::abs(a.x - p.x1)),
-                 dy = std::max(std::abs(a.y - p.y0), std::abs(a.y - p.y1));
+    // rectangle's farthest corner from its centre is above iso by 1e-3 of it. A pyramid's
+    // rectangle is its section at the centre's depth (a ball behind the apex is none).
+    double dx, dy;
+    if (list->parallel) {
+      const BlobBeam::Across& a = list->across[i];
+      dx = std::max(std::abs(a.x - p.x0), std::abs(a.x - p.x1));
+      dy = std::max(std::abs(a.y - p.y0), std::abs(a.y - p.y1));
+    } else {
+      const Vec3 q = b.centre - p.origin;
+      const double depth = dot(q, p.along), x = dot(q, p.u), y = dot(q, p.v);
+      if (!(depth > 0)) continue;
+      dx = std::max(std::abs(x - p.x0 * depth), std::abs(x - p.x1 * depth));
+      dy = std::max(std::abs(y - p.y0 * depth), std::abs(y - p.y1 * depth));
+    }
     const double r = 1 - (dx * dx + dy * dy) * b.inv_r2;
     if (!(r > 0 && r * r * (b.c2 + b.c3 * r) > iso * (1 + 1e-3))) continue;
-    // The ones farthest towards the light: most likely ahead of rays that start inside the cloud.
+    // The ones farthest towards the light (a pyramid's axis is minus the distance from it): most
+    // likely ahead of rays that start inside the cloud.
     const double z = 0.5 * (e.near + e.far);
     int k = picked < kBlockers ? picked++ : kBlockers;
     while (k > 0 && best_z[k - 1] < z) {

@@ -176,42 +176,187 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
     }
 }
 
+// The shadow rays of a block towards a point or spot light converge on its position: their list
+// is the pyramid's from the light through the block's points (BlobBeam::toward), and each ray
+// finds its stretches' blobs by minus its distance from the light. Every such ray must find what
+// the walk finds, to the bit (a list missing a blob that shadows a lit point, or one read on the
+// wrong axis, changes answers or work), and a ray that leaves the pyramid's sense (past the light,
+// or in another direction) is not held. Lights above the cloud, under it and beside it
+// (a spot), over the mixed cloud and the positive one.
+TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0, 1);
+  const char* lights[] = {
+      R"({"type": "point", "position": [30, -20, 60]})",
+      R"({"type": "point", "position": [3, 2, -23]})",
+      R"({"type": "spot", "position": [-70, -40, 10], "point_at": [0, 0, -10], "radius": 40,)"
+      R"( "falloff": 60})"};
+  for (const int cloud : {0, 1})
+    for (const char* light : lights) {
+      const Scene scene =
+          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+                          (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng)) +
+                          R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
+            "lights": [)" +
+                          std::string(light) + "]}",
+                      "<test>");
+      const std::vector<TracedObject> objects = traced_objects(scene);
+      const SceneTracers tracers(objects, LipschitzMode::Local);
+      const ObjectTracer& tr = tracers[0];
+      ASSERT_TRUE(tr.blob_sum());
+      const ShadowBeams beams(scene, tracers);
+      ASSERT_TRUE(beams.active());
+      const Light& l = scene.lights[0];
+      // The balls' frame finer (a block's rays must pass near enough one ball's centre).
+      const int kW = cloud ? 192 : 96, kH = cloud ? 128 : 64;
+      const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, cloud ? 40.0 : 60.0}, kW,
+                              kH);
+      struct Lit {
+        ShadowBeams::Point point;
+        Vec3 origin;
+      };
+      const auto lit = [&](const Ray& ray, Lit* out) {
+        TraceCounters w;
+        const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
+        const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
+        if (!m.hit && floor_t < 0) return false;
+        const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
+        const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
+        const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
+        const double margin = 0.05 + 0.05 * u(rng);
+        out->point = {p, margin};
+        out->origin = p + n * (margin * u(rng));
+        return true;
+      };
+      int rays = 0, held = 0, blocked = 0, by_blocker = 0;
+      long long listed = 0;
+      ShadowBeams::Lists lists;
+      std::vector<ShadowBeams::Point> points;
+      const auto build = [&](int level, const std::vector<Lit>& of) {
+        points.clear();
+        for (const Lit& p : of) points.push_back(p.point);
+        beams.build(level, points.data(), static_cast<int>(points.size()), lists);
+      };
+      for (int y = 0; y < kH; y += 16)
+        for (int x = 0; x < kW; x += 16) {
+          std::vector<Lit> by_block[16], tile, quarter;
+          for (int py = y; py < y + 16; ++py)
+            for (int px = x; px < x + 16; ++px) {
+              Lit p;
+              if (!lit(camera.generate(px + u(rng), py + u(rng)), &p)) continue;
+              const int bx = (px - x) / 4, by = (py - y) / 4;
+              by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(p);
+            }
+          for (const auto& b : by_block) tile.insert(tile.end(), b.begin(), b.end());
+          build(0, tile);
+          for (int q = 0; q < 4; ++q) {
+            quarter.clear();
+            for (int k = 0; k < 4; ++k)
+              quarter.insert(quarter.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
+            build(1, quarter);
+            for (int k = 0; k < 4; ++k) {
+              build(2, by_block[q * 4 + k]);
+              const BlobBeam* list = beams.view(2, lists).of(0);
+              ASSERT_NE(list, nullptr);
+              if (list[0].valid) {
+                ASSERT_TRUE(list[0].toward);
+                listed += static_cast<long long>(list[0].entries.size());
+              }
+              for (const Lit& p : by_block[q * 4 + k]) {
+                LightArrival at;
+                if (!light_arrival(l, p.point.p, p.origin, at)) continue;
+                const Ray ray{p.origin, at.to_light, 0, 0};
+                ++rays;
+                double base;
+                if (list[0].valid) {
+                  ASSERT_TRUE(list[0].holds(ray, &base, at.distance)) << "ray " << rays;
+                  // Not past the light, nor in another direction.
+                  EXPECT_FALSE(list[0].holds(ray, &base, at.distance * 1.01)) << "ray " << rays;
+                  const Ray off{p.origin, normalize(at.to_light + Vec3{1e-6, 0, 0}), 0, 0};
+                  EXPECT_FALSE(list[0].holds(off, &base, at.distance)) << "ray " << rays;
+                }
+                held += list[0].valid;
+                for (const Query query : {Query::Any, Query::Nearest}) {
+                  TraceCounters a, b;
+                  const MarchResult walk = tr.first_hit(ray, 0, at.distance, a, query);
+                  const MarchResult with = tr.first_hit(ray, 0, at.distance, b, query, 0, &list[0]);
+                  ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+                  if (query == Query::Any) blocked += walk.hit;
+                  // A ray a blocker decides costs one point and no stretch; any other one the
+                  // same stretches as the walk, to the bit.
+                  const bool decided = query == Query::Any && !list[0].blockers.empty() &&
+                                       with.hit && b.box_evals == 0 && b.point_evals == 1 &&
+                                       a.box_evals > 0;
+                  by_blocker += decided;
+                  if (decided) continue;
+                  if (walk.hit) {
+                    ASSERT_EQ(with.t, walk.t) << "ray " << rays;
+                  }
+                  ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
+                }
+              }
+            }
+          }
+        }
+      // Most rays go through a list, both answers occur, and the lists are short.
+      EXPECT_GT(held, rays / 2) << light;
+      EXPECT_GT(blocked, rays / 30) << light;
+      EXPECT_LT(blocked, rays * 9 / 10) << light;
+      EXPECT_LT(listed, 16LL * (kW / 16) * (kH / 16) * 40) << light;
+      // Over the balls of positive strength, with the light above them, blockers decide many of
+      // the blocked rays (the floor's under a ball).
+      if (cloud == 1 && light == lights[0]) {
+        EXPECT_GT(by_blocker, blocked / 20) << light;
+      }
+    }
+}
+
 // A blocker is certified by its own potential only where no blob of the list can take from the
 // field: a ball cancelled by a ball of negative strength at the same place (the field is 0 there)
-// blocks no ray, and one beside a positive ball does.
+// blocks no ray, and one beside a positive ball does; for a directional light and a point light.
 TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
-  for (const char* strength : {"-1", "0.2"}) {
-    const Scene scene =
-        parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
-                    R"({"type":"soft_object","potential":{"type":"murakami"},)"
-                    R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
-                    R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
-                        std::string(strength) +
-                        R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}}]}}],)"
-                        R"("lights": [{"type": "directional", "direction": [0, 0, -1]}]})",
-                    "<test>");
-    const std::vector<TracedObject> objects = traced_objects(scene);
-    const SceneTracers tracers(objects, LipschitzMode::Local);
-    const ObjectTracer& tr = tracers[0];
-    ASSERT_TRUE(tr.blob_sum());
-    const ShadowBeams beams(scene, tracers);
-    ASSERT_TRUE(beams.active());
-    // A block's rays start below the balls, within 0.2 of the axis, and go up through them.
-    const ShadowBeams::Point points[] = {{{0.1, 0, -10}, 0.05}, {{0, -0.1, -10}, 0.05}};
-    ShadowBeams::Lists lists;
-    for (int level = 0; level < ShadowBeams::kLevels; ++level) beams.build(level, points, 2, lists);
-    const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
-    ASSERT_TRUE(list.valid);
-    EXPECT_EQ(list.blockers.empty(), std::string(strength) == "-1") << strength;
-    for (const ShadowBeams::Point& p : points) {
-      const Ray ray{p.p, {0, 0, 1}, 0, 0};
-      TraceCounters a, b;
-      const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
-      const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list);
-      EXPECT_EQ(walk.hit, std::string(strength) != "-1") << strength;
-      EXPECT_EQ(with.hit, walk.hit) << strength;
+  for (const char* light : {R"({"type": "directional", "direction": [0, 0, -1]})",
+                            R"({"type": "point", "position": [0, 0, 30]})"})
+    for (const char* strength : {"-1", "0.2"}) {
+      const Scene scene =
+          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+                      R"({"type":"soft_object","potential":{"type":"murakami"},)"
+                      R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
+                      R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
+                          std::string(strength) +
+                          R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}}]}}],)"
+                          R"("lights": [)" +
+                          light + "]}",
+                      "<test>");
+      const std::vector<TracedObject> objects = traced_objects(scene);
+      const SceneTracers tracers(objects, LipschitzMode::Local);
+      const ObjectTracer& tr = tracers[0];
+      ASSERT_TRUE(tr.blob_sum());
+      const ShadowBeams beams(scene, tracers);
+      ASSERT_TRUE(beams.active());
+      // A block's rays start below the balls, within 0.2 of the axis, and go up through them.
+      const ShadowBeams::Point points[] = {{{0.1, 0, -10}, 0.05}, {{0, -0.1, -10}, 0.05}};
+      ShadowBeams::Lists lists;
+      for (int level = 0; level < ShadowBeams::kLevels; ++level)
+        beams.build(level, points, 2, lists);
+      const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
+      ASSERT_TRUE(list.valid);
+      ASSERT_EQ(list.toward, std::string(light).find("point") != std::string::npos);
+      EXPECT_EQ(list.blockers.empty(), std::string(strength) == "-1") << strength << light;
+      for (const ShadowBeams::Point& p : points) {
+        LightArrival at;
+        ASSERT_TRUE(light_arrival(scene.lights[0], p.p, p.p, at));
+        const double far = std::min(at.distance, 1e3);
+        const Ray ray{p.p, at.to_light, 0, 0};
+        TraceCounters a, b;
+        const MarchResult walk = tr.first_hit(ray, 0, far, a, Query::Any);
+        const MarchResult with = tr.first_hit(ray, 0, far, b, Query::Any, 0, &list);
+        EXPECT_EQ(walk.hit, std::string(strength) != "-1") << strength << light;
+        EXPECT_EQ(with.hit, walk.hit) << strength << light;
+        // Only a blocker decides a ray with one point and no stretch.
+        EXPECT_EQ(b.box_evals == 0, !list.blockers.empty()) << strength << light;
+      }
     }
-  }
 }
 
 // The frame traces a whole tile's camera rays before it shades any (the shadow lists need their
