@@ -166,14 +166,17 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         return MarchResult{true, *u};
       }
   }
-  // A sum of at most kListed blobs takes the ray's whole way as one stretch: each blob's terms
-  // once, not once per stretch. Stretches bound the terms one query gives where a ray may meet
-  // many blobs (1000 blobs: a quarter of the way took 0.16 s, the whole way 0.26 s, above); with
-  // a few, the second and later stretches only computed the same blobs' terms again (pov:blob, 3
-  // balls: 2.7 stretches per camera ray, the terms 17 % of the frame). The rule is the sum's, not
-  // the list's: a ray with a list and one without take the same stretches, so the same terms, to
-  // the bit.
-  const bool whole = blobs_->size() <= BlobSum::kListed;
+  // A sum of at most kListed blobs, or a camera ray whose block lists at most kWholeWay, takes
+  // the ray's whole way as one stretch: each blob's terms once, not once per stretch. Stretches
+  // bound the terms one query gives where a ray may meet many blobs (1000 blobs: a quarter of the
+  // way took 0.16 s, the whole way 0.26 s, above); with a few, the second and later stretches only
+  // computed the same blobs' terms again (pov:blob, 3 balls: 2.7 stretches per camera ray, the
+  // terms 17 % of the frame). A camera ray with a short list thus takes other stretches than the
+  // same ray without one, and its pieces' polynomials are rounded otherwise: its root agrees
+  // within the refinement's tolerance, not to the bit. The lists are the blocks' own, the same
+  // for any thread count, so the picture's bits are too. Shadow lists keep the sum's rule.
+  const bool whole = blobs_->size() <= BlobSum::kListed ||
+                     (listed && !beam->parallel && n_listed <= BlobBeam::kWholeWay);
   double t = t0;
   double s =
       whole ? t1 - t0 : std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
