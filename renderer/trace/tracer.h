@@ -68,10 +68,6 @@ struct BlobBeam {
     int32_t id;
   };
   bool valid = false;  // false: no list (the object is no blob sum, or no frustum holds the rays)
-  // A camera ray whose list holds at most this many blobs takes its whole way as one stretch
-  // (tracer_blobs.cpp): its root agrees with the list-less ray's within the refinement's
-  // tolerance (tracer_limits::kRefine of the footprint), not to the bit.
-  static constexpr int kWholeWay = 16;
   Vec3 eye;
   std::vector<Entry> entries;
   // A shadow list (ObjectTracer::shadow_beam) instead of a camera list: `near`, `far` are the
