@@ -1,7 +1,8 @@
 // ObjectTracer::blob_beam: the blobs a block of camera rays may meet, listed once for the block
 // (the tile-level active list of Zanni's Synchronized Tracing, 2025). A ray of the block then
-// finds each stretch's blobs by two comparisons per listed blob (its range of distances from the
-// eye) instead of a walk of the sum's BVH, whose node tests were a third of a dense cloud's frame.
+// takes its blobs from the list by their ranges of distances from the eye instead of a walk of
+// the sum's BVH, whose node tests were a third of a dense cloud's frame: a larger sum's list is
+// sorted by the ranges' near ends, and its rays sweep it front to back (tracer_blobs.cpp).
 // A tile's list comes from one walk of the BVH with the frustum's side planes; each quarter of it
 // keeps the parent's blobs whose bounding spheres meet its own frustum.
 //
