@@ -1,7 +1,8 @@
 // ObjectTracer::blob_beam: the blobs a block of camera rays may meet, listed once for the block
 // (the tile-level active list of Zanni's Synchronized Tracing, 2025). A ray of the block then
-// finds each stretch's blobs by two comparisons per listed blob (its range of distances from the
-// eye) instead of a walk of the sum's BVH, whose node tests were a third of a dense cloud's frame.
+// takes its blobs from the list by their ranges of distances from the eye instead of a walk of
+// the sum's BVH, whose node tests were a third of a dense cloud's frame: a larger sum's list is
+// sorted by the ranges' near ends, and its rays sweep it front to back (tracer_blobs.cpp).
 // A tile's list comes from one walk of the BVH with the frustum's side planes; each quarter of it
 // keeps the parent's blobs whose bounding spheres meet its own frustum.
 //
@@ -13,6 +14,7 @@
 // every side plane (n.x >= n.eye), so its support function there does. Rounding moves the ray's
 // points by a few ulps of |eye| + t; every test has a slack of 1e-9 of the magnitudes involved, far
 // above that.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -78,6 +80,13 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
     const int found =
         blobs_->cone_items(program_, f.eye, normals, 1e-9 * (scale_ + eye), ids.data());
     for (int i = 0; i < found; ++i) keep(ids[i]);
+    // A larger sum's camera rays sweep the list in this order (tracer_blobs.cpp); a quarter's,
+    // kept from it in order with the same distances, stays so.
+    if (blobs_->size() > BlobSum::kListed)
+      std::sort(out->entries.begin(), out->entries.end(),
+                [](const BlobBeam::Entry& a, const BlobBeam::Entry& b) {
+                  return a.near < b.near || (a.near == b.near && a.id < b.id);
+                });
   }
   out->eye = f.eye;
   out->valid = true;

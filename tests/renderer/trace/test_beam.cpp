@@ -13,6 +13,7 @@
 #include "mixed_blob_cloud.h"
 #include "render/camera.h"
 #include "scene/traced_objects.h"
+#include "trace/tracer_limits.h"
 #include "tracer_scenes.h"
 
 namespace softtrace {
@@ -115,9 +116,10 @@ TEST(Beams, NotForTheGlobalModeNorForPolynomialBlobs) {
 
 // A sum of polynomial blobs takes a list of blobs per block instead (ObjectTracer::blob_beam):
 // every camera ray of a block, its list from the block's tile and quarters as the frame nests
-// them, finds the same hit to the bit as the walk of the sum's BVH, and the same normal there as
-// the point query (ObjectTracer::normal with the list), and every blob with a term on the ray is
-// on the list. The cloud mixes balls, rotated
+// them, finds the same hit as the walk of the sum's BVH (within the refinement's tolerance: the
+// ray sweeps its list, whose pieces are rounded otherwise than the walk's stretches), and the
+// same normal at the walk's hit as the point query (ObjectTracer::normal with the list), and
+// every blob with a term on the ray is on the list. The cloud mixes balls, rotated
 // ellipsoids, capsules, a sheared capsule and negative strengths, some 40 of each, in a cube the
 // camera sees from outside and from inside.
 TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
@@ -135,6 +137,7 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   std::vector<BlobSum::Term> terms(blobs.max_terms());
   constexpr int kW = 96, kH = 64;
   int rays = 0, hits = 0, listed = 0, nested = 0, normals = 0, met = 0;
+  double worst = 0;  // the largest |list.t - walk.t|, in tolerances
   for (const Vec3& eye : {Vec3{60, -80, 50}, Vec3{2, 3, 1}}) {
     const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 50}, kW, kH);
     BlobBeam level[3];
@@ -167,8 +170,18 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
                 ++rays;
                 hits += walk.hit;
                 ASSERT_EQ(list.hit, walk.hit) << "ray " << rays;
+                // The ray sweeps its block's list (tracer_blobs.cpp): its pieces are one
+                // stretch's over the whole way, rounded otherwise than the walk's stretches', and
+                // both roots lie within the refinement's tolerance (kRefine of the footprint)
+                // past the first crossing.
                 if (walk.hit) {
-                  ASSERT_EQ(list.t, walk.t) << "ray " << rays;
+                  const double tol = tracer_limits::kRefine *
+                                     tr.resolution(ray, std::max(list.t, walk.t)) * (1 + 1e-9);
+                  worst = std::max(worst, std::abs(list.t - walk.t) / tol);
+                  ASSERT_LE(std::abs(list.t - walk.t), tol)
+                      << "ray " << rays << ": " << list.t << " against the walk's " << walk.t;
+                }
+                if (walk.hit) {
                   // The hit's normal from the list (TraceHit::blobs) is the point query's.
                   const Vec3 p = ray.o + ray.d * walk.t;
                   const Vec3 n_query = tr.normal(p), n_list = tr.normal(p, nullptr, &level[2]);
@@ -177,7 +190,6 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
                   ASSERT_EQ(n_list.z, n_query.z) << "ray " << rays;
                   normals += length(n_query) > 0;
                 }
-                ASSERT_EQ(b.box_evals, a.box_evals) << "ray " << rays;
               }
           }
         }
@@ -191,7 +203,8 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   // sphere meets most blocks): 12 per block here, 24 by the spheres alone.
   EXPECT_LT(listed, rays / 16 * 16);
   EXPECT_GT(nested, 0);
-  std::printf("%d rays, %d blobs met, %d listed per block\n", rays, met, listed * 16 / rays);
+  std::printf("%d rays, %d blobs met, %d listed per block, worst root %.3g of the tolerance\n",
+              rays, met, listed * 16 / rays, worst);
 }
 
 }  // namespace
