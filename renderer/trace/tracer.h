@@ -95,6 +95,8 @@ struct BlobBeam {
   // positive (else none); and a bound of the rounding of any piece's polynomial made of them.
   std::vector<int32_t> blockers;
   double blockers_err = 0;
+  // A camera list (ObjectTracer::blob_beam from the eye), neither kind of shadow list.
+  bool camera() const { return !parallel && !toward; }
   // Whether the list holds for rays from o: from its eye, to the bit.
   bool from(const Vec3& o) const { return valid && o.x == eye.x && o.y == eye.y && o.z == eye.z; }
   // Whether the list holds for `ray` over [0, t1], and where on the entries' axis the ray starts:
@@ -103,7 +105,7 @@ struct BlobBeam {
   // (tracer_shadow_beam.cpp; t1 at most the distance to it).
   bool holds(const Ray& ray, double* base,
              double t1 = std::numeric_limits<double>::infinity()) const {
-    if (!parallel && !toward) {
+    if (camera()) {
       *base = 0;
       return from(ray.o);
     }

@@ -81,8 +81,10 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
         blobs_->cone_items(program_, f.eye, normals, 1e-9 * (scale_ + eye), ids.data());
     for (int i = 0; i < found; ++i) keep(ids[i]);
     // A larger sum's camera rays sweep the list in this order (tracer_blobs.cpp); a quarter's,
-    // kept from it in order with the same distances, stays so.
-    if (blobs_->size() > BlobSum::kListed)
+    // kept from it in order with the same distances, stays so. A toward list (toward_beam, which
+    // marks `out` before calling here) keeps the walk's order: its shadow rays take their terms
+    // in the list's order, as a list-less ray takes them from the BVH, to the bit.
+    if (out->camera() && blobs_->size() > BlobSum::kListed)
       std::sort(out->entries.begin(), out->entries.end(),
                 [](const BlobBeam::Entry& a, const BlobBeam::Entry& b) {
                   return a.near < b.near || (a.near == b.near && a.id < b.id);

@@ -112,7 +112,7 @@ Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms, const BlobBeam* l
   // A larger sum's camera list is sorted by near (blob_beam): none past the first beyond dist
   // holds p.
   const double dist = length(p - list->eye);
-  const bool sorted = !list->parallel && blobs_->size() > BlobSum::kListed;
+  const bool sorted = list->camera() && blobs_->size() > BlobSum::kListed;
   int n = 0;
   for (const BlobBeam::Entry& e : list->entries) {
     if (sorted && e.near > dist) break;
@@ -194,7 +194,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // stretch's over the whole way, rounded otherwise than a list-less ray's stretches: the root
   // agrees with that ray's within the refinement's tolerance, not to the bit. The lists are the
   // blocks' own, the same for any thread count, so the picture's bits are too.
-  const bool camera_list = listed && !beam->parallel && query == Query::Nearest;
+  const bool camera_list = listed && beam->camera() && query == Query::Nearest;
   const bool sweep = camera_list && n_listed > kWholeList && blobs_->size() > BlobSum::kListed;
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list;
   constexpr double kInf = std::numeric_limits<double>::infinity();
