@@ -110,20 +110,35 @@ class Walker {
     const bool min_max = combine.op == Op::Min || combine.op == Op::Max;
     if (io_.bounds && min_max) drop_inactive(g, combine.op == Op::Min, first, last);
     if (io_.bounds && io_.segment && combine.op == Op::Sum) drop_quiet(g, first, last);
-    const int n = top_ - first;
 
     Instr out = combine;
-    out.a = static_cast<int32_t>(ws_.view.args.size());
-    out.n = n;
-    for (int j = first; j < first + n; ++j) ws_.view.args.push_back(g.children[kept[j]].slot);
-    ws_.view.code.push_back(out);
+    out.n = top_ - first;
     if (io_.bounds) {
       io_.group = &g;
       io_.kept = kept + first;
-      step(out);
+      if (combine.op == Op::Scale)
+        keep_sharp(out, g, first, ScaleOp::bounds_and_pick(out, io_));
+      else
+        step(out);
     }
+    out.a = static_cast<int32_t>(ws_.view.args.size());
+    for (int j = first; j < first + out.n; ++j) ws_.view.args.push_back(g.children[kept[j]].slot);
+    ws_.view.code.push_back(out);
     top_ = first;
     return g.op_index + 1;
+  }
+
+  // The scale method outside its region III all over the box or segment (`pick`, from
+  // ScaleOperator::sharp_everywhere on the children's intervals, or -1): h is that child's value,
+  // bit for bit, at every point there. The other child's code is removed from the view and the
+  // instruction becomes the min of one argument (a copy): the points of a segment evaluate one
+  // branch of a nested union (fig000_5b: 6 cylinders, 5 unions), not all of it.
+  void keep_sharp(Instr& out, const Group& g, int first, int pick) {
+    if (pick < 0) return;
+    const int32_t other = g.children[ws_.kept[first + 1 - pick]].slot;
+    drop_children(g, first, first + 2, [&](const Group::Child& c) { return c.slot == other; });
+    out.op = Op::Min;
+    out.n = 1;
   }
 
   // A child ending in a radius transform whose support the box misses is 0 there, whatever its

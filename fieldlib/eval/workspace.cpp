@@ -11,14 +11,8 @@ void grow(std::vector<T>& v, size_t n) {
 }
 }  // namespace
 
-void Workspace::fit(const Program& p) {
+void Workspace::grow_to(const Program& p) {
   const size_t slots_n = std::max<int32_t>(p.slots, 1), regs_n = p.regs;
-  // The buffers grow here only, each with the others of its size: one of each size stands for
-  // all (so a program within what was fitted before costs five comparisons).
-  if (slots.size() >= slots_n * kBatch && regs.size() >= regs_n * 3 * kBatch &&
-      kept.size() >= size_t(p.children) + 1 && view.code.capacity() >= p.code.size() &&
-      view.args.capacity() >= p.args.size() && !ends.empty())
-    return;
   grow(ends, GaugeEnds::kTable);
   grow(slots, slots_n * kBatch);
   grow(regs, regs_n * 3 * kBatch);

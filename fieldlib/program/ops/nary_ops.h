@@ -311,24 +311,33 @@ struct ScaleOp : Combination<ScaleOp> {
     *grad = g[0] * dh[0] + g[1] * dh[1];
     return h;
   }
+  // One point: the two children read in place (Combination's gathers them into scratch).
+  static void value(const Instr& in, const PointIO& io) {
+    io.S[in.out] = load(io.K + in.in)(io.S[io.args[in.a]], io.S[io.args[in.a + 1]], nullptr);
+  }
   // Not Combination's bounds: the two children read in place, the operator loaded once and its
   // sharp pick decided once for range and slope (nested scale unions walk one of these per level;
   // on fig000_5b the generic path took 16 % of the instructions). The model's bounds
   // (blends_scale.cpp): h at the ends, max L_k times the gain; the slope of docs/math.md §8.
-  static void bounds(const Instr& out, const BoundsIO& io) {
+  static void bounds(const Instr& out, const BoundsIO& io) { bounds_and_pick(out, io); }
+  // bounds(), returning the child whose value h is at every point of the box or segment (outside
+  // region III: ScaleOperator::sharp_everywhere), or -1: the walk prunes the other child by it.
+  static int bounds_and_pick(const Instr& out, const BoundsIO& io) {
     const int s1 = io.child(0).slot, s2 = io.child(1).slot;
     const ScaleOperator op = load(io.K + out.in);
     const double L = std::max(io.L[s1], io.L[s2]) * op.gain() * (1 + 1e-12);
+    const int sharp = op.sharp_everywhere(io.I[s1], io.I[s2]);
     io.L[out.out] = L;
     io.Q[out.out] = 0;
     if (!io.segment) {
-      io.I[out.out] = op.range_and_slope(io.I[s1], io.I[s2], nullptr, nullptr, nullptr);
+      io.I[out.out] = op.range_and_slope(io.I[s1], io.I[s2], nullptr, nullptr, nullptr, sharp);
       io.D[out.out] = {-L, L};
-      return;
+      return sharp;
     }
     Interval slope;
-    io.I[out.out] = op.range_and_slope(io.I[s1], io.I[s2], &io.D[s1], &io.D[s2], &slope);
+    io.I[out.out] = op.range_and_slope(io.I[s1], io.I[s2], &io.D[s1], &io.D[s2], &slope, sharp);
     io.D[out.out] = BoundsIO::capped(slope, L);
+    return sharp;
   }
 };
 

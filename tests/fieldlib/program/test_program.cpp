@@ -1374,3 +1374,87 @@ TEST(Program, MinDropsChildrenThatCannotBeTheMinimum) {
 }
 
 }  // namespace softtrace::test
+
+namespace softtrace::test {
+
+// A scale union outside its region III all along a segment is one child's value there (the sharp
+// min or max, bit for bit): the view keeps only that child's code, its instruction a copy (a min
+// of one), and still evaluates to the whole program's bits at every point of the segment. The
+// fig000_5b ring (BSA2 nested five deep over six cylinders) beside one cylinder's middle keeps
+// that cylinder alone; near a joint, both of its cylinders.
+TEST(Program, ScaleUnionKeepsOnlyTheChildItIsAlongASegment) {
+  std::string ring = R"({"type":"segment","p0":[4,0,0],"p1":[2,3.4641,0],"radius":0.8})";
+  const Vec3 corner[7] = {{4, 0, 0},        {2, 3.4641, 0},  {-2, 3.4641, 0}, {-4, 0, 0},
+                          {-2, -3.4641, 0}, {2, -3.4641, 0}, {4, 0, 0}};
+  for (int k = 1; k < 6; ++k) {
+    char seg[160];
+    std::snprintf(seg, sizeof seg,
+                  R"({"type":"segment","p0":[%g,%g,0],"p1":[%g,%g,0],"radius":0.8})", corner[k].x,
+                  corner[k].y, corner[k + 1].x, corner[k + 1].y);
+    ring =
+        R"({"type":"scale_union","r1":0.5,"r2":0.5,"p":0,"children":[)" + ring + "," + seg + "]}";
+  }
+  // The soft convention's union is BSS2 (the sharp max): two soft segments.
+  const std::string soft =
+      R"({"type":"scale_union","r1":0.6,"r2":0.4,"p":0.1,"children":[
+          {"type":"soft_object","distance":{"type":"segment","p0":[-3,0,0],"p1":[-1,0,0],"radius":1.5}},
+          {"type":"soft_object","distance":{"type":"segment","p0":[1,0,0],"p1":[3,0,0],"radius":1.5}}]})";
+  const struct {
+    std::string json;
+    Convention convention;
+    Segment beside_one, beside_joint;
+    int pruned;  // fewer than this of 400 random segments prune a child: a failure
+  } kCases[] = {{ring,
+                 Convention::Constructive,
+                 {{3, 1.9, 0.9}, {3.05, 1.7, 0.9}},
+                 {{3.9, -0.3, 0.7}, {3.9, 0.3, 0.7}},
+                 300},
+                {soft,
+                 Convention::Soft,
+                 {{-2.2, 0.3, 0.2}, {-1.9, 0.3, 0.2}},
+                 {{-0.3, 0.2, 0}, {0.3, 0.2, 0}},
+                 30}};
+  for (const auto& c : kCases) {
+    const NodePtr node = build_from_json(c.json, c.convention);
+    const Program prog = compile(*node);
+    Workspace ws;
+    ws.fit(prog);
+    const int all = count_ops(prog.code, Op::LineSegment);
+    const auto points_agree = [&](const Segment& seg) {
+      for (int j = 0; j <= 16; ++j) {
+        const Vec3 p = seg.a + (seg.b - seg.a) * (j / 16.0);
+        const double in_view = value(ws.view, p, ws), whole = value(Code(prog), p, ws);
+        if (std::memcmp(&in_view, &whole, sizeof whole) != 0) {
+          ADD_FAILURE() << c.json << ": " << in_view << " != " << whole << " at " << p.x << ", "
+                        << p.y << ", " << p.z;
+          return false;
+        }
+      }
+      return true;
+    };
+    bounds(prog, c.beside_one, ws);
+    EXPECT_EQ(count_ops(ws.view.code, Op::LineSegment), 1) << c.json;
+    EXPECT_EQ(count_ops(ws.view.code, Op::Scale), 0) << c.json;
+    EXPECT_EQ(ws.view.code.back().op, Op::Min) << c.json;
+    EXPECT_EQ(ws.view.code.back().n, 1) << c.json;
+    points_agree(c.beside_one);
+    bounds(prog, c.beside_joint, ws);
+    EXPECT_EQ(count_ops(ws.view.code, Op::LineSegment), 2) << c.json;
+    EXPECT_GE(count_ops(ws.view.code, Op::Scale), 1) << c.json;
+    points_agree(c.beside_joint);
+    // Random segments about the shapes: every view evaluates to the whole program's bits.
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-5, 5);
+    int pruned = 0;
+    for (int i = 0; i < 400; ++i) {
+      const Vec3 a{u(rng), u(rng), 0.3 * u(rng)};
+      const Vec3 b = a + Vec3{u(rng), u(rng), u(rng)} * 0.2;
+      bounds(prog, Segment{a, b}, ws);
+      pruned += count_ops(ws.view.code, Op::LineSegment) < all;
+      if (!points_agree(Segment{a, b})) break;
+    }
+    EXPECT_GT(pruned, c.pruned) << c.json;
+  }
+}
+
+}  // namespace softtrace::test
