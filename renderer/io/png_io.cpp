@@ -14,17 +14,19 @@ namespace softtrace {
 
 namespace {
 
-// libpng reports errors by longjmp: the two functions that call it hold nothing with a
-// destructor, and the message goes to a buffer the caller owns.
-struct PngReader {
+// libpng reports errors by longjmp: the functions that call it (reading or writing) hold nothing
+// with a destructor, and the message goes to a buffer the caller owns, which starts with what to
+// say if libpng gives no text.
+struct PngCall {
+  explicit PngCall(const char* fallback) { std::snprintf(message, sizeof message, "%s", fallback); }
   png_structp png = nullptr;
   png_infop info = nullptr;
-  char message[200] = "not a readable PNG";
+  char message[200];
 };
 
 void on_png_error(png_structp png, png_const_charp text) {
-  auto* reader = static_cast<PngReader*>(png_get_error_ptr(png));
-  std::snprintf(reader->message, sizeof reader->message, "%s", text);
+  auto* call = static_cast<PngCall*>(png_get_error_ptr(png));
+  std::snprintf(call->message, sizeof call->message, "%s", text);
   png_longjmp(png, 1);
 }
 
@@ -32,7 +34,7 @@ void on_png_warning(png_structp, png_const_charp) {}
 
 // The header, with the transforms that give 8 or 16 bits per sample of grey or RGB, with alpha
 // where the file has it (a palette expanded, tRNS as alpha), and no gamma conversion.
-bool read_png_header(PngReader& r, FILE* f, png_uint_32& width, png_uint_32& height, int& channels,
+bool read_png_header(PngCall& r, FILE* f, png_uint_32& width, png_uint_32& height, int& channels,
                      int& bit_depth, size_t& row_bytes) {
   if (setjmp(png_jmpbuf(r.png))) return false;
   png_init_io(r.png, f);
@@ -52,7 +54,7 @@ bool read_png_header(PngReader& r, FILE* f, png_uint_32& width, png_uint_32& hei
   return true;
 }
 
-bool read_png_rows(PngReader& r, png_bytep* rows) {
+bool read_png_rows(PngCall& r, png_bytep* rows) {
   if (setjmp(png_jmpbuf(r.png))) return false;
   png_read_image(r.png, rows);
   png_read_end(r.png, nullptr);
@@ -67,7 +69,7 @@ bool read_png_rows(PngReader& r, png_bytep* rows) {
 ImageFile read_png(const std::string& path) {
   FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw std::runtime_error("cannot open the file");
-  PngReader r;
+  PngCall r("not a readable PNG");
   r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r, on_png_error, on_png_warning);
   if (r.png) r.info = png_create_info_struct(r.png);
   png_uint_32 width = 0, height = 0;
@@ -125,24 +127,11 @@ void write_png(const std::string& path, const ImageFile& img, bool srgb) {
 
 namespace {
 
-// libpng's writer, whose errors (a longjmp, as the reader's) leave their text here.
-struct PngWriter {
-  png_structp png = nullptr;
-  png_infop info = nullptr;
-  char message[200] = "cannot write the PNG";
-};
-
-void on_png_write_error(png_structp png, png_const_charp text) {
-  auto* writer = static_cast<PngWriter*>(png_get_error_ptr(png));
-  std::snprintf(writer->message, sizeof writer->message, "%s", text);
-  png_longjmp(png, 1);
-}
-
 // The file libpng's simplified writer (png_image_write_to_stdio) wrote with PNG_IMAGE_FLAG_FAST:
 // the same header and chunks (IHDR, then sRGB, or gAMA 1/2.2 where the samples are not sRGB),
 // rows unfiltered, but deflated at zlib's level 1 where that flag took level 3: a 320x240 render's
 // image deflates in 1.07 ms instead of 1.33, its file 6.7 % larger (26.2 against 24.6 kB).
-bool write_png_rows(PngWriter& w, FILE* f, const PngPixels& img, bool srgb) {
+bool write_png_rows(PngCall& w, FILE* f, const PngPixels& img, bool srgb) {
   if (setjmp(png_jmpbuf(w.png))) return false;
   png_init_io(w.png, f);
   const int nc = img.channels;
@@ -171,8 +160,8 @@ void write_png(const std::string& path, const PngPixels& img, bool srgb) {
   if (nc < 1 || nc > 4) throw std::runtime_error("a PNG holds 1 to 4 channels");
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw std::runtime_error("cannot open the file for writing");
-  PngWriter w;
-  w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w, on_png_write_error, on_png_warning);
+  PngCall w("cannot write the PNG");
+  w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w, on_png_error, on_png_warning);
   if (w.png) w.info = png_create_info_struct(w.png);
   const bool written = w.info && write_png_rows(w, f, img, srgb);
   png_destroy_write_struct(w.png ? &w.png : nullptr, w.info ? &w.info : nullptr);
