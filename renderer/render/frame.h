@@ -34,7 +34,7 @@ struct RenderOptions {
 struct TracedScene {
   TracedScene(const Scene& scene, LipschitzMode mode)
       : objects(traced_objects(scene)), tracers(objects, mode), embree(tracers, scene.transparent) {
-    if (!embree.built()) start_threads_as_embree_does();
+    if (!embree.built()) start_threads();
   }
   std::vector<TracedObject> objects;
   SceneTracers tracers;

@@ -36,21 +36,26 @@ ThreadLimit limit_threads(int threads) {
   return limit;
 }
 
-void start_threads_as_embree_does() {
-#if defined(__x86_64__) || defined(__i386__)
-  constexpr unsigned kFlushToZero = 1u << 15, kDenormalsAreZero = 1u << 6;  // MXCSR's bits
-  const unsigned mode = _mm_getcsr();
-  _mm_setcsr(mode | kFlushToZero | kDenormalsAreZero);
-#endif
-  // Two tasks, as Embree's build spawned them: where the cap allows a worker, it starts now, beside
-  // what the caller does before its frame, rather than at the frame's first tile.
+void start_threads() {
+  // Two tasks, as Embree's build spawned them.
   tbb::parallel_for(
       tbb::blocked_range<int>(0, 2, 1), [](const tbb::blocked_range<int>&) {},
       tbb::simple_partitioner());
-#if defined(__x86_64__) || defined(__i386__)
-  _mm_setcsr(mode);
-#endif
 }
+
+#if defined(__x86_64__) || defined(__i386__)
+DenormalsFlushed::DenormalsFlushed() : saved_(_mm_getcsr()) {
+  constexpr unsigned kFlushToZero = 1u << 15, kDenormalsAreZero = 1u << 6;  // MXCSR's bits
+  if ((saved_ & (kFlushToZero | kDenormalsAreZero)) != (kFlushToZero | kDenormalsAreZero))
+    _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
+}
+DenormalsFlushed::~DenormalsFlushed() {
+  if (_mm_getcsr() != saved_) _mm_setcsr(saved_);
+}
+#else
+DenormalsFlushed::DenormalsFlushed() = default;
+DenormalsFlushed::~DenormalsFlushed() = default;
+#endif
 
 int default_threads() {
   return tbb::info::default_concurrency();

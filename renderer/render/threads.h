@@ -32,13 +32,27 @@ class ThreadLimit {
 // At most `threads` worker threads (0: no cap, all cores) while the result lives.
 ThreadLimit limit_threads(int threads);
 
-// Starts TBB on the calling thread, if nothing has, with flush-to-zero and denormals-are-zero on,
-// as Embree's scene commit starts it: TBB's arena takes the floating-point mode of the moment it
-// starts, and every task of every frame after it (the frame's rays) runs in that mode, on every
-// thread. A scene that builds no Embree scene (EmbreeScene::built) calls this in its place, so
-// that its pictures keep their bits (a denormal flushed or not changes a march's steps). A worker
-// thread, where limit_threads allows one, starts then too, as Embree's build started it.
-void start_threads_as_embree_does();
+// Starts TBB on the calling thread, if nothing has, with a worker thread where the cap allows
+// one, as Embree's scene build started it: the worker then starts beside what the caller does
+// before its frame (EmbreeScene::built false: no Embree build does it), not at the first tile.
+void start_threads();
+
+// Flush-to-zero and denormals-are-zero on the calling thread while it lives, the mode before it
+// restored after. Every task of a frame runs in it (frame.cpp): it is the mode the frames have
+// always had where Embree's scene build started TBB (TBB's arena keeps the mode of the thread that
+// started it, and Embree's build sets these), and a denormal flushed or not changes a march's
+// steps. Set per task, it no longer depends on who started TBB, so the Python module's frames, in
+// an arena of their own, are the command line's bits.
+class DenormalsFlushed {
+ public:
+  DenormalsFlushed();
+  ~DenormalsFlushed();
+  DenormalsFlushed(const DenormalsFlushed&) = delete;
+  DenormalsFlushed& operator=(const DenormalsFlushed&) = delete;
+
+ private:
+  unsigned saved_ = 0;
+};
 
 // The worker threads a parallel loop uses when nothing caps them (TBB's default concurrency: the
 // cores this process may run on).
