@@ -42,17 +42,24 @@ def test_aovs_are_the_cli_exr_channels(tmp_path):
         softtrace.render(scene, width=8, height=8, aovs="depth")
 
 
+def render_here_and_by_cli(scene, path, width, height, aov, tmp_path):
+    """The module's arrays for `scene` and the EXR channels `softtrace render` writes for its
+    file `path`, at the same size with the same AOV."""
+    ours = softtrace.render(scene, width=width, height=height, aovs=[aov])
+    cli = tmp_path / "cli.exr"
+    subprocess.run([BIN, "render", path, "--width", str(width), "--height", str(height), "--aov",
+                    aov, "-o", str(cli), "--quiet"], check=True)
+    return ours, softtrace.read_exr(cli)
+
+
 @pytest.mark.parametrize("name", ["fig000_14m_ellipse", "fig002_3b_six_cylinders_no_bulges"])
 def test_frames_are_the_command_lines_bits(tmp_path, name):
     # These scenes' marches meet denormals, flushed in every frame's tasks (render/threads.h):
     # before that was set per task, the module's arena ran without it and 11 % of 14m's pixels
     # differed from the command line's.
     path = os.path.join(SRC, "scenes", name + ".json")
-    out = softtrace.render(softtrace.load_scene(path), width=80, height=60, aovs=["steps"])
-    cli = tmp_path / "cli.exr"
-    subprocess.run([BIN, "render", path, "--width", "80", "--height", "60", "--aov", "steps",
-                    "-o", str(cli), "--quiet"], check=True)
-    channels = softtrace.read_exr(cli)
+    out, channels = render_here_and_by_cli(softtrace.load_scene(path), path, 80, 60, "steps",
+                                           tmp_path)
     assert np.array_equal(np.stack([channels[c] for c in "RGBA"], -1), out["rgba"])
     assert np.array_equal(channels["steps"], out["steps"])
 
@@ -298,10 +305,6 @@ def test_lens_orthographic_and_shape_scenes_are_the_cli_bits(name, tmp_path):
     path = os.path.join(os.environ["SOFTTRACE_SOURCE_DIR"], "scenes", name + ".json")
     scene = softtrace.load_scene(path)
     assert scene.camera["aperture"] > 0 or scene.camera["projection"] == "orthographic"
-    ours = softtrace.render(scene, width=48, height=36, aovs=["depth"])
-    cli = tmp_path / "cli.exr"
-    subprocess.run([BIN, "render", path, "--width", "48", "--height", "36", "--aov", "depth",
-                    "-o", str(cli), "--quiet"], check=True)
-    theirs = softtrace.read_exr(cli)
+    ours, theirs = render_here_and_by_cli(scene, path, 48, 36, "depth", tmp_path)
     assert np.array_equal(np.stack([theirs[c] for c in "RGBA"], -1), ours["rgba"])
     assert np.array_equal(theirs["Z"], ours["depth"])
