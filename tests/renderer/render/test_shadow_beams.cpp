@@ -43,124 +43,160 @@ std::string positive_ball_cloud(std::mt19937_64& rng) {
   return children;
 }
 
-TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (const int cloud : {0, 1})
-    for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
-      const Scene scene =
-          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
-                          (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng)) +
-                          R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
-            "lights": [{"type": "directional", "direction": )" +
-                          std::string(direction) + "}]}",
-                      "<test>");
-      const std::vector<TracedObject> objects = traced_objects(scene);
-      const SceneTracers tracers(objects, LipschitzMode::Local);
-      const ObjectTracer& tr = tracers[0];
-      ASSERT_TRUE(tr.blob_sum());
-      const ShadowBeams beams(scene, tracers);
-      ASSERT_TRUE(beams.active());
-      const Vec3 along = -scene.lights[0].direction;
-      // The balls' frame finer (a block's rays must pass near enough one ball's centre).
-      const int kW = cloud ? 192 : 96, kH = cloud ? 128 : 64;
-      const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, cloud ? 40.0 : 60.0}, kW,
-                              kH);
-      // The camera hit of a ray, on the cloud (walked) or the floor z = -26, and its lifted point.
-      struct Lit {
-        ShadowBeams::Point point;
-        Vec3 origin;
-      };
-      const auto lit = [&](const Ray& ray, Lit* out) {
-        TraceCounters w;
-        const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
-        const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
-        if (!m.hit && floor_t < 0) return false;
-        const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
-        const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
-        const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
-        const double margin = 0.05 + 0.05 * u(rng);
-        out->point = {p, margin};
-        out->origin = p + n * (margin * u(rng));
-        return true;
-      };
-      int rays = 0, held = 0, blocked = 0, hits = 0, by_blocker = 0;
-      long long listed = 0;
-      ShadowBeams::Lists lists;
-      std::vector<Lit> tile, quarter, block;
-      std::vector<ShadowBeams::Point> points;
-      const auto build = [&](int level, const std::vector<Lit>& of) {
-        points.clear();
-        for (const Lit& l : of) points.push_back(l.point);
-        beams.build(level, points.data(), static_cast<int>(points.size()), lists);
-      };
-      for (int y = 0; y < kH; y += 16)
-        for (int x = 0; x < kW; x += 16) {
-          // The tile's points, quarter by quarter and block by block, as the frame orders them.
-          std::vector<Lit> by_block[16];
-          for (int py = y; py < y + 16; ++py)
-            for (int px = x; px < x + 16; ++px) {
-              Lit l;
-              if (!lit(camera.generate(px + u(rng), py + u(rng)), &l)) continue;
-              const int bx = (px - x) / 4, by = (py - y) / 4;
-              by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(l);
-            }
-          tile.clear();
-          for (const auto& b : by_block) tile.insert(tile.end(), b.begin(), b.end());
-          build(0, tile);
-          for (int q = 0; q < 4; ++q) {
-            quarter.clear();
-            for (int k = 0; k < 4; ++k)
-              quarter.insert(quarter.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
-            build(1, quarter);
-            for (int k = 0; k < 4; ++k) {
-              build(2, by_block[q * 4 + k]);
-              const ShadowLists view = beams.view(2, lists);
-              const BlobBeam* list = view.of(0);
-              ASSERT_NE(list, nullptr);
-              if (list[0].valid) listed += static_cast<long long>(list[0].entries.size());
-              for (const Lit& l : by_block[q * 4 + k]) {
-                const Ray ray{l.origin, along, 0, 0};
-                double base;
-                ++rays;
-                // A block's list holds each of its rays; a block without one sends none into the
-                // cloud's box.
-                if (list[0].valid) {
-                  ASSERT_TRUE(list[0].holds(ray, &base)) << "ray " << rays;
-                }
-                held += list[0].valid;
-                TraceCounters a, b;
-                const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
-                const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list[0]);
-                if (!list[0].valid) {
-                  ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
-                }
-                ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
-                // A ray a blocker decides costs one point and no stretch; any other one the same
-                // stretches as the walk, to the bit.
-                const bool decided = !list[0].blockers.empty() && with.hit && b.box_evals == 0 &&
-                                     b.point_evals == 1 && a.box_evals > 0;
-                by_blocker += decided;
-                if (!decided) {
-                  if (walk.hit) {
-                    ASSERT_EQ(with.t, walk.t) << "ray " << rays;
-                  }
-                  ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
-                }
-                blocked += walk.hit;
-                TraceCounters c, d;
-                const MarchResult near = tr.first_hit(ray, 0, 1e3, c);
-                const MarchResult near_with =
-                    tr.first_hit(ray, 0, 1e3, d, Query::Nearest, 0, &list[0]);
-                ASSERT_EQ(near_with.hit, near.hit) << "ray " << rays;
-                if (near.hit) {
-                  ASSERT_EQ(near_with.t, near.t) << "ray " << rays;
-                }
-                hits += near.hit;
-              }
-            }
+// A cloud (0: the mixed one, 1: positive_ball_cloud) over the floor z = -26 under one light, and
+// the points where its shadow rays start: a camera's hits on the cloud (walked) or the floor,
+// lifted along the normal as shade() lifts them. for_each_block builds the lists as the frame
+// does (a tile's, each quarter's from it, each block's from that) and hands each 4-pixel block's
+// list and points to `check`, block by block, as the frame orders them.
+class CloudOverFloor {
+ public:
+  struct Lit {
+    ShadowBeams::Point point;
+    Vec3 origin;
+  };
+  CloudOverFloor(int cloud, const std::string& light, std::mt19937_64& rng)
+      : width(cloud ? 192 : 96),   // the balls' frame finer (a block's rays must pass near
+        height(cloud ? 128 : 64),  // enough one ball's centre)
+        rng_(rng),
+        scene_(parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+                               (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng)) +
+                               R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
+            "lights": [)" + light +
+                               "]}",
+                           "<test>")),
+        objects_(traced_objects(scene_)),
+        tracers_(objects_, LipschitzMode::Local),
+        beams_(scene_, tracers_),
+        camera_(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, cloud ? 40.0 : 60.0}, width, height) {}
+
+  const Scene& scene() const { return scene_; }
+  const ObjectTracer& tracer() const { return tracers_[0]; }
+  const ShadowBeams& beams() const { return beams_; }
+
+  // check(list, points): a block's list (its level-2 view's first light's) and its points. Stops
+  // at the first fatal failure.
+  template <class Check>
+  void for_each_block(Check&& check) {
+    for (int y = 0; y < height; y += 16)
+      for (int x = 0; x < width; x += 16) {
+        std::vector<Lit> by_block[16];
+        for (int py = y; py < y + 16; ++py)
+          for (int px = x; px < x + 16; ++px) {
+            Lit l;
+            if (!lit(camera_.generate(px + u_(rng_), py + u_(rng_)), &l)) continue;
+            const int bx = (px - x) / 4, by = (py - y) / 4;
+            by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(l);
+          }
+        tile_.clear();
+        for (const auto& b : by_block) tile_.insert(tile_.end(), b.begin(), b.end());
+        build(0, tile_);
+        for (int q = 0; q < 4; ++q) {
+          quarter_.clear();
+          for (int k = 0; k < 4; ++k)
+            quarter_.insert(quarter_.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
+          build(1, quarter_);
+          for (int k = 0; k < 4; ++k) {
+            build(2, by_block[q * 4 + k]);
+            const ShadowLists view = beams_.view(2, lists_);
+            check(view.of(0), by_block[q * 4 + k]);
+            if (::testing::Test::HasFatalFailure()) return;
           }
         }
+      }
+  }
+
+  const int width, height;
+
+ private:
+  // The camera hit of a ray, on the cloud (walked) or the floor z = -26, and its lifted point.
+  bool lit(const Ray& ray, Lit* out) {
+    TraceCounters w;
+    const ObjectTracer& tr = tracer();
+    const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
+    const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
+    if (!m.hit && floor_t < 0) return false;
+    const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
+    const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
+    const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
+    const double margin = 0.05 + 0.05 * u_(rng_);
+    out->point = {p, margin};
+    out->origin = p + n * (margin * u_(rng_));
+    return true;
+  }
+  void build(int level, const std::vector<Lit>& of) {
+    points_.clear();
+    for (const Lit& l : of) points_.push_back(l.point);
+    beams_.build(level, points_.data(), static_cast<int>(points_.size()), lists_);
+  }
+
+  std::mt19937_64& rng_;
+  std::uniform_real_distribution<double> u_{0, 1};
+  const Scene scene_;
+  const std::vector<TracedObject> objects_;
+  const SceneTracers tracers_;
+  const ShadowBeams beams_;
+  const ViewCamera camera_;
+  ShadowBeams::Lists lists_;
+  std::vector<Lit> tile_, quarter_;
+  std::vector<ShadowBeams::Point> points_;
+};
+
+TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
+  std::mt19937_64 rng(11);
+  for (const int cloud : {0, 1})
+    for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
+      CloudOverFloor floor(
+          cloud, std::string(R"({"type": "directional", "direction": )") + direction + "}", rng);
+      const ObjectTracer& tr = floor.tracer();
+      ASSERT_TRUE(tr.blob_sum());
+      ASSERT_TRUE(floor.beams().active());
+      const Vec3 along = -floor.scene().lights[0].direction;
+      const int kW = floor.width, kH = floor.height;
+      int rays = 0, held = 0, blocked = 0, hits = 0, by_blocker = 0;
+      long long listed = 0;
+      floor.for_each_block([&](const BlobBeam* list,
+                               const std::vector<CloudOverFloor::Lit>& block) {
+        ASSERT_NE(list, nullptr);
+        if (list[0].valid) listed += static_cast<long long>(list[0].entries.size());
+        for (const CloudOverFloor::Lit& l : block) {
+          const Ray ray{l.origin, along, 0, 0};
+          double base;
+          ++rays;
+          // A block's list holds each of its rays; a block without one sends none into the
+          // cloud's box.
+          if (list[0].valid) {
+            ASSERT_TRUE(list[0].holds(ray, &base)) << "ray " << rays;
+          }
+          held += list[0].valid;
+          TraceCounters a, b;
+          const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
+          const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list[0]);
+          if (!list[0].valid) {
+            ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
+          }
+          ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+          // A ray a blocker decides costs one point and no stretch; any other one the same
+          // stretches as the walk, to the bit.
+          const bool decided = !list[0].blockers.empty() && with.hit && b.box_evals == 0 &&
+                               b.point_evals == 1 && a.box_evals > 0;
+          by_blocker += decided;
+          if (!decided) {
+            if (walk.hit) {
+              ASSERT_EQ(with.t, walk.t) << "ray " << rays;
+            }
+            ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
+          }
+          blocked += walk.hit;
+          TraceCounters c, d;
+          const MarchResult near = tr.first_hit(ray, 0, 1e3, c);
+          const MarchResult near_with = tr.first_hit(ray, 0, 1e3, d, Query::Nearest, 0, &list[0]);
+          ASSERT_EQ(near_with.hit, near.hit) << "ray " << rays;
+          if (near.hit) {
+            ASSERT_EQ(near_with.t, near.t) << "ray " << rays;
+          }
+          hits += near.hit;
+        }
+      });
       // Many rays go through a list, and both answers occur.
       EXPECT_GT(held, rays / 6) << direction;
       EXPECT_GT(blocked, rays / 30) << direction;
@@ -185,7 +221,6 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
 // (a spot), over the mixed cloud and the positive one.
 TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
   std::mt19937_64 rng(23);
-  std::uniform_real_distribution<double> u(0, 1);
   const char* lights[] = {
       R"({"type": "point", "position": [30, -20, 60]})",
       R"({"type": "point", "position": [3, 2, -23]})",
@@ -193,111 +228,54 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
       R"( "falloff": 60})"};
   for (const int cloud : {0, 1})
     for (const char* light : lights) {
-      const Scene scene =
-          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
-                          (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng)) +
-                          R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
-            "lights": [)" +
-                          std::string(light) + "]}",
-                      "<test>");
-      const std::vector<TracedObject> objects = traced_objects(scene);
-      const SceneTracers tracers(objects, LipschitzMode::Local);
-      const ObjectTracer& tr = tracers[0];
+      CloudOverFloor floor(cloud, light, rng);
+      const ObjectTracer& tr = floor.tracer();
       ASSERT_TRUE(tr.blob_sum());
-      const ShadowBeams beams(scene, tracers);
-      ASSERT_TRUE(beams.active());
-      const Light& l = scene.lights[0];
-      // The balls' frame finer (a block's rays must pass near enough one ball's centre).
-      const int kW = cloud ? 192 : 96, kH = cloud ? 128 : 64;
-      const ViewCamera camera(Camera{{60, -80, 50}, {0, 0, -5}, {0, 0, 1}, cloud ? 40.0 : 60.0}, kW,
-                              kH);
-      struct Lit {
-        ShadowBeams::Point point;
-        Vec3 origin;
-      };
-      const auto lit = [&](const Ray& ray, Lit* out) {
-        TraceCounters w;
-        const MarchResult m = tr.first_hit(ray, 0, 1e3, w);
-        const double floor_t = ray.d.z < 0 ? (-26 - ray.o.z) / ray.d.z : -1;
-        if (!m.hit && floor_t < 0) return false;
-        const bool on_floor = !m.hit || (floor_t > 0 && floor_t < m.t);
-        const Vec3 p = ray.o + ray.d * (on_floor ? floor_t : m.t);
-        const Vec3 n = on_floor ? Vec3{0, 0, 1} : tr.normal(p);
-        const double margin = 0.05 + 0.05 * u(rng);
-        out->point = {p, margin};
-        out->origin = p + n * (margin * u(rng));
-        return true;
-      };
+      ASSERT_TRUE(floor.beams().active());
+      const Light& l = floor.scene().lights[0];
+      const int kW = floor.width, kH = floor.height;
       int rays = 0, held = 0, blocked = 0, by_blocker = 0;
       long long listed = 0;
-      ShadowBeams::Lists lists;
-      std::vector<ShadowBeams::Point> points;
-      const auto build = [&](int level, const std::vector<Lit>& of) {
-        points.clear();
-        for (const Lit& p : of) points.push_back(p.point);
-        beams.build(level, points.data(), static_cast<int>(points.size()), lists);
-      };
-      for (int y = 0; y < kH; y += 16)
-        for (int x = 0; x < kW; x += 16) {
-          std::vector<Lit> by_block[16], tile, quarter;
-          for (int py = y; py < y + 16; ++py)
-            for (int px = x; px < x + 16; ++px) {
-              Lit p;
-              if (!lit(camera.generate(px + u(rng), py + u(rng)), &p)) continue;
-              const int bx = (px - x) / 4, by = (py - y) / 4;
-              by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(p);
+      floor.for_each_block(
+          [&](const BlobBeam* list, const std::vector<CloudOverFloor::Lit>& block) {
+            ASSERT_NE(list, nullptr);
+            if (list[0].valid) {
+              ASSERT_TRUE(list[0].toward);
+              listed += static_cast<long long>(list[0].entries.size());
             }
-          for (const auto& b : by_block) tile.insert(tile.end(), b.begin(), b.end());
-          build(0, tile);
-          for (int q = 0; q < 4; ++q) {
-            quarter.clear();
-            for (int k = 0; k < 4; ++k)
-              quarter.insert(quarter.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
-            build(1, quarter);
-            for (int k = 0; k < 4; ++k) {
-              build(2, by_block[q * 4 + k]);
-              const BlobBeam* list = beams.view(2, lists).of(0);
-              ASSERT_NE(list, nullptr);
+            for (const CloudOverFloor::Lit& p : block) {
+              LightArrival at;
+              if (!light_arrival(l, p.point.p, p.origin, at)) continue;
+              const Ray ray{p.origin, at.to_light, 0, 0};
+              ++rays;
+              double base;
               if (list[0].valid) {
-                ASSERT_TRUE(list[0].toward);
-                listed += static_cast<long long>(list[0].entries.size());
+                ASSERT_TRUE(list[0].holds(ray, &base, at.distance)) << "ray " << rays;
+                // Not past the light, nor in another direction.
+                EXPECT_FALSE(list[0].holds(ray, &base, at.distance * 1.01)) << "ray " << rays;
+                const Ray off{p.origin, normalize(at.to_light + Vec3{1e-6, 0, 0}), 0, 0};
+                EXPECT_FALSE(list[0].holds(off, &base, at.distance)) << "ray " << rays;
               }
-              for (const Lit& p : by_block[q * 4 + k]) {
-                LightArrival at;
-                if (!light_arrival(l, p.point.p, p.origin, at)) continue;
-                const Ray ray{p.origin, at.to_light, 0, 0};
-                ++rays;
-                double base;
-                if (list[0].valid) {
-                  ASSERT_TRUE(list[0].holds(ray, &base, at.distance)) << "ray " << rays;
-                  // Not past the light, nor in another direction.
-                  EXPECT_FALSE(list[0].holds(ray, &base, at.distance * 1.01)) << "ray " << rays;
-                  const Ray off{p.origin, normalize(at.to_light + Vec3{1e-6, 0, 0}), 0, 0};
-                  EXPECT_FALSE(list[0].holds(off, &base, at.distance)) << "ray " << rays;
+              held += list[0].valid;
+              for (const Query query : {Query::Any, Query::Nearest}) {
+                TraceCounters a, b;
+                const MarchResult walk = tr.first_hit(ray, 0, at.distance, a, query);
+                const MarchResult with = tr.first_hit(ray, 0, at.distance, b, query, 0, &list[0]);
+                ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+                if (query == Query::Any) blocked += walk.hit;
+                // A ray a blocker decides costs one point and no stretch; any other one the
+                // same stretches as the walk, to the bit.
+                const bool decided = query == Query::Any && !list[0].blockers.empty() && with.hit &&
+                                     b.box_evals == 0 && b.point_evals == 1 && a.box_evals > 0;
+                by_blocker += decided;
+                if (decided) continue;
+                if (walk.hit) {
+                  ASSERT_EQ(with.t, walk.t) << "ray " << rays;
                 }
-                held += list[0].valid;
-                for (const Query query : {Query::Any, Query::Nearest}) {
-                  TraceCounters a, b;
-                  const MarchResult walk = tr.first_hit(ray, 0, at.distance, a, query);
-                  const MarchResult with = tr.first_hit(ray, 0, at.distance, b, query, 0, &list[0]);
-                  ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
-                  if (query == Query::Any) blocked += walk.hit;
-                  // A ray a blocker decides costs one point and no stretch; any other one the
-                  // same stretches as the walk, to the bit.
-                  const bool decided = query == Query::Any && !list[0].blockers.empty() &&
-                                       with.hit && b.box_evals == 0 && b.point_evals == 1 &&
-                                       a.box_evals > 0;
-                  by_blocker += decided;
-                  if (decided) continue;
-                  if (walk.hit) {
-                    ASSERT_EQ(with.t, walk.t) << "ray " << rays;
-                  }
-                  ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
-                }
+                ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
               }
             }
-          }
-        }
+          });
       // Most rays go through a list, both answers occur, and the lists are short.
       EXPECT_GT(held, rays / 2) << light;
       EXPECT_GT(blocked, rays / 30) << light;
