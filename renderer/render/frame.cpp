@@ -207,10 +207,9 @@ class FrameTracer {
       }
     }
     starts.push_back(static_cast<int>(work.points.size()));
-    // The lists of `level` over the points of pixels[i0, i1).
+    // The lists of `level` over the points of pixels[i0, i1) (a range of the tile's points).
     const auto build = [&](int level, size_t i0, size_t i1) {
-      shadow_beams_.build(level, work.points.data() + starts[i0], starts[i1] - starts[i0],
-                          work.shadow_lists);
+      shadow_beams_.build(level, work.points.data(), starts[i0], starts[i1], work.shadow_lists);
     };
     // The pixels of blocks [b0, b1) of 16: from `from` on, where they start.
     const auto end_of = [&](size_t from, int b1) {

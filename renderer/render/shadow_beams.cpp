@@ -43,50 +43,70 @@ ShadowBeams::Axes ShadowBeams::axes(const Vec3& along, bool point, const Vec3& p
   return a;
 }
 
-void ShadowBeams::build(int level, const Point* points, int n, Lists& lists) const {
+void ShadowBeams::build(int level, const Point* points, int begin, int end, Lists& lists) const {
   lists.level[level].resize(lights_.size() * size_t(objects_));
-  if (level == 0 && n > 0) lists.origin = points[0].p;
+  if (level == 0) {
+    if (end > begin) lists.origin = points[begin].p;
+    lists.points = end;
+    lists.balls.resize(lights_.size() * size_t(end));
+    lists.boxes.resize(lights_.size() * size_t(objects_));
+  }
   for (size_t k = 0; k < lights_.size(); ++k)
     if (lights_[k].point)
-      build_pyramid(level, lights_[k], k, points, n, lists);
+      build_pyramid(level, lights_[k], k, points + begin, end - begin, lists);
     else
-      build_prism(level, lights_[k], k, points, n, lists);
+      build_prism(level, lights_[k], k, points, begin, end, lists);
 }
 
-void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* points, int n,
-                              Lists& lists) const {
+void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* points, int begin,
+                              int end, Lists& lists) const {
   std::vector<BlobBeam>& out = lists.level[level];
   constexpr double kInf = std::numeric_limits<double>::infinity();
+  Extent* balls = lists.balls.data() + k * size_t(lists.points);
+  Extent* boxes = lists.boxes.data() + k * size_t(objects_);
+  if (level == 0 && end > begin) {
+    // The tile's points and the objects' boxes on its axes, once for all its prisms.
+    for (int i = begin; i < end; ++i) {
+      // The origin lies within the margin of p (grown by 1e-9: the lift's rounding).
+      const Vec3 q = points[i].p - lists.origin;
+      const double m = points[i].margin * (1 + 1e-9);
+      const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
+      balls[i] = {x - m, x + m, y - m, y + m, z - m};
+    }
+    for (const int o : blob_objects_) {
+      const Box& box = tracers_.object(o).bounds;
+      Extent e{kInf, -kInf, kInf, -kInf, -kInf};
+      for (int c = 0; c < 8; ++c) {
+        const Vec3 corner{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
+                          c & 4 ? box.hi.z : box.lo.z};
+        const Vec3 q = corner - lists.origin;
+        const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
+        e.x0 = std::min(e.x0, x), e.x1 = std::max(e.x1, x);
+        e.y0 = std::min(e.y0, y), e.y1 = std::max(e.y1, y);
+        e.z = std::max(e.z, z);
+      }
+      boxes[o] = e;
+    }
+  }
   ShadowPrism prism{lists.origin, a.along, a.u, a.v, kInf, -kInf, kInf, -kInf, kInf};
-  for (int i = 0; i < n; ++i) {
-    // The origin lies within the margin of p (grown by 1e-9: the lift's rounding).
-    const Vec3 q = points[i].p - lists.origin;
-    const double m = points[i].margin * (1 + 1e-9);
-    const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
-    prism.x0 = std::min(prism.x0, x - m);
-    prism.x1 = std::max(prism.x1, x + m);
-    prism.y0 = std::min(prism.y0, y - m);
-    prism.y1 = std::max(prism.y1, y + m);
-    prism.z0 = std::min(prism.z0, z - m);
+  for (int i = begin; i < end; ++i) {
+    const Extent& b = balls[i];
+    prism.x0 = std::min(prism.x0, b.x0);
+    prism.x1 = std::max(prism.x1, b.x1);
+    prism.y0 = std::min(prism.y0, b.y0);
+    prism.y1 = std::max(prism.y1, b.y1);
+    prism.z0 = std::min(prism.z0, b.z);
   }
   for (const int o : blob_objects_) {
     BlobBeam& list = out[k * objects_ + o];
     list.valid = false;
-    if (n == 0) continue;
+    if (end == begin) continue;
     // A prism that misses the object's box sends it no ray: no list, and no walk to build one.
     const Box& box = tracers_.object(o).bounds;
-    double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z1 = -kInf;
-    for (int c = 0; c < 8; ++c) {
-      const Vec3 corner{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
-                        c & 4 ? box.hi.z : box.lo.z};
-      const Vec3 q = corner - lists.origin;
-      const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
-      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-      z1 = std::max(z1, z);
-    }
+    const Extent& e = boxes[o];
     const double slack = 1e-9 * (max_abs(box.lo) + max_abs(box.hi) + max_abs(lists.origin));
-    if (x0 > prism.x1 + slack || x1 < prism.x0 - slack || y0 > prism.y1 + slack ||
-        y1 < prism.y0 - slack || z1 < prism.z0 - slack)
+    if (e.x0 > prism.x1 + slack || e.x1 < prism.x0 - slack || e.y0 > prism.y1 + slack ||
+        e.y1 < prism.y0 - slack || e.z < prism.z0 - slack)
       continue;
     const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
     tracers_[o].shadow_beam(prism, parent, &list);

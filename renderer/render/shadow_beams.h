@@ -28,20 +28,32 @@ class ShadowBeams {
     double margin;
   };
   static constexpr int kLevels = 3;  // a tile, its quarters and theirs, as the camera's beams
+  // A rectangle on a directional light's axes (u, v) and a depth along it: a point's ball's
+  // (x -+ m, y -+ m, z - m) or an object's box's (z: the farthest corner's).
+  struct Extent {
+    double x0, x1, y0, y1, z;
+  };
   // One thread's lists: per level, per light with lists, one per object.
   struct Lists {
     Vec3 origin;  // the tile's: the prisms' coordinates are taken from it
     std::vector<BlobBeam> level[kLevels];
+    // The tile's, on its origin and the axes of each directional light (k): its points' balls
+    // ([k * points + i]) and the objects' boxes ([k * objects + o]). A quarter's or a block's
+    // prism is the bounds of its points' (the same numbers, computed once a tile), and meets an
+    // object's box as the tile's box says.
+    std::vector<Extent> balls, boxes;
+    int points = 0;
   };
 
   ShadowBeams(const Scene& scene, const SceneTracers& tracers);
   // Whether any light and object takes lists: a directional, point or spot light with shadows
   // (and no area) and a sum of polynomial blobs.
   bool active() const { return !lights_.empty() && !blob_objects_.empty(); }
-  // The lists of `level` for the block whose shadow rays start near points[0, n), from those of
-  // the block above it (level - 1), or for level 0 (a tile, whose origin is points[0]) from the
-  // sums' BVHs. A block with no points gets no lists.
-  void build(int level, const Point* points, int n, Lists& lists) const;
+  // The lists of `level` for the block whose shadow rays start near points[begin, end), from those
+  // of the block above it (level - 1), or for level 0 (a tile, whose origin is points[0]; begin is
+  // 0) from the sums' BVHs. `points` are the tile's at every level: a quarter's and a block's are
+  // ranges of them. A block with no points gets no lists.
+  void build(int level, const Point* points, int begin, int end, Lists& lists) const;
   // The lists of `level` as shade() takes them.
   ShadowLists view(int level, const Lists& lists) const {
     return {slot_.data(), lists.level[level].data(), objects_};
@@ -55,7 +67,7 @@ class ShadowBeams {
   };
   // The axes about `along` (u across the coordinate axis least aligned with it).
   static Axes axes(const Vec3& along, bool point, const Vec3& position);
-  void build_prism(int level, const Axes& a, size_t k, const Point* points, int n,
+  void build_prism(int level, const Axes& a, size_t k, const Point* points, int begin, int end,
                    Lists& lists) const;
   void build_pyramid(int level, const Axes& a, size_t k, const Point* points, int n,
                      Lists& lists) const;

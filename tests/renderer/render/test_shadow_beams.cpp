@@ -87,18 +87,21 @@ class CloudOverFloor {
             const int bx = (px - x) / 4, by = (py - y) / 4;
             by_block[((by >> 1) * 2 + (bx >> 1)) * 4 + (by & 1) * 2 + (bx & 1)].push_back(l);
           }
-        tile_.clear();
-        for (const auto& b : by_block) tile_.insert(tile_.end(), b.begin(), b.end());
-        build(0, tile_);
+        // The tile's points block by block; a quarter's and a block's are ranges of them.
+        points_.clear();
+        int start[17] = {0};
+        for (int b = 0; b < 16; ++b) {
+          for (const Lit& l : by_block[b]) points_.push_back(l.point);
+          start[b + 1] = static_cast<int>(points_.size());
+        }
+        beams_.build(0, points_.data(), 0, start[16], lists_);
         for (int q = 0; q < 4; ++q) {
-          quarter_.clear();
-          for (int k = 0; k < 4; ++k)
-            quarter_.insert(quarter_.end(), by_block[q * 4 + k].begin(), by_block[q * 4 + k].end());
-          build(1, quarter_);
+          beams_.build(1, points_.data(), start[q * 4], start[q * 4 + 4], lists_);
           for (int k = 0; k < 4; ++k) {
-            build(2, by_block[q * 4 + k]);
+            const int b = q * 4 + k;
+            beams_.build(2, points_.data(), start[b], start[b + 1], lists_);
             const ShadowLists view = beams_.view(2, lists_);
-            check(view.of(0), by_block[q * 4 + k]);
+            check(view.of(0), by_block[b]);
             if (::testing::Test::HasFatalFailure()) return;
           }
         }
@@ -123,12 +126,6 @@ class CloudOverFloor {
     out->origin = p + n * (margin * u_(rng_));
     return true;
   }
-  void build(int level, const std::vector<Lit>& of) {
-    points_.clear();
-    for (const Lit& l : of) points_.push_back(l.point);
-    beams_.build(level, points_.data(), static_cast<int>(points_.size()), lists_);
-  }
-
   std::mt19937_64& rng_;
   std::uniform_real_distribution<double> u_{0, 1};
   const Scene scene_;
@@ -137,7 +134,6 @@ class CloudOverFloor {
   const ShadowBeams beams_;
   const ViewCamera camera_;
   ShadowBeams::Lists lists_;
-  std::vector<Lit> tile_, quarter_;
   std::vector<ShadowBeams::Point> points_;
 };
 
@@ -316,7 +312,7 @@ TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
       const ShadowBeams::Point points[] = {{{0.1, 0, -10}, 0.05}, {{0, -0.1, -10}, 0.05}};
       ShadowBeams::Lists lists;
       for (int level = 0; level < ShadowBeams::kLevels; ++level)
-        beams.build(level, points, 2, lists);
+        beams.build(level, points, 0, 2, lists);
       const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
       ASSERT_TRUE(list.valid);
       ASSERT_EQ(list.toward, std::string(light).find("point") != std::string::npos);
