@@ -64,6 +64,8 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Extent* balls = lists.balls.data() + k * size_t(lists.points);
   Extent* boxes = lists.boxes.data() + k * size_t(objects_);
+  // The prism's rectangle and depth, in locals (the loops then keep them in registers).
+  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z0 = kInf;
   if (level == 0 && end > begin) {
     // The tile's points and the objects' boxes on its axes, once for all its prisms.
     for (int i = begin; i < end; ++i) {
@@ -71,7 +73,11 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
       const Vec3 q = points[i].p - lists.origin;
       const double m = points[i].margin * (1 + 1e-9);
       const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
-      balls[i] = {x - m, x + m, y - m, y + m, z - m};
+      const Extent b{x - m, x + m, y - m, y + m, z - m};
+      balls[i] = b;
+      x0 = std::min(x0, b.x0), x1 = std::max(x1, b.x1);
+      y0 = std::min(y0, b.y0), y1 = std::max(y1, b.y1);
+      z0 = std::min(z0, b.z);
     }
     for (const int o : blob_objects_) {
       const Box& box = tracers_.object(o).bounds;
@@ -87,16 +93,15 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
       }
       boxes[o] = e;
     }
+  } else {
+    for (int i = begin; i < end; ++i) {
+      const Extent& b = balls[i];
+      x0 = std::min(x0, b.x0), x1 = std::max(x1, b.x1);
+      y0 = std::min(y0, b.y0), y1 = std::max(y1, b.y1);
+      z0 = std::min(z0, b.z);
+    }
   }
-  ShadowPrism prism{lists.origin, a.along, a.u, a.v, kInf, -kInf, kInf, -kInf, kInf};
-  for (int i = begin; i < end; ++i) {
-    const Extent& b = balls[i];
-    prism.x0 = std::min(prism.x0, b.x0);
-    prism.x1 = std::max(prism.x1, b.x1);
-    prism.y0 = std::min(prism.y0, b.y0);
-    prism.y1 = std::max(prism.y1, b.y1);
-    prism.z0 = std::min(prism.z0, b.z);
-  }
+  const ShadowPrism prism{lists.origin, a.along, a.u, a.v, x0, x1, y0, y1, z0};
   for (const int o : blob_objects_) {
     BlobBeam& list = out[k * objects_ + o];
     list.valid = false;
