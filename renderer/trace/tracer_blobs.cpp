@@ -198,6 +198,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   const bool sweep = camera_list && n_listed > kWholeList && blobs_->size() > BlobSum::kListed;
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list;
   constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double dd = dot(ray.d, ray.d);  // terms_of's, for the sweep's blobs one at a time
   double t = t0;
   double s =
       whole ? t1 - t0 : std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
@@ -269,7 +270,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         continue;
       }
       if (e.far < lo) continue;
-      const int k = blobs_->terms_of(&e.id, 1, seg.a, ray.d, len, terms + n);
+      const int k = blobs_->terms_of_one(e.id, seg.a, ray.d, dd, len, terms + n);
       // Their events into events[head, n_events), kept in order (of equal events, the one
       // taken first first).
       for (int i = n; i < n + k; ++i)
