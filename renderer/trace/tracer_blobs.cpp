@@ -279,12 +279,15 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       const int k = blobs_->terms_of_one(e.id, seg.a, ray.d, dd, len, terms + n);
       // Their events into events[head, n_events), kept in order (of equal events, the one
       // taken first first).
-      for (int i = n; i < n + k; ++i)
-        for (const Event x : {Event{terms[i].enter, i, true}, Event{terms[i].exit, i, false}}) {
-          int j = n_events++;
-          for (; j > head && x < events[j - 1]; --j) events[j] = events[j - 1];
-          events[j] = x;
-        }
+      const auto insert = [&](const Event x) {
+        int j = n_events++;
+        for (; j > head && x < events[j - 1]; --j) events[j] = events[j - 1];
+        events[j] = x;
+      };
+      for (int i = n; i < n + k; ++i) {
+        insert({terms[i].enter, i, true});
+        insert({terms[i].exit, i, false});
+      }
       n += k;
     }
     t += len;
