@@ -445,19 +445,7 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
   for (int i = 0; i < found; ++i) {
     const Blob& b = blobs_[ids[i]];
     if (b.inv_r2 > 0) {
-      // The nearest point to the centre at mid, and how far inside the support it is (h2 > 0).
-      const Vec3 oc = o - b.centre;
-      const double mid = -dot(oc, d) / dd;
-      const Vec3 nearest = oc + d * mid;
-      const double h2 = 1 - dot(nearest, nearest) * b.inv_r2, alpha = dd * b.inv_r2;
-      if (!(h2 > 0)) continue;
-      const double half = std::sqrt(h2 / alpha);
-      const double enter = std::max(mid - half, 0.0), exit = std::min(mid + half, len);
-      if (!(enter < exit)) continue;
-      const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
-      const double r = std::max(h2 - alpha * gap * gap, 0.0);
-      out[n++] = {enter, exit, mid,  alpha,
-                  h2,    b.c2, b.c3, std::max(0.0, polynomial_potential(r, b.c2, b.c3))};
+      n += ball_term(b, o, d, dd, len, out + n);
       continue;
     }
     const Frame& f = frames_[ids[i]];
@@ -495,8 +483,17 @@ double BlobSum::gradient_among(const Program& p, const Vec3& x, int32_t* ids, in
   if (n > kListed) {
     found = 0;
     for (int i = 0; i < n; ++i) {
-      const Vec3 w = frames_[ids[i]].q(x);
+      const Blob& b = blobs_[ids[i]];
       ids[found] = ids[i];
+      if (b.inv_r2 > 0) {
+        // A ball's q is (x - centre) / radius, as L x + k computes it to a few ulps of
+        // (|x| + |centre|) / radius each: |q|^2 then differs by far less than the second slack.
+        const Vec3 v = x - b.centre;
+        const double far = (max_abs(x) + max_abs(b.centre)) * (max_abs(x) + max_abs(b.centre));
+        found += 1 - dot(v, v) * b.inv_r2 > -1e-9 - 1e-12 * far * b.inv_r2;
+        continue;
+      }
+      const Vec3 w = frames_[ids[i]].q(x);
       found += 1 - dot(w, w) > -1e-9;
     }
   }
@@ -514,14 +511,21 @@ double BlobSum::sum_gradient(const Program& p, const Vec3& x, const int32_t* fou
   for (int i = 0; i < found; ++i) {
     const Frame& frame = frames_[found_ids[i]];
     const Blob& b = blobs_[found_ids[i]];
-    const Vec3 w = frame.q(x);
+    // A ball's L is diagonal (1 / radius, read_blob): L x + k and L^T q without the products
+    // by L's zeros, which add only zeros (the same values; at most a zero's sign differs, where
+    // a product by L's diagonal is itself zero).
+    const bool ball = b.inv_r2 > 0;
+    const double l = frame.L.r[0].x;
+    const Vec3 w =
+        ball ? Vec3{l * x.x + frame.k.x, l * x.y + frame.k.y, l * x.z + frame.k.z} : frame.q(x);
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
     const double term = polynomial_potential(r, b.c2, b.c3);
     f += term;
     if (reports && sum.terms[found_ids[i]] >= 0) terms[sum.terms[found_ids[i]]] = term;
     // dP/dr times ∇r = -2 L^T q.
-    g += frame.L.transposed_times(w) * (-2 * polynomial_potential_slope(r, b.c2, b.c3));
+    const double slope = -2 * polynomial_potential_slope(r, b.c2, b.c3);
+    g += (ball ? w * l : frame.L.transposed_times(w)) * slope;
   }
   *grad = g;
   return f;

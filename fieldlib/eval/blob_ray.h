@@ -16,10 +16,12 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
 
+#include "kernels/potentials.h"
 #include "math/bernstein.h"
 #include "program/program.h"
 
@@ -51,6 +53,15 @@ class BlobSum {
   // tree order: then the terms, and the sums made of them, are the same to the bit).
   int terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
                Term* out) const;
+  // terms_of for the one blob `id`, with dd = dot(d, d): a ball's term inline, the same
+  // arithmetic and so the same bits. A camera ray's sweep takes its list's blobs one at a time
+  // (tracer_blobs.cpp); a call of terms_of per blob cost 4.3 % of blob1000's process at 640x480.
+  int terms_of_one(int32_t id, const Vec3& o, const Vec3& d, double dd, double len,
+                   Term* out) const {
+    const Blob& b = blobs_[id];
+    if (b.inv_r2 > 0) return ball_term(b, o, d, dd, len, out);
+    return terms_of(&id, 1, o, d, len, out);
+  }
   // The blobs whose support boxes meet the pyramid of cone_items (math/bvh.h), in that tree
   // order; for a sum of at most kListed blobs, which have no BVH query, all of them in the order
   // terms() takes them.
@@ -147,6 +158,24 @@ class BlobSum {
   // the order its segment query reports them, and in increasing order as its point query does:
   // the same terms in the same order, so the same sums to the bit. Empty for more blobs.
   std::vector<int32_t> listed_walk_, listed_sorted_;
+  // A ball's term of the stretch (terms_of): its nearest point to the centre at mid, and how far
+  // inside the support that is (h2 > 0); 0 terms where the stretch misses the support.
+  static int ball_term(const Blob& b, const Vec3& o, const Vec3& d, double dd, double len,
+                       Term* out) {
+    const Vec3 oc = o - b.centre;
+    const double mid = -dot(oc, d) / dd;
+    const Vec3 nearest = oc + d * mid;
+    const double h2 = 1 - dot(nearest, nearest) * b.inv_r2, alpha = dd * b.inv_r2;
+    if (!(h2 > 0)) return 0;
+    const double half = std::sqrt(h2 / alpha);
+    const double enter = std::max(mid - half, 0.0), exit = std::min(mid + half, len);
+    if (!(enter < exit)) return 0;
+    const double gap = mid < enter ? enter - mid : mid > exit ? mid - exit : 0;
+    const double r = std::max(h2 - alpha * gap * gap, 0.0);
+    *out = {enter, exit, mid,  alpha,
+            h2,    b.c2, b.c3, std::max(0.0, polynomial_potential(r, b.c2, b.c3))};
+    return 1;
+  }
   // gradient()'s sum over ids[0, found), in that order (increasing).
   double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
                       double* terms) const;

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <random>
 #include <string>
 
 #include "eval/blob_ray.h"
 #include "eval/eval.h"
+#include "kernels/potentials.h"
 #include "model/program_builder.h"
 #include "sweep.h"
 
@@ -470,6 +472,55 @@ void expect_gradient_among_is_the_querys(Cloud& cloud, int min_points = 300) {
 TEST(BlobSum, GradientAmongAListIsTheQuerysToTheBit) {
   Cloud cloud(3);
   expect_gradient_among_is_the_querys(cloud);
+}
+// A ball's q and L^T q are taken without L's zeros (sum_gradient) and its list's prefilter from
+// its centre (gradient_among): the sums must be the frames' own arithmetic to the bit, at random
+// points and at points within rounding of a ball's boundary, where the prefilter's slack decides.
+TEST(BlobSum, ABallsGradientIsItsFramesArithmeticToTheBit) {
+  Cloud cloud(3);
+  ASSERT_TRUE(cloud.blobs.has_value());
+  const BlobSum& blobs = *cloud.blobs;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-8, 8), side(-1, 1);
+  std::vector<int32_t> balls, all(blobs.size());
+  for (int id = 0; id < blobs.size(); ++id)
+    if (blobs.blobs()[id].inv_r2 > 0) balls.push_back(id);
+  ASSERT_GE(balls.size(), 5u);
+  int near_boundary_inside = 0;
+  for (int i = 0; i < 4000; ++i) {
+    Vec3 x{u(rng), u(rng), u(rng)};
+    if (i % 2) {  // within a few ulps of a ball's boundary, inside or out
+      const BlobSum::Blob& b = blobs.blobs()[balls[i % balls.size()]];
+      Vec3 dir{side(rng), side(rng), side(rng)};
+      dir = dir / length(dir);
+      x = b.centre + dir * (std::sqrt(1 / b.inv_r2) * (1 + 4e-16 * side(rng)));
+    }
+    // The frames' own arithmetic over every blob in increasing order.
+    double f = 0;
+    Vec3 g;
+    for (int id = 0; id < blobs.size(); ++id) {
+      const BlobSum::Frame& frame = blobs.frames()[id];
+      const BlobSum::Blob& b = blobs.blobs()[id];
+      const Vec3 w = frame.q(x);
+      const double r = 1 - dot(w, w);
+      if (!(r > 0)) continue;
+      near_boundary_inside += i % 2 && r < 1e-12;
+      f += polynomial_potential(r, b.c2, b.c3);
+      g += frame.L.transposed_times(w) * (-2 * polynomial_potential_slope(r, b.c2, b.c3));
+    }
+    Vec3 g_query, g_among;
+    ASSERT_EQ(blobs.gradient(cloud.prog, x, &g_query, cloud.ids.data()), f) << "point " << i;
+    for (int id = 0; id < blobs.size(); ++id) all[id] = id;
+    std::shuffle(all.begin(), all.end(), rng);
+    ASSERT_EQ(blobs.gradient_among(cloud.prog, x, all.data(), blobs.size(), &g_among), f)
+        << "point " << i;
+    for (const Vec3& got : {g_query, g_among}) {
+      ASSERT_EQ(got.x, g.x) << "point " << i;
+      ASSERT_EQ(got.y, g.y) << "point " << i;
+      ASSERT_EQ(got.z, g.z) << "point " << i;
+    }
+  }
+  EXPECT_GT(near_boundary_inside, 100);  // the boundary points do test the prefilter
 }
 TEST(BlobSum, AffineBlobsGradientAmongAListIsTheQuerysToTheBit) {
   Cloud cloud(affine_cloud(40, 5));
