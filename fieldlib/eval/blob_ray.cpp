@@ -403,8 +403,8 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
   // lies within the cylinder's; r, concave, is largest at the share's point nearest its mid. As
   // computed, r there errs by a few ulps of its parts (h2's of |w|^2 and |axis|^2 as above,
   // alpha (x - mid)^2's of itself): 1e-12 of those is the same thousandfold room. Most rays that
-  // meet a long capsule cross its middle only (pov:chain: 2 of every 3 end parts on the stretch
-  // had no term, blob1a 7 of 8 of all end parts), and skip the end balls' nearest points.
+  // meet a capsule cross its middle only (pov:chain: 2 of every 3 end parts on the stretch
+  // had no term, blob1a 24 of every 25 end parts), and skip the end balls' nearest points.
   const auto may_reach = [&](int i) {
     const double a = std::max(lo[i], 0.0), z = std::min(hi[i], len);
     if (!(a < z)) return false;
