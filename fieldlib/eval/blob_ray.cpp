@@ -159,12 +159,26 @@ bool frame_inverse(const BlobSum::Frame& f, FrameInverse* fi) {
 }
 
 // A sphere around a blob's support |L x + k - s axis| <= 1, s in [0, 1]: x = L^-1 (y + s axis - k)
-// with |y| <= 1 lies within |L^-1|_2 (1 + |axis| / 2) <= |L^-1|_F (1 + |axis| / 2) of
-// L^-1 (axis / 2 - k). 1 % on the radius holds the inverse's rounding where L is well
-// conditioned (frame_inverse); otherwise reach2 stays infinite (no sphere).
+// with |y| <= 1 lies within |L^-1|_2 (1 + |axis| / 2) of L^-1 (axis / 2 - k). |M|_2^2 is the
+// largest eigenvalue of M^T M, at most its largest Gershgorin row sum, and at most |M|_F^2: the
+// first is exact for a rotated ball or capsule (M^T M = radius^2 I), where the Frobenius norm is
+// sqrt 3 too large (pov:chain's capsules' spheres had 1.7 times their radius). 1 % on the radius
+// holds the inverse's rounding and M^T M's where L is well conditioned (frame_inverse); otherwise
+// reach2 stays infinite (no sphere).
 void set_reach(const BlobSum::Frame& f, const FrameInverse& fi, BlobSum::Blob* blob) {
   blob->centre = fi.M * (f.axis * 0.5 - f.k);
-  const double reach = 1.01 * std::sqrt(fi.m2) * (1 + 0.5 * std::sqrt(dot(f.axis, f.axis)));
+  double gershgorin = 0;
+  for (int r = 0; r < 3; ++r) {
+    double row = 0;
+    for (int c = 0; c < 3; ++c) {
+      double mtm = 0;  // (M^T M)_rc: columns r and c of M
+      for (int i = 0; i < 3; ++i) mtm += fi.M.r[i][r] * fi.M.r[i][c];
+      row += std::abs(mtm);
+    }
+    gershgorin = std::max(gershgorin, row);
+  }
+  const double norm2 = std::min(gershgorin, fi.m2);
+  const double reach = 1.01 * std::sqrt(norm2) * (1 + 0.5 * std::sqrt(dot(f.axis, f.axis)));
   blob->reach2 = reach * reach;
 }
 
@@ -365,7 +379,8 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
   // |w|^2 or |w_e|^2 <= 2 (|w|^2 + |axis|^2); so an end term's h2 > 0 leaves the cylinder's above
   // -1e-12 (1 + |w|^2 + |axis|^2), a thousandfold room. Below that, term() would find none.
   const Nearest across = nearest(w_across, v_across);
-  if (across.h2 < -1e-12 * (1 + dot(w, w) + dot(f.axis, f.axis))) return 0;
+  const double scale = 1 + dot(w, w) + dot(f.axis, f.axis);
+  if (across.h2 < -1e-12 * scale) return 0;
   // [lo, hi] of each part: the near end's, the middle's, the far end's.
   double lo[3], hi[3];
   if (sv == 0) {  // the ray runs across the axis: one part all along
@@ -382,10 +397,24 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
       lo[2] = -kInf, hi[2] = at1, lo[1] = at1, hi[1] = at0, lo[0] = at0, hi[0] = kInf;
     }
   }
+  // Whether an end part may have a term: its share of the stretch is not empty (term() needs
+  // that), and the cylinder's r comes within rounding of 0 on it. An end ball's d^2 is the
+  // cylinder's plus |axis|^2 times the square of s(u) beyond the end, so its support on the line
+  // lies within the cylinder's; r, concave, is largest at the share's point nearest its mid. As
+  // computed, r there errs by a few ulps of its parts (h2's of |w|^2 and |axis|^2 as above,
+  // alpha (x - mid)^2's of itself): 1e-12 of those is the same thousandfold room. Most rays that
+  // meet a capsule cross its middle only (pov:chain: 2 of every 3 end parts on the stretch
+  // had no term, blob1a 24 of every 25 end parts), and skip the end balls' nearest points.
+  const auto may_reach = [&](int i) {
+    const double a = std::max(lo[i], 0.0), z = std::min(hi[i], len);
+    if (!(a < z)) return false;
+    const double x = std::clamp(across.mid, a, z) - across.mid, fall = across.alpha * x * x;
+    return across.h2 - fall >= -1e-12 * (scale + fall);
+  };
   int n = 0;
-  n += term(nearest(w, v), lo[0], hi[0], len, b, out + n);
+  if (may_reach(0)) n += term(nearest(w, v), lo[0], hi[0], len, b, out + n);
   n += term(across, lo[1], hi[1], len, b, out + n);
-  n += term(nearest(w - f.axis, v), lo[2], hi[2], len, b, out + n);
+  if (may_reach(2)) n += term(nearest(w - f.axis, v), lo[2], hi[2], len, b, out + n);
   return n;
 }
 
@@ -441,6 +470,7 @@ int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals
 int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
                       Term* out) const {
   const double dd = dot(d, d);
+  const bool reach_first = size() > kListed;
   int n = 0;
   for (int i = 0; i < found; ++i) {
     const Blob& b = blobs_[ids[i]];
@@ -448,6 +478,12 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
       n += ball_term(b, o, d, dd, len, out + n);
       continue;
     }
+    // A stretch that passes clear of the blob's sphere has no term of it, for a third of what
+    // its frame's transform and nearest points cost. A larger sum's lists hold the blobs whose
+    // boxes meet a block's pyramid, and pov:chain's rays missed most of their capsules
+    // (callgrind at 640x480: -2.2 %); a few large blobs' lists are their outlines', and the
+    // rays meet most of them (blob1a, candle, sheared: +0.5 to +1.7 % with the test).
+    if (reach_first && !within_reach(b, o, d, len)) continue;
     const Frame& f = frames_[ids[i]];
     const Vec3 w = f.L * o + f.k, v = f.L * d;
     if (f.inv_axis2 > 0) {
@@ -560,6 +596,31 @@ StretchPolynomial stretch_polynomial(const BlobSum::Term* terms, const int* acti
   // all of that with room.
   sp.err = (128 + n) * std::numeric_limits<double>::epsilon() * magnitude;
   return sp;
+}
+
+double piece_peak(const BlobSum::Term* terms, const int* active, int n, double u0, double u1) {
+  double sum = 0, magnitude = 0;
+  for (int i = 0; i < n; ++i) {
+    const BlobSum::Term& t = terms[active[i]];
+    // r = h2 - alpha (u - mid)^2 is concave: over the piece it is largest at the piece's point
+    // nearest mid and least at the end farthest from it. P(r) = c2 r^2 + c3 r^3 rises with r on
+    // [0, 1] where c2, c3 >= 0 and falls where both are <= 0; a mixed one keeps its peak.
+    double value = t.peak;
+    if (t.c2 >= 0 && t.c3 >= 0) {
+      const double x = std::clamp(t.mid, u0, u1) - t.mid;
+      value = polynomial_potential(std::max(t.h2 - t.alpha * x * x, 0.0), t.c2, t.c3);
+    } else if (t.c2 <= 0 && t.c3 <= 0) {
+      const double x = std::max(std::abs(u0 - t.mid), std::abs(u1 - t.mid));
+      value = polynomial_potential(std::max(t.h2 - t.alpha * x * x, 0.0), t.c2, t.c3);
+    }
+    sum += value;
+    magnitude += std::abs(t.c2) + std::abs(t.c3);
+  }
+  // r is rounded to a few ulps of 1 (h2 <= 1 and alpha (u - mid)^2 <= h2 inside the support, up
+  // to rounding), which moves P by a few ulps of |c2| + |c3| (|dP/dr| <= 2 |c2| + 3 |c3| on
+  // [0, 1]); the sum adds n ulps of that. 1e-12 of it is a thousandfold room, and n * 1e-15 the
+  // peak test's own (first_hit_blobs).
+  return sum + 1e-12 * magnitude + n * 1e-15;
 }
 
 }  // namespace softtrace

@@ -194,4 +194,12 @@ struct StretchPolynomial {
 StretchPolynomial stretch_polynomial(const BlobSum::Term* terms, const int* active, int n,
                                      double s0, double S, double iso);
 
+// An upper bound of the sum of the potentials of terms[active[i]], i < n, over [u0, u1] (a piece:
+// inside every one's [enter, exit]), with room for its rounding. Each term's own largest value
+// there, where Term::peak is its largest over its whole range: a piece is skipped once the terms
+// that reach iso somewhere have fallen below it (a shadow ray leaving a blob), and a negative
+// blob counts with its least depth over the piece, not as 0 (a dimple keeps the pieces around it
+// from reaching iso).
+double piece_peak(const BlobSum::Term* terms, const int* active, int n, double u0, double u1);
+
 }  // namespace softtrace

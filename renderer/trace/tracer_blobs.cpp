@@ -143,6 +143,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     double peak = 0;  // rounded to a few ulps of each term's (r to a few ulps of 1)
     for (int i = 0; i < n; ++i) peak += terms[active[i]].peak;
     if (peak * (1 + 1e-12) + n * 1e-15 < iso) return std::nullopt;
+    if (piece_peak(terms, active, n, u0, u0 + S) < iso) return std::nullopt;
     ++work.box_evals;
     const StretchPolynomial sp = stretch_polynomial(terms, active, n, u0, S, iso);
     const double tol = kDecide * footprint(ray, t + u0) / S;

@@ -215,9 +215,14 @@ void expect_stretch_is_polynomials_of_the_field(Cloud& cloud, const Vec3& o, con
       if (terms[i].enter <= s0 && terms[i].exit >= cuts[c + 1]) active.push_back(i);
     const StretchPolynomial sp =
         stretch_polynomial(terms.data(), active.data(), int(active.size()), s0, S, 0.5);
+    // Each term's largest value over this piece, with negative blobs at their least depth.
+    const double bound =
+        piece_peak(terms.data(), active.data(), int(active.size()), s0, cuts[c + 1]);
     for (int k = 0; k < 5; ++k) {
       const double x = x01(rng);
       const double field = value(prog, o + d * (s0 + x * S), cloud.ws);
+      ASSERT_LE(power_value(sp.a, sp.degree, x) + 0.5, bound + sp.err)
+          << "piece_peak below the piece at " << s0 << " of length " << S;
       if (active.empty()) {
         ++*outside;
         ASSERT_EQ(field, 0) << "a blob the query missed is non-zero at u = " << s0 + x * S;
@@ -536,6 +541,39 @@ TEST(BlobSum, ListedCapsulesGradientAmongAListIsTheQuerysToTheBit) {
   Cloud cloud(capsule_cloud(BlobSum::kListed, 11));
   ASSERT_LE(cloud.blobs->size(), BlobSum::kListed);
   expect_gradient_among_is_the_querys(cloud, 150);
+}
+
+// A ray leaving a strong ball (strength 2, so its peak over its whole range is far above iso)
+// through a dimple (a small negative ball): past the point where the ball has fallen below iso,
+// its own largest value over a piece is below iso, though the sum of the terms' peaks is not;
+// and the dimple, at its least depth over the piece, lowers the bound further.
+TEST(BlobSum, PiecePeakIsEachTermsLargestOverThePiece) {
+  Cloud cloud(R"({"type":"soft_blend","children":[
+      {"type":"soft_object","potential":{"type":"murakami"},"strength":2,
+       "distance":{"type":"lp_metric","n":2,"radii":[2,2,2]}},
+      {"type":"soft_object","potential":{"type":"murakami"},"strength":-0.4,
+       "distance":{"type":"lp_metric","n":2,"radii":[0.3,0.3,0.3]},"translate":[1.8,0.1,0]}]})");
+  ASSERT_TRUE(cloud.blobs.has_value());
+  std::vector<BlobSum::Term> terms(cloud.blobs->max_terms());
+  const Vec3 o{0.5, 0.1, 0}, d{1, 0, 0};
+  ASSERT_EQ(cloud.blobs->terms(cloud.prog, o, d, 3, 1e-12, terms.data(), cloud.ids.data()), 2);
+  const int ball = terms[0].c2 > 0 ? 0 : 1, dimple = 1 - ball;
+  // The ball from u = 0 (at x = 0.5) to sqrt(3.99) - 0.5, the dimple from 1.0 to 1.6.
+  EXPECT_NEAR(terms[ball].exit, std::sqrt(3.99) - 0.5, 1e-9);
+  EXPECT_NEAR(terms[dimple].enter, 1.0, 1e-9);
+  const int both[2] = {ball, dimple};
+  const double u0 = terms[dimple].enter, u1 = terms[ball].exit;
+  EXPECT_GT(terms[ball].peak + terms[dimple].peak, 1.7);  // 2 (1 - 0.26 / 4)^2
+  // The ball at u0 (x = 1.5 off its centre by 0.1 in y): 2 (1 - 2.26 / 4)^2.
+  const double ball_at_u0 = 2 * (1 - 2.26 / 4) * (1 - 2.26 / 4);
+  EXPECT_NEAR(piece_peak(terms.data(), &both[0], 1, u0, u1), ball_at_u0, 1e-9);
+  // The dimple's least depth over [1.0, 1.5], at 1.0 (its centre at 1.3), is 0 at its edge, so
+  // the bound is the ball's; over [1.2, 1.5] it is at 1.5, -0.4 (1 - 0.04 / 0.09)^2.
+  EXPECT_NEAR(piece_peak(terms.data(), both, 2, u0, u1), ball_at_u0, 1e-9);
+  const double ball_at = 2 * (1 - (1.7 * 1.7 + 0.01) / 4) * (1 - (1.7 * 1.7 + 0.01) / 4);
+  const double dimple_least = -0.4 * (1 - 0.04 / 0.09) * (1 - 0.04 / 0.09);
+  EXPECT_NEAR(piece_peak(terms.data(), both, 2, 1.2, 1.5), ball_at + dimple_least, 1e-9);
+  EXPECT_LT(piece_peak(terms.data(), both, 2, 1.2, 1.5), 0.5);
 }
 
 TEST(FirstRise, FindsTheFirstCrossingOnly) {
