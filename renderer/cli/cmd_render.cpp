@@ -200,7 +200,8 @@ int run_render(const RenderArgs& a) {
     info.render_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<std::string> temps;
-    for (const auto& o : outputs) temps.push_back(write_image_temp(o, film, out_opt, info));
+    for (const auto& o : outputs)
+      temps.push_back(write_image_temp(o, film, out_opt, info, parallel_each));
     int writing = kWriting;
     if (!g_phase.compare_exchange_strong(writing, kCommitting))
       for (;;) ::pause();  // the watcher is removing the temporary files and exiting
