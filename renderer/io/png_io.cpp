@@ -129,10 +129,11 @@ void write_png(const std::string& path, const ImageFile& img, bool srgb) {
 namespace {
 
 // A band's filtered rows are about this many bytes: 10 bands at 320x240 with alpha, so two or more
-// threads share the deflating evenly. Each band starts with an empty history, which costs a
-// little compression at its first rows.
+// threads share the converting and deflating evenly.
 constexpr size_t kBandBytes = size_t(1) << 15;
-// The rows before a band that it takes as its history (deflateSetDictionary), at most 32 KiB.
+// The rows before a band that it takes as its history (deflateSetDictionary, at most 32 KiB):
+// without them a band's first rows find no matches above them, and 320x240 files were up to 7 %
+// larger than one stream's; with 2 they are -1.5 to +2.6 %.
 constexpr int kHistoryRows = 2;
 // IDAT chunks of at most this many bytes (the PNG limit is 2^31 - 1).
 constexpr size_t kIdatBytes = size_t(1) << 20;
