@@ -63,37 +63,53 @@ ImageFile exr_image(const Film& film, const OutputOptions& opt, const FrameInfo&
   return img;
 }
 
-PngPixels png_pixels(const Film& film, const OutputOptions& opt, const FrameInfo& info) {
-  const int nc = opt.png_alpha ? 4 : 3;
-  PngPixels png{film.width, film.height, nc, {}};
-  const size_t npix = size_t(film.width) * film.height;
-  png.bytes.resize(npix * nc);
-  const SrgbBytes& srgb_byte = SrgbBytes::get();
-  // A pixel nothing covers (most of a sparse frame) takes the bytes below, which are what the
-  // loop's expressions give it: with straight alpha its colour is 0 and png_sample(0) is 0;
-  // flattened, 0 + background * (1 - 0) is the background.
-  const bool straight = opt.png_alpha && !opt.flatten;
-  uint8_t empty[4] = {0, 0, 0, 0};
-  if (!straight) {
-    for (int k = 0; k < 3; ++k) empty[k] = srgb_byte(0.0f + float(info.background[k]) * (1 - 0.0f));
-    empty[3] = png_sample(1.0f);
-  }
-  for (size_t i = 0; i < npix; ++i) {
-    uint8_t* out = &png.bytes[i * nc];
-    const float* in = &film.rgba[i * 4];
-    if (straight ? !(in[3] > 0) : in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
-      std::copy(empty, empty + nc, out);
-      continue;
+// A PNG's row y of the film: 8-bit sRGB, RGB over the background or, with png_alpha, RGBA with
+// straight alpha.
+class FilmPngRows {
+ public:
+  FilmPngRows(const Film& film, const OutputOptions& opt, const FrameInfo& info)
+      : film_(film),
+        opt_(opt),
+        info_(info),
+        nc_(opt.png_alpha ? 4 : 3),
+        straight_(opt.png_alpha && !opt.flatten),
+        srgb_byte_(SrgbBytes::get()) {
+    // A pixel nothing covers (most of a sparse frame) takes the bytes below, which are what the
+    // loop's expressions give it: with straight alpha its colour is 0 and png_sample(0) is 0;
+    // flattened, 0 + background * (1 - 0) is the background.
+    if (!straight_) {
+      for (int k = 0; k < 3; ++k)
+        empty_[k] = srgb_byte_(0.0f + float(info.background[k]) * (1 - 0.0f));
+      empty_[3] = png_sample(1.0f);
     }
-    // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
-    for (int k = 0; k < 3; ++k)
-      out[k] = srgb_byte(opt.png_alpha && !opt.flatten
-                             ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
-                             : in[k] + float(info.background[k]) * (1 - in[3]));
-    if (opt.png_alpha) out[3] = png_sample(opt.flatten ? 1.0f : in[3]);
   }
-  return png;
-}
+  int channels() const { return nc_; }
+
+  void operator()(int y, uint8_t* row) const {
+    const float* in = &film_.rgba[size_t(y) * film_.width * 4];
+    for (int x = 0; x < film_.width; ++x, in += 4, row += nc_) {
+      if (straight_ ? !(in[3] > 0) : in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
+        std::copy(empty_, empty_ + nc_, row);
+        continue;
+      }
+      // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
+      for (int k = 0; k < 3; ++k)
+        row[k] = srgb_byte_(opt_.png_alpha && !opt_.flatten
+                                ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
+                                : in[k] + float(info_.background[k]) * (1 - in[3]));
+      if (opt_.png_alpha) row[3] = png_sample(opt_.flatten ? 1.0f : in[3]);
+    }
+  }
+
+ private:
+  const Film& film_;
+  const OutputOptions& opt_;
+  const FrameInfo& info_;
+  const int nc_;
+  const bool straight_;
+  const SrgbBytes& srgb_byte_;
+  uint8_t empty_[4] = {0, 0, 0, 0};
+};
 
 }  // namespace
 
@@ -129,7 +145,7 @@ AovSelection parse_aovs(const std::string& list) {
 }
 
 std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
-                             const FrameInfo& info) {
+                             const FrameInfo& info, const EachIndex& each) {
   const std::string target = resolve_output_target(path);
   remove_stale_temporaries(target, process_start_time());
   const std::string tmp = create_pending_temp(target, path);
@@ -138,7 +154,8 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ou
       ExrExtras extras;
       write_exr(tmp, exr_image(film, opt, info, extras), extras);
     } else {
-      write_png(tmp, png_pixels(film, opt, info), true);
+      const FilmPngRows rows(film, opt, info);
+      write_png(tmp, film.width, film.height, rows.channels(), true, rows, each);
     }
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": " + e.what());  // the caller abandons the pending file

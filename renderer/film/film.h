@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/image_file.h"
 #include "io/output_file.h"
 #include "math/vec.h"
 
@@ -70,9 +71,11 @@ bool is_exr_path(const std::string& path);
 // that target are removed first) and returns the temporary file's path; commit_image renames it
 // over the target. EXR: R,G,B,A (+ Z, N.X,N.Y,N.Z, steps, albedo.R,albedo.G,albedo.B as selected)
 // with the standard and softtrace header attributes (README "Usage"). PNG: 8-bit sRGB, RGB over the
-// background or, with png_alpha, RGBA. Throws std::runtime_error.
+// background or, with png_alpha, RGBA; its rows are converted and deflated in bands that `each`
+// runs (io/image_file.h: the command line passes its worker threads; the same bytes either way).
+// Throws std::runtime_error.
 std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
-                             const FrameInfo& info);
+                             const FrameInfo& info, const EachIndex& each = {});
 void commit_image(const std::string& tmp, const std::string& path);
 
 }  // namespace softtrace

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -64,5 +65,20 @@ inline uint8_t png_sample(float v) {
   return uint8_t(std::floor(double(v * 255.0f) + 0.5));
 }
 void write_png(const std::string& path, const PngPixels& image, bool srgb);
+
+// Calls body(i) for every i in [0, count), in any order, perhaps on several threads at once (the
+// command line passes its frame's worker threads, render/threads.h); empty: one after another on
+// the calling thread. What is computed must not depend on which.
+using EachIndex = std::function<void(size_t count, const std::function<void(size_t)>& body)>;
+
+// Row y of an 8-bit PNG's samples, as stored (width * channels bytes, interleaved), into `row`.
+using PngRow = std::function<void(int y, uint8_t* row)>;
+
+// Writes a width x height PNG of `channels` (1 to 4: Y, YA, RGB, RGBA) whose rows `row` gives.
+// The rows are made and deflated in bands of a fixed number of rows (set by the width alone, so
+// the file is the same bytes whatever `each` runs on), each band a run of the zlib stream ended by
+// a sync flush; `each` runs the bands. Throws std::runtime_error.
+void write_png(const std::string& path, int width, int height, int channels, bool srgb,
+               const PngRow& row, const EachIndex& each = {});
 
 }  // namespace softtrace

@@ -72,4 +72,46 @@ void parallel_ranges(size_t count, size_t grain,
                     [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
 }
 
+namespace {
+
+// The floating-point mode `mode` (MXCSR) on the calling thread while it lives, the mode before it
+// restored after, also when the body throws.
+class FloatingPointMode {
+ public:
+#if defined(__x86_64__) || defined(__i386__)
+  static unsigned current() {
+    return _mm_getcsr();
+  }
+  explicit FloatingPointMode(unsigned mode) : saved_(_mm_getcsr()) {
+    if (saved_ != mode) _mm_setcsr(mode);
+  }
+  ~FloatingPointMode() {
+    _mm_setcsr(saved_);
+  }
+#else
+  static unsigned current() {
+    return 0;
+  }
+  explicit FloatingPointMode(unsigned) {}
+#endif
+  FloatingPointMode(const FloatingPointMode&) = delete;
+  FloatingPointMode& operator=(const FloatingPointMode&) = delete;
+
+ private:
+  unsigned saved_ = 0;
+};
+
+}  // namespace
+
+void parallel_each(size_t count, const std::function<void(size_t)>& body) {
+  const unsigned mode = FloatingPointMode::current();
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, count, 1),
+      [&](const tbb::blocked_range<size_t>& r) {
+        const FloatingPointMode callers(mode);
+        for (size_t i = r.begin(); i < r.end(); ++i) body(i);
+      },
+      tbb::simple_partitioner());
+}
+
 }  // namespace softtrace

@@ -72,4 +72,10 @@ void run_on_threads(int threads, const std::function<void()>& work);
 void parallel_ranges(size_t count, size_t grain,
                      const std::function<void(size_t begin, size_t end)>& body);
 
+// Calls body(i) for every i in [0, count), one index per task, on the worker threads, each task in
+// the caller's floating-point mode (a worker otherwise runs in the mode of the thread that started
+// TBB's arena), so that what each computes is what a loop on the caller would give: an image's
+// bands (io/image_file.h's EachIndex). The first exception of `body` reaches the caller.
+void parallel_each(size_t count, const std::function<void(size_t)>& body);
+
 }  // namespace softtrace
