@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "kernels/gauge.h"
 #include "math/interval.h"
@@ -144,7 +145,10 @@ Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const do
   }
   const auto end = [&](int i, double extreme) {
     const double near = f[i] * (1 - 1e-12) - L * stray;
-    if (!(near > 0) || !std::isfinite(f[i]) || !(kinks(*P[i]) > stray)) return extreme;
+    if (!(near > 0) || !std::isfinite(f[i])) return extreme;
+    if constexpr (!std::is_same_v<Kinks, Smooth>) {
+      if (!(kinks(*P[i]) > stray)) return extreme;
+    }
     return dot(g[i], e) + (extreme > 0 ? 1 : -1) * ne * (1e-9 * L + hess * stray / near);
   };
   const double lo = std::max(-reach, end(0, -reach)), hi = std::min(reach, end(1, reach));

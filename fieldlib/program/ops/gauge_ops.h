@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "kernels/convex_slope.h"
@@ -205,8 +204,8 @@ struct SphericalProductOp : RegisterToSlot {
       double ir = 0;
       for (const OneSidedTerm& t : m.t) ir = std::max(ir, t.slope());
       const double hess = (l1 ? 2 * (m.n2 - 1) : m.n1 + m.n2 - 2) * ir * ir;
+      // n1 = 1: the distance to the planes where u_x + u_y kinks; n1 >= 2: C^1 everywhere.
       const auto kinks = [&](const Vec3& p) {
-        if (!l1) return std::numeric_limits<double>::infinity();
         return std::min(std::abs(std::abs(p.x) - m.t[0].dead),
                         std::abs(std::abs(p.y) - m.t[1].dead));
       };
@@ -221,9 +220,12 @@ struct SphericalProductOp : RegisterToSlot {
       };
       Interval range;
       bool along;
-      io.D[in.out] = convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
-                                             io.seg_pads[in.in], io.seg_length, m.global_L, hess,
-                                             &range, &along, kinks);
+      const auto slope = [&](const auto& kinks_of) {
+        return convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
+                                       io.seg_pads[in.in], io.seg_length, m.global_L, hess, &range,
+                                       &along, kinks_of);
+      };
+      io.D[in.out] = l1 ? slope(kinks) : slope(Smooth{});
       if (along) {
         io.I[in.out] = range;
         io.L[in.out] = m.global_L;
