@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <type_traits>
 
 #include "kernels/gauge.h"
 #include "math/interval.h"
@@ -85,11 +87,21 @@ struct GaugeEnds {
 // segment is within pad of a parallel one, on which the same bounds hold with ends L pad away.
 // This replaces the two power sums over the segment's box (a root each) by what the slope
 // computed, and is tighter: the box's corners are farther out than the segment.
-template <class Kernel>
+//
+// `kinks(p)`: a lower bound on the distance from p to the nearest point where f is not C^1 (the
+// inner L^1 sum of a spherical product with n1 = 1, whose gradient jumps on planes). Only the
+// pad needs smoothness: any subgradient at an exact end bounds a convex f's derivative, but a
+// point within pad of an end must see the gradient turn by at most hess / f_near times that
+// distance. An end within pad of a kink takes the subgradient's extreme. Smooth: none anywhere.
+struct Smooth {
+  double operator()(const Vec3&) const { return std::numeric_limits<double>::infinity(); }
+};
+
+template <class Kernel, class Kinks = Smooth>
 Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const double* key,
                                  const Vec3& A, const Vec3& B, double pad, double len, double L,
                                  double hess, Interval* range = nullptr,
-                                 bool* range_written = nullptr) {
+                                 bool* range_written = nullptr, const Kinks& kinks = {}) {
   if (range_written) *range_written = false;
   if (ends && ends->key != key) {
     ends->key = key;
@@ -134,6 +146,9 @@ Interval convex_slope_on_segment(const Kernel& kernel, GaugeEnds* ends, const do
   const auto end = [&](int i, double extreme) {
     const double near = f[i] * (1 - 1e-12) - L * stray;
     if (!(near > 0) || !std::isfinite(f[i])) return extreme;
+    if constexpr (!std::is_same_v<Kinks, Smooth>) {
+      if (!(kinks(*P[i]) > stray)) return extreme;
+    }
     return dot(g[i], e) + (extreme > 0 ? 1 : -1) * ne * (1e-9 * L + hess * stray / near);
   };
   const double lo = std::max(-reach, end(0, -reach)), hi = std::min(reach, end(1, reach));

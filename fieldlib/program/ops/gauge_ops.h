@@ -189,13 +189,26 @@ struct SphericalProductOp : RegisterToSlot {
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
     const SphericalProductParams m = load(io.K + in.a);
-    if (io.slopes && m.n1 >= 2 && m.n2 >= 2) {
-      // Convex and C^1 (‖∇²f‖ <= (n1 + n2 - 2) max(1/r)^2 / f over the terms' radii): the ends'
-      // values and gradients bound the range and the slope along the segment, and the Lipschitz
-      // bound is the global one (as the L^p metric's above).
+    // n1 = 1 (Fig. 12's prism bar): h = u_x + u_y is convex too, and linear off the planes
+    // |x| = dead_x, |y| = dead_y where its gradient jumps (the kinks, which the ends' pad must
+    // not reach). There ∇²f = Jᵀ ∇²m J, J's rows ∇h and ∇u_z orthogonal with |∇h|² <= 2 max(1/r)²,
+    // and ‖∇²m‖ <= (n2 - 1) / f (as the L^p metric's): ‖∇²f‖ <= 2 (n2 - 1) max(1/r)² / f. The
+    // box's chain rule took two power sums with a root each, and their partials' powers.
+    const bool l1 = m.n1 == 1;
+    if (io.slopes && (m.n1 >= 2 || l1) && m.n2 >= 2) {
+      // Convex and C^1 (‖∇²f‖ <= (n1 + n2 - 2) max(1/r)^2 / f over the terms' radii), or
+      // piecewise so (n1 = 1, above): the ends' values and gradients bound the range and the
+      // slope along the segment, and the Lipschitz bound is the global one (as the L^p metric's
+      // above).
       const Vec3* S = io.segs + 2 * in.in;
       double ir = 0;
       for (const OneSidedTerm& t : m.t) ir = std::max(ir, t.slope());
+      const double hess = (l1 ? 2 * (m.n2 - 1) : m.n1 + m.n2 - 2) * ir * ir;
+      // n1 = 1: the distance to the planes where u_x + u_y kinks; n1 >= 2: C^1 everywhere.
+      const auto kinks = [&](const Vec3& p) {
+        return std::min(std::abs(std::abs(p.x) - m.t[0].dead),
+                        std::abs(std::abs(p.y) - m.t[1].dead));
+      };
       const auto kernel = [&](const Vec3& p, Vec3* g) {
         // h = (u_x^n1 + u_y^n1)^(1/n1), then m(h, u_z): the chain rule through both power sums.
         double dx, dy, dz, ph[2], pm[2];
@@ -207,9 +220,12 @@ struct SphericalProductOp : RegisterToSlot {
       };
       Interval range;
       bool along;
-      io.D[in.out] = convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
-                                             io.seg_pads[in.in], io.seg_length, m.global_L,
-                                             (m.n1 + m.n2 - 2) * ir * ir, &range, &along);
+      const auto slope = [&](const auto& kinks_of) {
+        return convex_slope_on_segment(kernel, io.ends_of(in), io.K + in.a, S[0], S[1],
+                                       io.seg_pads[in.in], io.seg_length, m.global_L, hess, &range,
+                                       &along, kinks_of);
+      };
+      io.D[in.out] = l1 ? slope(kinks) : slope(Smooth{});
       if (along) {
         io.I[in.out] = range;
         io.L[in.out] = m.global_L;

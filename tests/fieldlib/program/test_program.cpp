@@ -1189,6 +1189,63 @@ TEST(Program, LineSegmentSlopeAlongASegmentIsTheEndsDerivatives) {
   }
 }
 
+// A spherical product with n1 = 1 (Fig. 12's prism bar) is convex, and C^1 off the planes where
+// its inner sum u_x + u_y kinks: along a segment its range and slope come from the ends' values
+// and gradients (docs/math.md §8, "Slopes along a segment"), not from the segment's box. The
+// range is then the segment's, narrower than the box pass's; both hold every point of it.
+TEST(Program, PrismBarTakesItsRangeAlongASegment) {
+  const char* kJson[] = {
+      R"({"type":"superquadric","radii":[8,8,24],"n1":1,"n2":20})",
+      R"({"type":"superquadric","radii":[0.6,0.5,0.9],"n1":1,"n2":8,"t":[2,1,1,1.5,1,1.1]})"};
+  const double kSpan[] = {30, 1.5};
+  for (int c = 0; c < 2; ++c) {
+    CompiledCase cc(kJson[c], Convention::Constructive);
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(-kSpan[c], kSpan[c]);
+    int narrower = 0;
+    for (int i = 0; i < 300; ++i) {
+      const Segment seg{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+      const double len = length(seg.b - seg.a);
+      const Vec3 dir = (seg.b - seg.a) / len;
+      const BoxBounds bb = bounds(cc.prog, seg, cc.ws);
+      const Interval box = bounds(cc.prog, segment_box(seg.a, seg.b, seg.pad), cc.ws).value;
+      double last = cc.node->value(seg.a);
+      for (int j = 1; j <= 64; ++j) {
+        const double t = len * j / 64, v = cc.node->value(seg.a + dir * t);
+        ASSERT_TRUE(bb.value.contains(v))
+            << kJson[c] << ": " << v << " outside [" << bb.value.lo << ", " << bb.value.hi << "]";
+        const double quotient = (v - last) / (len / 64), slack = 1e-9 * (1 + std::abs(quotient));
+        ASSERT_TRUE(bb.slope.lo - slack <= quotient && quotient <= bb.slope.hi + slack)
+            << kJson[c] << ": " << quotient << " outside [" << bb.slope.lo << ", " << bb.slope.hi
+            << "]";
+        last = v;
+      }
+      if (bb.value.hi - bb.value.lo < 0.9 * (box.hi - box.lo)) ++narrower;
+    }
+    EXPECT_GT(narrower, 100) << kJson[c] << ": " << narrower << " of 300";
+  }
+}
+
+// The points a tracer evaluates lie within the segment's pad of it; where an end is within the
+// pad of a kink (here on the plane x = 0), the gradient there says nothing of the derivative on a
+// parallel segment that starts across the plane, so that end takes the subgradient's extreme.
+TEST(Program, PrismBarEndWithinThePadOfAKinkTakesTheExtreme) {
+  CompiledCase cc(R"({"type":"superquadric","radii":[8,8,24],"n1":1,"n2":20})",
+                  Convention::Constructive);
+  const double pad = 0.01;
+  const Segment seg{{0, 6, 0}, {-4, 6.8, 0.4}, pad};
+  const Vec3 dir = (seg.b - seg.a) / length(seg.b - seg.a);
+  const BoxBounds bb = bounds(cc.prog, seg, cc.ws);
+  // On the parallel segment 0.9 pad away (x > 0), f falls at (dir.x + dir.y) / 8 until it
+  // crosses x = 0; at the end itself (x = 0, a subgradient with df/dx = 0) it rises at dir.y / 8.
+  const Vec3 start = seg.a + Vec3{0.9 * pad, 0, 0};
+  const double h = 0.4 * pad;
+  const double quotient = (cc.node->value(start + dir * h) - cc.node->value(start)) / h;
+  EXPECT_NEAR(quotient, (dir.x + dir.y) / 8, 1e-6);
+  EXPECT_LE(bb.slope.lo, quotient);
+  EXPECT_TRUE(bb.value.contains(cc.node->value(start)));
+}
+
 // The issue's target: for a box the size of one blob's support the pruned program holds exactly
 // the children whose supports meet it, and evaluates as the whole program does inside the box (to
 // the bit: only zeros are dropped), which is the model's field up to the rounding of the sum's
