@@ -335,16 +335,17 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
 
 TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
                                 const Interiors& inside) const {
-  // A ray of the beam goes forward (cos > 0); anything else gets no help from it.
-  const double cos = beam ? dot(ray.d, beam->forward) : 0;
-  if (!(cos > 0)) beam = nullptr;
+  // A ray of the beam goes forward (cos_forward > 0); anything else gets no help from it.
+  const double cos_forward = beam ? dot(ray.d, beam->forward) : 0;
+  if (!(cos_forward > 0)) beam = nullptr;
   // The paths without Embree build their hit in the caller's (a lambda's one named result): a
   // TraceHit filled here and copied out cost about 15 instructions a camera ray.
   if (impl_->lone_field && !inside.contains(0)) {  // no Embree, and none of its context to fill
     return [&] {
       TraceHit h;
       const BlobBeam* list;
-      const MarchResult m = field_hit(impl_->data[0], ray, tnear, tfar, beam, cos, h.work, &list);
+      const MarchResult m =
+          field_hit(impl_->data[0], ray, tnear, tfar, beam, cos_forward, h.work, &list);
       if (m.hit && m.t < tfar) {
         h.hit = true;
         h.t = m.t;
@@ -370,8 +371,8 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
         h.normal = p.normal;
       }
       const BlobBeam* list;
-      const MarchResult m =
-          field_hit(impl_->data[impl_->direct_field], ray, tnear, t, beam, cos, h.work, &list);
+      const MarchResult m = field_hit(impl_->data[impl_->direct_field], ray, tnear, t, beam,
+                                      cos_forward, h.work, &list);
       if (m.hit && m.t < t) {
         h.hit = true;
         h.t = m.t;
@@ -389,7 +390,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
   if (!inside.empty()) ctx.inside = &inside;
   if (beam) {
     ctx.beam = beam;
-    ctx.beam_cos = cos;
+    ctx.beam_cos = cos_forward;
   }
   ctx.tnear = tnear;
   ctx.t = tfar;

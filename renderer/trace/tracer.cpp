@@ -269,18 +269,18 @@ double ObjectTracer::refine(const Ray& ray, double a, double ga, double b, doubl
     return g_view(ray.o + ray.d * t);
   };
   if (std::isnan(ga)) ga = g_at(a);
-  if (!(ga < 0)) return a;           // rounding on the pruned program: a itself is on the surface
-  const double floor = -rates.fall;  // > 0: g rises at least this fast on [a, b]
+  if (!(ga < 0)) return a;  // rounding on the pruned program: a itself is on the surface
+  const double least_rise = -rates.fall;  // > 0: g rises at least this fast on [a, b]
   double lo = a, hi = b;
   const auto narrow = [&](double m, double gm) {
     const double err = value_error(gm);
     if (gm < 0) {
       if (below) below->add(m, gm);
       lo = std::max(lo, m + reach(gm, rates.rise));
-      if (floor > 0) hi = std::min(hi, m - (gm - err) / floor);
+      if (least_rise > 0) hi = std::min(hi, m - (gm - err) / least_rise);
     } else {
       hi = std::min(hi, m);
-      if (floor > 0) lo = std::max(lo, m - (gm + err) / floor);
+      if (least_rise > 0) lo = std::max(lo, m - (gm + err) / least_rise);
     }
   };
   narrow(a, ga);
