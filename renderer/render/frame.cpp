@@ -372,7 +372,7 @@ void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pas
   tbb::parallel_for(
       tbb::blocked_range<int>(0, grid.count(), 1),
       [&](const tbb::blocked_range<int>& tiles) {
-        const DenormalsFlushed mode;  // threads.h: the frames' one floating-point mode
+        const FloatingPointMode mode(FloatingPointMode::frames());  // threads.h
         Work& work = work_total.local();
         for (int t = tiles.begin(); t < tiles.end(); ++t) {
           if (opt.cancel && *opt.cancel) return;

@@ -44,17 +44,28 @@ void start_threads() {
 }
 
 #if defined(__x86_64__) || defined(__i386__)
-DenormalsFlushed::DenormalsFlushed() : saved_(_mm_getcsr()) {
-  constexpr unsigned kFlushToZero = 1u << 15, kDenormalsAreZero = 1u << 6;  // MXCSR's bits
-  if ((saved_ & (kFlushToZero | kDenormalsAreZero)) != (kFlushToZero | kDenormalsAreZero))
-    _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
+unsigned FloatingPointMode::current() {
+  return _mm_getcsr();
 }
-DenormalsFlushed::~DenormalsFlushed() {
+unsigned FloatingPointMode::frames() {
+  constexpr unsigned kFlushToZero = 1u << 15, kDenormalsAreZero = 1u << 6;  // MXCSR's bits
+  return _mm_getcsr() | kFlushToZero | kDenormalsAreZero;
+}
+FloatingPointMode::FloatingPointMode(unsigned mode) : saved_(_mm_getcsr()) {
+  if (saved_ != mode) _mm_setcsr(mode);
+}
+FloatingPointMode::~FloatingPointMode() {
   if (_mm_getcsr() != saved_) _mm_setcsr(saved_);
 }
 #else
-DenormalsFlushed::DenormalsFlushed() = default;
-DenormalsFlushed::~DenormalsFlushed() = default;
+unsigned FloatingPointMode::current() {
+  return 0;
+}
+unsigned FloatingPointMode::frames() {
+  return 0;
+}
+FloatingPointMode::FloatingPointMode(unsigned) {}
+FloatingPointMode::~FloatingPointMode() = default;
 #endif
 
 int default_threads() {
@@ -71,37 +82,6 @@ void parallel_ranges(size_t count, size_t grain,
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain),
                     [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
 }
-
-namespace {
-
-// The floating-point mode `mode` (MXCSR) on the calling thread while it lives, the mode before it
-// restored after, also when the body throws.
-class FloatingPointMode {
- public:
-#if defined(__x86_64__) || defined(__i386__)
-  static unsigned current() {
-    return _mm_getcsr();
-  }
-  explicit FloatingPointMode(unsigned mode) : saved_(_mm_getcsr()) {
-    if (saved_ != mode) _mm_setcsr(mode);
-  }
-  ~FloatingPointMode() {
-    _mm_setcsr(saved_);
-  }
-#else
-  static unsigned current() {
-    return 0;
-  }
-  explicit FloatingPointMode(unsigned) {}
-#endif
-  FloatingPointMode(const FloatingPointMode&) = delete;
-  FloatingPointMode& operator=(const FloatingPointMode&) = delete;
-
- private:
-  unsigned saved_ = 0;
-};
-
-}  // namespace
 
 void parallel_each(size_t count, const std::function<void(size_t)>& body) {
   const unsigned mode = FloatingPointMode::current();

@@ -37,18 +37,23 @@ ThreadLimit limit_threads(int threads);
 // before its frame (EmbreeScene::built false: no Embree build does it), not at the first tile.
 void start_threads();
 
-// Flush-to-zero and denormals-are-zero on the calling thread while it lives, the mode before it
-// restored after. Every task of a frame runs in it (frame.cpp): it is the mode the frames have
-// always had where Embree's scene build started TBB (TBB's arena keeps the mode of the thread that
-// started it, and Embree's build sets these), and a denormal flushed or not changes a march's
-// steps. Set per task, it no longer depends on who started TBB, so the Python module's frames, in
-// an arena of their own, are the command line's bits.
-class DenormalsFlushed {
+// A floating-point mode (x86's MXCSR; elsewhere none) on the calling thread while it lives, the
+// mode before it restored after, also when the body throws.
+class FloatingPointMode {
  public:
-  DenormalsFlushed();
-  ~DenormalsFlushed();
-  DenormalsFlushed(const DenormalsFlushed&) = delete;
-  DenormalsFlushed& operator=(const DenormalsFlushed&) = delete;
+  // The calling thread's mode.
+  static unsigned current();
+  // The frames' mode: the calling thread's with flush-to-zero and denormals-are-zero. Every task
+  // of a frame runs in it (frame.cpp): it is the mode the frames have always had where Embree's
+  // scene build started TBB (TBB's arena keeps the mode of the thread that started it, and
+  // Embree's build sets these), and a denormal flushed or not changes a march's steps. Set per
+  // task, it no longer depends on who started TBB, so the Python module's frames, in an arena of
+  // their own, are the command line's bits.
+  static unsigned frames();
+  explicit FloatingPointMode(unsigned mode);
+  ~FloatingPointMode();
+  FloatingPointMode(const FloatingPointMode&) = delete;
+  FloatingPointMode& operator=(const FloatingPointMode&) = delete;
 
  private:
   unsigned saved_ = 0;
