@@ -94,9 +94,8 @@ class FilmPngRows {
       }
       // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
       for (int k = 0; k < 3; ++k)
-        row[k] = srgb_byte_(opt_.png_alpha && !opt_.flatten
-                                ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
-                                : in[k] + float(info_.background[k]) * (1 - in[3]));
+        row[k] = srgb_byte_(straight_ ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
+                                      : in[k] + float(info_.background[k]) * (1 - in[3]));
       if (opt_.png_alpha) row[3] = png_sample(opt_.flatten ? 1.0f : in[3]);
     }
   }
