@@ -61,11 +61,15 @@ inline double light_visibility(const Light& l, const LightArrival& at, const Vec
 }
 
 // The shadow lists of a block of pixels (render/shadow_beams.h), for shade(): per scene light
-// its lists' slot (-1: none), each slot one list per object.
+// its lists' slot (-1: none), each slot one list per object; and the shaded point with its rays'
+// offset as ShadowBeams took them (shade() lifts its shadow rays' origin from these very numbers,
+// so a clear list's rays are its block's by construction: BlobBeam::clear).
 struct ShadowLists {
   const int* slot;
   const BlobBeam* lists;
   int objects;
+  Vec3 p;
+  double offset;
   const BlobBeam* of(int light) const {
     return slot[light] < 0 ? nullptr : lists + size_t(slot[light]) * objects;
   }

@@ -90,7 +90,8 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj =
       hit.face > 0 ? face_object(scene.objects[hit.object], hit.face) : scene.objects[hit.object];
-  const Vec3 p = ray.o + ray.d * hit.t;
+  // With shadow lists, the point as ShadowBeams took it (the same arithmetic, its very bits).
+  const Vec3 p = shadow ? shadow->p : ray.o + ray.d * hit.t;
   // A primitive's or a CSG's normal came with its hit. A field's gradient walk also gives its
   // components' values, which weigh their materials below (`terms`).
   const bool fused = obj.components && tracer && !hit.on_box_face;
@@ -119,7 +120,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
   // coordinates' magnitude (an infinite plane's box says nothing of the scale). A mesh's is
   // Embree's float test: its rays leave as a field's do.
-  const double offset = ray_offset(obj, p, cone0);
+  const double offset = shadow ? shadow->offset : ray_offset(obj, p, cone0);
   // Ambient occlusion's rays, and in scenes without transparency every ray, start that far along
   // the normal.
   const Vec3 lifted = p + n * offset;

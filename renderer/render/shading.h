@@ -26,7 +26,8 @@ struct Shaded {
 // a mirror or transmitted ray whose weight would fall below adc_bailout is not traced.
 // `interiors`: the ray's interior list (trace/interiors.h; none for a camera ray), which its
 // shadow, mirror and transmitted rays take on. `shadow`: the shadow lists of the camera ray's
-// block of pixels (lights.h), or none.
+// block of pixels (lights.h), or none; with them, the hit's point and its rays' offset are taken
+// from `shadow` (the frame computed them for the lists, by the same arithmetic).
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel = nullptr,
              int level = 1, double weight = 1, const Interiors* interiors = nullptr,

@@ -64,6 +64,22 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Extent* balls = lists.balls.data() + k * size_t(lists.points);
   Extent* boxes = lists.boxes.data() + k * size_t(objects_);
+  // A quarter's or a block's prism lies in its parent's: where the parent's rays meet no blob of
+  // any object (most of a floor's tiles beside a cloud), neither do its own, and its prism is not
+  // needed.
+  if (level > 0) {
+    bool clear = true;
+    for (const int o : blob_objects_)
+      clear = clear && lists.level[level - 1][k * objects_ + o].clear;
+    if (clear) {
+      for (const int o : blob_objects_) {
+        BlobBeam& list = out[k * objects_ + o];
+        list.valid = false;
+        list.clear = end > begin;
+      }
+      return;
+    }
+  }
   // The prism's rectangle and depth, in locals (the loops then keep them in registers).
   double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z0 = kInf;
   if (level == 0 && end > begin) {
@@ -105,16 +121,22 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
   for (const int o : blob_objects_) {
     BlobBeam& list = out[k * objects_ + o];
     list.valid = false;
+    list.clear = false;
     if (end == begin) continue;
     // A prism that misses the object's box sends it no ray: no list, and no walk to build one.
+    // Its rays meet no blob: they need no trace at all (BlobBeam::clear).
     const Box& box = tracers_.object(o).bounds;
     const Extent& e = boxes[o];
     const double slack = 1e-9 * (max_abs(box.lo) + max_abs(box.hi) + max_abs(lists.origin));
     if (e.x0 > prism.x1 + slack || e.x1 < prism.x0 - slack || e.y0 > prism.y1 + slack ||
-        e.y1 < prism.y0 - slack || e.z < prism.z0 - slack)
+        e.y1 < prism.y0 - slack || e.z < prism.z0 - slack) {
+      list.clear = true;
       continue;
+    }
     const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
     tracers_[o].shadow_beam(prism, parent, &list);
+    // A list holds every blob whose support a ray of the prism may meet: an empty one, none.
+    list.clear = list.valid && list.entries.empty();
     // The blocks' lists, which their rays take, pick the blobs that may decide them alone.
     if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
   }
@@ -132,7 +154,8 @@ void ShadowBeams::build_pyramid(int level, const Axes& light, size_t k, const Po
                                 Lists& lists) const {
   std::vector<BlobBeam>& out = lists.level[level];
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  for (const int o : blob_objects_) out[k * objects_ + o].valid = false;
+  for (const int o : blob_objects_)
+    out[k * objects_ + o].valid = out[k * objects_ + o].clear = false;
   if (n == 0) return;
   const Vec3 to_tile = lists.origin - light.position;
   const double reach = length(to_tile);

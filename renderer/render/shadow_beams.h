@@ -5,7 +5,11 @@
 // shadow ray of a block takes its stretches' blobs from the block's list instead of walking the
 // sum's BVH; a ray the list does not hold (BlobBeam::holds) walks as before, so the answers are
 // the walk's to the bit. A block's list of positive blobs also names up to two balls that may
-// block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first.
+// block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first. A block whose
+// prism meets no blob (it misses the sum's box, or its list is empty; a quarter's or a block's
+// under a parent that is so) is clear (BlobBeam::clear): its rays are answered with no trace and
+// no check of their own, which holds because shade() lifts them from the very points given here
+// (ShadowLists::p and offset). Most of a floor's blocks beside a cloud are clear.
 // The shadow rays of a block towards a point or spot light converge on its position: their list
 // is the camera's (ObjectTracer::blob_beam) for the pyramid from the light through the block's
 // lit points, each ray finding its stretches' blobs by their distance from the light
@@ -54,9 +58,10 @@ class ShadowBeams {
   // 0) from the sums' BVHs. `points` are the tile's at every level: a quarter's and a block's are
   // ranges of them. A block with no points gets no lists.
   void build(int level, const Point* points, int begin, int end, Lists& lists) const;
-  // The lists of `level` as shade() takes them.
+  // The lists of `level` as shade() takes them; the caller sets the shaded point (one of the
+  // block's, as given to build()) in ShadowLists::p and offset.
   ShadowLists view(int level, const Lists& lists) const {
-    return {slot_.data(), lists.level[level].data(), objects_};
+    return {slot_.data(), lists.level[level].data(), objects_, {0, 0, 0}, 0};
   }
 
  private:

@@ -81,6 +81,12 @@ struct BlobBeam {
   // ShadowPrism), instead: `near`, `far` are the range of minus the distance from the point where
   // the blob's support lies (-|x - origin| grows along each ray, as z along a prism's).
   bool toward = false;
+  // A shadow list of a block whose rays meet none of the sum's blobs (render/shadow_beams.cpp: its
+  // prism misses the sum's box, or the list is empty): a ray given it has no hit, with no check of
+  // its own that it is one of the block's. The caller vouches for that: its origin within the
+  // margin of one of the points the prism was built from, its direction the light's to the bit
+  // (shade() lifts the very point ShadowBeams took, ShadowLists::p).
+  bool clear = false;
   ShadowPrism prism;
   // A shadow list's entries' x and y (ShadowPrism) and how far from them the blob reaches: a
   // smaller block's list keeps those whose reach meets its rectangle, with no more arithmetic.
@@ -189,7 +195,8 @@ class ObjectTracer {
   // `work`, which may already hold the ray's work on other objects: the ray's limit is on the sum.
   // `clear_to`: the caller has certified that the ray meets no solid before it (clear_depth).
   // `blob_beam`: for a sum of polynomial blobs, the list of a frustum holding the ray
-  // (blob_beam()); any ray from another origin ignores it.
+  // (blob_beam()); any ray from another origin ignores it. A clear one (BlobBeam::clear) answers a
+  // shadow ray's query (Query::Any) with no hit: the ray must be one of its block's.
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                         Query query = Query::Nearest, double clear_to = 0,
                         const BlobBeam* blob_beam = nullptr) const;

@@ -60,6 +60,7 @@ bool BlobBeam::holds_toward(const Ray& ray, double t1, double* base) const {
 
 void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const {
   out->valid = false;
+  out->clear = false;
   out->parallel = true;
   out->toward = false;
   out->prism = p;
@@ -137,6 +138,7 @@ void ObjectTracer::toward_beam(const Frustum& f, const ShadowPrism& p, const Blo
                       same(parent->prism.u, p.u) && same(parent->prism.v, p.v);
   out->parallel = false;
   out->toward = true;
+  out->clear = false;
   out->prism = p;
   out->blockers.clear();
   out->across.clear();

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <random>
 #include <string>
@@ -158,8 +159,8 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
           const Ray ray{l.origin, along, 0, 0};
           double base;
           ++rays;
-          // A block's list holds each of its rays; a block without one sends none into the
-          // cloud's box.
+          // A block's list holds each of its rays; a block without one is clear (below) or sends
+          // none into the cloud's box.
           if (list[0].valid) {
             ASSERT_TRUE(list[0].holds(ray, &base)) << "ray " << rays;
           }
@@ -167,10 +168,17 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
           TraceCounters a, b;
           const MarchResult walk = tr.first_hit(ray, 0, 1e3, a, Query::Any);
           const MarchResult with = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &list[0]);
+          ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
+          // A clear list's ray is answered with no work (its soundness: ABlockWhoseRaysMeetNoBlob).
+          if (list[0].clear) {
+            ASSERT_EQ(b.evaluations(), 0) << "ray " << rays;
+            TraceCounters c;
+            ASSERT_FALSE(tr.first_hit(ray, 0, 1e3, c).hit) << "ray " << rays;
+            continue;
+          }
           if (!list[0].valid) {
             ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
           }
-          ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
           // A ray a blocker decides costs one point and no stretch; any other one the same
           // stretches as the walk, to the bit.
           const bool decided = !list[0].blockers.empty() && with.hit && b.box_evals == 0 &&
@@ -206,6 +214,60 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
         EXPECT_GT(by_blocker, blocked / 20) << direction;
       }
     }
+}
+
+// A block whose prism meets no blob (its list empty, or the sum's box missed) is clear: its shadow
+// rays are answered "no hit" with no trace at all (BlobBeam::clear), which is sound only if no ray
+// from within the margin of any of its points towards the light meets a blob. Every such ray of
+// every clear block, from its point's lifted origin and from the edge of its margin ball in random
+// directions, must find nothing by the BVH walk (Query::Nearest, the whole way); and clear blocks
+// of both kinds must occur, some of their rays entering the cloud's box, beside blocks that are
+// not clear (their rays blocked or not: EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes).
+TEST(ShadowBeams, ABlockWhoseRaysMeetNoBlobIsClear) {
+  std::mt19937_64 rng(5);
+  int total_empty = 0, total_entering = 0;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const int cloud : {0, 1})
+    for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]", "[0.2, -1, -0.4]"}) {
+      CloudOverFloor floor(
+          cloud, std::string(R"({"type": "directional", "direction": )") + direction + "}", rng);
+      const ObjectTracer& tr = floor.tracer();
+      const Vec3 along = -floor.scene().lights[0].direction;
+      int missed_box = 0, empty = 0, listed = 0, entering = 0, rays = 0;
+      floor.for_each_block(
+          [&](const BlobBeam* list, const std::vector<CloudOverFloor::Lit>& block) {
+            if (block.empty()) return;
+            if (!list[0].clear) {
+              ++listed;
+              return;
+            }
+            (list[0].valid ? empty : missed_box) += 1;
+                for (const CloudOverFloor::Lit& l : block) {
+              Vec3 edge{u(rng), u(rng), u(rng)};
+              edge = edge / length(edge) * l.point.margin;
+              for (const Vec3& o : {l.origin, l.point.p + edge}) {
+                TraceCounters w;
+                const MarchResult walk = tr.first_hit({o, along, 0, 0}, 0, 1e3, w);
+                ASSERT_FALSE(walk.hit) << "a clear block's ray from " << o.x << ", " << o.y << ", "
+                                       << o.z << " meets the cloud at " << walk.t;
+                entering += w.entered_box;
+                ++rays;
+              }
+            }
+          });
+      EXPECT_GT(missed_box, 4) << cloud << direction;
+      EXPECT_GT(listed, 4) << cloud << direction;
+      EXPECT_GT(rays, 100) << cloud << direction;
+      std::printf(
+          "cloud %d light %s: clear blocks %d (box missed) + %d (empty list), %d listed; "
+          "%d of %d rays enter the box\n",
+          cloud, direction, missed_box, empty, listed, entering, rays);
+      total_empty += empty;
+      total_entering += entering;
+    }
+  // Blocks with an empty list inside the cloud's box shadow occur: their rays enter the box.
+  EXPECT_GT(total_empty, 0);
+  EXPECT_GT(total_entering, 0);
 }
 
 // The shadow rays of a block towards a point or spot light converge on its position: their list
