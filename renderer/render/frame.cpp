@@ -208,7 +208,10 @@ class FrameTracer {
         const TracedSample& t = work.samples[size_t(s)];
         if (!t.hit.hit) continue;
         const Vec3 p = t.ray.o + t.ray.d * t.hit.t;
-        const SceneObject& obj = face_object(scene_.objects[t.hit.object], t.hit.face);
+        // A CSG's face's object, as shade() takes it (the call only for a face).
+        const SceneObject& obj = t.hit.face > 0
+                                     ? face_object(scene_.objects[t.hit.object], t.hit.face)
+                                     : scene_.objects[t.hit.object];
         work.points.push_back({p, ray_offset(obj, p, t.ray.cone0 + t.ray.cone * t.hit.t)});
       }
     }
