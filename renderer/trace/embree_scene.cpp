@@ -420,9 +420,9 @@ bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCount
     for (const int o : impl_->direct_primitives)
       if (occludes(*impl_->data[o].object_data->shape, ray, tnear, tfar)) return true;
     const int o = impl_->direct_field;
-    return impl_->data[o]
-        .tracer->first_hit(ray, tnear, tfar, work, Query::Any, 0, blobs ? &blobs[o] : nullptr)
-        .hit;
+    const BlobBeam* list = blobs ? &blobs[o] : nullptr;
+    if (list && list->clear) return false;  // first_hit's answer, without its call
+    return impl_->data[o].tracer->first_hit(ray, tnear, tfar, work, Query::Any, 0, list).hit;
   }
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
