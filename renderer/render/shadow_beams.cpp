@@ -64,9 +64,8 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Extent* balls = lists.balls.data() + k * size_t(lists.points);
   Extent* boxes = lists.boxes.data() + k * size_t(objects_);
-  // A quarter's or a block's prism lies in its parent's: where the parent's rays meet no blob of
-  // any object (most of a floor's tiles beside a cloud), neither do its own, and its prism is not
-  // needed.
+  // A quarter's or a block's prism lies in its parent's: where the parent's misses every object's
+  // box (most of a floor's tiles beside a cloud), so does its own, and its prism is not needed.
   if (level > 0) {
     bool clear = true;
     for (const int o : blob_objects_)
@@ -134,9 +133,9 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
       continue;
     }
     const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
+    // A list with no blob is not clear: its rays enter the box and count their stretches (the
+    // steps AOV), which a clear block's would not.
     tracers_[o].shadow_beam(prism, parent, &list);
-    // A list holds every blob whose support a ray of the prism may meet: an empty one, none.
-    list.clear = list.valid && list.entries.empty();
     // The blocks' lists, which their rays take, pick the blobs that may decide them alone.
     if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
   }

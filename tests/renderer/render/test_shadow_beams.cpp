@@ -11,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <random>
 #include <string>
@@ -216,16 +215,15 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
     }
 }
 
-// A block whose prism meets no blob (its list empty, or the sum's box missed) is clear: its shadow
-// rays are answered "no hit" with no trace at all (BlobBeam::clear), which is sound only if no ray
-// from within the margin of any of its points towards the light meets a blob. Every such ray of
-// every clear block, from its point's lifted origin and from the edge of its margin ball in random
-// directions, must find nothing by the BVH walk (Query::Nearest, the whole way); and clear blocks
-// of both kinds must occur, some of their rays entering the cloud's box, beside blocks that are
-// not clear (their rays blocked or not: EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes).
+// A block whose prism misses the sum's box (or whose parent's does) is clear: its shadow rays are
+// answered "no hit" with no trace at all (BlobBeam::clear), which is sound, and leaves their work
+// (the steps AOV) as it was, only if no ray from within the margin of any of its points towards
+// the light enters the box. Every such ray of every clear block, from its point's lifted origin
+// and from the edge of its margin ball in random directions, must find nothing by the BVH walk
+// (Query::Nearest, the whole way) and never enter the box; and clear blocks must occur beside
+// blocks that are not (whose rays EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes checks).
 TEST(ShadowBeams, ABlockWhoseRaysMeetNoBlobIsClear) {
   std::mt19937_64 rng(5);
-  int total_empty = 0, total_entering = 0;
   std::uniform_real_distribution<double> u(-1, 1);
   for (const int cloud : {0, 1})
     for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]", "[0.2, -1, -0.4]"}) {
@@ -233,7 +231,7 @@ TEST(ShadowBeams, ABlockWhoseRaysMeetNoBlobIsClear) {
           cloud, std::string(R"({"type": "directional", "direction": )") + direction + "}", rng);
       const ObjectTracer& tr = floor.tracer();
       const Vec3 along = -floor.scene().lights[0].direction;
-      int missed_box = 0, empty = 0, listed = 0, entering = 0, rays = 0;
+      int clear = 0, listed = 0, rays = 0;
       floor.for_each_block(
           [&](const BlobBeam* list, const std::vector<CloudOverFloor::Lit>& block) {
             if (block.empty()) return;
@@ -241,8 +239,8 @@ TEST(ShadowBeams, ABlockWhoseRaysMeetNoBlobIsClear) {
               ++listed;
               return;
             }
-            (list[0].valid ? empty : missed_box) += 1;
-                for (const CloudOverFloor::Lit& l : block) {
+            ++clear;
+            for (const CloudOverFloor::Lit& l : block) {
               Vec3 edge{u(rng), u(rng), u(rng)};
               edge = edge / length(edge) * l.point.margin;
               for (const Vec3& o : {l.origin, l.point.p + edge}) {
@@ -250,24 +248,16 @@ TEST(ShadowBeams, ABlockWhoseRaysMeetNoBlobIsClear) {
                 const MarchResult walk = tr.first_hit({o, along, 0, 0}, 0, 1e3, w);
                 ASSERT_FALSE(walk.hit) << "a clear block's ray from " << o.x << ", " << o.y << ", "
                                        << o.z << " meets the cloud at " << walk.t;
-                entering += w.entered_box;
+                ASSERT_FALSE(w.entered_box) << "a clear block's ray from " << o.x << ", " << o.y
+                                            << ", " << o.z << " enters the cloud's box";
                 ++rays;
               }
             }
           });
-      EXPECT_GT(missed_box, 4) << cloud << direction;
-      EXPECT_GT(listed, 4) << cloud << direction;
-      EXPECT_GT(rays, 100) << cloud << direction;
-      std::printf(
-          "cloud %d light %s: clear blocks %d (box missed) + %d (empty list), %d listed; "
-          "%d of %d rays enter the box\n",
-          cloud, direction, missed_box, empty, listed, entering, rays);
-      total_empty += empty;
-      total_entering += entering;
+      EXPECT_GT(clear, 100) << cloud << direction;
+      EXPECT_GT(listed, 50) << cloud << direction;
+      EXPECT_GT(rays, 2000) << cloud << direction;
     }
-  // Blocks with an empty list inside the cloud's box shadow occur: their rays enter the box.
-  EXPECT_GT(total_empty, 0);
-  EXPECT_GT(total_entering, 0);
 }
 
 // The shadow rays of a block towards a point or spot light converge on its position: their list
