@@ -78,45 +78,59 @@ Shaded shade_plain(const Scene& scene, const EmbreeScene& rt, const Vec3& d, con
     if (l.shadows) shine += highlights(m, n, d, at.to_light, arrived);
   }
   Vec3 color = mul(m.color, light);
-  if (shine.x != 0 || shine.y != 0 || shine.z != 0) color += shine;
+  // A matte finish's shine is zero (highlights()): no three comparisons to find that out.
+  if ((m.phong > 0 || m.specular > 0) && (shine.x != 0 || shine.y != 0 || shine.z != 0))
+    color += shine;
   return {color, n, m.color};
 }
-}  // namespace
 
-Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
-             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
-             double weight, const Interiors* interiors, const ShadowLists* shadow) {
-  const ObjectTracer* tracer = tracers.tracer(hit.object);
-  // A CSG's hit is on one of its operands: the face's material is that operand's.
-  const SceneObject& obj =
-      hit.face > 0 ? face_object(scene.objects[hit.object], hit.face) : scene.objects[hit.object];
-  // With shadow lists, the point as ShadowBeams took it (the same arithmetic, its very bits).
-  const Vec3 p = shadow ? shadow->p : ray.o + ray.d * hit.t;
-  // A primitive's or a CSG's normal came with its hit. A field's gradient walk also gives its
-  // components' values, which weigh their materials below (`terms`).
+// The normal shade() shades with at p: the hit object's (a primitive's or a CSG's came with its
+// hit; a field's gradient walk also gives its components' values in `terms`, where asked),
+// facing the viewer.
+[[gnu::always_inline]] inline Vec3 facing_normal(const ObjectTracer* tracer, const Ray& ray,
+                                                 const TraceHit& hit, const Vec3& p,
+                                                 double* terms) {
+  Vec3 n = !tracer           ? hit.normal
+           : hit.on_box_face ? tracer->box_face_normal(p)
+                             : tracer->normal(p, terms, hit.blobs);
+  if (dot(n, n) == 0) n = -ray.d;  // a flat spot of the field (length 0): face the viewer
+  // Seen from inside (clipped solids, transparent ones): shade the side we see.
+  if (dot(n, ray.d) > 0) n = -n;
+  return n;
+}
+
+// Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave the
+// surface by that footprint's radius (at least 1e-4 of the object's box), far more than the hit's
+// error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
+double footprint_at(const Ray& ray, const TraceHit& hit) {
+  return ray.cone0 + ray.cone * hit.t;
+}
+
+// shade() at a point that is not plain(): blended materials, mirrors, transparency, ambient
+// occlusion. Out of line, so that the plain points (most of a frame's) do not pay for its frame
+// and registers.
+[[gnu::noinline]] Shaded shade_general(const Scene& scene, const SceneTracers& tracers,
+                                       const EmbreeScene& rt, const Ray& ray, const TraceHit& hit,
+                                       RayWork& secondary, const std::atomic<bool>* cancel,
+                                       int level, double weight, const Interiors* interiors,
+                                       const ShadowLists* shadow, const ObjectTracer* tracer,
+                                       const SceneObject& obj, const Vec3& p) {
+  // A field's gradient walk also gives its components' values, which weigh their materials below
+  // (`terms`).
   const bool fused = obj.components && tracer && !hit.on_box_face;
   std::vector<double>* terms = nullptr;
   if (fused) {
     terms = &component_terms();
     terms->resize(size_t(obj.components->size()));
   }
-  Vec3 n = !tracer           ? hit.normal
-           : hit.on_box_face ? tracer->box_face_normal(p)
-                             : tracer->normal(p, fused ? terms->data() : nullptr, hit.blobs);
-  if (dot(n, n) == 0) n = -ray.d;  // a flat spot of the field (length 0): face the viewer
-  // Seen from inside (clipped solids, transparent ones): shade the side we see.
-  const bool from_inside = dot(n, ray.d) > 0;
-  if (from_inside) n = -n;
+  const Vec3 n = facing_normal(tracer, ray, hit, p, fused ? terms->data() : nullptr);
   // The interiors the ray travels in, which its shadow and mirror rays start in (POV-Ray's
   // interior list: only transmitted rays enter any, so in a scene without transparency it is
   // empty).
   static const Interiors kAir{};
   const Interiors& here = interiors ? *interiors : kAir;
 
-  // Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave
-  // the surface by that footprint's radius (at least 1e-4 of the object's box), far more than the
-  // hit's error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
-  const double cone0 = ray.cone0 + ray.cone * hit.t;
+  const double cone0 = footprint_at(ray, hit);
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
   // coordinates' magnitude (an infinite plane's box says nothing of the scale). A mesh's is
   // Embree's float test: its rays leave as a field's do.
@@ -128,10 +142,6 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // and ignore what lies nearer than `offset` along them (POV-Ray's way, docs/math.md §12.6): a
   // ray moved sideways by the footprint is moved again by every lens it passes through, so the
   // refracted views and the shadows seen through the glass would part from POV-Ray's by a pixel.
-  // A plain point (no transparency: its rays start at `lifted`) is done by the short way.
-  if (plain(scene, obj))
-    return shade_plain(scene, rt, ray.d, p, n, lifted, cone0, ray.cone, obj.material, secondary,
-                       cancel, shadow);
   const Vec3 origin = scene.transparent ? p : lifted;
   const double tnear = scene.transparent ? offset : 0;
 
@@ -359,6 +369,28 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
     color += mul(o.reflection, seen) * o.weight;
   }
   return {color, n, albedo};
+}
+}  // namespace
+
+Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
+             const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
+             double weight, const Interiors* interiors, const ShadowLists* shadow) {
+  const ObjectTracer* tracer = tracers.tracer(hit.object);
+  // A CSG's hit is on one of its operands: the face's material is that operand's.
+  const SceneObject& obj =
+      hit.face > 0 ? face_object(scene.objects[hit.object], hit.face) : scene.objects[hit.object];
+  // With shadow lists, the point as ShadowBeams took it (the same arithmetic, its very bits).
+  const Vec3 p = shadow ? shadow->p : ray.o + ray.d * hit.t;
+  if (!plain(scene, obj))
+    return shade_general(scene, tracers, rt, ray, hit, secondary, cancel, level, weight, interiors,
+                         shadow, tracer, obj, p);
+  // A plain point (no components, so no terms; no transparency, so its rays start at `lifted`)
+  // is done by the short way.
+  const Vec3 n = facing_normal(tracer, ray, hit, p, nullptr);
+  const double cone0 = footprint_at(ray, hit);
+  const Vec3 lifted = p + n * (shadow ? shadow->offset : ray_offset(obj, p, cone0));
+  return shade_plain(scene, rt, ray.d, p, n, lifted, cone0, ray.cone, obj.material, secondary,
+                     cancel, shadow);
 }
 
 }  // namespace softtrace

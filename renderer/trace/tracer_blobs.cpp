@@ -105,11 +105,15 @@ std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double is
 
 Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms, const BlobBeam* list) const {
   Vec3 grad;
-  int32_t* ids = blob_scratch(*blobs_).ids.data();
   if (!list) {
-    blobs_->gradient(program_, p, &grad, ids, terms);
+    blobs_->gradient(program_, p, &grad, blob_scratch(*blobs_).ids.data(), terms);
     return grad;
   }
+  // A list of up to kOnStack blobs (most camera lists) takes its ids on the stack: the
+  // thread-local scratch's lookup and size checks were a third of this function's instructions.
+  constexpr size_t kOnStack = 256;
+  int32_t on_stack[kOnStack];
+  int32_t* ids = list->entries.size() <= kOnStack ? on_stack : blob_scratch(*blobs_).ids.data();
   // A blob whose support holds p is on the list, and p's distance from the eye lies in its range
   // (tracer_blob_beam.cpp; the ranges' slack is far above p's rounding): the list's blobs whose
   // ranges hold it are all the point query could give, for a few comparisons each (the query's

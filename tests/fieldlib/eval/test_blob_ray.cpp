@@ -19,11 +19,12 @@ namespace softtrace::test {
 
 namespace {
 
-// n blobs in [-6, 6]^3: ellipsoids of radii 2..5 (every fourth a ball), every third rotated,
-// every other one Wyvill's potential, the translation on the soft object or on its distance.
-std::string blob_cloud(int n, unsigned seed) {
+// n blobs in [-spread, spread]^3: ellipsoids of radii 2..5 (every fourth a ball), every third
+// rotated, every other one Wyvill's potential, the translation on the soft object or on its
+// distance.
+std::string blob_cloud(int n, unsigned seed, double spread = 6) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> c(-6, 6), r(2, 5), a(-1, 1);
+  std::uniform_real_distribution<double> c(-spread, spread), r(2, 5), a(-1, 1);
   const auto num = [](double v) { return std::to_string(v); };
   std::string s = R"({"type":"soft_blend","children":[)";
   for (int i = 0; i < n; ++i) {
@@ -526,6 +527,43 @@ TEST(BlobSum, ABallsGradientIsItsFramesArithmeticToTheBit) {
     }
   }
   EXPECT_GT(near_boundary_inside, 100);  // the boundary points do test the prefilter
+}
+// gradient_among sorts the blobs that hold x by insertion up to 32 of them and by std::sort past
+// that: 60 blobs around the origin, where x lies in all of them or in a few, give the query's
+// f, ∇f and terms to the bit on both sides of the switch.
+TEST(BlobSum, GradientAmongManyHeldBlobsIsTheQuerysToTheBit) {
+  Cloud cloud(blob_cloud(60, 12, 1));
+  ASSERT_TRUE(cloud.blobs.has_value());
+  const BlobSum& blobs = *cloud.blobs;
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-5, 5);
+  std::vector<int32_t> all(blobs.size());
+  std::vector<double> terms_query(cloud.prog.terms), terms_among(cloud.prog.terms);
+  int many = 0, few = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 x{u(rng), u(rng), u(rng)};
+    Vec3 g_query, g_among;
+    const double f_query =
+        blobs.gradient(cloud.prog, x, &g_query, cloud.ids.data(), terms_query.data());
+    int held = 0;  // the blobs whose supports hold x
+    for (const BlobSum::Frame& frame : blobs.frames()) {
+      const Vec3 w = frame.q(x);
+      held += 1 - dot(w, w) > 0;
+    }
+    many += held > 32;
+    few += held > 1 && held <= 32;
+    for (int id = 0; id < blobs.size(); ++id) all[id] = id;
+    std::shuffle(all.begin(), all.end(), rng);
+    const double f_among =
+        blobs.gradient_among(cloud.prog, x, all.data(), blobs.size(), &g_among, terms_among.data());
+    ASSERT_EQ(f_among, f_query) << "at point " << i;
+    ASSERT_EQ(g_among.x, g_query.x) << "at point " << i;
+    ASSERT_EQ(g_among.y, g_query.y) << "at point " << i;
+    ASSERT_EQ(g_among.z, g_query.z) << "at point " << i;
+    ASSERT_EQ(terms_among, terms_query) << "at point " << i;
+  }
+  EXPECT_GT(many, 100);
+  EXPECT_GT(few, 100);
 }
 TEST(BlobSum, AffineBlobsGradientAmongAListIsTheQuerysToTheBit) {
   Cloud cloud(affine_cloud(40, 5));
