@@ -253,35 +253,6 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       return i < n_listed ? listed[i].near - base - t - seg.pad : kInf;
     };
     double frontier = frontier_at(next);
-    // The sweep's next balls to take, four at a time (BlobSum::ball_terms4): listed[ahead_at[i]]'s
-    // term in ahead[i] where bit i of ahead_has is set, ahead[taken, ahead_n) not yet taken. The
-    // blobs the loop below takes are the entries from `next` on that reach the way (near <= hi,
-    // far >= lo), in order, so the four are the next balls it takes; up to three of them may lie
-    // behind the hit, computed for nothing.
-    BlobSum::Term ahead[4];
-    int ahead_at[4];
-    unsigned ahead_has = 0;
-    int ahead_n = 0, taken = 0;
-    const auto take_ball = [&](int index, BlobSum::Term* out) -> int {
-      if (taken == ahead_n || ahead_at[taken] != index) {
-        int32_t ids[4];
-        ahead_n = 0;
-        for (int i = index; i < n_listed && ahead_n < 4; ++i) {
-          const BlobBeam::Entry& e = listed[i];
-          if (e.near > hi) break;
-          if (e.far < lo || blobs_->is_framed(e.id)) continue;
-          ahead_at[ahead_n] = i;
-          ids[ahead_n++] = e.id;
-        }
-        for (int i = ahead_n; i < 4; ++i) ids[i] = ids[0];
-        ahead_has = blobs_->ball_terms4(ids, seg.a, ray.d, dd, len, ahead);
-        taken = 0;
-      }
-      const int lane = taken++;
-      if (!(ahead_has >> lane & 1)) return 0;
-      *out = ahead[lane];
-      return 1;
-    };
     while (true) {
       if (head < n_events && events[head].u <= frontier) {
         const Event& ev = events[head++];
@@ -306,9 +277,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         continue;
       }
       if (e.far < lo) continue;
-      const int k = blobs_->is_framed(e.id)
-                        ? blobs_->terms_of_one(e.id, seg.a, ray.d, dd, len, terms + n)
-                        : take_ball(next - 1, terms + n);
+      const int k = blobs_->terms_of_one(e.id, seg.a, ray.d, dd, len, terms + n);
       // Their events into events[head, n_events), kept in order (of equal events, the one
       // taken first first).
       const auto insert = [&](const Event x) {
