@@ -34,6 +34,9 @@ unsigned BlobSum::ball_lanes_scalar(const Blob* const (&balls)[4], const Vec3& o
 }
 
 bool BlobSum::has_avx2() {
+  // The CPU's features are read by a constructor of libgcc's; a BlobSum made by another static
+  // constructor (fieldlib is a library) may run before it, so read them here too (idempotent).
+  __builtin_cpu_init();
   return __builtin_cpu_supports("avx2");
 }
 
