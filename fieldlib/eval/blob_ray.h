@@ -143,6 +143,26 @@ class BlobSum {
     double slack = 0;
     bool known = false;
   };
+  // Four balls' terms of the stretch at once: lane i is the term terms_of_one gives the ball
+  // ids[i] (each must be a ball: !is_framed), to the bit, in out[i] where bit i of the result is
+  // set. With AVX2 where the CPU has it (chosen once, in of()), else ball_term lane by lane.
+  unsigned ball_terms4(const int32_t (&ids)[4], const Vec3& o, const Vec3& d, double dd, double len,
+                       Term (&out)[4]) const {
+    const Blob* const lanes[4] = {&blobs_[ids[0]], &blobs_[ids[1]], &blobs_[ids[2]],
+                                  &blobs_[ids[3]]};
+    return lanes_(lanes, o, d, dd, len, out);
+  }
+  // ball_terms4's two kernels, which give the same bits (blob_ray_lanes.cpp: the same IEEE
+  // operations in the same order in each lane, no fused multiply-add): the scalar one, and AVX2's,
+  // only to be called where has_avx2().
+  using BallLanes = unsigned (*)(const Blob* const (&balls)[4], const Vec3& o, const Vec3& d,
+                                 double dd, double len, Term (&out)[4]);
+  static unsigned ball_lanes_scalar(const Blob* const (&balls)[4], const Vec3& o, const Vec3& d,
+                                    double dd, double len, Term (&out)[4]);
+  static unsigned ball_lanes_avx2(const Blob* const (&balls)[4], const Vec3& o, const Vec3& d,
+                                  double dd, double len, Term (&out)[4]);
+  static bool has_avx2();
+
   // Each child's frame and potential, and the sum's group in the program (its BVH indexes the
   // children's support boxes): what a caller needs to sum the blobs itself (the mesher's leaves).
   const std::vector<Frame>& frames() const { return frames_; }
@@ -179,7 +199,8 @@ class BlobSum {
   // gradient()'s sum over ids[0, found), in that order (increasing).
   double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
                       double* terms) const;
-  int capsules_ = 0;  // frames with an axis
+  BallLanes lanes_ = ball_lanes_scalar;  // ball_terms4's kernel for this CPU
+  int capsules_ = 0;                     // frames with an axis
   double typical_radius_ = 0;
 };
 

@@ -19,6 +19,7 @@
 #include <limits>
 #include <vector>
 
+#include "trace/blob_beam_lanes.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -50,8 +51,14 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec3 normals[4];
   side_normals(f, normals);
-  const double eye = max_abs(f.eye);
+  const BeamSides sides{f.eye, {normals[0], normals[1], normals[2], normals[3]}, max_abs(f.eye)};
+  const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
   const auto keep = [&](int32_t id) {
+    if (!blobs_->is_framed(id) && 1 / blobs[id].inv_r2 < kInf) {
+      double near, far;
+      if (ball_in_beam(blobs[id], sides, &near, &far)) out->entries.push_back({near, far, id});
+      return;
+    }
     Vec3 centre;
     const double r2 = blobs_->bounding_sphere(id, &centre);
     if (!(r2 < kInf)) {  // no sphere known: the blob stays on every ray's list
@@ -61,7 +68,7 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
     const double r = std::sqrt(r2);
     const Vec3 v = centre - f.eye;
     const double distance = length(v);
-    const double slack = 1e-9 * (distance + r + eye);
+    const double slack = 1e-9 * (distance + r + sides.eye_scale);
     for (const Vec3& n : normals)
       if (dot(v, n) < -r - slack) return;
     // A blob that is no ball: its support's own extent past each plane (its outline's support
@@ -72,14 +79,42 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
         if (blobs_->support_extent(id, n) - dot(n, f.eye) < -slack) return;
     out->entries.push_back({distance - r - slack, distance + r + slack, id});
   };
+  // The blobs ids[0, n) in order, four balls at a time where four come together (a cloud's are
+  // all balls; blob_beam_lanes.h gives ball_in_beam's bits in each lane): the same entries in the
+  // same order as keep() one at a time.
+  const BallsInBeam four_balls = balls_in_beam();
+  const auto keep_all = [&](const int32_t* ids, int n) {
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      const int32_t four[4] = {ids[i], ids[i + 1], ids[i + 2], ids[i + 3]};
+      if (blobs_->is_framed(four[0]) || blobs_->is_framed(four[1]) || blobs_->is_framed(four[2]) ||
+          blobs_->is_framed(four[3])) {
+        for (const int32_t id : four) keep(id);
+        continue;
+      }
+      const BlobSum::Blob* const lanes[4] = {&blobs[four[0]], &blobs[four[1]], &blobs[four[2]],
+                                             &blobs[four[3]]};
+      double near[4], far[4];
+      const unsigned in = four_balls(lanes, sides, near, far);
+      if (in >> 4) {  // a radius not finite: keep() takes such a ball as no sphere known
+        for (const int32_t id : four) keep(id);
+        continue;
+      }
+      for (int k = 0; k < 4; ++k)
+        if (in >> k & 1) out->entries.push_back({near[k], far[k], four[k]});
+    }
+    for (; i < n; ++i) keep(ids[i]);
+  };
+  thread_local std::vector<int32_t> ids;
+  if (static_cast<int>(ids.size()) < blobs_->size()) ids.resize(blobs_->size());
   if (parent && parent->from(f.eye)) {
-    for (const BlobBeam::Entry& e : parent->entries) keep(e.id);
+    const int n = static_cast<int>(parent->entries.size());
+    for (int i = 0; i < n; ++i) ids[i] = parent->entries[i].id;
+    keep_all(ids.data(), n);
   } else {
-    thread_local std::vector<int32_t> ids;
-    if (static_cast<int>(ids.size()) < blobs_->size()) ids.resize(blobs_->size());
     const int found =
-        blobs_->cone_items(program_, f.eye, normals, 1e-9 * (scale_ + eye), ids.data());
-    for (int i = 0; i < found; ++i) keep(ids[i]);
+        blobs_->cone_items(program_, f.eye, normals, 1e-9 * (scale_ + sides.eye_scale), ids.data());
+    keep_all(ids.data(), found);
     // A larger sum's camera rays sweep the list in this order (tracer_blobs.cpp); a quarter's,
     // kept from it in order with the same distances, stays so. A toward list (toward_beam, which
     // marks `out` before calling here) keeps the walk's order: its shadow rays take their terms
