@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -309,12 +308,6 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     }
     s.capsules_ += frame.inv_axis2 > 0;
     s.frames_.push_back(frame);
-    Columns columns = {};
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) columns.c[c][r] = frame.L.r[r][c];
-      columns.k[r] = frame.k[r];
-    }
-    s.columns_.push_back(columns);
     s.blobs_.push_back(blob);
     s.outlines_.push_back(outline);
     next = c.end;
@@ -343,7 +336,7 @@ namespace {
 struct Nearest {
   double alpha, mid, h2;
 };
-__attribute__((always_inline)) inline Nearest nearest(const Vec3& w, const Vec3& v) {
+Nearest nearest(const Vec3& w, const Vec3& v) {
   const double alpha = dot(v, v);
   const double mid = alpha > 0 ? -dot(w, v) / alpha : 0.0;
   const Vec3 w_mid = w + v * mid;
@@ -351,7 +344,8 @@ __attribute__((always_inline)) inline Nearest nearest(const Vec3& w, const Vec3&
 }
 
 // The term of d^2 = |w + u v|^2 (its nearest point `m`) over the part [lo, hi] of the stretch
-// [0, len], if its support r = 1 - d^2 > 0 meets that part.
+// [0, len], if its support r = 1 - d^2 > 0 meets that part. Inlined: a capsule calls it up to
+// three times a stretch, and the calls were 2 % of pov:chain's instructions at 640x480.
 __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, double hi, double len,
                                                 const BlobSum::Blob& b, BlobSum::Term* out) {
   const double alpha = m.alpha, mid = m.mid, h2 = m.h2;
@@ -373,10 +367,8 @@ __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, dou
 // d^2 = |w - axis + u v|^2 (the far end); between, the parts of w and v across the axis. The
 // parts meet where s(u) is 0 and 1, and d^2 is continuous with its derivative there (the parts
 // differ by |axis|^2 s^2), so rounding in those two points moves the sum by its square.
-__attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
-                                                        const BlobSum::Blob& b, const Vec3& w,
-                                                        const Vec3& v, double len,
-                                                        BlobSum::Term* out) {
+int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w, const Vec3& v,
+                  double len, BlobSum::Term* out) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
   const Vec3 w_across = w - f.axis * s0, v_across = v - f.axis * sv;
@@ -427,29 +419,11 @@ __attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
   return n;
 }
 
-// w = L o + k and v = L d from L's columns (BlobSum::Columns): lane r of each is row r's dot in
-// Mat3's order, ((L_r0 x + L_r1 y) + L_r2 z) (+ k_r), so the same bits as f.L * o + f.k. GCC's
-// vector types take two lanes an SSE2 instruction (the build has no -march).
-using Lanes = double __attribute__((vector_size(32)));
-__attribute__((always_inline)) inline void transform(const BlobSum::Columns& m, const Vec3& o,
-                                                     const Vec3& d, Vec3* w, Vec3* v) {
-  Lanes c0, c1, c2, k;
-  std::memcpy(&c0, m.c[0], sizeof c0);
-  std::memcpy(&c1, m.c[1], sizeof c1);
-  std::memcpy(&c2, m.c[2], sizeof c2);
-  std::memcpy(&k, m.k, sizeof k);
-  const Lanes wl = ((c0 * o.x + c1 * o.y) + c2 * o.z) + k;
-  const Lanes vl = (c0 * d.x + c1 * d.y) + c2 * d.z;
-  *w = {wl[0], wl[1], wl[2]};
-  *v = {vl[0], vl[1], vl[2]};
-}
-
 // Does the stretch o + u d, u in [0, len], pass within a listed blob's sphere (Blob::reach2)? d is
 // a unit vector to rounding, so -oc.d is the nearest point's u to a few ulps of |oc|, which moves
 // its distance by their square; the distance is rounded to a few ulps of |oc|^2 + len^2: 1e-12
 // of that is room.
-__attribute__((always_inline)) inline bool within_reach(const BlobSum::Blob& b, const Vec3& o,
-                                                        const Vec3& d, double len) {
+bool within_reach(const BlobSum::Blob& b, const Vec3& o, const Vec3& d, double len) {
   const Vec3 oc = o - b.centre;
   const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
   return dot(nearest, nearest) <= b.reach2 + 1e-12 * (dot(oc, oc) + len * len);
@@ -494,70 +468,33 @@ int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals
   return p.groups[group_].bvh.cone_items(apex, normals, pads, out);
 }
 
-// terms_of's loop (nearest, capsule_terms and within_reach always inlined into it: GCC does not
-// inline a function compiled for SSE2 into one for AVX2 by itself). Where the processor has AVX2 it
-// runs compiled for it (picked once, at load): transform's four lanes are one instruction each, not
-// two. The build has no -march, so the other copy is SSE2's. Neither may contract a product and a
-// sum into an FMA (no "fma" target), so both give the same bits.
-struct TermsLoop {
-  __attribute__((always_inline)) static inline int run(const BlobSum& s, const int32_t* ids,
-                                                       int found, const Vec3& o, const Vec3& d,
-                                                       double len, BlobSum::Term* out) {
-    const double dd = dot(d, d);
-    const bool reach_first = s.size() > BlobSum::kListed;
-    int n = 0;
-    for (int i = 0; i < found; ++i) {
-      const BlobSum::Blob& b = s.blobs_[ids[i]];
-      if (b.inv_r2 > 0) {
-        n += BlobSum::ball_term(b, o, d, dd, len, out + n);
-        continue;
-      }
-      // A stretch that passes clear of the blob's sphere has no term of it, for a third of what
-      // its frame's transform and nearest points cost. A larger sum's lists hold the blobs whose
-      // boxes meet a block's pyramid, and pov:chain's rays missed most of their capsules
-      // (callgrind at 640x480: -2.2 %); a few large blobs' lists are their outlines', and the
-      // rays meet most of them (blob1a, candle, sheared: +0.5 to +1.7 % with the test).
-      if (reach_first && !within_reach(b, o, d, len)) continue;
-      const BlobSum::Frame& f = s.frames_[ids[i]];
-      Vec3 w, v;
-      transform(s.columns_[ids[i]], o, d, &w, &v);
-      if (f.inv_axis2 > 0) {
-        n += capsule_terms(f, b, w, v, len, out + n);
-      } else {
-        constexpr double kInf = std::numeric_limits<double>::infinity();
-        n += term(nearest(w, v), -kInf, kInf, len, b, out + n);
-      }
-    }
-    return n;
-  }
-};
-
-namespace {
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx2"))) int terms_avx2(const BlobSum& s, const int32_t* ids, int found,
-                                               const Vec3& o, const Vec3& d, double len,
-                                               BlobSum::Term* out) {
-  return TermsLoop::run(s, ids, found, o, d, len, out);
-}
-bool has_avx2() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-}
-const bool kAvx2 = has_avx2();
-#endif
-}  // namespace
-
 int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
                       Term* out) const {
-#if defined(__x86_64__) && defined(__GNUC__)
-  if (kAvx2) return terms_avx2(*this, ids, found, o, d, len, out);
-#endif
-  return TermsLoop::run(*this, ids, found, o, d, len, out);
-}
-
-int BlobSum::terms_of_baseline(const int32_t* ids, int found, const Vec3& o, const Vec3& d,
-                               double len, Term* out) const {
-  return TermsLoop::run(*this, ids, found, o, d, len, out);
+  const double dd = dot(d, d);
+  const bool reach_first = size() > kListed;
+  int n = 0;
+  for (int i = 0; i < found; ++i) {
+    const Blob& b = blobs_[ids[i]];
+    if (b.inv_r2 > 0) {
+      n += ball_term(b, o, d, dd, len, out + n);
+      continue;
+    }
+    // A stretch that passes clear of the blob's sphere has no term of it, for a third of what
+    // its frame's transform and nearest points cost. A larger sum's lists hold the blobs whose
+    // boxes meet a block's pyramid, and pov:chain's rays missed most of their capsules
+    // (callgrind at 640x480: -2.2 %); a few large blobs' lists are their outlines', and the
+    // rays meet most of them (blob1a, candle, sheared: +0.5 to +1.7 % with the test).
+    if (reach_first && !within_reach(b, o, d, len)) continue;
+    const Frame& f = frames_[ids[i]];
+    const Vec3 w = f.L * o + f.k, v = f.L * d;
+    if (f.inv_axis2 > 0) {
+      n += capsule_terms(f, b, w, v, len, out + n);
+    } else {
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      n += term(nearest(w, v), -kInf, kInf, len, b, out + n);
+    }
+  }
+  return n;
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,

@@ -53,11 +53,6 @@ class BlobSum {
   // tree order: then the terms, and the sums made of them, are the same to the bit).
   int terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
                Term* out) const;
-  // terms_of compiled for the build's baseline instruction set only: terms_of runs a copy
-  // compiled for AVX2 where the processor has it (blob_ray.cpp, TermsLoop), which must give the
-  // same terms to the bit (the tests hold it to this).
-  int terms_of_baseline(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
-                        Term* out) const;
   // terms_of for the one blob `id`, with dd = dot(d, d): a ball's term inline, the same
   // arithmetic and so the same bits. A camera ray's sweep takes its list's blobs one at a time
   // (tracer_blobs.cpp); a call of terms_of per blob cost 4.3 % of blob1000's process at 640x480.
@@ -148,13 +143,6 @@ class BlobSum {
     double slack = 0;
     bool known = false;
   };
-  // A frame's L as columns and its k, in four lanes (the fourth 0), for terms_of's w = L o + k and
-  // v = L d: each lane takes the products and sums of Mat3's row dot in the same order, so the
-  // same bits, for two or four lanes an instruction where the row dots took one.
-  struct Columns {
-    alignas(32) double c[3][4];
-    alignas(32) double k[4];
-  };
   // Each child's frame and potential, and the sum's group in the program (its BVH indexes the
   // children's support boxes): what a caller needs to sum the blobs itself (the mesher's leaves).
   const std::vector<Frame>& frames() const { return frames_; }
@@ -165,8 +153,6 @@ class BlobSum {
   std::vector<Frame> frames_;      // by child of the sum
   std::vector<Blob> blobs_;        // the same
   std::vector<Outline> outlines_;  // the same (not known for a ball)
-  std::vector<Columns> columns_;   // the same
-  friend struct TermsLoop;         // terms_of's loop, compiled for two instruction sets
   int group_ = 0;
   // For kListed blobs or fewer, the BVH's items (the blobs with a bounded, non-empty support) in
   // the order its segment query reports them, and in increasing order as its point query does:

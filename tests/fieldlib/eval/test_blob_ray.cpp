@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <optional>
 #include <random>
 #include <string>
@@ -356,47 +355,6 @@ void expect_gradient_is_the_compiled_one(Cloud& cloud, double tol, int min_insid
   EXPECT_GT(inside, min_inside);
   EXPECT_LT(inside, 1900);
 }
-// terms_of's copy for AVX2, where this processor has it, gives the baseline copy's terms to the
-// bit (no FMA, each lane of L o + k in Mat3's order): balls, rotated ellipsoids, sheared ones of
-// negative strength, capsules along and across random rays, near and from 1e8 away.
-void expect_terms_are_the_baselines(const Cloud& cloud) {
-  ASSERT_TRUE(cloud.blobs.has_value());
-  const BlobSum& blobs = *cloud.blobs;
-  std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> u(-1, 1), x01(0, 1);
-  std::vector<int32_t> all(blobs.size());
-  for (int id = 0; id < blobs.size(); ++id) all[id] = id;
-  std::vector<BlobSum::Term> got(blobs.max_terms()), want(blobs.max_terms());
-  int terms = 0;
-  for (int ray = 0; ray < 500; ++ray) {
-    const bool far = ray % 3 == 2;
-    const Vec3 d = normalize({u(rng), u(rng), u(rng)});
-    const Vec3 o = Vec3{u(rng), u(rng), u(rng)} * 12 - (far ? d * 1e8 : Vec3{});
-    const double len = far ? 2e8 : 30 * x01(rng);
-    const int n = blobs.terms_of(all.data(), blobs.size(), o, d, len, got.data());
-    ASSERT_EQ(blobs.terms_of_baseline(all.data(), blobs.size(), o, d, len, want.data()), n);
-    for (int i = 0; i < n; ++i) {
-      const BlobSum::Term &a = got[i], &b = want[i];
-      for (const auto& [x, y] : {std::pair{a.enter, b.enter},
-                                 {a.exit, b.exit},
-                                 {a.mid, b.mid},
-                                 {a.alpha, b.alpha},
-                                 {a.h2, b.h2},
-                                 {a.c2, b.c2},
-                                 {a.c3, b.c3},
-                                 {a.peak, b.peak}})
-        ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << "ray " << ray << ", term " << i;
-    }
-    terms += n;
-  }
-  EXPECT_GT(terms, 500);
-}
-TEST(BlobSum, TermsAreTheBaselineCopysToTheBit) {
-  expect_terms_are_the_baselines(Cloud(3));
-  expect_terms_are_the_baselines(Cloud(affine_cloud(40, 4)));
-  expect_terms_are_the_baselines(Cloud(capsule_cloud(40, 6)));
-}
-
 TEST(BlobSum, GradientIsTheCompiledOne) {
   Cloud cloud(3);
   expect_gradient_is_the_compiled_one(cloud, 1e-14);
