@@ -345,9 +345,10 @@ Nearest nearest(const Vec3& w, const Vec3& v) {
 }
 
 // The term of d^2 = |w + u v|^2 (its nearest point `m`) over the part [lo, hi] of the stretch
-// [0, len], if its support r = 1 - d^2 > 0 meets that part.
-bool term(const Nearest& m, double lo, double hi, double len, const BlobSum::Blob& b,
-          BlobSum::Term* out) {
+// [0, len], if its support r = 1 - d^2 > 0 meets that part. Inlined: a capsule calls it up to
+// three times a stretch, and the calls were 2 % of pov:chain's instructions at 640x480.
+__attribute__((always_inline)) inline bool term(const Nearest& m, double lo, double hi, double len,
+                                                const BlobSum::Blob& b, BlobSum::Term* out) {
   const double alpha = m.alpha, mid = m.mid, h2 = m.h2;
   if (!(h2 > 0)) return false;
   const double half = alpha > 0 ? std::sqrt(h2 / alpha) : std::numeric_limits<double>::infinity();
