@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -94,25 +95,33 @@ PixelBounds window_of(const RenderArgs& a, int width, int height) {
 }
 
 // Starts the frame's worker threads under the cap `threads` (0: none) on a thread of its own,
-// beside what the caller does until join() (the scene's load): TBB's set-up and its cap took 0.3
-// ms before the frame and the worker's start as much again, with the other core idle. The cap is
-// kept until exit (ThreadLimit::keep_until_exit); a smaller one may be kept after it.
+// beside what the caller does until capped() (the scene's load): TBB's set-up and its cap took
+// 0.3 ms before the frame, with the other core idle. The caller waits for the cap only; the
+// worker's start goes on beside its next steps. The cap is kept until exit
+// (ThreadLimit::keep_until_exit); a smaller one may be kept after it.
 class ThreadsStarting {
  public:
   explicit ThreadsStarting(int threads)
-      : starter_([threads] {
-          limit_threads(threads).keep_until_exit();
+      : capped_(cap_set_.get_future()), starter_([this, threads] {
+          try {
+            limit_threads(threads).keep_until_exit();
+          } catch (...) {
+            cap_set_.set_exception(std::current_exception());  // capped() throws it
+            return;
+          }
+          cap_set_.set_value();
           start_threads();
         }) {}
   ThreadsStarting(const ThreadsStarting&) = delete;
   ThreadsStarting& operator=(const ThreadsStarting&) = delete;
-  ~ThreadsStarting() { join(); }
-  void join() {
-    if (starter_.joinable()) starter_.join();
-  }
+  ~ThreadsStarting() { starter_.join(); }
+  // Returns once the cap holds: TBB's parallel loops from here on run under it. Once only.
+  void capped() { capped_.get(); }
 
  private:
-  std::thread starter_;
+  std::promise<void> cap_set_;
+  std::future<void> capped_;
+  std::thread starter_;  // last: it starts once the others are made
 };
 
 // Ends the process once every output is committed, without the destructors of the scene, the
@@ -175,7 +184,7 @@ int run_render(const RenderArgs& a) {
 
     // No more threads than the frame has tiles (the same bits for any count, frame.h): a smaller
     // cap beside --threads' (the process exits after the frame).
-    threads.join();
+    threads.capped();
     const int tasks = frame_tasks(window.x0, window.y0, window.width(), window.height());
     const int wanted = a.threads ? a.threads : default_threads();
     if (wanted > tasks) limit_threads(tasks).keep_until_exit();
