@@ -5,6 +5,8 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include <mutex>
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
 #endif
@@ -15,6 +17,7 @@ struct ThreadLimit::Control {
   explicit Control(int threads)
       : control(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads)) {}
   tbb::global_control control;
+  Control* kept_before = nullptr;  // the cap kept until exit before this one (keep_until_exit)
 };
 
 ThreadLimit::ThreadLimit() = default;
@@ -23,11 +26,15 @@ ThreadLimit& ThreadLimit::operator=(ThreadLimit&&) noexcept = default;
 ThreadLimit::~ThreadLimit() = default;
 
 void ThreadLimit::keep_until_exit() {
-  // Held by a plain pointer, never destroyed (a static unique_ptr's destructor would release it at
-  // exit, starting the worker all the same); reachable, so no leak checker counts it.
+  // Held by plain pointers, never destroyed (a static unique_ptr's destructor would release it at
+  // exit, starting the worker all the same); reachable, one from the other, so no leak checker
+  // counts them. Several caps may be kept: TBB takes the smallest.
   static Control* kept = nullptr;
-  if (control_) kept = control_.release();
-  (void)kept;
+  static std::mutex guard;
+  if (!control_) return;
+  const std::lock_guard<std::mutex> lock(guard);
+  control_->kept_before = kept;
+  kept = control_.release();
 }
 
 ThreadLimit limit_threads(int threads) {

@@ -20,7 +20,8 @@ class ThreadLimit {
 
   // Keeps the cap until the process ends, for a command that exits after its work: releasing
   // TBB's global_control raises the scheduler's limit again, and under a cap of one thread that
-  // started a worker thread just before the exit.
+  // started a worker thread just before the exit. Caps kept from several threads all hold; the
+  // smallest is TBB's limit.
   void keep_until_exit();
 
  private:
