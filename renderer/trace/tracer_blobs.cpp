@@ -174,10 +174,15 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
 
   // A camera ray of a block with a list (tracer_blob_beam.cpp), or a shadow ray of a block with
   // one (tracer_shadow_beam.cpp), takes its stretches' blobs from it.
+  double base = 0;  // the ray's start on the list's axis
+  // Whether the ray takes its blobs from the list: an empty list holds no blob for it (its
+  // entries' data() may then be null or not, as the vector's past left it, so it decides nothing;
+  // taken for "no list", it cost a thread's first tiles walks that later ones skipped, and their
+  // steps differed with the thread count).
+  const bool held = beam && beam->holds(ray, &base, t1);
   const BlobBeam::Entry* listed = nullptr;
   int n_listed = 0;
-  double base = 0;  // the ray's start on the list's axis
-  if (beam && beam->holds(ray, &base, t1)) {
+  if (held) {
     listed = beam->entries.data();
     n_listed = static_cast<int>(beam->entries.size());
     // A shadow ray of a block whose blockers certify it ends before any stretch is read.
@@ -204,7 +209,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // stretch's over the whole way, rounded otherwise than a list-less ray's stretches: the root
   // agrees with that ray's within the refinement's tolerance, not to the bit. The lists are the
   // blocks' own, the same for any thread count, so the picture's bits are too.
-  const bool camera_list = listed && beam->camera() && query == Query::Nearest;
+  const bool camera_list = held && beam->camera() && query == Query::Nearest;
   const bool sweep = camera_list && blobs_->size() > BlobSum::kListed &&
                      (n_listed > kWholeList || blobs_->max_terms() == blobs_->size());
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list;
@@ -225,7 +230,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     int n = 0;
     if (sweep) {
       // Taken in the loop below.
-    } else if (listed) {
+    } else if (held) {
       // The list's blobs whose ranges on its axis meet the stretch's, in the list's order.
       int32_t* ids = scratch.ids.data();
       int found = 0;
