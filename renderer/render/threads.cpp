@@ -86,8 +86,12 @@ void run_on_threads(int threads, const std::function<void()>& work) {
 
 void parallel_ranges(size_t count, size_t grain,
                      const std::function<void(size_t begin, size_t end)>& body) {
+  const unsigned mode = FloatingPointMode::current();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain),
-                    [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      const FloatingPointMode callers(mode);
+                      body(r.begin(), r.end());
+                    });
 }
 
 void parallel_each(size_t count, const std::function<void(size_t)>& body) {

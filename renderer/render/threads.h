@@ -73,8 +73,10 @@ void run_on_threads(int threads, const std::function<void()>& work);
 
 // Calls body(begin, end) over [0, count) split into ranges of at least about `grain` (TBB's
 // blocked_range and automatic partitioning), in parallel on the worker threads; each range runs
-// whole on one thread, so a thread_local workspace in `body` is its own for the range. Returns
-// when every range is done; the first exception of `body` reaches the caller.
+// whole on one thread, so a thread_local workspace in `body` is its own for the range, and in the
+// caller's floating-point mode, as parallel_each's tasks (a batch of the Python module's points
+// then gives what the caller's own loop would, whoever started TBB's arena). Returns when every
+// range is done; the first exception of `body` reaches the caller.
 void parallel_ranges(size_t count, size_t grain,
                      const std::function<void(size_t begin, size_t end)>& body);
 
