@@ -155,7 +155,8 @@ class FrameTracer {
         beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, area, pass, work);
       return;
     }
-    const BeamClear certified{fr.forward, clear, blobs};
+    BeamClear certified{fr.forward, clear, blobs};
+    certified.unmet = rt_.embree.unmet(certified);
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
@@ -183,7 +184,8 @@ class FrameTracer {
       lens_sample(x, y, s, spp, lx, ly);
       TracedSample& t = spp == 1 ? one : work.samples.emplace_back();
       t.ray = camera_.generate(x + dx, y + dy, lx, ly);
-      t.hit = rt_.embree.intersect(t.ray, 0, std::numeric_limits<double>::infinity(), certified);
+      if (!(certified && certified->unmet && rt_.embree.intersect_unmet(t.ray, *certified, t.hit)))
+        t.hit = rt_.embree.intersect(t.ray, 0, std::numeric_limits<double>::infinity(), certified);
       work.primary.add(t.hit.work);
       met = met || t.hit.hit;
     }
