@@ -155,7 +155,8 @@ class FrameTracer {
         beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, area, pass, work);
       return;
     }
-    const BeamClear certified{fr.forward, clear, blobs};
+    BeamClear certified{fr.forward, clear, blobs};
+    certified.unmet = rt_.embree.unmet(certified);
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
@@ -167,22 +168,40 @@ class FrameTracer {
     if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
     const int spp = pass == Pass::First ? spp_ : refined_spp_;
     const int first = static_cast<int>(work.samples.size());
+    // One sample is traced here and kept only if it has a hit: most of a sparse frame's pixels
+    // are its background's, and their copy into and out of work.samples cost 30 instructions.
+    TracedSample one;
+    bool met = false;  // whether any sample has a hit
     for (int s = 0; s < spp; ++s) {
       // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
-      if (cancelled()) return;
+      if (cancelled()) {
+        work.samples.resize(size_t(first));
+        return;
+      }
       double dx, dy;
       sample_offset(s, dx, dy);
       double lx, ly;
       lens_sample(x, y, s, spp, lx, ly);
-      const Ray ray = camera_.generate(x + dx, y + dy, lx, ly);
-      const TraceHit hit =
-          rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
-      work.primary.add(hit.work);
-      work.samples.push_back({ray, hit});
+      TracedSample& t = spp == 1 ? one : work.samples.emplace_back();
+      t.ray = camera_.generate(x + dx, y + dy, lx, ly);
+      if (!(certified && certified->unmet && rt_.embree.intersect_unmet(t.ray, *certified, t.hit)))
+        t.hit = rt_.embree.intersect(t.ray, 0, std::numeric_limits<double>::infinity(), certified);
+      work.primary.add(t.hit.work);
+      met = met || t.hit.hit;
     }
     const int bx = (x % kTile) / kBeam, by = (y % kTile) / kBeam;
     const int quarter = (by >> 1) * 2 + (bx >> 1), within = (by & 1) * 2 + (bx & 1);
-    work.pixels.push_back({x, y, first, spp, quarter * 4 + within, 0});
+    const TracedPixel tp{x, y, first, spp, quarter * 4 + within, 0};
+    if (met) {
+      if (spp == 1) work.samples.push_back(one);
+      work.pixels.push_back(tp);
+      return;
+    }
+    // The background's pixel (94 % of a sparse cloud's frame) is written now, by the code that
+    // shades it: its samples have no hit, so no shadow ray and no shadow list (a block's lists
+    // are built from its hits alone), and the tile's shading skips it.
+    miss_pixel(tp, spp == 1 ? &one : work.samples.data() + first, pass);
+    work.samples.resize(size_t(first));
   }
 
   // Shades the tile's traced pixels, a 4-pixel block at a time, with the shadow lists of the
@@ -285,6 +304,40 @@ class FrameTracer {
         mean_aovs(i, means);  // Z and steps stay the first pass's pixel-centre ray's
         return;
       }
+    }
+  }
+
+  // pixel() for a pixel none of whose samples (`sample[0, tp.count)`) has a hit, without samples()'
+  // general loop: the same values to the bit. The colour is the sky's where the scene has one (each
+  // sample's, summed in order), else none (the film's background is added when it is written); the
+  // normal and albedo means are 0; Z is +inf and steps the centre ray's own.
+  void miss_pixel(const TracedPixel& tp, const TracedSample* sample, Pass pass) const {
+    const int spp = tp.count;
+    Vec3 sum{0, 0, 0};
+    int covered = 0;
+    if (scene_.sky)
+      for (int s = 0; s < spp; ++s, ++covered) sum += scene_.sky->seen(sample[s].ray.d);
+    float rgba[4];
+    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k] / spp);
+    rgba[3] = static_cast<float>(covered) / spp;
+    const int x = tp.x, y = tp.y;
+    const bool in_film = window_.contains(x, y);
+    const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
+    const SampleMeans none;  // samples()' 0 / spp
+    if (pass == Pass::Refine) {
+      std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+      mean_aovs(i, none);
+      return;
+    }
+    if (in_film) {
+      std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
+      mean_aovs(i, none);
+      centre_aovs(i, sample[0].hit, RayWork{});
+    }
+    if (adaptive_) {
+      for (int k = 0; k < 3; ++k)
+        rgba[k] += static_cast<float>(scene_.background[k]) * (1 - rgba[3]);
+      adaptive_->set_first(x, y, rgba);
     }
   }
 

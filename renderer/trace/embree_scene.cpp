@@ -414,6 +414,26 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
   return h;
 }
 
+bool EmbreeScene::unmet(const BeamClear& beam) const {
+  if (!impl_->lone_field || !beam.blobs) return false;
+  const ObjectTracer* tracer = impl_->data[0].tracer;
+  const BlobBeam& list = beam.blobs[0];
+  return tracer && tracer->blob_sum() && list.valid && list.camera() && list.entries.empty();
+}
+
+bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHit& hit) const {
+  // field_hit's clear_to and list, as intersect() takes them.
+  const double cos_forward = dot(ray.d, beam.forward);
+  if (!(cos_forward > 0) || !beam.blobs[0].from(ray.o)) return false;
+  TraceCounters work;
+  const MarchResult m = impl_->data[0].tracer->first_hit_unlisted(
+      ray, 0, std::numeric_limits<double>::infinity(), work, beam.depth[0] / cos_forward);
+  if (m.hit) return false;  // the ray limit (give_up): intersect() answers and counts
+  hit = TraceHit{};
+  hit.work = work;
+  return true;
+}
+
 bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                            const BlobBeam* blobs) const {
   if (impl_->direct_field >= 0) {  // any object's hit answers: the order changes no answer

@@ -200,6 +200,12 @@ class ObjectTracer {
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                         Query query = Query::Nearest, double clear_to = 0,
                         const BlobBeam* blob_beam = nullptr) const;
+  // first_hit(ray, tnear, tfar, work, Query::Nearest, clear_to, list) for a blob sum's camera
+  // list with no entries (blob_beam: no blob's support meets its block's rays) that holds the
+  // ray (its eye is the ray's origin, to the bit), without the list or the sum: a miss, or the
+  // give-up at the ray limit, with the very counters first_hit counts (the steps AOV).
+  MarchResult first_hit_unlisted(const Ray& ray, double tnear, double tfar, TraceCounters& work,
+                                 double clear_to) const;
 
   // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
   // certified by the interval of g over boxes around slices of the frustum: the work of the
@@ -326,6 +332,9 @@ class ObjectTracer {
   // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
                               Query query, const BlobBeam* beam) const;
+  // first_hit_blobs' stretches over [t0, t1] for a camera ray whose list holds no blob: the
+  // same stretches, each counted, none read.
+  MarchResult unlisted_stretches(double t0, double t1, TraceCounters& work) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
   // With `list` (see normal), from its blobs whose ranges of distances hold p's from the eye.
   Vec3 blob_gradient(const Vec3& p, double* terms, const BlobBeam* list) const;

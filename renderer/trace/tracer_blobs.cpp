@@ -132,6 +132,36 @@ Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms, const BlobBeam* l
   return grad;
 }
 
+MarchResult ObjectTracer::unlisted_stretches(double t0, double t1, TraceCounters& work) const {
+  // first_hit_blobs' loop below with no blob on the list: a camera list's ray takes the whole
+  // way as one stretch, counted, and, where rounding leaves t short of t1, another twice as
+  // long (fewer than kFewTerms terms) -- the steps AOV counts each.
+  static_assert(kFewTerms > 0);
+  double t = t0, s = t1 - t0;
+  while (t < t1) {
+    if (work.evaluations() >= kMaxSteps) {
+      ++work.give_ups;
+      return {true, t, false, true};
+    }
+    const double len = std::min(t + s, t1) - t;
+    ++work.box_evals;
+    t += len;
+    s = 2 * len;
+  }
+  return {};
+}
+
+MarchResult ObjectTracer::first_hit_unlisted(const Ray& ray, double tnear, double tfar,
+                                             TraceCounters& work, double clear_to) const {
+  // first_hit's way to first_hit_blobs, which the list's blobs (none) would take on from.
+  double t0 = tnear, t1 = tfar;
+  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
+  work.entered_box = true;
+  t0 = std::max(t0, clear_to);
+  if (t0 > t1) return {};
+  return unlisted_stretches(t0, t1, work);
+}
+
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
                                           TraceCounters& work, Query query,
                                           const BlobBeam* beam) const {
@@ -212,6 +242,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   const bool camera_list = held && beam->camera() && query == Query::Nearest;
   const bool sweep = camera_list && blobs_->size() > BlobSum::kListed &&
                      (n_listed > kWholeList || blobs_->max_terms() == blobs_->size());
+  if (camera_list && n_listed == 0) return unlisted_stretches(t0, t1, work);
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double dd = dot(ray.d, ray.d);  // terms_of's, for the sweep's blobs one at a time

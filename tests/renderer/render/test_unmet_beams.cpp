@@ -1,0 +1,134 @@
+// Unmet beams: a 4-pixel beam whose list of a lone blob sum holds no blob (EmbreeScene::unmet)
+// answers its camera rays without the sum's search (EmbreeScene::intersect_unmet), and a pixel
+// whose samples all miss is written as it is traced (frame.cpp's miss_pixel). Over a sparse cloud
+// (most pixels background, as tools/blob_scene.py --meets 1 writes it), every ray of every unmet
+// beam must get intersect()'s very answer: no hit, and the same counters (the steps AOV); and the
+// frame's hit mask must be that of each pixel-centre ray traced alone, so neither shortcut may
+// drop a pixel with a hit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "scene/scene.h"
+
+namespace softtrace {
+namespace {
+
+constexpr double kUnmetFar = std::numeric_limits<double>::infinity();
+
+// `n` murakami balls of radius 0.7 at random in a 40-unit cube, seen from outside.
+std::string unmet_sparse_cloud(int n) {
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> u(-20, 20);
+  std::string children;
+  for (int i = 0; i < n; ++i) {
+    children += std::string(i ? "," : "") +
+                R"({"type": "soft_object", "potential": {"type": "murakami"},
+        "distance": {"type": "lp_metric", "radii": [0.7, 0.7, 0.7], "n": 2}, "translate": [)" +
+                std::to_string(u(rng)) + "," + std::to_string(u(rng)) + "," +
+                std::to_string(u(rng)) + "]}";
+  }
+  return R"({"camera": {"eye": [70, -95, 60], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 30},
+    "image": {"spp": 1},
+    "lights": [{"type": "directional", "direction": [1, 0.35, -1], "shadows": true}],
+    "objects": [{"iso": 0.5, "field": {"type": "soft_blend", "children": [)" +
+         children + "]}}]}";
+}
+
+bool same_unmet_counters(const TraceCounters& a, const TraceCounters& b) {
+  return a.point_evals == b.point_evals && a.box_evals == b.box_evals &&
+         a.refine_iterations == b.refine_iterations && a.give_ups == b.give_ups &&
+         a.undecided == b.undecided && a.entered_box == b.entered_box;
+}
+
+TEST(UnmetBeams, EveryRayGetsIntersectsAnswer) {
+  const Scene scene = parse_scene(unmet_sparse_cloud(400), "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  ASSERT_FALSE(rt.embree.built());  // the direct path of a lone field
+  const ObjectTracer* tracer = rt.tracers.tracer(0);
+  ASSERT_TRUE(tracer && tracer->blob_sum());
+  constexpr int kW = 128, kH = 96;
+  const ViewCamera camera(scene.camera, kW, kH);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  int rays = 0, unmet_rays = 0, counted = 0, hits = 0;
+  for (int ty = 0; ty < kH; ty += 16)
+    for (int tx = 0; tx < kW; tx += 16) {
+      // The frame's nesting (frame.cpp's beam()): the tile, a quarter, a quarter of that.
+      double depth[3];
+      BlobBeam lists[3];
+      for (int q = 0; q < 4; ++q)
+        for (int k = 0; k < 4; ++k) {
+          const int x8 = tx + (q & 1) * 8, y8 = ty + (q >> 1) * 8;
+          const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
+          const int x[3] = {tx, x8, x4}, y[3] = {ty, y8, y4};
+          for (int level = 0; level < 3; ++level) {
+            const int size = 16 >> level;
+            const Frustum fr = camera.frustum(x[level], y[level], x[level] + size, y[level] + size);
+            TraceCounters work;
+            depth[level] = tracer->clear_depth(fr, level ? depth[level - 1] : 0, work);
+            tracer->blob_beam(fr, level ? &lists[level - 1] : nullptr, &lists[level]);
+          }
+          BeamClear beam{camera.frustum(x4, y4, x4 + 4, y4 + 4).forward, &depth[2], &lists[2]};
+          const bool unmet = rt.embree.unmet(beam);
+          for (int py = y4; py < y4 + 4; ++py)
+            for (int px = x4; px < x4 + 4; ++px)
+              for (int s = 0; s < 2; ++s) {  // the pixel's centre and a point inside it
+                const Ray ray = camera.generate(px + (s ? u(rng) : 0.5), py + (s ? u(rng) : 0.5));
+                const TraceHit full = rt.embree.intersect(ray, 0, kUnmetFar, &beam);
+                ++rays;
+                hits += full.hit;
+                if (!unmet) continue;
+                TraceHit hit;
+                hit.hit = true;  // to be overwritten
+                ASSERT_TRUE(rt.embree.intersect_unmet(ray, beam, hit))
+                    << "pixel " << px << ", " << py;
+                ++unmet_rays;
+                ASSERT_FALSE(full.hit) << "pixel (" << px << ", " << py
+                                       << "): an unmet beam's ray has a hit at " << full.t;
+                ASSERT_FALSE(hit.hit);
+                ASSERT_EQ(hit.object, -1);
+                ASSERT_EQ(hit.blobs, nullptr);
+                ASSERT_TRUE(same_unmet_counters(hit.work, full.work))
+                    << "pixel (" << px << ", " << py << "): box evaluations " << hit.work.box_evals
+                    << " against intersect's " << full.work.box_evals;
+                counted += full.work.box_evals > 0;
+              }
+        }
+    }
+  // Not vacuous: most rays are the background's and most of those are answered without the sum,
+  // some of them after passing through its box (their steps counted); the cloud is seen.
+  EXPECT_GT(unmet_rays, rays / 3);
+  EXPECT_GT(counted, unmet_rays / 10);
+  EXPECT_GT(hits, 20);
+}
+
+// The frame (both shortcuts) against each pixel-centre ray traced alone: the same hit mask.
+TEST(UnmetBeams, FrameHitMaskIsEachRaysOwn) {
+  Scene scene = parse_scene(unmet_sparse_cloud(400), "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  constexpr int kW = 128, kH = 96;
+  const ViewCamera camera(scene.camera, kW, kH);
+  Film film(kW, kH);
+  ASSERT_TRUE(render_frame(scene, rt, RenderOptions{}, film, nullptr, nullptr));
+  int hits = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const TraceHit alone = rt.embree.intersect(camera.generate(x + 0.5, y + 0.5), 0, kUnmetFar);
+      const float depth = film.depth[size_t(y) * kW + x];
+      ASSERT_EQ(alone.hit, depth < kUnmetFar) << "pixel (" << x << ", " << y << ")";
+      ASSERT_EQ(film.rgba[(size_t(y) * kW + x) * 4 + 3], alone.hit ? 1.0f : 0.0f);
+      hits += alone.hit;
+    }
+  EXPECT_GT(hits, 20);
+  EXPECT_LT(hits, kW * kH / 2);
+}
+
+}  // namespace
+}  // namespace softtrace
