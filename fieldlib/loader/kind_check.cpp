@@ -132,13 +132,21 @@ void check_value(const Params& p, const ParamSpec& spec, const json& v) {
 void check_params(const KindInfo& kind, const Params& p, bool placement) {
   static const char* const kPlacement[] = {"translate", "rotate", "scale", "matrix"};
   const json& j = p.raw();
+  // Each spec's value, found by the pass over the keys that checks them: a search of the
+  // object's map per spec compared every spec's name with the keys again.
+  constexpr size_t kMaxSpecs = 64;
+  const size_t specs = kind.params.size();
+  const bool noted = specs <= kMaxSpecs;
+  const json* value[kMaxSpecs] = {};
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
-    // The first letters decide most comparisons without a strlen.
-    const auto is = [&key](const char* name) { return key[0] == name[0] && key == name; };
-    bool ok = is("type");
-    for (const char* k : kPlacement) ok = ok || (placement && is(k));
-    for (const auto& spec : kind.params) ok = ok || is(spec.name);
+    bool ok = same_name(key, "type");
+    for (const char* k : kPlacement) ok = ok || (placement && same_name(key, k));
+    for (size_t i = 0; i < specs; ++i)
+      if (same_name(key, kind.params[i].name)) {
+        ok = true;
+        if (noted) value[i] = &*it;
+      }
     if (ok) continue;
     // The list is built only for the message: every node of a scene passes here.
     std::vector<std::string> known = {"type"};
@@ -146,10 +154,15 @@ void check_params(const KindInfo& kind, const Params& p, bool placement) {
     for (const auto& spec : kind.params) known.push_back(spec.name);
     p.fail(json_pointer_escape(key), unknown_key_message(key, known));
   }
-  for (const auto& spec : kind.params) {
-    const auto at = j.find(spec.name);
-    if (at != j.end())
-      check_value(p, spec, *at);
+  for (size_t i = 0; i < specs; ++i) {
+    const ParamSpec& spec = kind.params[i];
+    const json* v = noted ? value[i] : nullptr;
+    if (!noted) {
+      const auto at = j.find(spec.name);
+      v = at != j.end() ? &*at : nullptr;
+    }
+    if (v)
+      check_value(p, spec, *v);
     else if (spec.need == Need::Required)
       p.fail(spec.name, "missing required parameter '" + std::string(spec.name) + "'");
   }

@@ -326,15 +326,14 @@ const std::vector<KindInfo>& kinds() {
 }
 
 const KindInfo* find_kind(const std::string& name, KindGroup group) {
-  // The first letters decide most comparisons without a strlen (every node's type is looked up).
-  for (const auto& k : kinds())
-    if (k.group == group && name[0] == k.name[0] && name == k.name) return &k;
+  for (const auto& k : kinds())  // every node's type is looked up
+    if (k.group == group && same_name(name, k.name)) return &k;
   return nullptr;
 }
 
 const ParamSpec* find_param(const KindInfo& kind, const std::string& name) {
   for (const auto& p : kind.params)
-    if (name[0] == p.name[0] && name == p.name) return &p;
+    if (same_name(name, p.name)) return &p;
   return nullptr;
 }
 

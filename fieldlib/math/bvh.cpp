@@ -16,6 +16,7 @@ namespace {
 // item at a time off a badly graded set, and the walk's stack is sized for depth 32 + log2 n.
 constexpr int kSahDepth = 32;
 constexpr int kBins = 16;
+static_assert(kBins <= 32, "sah_split keeps the occupied bins as bits of a uint32_t");
 constexpr int kStack = 256;  // at most (kWidth - 1) per level of the collapsed tree, plus one
 
 // The binary tree the build makes first, one item per leaf; a node's subtree holds items
@@ -89,6 +90,7 @@ class BinaryBuilder {
       if (!(w > 0) || !std::isfinite(w)) continue;
       Box bins[kBins];
       int32_t n[kBins] = {};
+      uint32_t occupied = 0;  // bit k: bin k has items
       uint8_t* key = keys_[axis].data();
       for (int32_t i = 0; i < count; ++i) {
         const int k = bin_of(centres, axis, centres_[first + i][axis]);
@@ -96,33 +98,30 @@ class BinaryBuilder {
         bins[k].extend(boxes_[first + i].lo);  // united(), whose empty() test no item needs
         bins[k].extend(boxes_[first + i].hi);
         ++n[k];
+        occupied |= 1u << k;
       }
       // Only the splits between the first and the last occupied bins leave items on both sides,
       // and an empty bin's split costs what the split before it did (the same boxes either
-      // side): the sweeps visit the occupied bins alone, which is most of a small range's work.
-      int lowest = 0, highest = kBins - 1;
-      while (n[lowest] == 0) ++lowest;
-      while (n[highest] == 0) --highest;
-      double right_area[kBins];
+      // side): the sweeps visit the occupied bins alone, listed in order from the mask (most of
+      // a small range's bins are empty, and stepping over them was most of its work).
+      int bin[kBins], m = 0;
+      for (uint32_t rest = occupied; rest != 0; rest &= rest - 1) bin[m++] = __builtin_ctz(rest);
+      double right_area[kBins];  // of the occupied bins bin[j..m)
       Box acc;
-      for (int k = highest; k > lowest; --k)
-        if (n[k] > 0) {
-          acc = acc.united(bins[k]);
-          right_area[k] = half_area(acc);
-        }
+      for (int j = m - 1; j > 0; --j) {
+        acc = acc.united(bins[bin[j]]);
+        right_area[j] = half_area(acc);
+      }
       acc = Box();
       int32_t left = 0;
-      for (int k = lowest; k < highest; ++k) {
-        if (n[k] == 0) continue;
-        acc = acc.united(bins[k]);
-        left += n[k];
-        int next = k + 1;  // the next occupied bin: right_area is kept for those alone
-        while (n[next] == 0) ++next;
-        const double cost = half_area(acc) * left + right_area[next] * (count - left);
+      for (int j = 0; j + 1 < m; ++j) {
+        acc = acc.united(bins[bin[j]]);
+        left += n[bin[j]];
+        const double cost = half_area(acc) * left + right_area[j + 1] * (count - left);
         if (cost < best) {
           best = cost;
           best_axis = axis;
-          best_bin = k;
+          best_bin = bin[j];
         }
       }
     }

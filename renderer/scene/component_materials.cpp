@@ -20,10 +20,13 @@ struct Found {
   int material;
 };
 
-std::string type_of(const json& node) {
-  return node.is_object() && node.contains("type") && node.at("type").is_string()
-             ? node.at("type").get<std::string>()
-             : "";
+// The node's "type" (empty when it has none that is a string), found once and not copied: every
+// component of a blend is asked.
+const std::string& type_of(const json& node) {
+  static const std::string none;
+  if (!node.is_object()) return none;
+  const auto it = node.find("type");
+  return it != node.end() && it->is_string() ? it->get_ref<const std::string&>() : none;
 }
 
 // Walks the soft_blends from `p`, reading each soft_object child's "material" into `materials`.
@@ -47,7 +50,7 @@ void collect(const Params& p, std::vector<size_t>& path, std::vector<Material>& 
   for (size_t i = 0; i < children.size(); ++i) {
     path.push_back(i);
     const json& c = children[i];
-    const std::string type = type_of(c);
+    const std::string& type = type_of(c);
     // A component without a material of its own is recorded as collect would record it, without
     // a Params and its pointer for each of a large blend's components.
     if (type == "soft_blend" || (type == "soft_object" && c.contains("material")))

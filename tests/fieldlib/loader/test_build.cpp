@@ -95,6 +95,49 @@ TEST(Params, FinishSuggestsTheKeysAskedFor) {
             "t.json: /o/ab: unknown key 'ab' (did you mean 'ax'?)");
 }
 
+// A node's keys match the kinds' names whole: a prefix, an extension or a NUL inside a key is an
+// unknown key, located at that key.
+TEST(Params, KindKeysMatchWholeNamesOnly) {
+  const auto file = std::make_shared<const std::string>("t");
+  for (const std::string& key : {std::string("distanc"), std::string("distances"),
+                                 std::string("distance\0", 9), std::string("typ")}) {
+    nlohmann::json j = nlohmann::json::parse(R"({"type": "soft_object",
+      "distance": {"type": "lp_metric", "radii": [1, 1, 1], "n": 2},
+      "potential": {"type": "murakami"}})");
+    j[key] = 1;
+    BuildContext ctx;
+    try {
+      build_field(Params(j, "", file), ctx);
+      ADD_FAILURE() << "key '" << key << "' (" << key.size() << " bytes) was accepted";
+    } catch (const SceneError& e) {
+      // what() ends at a NUL: the pointer is checked up to it.
+      const std::string shown = key.substr(0, key.find('\0'));
+      EXPECT_EQ(std::string(e.what()).rfind("t: /" + shown, 0), 0u) << e.what();
+      if (shown == key) {
+        EXPECT_NE(std::string(e.what()).find(": unknown key '"), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
+// Members are found by their whole key in small objects (scanned) and large ones (the map).
+TEST(Params, MembersFoundByTheirWholeKey) {
+  const auto file = std::make_shared<const std::string>("t");
+  for (const int extra : {0, 12}) {
+    nlohmann::json j = {{"a", 1}, {std::string("a\0b", 3), 2}, {"ab", 3}};
+    for (int i = 0; i < extra; ++i) j["k" + std::to_string(i)] = 10 + i;
+    const Params p(j, "", file);
+    EXPECT_EQ(p.number("a"), 1);
+    EXPECT_EQ(p.number(std::string("a\0b", 3)), 2);
+    EXPECT_EQ(p.number("ab"), 3);
+    EXPECT_FALSE(p.has(std::string("a\0", 2)));
+    EXPECT_FALSE(p.has("b"));
+    if (extra) {
+      EXPECT_EQ(p.number("k11"), 21);
+    }
+  }
+}
+
 TEST(Build, Placement) {
   const Spec moved =
       translate(translate(soft_object(lp_metric({1, 1, 1}, 2), wyvill()), {1, 0, 0}), {0, 2, 0});
