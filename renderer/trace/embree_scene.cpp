@@ -426,8 +426,9 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
   const double cos_forward = dot(ray.d, beam.forward);
   if (!(cos_forward > 0) || !beam.blobs[0].from(ray.o)) return false;
   TraceCounters work;
-  const MarchResult m = impl_->data[0].tracer->first_hit_unlisted(
-      ray, 0, std::numeric_limits<double>::infinity(), work, beam.depth[0] / cos_forward);
+  const MarchResult m =
+      impl_->data[0].tracer->first_hit(ray, 0, std::numeric_limits<double>::infinity(), work,
+                                       Query::Nearest, beam.depth[0] / cos_forward, &beam.blobs[0]);
   if (m.hit) return false;  // the ray limit (give_up): intersect() answers and counts
   hit = TraceHit{};
   hit.work = work;

@@ -85,8 +85,8 @@ class EmbreeScene {
   // support meets the beam's frustum, ObjectTracer::blob_beam).
   bool unmet(const BeamClear& beam) const;
   // intersect(ray, 0, inf, &beam) for a camera ray of a beam that is unmet(), into `hit`: the
-  // same miss with the same counters (ObjectTracer::first_hit_unlisted), without the sum's
-  // search. False, `hit` untouched, for a ray intersect() must answer: one the list does not
+  // same miss with the same counters (ObjectTracer::first_hit with the empty list), without the
+  // sum's search. False, `hit` untouched, for a ray intersect() must answer: one the list does not
   // hold (another origin, or not forward) or one at the ray limit. (Filled in place: a TraceHit
   // returned by value was copied, 25 instructions of a background ray's 200.)
   bool intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHit& hit) const;

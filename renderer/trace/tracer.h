@@ -200,12 +200,6 @@ class ObjectTracer {
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                         Query query = Query::Nearest, double clear_to = 0,
                         const BlobBeam* blob_beam = nullptr) const;
-  // first_hit(ray, tnear, tfar, work, Query::Nearest, clear_to, list) for a blob sum's camera
-  // list with no entries (blob_beam: no blob's support meets its block's rays) that holds the
-  // ray (its eye is the ray's origin, to the bit), without the list or the sum: a miss, or the
-  // give-up at the ray limit, with the very counters first_hit counts (the steps AOV).
-  MarchResult first_hit_unlisted(const Ray& ray, double tnear, double tfar, TraceCounters& work,
-                                 double clear_to) const;
 
   // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
   // certified by the interval of g over boxes around slices of the frustum: the work of the

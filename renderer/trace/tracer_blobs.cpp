@@ -151,20 +151,21 @@ MarchResult ObjectTracer::unlisted_stretches(double t0, double t1, TraceCounters
   return {};
 }
 
-MarchResult ObjectTracer::first_hit_unlisted(const Ray& ray, double tnear, double tfar,
-                                             TraceCounters& work, double clear_to) const {
-  // first_hit's way to first_hit_blobs, which the list's blobs (none) would take on from.
-  double t0 = tnear, t1 = tfar;
-  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
-  work.entered_box = true;
-  t0 = std::max(t0, clear_to);
-  if (t0 > t1) return {};
-  return unlisted_stretches(t0, t1, work);
-}
-
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
                                           TraceCounters& work, Query query,
                                           const BlobBeam* beam) const {
+  // A camera ray of a block with a list (tracer_blob_beam.cpp), or a shadow ray of a block with
+  // one (tracer_shadow_beam.cpp), takes its stretches' blobs from it.
+  double base = 0;  // the ray's start on the list's axis
+  // Whether the ray takes its blobs from the list: an empty list holds no blob for it (its
+  // entries' data() may then be null or not, as the vector's past left it, so it decides nothing;
+  // taken for "no list", it cost a thread's first tiles walks that later ones skipped, and their
+  // steps differed with the thread count).
+  const bool held = beam && beam->holds(ray, &base, t1);
+  const bool camera_list = held && beam->camera() && query == Query::Nearest;
+  // A camera ray whose list holds no blob (most of a sparse frame's background, the unmet beams
+  // of EmbreeScene::intersect_unmet) only counts its stretches: before the scratch is looked up.
+  if (camera_list && beam->entries.empty()) return unlisted_stretches(t0, t1, work);
   BlobScratch& scratch = blob_scratch(*blobs_);
   BlobSum::Term* terms = scratch.terms.data();
   Event* events = scratch.events.data();
@@ -202,14 +203,6 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
                        at(refine_rise(sp.a, sp.degree, rise, close, &work.refine_iterations).hi)};
   };
 
-  // A camera ray of a block with a list (tracer_blob_beam.cpp), or a shadow ray of a block with
-  // one (tracer_shadow_beam.cpp), takes its stretches' blobs from it.
-  double base = 0;  // the ray's start on the list's axis
-  // Whether the ray takes its blobs from the list: an empty list holds no blob for it (its
-  // entries' data() may then be null or not, as the vector's past left it, so it decides nothing;
-  // taken for "no list", it cost a thread's first tiles walks that later ones skipped, and their
-  // steps differed with the thread count).
-  const bool held = beam && beam->holds(ray, &base, t1);
   const BlobBeam::Entry* listed = nullptr;
   int n_listed = 0;
   if (held) {
@@ -239,10 +232,8 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // stretch's over the whole way, rounded otherwise than a list-less ray's stretches: the root
   // agrees with that ray's within the refinement's tolerance, not to the bit. The lists are the
   // blocks' own, the same for any thread count, so the picture's bits are too.
-  const bool camera_list = held && beam->camera() && query == Query::Nearest;
   const bool sweep = camera_list && blobs_->size() > BlobSum::kListed &&
                      (n_listed > kWholeList || blobs_->max_terms() == blobs_->size());
-  if (camera_list && n_listed == 0) return unlisted_stretches(t0, t1, work);
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double dd = dot(ray.d, ray.d);  // terms_of's, for the sweep's blobs one at a time
