@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "describe/spelling.h"
@@ -48,6 +49,22 @@ std::string unknown_key_message(const std::string& key, const std::vector<std::s
   std::string m = "unknown key '" + key + "'";
   if (!best.empty()) m += " (did you mean '" + best + "'?)";
   return m;
+}
+
+std::string printable(const std::string& text) {
+  const auto control = [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; };
+  if (std::none_of(text.begin(), text.end(), control)) return text;  // every message we write
+  std::string out;
+  for (char c : text) {
+    if (!control(c)) {
+      out += c;
+      continue;
+    }
+    char escape[7];
+    std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned char>(c));
+    out += escape;
+  }
+  return out;
 }
 
 std::string json_pointer_escape(const std::string& key) {

@@ -14,10 +14,16 @@
 
 namespace softtrace {
 
+// `text` with its control characters (bytes below 0x20, and 0x7f) written as JSON escapes,
+// "\u0000": a message quotes what the input holds (a key, a type name, a path), and raw, a NUL
+// would cut the line short where it is printed as a C string, a newline would break it in two and
+// an escape sequence would drive the user's terminal.
+std::string printable(const std::string& text);
+
 // Bad input: the message is the one line the user sees.
 class SceneError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit SceneError(const std::string& message) : std::runtime_error(printable(message)) {}
 };
 
 class Params {

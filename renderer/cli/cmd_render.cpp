@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/exr_on_demand.h"
 #include "cli/option_checks.h"
+#include "describe/params.h"
 #include "film/film.h"
 #include "render/camera.h"
 #include "render/frame.h"
@@ -28,7 +29,9 @@
 namespace softtrace {
 
 void report_error(const std::string& message) {
-  std::fprintf(stderr, "softtrace: %s\n", message.c_str());
+  // One line whatever the message quotes (a file name with a newline, say; SceneError's are
+  // printable already).
+  std::fprintf(stderr, "softtrace: %s\n", printable(message).c_str());
 }
 
 namespace {

@@ -110,14 +110,25 @@ TEST(Params, KindKeysMatchWholeNamesOnly) {
       build_field(Params(j, "", file), ctx);
       ADD_FAILURE() << "key '" << key << "' (" << key.size() << " bytes) was accepted";
     } catch (const SceneError& e) {
-      // what() ends at a NUL: the pointer is checked up to it.
-      const std::string shown = key.substr(0, key.find('\0'));
-      EXPECT_EQ(std::string(e.what()).rfind("t: /" + shown, 0), 0u) << e.what();
-      if (shown == key) {
-        EXPECT_NE(std::string(e.what()).find(": unknown key '"), std::string::npos) << e.what();
-      }
+      // A NUL is shown escaped, so the whole message survives what()'s C string.
+      std::string shown = key;
+      if (const size_t nul = shown.find('\0'); nul != std::string::npos)
+        shown.replace(nul, 1, "\\u0000");
+      EXPECT_EQ(std::string(e.what()).rfind("t: /" + shown + ": unknown key '" + shown + "'", 0),
+                0u)
+          << e.what();
     }
   }
+}
+
+// A message quotes the input; its control characters are written as JSON escapes, so that it
+// stays one printable line: a NUL would end what() early, a newline or an escape sequence would
+// break the line or drive the terminal.
+TEST(Params, ControlCharactersInAMessageAreEscaped) {
+  const std::string raw = std::string("key 'a\0b' \x1b[2J\n\t\x7f \xc3\xa9", 20);
+  EXPECT_EQ(std::string(SceneError(raw).what()),
+            "key 'a\\u0000b' \\u001b[2J\\u000a\\u0009\\u007f \xc3\xa9");
+  EXPECT_EQ(printable("plain text, no escapes"), "plain text, no escapes");
 }
 
 // Members are found by their whole key in small objects (scanned) and large ones (the map).
