@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "kernels/potentials.h"
+#include "trace/blob_events.h"
 #include "trace/tracer.h"
 #include "trace/tracer_limits.h"
 
@@ -44,26 +45,21 @@ constexpr int kFewTerms = 4;
 // (capsules: their terms take the call).
 constexpr int kWholeList = 16;
 
-// Where the ray enters (+) or leaves (-) term `index`'s support.
-struct Event {
-  double u;
-  int32_t index;
-  bool enters;
-  bool operator<(const Event& o) const { return u < o.u || (u == o.u && enters < o.enters); }
-};
-
 // One thread's buffers, grown to the largest sum traced (no allocation per ray after that).
 struct BlobScratch {
   std::vector<BlobSum::Term> terms;
   std::vector<int32_t> ids;
-  std::vector<Event> events;
+  std::vector<BlobEvent> enters, exits;  // blob_events.h
+  std::vector<BlobEventOfBoth> both;
   std::vector<int> active;
   void fit(const BlobSum& blobs) {
     const int n = blobs.max_terms();
     if (static_cast<int>(ids.size()) < blobs.size()) ids.resize(blobs.size());
     if (static_cast<int>(terms.size()) >= n) return;
     terms.resize(n);
-    events.resize(2 * n);
+    enters.resize(n);
+    exits.resize(n);
+    both.resize(2 * n);
     active.resize(n);
   }
 };
@@ -168,7 +164,6 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   if (camera_list && beam->entries.empty()) return unlisted_stretches(t0, t1, work);
   BlobScratch& scratch = blob_scratch(*blobs_);
   BlobSum::Term* terms = scratch.terms.data();
-  Event* events = scratch.events.data();
   int* active = scratch.active.data();
   const double iso = target_.iso;
 
@@ -269,14 +264,11 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         ++work.point_evals;
         return MarchResult{true, t + *u};
       }
-    for (int i = 0; i < n; ++i) {
-      events[2 * i] = {terms[i].enter, i, true};
-      events[2 * i + 1] = {terms[i].exit, i, false};
-    }
-    std::sort(events, events + 2 * n);
-    // Between consecutive events the active terms are fixed: one polynomial. events[head,
-    // n_events) are still ahead; a sweep's next blob to take is listed[next].
-    int head = 0, n_events = 2 * n, next = sweep ? 0 : n_listed;
+    // Between consecutive events the active terms are fixed: one polynomial. `events` holds
+    // those still ahead; a sweep's next blob to take is listed[next].
+    BlobEvents events(scratch.enters.data(), scratch.exits.data());
+    events.take_all(terms, n, scratch.both.data());
+    int next = sweep ? 0 : n_listed;
     int n_active = 0;
     double u0 = 0;
     // No blob not yet taken has support before `frontier`.
@@ -285,13 +277,15 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     };
     double frontier = frontier_at(next);
     while (true) {
-      if (head < n_events && events[head].u <= frontier) {
-        const Event& ev = events[head++];
+      const bool exit = events.exit_next();
+      if (!events.empty() && events.next(exit).u <= frontier) {
+        const BlobEvent ev = events.next(exit);
+        events.pop(exit);
         const double u1 = ev.u;
         if (u1 > u0 && n_active > 0)
           if (const auto hit = piece(t, u0, u1 - u0, n_active)) return *hit;
         u0 = std::max(u0, u1);
-        if (ev.enters) {
+        if (!exit) {
           active[n_active++] = ev.index;
           continue;
         }
@@ -309,17 +303,9 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       }
       if (e.far < lo) continue;
       const int k = blobs_->terms_of_one(e.id, seg.a, ray.d, dd, len, terms + n);
-      // Their events into events[head, n_events), kept in order (of equal events, the one
-      // taken first first).
-      const auto insert = [&](const Event x) {
-        int j = n_events++;
-        for (; j > head && x < events[j - 1]; --j) events[j] = events[j - 1];
-        events[j] = x;
-      };
-      for (int i = n; i < n + k; ++i) {
-        insert({terms[i].enter, i, true});
-        insert({terms[i].exit, i, false});
-      }
+      // Their events among those ahead, kept in order (of equal events, the one taken first
+      // first).
+      for (int i = n; i < n + k; ++i) events.add(terms[i].enter, terms[i].exit, i);
       n += k;
     }
     t += len;
