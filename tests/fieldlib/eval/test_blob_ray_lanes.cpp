@@ -73,6 +73,13 @@ void expect_lanes_same_bits(const LaneCase& c, int* found) {
 
 }  // namespace
 
+TEST(BallLanes, Avx2ChosenWhereLibgccFindsIt) {
+  // has_avx2 reads glibc's record of the processor (or cpuid) instead of libgcc's constructor,
+  // which would run a dozen trapping cpuid queries at every start: both must agree.
+  __builtin_cpu_init();
+  EXPECT_EQ(BlobSum::has_avx2(), __builtin_cpu_supports("avx2") != 0);
+}
+
 TEST(BallLanes, Avx2GivesTheScalarBitsInEveryLane) {
   if (!BlobSum::has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937_64 rng(30);
