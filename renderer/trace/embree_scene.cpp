@@ -415,23 +415,44 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
 }
 
 bool EmbreeScene::unmet(const BeamClear& beam) const {
-  if (!impl_->lone_field || !beam.blobs) return false;
-  const ObjectTracer* tracer = impl_->data[0].tracer;
-  const BlobBeam& list = beam.blobs[0];
+  // The direct paths only: one field, alone or with a few primitives (a cloud over a floor),
+  // which intersect() asks for a camera ray (it starts inside no solid).
+  const int f = impl_->direct_field;
+  if (f < 0 || !beam.blobs) return false;
+  const ObjectTracer* tracer = impl_->data[size_t(f)].tracer;
+  const BlobBeam& list = beam.blobs[f];
   return tracer && tracer->blob_sum() && list.valid && list.camera() && list.entries.empty();
 }
 
 bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHit& hit) const {
   // field_hit's clear_to and list, as intersect() takes them.
+  const int f = impl_->direct_field;
   const double cos_forward = dot(ray.d, beam.forward);
-  if (!(cos_forward > 0) || !beam.blobs[0].from(ray.o)) return false;
+  if (!(cos_forward > 0) || !beam.blobs[f].from(ray.o)) return false;
+  // The primitives, as intersect()'s direct path asks them: the same tests in the same order, so
+  // the same nearest hit to the bit. The field is then searched up to it, as there.
+  double t = std::numeric_limits<double>::infinity();
+  int object = -1;
+  Vec3 normal{0, 0, 0};
+  for (const int o : impl_->direct_primitives) {
+    const PrimitiveHit p = first_hit(*impl_->data[size_t(o)].object_data->shape, ray, 0, t);
+    if (!p.hit || p.t >= t) continue;
+    t = p.t;
+    object = o;
+    normal = p.normal;
+  }
   TraceCounters work;
-  const MarchResult m =
-      impl_->data[0].tracer->first_hit(ray, 0, std::numeric_limits<double>::infinity(), work,
-                                       Query::Nearest, beam.depth[0] / cos_forward, &beam.blobs[0]);
+  const MarchResult m = impl_->data[size_t(f)].tracer->first_hit(
+      ray, 0, t, work, Query::Nearest, beam.depth[f] / cos_forward, &beam.blobs[f]);
   if (m.hit) return false;  // the ray limit (give_up): intersect() answers and counts
   hit = TraceHit{};
   hit.work = work;
+  if (object >= 0) {
+    hit.hit = true;
+    hit.t = t;
+    hit.object = object;
+    hit.normal = normal;
+  }
   return true;
 }
 
