@@ -87,9 +87,9 @@ class EmbreeScene {
   // intersect(ray, 0, inf, &beam) for a camera ray of a beam that is unmet(), into `hit`: the
   // primitives' nearest hit, if any, tested as intersect() tests them, and the sum's miss before
   // it with the same counters (ObjectTracer::first_hit with the empty list), without the sum's
-  // search. False, `hit` untouched, for a ray intersect() must answer: one the list does not hold
-  // (another origin, or not forward) or one at the ray limit. (Filled in place: a TraceHit
-  // returned by value was copied, 25 instructions of a background ray's 200.)
+  // search. False, `hit` then to be overwritten, for a ray intersect() must answer: one the list
+  // does not hold (another origin, or not forward) or one at the ray limit. (Filled in place: a
+  // TraceHit returned by value was copied, 25 instructions of a background ray's 200.)
   bool intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHit& hit) const;
 
   // Whether Embree's device and scene were built (false: every ray takes a direct path).
