@@ -36,8 +36,8 @@ struct BeamClear {
   Vec3 forward;                     // the camera's, unit length
   const double* depth;              // one per object
   const BlobBeam* blobs = nullptr;  // one per object, or none: the blob sums' lists
-  // Whether the beam certifies that none of its rays meets anything (EmbreeScene::unmet): its
-  // rays from the eye are then traced by EmbreeScene::intersect_unmet.
+  // Whether the beam certifies that none of its rays meets the blob sum (EmbreeScene::unmet):
+  // its rays from the eye are then traced by EmbreeScene::intersect_unmet.
   bool unmet = false;
 };
 
@@ -80,15 +80,16 @@ class EmbreeScene {
   bool occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                 const BlobBeam* blobs = nullptr) const;
 
-  // Whether no camera ray of `beam` from its lists' eye meets anything: the scene is one blob sum
-  // alone (the direct path without Embree), and the beam's list of it holds no blob (no blob's
-  // support meets the beam's frustum, ObjectTracer::blob_beam).
+  // Whether no camera ray of `beam` from its lists' eye meets the blob sum: the scene is one blob
+  // sum, alone or with a few primitives (the direct paths without Embree's walk), and the beam's
+  // list of it holds no blob (no blob's support meets the beam's frustum, ObjectTracer::blob_beam).
   bool unmet(const BeamClear& beam) const;
   // intersect(ray, 0, inf, &beam) for a camera ray of a beam that is unmet(), into `hit`: the
-  // same miss with the same counters (ObjectTracer::first_hit with the empty list), without the
-  // sum's search. False, `hit` untouched, for a ray intersect() must answer: one the list does not
-  // hold (another origin, or not forward) or one at the ray limit. (Filled in place: a TraceHit
-  // returned by value was copied, 25 instructions of a background ray's 200.)
+  // primitives' nearest hit, if any, tested as intersect() tests them, and the sum's miss before
+  // it with the same counters (ObjectTracer::first_hit with the empty list), without the sum's
+  // search. False, `hit` then to be overwritten, for a ray intersect() must answer: one the list
+  // does not hold (another origin, or not forward) or one at the ray limit. (Filled in place: a
+  // TraceHit returned by value was copied, 25 instructions of a background ray's 200.)
   bool intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHit& hit) const;
 
   // Whether Embree's device and scene were built (false: every ray takes a direct path).

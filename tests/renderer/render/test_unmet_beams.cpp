@@ -4,7 +4,9 @@
 // (most pixels background, as tools/blob_scene.py --meets 1 writes it), every ray of every unmet
 // beam must get intersect()'s very answer: no hit, and the same counters (the steps AOV); and the
 // frame's hit mask must be that of each pixel-centre ray traced alone, so neither shortcut may
-// drop a pixel with a hit.
+// drop a pixel with a hit. The same holds over the cloud with a floor, a ball and a box beside it
+// (the direct path with primitives): an unmet beam's ray gets the primitives' nearest hit as
+// intersect() finds it, with the sum's miss before it counted the same.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -41,28 +43,51 @@ std::string unmet_sparse_cloud(int n) {
          children + "]}}]}";
 }
 
+// The same cloud over a floor, with a ball beside it, a box among its blobs and a ball between it
+// and the eye (the direct path with primitives: at most four beside the field, no Embree). The
+// last one's rays stop short of the sum's box: the sum is searched only up to a primitive's hit.
+std::string unmet_cloud_on_floor(int n) {
+  std::string scene = unmet_sparse_cloud(n);
+  const std::string primitives =
+      R"(, {"shape": {"type": "plane", "distance": -21}},
+      {"shape": {"type": "sphere", "center": [-27, 0, -14], "radius": 5}},
+      {"shape": {"type": "box", "corner1": [12, 4, -21], "corner2": [19, 18, -8]}},
+      {"shape": {"type": "sphere", "center": [35, -47, 30], "radius": 4}}]})";
+  scene.replace(scene.size() - 2, 2, primitives);
+  return scene;
+}
+
 bool same_unmet_counters(const TraceCounters& a, const TraceCounters& b) {
   return a.point_evals == b.point_evals && a.box_evals == b.box_evals &&
          a.refine_iterations == b.refine_iterations && a.give_ups == b.give_ups &&
          a.undecided == b.undecided && a.entered_box == b.entered_box;
 }
 
-TEST(UnmetBeams, EveryRayGetsIntersectsAnswer) {
-  const Scene scene = parse_scene(unmet_sparse_cloud(400), "<test>");
-  const TracedScene rt(scene, LipschitzMode::Local);
-  ASSERT_FALSE(rt.embree.built());  // the direct path of a lone field
+// What a walk over every unmet beam's rays of a 128x96 frame saw.
+struct UnmetWalk {
+  int rays = 0, unmet_rays = 0, counted = 0;
+  int sum_hits = 0;             // every ray's hits on the sum (object 0)
+  std::vector<int> unmet_hits;  // per object, the unmet rays' hits
+};
+
+// Every camera ray of every beam (the pixels' centres and a random point in each) through
+// intersect(), and each ray of an unmet beam through intersect_unmet too: the same answer to the
+// bit (none may be the sum's), and the same counters.
+void walk_unmet_beams(const Scene& scene, const TracedScene& rt, UnmetWalk& walk) {
   const ObjectTracer* tracer = rt.tracers.tracer(0);
   ASSERT_TRUE(tracer && tracer->blob_sum());
   constexpr int kW = 128, kH = 96;
   const ViewCamera camera(scene.camera, kW, kH);
+  const int objects = rt.tracers.size();
+  walk.unmet_hits.assign(size_t(objects), 0);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  int rays = 0, unmet_rays = 0, counted = 0, hits = 0;
+  // Per level, per object: a primitive has no depth and no list (frame.cpp's beam()).
+  std::vector<double> depth(size_t(3 * objects), 0);
+  std::vector<BlobBeam> lists(size_t(3 * objects));
   for (int ty = 0; ty < kH; ty += 16)
     for (int tx = 0; tx < kW; tx += 16) {
       // The frame's nesting (frame.cpp's beam()): the tile, a quarter, a quarter of that.
-      double depth[3];
-      BlobBeam lists[3];
       for (int q = 0; q < 4; ++q)
         for (int k = 0; k < 4; ++k) {
           const int x8 = tx + (q & 1) * 8, y8 = ty + (q >> 1) * 8;
@@ -72,41 +97,78 @@ TEST(UnmetBeams, EveryRayGetsIntersectsAnswer) {
             const int size = 16 >> level;
             const Frustum fr = camera.frustum(x[level], y[level], x[level] + size, y[level] + size);
             TraceCounters work;
-            depth[level] = tracer->clear_depth(fr, level ? depth[level - 1] : 0, work);
-            tracer->blob_beam(fr, level ? &lists[level - 1] : nullptr, &lists[level]);
+            const size_t at = size_t(level * objects), up = size_t((level - 1) * objects);
+            depth[at] = tracer->clear_depth(fr, level ? depth[up] : 0, work);
+            tracer->blob_beam(fr, level ? &lists[up] : nullptr, &lists[at]);
           }
-          BeamClear beam{camera.frustum(x4, y4, x4 + 4, y4 + 4).forward, &depth[2], &lists[2]};
+          const size_t last = size_t(2 * objects);
+          BeamClear beam{camera.frustum(x4, y4, x4 + 4, y4 + 4).forward, &depth[last],
+                         &lists[last]};
           const bool unmet = rt.embree.unmet(beam);
           for (int py = y4; py < y4 + 4; ++py)
             for (int px = x4; px < x4 + 4; ++px)
               for (int s = 0; s < 2; ++s) {  // the pixel's centre and a point inside it
                 const Ray ray = camera.generate(px + (s ? u(rng) : 0.5), py + (s ? u(rng) : 0.5));
                 const TraceHit full = rt.embree.intersect(ray, 0, kUnmetFar, &beam);
-                ++rays;
-                hits += full.hit;
+                ++walk.rays;
+                walk.sum_hits += full.hit && full.object == 0;
                 if (!unmet) continue;
                 TraceHit hit;
                 hit.hit = true;  // to be overwritten
                 ASSERT_TRUE(rt.embree.intersect_unmet(ray, beam, hit))
                     << "pixel " << px << ", " << py;
-                ++unmet_rays;
-                ASSERT_FALSE(full.hit) << "pixel (" << px << ", " << py
-                                       << "): an unmet beam's ray has a hit at " << full.t;
-                ASSERT_FALSE(hit.hit);
-                ASSERT_EQ(hit.object, -1);
+                ++walk.unmet_rays;
+                ASSERT_NE(full.object, 0) << "pixel (" << px << ", " << py
+                                          << "): an unmet beam's ray meets the sum at " << full.t;
+                ASSERT_EQ(hit.hit, full.hit) << "pixel (" << px << ", " << py << ")";
+                ASSERT_EQ(hit.object, full.object) << "pixel (" << px << ", " << py << ")";
+                ASSERT_EQ(std::memcmp(&hit.t, &full.t, sizeof hit.t), 0);
+                ASSERT_EQ(std::memcmp(&hit.normal, &full.normal, sizeof hit.normal), 0);
+                ASSERT_EQ(hit.on_box_face, full.on_box_face);
+                ASSERT_EQ(hit.face, full.face);
                 ASSERT_EQ(hit.blobs, nullptr);
+                ASSERT_EQ(full.blobs, nullptr);
                 ASSERT_TRUE(same_unmet_counters(hit.work, full.work))
                     << "pixel (" << px << ", " << py << "): box evaluations " << hit.work.box_evals
                     << " against intersect's " << full.work.box_evals;
-                counted += full.work.box_evals > 0;
+                walk.counted += full.work.box_evals > 0;
+                if (full.hit) ++walk.unmet_hits[size_t(full.object)];
               }
         }
     }
+}
+
+TEST(UnmetBeams, EveryRayGetsIntersectsAnswer) {
+  const Scene scene = parse_scene(unmet_sparse_cloud(400), "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  ASSERT_FALSE(rt.embree.built());  // the direct path of a lone field
+  UnmetWalk walk;
+  walk_unmet_beams(scene, rt, walk);
   // Not vacuous: most rays are the background's and most of those are answered without the sum,
   // some of them after passing through its box (their steps counted); the cloud is seen.
-  EXPECT_GT(unmet_rays, rays / 3);
-  EXPECT_GT(counted, unmet_rays / 10);
-  EXPECT_GT(hits, 20);
+  EXPECT_GT(walk.unmet_rays, walk.rays / 3);
+  EXPECT_GT(walk.counted, walk.unmet_rays / 10);
+  EXPECT_GT(walk.sum_hits, 20);
+}
+
+TEST(UnmetBeams, BesidePrimitivesEveryRayGetsIntersectsAnswer) {
+  const Scene scene = parse_scene(unmet_cloud_on_floor(60), "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  ASSERT_EQ(rt.tracers.size(), 5);
+  ASSERT_FALSE(rt.embree.built());  // the direct path of a field and primitives
+  UnmetWalk walk;
+  walk_unmet_beams(scene, rt, walk);
+  // Not vacuous: most rays are answered without the sum; of those, many meet the floor, and some
+  // each ball and the box (so a skipped primitive shows, or a sum searched past the front ball's
+  // hit: its box entered), some only after passing through the sum's box (their steps counted);
+  // the cloud itself is seen by other beams.
+  EXPECT_GT(walk.unmet_rays, walk.rays / 3);
+  EXPECT_GT(walk.counted, walk.unmet_rays / 10);
+  EXPECT_GT(walk.unmet_hits[1], walk.unmet_rays / 3);  // the floor
+  EXPECT_GT(walk.unmet_hits[2], 50);                   // the ball
+  EXPECT_GT(walk.unmet_hits[3], 50);                   // the box
+  EXPECT_GT(walk.unmet_hits[4], 50);                   // the ball in front
+  EXPECT_GT(walk.sum_hits, 20);
 }
 
 // The frame (both shortcuts) against each pixel-centre ray traced alone: the same hit mask.
