@@ -74,13 +74,14 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
       for (const int o : blob_objects_) {
         BlobBeam& list = out[k * objects_ + o];
         list.valid = false;
+        list.shut = false;
         list.clear = end > begin;
       }
       return;
     }
   }
   // The prism's rectangle and depth, in locals (the loops then keep them in registers).
-  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z0 = kInf;
+  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z0 = kInf, z1 = -kInf;
   if (level == 0 && end > begin) {
     // The tile's points and the objects' boxes on its axes, once for all its prisms.
     for (int i = begin; i < end; ++i) {
@@ -114,13 +115,17 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
       x0 = std::min(x0, b.x0), x1 = std::max(x1, b.x1);
       y0 = std::min(y0, b.y0), y1 = std::max(y1, b.y1);
       z0 = std::min(z0, b.z);
+      // A block's rays start at most at its balls' tops (z - m + 2 m, rounded): a bound its shut
+      // rays check for themselves (BlobBeam::shut), so any rounding of it is safe.
+      if (level == kLevels - 1) z1 = std::max(z1, b.z + (b.x1 - b.x0));
     }
   }
-  const ShadowPrism prism{lists.origin, a.along, a.u, a.v, x0, x1, y0, y1, z0};
+  const ShadowPrism prism{lists.origin, a.along, a.u, a.v, x0, x1, y0, y1, z0, z1};
   for (const int o : blob_objects_) {
     BlobBeam& list = out[k * objects_ + o];
     list.valid = false;
     list.clear = false;
+    list.shut = false;
     if (end == begin) continue;
     // A prism that misses the object's box sends it no ray: no list, and no walk to build one.
     // Its rays meet no blob: they need no trace at all (BlobBeam::clear).
@@ -154,7 +159,7 @@ void ShadowBeams::build_pyramid(int level, const Axes& light, size_t k, const Po
   std::vector<BlobBeam>& out = lists.level[level];
   constexpr double kInf = std::numeric_limits<double>::infinity();
   for (const int o : blob_objects_)
-    out[k * objects_ + o].valid = out[k * objects_ + o].clear = false;
+    out[k * objects_ + o].valid = out[k * objects_ + o].clear = out[k * objects_ + o].shut = false;
   if (n == 0) return;
   const Vec3 to_tile = lists.origin - light.position;
   const double reach = length(to_tile);

@@ -57,13 +57,16 @@ struct Frustum {
 // A block of shadow rays towards a directional light: rays of direction `along` (unit, to the
 // bit the light's) from points whose coordinates x = (o - origin).u and y = (o - origin).v lie in
 // [x0, x1] x [y0, y1] and z = (o - origin).along >= z0 (u, v and along orthonormal): the rays run
-// inside the prism over that rectangle, each at z = its origin's z + t.
+// inside the prism over that rectangle, each at z = its origin's z + t. A 4-pixel block's
+// prism also bounds its points' balls' tops by z1 (-inf above that level): a shut list's rays start
+// at most there (BlobBeam::shut).
 // A block of shadow rays towards a point (a point or spot light's position) instead: `origin` is
 // the point, and each ray runs from its start o to it inside the pyramid of the points q with
 // q - origin = s (along + x u + y v), s > 0, (x, y) in [x0, x1] x [y0, y1] (z0 unused).
 struct ShadowPrism {
   Vec3 origin, along, u, v;
   double x0, x1, y0, y1, z0;
+  double z1 = std::numeric_limits<double>::infinity();
 };
 
 struct BlobBeam {
@@ -101,6 +104,12 @@ struct BlobBeam {
   // positive (else none); and a bound of the rounding of any piece's polynomial made of them.
   std::vector<int32_t> blockers;
   double blockers_err = 0;
+  // A directional light's block list whose blockers certainly decide every ray of the block
+  // (ObjectTracer::shadow_blockers): a held ray from z <= prism.z1 whose footprint at the box's
+  // exit is at most shut_footprint (and at its entry resolves the way, as blocked_by asks) is
+  // answered as blocked_by would answer it, with the same work, but without its terms.
+  bool shut = false;
+  double shut_footprint = 0;
   // A camera list (ObjectTracer::blob_beam from the eye), neither kind of shadow list.
   bool camera() const { return !parallel && !toward; }
   // Whether the list holds for rays from o: from its eye, to the bit.
@@ -277,6 +286,12 @@ class ObjectTracer {
   // search of Query::Any would have found a crossing there or before (tracer_shadow_beam.cpp).
   std::optional<double> blocked_by(const Ray& ray, double t0, double t1,
                                    const BlobBeam& list) const;
+  // Whether the list's blocker entries[i] shuts its block (BlobBeam::shut): sets shut and
+  // shut_footprint where it does (tracer_shadow_beam.cpp).
+  void shut_by(BlobBeam* list, size_t i) const;
+  // Whether a held ray of a shut list over [t0, t1], starting at `base` on its axis, is one whose
+  // blocked_by answer the list certifies.
+  bool shut_decides(const Ray& ray, double t0, double t1, double base, const BlobBeam& list) const;
   // Decides [a, c] (g(a) = ga < 0, g(c) = gc; either NaN where not known yet) by intervals and
   // spheres over halvings down to `finest` (and while the ray's work is below `budget`): clear,
   // the first sign change's bracket, or undecided where the halving stopped.

@@ -162,6 +162,12 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // A camera ray whose list holds no blob (most of a sparse frame's background, the unmet beams
   // of EmbreeScene::intersect_unmet) only counts its stretches: before the scratch is looked up.
   if (camera_list && beam->entries.empty()) return unlisted_stretches(t0, t1, work);
+  // A shadow ray of a block its blockers shut: blocked_by's answer and work, without its terms
+  // (tracer_shadow_beam.cpp). A shadow ray's hit is read for its answer alone, not its t.
+  if (held && query == Query::Any && beam->shut && shut_decides(ray, t0, t1, base, *beam)) {
+    ++work.point_evals;
+    return MarchResult{true, t0};
+  }
   BlobScratch& scratch = blob_scratch(*blobs_);
   BlobSum::Term* terms = scratch.terms.data();
   int* active = scratch.active.data();

@@ -61,6 +61,7 @@ bool BlobBeam::holds_toward(const Ray& ray, double t1, double* base) const {
 void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const {
   out->valid = false;
   out->clear = false;
+  out->shut = false;
   out->parallel = true;
   out->toward = false;
   out->prism = p;
@@ -139,6 +140,7 @@ void ObjectTracer::toward_beam(const Frustum& f, const ShadowPrism& p, const Blo
   out->parallel = false;
   out->toward = true;
   out->clear = false;
+  out->shut = false;
   out->prism = p;
   out->blockers.clear();
   out->across.clear();
@@ -211,6 +213,7 @@ constexpr int kBlockers = 2;
 
 void ObjectTracer::shadow_blockers(BlobBeam* list) const {
   list->blockers.clear();
+  list->shut = false;
   if (!blobs_ || !list->valid || !(list->parallel || list->toward)) return;
   const ShadowPrism& p = list->prism;
   const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
@@ -222,6 +225,7 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
   double magnitude = iso;
   int32_t best[kBlockers];
   double best_z[kBlockers];
+  size_t best_i[kBlockers];
   int picked = 0;
   for (size_t i = 0; i < list->entries.size(); ++i) {
     const BlobBeam::Entry& e = list->entries[i];
@@ -252,14 +256,97 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
     const double z = 0.5 * (e.near + e.far);
     int k = picked < kBlockers ? picked++ : kBlockers;
     while (k > 0 && best_z[k - 1] < z) {
-      if (k < kBlockers) best[k] = best[k - 1], best_z[k] = best_z[k - 1];
+      if (k < kBlockers)
+        best[k] = best[k - 1], best_z[k] = best_z[k - 1], best_i[k] = best_i[k - 1];
       --k;
     }
-    if (k < kBlockers) best[k] = e.id, best_z[k] = z;
+    if (k < kBlockers) best[k] = e.id, best_z[k] = z, best_i[k] = i;
   }
   const double n = 3.0 * static_cast<double>(list->entries.size());
   list->blockers_err = 2 * (128 + n) * std::numeric_limits<double>::epsilon() * magnitude;
   list->blockers.assign(best, best + picked);
+  if (list->parallel)
+    for (int k = 0; k < picked && !list->shut; ++k) shut_by(list, best_i[k]);
+}
+
+// Shut blocks. blocked_by decides a ray by one ball's term alone, as a per-ray check: most of a
+// floor's rays under a cloud pass it, 4 to a block, each paying the term, its footprints and
+// square roots. Where a picked blocker passes blocked_by's test for every ray the block may send,
+// with margins that no rounding of it can eat, the block is shut: its rays take blocked_by's
+// answer (a hit, one point evaluation) with no term (first_hit_blobs, shut_decides). What each
+// ray still checks itself: that the list holds it and it starts at z <= z1 (so it is one of the
+// rays below), and blocked_by's two footprint conditions, at the box's entry t0 and exit t1.
+//
+// The rays: direction d = along (holds: to the bit), origins o with x in [x0, x1], y in [y0, y1]
+// (to the rounding of holds' dot products) and z in [z0, z1]. The ball: centre c at (x, y, z) on
+// the prism's axes, radius R, potential P(r) = r^2 (c2 + c3 r), r = 1 - |q - c|^2 / R^2, P
+// increasing on [0, 1] (c2, c3 >= 0: shadow_blockers keeps none where any listed blob is
+// negative). A ray's nearest approach to c is in the plane z, at a distance in the rectangle's
+// plane at most its farthest corner's (dx, dy), so its term's h2 >= r_c = 1 - (dx^2 + dy^2) / R^2
+// less rounding (eps1: 1e-9 and 64 ulps of |o - c|^2 / R^2). With delta = 1e-4 and
+// r_lo = r_c - delta - eps1, and alpha = |d|^2 / R^2:
+// - the footprint bound keeps alpha w^2 <= delta / 4 (w = blocked_by's half-width), so
+//   r(mid +- w) >= h2 - delta / 4 and r(mid +- 2w) >= h2 - delta >= r_lo;
+// - r_lo >= delta: the support's half-chord sqrt(h2 / alpha) >= 2w, and the points
+//   mid +- 2w lie within R sqrt(1 - r_lo) of c, a ball the object's box holds with a margin
+//   (checked): the ray enters the box before mid - 2w and leaves it after mid + 2w, so the term's
+//   enter <= mid - 2w and exit >= mid + 2w, blocked_by's u is mid, and exit - enter > 2w;
+// - c lies at least 2 R sqrt(delta) >= 4w beyond z1 along the rays: mid - 2w is past t = 0 too;
+// - blocked_by's dr (from the box's diagonal and the coordinates' magnitudes) is at most
+//   delta / 4 (checked), so r - dr >= r_lo + delta / 2 at u +- w, rounded by far less;
+// - P(r_lo) - iso exceeds twice blockers_err and the rounding of P's evaluation.
+// So blocked_by returns a point for every such ray: this blocker's, or an earlier one's.
+void ObjectTracer::shut_by(BlobBeam* list, size_t i) const {
+  constexpr double kDelta = 1e-4;
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const ShadowPrism& p = list->prism;
+  const BlobSum::Blob& b = blobs_->blobs()[list->entries[i].id];
+  const BlobBeam::Across& a = list->across[i];
+  const Box& box = target_.bounds;
+  const double dx = std::max(std::abs(a.x - p.x0), std::abs(a.x - p.x1));
+  const double dy = std::max(std::abs(a.y - p.y0), std::abs(a.y - p.y1));
+  const double diagonal = length(box.hi - box.lo) * (1 + 1e-9);
+  const double far = 2.01 * diagonal;  // |o - c| + the way's length, o and c in the box
+  const double eps1 = 1e-9 + 64 * eps * far * far * b.inv_r2;
+  const double r_lo = 1 - (dx * dx + dy * dy) * b.inv_r2 - kDelta - eps1;
+  if (!(r_lo >= kDelta)) return;
+  const double potential = r_lo * r_lo * (b.c2 + b.c3 * r_lo);
+  if (!(potential - target_.iso > 2 * list->blockers_err + 1e-12 * (b.c2 + b.c3 + target_.iso)))
+    return;
+  // Ahead of every ray's origin.
+  const double radius = std::sqrt(1 / b.inv_r2);
+  const double magnitude = max_abs(p.origin) + max_abs(b.centre) + radius;
+  const double z = dot(b.centre - p.origin, p.along);
+  if (!(z - p.z1 >= 2 * radius * std::sqrt(kDelta) * (1 + 1e-9) + 1e-9 * magnitude)) return;
+  // Inside the box, with the clip's rounding to spare.
+  const double inner =
+      radius * std::sqrt(1 - r_lo + 1e-9) + 1e-9 * (max_abs(box.lo) + max_abs(box.hi) + magnitude);
+  const Vec3& c = b.centre;
+  if (!(c.x - inner >= box.lo.x && c.y - inner >= box.lo.y && c.z - inner >= box.lo.z &&
+        c.x + inner <= box.hi.x && c.y + inner <= box.hi.y && c.z + inner <= box.hi.z))
+    return;
+  // blocked_by's dr: far as above, its reach (|o| + |t0| + |t1|) from the rays' origins (within
+  // the prism's rectangle and depths) and their ways to the box's far side.
+  const double origins = max_abs(p.origin) + std::max(std::abs(p.x0), std::abs(p.x1)) +
+                         std::max(std::abs(p.y0), std::abs(p.y1)) +
+                         std::max(std::abs(p.z0), std::abs(p.z1));
+  const double reach =
+      (origins + 2 * std::sqrt(3.0) * (origins + max_abs(box.lo) + max_abs(box.hi))) * (1 + 1e-6);
+  const double dr = 1e-6 + 1e-12 * far * far * b.inv_r2 + 1e-9 * std::sqrt(3 * b.inv_r2) * reach;
+  if (!(dr <= kDelta / 4)) return;
+  // alpha w^2 <= delta / 4, w = 2 kFinestDeep kDecide footprint.
+  using namespace tracer_limits;
+  const double alpha = dot(p.along, p.along) * b.inv_r2;
+  list->shut_footprint = 0.999 * std::sqrt(kDelta / (4 * alpha)) / (2 * kFinestDeep * kDecide);
+  list->shut = list->shut_footprint > 0;
+}
+
+bool ObjectTracer::shut_decides(const Ray& ray, double t0, double t1, double base,
+                                const BlobBeam& list) const {
+  using namespace tracer_limits;
+  const double finest = kFinestDeep * kDecide;
+  return base <= list.prism.z1 && footprint(ray, t1) <= list.shut_footprint &&
+         t1 - t0 < 0x1p60 * finest * footprint(ray, t0);
 }
 
 std::optional<double> ObjectTracer::blocked_by(const Ray& ray, double t0, double t1,

@@ -27,27 +27,33 @@ namespace softtrace {
 namespace {
 
 // 60 balls of positive strength in [-20, 20]^3, Murakami's and Wyvill's, the floor seen between
-// them: a sum whose blocks' lists pick blockers (BlobBeam::blockers).
-std::string positive_ball_cloud(std::mt19937_64& rng) {
+// them: a sum whose blocks' lists pick blockers (BlobBeam::blockers). Hollowed, every third ball
+// has a twin of the opposite strength at its place, which cancels it (the field is 0 there).
+std::string positive_ball_cloud(std::mt19937_64& rng, bool hollowed = false) {
   std::uniform_real_distribution<double> c(-20, 20), u(0, 1);
   std::string children;
   for (int i = 0; i < 60; ++i) {
     const std::string r = std::to_string(5 + 3 * u(rng));
-    children += std::string(i ? "," : "") + R"({"type":"soft_object","potential":{"type":")" +
-                (i % 3 ? "murakami" : "wyvill") + R"("},"strength":)" +
-                std::to_string(0.8 + 0.4 * u(rng)) + R"(,"translate":[)" + std::to_string(c(rng)) +
-                "," + std::to_string(c(rng)) + "," + std::to_string(c(rng)) +
-                R"(],"distance":{"type":"lp_metric","radii":[)" + r + "," + r + "," + r +
-                R"(],"n":2}})";
+    const double strength = 0.8 + 0.4 * u(rng);
+    const std::string at =
+        std::to_string(c(rng)) + "," + std::to_string(c(rng)) + "," + std::to_string(c(rng));
+    const auto ball = [&](double s) {
+      return R"({"type":"soft_object","potential":{"type":")" +
+             std::string(i % 3 ? "murakami" : "wyvill") + R"("},"strength":)" + std::to_string(s) +
+             R"(,"translate":[)" + at + R"(],"distance":{"type":"lp_metric","radii":[)" + r + "," +
+             r + "," + r + R"(],"n":2}})";
+    };
+    children += std::string(i ? "," : "") + ball(strength);
+    if (hollowed && i % 3 == 0) children += "," + ball(-strength);
   }
   return children;
 }
 
-// A cloud (0: the mixed one, 1: positive_ball_cloud) over the floor z = -26 under one light, and
-// the points where its shadow rays start: a camera's hits on the cloud (walked) or the floor,
-// lifted along the normal as shade() lifts them. for_each_block builds the lists as the frame
-// does (a tile's, each quarter's from it, each block's from that) and hands each 4-pixel block's
-// list and points to `check`, block by block, as the frame orders them.
+// A cloud (0: the mixed one, 1: positive_ball_cloud, 2: hollowed) over the floor z = -26 under
+// one light, and the points where its shadow rays start: a camera's hits on the cloud (walked) or
+// the floor, lifted along the normal as shade() lifts them. for_each_block builds the lists as the
+// frame does (a tile's, each quarter's from it, each block's from that) and hands each 4-pixel
+// block's list and points to `check`, block by block, as the frame orders them.
 class CloudOverFloor {
  public:
   struct Lit {
@@ -58,12 +64,13 @@ class CloudOverFloor {
       : width(cloud ? 192 : 96),   // the balls' frame finer (a block's rays must pass near
         height(cloud ? 128 : 64),  // enough one ball's centre)
         rng_(rng),
-        scene_(parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
-                               (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng)) +
-                               R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
-            "lights": [)" + light +
-                               "]}",
-                           "<test>")),
+        scene_(parse_scene(
+            R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+                (cloud == 0 ? mixed_blob_cloud(rng) : positive_ball_cloud(rng, cloud == 2)) +
+                R"(]}}, {"shape": {"type": "plane", "distance": -26}}],
+            "lights": [)" +
+                light + "]}",
+            "<test>")),
         objects_(traced_objects(scene_)),
         tracers_(objects_, LipschitzMode::Local),
         beams_(scene_, tracers_),
@@ -258,6 +265,75 @@ TEST(ShadowBeams, ABlockWhoseRaysMeetNoBlobIsClear) {
       EXPECT_GT(listed, 50) << cloud << direction;
       EXPECT_GT(rays, 2000) << cloud << direction;
     }
+}
+
+// A shut block (BlobBeam::shut) answers its shadow rays "blocked", with blocked_by's work (one
+// point, no stretch), without blocked_by's term: right only if blocked_by would have decided every
+// such ray. Every ray of every shut block, from its lifted origin and from random points of the
+// block's prism between its depths z0 and z1 with random footprints, must give the same answer and
+// work through the list as through the same list unshut, and the walk with no list must find the
+// cloud in its way. Shut blocks must be many over the positive balls; the mixed cloud's negative
+// blobs leave none, and over the hollowed balls only the blocks whose lists hold no negative twin
+// are shut (a negative term could hollow the ball, as there: the walk would show it).
+TEST(ShadowBeams, EveryRayOfAShutBlockIsBlocked) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0, 1);
+  int all_shut = 0, all_decided = 0;
+  for (const int cloud : {0, 1, 2})
+    for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]", "[0.2, -1, -0.4]"}) {
+      CloudOverFloor floor(
+          cloud, std::string(R"({"type": "directional", "direction": )") + direction + "}", rng);
+      const ObjectTracer& tr = floor.tracer();
+      const Vec3 along = -floor.scene().lights[0].direction;
+      int shut = 0, with_blockers = 0, decided = 0, rays = 0;
+      floor.for_each_block(
+          [&](const BlobBeam* list, const std::vector<CloudOverFloor::Lit>& block) {
+            with_blockers += !list[0].blockers.empty() && !block.empty();
+            if (!list[0].shut) return;
+            ++shut;
+            BlobBeam unshut = list[0];
+            unshut.shut = false;
+            const ShadowPrism& p = list[0].prism;
+            std::vector<Ray> tried;
+            for (const CloudOverFloor::Lit& l : block) tried.push_back({l.origin, along, 0, 0});
+            for (int i = 0; i < 8; ++i) {
+              const double x = p.x0 + (p.x1 - p.x0) * u(rng), y = p.y0 + (p.y1 - p.y0) * u(rng),
+                           z = p.z0 + (p.z1 - p.z0) * u(rng);
+              tried.push_back({p.origin + p.u * x + p.v * y + p.along * z, along, 0.01 * u(rng),
+                               0.002 * u(rng)});
+            }
+            for (size_t i = 0; i < tried.size(); ++i) {
+              const Ray& ray = tried[i];
+              TraceCounters a, b, c;
+              const MarchResult with = tr.first_hit(ray, 0, 1e3, a, Query::Any, 0, &list[0]);
+              const MarchResult without = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &unshut);
+              ASSERT_EQ(with.hit, without.hit) << "ray " << rays;
+              ASSERT_EQ(a.point_evals, b.point_evals) << "ray " << rays;
+              ASSERT_EQ(a.box_evals, b.box_evals) << "ray " << rays;
+              ASSERT_EQ(a.entered_box, b.entered_box) << "ray " << rays;
+              const bool own = i < block.size();
+              if (own) {
+                // The block's own rays are all blocked, each by one point.
+                ASSERT_TRUE(with.hit) << "ray " << rays;
+                ASSERT_EQ(a.evaluations(), 1) << "ray " << rays;
+                ASSERT_TRUE(tr.first_hit(ray, 0, 1e3, c, Query::Any).hit) << "ray " << rays;
+              }
+              decided += with.hit && a.evaluations() == 1;
+              ++rays;
+            }
+          });
+      if (cloud == 1) {
+        EXPECT_GT(shut, 5) << direction;
+        EXPECT_GT(shut, with_blockers / 4) << direction;
+        all_shut += shut;
+        all_decided += decided;
+      } else if (cloud == 0) {
+        EXPECT_EQ(shut, 0) << direction;
+      }
+    }
+  // The floor's blocks under the balls, and the balls' own (133 and 3,192 when written).
+  EXPECT_GT(all_shut, 100);
+  EXPECT_GT(all_decided, 2000);
 }
 
 // The shadow rays of a block towards a point or spot light converge on its position: their list
