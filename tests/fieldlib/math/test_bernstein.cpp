@@ -1,14 +1,17 @@
-// first_rise (fieldlib/math/bernstein.h) against the search it was written as: one loop for any
-// degree, each piece copied off the stack and its halves built apart. The unrolled search per
-// degree must give the same answer to the bit: the same kind, bracket and count of undecided
-// pieces, on polynomials with crossings, tangencies within rounding and clusters of roots.
+// first_rise and refine_rise (fieldlib/math/bernstein.h) against the search and refinement they
+// were written as: one loop for any degree, each piece copied off the stack and its halves built
+// apart. The unrolled ones per degree must give the same answers to the bit: the same kind,
+// bracket and count of undecided pieces, the same refined bracket in the same steps, on
+// polynomials with crossings, tangencies within rounding and clusters of roots.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 
 #include "math/bernstein.h"
+#include "math/illinois.h"
 
 namespace softtrace::test {
 
@@ -59,6 +62,20 @@ Rise reference_first_rise(const double* a, int degree, double err, double tol, d
   return {Rise::Clear, 1, 1, undecided};
 }
 
+// refine_rise for any degree, as it was before it was unrolled per degree.
+Rise reference_refine_rise(const double* a, int degree, Rise r, double tol, int* steps) {
+  IllinoisBracket br{r.lo, power_value(a, degree, r.lo), r.hi, power_value(a, degree, r.hi)};
+  br.anderson_bjorck = true;
+  for (int i = 0; i < 100 && br.hi - br.lo > tol; ++i) {
+    double m = std::clamp(br.false_position(), br.lo + 0.5 * tol, br.hi - 0.5 * tol);
+    if (!(m > br.lo && m < br.hi)) m = 0.5 * (br.lo + br.hi);
+    ++*steps;
+    const double hm = power_value(a, degree, m);
+    br.update(m, hm, hm >= 0);
+  }
+  return {Rise::Bracket, br.lo, br.hi};
+}
+
 bool same_bits(double x, double y) {
   return std::memcmp(&x, &y, sizeof x) == 0;
 }
@@ -76,10 +93,10 @@ void from_roots(const double* roots, int degree, double c, double shift, double*
 
 }  // namespace
 
-TEST(FirstRise, EachDegreeGivesTheGenericSearchsAnswerToTheBit) {
+TEST(FirstRise, EachDegreeGivesTheGenericSearchsAndRefinementsAnswerToTheBit) {
   std::mt19937_64 rng(30);
   std::uniform_real_distribution<double> u(0, 1), root(-0.2, 1.2);
-  int kinds[3] = {}, undecided = 0, deep = 0;
+  int kinds[3] = {}, undecided = 0, deep = 0, refined = 0;
   for (int i = 0; i < 60000; ++i) {
     const int degree = i % (kMaxDegree + 1);
     double roots[kMaxDegree], a[kMaxDegree + 1];
@@ -101,6 +118,16 @@ TEST(FirstRise, EachDegreeGivesTheGenericSearchsAnswerToTheBit) {
     ASSERT_TRUE(same_bits(got.lo, want.lo)) << "case " << i << ": " << got.lo << " " << want.lo;
     ASSERT_TRUE(same_bits(got.hi, want.hi)) << "case " << i << ": " << got.hi << " " << want.hi;
     ASSERT_EQ(got.undecided, want.undecided) << "case " << i;
+    if (want.kind == Rise::Bracket) {
+      // Its refinement too, to a millionth of the bracket: the same points, so the same steps.
+      int got_steps = 0, want_steps = 0;
+      const double close = 1e-6 * (want.hi - want.lo);
+      const Rise g = refine_rise(a, degree, got, close, &got_steps);
+      const Rise w = reference_refine_rise(a, degree, want, close, &want_steps);
+      ASSERT_TRUE(same_bits(g.lo, w.lo) && same_bits(g.hi, w.hi)) << "case " << i;
+      ASSERT_EQ(got_steps, want_steps) << "case " << i;
+      refined += want_steps > 3;
+    }
     ++kinds[want.kind];
     undecided += want.undecided > 0;
     deep += want.kind == Rise::Bracket && want.hi - want.lo <= 1.0 / 64;
@@ -111,6 +138,7 @@ TEST(FirstRise, EachDegreeGivesTheGenericSearchsAnswerToTheBit) {
   EXPECT_GT(kinds[Rise::Bracket], 5000);
   EXPECT_GT(undecided, 500);
   EXPECT_GT(deep, 1000) << deep;
+  EXPECT_GT(refined, 5000) << refined;
 }
 
 }  // namespace softtrace::test
