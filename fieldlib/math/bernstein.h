@@ -55,15 +55,16 @@ struct Weights {
 inline constexpr Weights kWeights{};
 }  // namespace bernstein_detail
 
-// The first x in [0, 1] where h = Σ a[j] x^j (degree <= kMaxDegree) reaches 0, to within `tol`
-// (a bracket no wider than tol, or one of any width over which h rises), halving down to
-// `finest`; a piece still undecided there is passed and counted (Rise::undecided), and the
-// search goes on past it. `err` bounds |computed - exact| of the coefficients' hulls on every
-// piece.
-inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
-  const auto& weight = bernstein_detail::kWeights.w[degree];
+namespace bernstein_detail {
+// first_rise for one degree D: the same operations in the same order as for any other, with the
+// loops over the coefficients unrolled and a piece's coefficients halved in place of copies
+// (blob1a at 320x240: the generic loops, the pieces' copies and a memcpy per halving were most
+// of first_rise's 680 instructions a call).
+template <int D>
+Rise first_rise_of(const double* a, double err, double tol, double finest) {
+  const auto& weight = kWeights.w[D];
   struct Piece {
-    double lo, hi, b[kMaxDegree + 1];
+    double lo, hi, b[D + 1];
   };
   constexpr int kDepth = 64;
   Piece stack[kDepth];
@@ -71,56 +72,120 @@ inline Rise first_rise(const double* a, int degree, double err, double tol, doub
   Piece& whole = stack[top++];
   whole.lo = 0;
   whole.hi = 1;
-  for (int i = 0; i <= degree; ++i) {
+  for (int i = 0; i <= D; ++i) {
     double s = 0;
     for (int j = 0; j <= i; ++j) s += weight[i][j] * a[j];
     whole.b[i] = s;
   }
   if (whole.b[0] >= 0) return {Rise::AtStart, 0, 0};
   while (top > 0) {
-    const Piece p = stack[--top];
-    const double* b = p.b;
-    if (*std::max_element(b, b + degree + 1) + err < 0) continue;
+    --top;
+    const double lo = stack[top].lo, hi = stack[top].hi;
+    double row[D + 1];
+    std::copy(stack[top].b, stack[top].b + D + 1, row);
+    if (*std::max_element(row, row + D + 1) + err < 0) continue;
     bool rising = true;
-    for (int i = 0; i < degree && rising; ++i) rising = b[i + 1] - b[i] > 2 * err;
-    if (b[degree] >= 0 && (rising || p.hi - p.lo <= tol))
-      return {Rise::Bracket, p.lo, p.hi, undecided};
-    if (rising && b[degree] < 0) continue;  // rises to a negative end (and the hull allowed it)
-    if (p.hi - p.lo <= finest || top + 2 > kDepth) {
+    for (int i = 0; i < D && rising; ++i) rising = row[i + 1] - row[i] > 2 * err;
+    if (row[D] >= 0 && (rising || hi - lo <= tol)) return {Rise::Bracket, lo, hi, undecided};
+    if (rising && row[D] < 0) continue;  // rises to a negative end (and the hull allowed it)
+    if (hi - lo <= finest || top + 2 > kDepth) {
       ++undecided;
       continue;
     }
     // de Casteljau at the middle: the left half's coefficients are the first of each row, the
-    // right half's the last.
-    Piece left{p.lo, 0.5 * (p.lo + p.hi), {}}, right{left.hi, p.hi, {}};
-    double row[kMaxDegree + 1];
-    std::copy(b, b + degree + 1, row);
-    for (int k = 0; k <= degree; ++k) {
+    // right half's the last. The right half takes the popped piece's place, the left goes above
+    // it (searched first).
+    Piece& right = stack[top];
+    Piece& left = stack[top + 1];
+    left.lo = lo;
+    left.hi = 0.5 * (lo + hi);
+    right.lo = left.hi;
+    right.hi = hi;
+    for (int k = 0; k <= D; ++k) {
       left.b[k] = row[0];
-      right.b[degree - k] = row[degree - k];
-      for (int i = 0; i < degree - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
+      right.b[D - k] = row[D - k];
+      for (int i = 0; i < D - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
     }
-    stack[top++] = right;
-    stack[top++] = left;
+    top += 2;
   }
   return {Rise::Clear, 1, 1, undecided};
 }
+}  // namespace bernstein_detail
 
-// Narrows a Bracket of first_rise to at most `tol`: the Anderson-Bjorck variant of regula falsi
-// on h's values, each point kept half a tolerance inside the bracket, so that once one end sits at
-// the root (as false position leaves it on convex stretches) the next point lands past it and
-// closes the bracket from the other side. Adds its steps to *steps.
-inline Rise refine_rise(const double* a, int degree, Rise r, double tol, int* steps) {
-  IllinoisBracket br{r.lo, power_value(a, degree, r.lo), r.hi, power_value(a, degree, r.hi)};
+// The first x in [0, 1] where h = Σ a[j] x^j (degree <= kMaxDegree) reaches 0, to within `tol`
+// (a bracket no wider than tol, or one of any width over which h rises), halving down to
+// `finest`; a piece still undecided there is passed and counted (Rise::undecided), and the
+// search goes on past it. `err` bounds |computed - exact| of the coefficients' hulls on every
+// piece.
+inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
+  using bernstein_detail::first_rise_of;
+  static_assert(kMaxDegree == 6, "a case per degree below");
+  switch (degree) {
+    case 0:
+      return first_rise_of<0>(a, err, tol, finest);
+    case 1:
+      return first_rise_of<1>(a, err, tol, finest);
+    case 2:
+      return first_rise_of<2>(a, err, tol, finest);
+    case 3:
+      return first_rise_of<3>(a, err, tol, finest);
+    case 4:
+      return first_rise_of<4>(a, err, tol, finest);
+    case 5:
+      return first_rise_of<5>(a, err, tol, finest);
+    default:  // kMaxDegree: a larger degree is no polynomial of this header's
+      return first_rise_of<kMaxDegree>(a, err, tol, finest);
+  }
+}
+
+namespace bernstein_detail {
+// power_value for one degree D: Horner's rule unrolled, the same operations in the same order.
+template <int D>
+double power_value_of(const double* a, double x) {
+  double v = a[D];
+  for (int j = D - 1; j >= 0; --j) v = v * x + a[j];
+  return v;
+}
+
+template <int D>
+Rise refine_rise_of(const double* a, Rise r, double tol, int* steps) {
+  IllinoisBracket br{r.lo, power_value_of<D>(a, r.lo), r.hi, power_value_of<D>(a, r.hi)};
   br.anderson_bjorck = true;
   for (int i = 0; i < 100 && br.hi - br.lo > tol; ++i) {
     double m = std::clamp(br.false_position(), br.lo + 0.5 * tol, br.hi - 0.5 * tol);
     if (!(m > br.lo && m < br.hi)) m = 0.5 * (br.lo + br.hi);  // 0/0 after the values vanished
     ++*steps;
-    const double hm = power_value(a, degree, m);
+    const double hm = power_value_of<D>(a, m);
     br.update(m, hm, hm >= 0);
   }
   return {Rise::Bracket, br.lo, br.hi};
+}
+}  // namespace bernstein_detail
+
+// Narrows a Bracket of first_rise to at most `tol`: the Anderson-Bjorck variant of regula falsi
+// on h's values, each point kept half a tolerance inside the bracket, so that once one end sits at
+// the root (as false position leaves it on convex stretches) the next point lands past it and
+// closes the bracket from the other side. Adds its steps to *steps. Per degree, as first_rise
+// (pov:blob1a: Horner's loop was 2.6 % of the process's instructions).
+inline Rise refine_rise(const double* a, int degree, Rise r, double tol, int* steps) {
+  using bernstein_detail::refine_rise_of;
+  static_assert(kMaxDegree == 6, "a case per degree below");
+  switch (degree) {
+    case 0:
+      return refine_rise_of<0>(a, r, tol, steps);
+    case 1:
+      return refine_rise_of<1>(a, r, tol, steps);
+    case 2:
+      return refine_rise_of<2>(a, r, tol, steps);
+    case 3:
+      return refine_rise_of<3>(a, r, tol, steps);
+    case 4:
+      return refine_rise_of<4>(a, r, tol, steps);
+    case 5:
+      return refine_rise_of<5>(a, r, tol, steps);
+    default:  // kMaxDegree
+      return refine_rise_of<kMaxDegree>(a, r, tol, steps);
+  }
 }
 
 }  // namespace softtrace
