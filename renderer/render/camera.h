@@ -40,6 +40,7 @@ class ViewCamera {
         orthographic_(c.projection == Camera::Projection::Orthographic),
         width_(width),
         height_(height),
+        aspect_(static_cast<double>(width) / height),
         aperture_(c.aperture) {
     forward_ = normalize(c.target - c.eye);
     right_ = normalize(cross(forward_, c.up));
@@ -58,14 +59,15 @@ class ViewCamera {
 
   // Whether every ray leaves the eye (a pinhole perspective camera): then frustum() holds them.
   bool single_eye() const { return !orthographic_ && aperture_ == 0; }
+  // Whether the rays pass through a lens: only then does generate() read its (lx, ly).
+  bool lens() const { return aperture_ > 0; }
 
   // (px, py) in pixel units: x to the right, y down from the top-left corner. (lx, ly): a point
   // of the unit disc, where on the lens the ray passes (ignored for a pinhole).
   Ray generate(double px, double py, double lx = 0, double ly = 0) const {
     Vec3 o = eye_, d;
     if (orthographic_) {
-      const double aspect = static_cast<double>(width_) / height_;
-      const double sx = (2 * px / width_ - 1) * aspect, sy = 1 - 2 * py / height_;
+      const double sx = (2 * px / width_ - 1) * aspect_, sy = 1 - 2 * py / height_;
       o += right_ * (sx * half_height_) + up_ * (sy * half_height_);
       d = forward_;
     } else {
@@ -91,8 +93,7 @@ class ViewCamera {
  private:
   // Through (px, py) from the eye, with forward component 1.
   Vec3 direction(double px, double py) const {
-    const double aspect = static_cast<double>(width_) / height_;
-    const double sx = (2 * px / width_ - 1) * tan_half_ * aspect;
+    const double sx = (2 * px / width_ - 1) * tan_half_ * aspect_;
     const double sy = (1 - 2 * py / height_) * tan_half_;
     return forward_ + right_ * sx + up_ * sy;
   }
@@ -100,6 +101,7 @@ class ViewCamera {
   Vec3 eye_, forward_, right_, up_;
   bool orthographic_;
   int width_, height_;
+  double aspect_;  // width / height, once (a division a camera ray)
   double aperture_, focus_ = 0, tan_half_ = 0, half_height_ = 0, cone_ = 0, cone0_ = 0;
 };
 

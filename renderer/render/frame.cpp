@@ -45,6 +45,8 @@ void sample_offset(int s, double& dx, double& dy) {
 
 // A camera ray traced, waiting for its shading.
 struct TracedSample {
+  TracedSample() = default;
+  TracedSample(const Ray& r, const TraceHit& h) : ray(r), hit(h) {}  // for emplace_back
   Ray ray;
   TraceHit hit;
 };
@@ -74,6 +76,7 @@ struct Work {
   std::vector<ShadowBeams::Point> points;
   std::vector<int> point_starts;
   ShadowBeams::Lists shadow_lists;
+  TraceHit unmet;  // an unmet beam's ray's answer (FrameTracer::camera_hit)
 };
 
 // One frame's pixels, traced beam by beam. Tiles and beams are aligned to the full frame, never
@@ -164,13 +167,28 @@ class FrameTracer {
 
   // The camera rays of pixel (x, y) of the pass, traced into work.samples (none where the pass
   // leaves the pixel alone; a pixel cancelled part way is left out, never shaded).
-  void trace_pixel(int x, int y, const BeamClear* certified, Pass pass, Work& work) const {
+  [[gnu::always_inline]] void trace_pixel(int x, int y, const BeamClear* certified, Pass pass,
+                                          Work& work) const {
     if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
     const int spp = pass == Pass::First ? spp_ : refined_spp_;
     const int first = static_cast<int>(work.samples.size());
-    // One sample is traced here and kept only if it has a hit: most of a sparse frame's pixels
-    // are its background's, and their copy into and out of work.samples cost 30 instructions.
-    TracedSample one;
+    if (spp == 1) {
+      // One sample, traced into locals and copied into work.samples only if it has a hit: most
+      // of a sparse frame's pixels are its background's. A TracedSample to fill (zeroed first)
+      // and its copy cost about 60 instructions a pixel.
+      if (cancelled()) return;
+      const Ray ray = camera_ray(x, y, 0, 1);
+      // An unmet beam's ray (no hit, its counters) is read where intersect_unmet put it, in the
+      // thread's slot: a TraceHit zeroed for each ray took a `rep stos`, and a copy out stalled
+      // on intersect_unmet's stores (a third of the pixel loop's own cycles, both).
+      if (certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet))
+        one_sample(x, y, first, ray, work.unmet, pass, work);
+      else
+        one_sample(x, y, first, ray,
+                   rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified),
+                   pass, work);
+      return;
+    }
     bool met = false;  // whether any sample has a hit
     for (int s = 0; s < spp; ++s) {
       // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
@@ -178,30 +196,68 @@ class FrameTracer {
         work.samples.resize(size_t(first));
         return;
       }
-      double dx, dy;
-      sample_offset(s, dx, dy);
-      double lx, ly;
-      lens_sample(x, y, s, spp, lx, ly);
-      TracedSample& t = spp == 1 ? one : work.samples.emplace_back();
-      t.ray = camera_.generate(x + dx, y + dy, lx, ly);
-      if (!(certified && certified->unmet && rt_.embree.intersect_unmet(t.ray, *certified, t.hit)))
-        t.hit = rt_.embree.intersect(t.ray, 0, std::numeric_limits<double>::infinity(), certified);
+      TracedSample& t = work.samples.emplace_back();
+      t.ray = camera_ray(x, y, s, spp);
+      t.hit = camera_hit(t.ray, certified, work);
       work.primary.add(t.hit.work);
       met = met || t.hit.hit;
     }
-    const int bx = (x % kTile) / kBeam, by = (y % kTile) / kBeam;
-    const int quarter = (by >> 1) * 2 + (bx >> 1), within = (by & 1) * 2 + (bx & 1);
-    const TracedPixel tp{x, y, first, spp, quarter * 4 + within, 0};
     if (met) {
-      if (spp == 1) work.samples.push_back(one);
-      work.pixels.push_back(tp);
+      work.pixels.push_back(traced_pixel(x, y, first, spp));
       return;
     }
     // The background's pixel (94 % of a sparse cloud's frame) is written now, by the code that
     // shades it: its samples have no hit, so no shadow ray and no shadow list (a block's lists
     // are built from its hits alone), and the tile's shading skips it.
-    miss_pixel(tp, spp == 1 ? &one : work.samples.data() + first, pass);
+    const TracedSample* sample = work.samples.data() + first;
+    Vec3 sky{0, 0, 0};
+    if (scene_.sky)
+      for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(sample[s].ray.d);
+    miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, sample[0].hit, pass);
     work.samples.resize(size_t(first));
+  }
+
+  // trace_pixel's pixel (x, y) of one sample, traced (`ray`, `hit`): kept for shading where it
+  // has a hit, else written now (miss_pixel).
+  [[gnu::always_inline]] void one_sample(int x, int y, int first, const Ray& ray,
+                                         const TraceHit& hit, Pass pass, Work& work) const {
+    work.primary.add(hit.work);
+    if (hit.hit) {
+      work.samples.emplace_back(ray, hit);  // built in place, not copied from a temporary
+      work.pixels.push_back(traced_pixel(x, y, first, 1));
+      return;
+    }
+    Vec3 sky{0, 0, 0};
+    if (scene_.sky) sky += scene_.sky->seen(ray.d);
+    miss_pixel(x, y, 1, scene_.sky ? 1 : 0, sky, hit, pass);
+  }
+
+  // Sample s of spp of pixel (x, y): its camera ray. The lens's point is asked for only where the
+  // camera has a lens (generate() ignores it otherwise): its hash and square root cost 30
+  // instructions a pixel.
+  Ray camera_ray(int x, int y, int s, int spp) const {
+    double dx, dy;
+    sample_offset(s, dx, dy);
+    double lx = 0, ly = 0;
+    if (camera_.lens()) lens_sample(x, y, s, spp, lx, ly);
+    return camera_.generate(x + dx, y + dy, lx, ly);
+  }
+
+  // A camera ray's nearest hit: a ray of an unmet beam (BeamClear::unmet) by intersect_unmet
+  // where it answers, else by intersect.
+  TraceHit camera_hit(const Ray& ray, const BeamClear* certified, Work& work) const {
+    // intersect_unmet fills the thread's slot, which is copied out: a TraceHit zeroed for each
+    // ray took a `rep stos` (a fifth of the frame's own cycles in the pixel loop).
+    if (certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet))
+      return work.unmet;
+    return rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
+  }
+
+  // The traced pixel (x, y) whose samples are work.samples[first, first + spp).
+  static TracedPixel traced_pixel(int x, int y, int first, int spp) {
+    const int bx = (x % kTile) / kBeam, by = (y % kTile) / kBeam;
+    const int quarter = (by >> 1) * 2 + (bx >> 1), within = (by & 1) * 2 + (bx & 1);
+    return {x, y, first, spp, quarter * 4 + within, 0};
   }
 
   // Shades the tile's traced pixels, a 4-pixel block at a time, with the shadow lists of the
@@ -307,20 +363,18 @@ class FrameTracer {
     }
   }
 
-  // pixel() for a pixel none of whose samples (`sample[0, tp.count)`) has a hit, without samples()'
-  // general loop: the same values to the bit. The colour is the sky's where the scene has one (each
-  // sample's, summed in order), else none (the film's background is added when it is written); the
-  // normal and albedo means are 0; Z is +inf and steps the centre ray's own.
-  void miss_pixel(const TracedPixel& tp, const TracedSample* sample, Pass pass) const {
-    const int spp = tp.count;
-    Vec3 sum{0, 0, 0};
-    int covered = 0;
-    if (scene_.sky)
-      for (int s = 0; s < spp; ++s, ++covered) sum += scene_.sky->seen(sample[s].ray.d);
-    float rgba[4];
-    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k] / spp);
-    rgba[3] = static_cast<float>(covered) / spp;
-    const int x = tp.x, y = tp.y;
+  // pixel() for pixel (x, y) none of whose `spp` samples has a hit, without samples()' general
+  // loop: the same values to the bit. `sky` is the sum of the samples' sky colours in their order
+  // (from {0, 0, 0}), `covered` how many it has (all or none); the film's background is added when
+  // it is written. The normal and albedo means are 0; Z is +inf and steps the centre ray's own
+  // (`centre`).
+  void miss_pixel(int x, int y, int spp, int covered, const Vec3& sky, const TraceHit& centre,
+                  Pass pass) const {
+    float rgba[4] = {0, 0, 0, 0};  // no sky: 0 / spp, each of them +0
+    if (covered) {
+      for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sky[k] / spp);
+      rgba[3] = static_cast<float>(covered) / spp;
+    }
     const bool in_film = window_.contains(x, y);
     const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
     const SampleMeans none;  // samples()' 0 / spp
@@ -332,7 +386,7 @@ class FrameTracer {
     if (in_film) {
       std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
       mean_aovs(i, none);
-      centre_aovs(i, sample[0].hit, RayWork{});
+      centre_aovs(i, centre, RayWork{});
     }
     if (adaptive_) {
       for (int k = 0; k < 3; ++k)
@@ -386,6 +440,12 @@ class FrameTracer {
       sums.normal += normal;
       sums.albedo += albedo;
       work.shadow += shadow;
+    }
+    if (spp == 1) {  // x / 1 is x to the bit: one sample's pixel takes no divisions
+      if (means) *means = sums;
+      for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k]);
+      rgba[3] = static_cast<float>(covered);
+      return true;
     }
     if (means) *means = {sums.normal / spp, sums.albedo / spp};
     for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k] / spp);
