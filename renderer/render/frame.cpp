@@ -178,9 +178,9 @@ class FrameTracer {
       // and its copy cost about 60 instructions a pixel.
       if (cancelled()) return;
       const Ray ray = camera_ray(x, y, 0, 1);
-      // An unmet beam's ray (no hit, its counters) is read where intersect_unmet put it, in the
-      // thread's slot: a TraceHit zeroed for each ray took a `rep stos`, and a copy out stalled
-      // on intersect_unmet's stores (a third of the pixel loop's own cycles, both).
+      // An unmet beam's ray (a primitive's hit or none, its counters) is read where
+      // intersect_unmet put it, in the thread's slot: a TraceHit returned by value and copied
+      // out stalled on intersect_unmet's stores.
       if (certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet))
         one_sample(x, y, first, ray, work.unmet, pass, work);
       else
