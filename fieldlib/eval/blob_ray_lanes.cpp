@@ -10,7 +10,14 @@
 #include <immintrin.h>
 
 #if __has_include(<sys/platform/x86.h>)  // glibc 2.33 and later
+// A C header: its inline functions return _Bool, which GCC's C++ takes and Clang's does not.
+#if defined(__clang__)
+#define _Bool bool
 #include <sys/platform/x86.h>
+#undef _Bool
+#else
+#include <sys/platform/x86.h>
+#endif
 #define SOFTTRACE_GLIBC_CPU_FEATURES 1
 #else
 #include <cpuid.h>
