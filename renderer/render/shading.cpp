@@ -58,8 +58,12 @@ Shaded shade_plain(const Scene& scene, const EmbreeScene& rt, const Vec3& d, con
                    const Vec3& n, const Vec3& lifted, double cone0, double cone, const Material& m,
                    RayWork& secondary, const std::atomic<bool>* cancel, const ShadowLists* shadow) {
   Vec3 light{0, 0, 0}, shine{0, 0, 0};
-  for (size_t li = 0; li < scene.lights.size(); ++li) {
-    const Light& l = scene.lights[li];
+  // The lights' array and count read once: the shadow ray's call between two lights would have
+  // the loop read the vector again (10 instructions a point of the floor's frame).
+  const Light* const lights = scene.lights.data();
+  const size_t count = scene.lights.size();
+  for (size_t li = 0; li < count; ++li) {
+    const Light& l = lights[li];
     if (cancel_requested(cancel)) break;
     if (l.type == Light::Type::Ambient) {
       light += mul(m.ambient, l.color * l.intensity);
