@@ -293,7 +293,7 @@ class FrameTracer {
         // A CSG's face's object, as shade() takes it (the call only for a face).
         const SceneObject& obj =
             t.hit.face > 0 ? face_object(objects[t.hit.object], t.hit.face) : objects[t.hit.object];
-        work.points.push_back({p, ray_offset(obj, p, t.ray.cone0 + t.ray.cone * t.hit.t)});
+        work.points.push_back({p, ray_offset(obj, p, t.ray.cone_at(t.hit.t))});
       }
     }
     starts.push_back(static_cast<int>(work.points.size()));

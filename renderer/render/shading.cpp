@@ -107,7 +107,7 @@ Shaded shade_plain(const Scene& scene, const EmbreeScene& rt, const Vec3& d, con
 // surface by that footprint's radius (at least 1e-4 of the object's box), far more than the hit's
 // error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
 double footprint_at(const Ray& ray, const TraceHit& hit) {
-  return ray.cone0 + ray.cone * hit.t;
+  return ray.cone_at(hit.t);
 }
 
 // shade() at a point that is not plain(): blended materials, mirrors, transparency, ambient

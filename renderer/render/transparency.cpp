@@ -86,7 +86,7 @@ Vec3 shadow_filter(const Scene& scene, const EmbreeScene& rt, const Ray& ray, do
       break;
     }
     const Vec3 p = ray.o + ray.d * h.t;
-    t = h.t + leave_distance(scene.objects[h.object], p, ray.cone0 + ray.cone * h.t);
+    t = h.t + leave_distance(scene.objects[h.object], p, ray.cone_at(h.t));
     if (!(t < distance)) break;
   }
   shadow.add(work);

@@ -128,7 +128,7 @@ Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
 }
 
 double ObjectTracer::footprint(const Ray& ray, double t) const {
-  const double f = ray.cone0 + ray.cone * std::abs(t);
+  const double f = ray.cone_at(std::abs(t));
   // Points o + t d are only known to a few ulps of the coordinates' magnitude: a tolerance below
   // that would be decided by rounding.
   const double resolvable =

@@ -39,6 +39,7 @@ struct Ray {
   // The radius of the pixel's cone at distance t is cone0 + cone * t: how precisely a hit must be
   // placed. Zero for rays that come from no camera: the tracer then uses 1e-5 of the object box.
   double cone0 = 0, cone = 0;
+  double cone_at(double t) const { return cone0 + cone * t; }
 };
 
 // The rays from one eye through a rectangle of the image (a block of pixels): at forward depth s
