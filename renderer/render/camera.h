@@ -82,6 +82,15 @@ class ViewCamera {
     return {o, normalize(d), cone0_, cone_};
   }
 
+  // A pinhole perspective camera's ray (single_eye()) through the image-plane point of
+  // column(px) and row(py): generate(px, py) to the bit, the two divisions taken once per column
+  // and row by a caller that keeps them (FrameTracer's tables).
+  double column(double px) const { return (2 * px / width_ - 1) * tan_half_ * aspect_; }
+  double row(double py) const { return (1 - 2 * py / height_) * tan_half_; }
+  Ray pinhole(double column, double row) const {
+    return {eye_, normalize(forward_ + right_ * column + up_ * row), cone0_, cone_};
+  }
+
   // The rays through the pixels [x0, x1) x [y0, y1), wherever in them their samples fall (valid
   // only where single_eye()).
   Frustum frustum(int x0, int y0, int x1, int y1) const {
@@ -93,9 +102,7 @@ class ViewCamera {
  private:
   // Through (px, py) from the eye, with forward component 1.
   Vec3 direction(double px, double py) const {
-    const double sx = (2 * px / width_ - 1) * tan_half_ * aspect_;
-    const double sy = (1 - 2 * py / height_) * tan_half_;
-    return forward_ + right_ * sx + up_ * sy;
+    return forward_ + right_ * column(px) + up_ * row(py);
   }
 
   Vec3 eye_, forward_, right_, up_;

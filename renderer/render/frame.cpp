@@ -100,7 +100,15 @@ class FrameTracer {
         objects_(rt.tracers.size()),
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
         adaptive_(adaptive),
-        shadow_beams_(scene, rt.tracers) {}
+        shadow_beams_(scene, rt.tracers) {
+    if (!camera_.single_eye()) return;
+    double dx, dy;
+    sample_offset(0, dx, dy);
+    columns_.resize(size_t(film.full_width));
+    rows_.resize(size_t(film.full_height));
+    for (int x = 0; x < film.full_width; ++x) columns_[size_t(x)] = camera_.column(x + dx);
+    for (int y = 0; y < film.full_height; ++y) rows_[size_t(y)] = camera_.row(y + dy);
+  }
 
   int refined_spp() const { return refined_spp_; }
 
@@ -236,6 +244,7 @@ class FrameTracer {
   // camera has a lens (generate() ignores it otherwise): its hash and square root cost 30
   // instructions a pixel.
   Ray camera_ray(int x, int y, int s, int spp) const {
+    if (s == 0 && !columns_.empty()) return camera_.pinhole(columns_[size_t(x)], rows_[size_t(y)]);
     double dx, dy;
     sample_offset(s, dx, dy);
     double lx = 0, ly = 0;
@@ -482,6 +491,9 @@ class FrameTracer {
   const std::atomic<bool>* cancel_;
   const int spp_, refined_spp_;
   const ViewCamera camera_;
+  // A pinhole perspective camera's image-plane coordinates of sample 0 (the pixel's centre) per
+  // full-frame column and row (ViewCamera::column, row), or none: a camera ray's two divisions.
+  std::vector<double> columns_, rows_;
   const int objects_;
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;

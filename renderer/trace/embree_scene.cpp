@@ -341,23 +341,15 @@ RTCRay make_ray(const Ray& ray, double tnear, double tfar) {
 }
 }  // namespace
 
-TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
-                                int inside) const {
-  static const Interiors kOutside{};
-  if (inside < 0) return intersect(ray, tnear, tfar, beam, kOutside);
-  Interiors in;
-  in.push(inside, 1);
-  return intersect(ray, tnear, tfar, beam, in);
-}
-
-TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
-                                const Interiors& inside) const {
+TraceHit EmbreeScene::nearest(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
+                              const Interiors* inside) const {
   // A ray of the beam goes forward (cos_forward > 0); anything else gets no help from it.
   const double cos_forward = beam ? dot(ray.d, beam->forward) : 0;
   if (!(cos_forward > 0)) beam = nullptr;
   // The paths without Embree build their hit in the caller's (a lambda's one named result): a
   // TraceHit filled here and copied out cost about 15 instructions a camera ray.
-  if (impl_->lone_field && !inside.contains(0)) {  // no Embree, and none of its context to fill
+  if (impl_->lone_field &&
+      !(inside && inside->contains(0))) {  // no Embree, and none of its context to fill
     return [&] {
       TraceHit h;
       const BlobBeam* list;
@@ -373,7 +365,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
       return h;
     }();
   }
-  if (impl_->direct_field >= 0 && inside.empty()) {
+  if (impl_->direct_field >= 0 && !inside) {
     return [&] {
       TraceHit h;
       double t = tfar;
@@ -404,7 +396,7 @@ TraceHit EmbreeScene::intersect(const Ray& ray, double tnear, double tfar, const
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = ray;
-  if (!inside.empty()) ctx.inside = &inside;
+  ctx.inside = inside;
   if (beam) {
     ctx.beam = beam;
     ctx.beam_cos = cos_forward;
