@@ -186,10 +186,8 @@ class FrameTracer {
       // and its copy cost about 60 instructions a pixel.
       if (cancelled()) return;
       const Ray ray = camera_ray(x, y, 0, 1);
-      // An unmet beam's ray (a primitive's hit or none, its counters) is read where
-      // intersect_unmet put it, in the thread's slot: a TraceHit returned by value and copied
-      // out stalled on intersect_unmet's stores.
-      if (certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet))
+      // An unmet beam's ray is read where intersect_unmet put it, not copied out (camera_hit).
+      if (unmet_answers(ray, certified, work))
         one_sample(x, y, first, ray, work.unmet, pass, work);
       else
         one_sample(x, y, first, ray,
@@ -252,13 +250,17 @@ class FrameTracer {
     return camera_.generate(x + dx, y + dy, lx, ly);
   }
 
-  // A camera ray's nearest hit: a ray of an unmet beam (BeamClear::unmet) by intersect_unmet
-  // where it answers, else by intersect.
+  // Whether `ray`, of an unmet beam (BeamClear::unmet), has its answer (a primitive's hit or
+  // none, and its counters) from intersect_unmet in the thread's slot, work.unmet. Filled there in
+  // place: a TraceHit returned by value and copied out stalled on intersect_unmet's stores.
+  bool unmet_answers(const Ray& ray, const BeamClear* certified, Work& work) const {
+    return certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet);
+  }
+
+  // A camera ray's nearest hit: an unmet beam's ray's from intersect_unmet where it answers, else
+  // intersect's.
   TraceHit camera_hit(const Ray& ray, const BeamClear* certified, Work& work) const {
-    // intersect_unmet fills the thread's slot, which is copied out: a TraceHit zeroed for each
-    // ray took a `rep stos` (a fifth of the frame's own cycles in the pixel loop).
-    if (certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet))
-      return work.unmet;
+    if (unmet_answers(ray, certified, work)) return work.unmet;
     return rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
   }
 
