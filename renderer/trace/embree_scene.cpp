@@ -248,6 +248,12 @@ struct EmbreeScene::Impl {
   // bit on the scenes with a field and primitives (61 scenes and the floor frame checked).
   std::vector<int> direct_primitives;
   int direct_field = -1;
+  // The direct paths' one primitive where it is an unplaced plane (a floor), and its object:
+  // every camera and shadow ray of such a frame tests it, and the primitives' loop, its pointer
+  // chase to the shape and the shape's kind cost 15 to 30 instructions a ray beside the test
+  // (unplaced_plane_end, the same arithmetic: the same answer to the bit).
+  const Primitive* floor = nullptr;
+  int floor_object = -1;
   // Without Embree (`device` and `scene` null): every ray takes one of the paths above.
   explicit Impl(bool embree) : device(nullptr, embree) {}
   ~Impl() {
@@ -277,6 +283,10 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers, bool interiors) {
   if (direct) {
     impl_->direct_field = field;
     impl_->direct_primitives = primitives;
+    if (primitives.size() == 1 && unplaced_plane(*tracers.object(primitives[0]).shape)) {
+      impl_->floor = &*tracers.object(primitives[0]).shape;
+      impl_->floor_object = primitives[0];
+    }
   }
   impl_->data.reserve(tracers.size());  // the callbacks hold pointers into it
   for (int i = 0; i < tracers.size(); ++i)
@@ -369,15 +379,26 @@ TraceHit EmbreeScene::nearest(const Ray& ray, double tnear, double tfar, const B
     return [&] {
       TraceHit h;
       double t = tfar;
-      for (const int o : impl_->direct_primitives) {
-        const Primitive& shape = *impl_->data[o].object_data->shape;
-        const PrimitiveHit p = first_hit(shape, ray, tnear, t);
-        if (!p.hit || p.t >= t) continue;
-        t = p.t;
-        h.hit = true;
-        h.t = p.t;
-        h.object = o;
-        h.normal = p.normal;
+      if (const Primitive* floor = impl_->floor) {  // first_hit's answer, as the loop takes it
+        const double p = unplaced_plane_end(*floor, ray, tnear, t);
+        if (p < t) {  // not NaN
+          t = p;
+          h.hit = true;
+          h.t = p;
+          h.object = impl_->floor_object;
+          h.normal = floor->world_normal;
+        }
+      } else {
+        for (const int o : impl_->direct_primitives) {
+          const Primitive& shape = *impl_->data[o].object_data->shape;
+          const PrimitiveHit p = first_hit(shape, ray, tnear, t);
+          if (!p.hit || p.t >= t) continue;
+          t = p.t;
+          h.hit = true;
+          h.t = p.t;
+          h.object = o;
+          h.normal = p.normal;
+        }
       }
       const BlobBeam* list;
       const MarchResult m = field_hit(impl_->data[impl_->direct_field], ray, tnear, t, beam,
@@ -451,8 +472,12 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
 bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                            const BlobBeam* blobs) const {
   if (impl_->direct_field >= 0) {  // any object's hit answers: the order changes no answer
-    for (const int o : impl_->direct_primitives)
-      if (occludes(*impl_->data[o].object_data->shape, ray, tnear, tfar)) return true;
+    if (const Primitive* floor = impl_->floor) {  // occludes' answer, without the loop
+      if (!std::isnan(unplaced_plane_end(*floor, ray, tnear, tfar))) return true;
+    } else {
+      for (const int o : impl_->direct_primitives)
+        if (occludes(*impl_->data[o].object_data->shape, ray, tnear, tfar)) return true;
+    }
     const int o = impl_->direct_field;
     const BlobBeam* list = blobs ? &blobs[o] : nullptr;
     if (list && list->clear) return false;  // first_hit's answer, without its call
