@@ -18,6 +18,7 @@
 #include "render/camera.h"
 #include "render/frame.h"
 #include "scene/scene.h"
+#include "trace/primitive_trace.h"
 
 namespace softtrace {
 namespace {
@@ -169,6 +170,69 @@ TEST(UnmetBeams, BesidePrimitivesEveryRayGetsIntersectsAnswer) {
   EXPECT_GT(walk.unmet_hits[3], 50);                   // the box
   EXPECT_GT(walk.unmet_hits[4], 50);                   // the ball in front
   EXPECT_GT(walk.sum_hits, 20);
+}
+
+// A cloud cut by a floor alone, tilted (its world normal not the default's): intersect() and
+// occluded() test the one unplaced plane directly (EmbreeScene's floor), intersect_unmet through
+// the primitives' loop (nearest_primitive). Every unmet ray gets the same answer from both; every
+// camera ray intersect()'s answer from the plane's and the sum's own tests (the sum searched up to
+// the plane: blobs lie below it), and a shadow ray from each floor hit, or from just below it,
+// occluded()'s.
+TEST(UnmetBeams, OverAFloorAloneEveryRayGetsIntersectsAnswer) {
+  std::string text = unmet_sparse_cloud(60);
+  text.replace(text.size() - 2, 2,
+               R"(, {"shape": {"type": "plane", "normal": [0.05, -0.1, 1], "distance": -8}}]})");
+  const Scene scene = parse_scene(text, "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  ASSERT_EQ(rt.tracers.size(), 2);
+  ASSERT_FALSE(rt.embree.built());
+  UnmetWalk walk;
+  walk_unmet_beams(scene, rt, walk);
+  EXPECT_GT(walk.unmet_rays, walk.rays / 3);
+  EXPECT_GT(walk.unmet_hits[1], walk.unmet_rays / 2);  // the floor
+  EXPECT_GT(walk.sum_hits, 20);
+  // Shadow rays towards the light, from the floor's hits lifted and sunk a little.
+  const Primitive& floor = *rt.tracers.object(1).shape;
+  const ObjectTracer* tracer = rt.tracers.tracer(0);
+  const Vec3 to_light = -scene.lights[0].direction;
+  const ViewCamera camera(scene.camera, 96, 72);
+  int shadow_rays = 0, blocked = 0, below = 0, sum_hits = 0;
+  for (int y = 0; y < 72; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const Ray ray = camera.generate(x + 0.5, y + 0.5);
+      const TraceHit h = rt.embree.intersect(ray, 0, kUnmetFar);
+      const PrimitiveHit p = first_hit(floor, ray, 0, kUnmetFar);
+      TraceCounters field_work;
+      const MarchResult m =
+          tracer->first_hit(ray, 0, p.hit ? p.t : kUnmetFar, field_work, Query::Nearest);
+      const bool on_sum = m.hit && (!p.hit || m.t < p.t);
+      ASSERT_EQ(h.hit, p.hit || m.hit) << "pixel (" << x << ", " << y << ")";
+      ASSERT_TRUE(same_unmet_counters(h.work, field_work)) << "pixel (" << x << ", " << y << ")";
+      if (!h.hit) continue;
+      ASSERT_EQ(h.object, on_sum ? 0 : 1) << "pixel (" << x << ", " << y << ")";
+      const double t = on_sum ? m.t : p.t;
+      ASSERT_EQ(std::memcmp(&h.t, &t, sizeof t), 0) << "pixel (" << x << ", " << y << ")";
+      sum_hits += on_sum;
+      if (on_sum) continue;
+      ASSERT_EQ(std::memcmp(&h.normal, &floor.world_normal, sizeof h.normal), 0);
+      for (const double lift : {1e-3, -1e-3, 0.0}) {
+        const Ray shadow{ray.o + ray.d * h.t + h.normal * lift, to_light, 0, 0};
+        TraceCounters work, own;
+        const bool answer = rt.embree.occluded(shadow, 0, kUnmetFar, work);
+        const bool plane = occludes(floor, shadow, 0, kUnmetFar);
+        const bool sum = !plane && tracer->first_hit(shadow, 0, kUnmetFar, own, Query::Any).hit;
+        ASSERT_EQ(answer, plane || sum) << "pixel (" << x << ", " << y << "), lift " << lift;
+        ASSERT_TRUE(same_unmet_counters(work, own));
+        ++shadow_rays;
+        blocked += answer;
+        below += plane;
+      }
+    }
+  // Not vacuous: the sum is seen, the sunk rays meet the floor, some lifted ones the cloud.
+  EXPECT_GT(sum_hits, 20);
+  EXPECT_GT(shadow_rays, 3000);
+  EXPECT_GT(below, shadow_rays / 4);
+  EXPECT_GT(blocked - below, 20);
 }
 
 // The frame (both shortcuts) against each pixel-centre ray traced alone: the same hit mask.
