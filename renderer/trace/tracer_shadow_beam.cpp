@@ -234,6 +234,11 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
     if (!(b.c2 >= 0 && b.c3 >= 0)) return;
     magnitude += 3 * (100 * b.c2 + 1000 * b.c3);
     if (!(b.inv_r2 > 0)) continue;  // only balls: the rays' nearest points are the across ones
+    // With kBlockers picked, a ball no farther towards the light than the last of them would not
+    // be taken (below): its test is skipped (a floor block's list under the cloud holds ~35 blobs,
+    // the test was ~40 % of this loop's instructions).
+    const double z = 0.5 * (e.near + e.far);
+    if (picked == kBlockers && !(best_z[kBlockers - 1] < z)) continue;
     // A choice, not a certificate (blocked_by decides each ray): a ball whose potential at the
     // rectangle's farthest corner from its centre is above iso by 1e-3 of it. A pyramid's
     // rectangle is its section at the centre's depth (a ball behind the apex is none).
@@ -253,7 +258,6 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
     if (!(r > 0 && r * r * (b.c2 + b.c3 * r) > iso * (1 + 1e-3))) continue;
     // The ones farthest towards the light (a pyramid's axis is minus the distance from it): most
     // likely ahead of rays that start inside the cloud.
-    const double z = 0.5 * (e.near + e.far);
     int k = picked < kBlockers ? picked++ : kBlockers;
     while (k > 0 && best_z[k - 1] < z) {
       if (k < kBlockers)
