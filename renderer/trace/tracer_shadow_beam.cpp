@@ -235,8 +235,8 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
     magnitude += 3 * (100 * b.c2 + 1000 * b.c3);
     if (!(b.inv_r2 > 0)) continue;  // only balls: the rays' nearest points are the across ones
     // With kBlockers picked, a ball no farther towards the light than the last of them would not
-    // be taken (below): its test is skipped (a floor block's list under the cloud holds ~35 blobs,
-    // the test was ~40 % of this loop's instructions).
+    // be taken (below): its test is skipped (a floor block's list under the 1000-blob cloud holds
+    // ~35 blobs; this function's instructions on that frame fell from 25.4 to 22.6 M).
     const double z = 0.5 * (e.near + e.far);
     if (picked == kBlockers && !(best_z[kBlockers - 1] < z)) continue;
     // A choice, not a certificate (blocked_by decides each ray): a ball whose potential at the
