@@ -130,7 +130,7 @@ void trace(const Scene& scene, Film& film, int spp, const Request& r) {
   if (!job.result()) throw std::runtime_error("the render was cancelled");
 }
 
-py::array_t<float> array_of(const std::vector<float>& plane, const Film& film, size_t depth) {
+py::array_t<float> array_of(const FilmPlane& plane, const Film& film, size_t depth) {
   std::vector<size_t> shape{size_t(film.height), size_t(film.width)};
   if (depth > 1) shape.push_back(depth);
   py::array_t<float> out(shape);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "film/plane_memory.h"
 #include "io/image_file.h"
 #include "io/output_file.h"
 #include "math/vec.h"
@@ -20,16 +21,17 @@ struct AovSelection {
 // A data window of width x height pixels at (x0, y0) inside a display window of
 // full_width x full_height (the whole frame; a crop or tile renders part of it). The AOV planes
 // not asked for stay empty: a process's fresh memory costs a page fault per 4 KiB (about 10 µs
-// on a virtual machine), and at 640x480 the three planes were 6 MB, 15 ms of a 0.2 s render.
+// on a virtual machine), and at 640x480 the three planes were 6 MB, 15 ms of a 0.2 s render. The
+// planes' memory: film/plane_memory.h.
 struct Film {
   int full_width = 0, full_height = 0;
   int x0 = 0, y0 = 0;
   int width = 0, height = 0;
-  std::vector<float> rgba;    // premultiplied: RGB = coverage-weighted object colour, A = coverage
-  std::vector<float> depth;   // ray distance of the pixel-centre ray, +inf for background
-  std::vector<float> normal;  // unit normal (x,y,z) at that hit, 0 for background
-  std::vector<float> steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
-  std::vector<float> albedo;  // the material's colour (r,g,b) at that hit, 0 for background
+  FilmPlane rgba;    // premultiplied: RGB = coverage-weighted object colour, A = coverage
+  FilmPlane depth;   // ray distance of the pixel-centre ray, +inf for background
+  FilmPlane normal;  // unit normal (x,y,z) at that hit, 0 for background
+  FilmPlane steps;   // field/interval evaluations of the pixel-centre ray (with shadows)
+  FilmPlane albedo;  // the material's colour (r,g,b) at that hit, 0 for background
   std::map<std::string, std::string> attributes;  // more string attributes for EXR headers
 
   Film(int w, int h, AovSelection aovs = {true, true, true})

@@ -108,6 +108,25 @@ TEST(PngBands, TheSameBytesInAnyOrderOnAnyThreads) {
   std::printf("bands ran on %zu thread(s)\n", threads.size());
 }
 
+// A thread keeps its bands' buffers from band to band; a band that starts on a thread while one of
+// its own is still being made (here a row that writes another PNG) takes buffers of its own: both
+// files are the bytes they are alone.
+TEST(PngBands, ABandWithinABandOnOneThreadLeavesTheOuterOnesRows) {
+  const std::string dir = temp_dir("png_bands_nested");
+  const PngPixels outer = test_image(300, 200, 4, false), inner = test_image(211, 97, 3, true);
+  const std::string outer_alone = write_with(outer, dir + "/outer_alone.png", {});
+  const std::string inner_alone = write_with(inner, dir + "/inner_alone.png", {});
+  const size_t row_bytes = size_t(outer.width) * outer.channels;
+  std::string inner_nested;
+  write_png(dir + "/outer.png", outer.width, outer.height, outer.channels, true,
+            [&](int y, uint8_t* row) {
+              if (y == 30) inner_nested = write_with(inner, dir + "/inner.png", {});
+              std::memcpy(row, outer.bytes.data() + size_t(y) * row_bytes, row_bytes);
+            });
+  EXPECT_EQ(file_bytes(dir + "/outer.png"), outer_alone);
+  EXPECT_EQ(inner_nested, inner_alone);
+}
+
 // Every channel count, one pixel, and images of one column: many rows a band, and a band of one
 // row where a row alone is larger than a band.
 TEST(PngBands, EveryShapeReadsBackExactly) {

@@ -264,7 +264,7 @@ TEST(Outputs, DataWindowInsideDisplayWindow) {
   EXPECT_EQ(img.y0, 3);
   EXPECT_EQ(img.full_width, 20);
   EXPECT_EQ(img.full_height, 10);
-  EXPECT_EQ(img.pixels, film.rgba);
+  EXPECT_EQ(img.pixels, std::vector<float>(film.rgba.begin(), film.rgba.end()));
 }
 
 // OpenImageIO's channel order, as idiff reports channels.

@@ -1,0 +1,74 @@
+#include "film/plane_memory.h"
+
+#include <cstdint>
+#include <new>
+
+#if defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
+#include <sys/mman.h>
+#if defined(MADV_HUGEPAGE)
+#define SOFTTRACE_PLANE_HUGE_PAGES 1
+#endif
+#endif
+
+namespace softtrace {
+
+#ifdef SOFTTRACE_PLANE_HUGE_PAGES
+
+namespace {
+
+constexpr size_t kHuge = size_t(1) << 21;    // x86-64's transparent huge page
+constexpr size_t kMapped = size_t(1) << 20;  // a plane this large or larger is mapped on its own
+
+size_t mapped_length(size_t bytes) {
+  return (bytes + kHuge - 1) / kHuge * kHuge;
+}
+
+}  // namespace
+
+bool plane_mapped(size_t bytes) {
+  return bytes >= kMapped;
+}
+
+void* plane_allocate(size_t bytes) {
+  if (!plane_mapped(bytes)) return ::operator new(bytes);
+  if (bytes > SIZE_MAX - 2 * kHuge) throw std::bad_alloc();
+  // Mapped with a huge page's worth to spare, then the unaligned ends given back: a huge page
+  // covers only an aligned 2 MiB of the mapping.
+  const size_t length = mapped_length(bytes);
+  void* const m =
+      ::mmap(nullptr, length + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (m == MAP_FAILED) throw std::bad_alloc();
+  const uintptr_t start = reinterpret_cast<uintptr_t>(m);
+  const uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
+  if (aligned > start) ::munmap(m, aligned - start);
+  ::munmap(reinterpret_cast<void*>(aligned + length), start + kHuge - aligned);
+  void* const p = reinterpret_cast<void*>(aligned);
+  ::madvise(p, length, MADV_HUGEPAGE);  // advice only: ordinary pages where it is refused
+  return p;
+}
+
+void plane_free(void* p, size_t bytes) noexcept {
+  if (!p) return;
+  if (plane_mapped(bytes))
+    ::munmap(p, mapped_length(bytes));
+  else
+    ::operator delete(p);
+}
+
+#else
+
+bool plane_mapped(size_t) {
+  return false;
+}
+
+void* plane_allocate(size_t bytes) {
+  return ::operator new(bytes);
+}
+
+void plane_free(void* p, size_t) noexcept {
+  ::operator delete(p);
+}
+
+#endif
+
+}  // namespace softtrace

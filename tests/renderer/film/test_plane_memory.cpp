@@ -1,0 +1,77 @@
+// The film's planes: one of 1 MiB or more is mapped on its own at a 2 MiB boundary, zeroed, and
+// the kernel may back it with huge pages (smaps' THPeligible); a small one comes from the heap.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "film/film.h"
+#include "film/plane_memory.h"
+
+namespace softtrace {
+namespace {
+
+// smaps' THPeligible of the mapping holding `p`, or -1 where the file has no such line.
+int thp_eligible(const void* p) {
+  std::ifstream smaps("/proc/self/smaps");
+  const uintptr_t a = reinterpret_cast<uintptr_t>(p);
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    unsigned long lo = 0, hi = 0;
+    char dash = 0;
+    if (std::sscanf(line.c_str(), "%lx%c%lx", &lo, &dash, &hi) == 3 && dash == '-' &&
+        line.find(':') > line.find(' ')) {
+      inside = lo <= a && a < hi;
+    } else if (inside && line.rfind("THPeligible:", 0) == 0) {
+      return std::stoi(line.substr(12));
+    }
+  }
+  return -1;
+}
+
+bool huge_pages_on_advice() {
+  std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  std::getline(f, modes);
+  return modes.find("[always]") != std::string::npos ||
+         modes.find("[madvise]") != std::string::npos;
+}
+
+TEST(PlaneMemory, AFramesPlaneOfAMebibyteOrMoreIsMappedAtAHugePageAndZeroed) {
+  const Film film(640, 480, AovSelection{});  // the RGBA plane alone
+  const size_t bytes = film.rgba.size() * sizeof(float);
+  ASSERT_EQ(film.rgba.size(), size_t(640) * 480 * 4);
+  EXPECT_TRUE(std::all_of(film.rgba.begin(), film.rgba.end(), [](float v) { return v == 0; }));
+  EXPECT_TRUE(film.depth.empty());
+  if (!plane_mapped(bytes)) {
+    GTEST_SKIP() << "no huge pages in this build";
+  }
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(film.rgba.data()) % (size_t(1) << 21), 0u);
+  if (huge_pages_on_advice()) {
+    const int eligible = thp_eligible(film.rgba.data());
+    if (eligible >= 0) {
+      EXPECT_EQ(eligible, 1);
+    }
+  }
+}
+
+TEST(PlaneMemory, APlaneIsWritableToItsEndAndCopiesAndGrows) {
+  FilmPlane plane(size_t(3) << 18, 0.0f);  // 3 MiB: two huge pages' worth
+  for (size_t i = 0; i < plane.size(); ++i) plane[i] = float(i % 1000);
+  FilmPlane copy = plane;
+  EXPECT_EQ(copy, plane);
+  copy.resize(copy.size() + 7, 2.5f);
+  EXPECT_EQ(copy.back(), 2.5f);
+  EXPECT_EQ(copy[plane.size() - 1], plane.back());
+  FilmPlane small(100, 1.0f);  // the heap's
+  EXPECT_FALSE(plane_mapped(small.size() * sizeof(float)));
+  small.clear();
+  small.shrink_to_fit();
+  EXPECT_TRUE(small.empty());
+}
+
+}  // namespace
+}  // namespace softtrace
