@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <vector>
@@ -523,44 +524,83 @@ double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* i
   return sum_gradient(p, x, found_ids, found, grad, terms);
 }
 
+namespace {
+// A blob's w at x, as sum_gradient and gradient_among both take it (one function, so that the
+// two sums see the same bits): a ball's L is diagonal (1 / radius, read_blob), so L x + k and
+// L^T q go without the products by L's zeros, which add only zeros (the same values; at most a
+// zero's sign differs, where a product by L's diagonal is itself zero). `l` is the ball's 1 /
+// radius.
+[[gnu::always_inline]] inline Vec3 w_at(const BlobSum::Frame& frame, bool ball, const Vec3& x,
+                                        double l) {
+  return ball ? Vec3{l * x.x + frame.k.x, l * x.y + frame.k.y, l * x.z + frame.k.z} : frame.q(x);
+}
+}  // namespace
+
 double BlobSum::gradient_among(const Program& p, const Vec3& x, int32_t* ids, int n, Vec3* grad,
                                double* terms) const {
-  // A long list keeps the blobs x is inside or within rounding of (r > -1e-9) before sorting;
-  // sum_gradient's own test r > 0 then takes exactly the point query's blobs, whatever rounding
-  // this test had. A short one is sorted whole (sum_gradient skips the blobs with r <= 0): a q
-  // per blob costs more than its share of the sort.
-  int found = n;
-  if (n > kListed) {
-    found = 0;
-    for (int i = 0; i < n; ++i) {
-      const Blob& b = blobs_[ids[i]];
-      ids[found] = ids[i];
-      if (b.inv_r2 > 0) {
-        // A ball's q is (x - centre) / radius, as L x + k computes it to a few ulps of
-        // (|x| + |centre|) / radius each: |q|^2 then differs by far less than the second slack.
-        const Vec3 v = x - b.centre;
-        const double far = (max_abs(x) + max_abs(b.centre)) * (max_abs(x) + max_abs(b.centre));
-        found += 1 - dot(v, v) * b.inv_r2 > -1e-9 - 1e-12 * far * b.inv_r2;
-        continue;
-      }
-      const Vec3 w = frames_[ids[i]].q(x);
-      found += 1 - dot(w, w) > -1e-9;
+  // One pass over the list takes each blob's w and r by sum_gradient's very arithmetic and keeps
+  // the blobs with r > 0 -- exactly the ones sum_gradient would sum, as the point query gives them
+  // -- with their potential and gradient, computed once; these are then summed in increasing id
+  // order, as the query's are. (The list was filtered by a looser test, sorted, and each kept
+  // blob's q taken again in sum_gradient: a fifth of a cloud's normals.) Few blobs hold a point
+  // (1 to 5 in a dense cloud, a few more on pov:chain's capsules); past kKept of them the ids
+  // kept are sorted and summed by sum_gradient, the same values.
+  constexpr int kKept = 32;
+  // Plain doubles, not a Vec3: the array is left uninitialised (Vec3's zeros were 32 stores a
+  // call). A kept blob stays in its slot; its key, id * 256 + slot, is what is sorted.
+  struct Kept {
+    double term;
+    double gx, gy, gz;  // the blob's gradient: dP/dr times ∇r = -2 L^T q
+  };
+  Kept kept[kKept];
+  uint64_t keys[kKept];
+  int found = 0;
+  for (int i = 0; i < n; ++i) {
+    const int32_t id = ids[i];
+    const Blob& b = blobs_[id];
+    const Frame& frame = frames_[id];
+    const bool ball = b.inv_r2 > 0;
+    const double l = frame.L.r[0].x;
+    const Vec3 w = w_at(frame, ball, x, l);
+    const double r = 1 - dot(w, w);
+    if (!(r > 0)) continue;
+    ids[found] = id;
+    if (found < kKept) {
+      const double slope = -2 * polynomial_potential_slope(r, b.c2, b.c3);
+      const Vec3 gradient = (ball ? w * l : frame.L.transposed_times(w)) * slope;
+      kept[found] = {polynomial_potential(r, b.c2, b.c3), gradient.x, gradient.y, gradient.z};
+      keys[found] = uint64_t(uint32_t(id)) << 8 | uint64_t(found);
     }
+    ++found;
   }
-  // Few blobs are left (1 to 5 in a dense cloud, a few more on pov:chain's capsules): an
-  // insertion sort of them in place costs a fraction of std::sort's call (its introsort loop and
-  // final pass were a tenth of a cloud's normals); a long run takes std::sort's bound.
-  if (found > 32) {
+  if (found > kKept) {
     std::sort(ids, ids + found);
-  } else {
-    for (int i = 1; i < found; ++i) {
-      const int32_t id = ids[i];
-      int j = i;
-      for (; j > 0 && ids[j - 1] > id; --j) ids[j] = ids[j - 1];
-      ids[j] = id;
-    }
+    return sum_gradient(p, x, ids, found, grad, terms);
   }
-  return sum_gradient(p, x, ids, found, grad, terms);
+  // An insertion sort of the keys in place (ids are distinct, so the keys sort by id): a
+  // fraction of std::sort's call for so few, and one word moved where a Kept was five.
+  for (int i = 1; i < found; ++i) {
+    const uint64_t k = keys[i];
+    int j = i;
+    for (; j > 0 && keys[j - 1] > k; --j) keys[j] = keys[j - 1];
+    keys[j] = k;
+  }
+  const Group& sum = p.groups[group_];
+  const bool reports = terms && !sum.terms.empty();
+  if (terms) std::fill(terms, terms + p.terms, 0.0);
+  double f = 0;
+  Vec3 g;
+  for (int i = 0; i < found; ++i) {
+    const Kept& k = kept[keys[i] & 0xff];
+    f += k.term;
+    if (reports) {
+      const int32_t id = int32_t(keys[i] >> 8);
+      if (sum.terms[id] >= 0) terms[sum.terms[id]] = k.term;
+    }
+    g += Vec3{k.gx, k.gy, k.gz};
+  }
+  *grad = g;
+  return f;
 }
 
 double BlobSum::sum_gradient(const Program& p, const Vec3& x, const int32_t* found_ids, int found,
@@ -573,13 +613,9 @@ double BlobSum::sum_gradient(const Program& p, const Vec3& x, const int32_t* fou
   for (int i = 0; i < found; ++i) {
     const Frame& frame = frames_[found_ids[i]];
     const Blob& b = blobs_[found_ids[i]];
-    // A ball's L is diagonal (1 / radius, read_blob): L x + k and L^T q without the products
-    // by L's zeros, which add only zeros (the same values; at most a zero's sign differs, where
-    // a product by L's diagonal is itself zero).
     const bool ball = b.inv_r2 > 0;
     const double l = frame.L.r[0].x;
-    const Vec3 w =
-        ball ? Vec3{l * x.x + frame.k.x, l * x.y + frame.k.y, l * x.z + frame.k.z} : frame.q(x);
+    const Vec3 w = w_at(frame, ball, x, l);
     const double r = 1 - dot(w, w);
     if (!(r > 0)) continue;
     const double term = polynomial_potential(r, b.c2, b.c3);

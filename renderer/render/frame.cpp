@@ -100,7 +100,10 @@ class FrameTracer {
         objects_(rt.tracers.size()),
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
         adaptive_(adaptive),
-        shadow_beams_(scene, rt.tracers) {
+        shadow_beams_(scene, rt.tracers),
+        plain_(plain_objects(scene)),
+        lifts_(object_lifts(scene)),
+        aov_means_(!film.normal.empty() || !film.albedo.empty()) {
     if (!camera_.single_eye()) return;
     double dx, dy;
     sample_offset(0, dx, dy);
@@ -292,6 +295,7 @@ class FrameTracer {
     const size_t count = lists ? pixels.size() : 0;
     const TracedSample* const traced = work.samples.data();
     const SceneObject* const objects = scene_.objects.data();
+    const double* const lifts = lifts_.data();
     for (size_t i = 0; i < count; ++i) {
       const int point = static_cast<int>(work.points.size());
       starts.push_back(point);
@@ -301,10 +305,16 @@ class FrameTracer {
         const TracedSample& t = traced[s];
         if (!t.hit.hit) continue;
         const Vec3 p = t.ray.o + t.ray.d * t.hit.t;
-        // A CSG's face's object, as shade() takes it (the call only for a face).
-        const SceneObject& obj =
-            t.hit.face > 0 ? face_object(objects[t.hit.object], t.hit.face) : objects[t.hit.object];
-        work.points.push_back({p, ray_offset(obj, p, t.ray.cone_at(t.hit.t))});
+        // A CSG's face's object, as shade() takes it (the call only for a face); an object's own
+        // field's or mesh's offset was taken once for the frame (lifts_: no sqrt a point).
+        const double cone0 = t.ray.cone_at(t.hit.t);
+        const double lift = t.hit.face > 0 ? -1 : lifts[t.hit.object];
+        work.points.push_back(
+            {p, lift >= 0
+                    ? std::max(lift, cone0)
+                    : ray_offset(t.hit.face > 0 ? face_object(objects[t.hit.object], t.hit.face)
+                                                : objects[t.hit.object],
+                                 p, cone0)});
       }
     }
     starts.push_back(static_cast<int>(work.points.size()));
@@ -443,8 +453,14 @@ class FrameTracer {
           lists->p = at.p;
           lists->offset = at.margin;
         }
-        const Shaded sh =
-            shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_, 1, 1, nullptr, lists);
+        // A plain object's point (shades_plain, asked once per object for the frame) with its
+        // block's lists takes shade()'s short way inline: the same bits.
+        const Shaded sh = lists && hit.face <= 0 && plain_[size_t(hit.object)]
+                              ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
+                                                scene_.objects[size_t(hit.object)].material, shadow,
+                                                cancel_, *lists)
+                              : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_, 1,
+                                      1, nullptr, lists);
         sum += sh.color;
         ++covered;
         normal = sh.normal;
@@ -454,8 +470,10 @@ class FrameTracer {
         ++covered;
       }
       if (s == 0 && aov) centre_aovs(*aov, hit, shadow);
-      sums.normal += normal;
-      sums.albedo += albedo;
+      if (aov_means_) {
+        sums.normal += normal;
+        sums.albedo += albedo;
+      }
       work.shadow += shadow;
     }
     if (spp == 1) {  // x / 1 is x to the bit: one sample's pixel takes no divisions
@@ -500,6 +518,30 @@ class FrameTracer {
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
   const ShadowBeams shadow_beams_;
+  // Per scene object, whether its points are shaded the short way (shades_plain; a CSG's faces
+  // are asked per point, by shade()).
+  const std::vector<char> plain_;
+
+  // Per scene object, the first term of ray_offset where it is the object's alone (a field's or
+  // a mesh's: 1e-4 of its box's diagonal), else -1 (a primitive's depends on the point).
+  const std::vector<double> lifts_;
+  // Whether the film has a normal or an albedo plane: without, a sample's shaded normal and
+  // albedo are not summed (mean_aovs would write them nowhere).
+  const bool aov_means_;
+
+  static std::vector<double> object_lifts(const Scene& scene) {
+    std::vector<double> lifts(scene.objects.size(), -1.0);
+    for (size_t o = 0; o < lifts.size(); ++o) {
+      const SceneObject& obj = scene.objects[o];
+      if (obj.field || obj.mesh) lifts[o] = 1e-4 * obj.bounds.diagonal();
+    }
+    return lifts;
+  }
+  static std::vector<char> plain_objects(const Scene& scene) {
+    std::vector<char> plain(scene.objects.size());
+    for (size_t o = 0; o < plain.size(); ++o) plain[o] = shades_plain(scene, scene.objects[o]);
+    return plain;
+  }
 };
 
 // The full-frame tiles that meet `area`: the first one's grid position and how many a side.

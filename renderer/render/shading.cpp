@@ -42,75 +42,7 @@ std::vector<ComponentMaterials::Weight>& component_weights() {
   return weights;
 }
 
-// A point shade() takes the short way: an opaque matte-or-highlighted material of its own (no
-// components, no mirror, nothing transmitted), no ambient occlusion, no transparency in the
-// scene. Most of a frame's points are such (the 1000-blob frame and its floor: all of them).
-bool plain(const Scene& scene, const SceneObject& obj) {
-  const Material& m = obj.material;
-  return !scene.transparent && !obj.components && scene.image.occlusion.samples <= 0 &&
-         !transparent(m) && !m.fresnel && !reflects(m.reflection);
-}
-
-// shade()'s light loop and colour for a plain() point at p, normal n facing the viewer along d,
-// its shadow rays leaving from `lifted`: the same operations in the same order, without the
-// blends', the transmitted and the mirror rays' state (130 instructions a point less).
-Shaded shade_plain(const Scene& scene, const EmbreeScene& rt, const Vec3& d, const Vec3& p,
-                   const Vec3& n, const Vec3& lifted, double cone0, double cone, const Material& m,
-                   RayWork& secondary, const std::atomic<bool>* cancel, const ShadowLists* shadow) {
-  Vec3 light{0, 0, 0}, shine{0, 0, 0};
-  // The lights' array and count read once: the shadow ray's call between two lights would have
-  // the loop read the vector again (10 instructions a point of the floor's frame).
-  const Light* const lights = scene.lights.data();
-  const size_t count = scene.lights.size();
-  for (size_t li = 0; li < count; ++li) {
-    const Light& l = lights[li];
-    if (cancel_requested(cancel)) break;
-    if (l.type == Light::Type::Ambient) {
-      light += mul(m.ambient, l.color * l.intensity);
-      continue;
-    }
-    LightArrival at;
-    if (!light_arrival(l, p, lifted, at)) continue;
-    const double cosine = dot(n, at.to_light);
-    if (cosine <= 0) continue;
-    Vec3 arrived = at.light;
-    const double seen = light_visibility(l, at, lifted, cone0, cone, rt, secondary, cancel,
-                                         shadow ? shadow->of(int(li)) : nullptr);
-    if (seen == 0) continue;
-    if (seen != 1) arrived = at.light * seen;
-    light += diffuse_light(m, cosine, arrived);
-    if (l.shadows) shine += highlights(m, n, d, at.to_light, arrived);
-  }
-  Vec3 color = mul(m.color, light);
-  // A matte finish's shine is zero (highlights()): no three comparisons to find that out.
-  if ((m.phong > 0 || m.specular > 0) && (shine.x != 0 || shine.y != 0 || shine.z != 0))
-    color += shine;
-  return {color, n, m.color};
-}
-
-// The normal shade() shades with at p: the hit object's (a primitive's or a CSG's came with its
-// hit; a field's gradient walk also gives its components' values in `terms`, where asked),
-// facing the viewer.
-[[gnu::always_inline]] inline Vec3 facing_normal(const ObjectTracer* tracer, const Ray& ray,
-                                                 const TraceHit& hit, const Vec3& p,
-                                                 double* terms) {
-  Vec3 n = !tracer           ? hit.normal
-           : hit.on_box_face ? tracer->box_face_normal(p)
-                             : tracer->normal(p, terms, hit.blobs);
-  if (dot(n, n) == 0) n = -ray.d;  // a flat spot of the field (length 0): face the viewer
-  // Seen from inside (clipped solids, transparent ones): shade the side we see.
-  if (dot(n, ray.d) > 0) n = -n;
-  return n;
-}
-
-// Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave the
-// surface by that footprint's radius (at least 1e-4 of the object's box), far more than the hit's
-// error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
-double footprint_at(const Ray& ray, const TraceHit& hit) {
-  return ray.cone_at(hit.t);
-}
-
-// shade() at a point that is not plain(): blended materials, mirrors, transparency, ambient
+// shade() at a point that is not shades_plain(): blended materials, mirrors, transparency, ambient
 // occlusion. Out of line, so that the plain points (most of a frame's) do not pay for its frame
 // and registers.
 [[gnu::noinline]] Shaded shade_general(const Scene& scene, const SceneTracers& tracers,
@@ -385,7 +317,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
       hit.face > 0 ? face_object(scene.objects[hit.object], hit.face) : scene.objects[hit.object];
   // With shadow lists, the point as ShadowBeams took it (the same arithmetic, its very bits).
   const Vec3 p = shadow ? shadow->p : ray.o + ray.d * hit.t;
-  if (!plain(scene, obj))
+  if (!shades_plain(scene, obj))
     return shade_general(scene, tracers, rt, ray, hit, secondary, cancel, level, weight, interiors,
                          shadow, tracer, obj, p);
   // A plain point (no components, so no terms; no transparency, so its rays start at `lifted`)

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <atomic>
 
+#include "render/cancel.h"
+#include "render/finish.h"
 #include "render/lights.h"
 #include "scene/scene.h"
 #include "trace/embree_scene.h"
@@ -40,6 +42,101 @@ inline double ray_offset(const SceneObject& obj, const Vec3& p, double cone0) {
   return std::max(
       obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
       cone0);
+}
+
+// The short way, inline so that the frame's loop over its camera hits (frame.cpp, samples) takes
+// it without shade()'s call, look-ups and tests: the same operations in the same order, so the
+// same bits as shade().
+
+// Whether every point of `obj` (an object, or a CSG's face's object) is shaded the short way: an
+// opaque matte-or-highlighted material of its own (no components, no mirror, nothing
+// transmitted), no ambient occlusion, no transparency in the scene. Most of a frame's points are
+// such (the 1000-blob frame and its floor: all of them). Constant over a frame.
+inline bool shades_plain(const Scene& scene, const SceneObject& obj) {
+  const Material& m = obj.material;
+  return !scene.transparent && !obj.components && scene.image.occlusion.samples <= 0 &&
+         !transparent(m) && !m.fresnel && !reflects(m.reflection);
+}
+
+// The normal shade() shades with at p: the hit object's (a primitive's or a CSG's came with its
+// hit; a field's gradient walk also gives its components' values in `terms`, where asked),
+// facing the viewer.
+[[gnu::always_inline]] inline Vec3 facing_normal(const ObjectTracer* tracer, const Ray& ray,
+                                                 const TraceHit& hit, const Vec3& p,
+                                                 double* terms) {
+  Vec3 n = !tracer           ? hit.normal
+           : hit.on_box_face ? tracer->box_face_normal(p)
+                             : tracer->normal(p, terms, hit.blobs);
+  if (dot(n, n) == 0) n = -ray.d;  // a flat spot of the field (length 0): face the viewer
+  // Seen from inside (clipped solids, transparent ones): shade the side we see.
+  if (dot(n, ray.d) > 0) n = -n;
+  return n;
+}
+
+// Shadow rays keep the camera ray's footprint: they decide what this pixel shows. They leave the
+// surface by that footprint's radius (at least 1e-4 of the object's box), far more than the hit's
+// error (1e-3 of it): nearer, the tracer would have to resolve the very surface it leaves.
+inline double footprint_at(const Ray& ray, const TraceHit& hit) {
+  return ray.cone_at(hit.t);
+}
+
+// shade()'s light loop and colour for a shades_plain() point at p, normal n facing the viewer
+// along d, its shadow rays leaving from `lifted`: without the blends', the transmitted and the
+// mirror rays' state (130 instructions a point less).
+[[gnu::always_inline]] inline Shaded shade_plain(const Scene& scene, const EmbreeScene& rt,
+                                                 const Vec3& d, const Vec3& p, const Vec3& n,
+                                                 const Vec3& lifted, double cone0, double cone,
+                                                 const Material& m, RayWork& secondary,
+                                                 const std::atomic<bool>* cancel,
+                                                 const ShadowLists* shadow) {
+  Vec3 light{0, 0, 0}, shine{0, 0, 0};
+  // The lights' array and count read once: the shadow ray's call between two lights would have
+  // the loop read the vector again (10 instructions a point of the floor's frame).
+  const Light* const lights = scene.lights.data();
+  const size_t count = scene.lights.size();
+  for (size_t li = 0; li < count; ++li) {
+    const Light& l = lights[li];
+    if (cancel_requested(cancel)) break;
+    if (l.type == Light::Type::Ambient) {
+      light += mul(m.ambient, l.color * l.intensity);
+      continue;
+    }
+    LightArrival at;
+    if (!light_arrival(l, p, lifted, at)) continue;
+    const double cosine = dot(n, at.to_light);
+    if (cosine <= 0) continue;
+    Vec3 arrived = at.light;
+    const double seen = light_visibility(l, at, lifted, cone0, cone, rt, secondary, cancel,
+                                         shadow ? shadow->of(int(li)) : nullptr);
+    if (seen == 0) continue;
+    if (seen != 1) arrived = at.light * seen;
+    light += diffuse_light(m, cosine, arrived);
+    // A matte finish's highlights are zero (highlights()), and `shine` is added below only where
+    // the finish has some: not summed.
+    if (l.shadows && (m.phong > 0 || m.specular > 0))
+      shine += phong_and_specular(m, n, d, at.to_light, arrived);
+  }
+  Vec3 color = mul(m.color, light);
+  // A matte finish's shine is zero (highlights()): no three comparisons to find that out.
+  if ((m.phong > 0 || m.specular > 0) && (shine.x != 0 || shine.y != 0 || shine.z != 0))
+    color += shine;
+  return {color, n, m.color};
+}
+
+// shade() for a camera ray's hit on `obj` (its object, no CSG face), shades_plain, with its
+// block's shadow lists (their point and offset): shade(scene, tracers, rt, ray, hit, secondary,
+// cancel, 1, 1, nullptr, &shadow) to the bit. The frame's loop asks shades_plain once per object
+// for the frame, not once per point (shade()'s look-ups, test and call were a tenth of a floor
+// point's shading).
+[[gnu::always_inline]] inline Shaded shade_plain_hit(
+    const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
+    const TraceHit& hit, const Material& m, RayWork& secondary, const std::atomic<bool>* cancel,
+    const ShadowLists& shadow) {
+  const Vec3 n = facing_normal(tracers.tracer(hit.object), ray, hit, shadow.p, nullptr);
+  const double cone0 = footprint_at(ray, hit);
+  const Vec3 lifted = shadow.p + n * shadow.offset;
+  return shade_plain(scene, rt, ray.d, shadow.p, n, lifted, cone0, ray.cone, m, secondary, cancel,
+                     &shadow);
 }
 
 }  // namespace softtrace

@@ -1,0 +1,92 @@
+// The frame shades a camera hit on a plain object (shades_plain: an opaque material of its own,
+// no mirror, no transparency) by shade_plain_hit, inline in its loop, and every other hit by
+// shade(): the two must give the same colour, normal and albedo to the bit, and count the same
+// shadow rays' work. The objects here are a blob sum, a floor and a sphere, matte, with a phong
+// and a specular highlight, brilliance and metallic, under an ambient, a directional and a point
+// light; a mirror beside them is no plain object.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/shading.h"
+#include "scene/scene.h"
+
+namespace softtrace {
+namespace {
+
+const char* const kScene = R"({
+  "camera": { "eye": [30, -44, 22], "target": [0, 0, 4], "fov": 40 },
+  "lights": [
+    { "type": "ambient", "intensity": 0.2 },
+    { "type": "directional", "direction": [-0.6, 1, -1.6], "intensity": 0.8 },
+    { "type": "point", "position": [-6, -5, 12], "intensity": 0.6 }
+  ],
+  "objects": [
+    { "material": { "color": [0.62, 0.6, 0.55], "specular": 0.3, "roughness": 0.05 },
+      "shape": { "type": "plane", "normal": [0, 0, 1], "distance": 0 } },
+    { "material": { "color": [0.85, 0.45, 0.35], "phong": 0.6, "phong_size": 20,
+                    "brilliance": 1.5 },
+      "field": { "type": "soft_blend", "children": [
+        { "type": "soft_object", "translate": [0, 0, 5],
+          "distance": { "type": "lp_metric", "radii": [9, 9, 9], "n": 2 } },
+        { "type": "soft_object", "translate": [5, 3, 9],
+          "distance": { "type": "lp_metric", "radii": [6, 6, 6], "n": 2 } } ] } },
+    { "material": { "color": [0.35, 0.55, 0.85], "phong": 0.8, "metallic": 0.7 },
+      "shape": { "type": "sphere", "center": [12, -6, 3], "radius": 3 } },
+    { "material": { "color": [0.7, 0.7, 0.7] },
+      "shape": { "type": "sphere", "center": [-12, -4, 4], "radius": 3 } },
+    { "material": { "color": [0.9, 0.9, 0.9], "reflection": 0.5 },
+      "shape": { "type": "sphere", "center": [-4, -14, 3], "radius": 3 } }
+  ]
+})";
+
+bool same_bits(const Vec3& a, const Vec3& b) {
+  return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
+}
+
+TEST(ShadePlain, EveryPlainHitIsShadedAsShadeDoes) {
+  const Scene scene = parse_scene(kScene, "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  ASSERT_EQ(scene.objects.size(), 5u);
+  for (size_t o = 0; o < 4; ++o) EXPECT_TRUE(shades_plain(scene, scene.objects[o])) << o;
+  EXPECT_FALSE(shades_plain(scene, scene.objects[4]));  // the mirror takes shade()'s long way
+
+  const int width = 96, height = 72;
+  const ViewCamera camera(scene.camera, width, height);
+  // No shadow lists (every slot -1): both shadings trace each shadow ray alone, the same rays.
+  const std::vector<int> no_lists(scene.lights.size(), -1);
+  int plain_hits[4] = {0, 0, 0, 0}, lit = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const Ray ray = camera.generate(x + 0.5, y + 0.5);
+      const TraceHit hit = rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
+      if (!hit.hit || hit.face > 0) continue;
+      const SceneObject& obj = scene.objects[size_t(hit.object)];
+      if (!shades_plain(scene, obj)) continue;
+      const Vec3 p = ray.o + ray.d * hit.t;
+      const ShadowLists lists{no_lists.data(), nullptr, int(rt.tracers.size()), p,
+                              ray_offset(obj, p, ray.cone_at(hit.t))};
+      RayWork long_way, short_way;
+      const Shaded a =
+          shade(scene, rt.tracers, rt.embree, ray, hit, long_way, nullptr, 1, 1, nullptr, &lists);
+      const Shaded b = shade_plain_hit(scene, rt.tracers, rt.embree, ray, hit, obj.material,
+                                       short_way, nullptr, lists);
+      ASSERT_TRUE(same_bits(a.color, b.color)) << x << "," << y;
+      ASSERT_TRUE(same_bits(a.normal, b.normal)) << x << "," << y;
+      ASSERT_TRUE(same_bits(a.albedo, b.albedo)) << x << "," << y;
+      ASSERT_EQ(long_way.rays, short_way.rays) << x << "," << y;
+      ASSERT_EQ(long_way.evaluations(), short_way.evaluations()) << x << "," << y;
+      ++plain_hits[hit.object];
+      lit += a.color.x > 0;
+    }
+  // Every plain object seen, and lit.
+  for (int o = 0; o < 4; ++o) EXPECT_GT(plain_hits[o], 20) << o;
+  EXPECT_GT(lit, 1000);
+}
+
+}  // namespace
+}  // namespace softtrace
