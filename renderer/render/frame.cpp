@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/antialias.h"
+#include "render/beam_misses.h"
 #include "render/camera.h"
 #include "render/cancel.h"
 #include "render/shading.h"
@@ -100,7 +101,8 @@ class FrameTracer {
         objects_(rt.tracers.size()),
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
         adaptive_(adaptive),
-        shadow_beams_(scene, rt.tracers) {
+        shadow_beams_(scene, rt.tracers),
+        misses_(rt.tracers) {
     if (!camera_.single_eye()) return;
     double dx, dy;
     sample_offset(0, dx, dy);
@@ -120,7 +122,7 @@ class FrameTracer {
     work.beams = 0;
     work.samples.clear();
     work.pixels.clear();
-    beam(tx, ty, 0, nullptr, nullptr, area, pass, work);
+    beam(tx, ty, 0, nullptr, nullptr, false, area, pass, work);
     shade_tile(pass, work);
   }
 
@@ -128,7 +130,8 @@ class FrameTracer {
   // The pixels [x, x + size) x [y, y + size) of the full frame, size = kTile >> level, from the
   // depths `from` and the blob lists `parent` (per object) of the beam holding it. A beam's place
   // and its certified depths depend only on where it is in the full frame, not on `area`.
-  void beam(int x, int y, int level, const double* from, const BlobBeam* parent,
+  // `background`: the holding beam meets no object's box (BeamMisses), nor then does this one.
+  void beam(int x, int y, int level, const double* from, const BlobBeam* parent, bool background,
             const PixelRect& area, Pass pass, Work& work) const {
     const int size = kTile >> level;
     if (x >= area.x1 || x + size <= area.x0 || y >= area.y1 || y + size <= area.y0 || cancelled())
@@ -144,18 +147,20 @@ class FrameTracer {
     }
     const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
                                        std::min(y + size, film_.full_height));
+    background = background || misses_.misses(fr);
     double* clear = work.clear.data() + size_t(level) * objects_;
     TraceCounters beam_work;
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt_.tracers.tracer(o);  // a primitive's hit costs no approach
       clear[o] = tracer ? tracer->clear_depth(fr, from ? from[o] : 0, beam_work) : 0;
     }
-    // The beam's work is the primary rays' (its passes are counted, not its rays).
+    // The beam's work is the primary rays' (its passes are counted, not its rays): a background
+    // beam's too, so that the counters are those of the frame without the certificate.
     work.primary.box_evals += beam_work.box_evals;
     BlobBeam* blobs = work.blobs.data() + size_t(work.beams++) * objects_;
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt_.tracers.tracer(o);
-      if (tracer && tracer->blob_sum())
+      if (tracer && tracer->blob_sum() && !background)  // no ray of a background beam reads it
         tracer->blob_beam(fr, parent ? parent + o : nullptr, blobs + o);
       else
         blobs[o].valid = false;
@@ -163,7 +168,14 @@ class FrameTracer {
     if (level + 1 < kBeamLevels) {
       const int h = size / 2;
       for (int q = 0; q < 4; ++q)
-        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, area, pass, work);
+        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, background, area, pass,
+             work);
+      return;
+    }
+    if (background) {
+      for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
+        for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
+          background_pixel(px, py, pass, work);
       return;
     }
     BeamClear certified{fr.forward, clear, blobs};
@@ -221,6 +233,21 @@ class FrameTracer {
       for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(sample[s].ray.d);
     miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, sample[0].hit, pass);
     work.samples.resize(size_t(first));
+  }
+
+  // trace_pixel for a pixel of a background beam (BeamMisses): each of its samples' rays would
+  // meet no object's box, so has no hit and no work counted (a ray of RayWork::add with nothing
+  // else); its pixel is written as trace_pixel writes such a one, a camera ray made only for a
+  // sky, which needs its direction.
+  void background_pixel(int x, int y, Pass pass, Work& work) const {
+    if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
+    if (cancelled()) return;
+    const int spp = pass == Pass::First ? spp_ : refined_spp_;
+    work.primary.rays += spp;
+    Vec3 sky{0, 0, 0};
+    if (scene_.sky)
+      for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(camera_ray(x, y, s, spp).d);
+    miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, none_, pass);
   }
 
   // trace_pixel's pixel (x, y) of one sample, traced (`ray`, `hit`): kept for shading where it
@@ -500,6 +527,8 @@ class FrameTracer {
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
   const ShadowBeams shadow_beams_;
+  const BeamMisses misses_;
+  const TraceHit none_;  // a background pixel's centre ray's answer: no hit, no work
 };
 
 // The full-frame tiles that meet `area`: the first one's grid position and how many a side.

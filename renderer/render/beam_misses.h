@@ -1,0 +1,44 @@
+// Background beams: a block of camera rays from one eye (a beam, Frustum) that certainly meets no
+// object's box, so that its pixels are written as misses without a ray each (frame.cpp). Most of
+// a sparse frame is background (meets1 at 640x480: 94 % of its pixels), and each such pixel's
+// ray cost a camera ray, the scene's intersect and a box clip to learn that it met nothing.
+//
+// The certificate must give each ray the answer its trace gives, counters included: no hit and
+// no work (TraceCounters all zero: a ray that misses every box is clipped away before any work is
+// counted, clip_to_box, CsgTracer::spans, Embree's culls). So every box is missed with a margin no
+// rounding can eat: clip_to_box's computed answer is the exact answer for the box moved by a few
+// ulps of its coordinates and the eye's, a ray's computed direction lies within a few ulps of
+// the corners' convex hull (its image-plane column and row lie between the beam's corners', which
+// ViewCamera computes by the same monotone steps), a primitive's analytic test and Embree's float
+// triangles are off by far less than 1e-5 of the coordinates. Unbounded objects (a plane) are
+// never certified missed.
+#pragma once
+
+#include <vector>
+
+#include "math/box.h"
+#include "trace/tracer.h"
+
+namespace softtrace {
+
+class BeamMisses {
+ public:
+  // The scene's objects' boxes: for each object its box (Embree's and a CSG's) and its field's
+  // (where its tracer clips rays).
+  explicit BeamMisses(const SceneTracers& tracers);
+
+  // Whether no ray of `f` (from its eye at t >= 0, in a direction a convex combination of its
+  // corners' up to rounding) enters any object's box: each box lies past one of the beam's four
+  // side planes or behind the eye, with the margin above.
+  bool misses(const Frustum& f) const;
+
+  // Whether `f` misses `box` so (exposed for the tests).
+  static bool misses_box(const Frustum& f, const Box& box);
+
+ private:
+  bool never_ = false;     // an object without a finite box: no beam is certified
+  Box all_;                // every object's box
+  std::vector<Box> each_;  // each object's, where the scene has few (misses() tries them too)
+};
+
+}  // namespace softtrace
