@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace softtrace {
 
@@ -13,7 +14,7 @@ constexpr size_t kEach = 8;
 
 // A plane through the eye, normal n (not unit), that the beam's rays may cross by at most `slack`
 // (in units of n) per unit of distance from the eye: rounding, or a corner on its outside.
-struct Side {
+struct BeamSide {
   Vec3 n;
   double slack = 0;
   double scale = 0;  // max_abs(n)
@@ -24,7 +25,7 @@ struct Side {
 // (its column and row lie between theirs), so n . d >= min over the corners of n . corner, which
 // is computed here, less the corners' and the direction's rounding (a few ulps of their
 // magnitudes; 1e-12 of them here, far above that).
-void sides_of(const Frustum& f, Side (&out)[5]) {
+void sides_of(const Frustum& f, BeamSide (&out)[5]) {
   // corner[0..3] are the rectangle's (x0, y0), (x1, y0), (x0, y1), (x1, y1): around it 0, 1, 3, 2.
   static constexpr int kAround[5] = {0, 1, 3, 2, 0};
   const Vec3 middle = f.corner[0] + f.corner[1] + f.corner[2] + f.corner[3];
@@ -48,7 +49,7 @@ void sides_of(const Frustum& f, Side (&out)[5]) {
 // clip_to_box's rounding) at most -margin along n from the eye, where no ray's point within
 // 2 * scale of the eye reaches (a box point is no farther: |p - eye| <= sqrt(3) * scale). NaN
 // anywhere certifies nothing.
-bool past(const Side& side, const Vec3& eye, const Box& box) {
+bool past(const BeamSide& side, const Vec3& eye, const Box& box) {
   const double scale = max_abs(eye) + std::max(max_abs(box.lo), max_abs(box.hi));
   const Vec3 half = box.extent() * 0.5;
   const Vec3& n = side.n;
@@ -59,15 +60,15 @@ bool past(const Side& side, const Vec3& eye, const Box& box) {
   return far < -margin;
 }
 
-bool past_any(const Side (&sides)[5], const Vec3& eye, const Box& box) {
-  for (const Side& s : sides)
+bool past_any(const BeamSide (&sides)[5], const Vec3& eye, const Box& box) {
+  for (const BeamSide& s : sides)
     if (past(s, eye, box)) return true;
   return false;
 }
 
 }  // namespace
 
-BeamMisses::BeamMisses(const SceneTracers& tracers) {
+BeamMisses::BeamMisses(const SceneTracers& tracers, const ViewCamera& camera) {
   std::vector<Box> boxes;
   for (int i = 0; i < tracers.size(); ++i) {
     const TracedObject& o = tracers.object(i);
@@ -81,12 +82,39 @@ BeamMisses::BeamMisses(const SceneTracers& tracers) {
     boxes.push_back(box);
   }
   if (boxes.size() > 1 && boxes.size() <= kEach) each_ = std::move(boxes);
+  if (all_.empty()) return;
+  // Where each box is seen: its corners' pixels, padded (the estimate's rounding is far below a
+  // pixel). A box wholly behind the eye is seen nowhere; one across the eye's plane everywhere.
+  const auto outline = [&](const Box& box) {
+    constexpr double kInf = std::numeric_limits<double>::infinity(), kPad = 2;
+    Seen s{kInf, kInf, -kInf, -kInf};
+    int behind = 0;
+    for (int c = 0; c < 8; ++c) {
+      double px, py;
+      if (!camera.pixel_of(box.corner(c), px, py)) {
+        ++behind;
+        continue;
+      }
+      s = {std::min(s.x0, px - kPad), std::min(s.y0, py - kPad), std::max(s.x1, px + kPad),
+           std::max(s.y1, py + kPad)};
+    }
+    if (behind == 8) return;
+    if (behind > 0) s = {-kInf, -kInf, kInf, kInf};
+    seen_.push_back(s);
+  };
+  if (each_.empty()) {
+    outline(all_);
+  } else {
+    for (const Box& box : each_) outline(box);
+  }
 }
 
-bool BeamMisses::misses(const Frustum& f) const {
+bool BeamMisses::misses(const Frustum& f, int x0, int y0, int x1, int y1) const {
   if (never_) return false;
   if (all_.empty()) return true;  // no object: every ray misses
-  Side sides[5];
+  for (const Seen& s : seen_)
+    if (x0 <= s.x1 && s.x0 <= x1 && y0 <= s.y1 && s.y0 <= y1) return false;
+  BeamSide sides[5];
   sides_of(f, sides);
   if (past_any(sides, f.eye, all_)) return true;
   if (each_.empty()) return false;
@@ -96,7 +124,7 @@ bool BeamMisses::misses(const Frustum& f) const {
 }
 
 bool BeamMisses::misses_box(const Frustum& f, const Box& box) {
-  Side sides[5];
+  BeamSide sides[5];
   sides_of(f, sides);
   return past_any(sides, f.eye, box);
 }

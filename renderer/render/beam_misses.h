@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "math/box.h"
+#include "render/camera.h"
 #include "trace/tracer.h"
 
 namespace softtrace {
@@ -24,13 +25,16 @@ namespace softtrace {
 class BeamMisses {
  public:
   // The scene's objects' boxes: for each object its box (Embree's and a CSG's) and its field's
-  // (where its tracer clips rays).
-  explicit BeamMisses(const SceneTracers& tracers);
+  // (where its tracer clips rays). `camera` (single_eye()): where the boxes are seen, so that a
+  // beam where one may be seen is not tested at all.
+  BeamMisses(const SceneTracers& tracers, const ViewCamera& camera);
 
   // Whether no ray of `f` (from its eye at t >= 0, in a direction a convex combination of its
   // corners' up to rounding) enters any object's box: each box lies past one of the beam's four
-  // side planes or behind the eye, with the margin above.
-  bool misses(const Frustum& f) const;
+  // side planes or behind the eye, with the margin above. `f` is the camera's beam through the
+  // pixels [x0, x1) x [y0, y1); where those meet a box's outline as the camera sees it (padded
+  // by two pixels), the answer is false without the test, which would fail.
+  bool misses(const Frustum& f, int x0, int y0, int x1, int y1) const;
 
   // Whether `f` misses `box` so (exposed for the tests).
   static bool misses_box(const Frustum& f, const Box& box);
@@ -39,6 +43,11 @@ class BeamMisses {
   bool never_ = false;     // an object without a finite box: no beam is certified
   Box all_;                // every object's box
   std::vector<Box> each_;  // each object's, where the scene has few (misses() tries them too)
+  // Pixel rectangles [x0, x1] x [y0, y1] holding the boxes' outlines (each_'s, else all_'s).
+  struct Seen {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Seen> seen_;
 };
 
 }  // namespace softtrace

@@ -102,7 +102,11 @@ class FrameTracer {
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
         adaptive_(adaptive),
         shadow_beams_(scene, rt.tracers),
-        misses_(rt.tracers) {
+        misses_(rt.tracers, camera_) {
+    for (int o = 0; o < objects_; ++o) {
+      const ObjectTracer* tracer = rt.tracers.tracer(o);
+      beams_count_ = beams_count_ || (tracer && !tracer->blob_sum());
+    }
     if (!camera_.single_eye()) return;
     double dx, dy;
     sample_offset(0, dx, dy);
@@ -123,7 +127,7 @@ class FrameTracer {
     work.samples.clear();
     work.pixels.clear();
     beam(tx, ty, 0, nullptr, nullptr, false, area, pass, work);
-    shade_tile(pass, work);
+    if (!work.pixels.empty()) shade_tile(pass, work);  // a background tile has nothing to shade
   }
 
  private:
@@ -145,9 +149,15 @@ class FrameTracer {
           trace_pixel(px, py, nullptr, pass, work);
       return;
     }
-    const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
-                                       std::min(y + size, film_.full_height));
-    background = background || misses_.misses(fr);
+    const int x1 = std::min(x + size, film_.full_width), y1 = std::min(y + size, film_.full_height);
+    const Frustum fr = camera_.frustum(x, y, x1, y1);
+    background = background || misses_.misses(fr, x, y, x1, y1);
+    const PixelRect block{std::max(x, area.x0), std::max(y, area.y0), std::min(x1, area.x1),
+                          std::min(y1, area.y1)};
+    if (background && !beams_count_) {  // no quarter's beam would count any work either
+      background_pixels(block, pass, work);
+      return;
+    }
     double* clear = work.clear.data() + size_t(level) * objects_;
     TraceCounters beam_work;
     for (int o = 0; o < objects_; ++o) {
@@ -173,9 +183,7 @@ class FrameTracer {
       return;
     }
     if (background) {
-      for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
-        for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
-          background_pixel(px, py, pass, work);
+      background_pixels(block, pass, work);
       return;
     }
     BeamClear certified{fr.forward, clear, blobs};
@@ -233,6 +241,32 @@ class FrameTracer {
       for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(sample[s].ray.d);
     miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, sample[0].hit, pass);
     work.samples.resize(size_t(first));
+  }
+
+  // The pixels `block` of a background beam (background_pixel each). In the first pass without a
+  // sky or adaptive anti-aliasing each is miss_pixel's plain background, written a row at a time:
+  // colour and alpha 0, normal and albedo 0, Z +inf, steps 0 (the centre ray's evaluations, none).
+  void background_pixels(const PixelRect& block, Pass pass, Work& work) const {
+    if (pass == Pass::Refine || scene_.sky || adaptive_) {
+      for (int py = block.y0; py < block.y1; ++py)
+        for (int px = block.x0; px < block.x1; ++px) background_pixel(px, py, pass, work);
+      return;
+    }
+    if (block.empty() || cancelled()) return;
+    work.primary.rays += long(block.x1 - block.x0) * (block.y1 - block.y0) * spp_;
+    // The film's pixels of the block (all of them: the first pass's area is the data window).
+    const int x0 = std::max(block.x0, window_.x0), x1 = std::min(block.x1, window_.x1);
+    if (x0 >= x1) return;
+    const size_t n = size_t(x1 - x0);
+    for (int py = std::max(block.y0, window_.y0); py < std::min(block.y1, window_.y1); ++py) {
+      const size_t i = size_t(py - film_.y0) * film_.width + (x0 - film_.x0);
+      std::fill_n(&film_.rgba[i * 4], n * 4, 0.0f);
+      if (!film_.normal.empty()) std::fill_n(&film_.normal[i * 3], n * 3, 0.0f);
+      if (!film_.albedo.empty()) std::fill_n(&film_.albedo[i * 3], n * 3, 0.0f);
+      if (!film_.depth.empty())
+        std::fill_n(&film_.depth[i], n, std::numeric_limits<float>::infinity());
+      if (!film_.steps.empty()) std::fill_n(&film_.steps[i], n, 0.0f);
+    }
   }
 
   // trace_pixel for a pixel of a background beam (BeamMisses): each of its samples' rays would
@@ -528,6 +562,9 @@ class FrameTracer {
   AdaptivePixels* const adaptive_;
   const ShadowBeams shadow_beams_;
   const BeamMisses misses_;
+  // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
+  // sum): a background beam's quarters are then still visited, for the same counters.
+  bool beams_count_ = false;
   const TraceHit none_;  // a background pixel's centre ray's answer: no hit, no work
 };
 
