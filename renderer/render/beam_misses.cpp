@@ -84,7 +84,8 @@ BeamMisses::BeamMisses(const SceneTracers& tracers, const ViewCamera& camera) {
   if (boxes.size() > 1 && boxes.size() <= kEach) each_ = std::move(boxes);
   if (all_.empty()) return;
   // Where each box is seen: its corners' pixels, padded (the estimate's rounding is far below a
-  // pixel). A box wholly behind the eye is seen nowhere; one across the eye's plane everywhere.
+  // pixel). A box wholly behind the eye is seen nowhere; one across the eye's plane everywhere,
+  // and then no beam is tested.
   const auto outline = [&](const Box& box) {
     constexpr double kInf = std::numeric_limits<double>::infinity(), kPad = 2;
     Seen s{kInf, kInf, -kInf, -kInf};
@@ -99,7 +100,7 @@ BeamMisses::BeamMisses(const SceneTracers& tracers, const ViewCamera& camera) {
            std::max(s.y1, py + kPad)};
     }
     if (behind == 8) return;
-    if (behind > 0) s = {-kInf, -kInf, kInf, kInf};
+    if (behind > 0) never_ = true;  // seen everywhere: no beam would be tested (a floor)
     seen_.push_back(s);
   };
   if (each_.empty()) {

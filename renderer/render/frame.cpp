@@ -151,7 +151,7 @@ class FrameTracer {
     }
     const int x1 = std::min(x + size, film_.full_width), y1 = std::min(y + size, film_.full_height);
     const Frustum fr = camera_.frustum(x, y, x1, y1);
-    background = background || misses_.misses(fr, x, y, x1, y1);
+    background = background || (misses_.ever() && misses_.misses(fr, x, y, x1, y1));
     const PixelRect block{std::max(x, area.x0), std::max(y, area.y0), std::min(x1, area.x1),
                           std::min(y1, area.y1)};
     if (background && !beams_count_) {  // no quarter's beam would count any work either
