@@ -36,8 +36,8 @@ class BeamMisses {
   // by two pixels), the answer is false without the test (which would mostly fail there).
   bool misses(const Frustum& f, int x0, int y0, int x1, int y1) const;
   // Whether misses() may ever say true: false where an object has no finite box or one across
-  // the eye's plane (a floor's, whose box holds the eye), so
-  // that a caller asks nothing of each beam (the call was 0.07 % of the floor frame's process).
+  // the eye's plane (a floor's, whose box holds the eye), so that a caller asks nothing of
+  // each beam (the call was 0.07 % of the floor frame's process).
   bool ever() const { return !never_; }
 
   // Whether `f` misses `box` so (exposed for the tests).
