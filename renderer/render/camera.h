@@ -91,6 +91,18 @@ class ViewCamera {
     return {eye_, normalize(forward_ + right_ * column + up_ * row), cone0_, cone_};
   }
 
+  // Where the point p is seen in the frame (single_eye() only), in pixel units as generate()
+  // takes them: false for a point not in front of the eye. Approximate (rounding): for estimates
+  // only, never for a certificate.
+  bool pixel_of(const Vec3& p, double& px, double& py) const {
+    const Vec3 v = p - eye_;
+    const double z = dot(v, forward_);
+    if (!(z > 0)) return false;
+    px = (dot(v, right_) / (z * tan_half_ * aspect_) + 1) * 0.5 * width_;
+    py = (1 - dot(v, up_) / (z * tan_half_)) * 0.5 * height_;
+    return std::isfinite(px) && std::isfinite(py);
+  }
+
   // The rays through the pixels [x0, x1) x [y0, y1), wherever in them their samples fall (valid
   // only where single_eye()).
   Frustum frustum(int x0, int y0, int x1, int y1) const {

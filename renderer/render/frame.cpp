@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/antialias.h"
+#include "render/beam_misses.h"
 #include "render/camera.h"
 #include "render/cancel.h"
 #include "render/shading.h"
@@ -103,7 +104,12 @@ class FrameTracer {
         shadow_beams_(scene, rt.tracers),
         plain_(plain_objects(scene)),
         lifts_(object_lifts(scene)),
-        aov_means_(!film.normal.empty() || !film.albedo.empty()) {
+        aov_means_(!film.normal.empty() || !film.albedo.empty()),
+        misses_(rt.tracers, camera_) {
+    for (int o = 0; o < objects_; ++o) {
+      const ObjectTracer* tracer = rt.tracers.tracer(o);
+      beams_count_ = beams_count_ || (tracer && !tracer->blob_sum());
+    }
     if (!camera_.single_eye()) return;
     double dx, dy;
     sample_offset(0, dx, dy);
@@ -123,15 +129,16 @@ class FrameTracer {
     work.beams = 0;
     work.samples.clear();
     work.pixels.clear();
-    beam(tx, ty, 0, nullptr, nullptr, area, pass, work);
-    shade_tile(pass, work);
+    beam(tx, ty, 0, nullptr, nullptr, false, area, pass, work);
+    if (!work.pixels.empty()) shade_tile(pass, work);  // a background tile has nothing to shade
   }
 
  private:
   // The pixels [x, x + size) x [y, y + size) of the full frame, size = kTile >> level, from the
   // depths `from` and the blob lists `parent` (per object) of the beam holding it. A beam's place
   // and its certified depths depend only on where it is in the full frame, not on `area`.
-  void beam(int x, int y, int level, const double* from, const BlobBeam* parent,
+  // `background`: the holding beam meets no object's box (BeamMisses), nor then does this one.
+  void beam(int x, int y, int level, const double* from, const BlobBeam* parent, bool background,
             const PixelRect& area, Pass pass, Work& work) const {
     const int size = kTile >> level;
     if (x >= area.x1 || x + size <= area.x0 || y >= area.y1 || y + size <= area.y0 || cancelled())
@@ -145,20 +152,28 @@ class FrameTracer {
           trace_pixel(px, py, nullptr, pass, work);
       return;
     }
-    const Frustum fr = camera_.frustum(x, y, std::min(x + size, film_.full_width),
-                                       std::min(y + size, film_.full_height));
+    const int x1 = std::min(x + size, film_.full_width), y1 = std::min(y + size, film_.full_height);
+    const Frustum fr = camera_.frustum(x, y, x1, y1);
+    background = background || (misses_.ever() && misses_.misses(fr, x, y, x1, y1));
+    const PixelRect block{std::max(x, area.x0), std::max(y, area.y0), std::min(x1, area.x1),
+                          std::min(y1, area.y1)};
+    if (background && !beams_count_) {  // no quarter's beam would count any work either
+      background_pixels(block, pass, work);
+      return;
+    }
     double* clear = work.clear.data() + size_t(level) * objects_;
     TraceCounters beam_work;
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt_.tracers.tracer(o);  // a primitive's hit costs no approach
       clear[o] = tracer ? tracer->clear_depth(fr, from ? from[o] : 0, beam_work) : 0;
     }
-    // The beam's work is the primary rays' (its passes are counted, not its rays).
+    // The beam's work is the primary rays' (its passes are counted, not its rays): a background
+    // beam's too, so that the counters are those of the frame without the certificate.
     work.primary.box_evals += beam_work.box_evals;
     BlobBeam* blobs = work.blobs.data() + size_t(work.beams++) * objects_;
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt_.tracers.tracer(o);
-      if (tracer && tracer->blob_sum())
+      if (tracer && tracer->blob_sum() && !background)  // no ray of a background beam reads it
         tracer->blob_beam(fr, parent ? parent + o : nullptr, blobs + o);
       else
         blobs[o].valid = false;
@@ -166,7 +181,12 @@ class FrameTracer {
     if (level + 1 < kBeamLevels) {
       const int h = size / 2;
       for (int q = 0; q < 4; ++q)
-        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, area, pass, work);
+        beam(x + (q & 1) * h, y + (q >> 1) * h, level + 1, clear, blobs, background, area, pass,
+             work);
+      return;
+    }
+    if (background) {
+      background_pixels(block, pass, work);
       return;
     }
     BeamClear certified{fr.forward, clear, blobs};
@@ -224,6 +244,47 @@ class FrameTracer {
       for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(sample[s].ray.d);
     miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, sample[0].hit, pass);
     work.samples.resize(size_t(first));
+  }
+
+  // The pixels `block` of a background beam (background_pixel each). In the first pass without a
+  // sky or adaptive anti-aliasing each is miss_pixel's plain background, written a row at a time:
+  // colour and alpha 0, normal and albedo 0, Z +inf, steps 0 (the centre ray's evaluations, none).
+  void background_pixels(const PixelRect& block, Pass pass, Work& work) const {
+    if (pass == Pass::Refine || scene_.sky || adaptive_) {
+      for (int py = block.y0; py < block.y1; ++py)
+        for (int px = block.x0; px < block.x1; ++px) background_pixel(px, py, pass, work);
+      return;
+    }
+    if (block.empty() || cancelled()) return;
+    work.primary.rays += long(block.x1 - block.x0) * (block.y1 - block.y0) * spp_;
+    // The film's pixels of the block (all of them: the first pass's area is the data window).
+    const int x0 = std::max(block.x0, window_.x0), x1 = std::min(block.x1, window_.x1);
+    if (x0 >= x1) return;
+    const size_t n = size_t(x1 - x0);
+    for (int py = std::max(block.y0, window_.y0); py < std::min(block.y1, window_.y1); ++py) {
+      const size_t i = size_t(py - film_.y0) * film_.width + (x0 - film_.x0);
+      std::fill_n(&film_.rgba[i * 4], n * 4, 0.0f);
+      if (!film_.normal.empty()) std::fill_n(&film_.normal[i * 3], n * 3, 0.0f);
+      if (!film_.albedo.empty()) std::fill_n(&film_.albedo[i * 3], n * 3, 0.0f);
+      if (!film_.depth.empty())
+        std::fill_n(&film_.depth[i], n, std::numeric_limits<float>::infinity());
+      if (!film_.steps.empty()) std::fill_n(&film_.steps[i], n, 0.0f);
+    }
+  }
+
+  // trace_pixel for a pixel of a background beam (BeamMisses): each of its samples' rays would
+  // meet no object's box, so has no hit and no work counted (a ray of RayWork::add with nothing
+  // else); its pixel is written as trace_pixel writes such a one, a camera ray made only for a
+  // sky, which needs its direction.
+  void background_pixel(int x, int y, Pass pass, Work& work) const {
+    if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
+    if (cancelled()) return;
+    const int spp = pass == Pass::First ? spp_ : refined_spp_;
+    work.primary.rays += spp;
+    Vec3 sky{0, 0, 0};
+    if (scene_.sky)
+      for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(camera_ray(x, y, s, spp).d);
+    miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, none_, pass);
   }
 
   // trace_pixel's pixel (x, y) of one sample, traced (`ray`, `hit`): kept for shading where it
@@ -542,6 +603,11 @@ class FrameTracer {
     for (size_t o = 0; o < plain.size(); ++o) plain[o] = shades_plain(scene, scene.objects[o]);
     return plain;
   }
+  const BeamMisses misses_;
+  // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
+  // sum): a background beam's quarters are then still visited, for the same counters.
+  bool beams_count_ = false;
+  const TraceHit none_;  // a background pixel's centre ray's answer: no hit, no work
 };
 
 // The full-frame tiles that meet `area`: the first one's grid position and how many a side.
