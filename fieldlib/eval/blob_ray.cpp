@@ -295,6 +295,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
   BlobSum s;
   s.group_ = g;
   s.lanes_ = has_avx2() ? ball_lanes_avx2 : ball_lanes_scalar;
+  s.terms_of_ = has_avx2() ? terms_of_avx2 : terms_of_baseline;
   int32_t next = 1;  // the children's code must tile the program between the Group and the Sum
   for (const Group::Child& c : group.children) {
     if (c.begin != next) return std::nullopt;
@@ -337,7 +338,7 @@ namespace {
 struct Nearest {
   double alpha, mid, h2;
 };
-Nearest nearest(const Vec3& w, const Vec3& v) {
+__attribute__((always_inline)) inline Nearest nearest(const Vec3& w, const Vec3& v) {
   const double alpha = dot(v, v);
   const double mid = alpha > 0 ? -dot(w, v) / alpha : 0.0;
   const Vec3 w_mid = w + v * mid;
@@ -346,7 +347,9 @@ Nearest nearest(const Vec3& w, const Vec3& v) {
 
 // The term of d^2 = |w + u v|^2 (its nearest point `m`) over the part [lo, hi] of the stretch
 // [0, len], if its support r = 1 - d^2 > 0 meets that part. Inlined: a capsule calls it up to
-// three times a stretch, and the calls were 2 % of pov:chain's instructions at 640x480.
+// three times a stretch, and the calls were 2 % of pov:chain's instructions at 640x480. (This
+// and the other helpers of terms_of are always inlined: both of its builds must inline them,
+// and GCC inlines no other function into the AVX2 one, whose target differs.)
 __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, double hi, double len,
                                                 const BlobSum::Blob& b, BlobSum::Term* out) {
   const double alpha = m.alpha, mid = m.mid, h2 = m.h2;
@@ -368,8 +371,10 @@ __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, dou
 // d^2 = |w - axis + u v|^2 (the far end); between, the parts of w and v across the axis. The
 // parts meet where s(u) is 0 and 1, and d^2 is continuous with its derivative there (the parts
 // differ by |axis|^2 s^2), so rounding in those two points moves the sum by its square.
-int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w, const Vec3& v,
-                  double len, BlobSum::Term* out) {
+__attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
+                                                        const BlobSum::Blob& b, const Vec3& w,
+                                                        const Vec3& v, double len,
+                                                        BlobSum::Term* out) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
   const Vec3 w_across = w - f.axis * s0, v_across = v - f.axis * sv;
@@ -424,7 +429,8 @@ int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w
 // a unit vector to rounding, so -oc.d is the nearest point's u to a few ulps of |oc|, which moves
 // its distance by their square; the distance is rounded to a few ulps of |oc|^2 + len^2: 1e-12
 // of that is room.
-bool within_reach(const BlobSum::Blob& b, const Vec3& o, const Vec3& d, double len) {
+__attribute__((always_inline)) inline bool within_reach(const BlobSum::Blob& b, const Vec3& o,
+                                                        const Vec3& d, double len) {
   const Vec3 oc = o - b.centre;
   const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
   return dot(nearest, nearest) <= b.reach2 + 1e-12 * (dot(oc, oc) + len * len);
@@ -469,8 +475,9 @@ int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals
   return p.groups[group_].bvh.cone_items(apex, normals, pads, out);
 }
 
-int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
-                      Term* out) const {
+__attribute__((always_inline)) inline int BlobSum::terms_of_body(const int32_t* ids, int found,
+                                                                 const Vec3& o, const Vec3& d,
+                                                                 double len, Term* out) const {
   const double dd = dot(d, d);
   const bool reach_first = size() > kListed;
   int n = 0;
@@ -508,6 +515,20 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
     }
   }
   return n;
+}
+
+// terms_of's body in both builds: a capsule's visit is some 150 scalar operations on doubles,
+// and SSE's two-operand form copied a register before nearly every third of them (movapd was
+// 14 % of pov:chain's terms_of instructions, 19 % were mulsd).
+int BlobSum::terms_of_baseline(const BlobSum& sum, const int32_t* ids, int found, const Vec3& o,
+                               const Vec3& d, double len, Term* out) {
+  return sum.terms_of_body(ids, found, o, d, len, out);
+}
+
+__attribute__((target("avx2"))) int BlobSum::terms_of_avx2(const BlobSum& sum, const int32_t* ids,
+                                                           int found, const Vec3& o, const Vec3& d,
+                                                           double len, Term* out) {
+  return sum.terms_of_body(ids, found, o, d, len, out);
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,
