@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -309,6 +310,13 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
       set_outline(frame, fi, &outline);
     }
     s.capsules_ += frame.inv_axis2 > 0;
+    Columns columns{};
+    for (int r = 0; r < 3; ++r) {
+      columns.l0[r] = frame.L.r[r].x, columns.l1[r] = frame.L.r[r].y;
+      columns.l2[r] = frame.L.r[r].z, columns.k[r] = frame.k[r], columns.axis[r] = frame.axis[r];
+    }
+    columns.axis2 = dot(frame.axis, frame.axis);
+    s.columns_.push_back(columns);
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
     s.outlines_.push_back(outline);
@@ -338,10 +346,41 @@ namespace {
 struct Nearest {
   double alpha, mid, h2;
 };
-__attribute__((always_inline)) inline Nearest nearest(const Vec3& w, const Vec3& v) {
+// A 3-vector in the first three of four lanes of GCC's generic vectors: the same IEEE
+// operations lane by lane as Vec3's, its dot summed in Vec3's order ((x + y) + z), so the same
+// bits. No target's intrinsics: baseline code where it is compiled for the baseline (two SSE
+// halves), one AVX register in terms_of's AVX2 build, which alone uses it (three-vector
+// arithmetic in one instruction where Vec3's takes three).
+typedef double Lanes4 __attribute__((vector_size(32)));
+struct Lanes3 {
+  Lanes4 l;
+};
+// Four doubles as lanes, from memory aligned to a double only (a 32-byte vector type is aligned to
+// 16 where the baseline build lays it out, and to 32 where AVX2 code reads it).
+__attribute__((always_inline)) inline Lanes3 load_lanes(const double (&p)[4]) {
+  Lanes3 v;
+  std::memcpy(&v.l, p, sizeof v.l);
+  return v;
+}
+__attribute__((always_inline)) inline Lanes3 operator+(const Lanes3& a, const Lanes3& b) {
+  return {a.l + b.l};
+}
+__attribute__((always_inline)) inline Lanes3 operator-(const Lanes3& a, const Lanes3& b) {
+  return {a.l - b.l};
+}
+__attribute__((always_inline)) inline Lanes3 operator*(const Lanes3& a, double s) {
+  return {a.l * s};
+}
+__attribute__((always_inline)) inline double dot(const Lanes3& a, const Lanes3& b) {
+  const Lanes4 p = a.l * b.l;
+  return p[0] + p[1] + p[2];
+}
+
+template <class V>
+__attribute__((always_inline)) inline Nearest nearest(const V& w, const V& v) {
   const double alpha = dot(v, v);
   const double mid = alpha > 0 ? -dot(w, v) / alpha : 0.0;
-  const Vec3 w_mid = w + v * mid;
+  const V w_mid = w + v * mid;
   return {alpha, mid, 1 - dot(w_mid, w_mid)};
 }
 
@@ -371,13 +410,14 @@ __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, dou
 // d^2 = |w - axis + u v|^2 (the far end); between, the parts of w and v across the axis. The
 // parts meet where s(u) is 0 and 1, and d^2 is continuous with its derivative there (the parts
 // differ by |axis|^2 s^2), so rounding in those two points moves the sum by its square.
-__attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
-                                                        const BlobSum::Blob& b, const Vec3& w,
-                                                        const Vec3& v, double len,
+template <class V>
+__attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f, const V& axis,
+                                                        double axis2, const BlobSum::Blob& b,
+                                                        const V& w, const V& v, double len,
                                                         BlobSum::Term* out) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
-  const Vec3 w_across = w - f.axis * s0, v_across = v - f.axis * sv;
+  const double s0 = dot(w, axis) * f.inv_axis2, sv = dot(v, axis) * f.inv_axis2;
+  const V w_across = w - axis * s0, v_across = v - axis * sv;
   // The line's nearest point to the capsule's axis: where it passes clear of the cylinder around
   // the axis, it passes clear of the end balls inside it, and no part has a term (most rays miss
   // most long capsules). As computed: each end ball's |w_e + u v| is at least the cylinder's
@@ -386,7 +426,7 @@ __attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
   // |w|^2 or |w_e|^2 <= 2 (|w|^2 + |axis|^2); so an end term's h2 > 0 leaves the cylinder's above
   // -1e-12 (1 + |w|^2 + |axis|^2), a thousandfold room. Below that, term() would find none.
   const Nearest across = nearest(w_across, v_across);
-  const double scale = 1 + dot(w, w) + dot(f.axis, f.axis);
+  const double scale = 1 + dot(w, w) + axis2;
   if (across.h2 < -1e-12 * scale) return 0;
   // [lo, hi] of each part: the near end's, the middle's, the far end's.
   double lo[3], hi[3];
@@ -421,7 +461,7 @@ __attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
   int n = 0;
   if (may_reach(0)) n += term(nearest(w, v), lo[0], hi[0], len, b, out + n);
   n += term(across, lo[1], hi[1], len, b, out + n);
-  if (may_reach(2)) n += term(nearest(w - f.axis, v), lo[2], hi[2], len, b, out + n);
+  if (may_reach(2)) n += term(nearest(w - axis, v), lo[2], hi[2], len, b, out + n);
   return n;
 }
 
@@ -475,10 +515,13 @@ int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals
   return p.groups[group_].bvh.cone_items(apex, normals, pads, out);
 }
 
+template <bool kLanes>
 __attribute__((always_inline)) inline int BlobSum::terms_of_body(const int32_t* ids, int found,
                                                                  const Vec3& o, const Vec3& d,
                                                                  double len, Term* out) const {
   const double dd = dot(d, d);
+  const Lanes4 ox = {o.x, o.x, o.x, o.x}, oy = {o.y, o.y, o.y, o.y}, oz = {o.z, o.z, o.z, o.z};
+  const Lanes4 dx = {d.x, d.x, d.x, d.x}, dy = {d.y, d.y, d.y, d.y}, dz = {d.z, d.z, d.z, d.z};
   const bool reach_first = size() > kListed;
   int n = 0;
   for (int i = 0; i < found; ++i) {
@@ -506,9 +549,19 @@ __attribute__((always_inline)) inline int BlobSum::terms_of_body(const int32_t* 
     // rays meet most of them (blob1a, candle, sheared: +0.5 to +1.7 % with the test).
     if (reach_first && !within_reach(b, o, d, len)) continue;
     const Frame& f = frames_[ids[i]];
+    if constexpr (kLanes)
+      if (f.inv_axis2 > 0) {
+        // L o + k and L d column by column: lane r sums row r's products in dot's order.
+        const Columns& c = columns_[ids[i]];
+        const Lanes3 l0 = load_lanes(c.l0), l1 = load_lanes(c.l1), l2 = load_lanes(c.l2);
+        const Lanes3 w{l0.l * ox + l1.l * oy + l2.l * oz + load_lanes(c.k).l},
+            v{l0.l * dx + l1.l * dy + l2.l * dz};
+        n += capsule_terms(f, load_lanes(c.axis), c.axis2, b, w, v, len, out + n);
+        continue;
+      }
     const Vec3 w = f.L * o + f.k, v = f.L * d;
     if (f.inv_axis2 > 0) {
-      n += capsule_terms(f, b, w, v, len, out + n);
+      n += capsule_terms(f, f.axis, dot(f.axis, f.axis), b, w, v, len, out + n);
     } else {
       constexpr double kInf = std::numeric_limits<double>::infinity();
       n += term(nearest(w, v), -kInf, kInf, len, b, out + n);
@@ -522,13 +575,13 @@ __attribute__((always_inline)) inline int BlobSum::terms_of_body(const int32_t* 
 // 14 % of pov:chain's terms_of instructions, 19 % were mulsd).
 int BlobSum::terms_of_baseline(const BlobSum& sum, const int32_t* ids, int found, const Vec3& o,
                                const Vec3& d, double len, Term* out) {
-  return sum.terms_of_body(ids, found, o, d, len, out);
+  return sum.terms_of_body<false>(ids, found, o, d, len, out);
 }
 
 __attribute__((target("avx2"))) int BlobSum::terms_of_avx2(const BlobSum& sum, const int32_t* ids,
                                                            int found, const Vec3& o, const Vec3& d,
                                                            double len, Term* out) {
-  return sum.terms_of_body(ids, found, o, d, len, out);
+  return sum.terms_of_body<true>(ids, found, o, d, len, out);
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,

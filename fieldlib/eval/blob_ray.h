@@ -213,10 +213,19 @@ class BlobSum {
                       double* terms) const;
   BallLanes lanes_ = ball_lanes_scalar;   // ball_terms4's kernel for this CPU
   TermsOf terms_of_ = terms_of_baseline;  // terms_of's build for this CPU
-  // terms_of's body, which both builds inline.
+  // terms_of's body, which both builds inline; the AVX2 one's (kLanes) takes a capsule's
+  // 3-vectors as lanes of one register, from its frame's columns below.
+  template <bool kLanes>
   int terms_of_body(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
                     Term* out) const;
-  int capsules_ = 0;  // frames with an axis
+  // A frame's L by columns, k and axis, each in the first three of four doubles, and |axis|^2:
+  // L o + k column by column gives L o + k's rows' sums in the same order.
+  struct Columns {
+    double l0[4], l1[4], l2[4], k[4], axis[4];
+    double axis2;
+  };
+  std::vector<Columns> columns_;  // by child of the sum
+  int capsules_ = 0;              // frames with an axis
   double typical_radius_ = 0;
 };
 
