@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -296,7 +295,6 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
   BlobSum s;
   s.group_ = g;
   s.lanes_ = has_avx2() ? ball_lanes_avx2 : ball_lanes_scalar;
-  s.terms_of_ = has_avx2() ? terms_of_avx2 : terms_of_baseline;
   int32_t next = 1;  // the children's code must tile the program between the Group and the Sum
   for (const Group::Child& c : group.children) {
     if (c.begin != next) return std::nullopt;
@@ -310,13 +308,6 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
       set_outline(frame, fi, &outline);
     }
     s.capsules_ += frame.inv_axis2 > 0;
-    Columns columns{};
-    for (int r = 0; r < 3; ++r) {
-      columns.l0[r] = frame.L.r[r].x, columns.l1[r] = frame.L.r[r].y;
-      columns.l2[r] = frame.L.r[r].z, columns.k[r] = frame.k[r], columns.axis[r] = frame.axis[r];
-    }
-    columns.axis2 = dot(frame.axis, frame.axis);
-    s.columns_.push_back(columns);
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
     s.outlines_.push_back(outline);
@@ -346,49 +337,16 @@ namespace {
 struct Nearest {
   double alpha, mid, h2;
 };
-// A 3-vector in the first three of four lanes of GCC's generic vectors: the same IEEE
-// operations lane by lane as Vec3's, its dot summed in Vec3's order ((x + y) + z), so the same
-// bits. No target's intrinsics: baseline code where it is compiled for the baseline (two SSE
-// halves), one AVX register in terms_of's AVX2 build, which alone uses it (three-vector
-// arithmetic in one instruction where Vec3's takes three).
-typedef double Lanes4 __attribute__((vector_size(32)));
-struct Lanes3 {
-  Lanes4 l;
-};
-// Four doubles as lanes, from memory aligned to a double only (a 32-byte vector type is aligned to
-// 16 where the baseline build lays it out, and to 32 where AVX2 code reads it).
-__attribute__((always_inline)) inline Lanes3 load_lanes(const double (&p)[4]) {
-  Lanes3 v;
-  std::memcpy(&v.l, p, sizeof v.l);
-  return v;
-}
-__attribute__((always_inline)) inline Lanes3 operator+(const Lanes3& a, const Lanes3& b) {
-  return {a.l + b.l};
-}
-__attribute__((always_inline)) inline Lanes3 operator-(const Lanes3& a, const Lanes3& b) {
-  return {a.l - b.l};
-}
-__attribute__((always_inline)) inline Lanes3 operator*(const Lanes3& a, double s) {
-  return {a.l * s};
-}
-__attribute__((always_inline)) inline double dot(const Lanes3& a, const Lanes3& b) {
-  const Lanes4 p = a.l * b.l;
-  return p[0] + p[1] + p[2];
-}
-
-template <class V>
-__attribute__((always_inline)) inline Nearest nearest(const V& w, const V& v) {
+Nearest nearest(const Vec3& w, const Vec3& v) {
   const double alpha = dot(v, v);
   const double mid = alpha > 0 ? -dot(w, v) / alpha : 0.0;
-  const V w_mid = w + v * mid;
+  const Vec3 w_mid = w + v * mid;
   return {alpha, mid, 1 - dot(w_mid, w_mid)};
 }
 
 // The term of d^2 = |w + u v|^2 (its nearest point `m`) over the part [lo, hi] of the stretch
 // [0, len], if its support r = 1 - d^2 > 0 meets that part. Inlined: a capsule calls it up to
-// three times a stretch, and the calls were 2 % of pov:chain's instructions at 640x480. (This
-// and the other helpers of terms_of are always inlined: both of its builds must inline them,
-// and GCC inlines no other function into the AVX2 one, whose target differs.)
+// three times a stretch, and the calls were 2 % of pov:chain's instructions at 640x480.
 __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, double hi, double len,
                                                 const BlobSum::Blob& b, BlobSum::Term* out) {
   const double alpha = m.alpha, mid = m.mid, h2 = m.h2;
@@ -410,14 +368,11 @@ __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, dou
 // d^2 = |w - axis + u v|^2 (the far end); between, the parts of w and v across the axis. The
 // parts meet where s(u) is 0 and 1, and d^2 is continuous with its derivative there (the parts
 // differ by |axis|^2 s^2), so rounding in those two points moves the sum by its square.
-template <class V>
-__attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f, const V& axis,
-                                                        double axis2, const BlobSum::Blob& b,
-                                                        const V& w, const V& v, double len,
-                                                        BlobSum::Term* out) {
+int capsule_terms(const BlobSum::Frame& f, const BlobSum::Blob& b, const Vec3& w, const Vec3& v,
+                  double len, BlobSum::Term* out) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double s0 = dot(w, axis) * f.inv_axis2, sv = dot(v, axis) * f.inv_axis2;
-  const V w_across = w - axis * s0, v_across = v - axis * sv;
+  const double s0 = dot(w, f.axis) * f.inv_axis2, sv = dot(v, f.axis) * f.inv_axis2;
+  const Vec3 w_across = w - f.axis * s0, v_across = v - f.axis * sv;
   // The line's nearest point to the capsule's axis: where it passes clear of the cylinder around
   // the axis, it passes clear of the end balls inside it, and no part has a term (most rays miss
   // most long capsules). As computed: each end ball's |w_e + u v| is at least the cylinder's
@@ -426,7 +381,7 @@ __attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
   // |w|^2 or |w_e|^2 <= 2 (|w|^2 + |axis|^2); so an end term's h2 > 0 leaves the cylinder's above
   // -1e-12 (1 + |w|^2 + |axis|^2), a thousandfold room. Below that, term() would find none.
   const Nearest across = nearest(w_across, v_across);
-  const double scale = 1 + dot(w, w) + axis2;
+  const double scale = 1 + dot(w, w) + dot(f.axis, f.axis);
   if (across.h2 < -1e-12 * scale) return 0;
   // [lo, hi] of each part: the near end's, the middle's, the far end's.
   double lo[3], hi[3];
@@ -461,7 +416,7 @@ __attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
   int n = 0;
   if (may_reach(0)) n += term(nearest(w, v), lo[0], hi[0], len, b, out + n);
   n += term(across, lo[1], hi[1], len, b, out + n);
-  if (may_reach(2)) n += term(nearest(w - axis, v), lo[2], hi[2], len, b, out + n);
+  if (may_reach(2)) n += term(nearest(w - f.axis, v), lo[2], hi[2], len, b, out + n);
   return n;
 }
 
@@ -469,8 +424,7 @@ __attribute__((always_inline)) inline int capsule_terms(const BlobSum::Frame& f,
 // a unit vector to rounding, so -oc.d is the nearest point's u to a few ulps of |oc|, which moves
 // its distance by their square; the distance is rounded to a few ulps of |oc|^2 + len^2: 1e-12
 // of that is room.
-__attribute__((always_inline)) inline bool within_reach(const BlobSum::Blob& b, const Vec3& o,
-                                                        const Vec3& d, double len) {
+bool within_reach(const BlobSum::Blob& b, const Vec3& o, const Vec3& d, double len) {
   const Vec3 oc = o - b.centre;
   const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
   return dot(nearest, nearest) <= b.reach2 + 1e-12 * (dot(oc, oc) + len * len);
@@ -515,13 +469,9 @@ int BlobSum::cone_items(const Program& p, const Vec3& apex, const Vec3 (&normals
   return p.groups[group_].bvh.cone_items(apex, normals, pads, out);
 }
 
-template <bool kLanes>
-__attribute__((always_inline)) inline int BlobSum::terms_of_body(const int32_t* ids, int found,
-                                                                 const Vec3& o, const Vec3& d,
-                                                                 double len, Term* out) const {
+int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
+                      Term* out) const {
   const double dd = dot(d, d);
-  const Lanes4 ox = {o.x, o.x, o.x, o.x}, oy = {o.y, o.y, o.y, o.y}, oz = {o.z, o.z, o.z, o.z};
-  const Lanes4 dx = {d.x, d.x, d.x, d.x}, dy = {d.y, d.y, d.y, d.y}, dz = {d.z, d.z, d.z, d.z};
   const bool reach_first = size() > kListed;
   int n = 0;
   for (int i = 0; i < found; ++i) {
@@ -549,39 +499,15 @@ __attribute__((always_inline)) inline int BlobSum::terms_of_body(const int32_t* 
     // rays meet most of them (blob1a, candle, sheared: +0.5 to +1.7 % with the test).
     if (reach_first && !within_reach(b, o, d, len)) continue;
     const Frame& f = frames_[ids[i]];
-    if constexpr (kLanes)
-      if (f.inv_axis2 > 0) {
-        // L o + k and L d column by column: lane r sums row r's products in dot's order.
-        const Columns& c = columns_[ids[i]];
-        const Lanes3 l0 = load_lanes(c.l0), l1 = load_lanes(c.l1), l2 = load_lanes(c.l2);
-        const Lanes3 w{l0.l * ox + l1.l * oy + l2.l * oz + load_lanes(c.k).l},
-            v{l0.l * dx + l1.l * dy + l2.l * dz};
-        n += capsule_terms(f, load_lanes(c.axis), c.axis2, b, w, v, len, out + n);
-        continue;
-      }
     const Vec3 w = f.L * o + f.k, v = f.L * d;
     if (f.inv_axis2 > 0) {
-      n += capsule_terms(f, f.axis, dot(f.axis, f.axis), b, w, v, len, out + n);
+      n += capsule_terms(f, b, w, v, len, out + n);
     } else {
       constexpr double kInf = std::numeric_limits<double>::infinity();
       n += term(nearest(w, v), -kInf, kInf, len, b, out + n);
     }
   }
   return n;
-}
-
-// terms_of's body in both builds: a capsule's visit is some 150 scalar operations on doubles,
-// and SSE's two-operand form copied a register before nearly every third of them (movapd was
-// 14 % of pov:chain's terms_of instructions, 19 % were mulsd).
-int BlobSum::terms_of_baseline(const BlobSum& sum, const int32_t* ids, int found, const Vec3& o,
-                               const Vec3& d, double len, Term* out) {
-  return sum.terms_of_body<false>(ids, found, o, d, len, out);
-}
-
-__attribute__((target("avx2"))) int BlobSum::terms_of_avx2(const BlobSum& sum, const int32_t* ids,
-                                                           int found, const Vec3& o, const Vec3& d,
-                                                           double len, Term* out) {
-  return sum.terms_of_body<true>(ids, found, o, d, len, out);
 }
 
 double BlobSum::gradient(const Program& p, const Vec3& x, Vec3* grad, int32_t* ids,

@@ -52,9 +52,7 @@ class BlobSum {
   // support the stretch passes through, in the order the query reports them (the sum's BVH's
   // tree order: then the terms, and the sums made of them, are the same to the bit).
   int terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
-               Term* out) const {
-    return terms_of_(*this, ids, found, o, d, len, out);
-  }
+               Term* out) const;
   // terms_of for the one blob `id`, with dd = dot(d, d): a ball's term inline, the same
   // arithmetic and so the same bits. A camera ray's sweep takes its list's blobs one at a time
   // (tracer_blobs.cpp); a call of terms_of per blob cost 4.3 % of blob1000's process at 640x480.
@@ -164,16 +162,6 @@ class BlobSum {
   static unsigned ball_lanes_avx2(const Blob* const (&balls)[4], const Vec3& o, const Vec3& d,
                                   double dd, double len, Term (&out)[4]);
   static bool has_avx2();
-  // terms_of's two builds, which give the same bits: the x86-64 baseline's, and one compiled
-  // for AVX2 (the same scalar operations in VEX's three-operand form, which spares the register
-  // copies SSE's two-operand form needs; no fused multiply-add), only to be called where
-  // has_avx2(). terms_of takes the second where the CPU has it (chosen once, in of()).
-  using TermsOf = int (*)(const BlobSum& sum, const int32_t* ids, int found, const Vec3& o,
-                          const Vec3& d, double len, Term* out);
-  static int terms_of_baseline(const BlobSum& sum, const int32_t* ids, int found, const Vec3& o,
-                               const Vec3& d, double len, Term* out);
-  static int terms_of_avx2(const BlobSum& sum, const int32_t* ids, int found, const Vec3& o,
-                           const Vec3& d, double len, Term* out);
 
   // Each child's frame and potential, and the sum's group in the program (its BVH indexes the
   // children's support boxes): what a caller needs to sum the blobs itself (the mesher's leaves).
@@ -211,21 +199,8 @@ class BlobSum {
   // gradient()'s sum over ids[0, found), in that order (increasing).
   double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
                       double* terms) const;
-  BallLanes lanes_ = ball_lanes_scalar;   // ball_terms4's kernel for this CPU
-  TermsOf terms_of_ = terms_of_baseline;  // terms_of's build for this CPU
-  // terms_of's body, which both builds inline; the AVX2 one's (kLanes) takes a capsule's
-  // 3-vectors as lanes of one register, from its frame's columns below.
-  template <bool kLanes>
-  int terms_of_body(const int32_t* ids, int found, const Vec3& o, const Vec3& d, double len,
-                    Term* out) const;
-  // A frame's L by columns, k and axis, each in the first three of four doubles, and |axis|^2:
-  // L o + k column by column gives L o + k's rows' sums in the same order.
-  struct Columns {
-    double l0[4], l1[4], l2[4], k[4], axis[4];
-    double axis2;
-  };
-  std::vector<Columns> columns_;  // by child of the sum
-  int capsules_ = 0;              // frames with an axis
+  BallLanes lanes_ = ball_lanes_scalar;  // ball_terms4's kernel for this CPU
+  int capsules_ = 0;                     // frames with an axis
   double typical_radius_ = 0;
 };
 

@@ -1,6 +1,6 @@
 // BlobSum::ball_terms4's kernels (fieldlib/eval/blob_ray_lanes.cpp): the AVX2 kernel gives the
 // scalar ball_term's bits in every lane, and terms_of's runs of four balls the terms one at a
-// time would, in the same order. And terms_of's two builds (blob_ray.cpp) give the same terms.
+// time would, in the same order.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,6 @@
 #include <optional>
 #include <random>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "eval/blob_ray.h"
@@ -128,130 +127,6 @@ TEST(BallLanes, TermsOfTakesRunsOfBallsAsOneAtATime) {
     compared += n;
   }
   EXPECT_GT(compared, 20000);
-}
-
-// A random sum of capsules (POV-Ray's cylinder components), balls and ellipsoids about the
-// origin: segments of every direction and length (some almost points), unplaced, rotated and
-// translated, or sheared by a `matrix`; some along x and unplaced, whose L is diagonal, so that
-// a ray with d.x == 0 runs exactly across their axes (sv == 0). Strengths of both signs,
-// Murakami's, Wyvill's and the cubic potential. `segments` gets each capsule's world ends and
-// whether it is one of those along x.
-struct WorldSegment {
-  Vec3 p0, p1;
-  double radius;
-  bool along_x;
-};
-std::string random_capsule_sum(std::mt19937_64& rng, int n, std::vector<WorldSegment>* segments) {
-  std::uniform_real_distribution<double> unit(-1, 1), pos(0, 1);
-  const auto num = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return std::string(buf);
-  };
-  const auto vec = [&](const Vec3& v) {
-    return "[" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "]";
-  };
-  const char* const potentials[] = {"murakami", "wyvill", "cubic"};
-  std::string s = R"({"type":"soft_blend","children":[)";
-  for (int i = 0; i < n; ++i) {
-    const double kind = pos(rng);
-    const Vec3 p0{4 * unit(rng), 4 * unit(rng), 4 * unit(rng)};
-    const double radius = 0.3 + 1.5 * pos(rng);
-    std::string child;
-    if (kind < 0.7) {
-      const bool along_x = pos(rng) < 0.3;
-      const double size = pos(rng) < 0.1 ? 1e-4 * pos(rng) : 5 * pos(rng);
-      const Vec3 dir = along_x ? Vec3{1, 0, 0} : normalize(Vec3{unit(rng), unit(rng), unit(rng)});
-      const Vec3 p1 = p0 + dir * size;
-      child = R"("distance":{"type":"segment","p0":)" + vec(p0) + R"(,"p1":)" + vec(p1) +
-              R"(,"radius":)" + num(radius) + "}";
-      const double place = along_x ? 1.0 : pos(rng);
-      if (place < 0.3) {
-        child += R"(,"matrix":[)";
-        for (int row = 0; row < 3; ++row)
-          child += std::string(row ? "," : "") + "[" + num((row == 0) + 0.4 * unit(rng)) + "," +
-                   num((row == 1) + 0.4 * unit(rng)) + "," + num((row == 2) + 0.4 * unit(rng)) +
-                   "," + num(unit(rng)) + "]";
-        child += "]";
-      } else if (place < 0.6) {
-        child += R"(,"rotate":{"axis":[)" + num(unit(rng)) + "," + num(unit(rng)) +
-                 R"(,1],"deg":)" + num(90 * unit(rng)) + R"(},"translate":)" +
-                 vec({unit(rng), unit(rng), unit(rng)});
-      } else {
-        segments->push_back({p0, p1, radius, along_x});
-      }
-    } else if (kind < 0.85) {
-      child = R"("distance":{"type":"lp_metric","n":2,"radii":[)" + num(radius) + "," +
-              num(radius) + "," + num(radius) + R"(]},"translate":)" + vec(p0);
-    } else {
-      child = R"("distance":{"type":"lp_metric","n":2,"radii":[)" + num(radius) + "," +
-              num(0.5 + pos(rng)) + "," + num(0.5 + pos(rng)) + R"(]},"rotate":{"axis":[1,)" +
-              num(unit(rng)) + R"(,0],"deg":)" + num(90 * unit(rng)) + R"(},"translate":)" +
-              vec(p0);
-    }
-    const double strength = pos(rng) < 0.3 ? -0.3 - 0.5 * pos(rng) : 0.4 + 1.5 * pos(rng);
-    s += (i ? "," : "") + std::string(R"({"type":"soft_object","potential":{"type":")") +
-         potentials[i % 3] + R"("},"strength":)" + num(strength) + "," + child + "}";
-  }
-  return s + "]}";
-}
-
-TEST(TermsOfBuilds, Avx2GivesTheBaselinesTermsToTheBit) {
-  // terms_of's AVX2 build is the baseline's code in VEX form: every stretch's terms the same
-  // bits, in the same order. Sums of more than kListed blobs (each capsule's sphere tested
-  // first) and fewer; rays of every direction, along a capsule's axis (its middle part constant
-  // along them), exactly across an axis-aligned one (sv == 0) before, between and beyond its
-  // ends' planes, and past its ends.
-  if (!BlobSum::has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
-  std::mt19937_64 rng(2026);
-  std::uniform_real_distribution<double> unit(-1, 1), pos(0, 1);
-  int compared = 0, across = 0, along = 0;
-  for (int sum_case = 0; sum_case < 60; ++sum_case) {
-    std::vector<WorldSegment> segments;
-    const int n = sum_case % 2 ? 8 + sum_case % 9 : 20 + sum_case % 23;
-    const NodePtr node = build_from_json(random_capsule_sum(rng, n, &segments));
-    const Program p = compile(*node);  // the oracles read the node
-    const std::optional<BlobSum> sum = BlobSum::of(p);
-    ASSERT_TRUE(sum);
-    std::vector<BlobSum::Term> baseline(sum->max_terms()), avx2(sum->max_terms());
-    for (int trial = 0; trial < 1500; ++trial) {
-      std::vector<int32_t> ids;
-      for (int32_t id = 0; id < sum->size(); ++id)
-        if (pos(rng) < 0.8) ids.push_back(id);
-      Vec3 o{8 * unit(rng), 8 * unit(rng), 8 * unit(rng)};
-      Vec3 d = normalize(Vec3{unit(rng), unit(rng), unit(rng)} - o * 0.1);
-      const double way = pos(rng);
-      if (!segments.empty() && way < 0.6) {
-        const WorldSegment& sg = segments[rng() % segments.size()];
-        const Vec3 axis = sg.p1 - sg.p0;
-        // A point before, between or beyond the ends, near the capsule's surface or inside.
-        const Vec3 at = sg.p0 + axis * (1.6 * pos(rng) - 0.3) +
-                        Vec3{unit(rng), unit(rng), unit(rng)} * (1.2 * sg.radius);
-        if (way < 0.25 && sg.along_x) {  // exactly across the axis: d.x == 0
-          d = normalize(Vec3{0, unit(rng), unit(rng)});
-          ++across;
-        } else if (way < 0.4 && length(axis) > 0) {  // along the axis, either way
-          d = normalize(axis) * (pos(rng) < 0.5 ? 1.0 : -1.0);
-          ++along;
-        }
-        o = at - d * (2 + 6 * pos(rng));
-      }
-      const double len = pos(rng) < 0.1 ? 0.0 : 16 * pos(rng);
-      const int found = static_cast<int>(ids.size());
-      const int a = BlobSum::terms_of_baseline(*sum, ids.data(), found, o, d, len, baseline.data());
-      const int b = BlobSum::terms_of_avx2(*sum, ids.data(), found, o, d, len, avx2.data());
-      ASSERT_EQ(a, b) << "sum " << sum_case << " trial " << trial;
-      for (int i = 0; i < a; ++i)
-        ASSERT_EQ(std::memcmp(&baseline[i], &avx2[i], sizeof(BlobSum::Term)), 0)
-            << "sum " << sum_case << " trial " << trial << " term " << i << ": enter "
-            << baseline[i].enter << " / " << avx2[i].enter << ", peak " << baseline[i].peak << " / "
-            << avx2[i].peak;
-      compared += a;
-    }
-  }
-  EXPECT_GT(compared, 80000);
-  EXPECT_GT(across, 3000);
-  EXPECT_GT(along, 3000);
 }
 
 }  // namespace softtrace::test
