@@ -15,28 +15,16 @@
 #include "render/camera.h"
 #include "render/frame.h"
 #include "scene/scene.h"
+#include "sparse_ball_cloud.h"
 
 namespace softtrace {
 namespace {
 
 constexpr double kFar = std::numeric_limits<double>::infinity();
 
-// `n` murakami balls of radius 0.7 at random in a 40-unit cube, seen through `camera`.
+// `n` balls at random, seen through `camera` (sparse_ball_cloud.h).
 std::string background_cloud(int n, const std::string& camera) {
-  std::mt19937_64 rng(30);
-  std::uniform_real_distribution<double> u(-20, 20);
-  std::string children;
-  for (int i = 0; i < n; ++i) {
-    children += std::string(i ? "," : "") +
-                R"({"type": "soft_object", "potential": {"type": "murakami"},
-        "distance": {"type": "lp_metric", "radii": [0.7, 0.7, 0.7], "n": 2}, "translate": [)" +
-                std::to_string(u(rng)) + "," + std::to_string(u(rng)) + "," +
-                std::to_string(u(rng)) + "]}";
-  }
-  return R"({"camera": )" + camera + R"(, "image": {"spp": 1},
-    "lights": [{"type": "directional", "direction": [1, 0.35, -1], "shadows": true}],
-    "objects": [{"iso": 0.5, "field": {"type": "soft_blend", "children": [)" +
-         children + "]}}]}";
+  return sparse_ball_cloud(n, 30, camera);
 }
 
 // Fields of both kinds, a CSG and primitives apart from one another (Embree's path; each box

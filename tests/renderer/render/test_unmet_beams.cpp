@@ -18,6 +18,7 @@
 #include "render/camera.h"
 #include "render/frame.h"
 #include "scene/scene.h"
+#include "sparse_ball_cloud.h"
 #include "trace/primitive_trace.h"
 
 namespace softtrace {
@@ -25,23 +26,10 @@ namespace {
 
 constexpr double kUnmetFar = std::numeric_limits<double>::infinity();
 
-// `n` murakami balls of radius 0.7 at random in a 40-unit cube, seen from outside.
+// `n` balls at random (sparse_ball_cloud.h), seen from outside.
 std::string unmet_sparse_cloud(int n) {
-  std::mt19937_64 rng(24);
-  std::uniform_real_distribution<double> u(-20, 20);
-  std::string children;
-  for (int i = 0; i < n; ++i) {
-    children += std::string(i ? "," : "") +
-                R"({"type": "soft_object", "potential": {"type": "murakami"},
-        "distance": {"type": "lp_metric", "radii": [0.7, 0.7, 0.7], "n": 2}, "translate": [)" +
-                std::to_string(u(rng)) + "," + std::to_string(u(rng)) + "," +
-                std::to_string(u(rng)) + "]}";
-  }
-  return R"({"camera": {"eye": [70, -95, 60], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 30},
-    "image": {"spp": 1},
-    "lights": [{"type": "directional", "direction": [1, 0.35, -1], "shadows": true}],
-    "objects": [{"iso": 0.5, "field": {"type": "soft_blend", "children": [)" +
-         children + "]}}]}";
+  return sparse_ball_cloud(
+      n, 24, R"({"eye": [70, -95, 60], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 30})");
 }
 
 // The same cloud over a floor, with a ball beside it, a box among its blobs and a ball between it
