@@ -566,6 +566,17 @@ class FrameTracer {
       film_.albedo[i * 3 + k] = static_cast<float>(means.albedo[k]);
   }
 
+  static std::vector<double> object_lifts(const Scene& scene) {
+    std::vector<double> lifts(scene.objects.size());
+    for (size_t o = 0; o < lifts.size(); ++o) lifts[o] = own_lift(scene.objects[o]);
+    return lifts;
+  }
+  static std::vector<char> plain_objects(const Scene& scene) {
+    std::vector<char> plain(scene.objects.size());
+    for (size_t o = 0; o < plain.size(); ++o) plain[o] = shades_plain(scene, scene.objects[o]);
+    return plain;
+  }
+
   const Scene& scene_;
   const TracedScene& rt_;
   Film& film_;
@@ -583,26 +594,12 @@ class FrameTracer {
   // are asked per point, by shade()).
   const std::vector<char> plain_;
 
-  // Per scene object, the first term of ray_offset where it is the object's alone (a field's or
-  // a mesh's: 1e-4 of its box's diagonal), else -1 (a primitive's depends on the point).
+  // Per scene object, its own_lift (shading.h): the offset's first term where it is the object's
+  // alone, else -1.
   const std::vector<double> lifts_;
   // Whether the film has a normal or an albedo plane: without, a sample's shaded normal and
   // albedo are not summed (mean_aovs would write them nowhere).
   const bool aov_means_;
-
-  static std::vector<double> object_lifts(const Scene& scene) {
-    std::vector<double> lifts(scene.objects.size(), -1.0);
-    for (size_t o = 0; o < lifts.size(); ++o) {
-      const SceneObject& obj = scene.objects[o];
-      if (obj.field || obj.mesh) lifts[o] = 1e-4 * obj.bounds.diagonal();
-    }
-    return lifts;
-  }
-  static std::vector<char> plain_objects(const Scene& scene) {
-    std::vector<char> plain(scene.objects.size());
-    for (size_t o = 0; o < plain.size(); ++o) plain[o] = shades_plain(scene, scene.objects[o]);
-    return plain;
-  }
   const BeamMisses misses_;
   // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
   // sum): a background beam's quarters are then still visited, for the same counters.

@@ -35,13 +35,19 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
              int level = 1, double weight = 1, const Interiors* interiors = nullptr,
              const ShadowLists* shadow = nullptr);
 
+// The least offset of a hit's rays on `obj` where it is the object's alone: 1e-4 of a field's or
+// a mesh's box diagonal; -1 for a primitive, whose offset depends on the point (ray_offset). The
+// frame takes it once per object.
+inline double own_lift(const SceneObject& obj) {
+  return obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : -1.0;
+}
+
 // How far from a hit at p on `obj` (the face's object for a CSG) its shadow and mirror rays start
 // along the normal (shade()), the camera ray's footprint there being cone0.
 // Inline: it runs twice for every shaded point (the frame's shadow lists ask it too).
 inline double ray_offset(const SceneObject& obj, const Vec3& p, double cone0) {
-  return std::max(
-      obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : 1e-9 * std::max(1.0, max_abs(p)),
-      cone0);
+  const double own = own_lift(obj);
+  return std::max(!(own < 0) ? own : 1e-9 * std::max(1.0, max_abs(p)), cone0);
 }
 
 // The short way, inline so that the frame's loop over its camera hits (frame.cpp, samples) takes
