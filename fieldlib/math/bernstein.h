@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <type_traits>
 
 #include "math/illinois.h"
 
@@ -55,14 +56,18 @@ struct Weights {
 inline constexpr Weights kWeights{};
 }  // namespace bernstein_detail
 
-namespace bernstein_detail {
-// first_rise for one degree D: the same operations in the same order as for any other, with the
-// loops over the coefficients unrolled and a piece's coefficients halved in place of copies
-// (blob1a at 320x240: the generic loops, the pieces' copies and a memcpy per halving were most
-// of first_rise's 680 instructions a call).
+// The first x in [0, 1] where h = Σ a[j] x^j (degree D <= kMaxDegree) reaches 0, to within `tol`
+// (a bracket no wider than tol, or one of any width over which h rises), halving down to
+// `finest`; a piece still undecided there is passed and counted (Rise::undecided), and the
+// search goes on past it. `err` bounds |computed - exact| of the coefficients' hulls on every
+// piece. One function per degree, the loops over the coefficients unrolled and a piece's
+// coefficients halved in place of copies (blob1a at 320x240: the generic loops, the pieces'
+// copies and a memcpy per halving were most of a runtime degree's 680 instructions a call). The
+// tracer calls the two degrees a blob sum's pieces have (tracer_blobs.cpp); first_rise, below,
+// takes a degree known only at run time.
 template <int D>
 Rise first_rise_of(const double* a, double err, double tol, double finest) {
-  const auto& weight = kWeights.w[D];
+  const auto& weight = bernstein_detail::kWeights.w[D];
   struct Piece {
     double lo, hi, b[D + 1];
   };
@@ -110,43 +115,18 @@ Rise first_rise_of(const double* a, double err, double tol, double finest) {
   }
   return {Rise::Clear, 1, 1, undecided};
 }
-}  // namespace bernstein_detail
 
-// The first x in [0, 1] where h = Σ a[j] x^j (degree <= kMaxDegree) reaches 0, to within `tol`
-// (a bracket no wider than tol, or one of any width over which h rises), halving down to
-// `finest`; a piece still undecided there is passed and counted (Rise::undecided), and the
-// search goes on past it. `err` bounds |computed - exact| of the coefficients' hulls on every
-// piece.
-inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
-  using bernstein_detail::first_rise_of;
-  static_assert(kMaxDegree == 6, "a case per degree below");
-  switch (degree) {
-    case 0:
-      return first_rise_of<0>(a, err, tol, finest);
-    case 1:
-      return first_rise_of<1>(a, err, tol, finest);
-    case 2:
-      return first_rise_of<2>(a, err, tol, finest);
-    case 3:
-      return first_rise_of<3>(a, err, tol, finest);
-    case 4:
-      return first_rise_of<4>(a, err, tol, finest);
-    case 5:
-      return first_rise_of<5>(a, err, tol, finest);
-    default:  // kMaxDegree: a larger degree is no polynomial of this header's
-      return first_rise_of<kMaxDegree>(a, err, tol, finest);
-  }
-}
-
-namespace bernstein_detail {
-// power_value for one degree D: Horner's rule unrolled, the same operations in the same order.
+// h(x) for degree D: power_value with the degree known, so its loop unrolled.
 template <int D>
 double power_value_of(const double* a, double x) {
-  double v = a[D];
-  for (int j = D - 1; j >= 0; --j) v = v * x + a[j];
-  return v;
+  return power_value(a, D, x);
 }
 
+// Narrows a Bracket of first_rise_of<D> to at most `tol`: the Anderson-Bjorck variant of regula
+// falsi on h's values, each point kept half a tolerance inside the bracket, so that once one end
+// sits at the root (as false position leaves it on convex stretches) the next point lands past it
+// and closes the bracket from the other side. Adds its steps to *steps. Per degree, as
+// first_rise_of (pov:blob1a: Horner's loop was 2.6 % of the process's instructions).
 template <int D>
 Rise refine_rise_of(const double* a, Rise r, double tol, int* steps) {
   IllinoisBracket br{r.lo, power_value_of<D>(a, r.lo), r.hi, power_value_of<D>(a, r.hi)};
@@ -160,32 +140,39 @@ Rise refine_rise_of(const double* a, Rise r, double tol, int* steps) {
   }
   return {Rise::Bracket, br.lo, br.hi};
 }
-}  // namespace bernstein_detail
 
-// Narrows a Bracket of first_rise to at most `tol`: the Anderson-Bjorck variant of regula falsi
-// on h's values, each point kept half a tolerance inside the bracket, so that once one end sits at
-// the root (as false position leaves it on convex stretches) the next point lands past it and
-// closes the bracket from the other side. Adds its steps to *steps. Per degree, as first_rise
-// (pov:blob1a: Horner's loop was 2.6 % of the process's instructions).
-inline Rise refine_rise(const double* a, int degree, Rise r, double tol, int* steps) {
-  using bernstein_detail::refine_rise_of;
+// f(std::integral_constant<int, D>{}) for D = degree, 0 to kMaxDegree (any other as kMaxDegree,
+// a larger degree being no polynomial of this header's): the per-degree functions above for a
+// degree known only at run time.
+template <class F>
+auto by_degree(int degree, F&& f) {
   static_assert(kMaxDegree == 6, "a case per degree below");
   switch (degree) {
     case 0:
-      return refine_rise_of<0>(a, r, tol, steps);
+      return f(std::integral_constant<int, 0>{});
     case 1:
-      return refine_rise_of<1>(a, r, tol, steps);
+      return f(std::integral_constant<int, 1>{});
     case 2:
-      return refine_rise_of<2>(a, r, tol, steps);
+      return f(std::integral_constant<int, 2>{});
     case 3:
-      return refine_rise_of<3>(a, r, tol, steps);
+      return f(std::integral_constant<int, 3>{});
     case 4:
-      return refine_rise_of<4>(a, r, tol, steps);
+      return f(std::integral_constant<int, 4>{});
     case 5:
-      return refine_rise_of<5>(a, r, tol, steps);
-    default:  // kMaxDegree
-      return refine_rise_of<kMaxDegree>(a, r, tol, steps);
+      return f(std::integral_constant<int, 5>{});
+    default:
+      return f(std::integral_constant<int, kMaxDegree>{});
   }
+}
+
+// first_rise_of and refine_rise_of for a degree known at run time.
+inline Rise first_rise(const double* a, int degree, double err, double tol, double finest) {
+  return by_degree(degree,
+                   [&](auto d) { return first_rise_of<decltype(d)::value>(a, err, tol, finest); });
+}
+inline Rise refine_rise(const double* a, int degree, Rise r, double tol, int* steps) {
+  return by_degree(degree,
+                   [&](auto d) { return refine_rise_of<decltype(d)::value>(a, r, tol, steps); });
 }
 
 }  // namespace softtrace

@@ -108,19 +108,19 @@ std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double is
   return std::nullopt;
 }
 
-// first_rise and refine_rise for a piece's polynomial, whose degree is 4 or 6 (stretch_polynomial:
-// 6 where a term has c3 != 0; a lower one would be searched as 6, its higher coefficients zero:
-// the same polynomial), the same functions for those two degrees. The switches over all seven
-// degrees put the code of the five a piece never has into the pieces' loop: callgrind, whole
-// process, blob1000 at 640x480 -3.6 M, pov:golfball at 320x240 -0.6 M.
+// first_rise_of and refine_rise_of (bernstein.h) for a piece's polynomial, whose degree is 4 or 6
+// (stretch_polynomial: 6 where a term has c3 != 0; a lower one would be searched as 6, its higher
+// coefficients zero: the same polynomial). first_rise's dispatch over all seven degrees put the
+// code of the five a piece never has into the pieces' loop: callgrind, whole process, blob1000 at
+// 640x480 -3.6 M, pov:golfball at 320x240 -0.6 M.
 Rise first_rise_of_piece(const StretchPolynomial& sp, double tol, double finest) {
   static_assert(kMaxDegree == 6, "a piece's degree is 4 or kMaxDegree");
-  return sp.degree == 4 ? bernstein_detail::first_rise_of<4>(sp.a, sp.err, tol, finest)
-                        : bernstein_detail::first_rise_of<6>(sp.a, sp.err, tol, finest);
+  return sp.degree == 4 ? first_rise_of<4>(sp.a, sp.err, tol, finest)
+                        : first_rise_of<6>(sp.a, sp.err, tol, finest);
 }
 Rise refine_rise_of_piece(const StretchPolynomial& sp, Rise r, double tol, int* steps) {
-  return sp.degree == 4 ? bernstein_detail::refine_rise_of<4>(sp.a, r, tol, steps)
-                        : bernstein_detail::refine_rise_of<6>(sp.a, r, tol, steps);
+  return sp.degree == 4 ? refine_rise_of<4>(sp.a, r, tol, steps)
+                        : refine_rise_of<6>(sp.a, r, tol, steps);
 }
 }  // namespace
 
