@@ -259,7 +259,24 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // blocks' own, the same for any thread count, so the picture's bits are too.
   const bool sweep = camera_list && blobs_->size() > BlobSum::kListed &&
                      (n_listed > kWholeList || blobs_->max_terms() == blobs_->size());
-  const bool whole = blobs_->size() <= BlobSum::kListed || camera_list;
+  //
+  // A shadow ray with a block's list whose blobs on its way (their ranges meeting [t0, t1] on the
+  // list's axis) number at most kWholeList takes its way as one stretch as well: each of those
+  // blobs' terms once. In stretches of two typical radii (chain's 48 capsules: 3.0 stretches a
+  // shadow ray), a blob that two stretches' ends cut had its terms taken twice, and each stretch
+  // paid its segment, its scan of the list and its events. The count is a choice, not a
+  // certificate: each stretch takes the listed blobs whose ranges meet its own, whatever its
+  // length. A longer list (a floor's under a dense cloud) keeps the stretches, whose first may
+  // end the ray (surely_inside) before the farther blobs' terms are taken.
+  const auto whole_shadow = [&] {
+    if (n_listed <= kWholeList) return true;
+    int on_way = 0;
+    for (int i = 0; i < n_listed; ++i)
+      on_way += listed[i].near <= base + t1 && listed[i].far >= base + t0;
+    return on_way <= kWholeList;
+  };
+  const bool whole = blobs_->size() <= BlobSum::kListed || camera_list ||
+                     (held && query == Query::Any && whole_shadow());
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double dd = dot(ray.d, ray.d);  // terms_of's, for the sweep's blobs one at a time
   double t = t0;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <random>
 #include <string>
@@ -146,6 +147,7 @@ class CloudOverFloor {
 
 TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
   std::mt19937_64 rng(11);
+  long long with_work = 0, walk_work = 0;  // the held, undecided shadow rays'
   for (const int cloud : {0, 1})
     for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]"}) {
       CloudOverFloor floor(
@@ -185,16 +187,16 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
           if (!list[0].valid) {
             ASSERT_EQ(a.evaluations(), 0) << "ray " << rays;
           }
-          // A ray a blocker decides costs one point and no stretch; any other one the same
-          // stretches as the walk, to the bit.
+          // A ray a blocker decides costs one point and no stretch. Any other one the list holds
+          // takes its way as one stretch (few blobs on it: the whole way's terms once): the
+          // pieces are the walk's uncut by its stretches' ends, so their count may differ, but
+          // the work over all rays is less (below).
           const bool decided = !list[0].blockers.empty() && with.hit && b.box_evals == 0 &&
                                b.point_evals == 1 && a.box_evals > 0;
           by_blocker += decided;
           if (!decided) {
-            if (walk.hit) {
-              ASSERT_EQ(with.t, walk.t) << "ray " << rays;
-            }
-            ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
+            with_work += b.evaluations();
+            walk_work += a.evaluations();
           }
           blocked += walk.hit;
           TraceCounters c, d;
@@ -220,6 +222,10 @@ TEST(ShadowBeams, EveryShadowRayOfABlockFindsWhatTheBvhWalkDoes) {
         EXPECT_GT(by_blocker, blocked / 20) << direction;
       }
     }
+  // One stretch for the whole way (few blobs on it) saves a held shadow ray's stretches after the
+  // first: over all these rays, less work than the walk (printed: the fraction).
+  std::printf("held shadow rays' work: %lld with lists, %lld walked\n", with_work, walk_work);
+  EXPECT_LT(with_work * 10, walk_work * 9);
 }
 
 // A block whose prism misses the sum's box (or whose parent's does) is clear: its shadow rays are
@@ -345,6 +351,7 @@ TEST(ShadowBeams, EveryRayOfAShutBlockIsBlocked) {
 // (a spot), over the mixed cloud and the positive one.
 TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
   std::mt19937_64 rng(23);
+  long long with_work = 0, walk_work = 0;  // the held, undecided shadow rays'
   const char* lights[] = {
       R"({"type": "point", "position": [30, -20, 60]})",
       R"({"type": "point", "position": [3, 2, -23]})",
@@ -387,12 +394,19 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
                 const MarchResult with = tr.first_hit(ray, 0, at.distance, b, query, 0, &list[0]);
                 ASSERT_EQ(with.hit, walk.hit) << "ray " << rays;
                 if (query == Query::Any) blocked += walk.hit;
-                // A ray a blocker decides costs one point and no stretch; any other one the
-                // same stretches as the walk, to the bit.
+                // A ray a blocker decides costs one point and no stretch. Any other shadow ray
+                // the list holds takes its way as one stretch (few blobs on it), less work over
+                // all rays than the walk's stretches (below); a nearest hit the same stretches as
+                // the walk, to the bit.
                 const bool decided = query == Query::Any && !list[0].blockers.empty() && with.hit &&
                                      b.box_evals == 0 && b.point_evals == 1 && a.box_evals > 0;
                 by_blocker += decided;
                 if (decided) continue;
+                if (query == Query::Any && list[0].valid) {
+                  with_work += b.evaluations();
+                  walk_work += a.evaluations();
+                  continue;
+                }
                 if (walk.hit) {
                   ASSERT_EQ(with.t, walk.t) << "ray " << rays;
                 }
@@ -411,6 +425,10 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
         EXPECT_GT(by_blocker, blocked / 20) << light;
       }
     }
+  // One stretch for the whole way (few blobs on it) saves a held shadow ray's stretches after the
+  // first: over all these rays, less work than the walk (printed: the fraction).
+  std::printf("held shadow rays' work: %lld with lists, %lld walked\n", with_work, walk_work);
+  EXPECT_LT(with_work * 10, walk_work * 9);
 }
 
 // A blocker is certified by its own potential only where no blob of the list can take from the
