@@ -120,6 +120,54 @@ TEST(BlobTracer, TracesPolynomialsAndAgreesWithTheSegmentTracer) {
   EXPECT_GT(certified, 50);
 }
 
+// A shadow ray starts at a lit point lifted off the surface: outside the solid, where the sum is
+// below iso, so surely_inside is not tried at its very start (tracer_blobs.cpp); one that starts
+// inside after all is found by its first piece. From points just outside and just inside the
+// surface (a camera hit moved back and on along its ray), in random directions, the shadow
+// question's answer must be the nearest hit's, and every ray from inside is blocked.
+TEST(BlobTracer, AShadowRayFromBesideTheSurfaceAnswersAsItsNearestHit) {
+  const Scene scene = parse_scene(kScenes[kBlobs], "<test>");
+  const SceneObject& obj = scene.objects[0];
+  const ObjectTracer blobs(trace_target(obj), LipschitzMode::Local);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double R = obj.bounds.diagonal();
+  int inside = 0, outside = 0, open = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 d = normalize({u(rng), u(rng), u(rng)});
+    const Vec3 target = obj.bounds.center() + Vec3{u(rng), u(rng), u(rng)} * 6;
+    const Ray ray{target - d * R, d};
+    TraceCounters w;
+    const MarchResult m = blobs.first_hit(ray, 0, 2 * R, w);
+    if (!m.hit || m.gave_up) continue;
+    for (const double lift : {-1e-4 * R, 1e-4 * R}) {
+      const Vec3 o = ray.o + ray.d * (m.t + lift);
+      const bool in = blobs.inside(o);
+      // Back along the ray the point is outside; on past the hit, inside where the solid is
+      // thicker than the lift.
+      if (lift < 0) {
+        ASSERT_FALSE(in) << "ray " << i;
+      }
+      for (int k = 0; k < 8; ++k) {
+        const Ray shadow{o, normalize({u(rng), u(rng), u(rng)})};
+        TraceCounters a, b;
+        const MarchResult any = blobs.first_hit(shadow, 0, 2 * R, a, Query::Any);
+        const MarchResult near = blobs.first_hit(shadow, 0, 2 * R, b);
+        ASSERT_EQ(any.hit, near.hit) << "ray " << i << " lift " << lift << " k " << k;
+        if (in) {
+          ASSERT_TRUE(any.hit) << "ray " << i << " k " << k;
+        }
+        inside += in;
+        outside += !in;
+        open += !any.hit;
+      }
+    }
+  }
+  EXPECT_GT(inside, 400);
+  EXPECT_GT(outside, 800);
+  EXPECT_GT(open, 200);
+}
+
 // Capsules on the polynomial path: a chain of them, one of negative strength cutting a sphere, a
 // zero-length one and a sheared one. Along random rays, rays grazing the surface (along a tangent
 // at a reference hit) and rays along the chain's axes, the local mode's first hit is the segment
