@@ -36,6 +36,18 @@ class ShadowBeams {
   struct Extent {
     double x0, x1, y0, y1, z;
   };
+  // Where a point's ball is seen from a point light, on the tile's pyramid's axes: its x between
+  // x0 and x1 times the depth, its y between y0 and y1; `held` false where the point gets no list
+  // (build_pyramid).
+  struct Slopes {
+    double x0, x1, y0, y1;
+    bool held;
+  };
+  struct Axes {
+    Vec3 along, u, v;  // along: towards the light, to the bit as light_arrival's
+    bool point;        // a point or spot light at `position`: along, u and v are the tile's
+    Vec3 position;
+  };
   // One thread's lists: per level, per light with lists, one per object.
   struct Lists {
     Vec3 origin;  // the tile's: the prisms' coordinates are taken from it
@@ -45,6 +57,11 @@ class ShadowBeams {
     // prism is the bounds of its points' (the same numbers, computed once a tile), and meets an
     // object's box as the tile's box says.
     std::vector<Extent> balls, boxes;
+    // And for each point or spot light (k): the tile's pyramid's axes (pyramids[k]; held false
+    // where it has none) and its points' slopes on them ([k * points + i]), computed once a tile:
+    // a quarter's or a block's pyramid is their bounds over its points.
+    std::vector<Axes> pyramids;
+    std::vector<Slopes> slopes;
     int points = 0;
   };
 
@@ -64,16 +81,11 @@ class ShadowBeams {
   }
 
  private:
-  struct Axes {
-    Vec3 along, u, v;  // along: towards the light, to the bit as light_arrival's
-    bool point;        // a point or spot light at `position`: along, u and v are the tile's
-    Vec3 position;
-  };
   // The axes about `along` (u across the coordinate axis least aligned with it).
   static Axes axes(const Vec3& along, bool point, const Vec3& position);
   void build_prism(int level, const Axes& a, size_t k, const Point* points, int begin, int end,
                    Lists& lists) const;
-  void build_pyramid(int level, const Axes& a, size_t k, const Point* points, int n,
+  void build_pyramid(int level, const Axes& a, size_t k, const Point* points, int begin, int end,
                      Lists& lists) const;
   const SceneTracers& tracers_;
   int objects_;

@@ -81,10 +81,10 @@ class CloudOverFloor {
   const ObjectTracer& tracer() const { return tracers_[0]; }
   const ShadowBeams& beams() const { return beams_; }
 
-  // check(list, points): a block's list (its level-2 view's first light's) and its points. Stops
-  // at the first fatal failure.
+  // check(list, points): a block's list (its level-2 view's, of the scene's light `light`) and
+  // its points. Stops at the first fatal failure.
   template <class Check>
-  void for_each_block(Check&& check) {
+  void for_each_block(Check&& check, int light = 0) {
     for (int y = 0; y < height; y += 16)
       for (int x = 0; x < width; x += 16) {
         std::vector<Lit> by_block[16];
@@ -109,7 +109,7 @@ class CloudOverFloor {
             const int b = q * 4 + k;
             beams_.build(2, points_.data(), start[b], start[b + 1], lists_);
             const ShadowLists view = beams_.view(2, lists_);
-            check(view.of(0), by_block[b]);
+            check(view.of(light), by_block[b]);
             if (::testing::Test::HasFatalFailure()) return;
           }
         }
@@ -356,14 +356,17 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
       R"({"type": "point", "position": [30, -20, 60]})",
       R"({"type": "point", "position": [3, 2, -23]})",
       R"({"type": "spot", "position": [-70, -40, 10], "point_at": [0, 0, -10], "radius": 40,)"
-      R"( "falloff": 60})"};
+      R"( "falloff": 60})",
+      // Two: the second's lists (each light's pyramids are the tile's own).
+      R"({"type": "point", "position": [30, -20, 60]}, {"type": "point", "position": [-40, 10, 50]})"};
   for (const int cloud : {0, 1})
     for (const char* light : lights) {
+      const int which = light == lights[3] ? 1 : 0;
       CloudOverFloor floor(cloud, light, rng);
       const ObjectTracer& tr = floor.tracer();
       ASSERT_TRUE(tr.blob_sum());
       ASSERT_TRUE(floor.beams().active());
-      const Light& l = floor.scene().lights[0];
+      const Light& l = floor.scene().lights[which];
       const int kW = floor.width, kH = floor.height;
       int rays = 0, held = 0, blocked = 0, by_blocker = 0;
       long long listed = 0;
@@ -413,7 +416,8 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
                 ASSERT_EQ(b.evaluations(), a.evaluations()) << "ray " << rays;
               }
             }
-          });
+          },
+          which);
       // Most rays go through a list, both answers occur, and the lists are short.
       EXPECT_GT(held, rays / 2) << light;
       EXPECT_GT(blocked, rays / 30) << light;
