@@ -9,7 +9,8 @@ namespace softtrace {
 ShadowBeams::ShadowBeams(const Scene& scene, const SceneTracers& tracers)
     : tracers_(tracers), objects_(tracers.size()), slot_(scene.lights.size(), -1) {
   for (int o = 0; o < objects_; ++o)
-    if (const ObjectTracer* t = tracers.tracer(o); t && t->blob_sum()) blob_objects_.push_back(o);
+    if (const ObjectTracer* t = tracers.tracer(o); t && t->blob_count() > kFewBlobs)
+      blob_objects_.push_back(o);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     if (!l.shadows || l.has_area || l.type == Light::Type::Ambient) continue;

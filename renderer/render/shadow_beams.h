@@ -31,6 +31,13 @@ class ShadowBeams {
     double margin;
   };
   static constexpr int kLevels = 3;  // a tile, its quarters and theirs, as the camera's beams
+  // A sum of at most this many blobs takes no lists: a shadow ray's walk then takes every blob's
+  // term over its whole way at once (BlobSum::kListed), and a list would spare it a few of those
+  // terms, for less than the list's build (a tile's pyramid and its quarters' and blocks') and
+  // each ray's check that it holds it cost. Callgrind, whole process, 1 thread, 320x240, lists
+  // against none: pov:blob (3 blobs) +10.7 %, molecule (3) +8.2 %, old_syntax (4) +6.8 %, blob1a
+  // (3) +2.6 %, blob1c (4) +2.9 %, sheared (5) +1.8 %, candle (7) +0.5 %; but blob1b (11) -10.9 %.
+  static constexpr int kFewBlobs = 8;
   // A rectangle on a directional light's axes (u, v) and a depth along it: a point's ball's
   // (x -+ m, y -+ m, z - m) or an object's box's (z: the farthest corner's).
   struct Extent {
@@ -67,7 +74,7 @@ class ShadowBeams {
 
   ShadowBeams(const Scene& scene, const SceneTracers& tracers);
   // Whether any light and object takes lists: a directional, point or spot light with shadows
-  // (and no area) and a sum of polynomial blobs.
+  // (and no area) and a sum of more than kFewBlobs polynomial blobs (shadow_beams.cpp).
   bool active() const { return !lights_.empty() && !blob_objects_.empty(); }
   // The lists of `level` for the block whose shadow rays start near points[begin, end), from those
   // of the block above it (level - 1), or for level 0 (a tile, whose origin is points[0]; begin is

@@ -252,6 +252,8 @@ class ObjectTracer {
   const Program& program() const { return program_; }
   // Whether rays take the polynomial blob path (tracer_blobs.cpp).
   bool blob_sum() const { return blobs_.has_value(); }
+  // How many blobs its sum has (0: no blob sum).
+  int blob_count() const { return blobs_ ? blobs_->size() : 0; }
 
  private:
   // How far a computed g may be from the true one: the program's rounding, a few ulps of the

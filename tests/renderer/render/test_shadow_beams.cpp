@@ -438,20 +438,52 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
 // A blocker is certified by its own potential only where no blob of the list can take from the
 // field: a ball cancelled by a ball of negative strength at the same place (the field is 0 there)
 // blocks no ray, and one beside a positive ball does; for a directional light and a point light.
+// `n` small balls far from the origin (x >= 100), each after a comma: they fill a sum past
+// ShadowBeams::kFewBlobs, below which it takes no lists, and meet no ray near the z axis.
+std::string far_balls(int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i)
+    out += R"(,{"type":"soft_object","potential":{"type":"murakami"},"translate":[)" +
+           std::to_string(100 + 10 * i) +
+           R"(,0,0],"distance":{"type":"lp_metric",)"
+           R"("radii":[1,1,1],"n":2}})";
+  return out;
+}
+
+// A sum of at most ShadowBeams::kFewBlobs blobs takes no lists (its shadow rays walk it whole);
+// one more, and it does, for a directional and a point light.
+TEST(ShadowBeams, AFewBlobsTakeNoLists) {
+  for (const char* light : {R"({"type": "directional", "direction": [0, 0, -1]})",
+                            R"({"type": "point", "position": [0, 0, 30]})"})
+    for (const int n : {1, ShadowBeams::kFewBlobs, ShadowBeams::kFewBlobs + 1}) {
+      const Scene scene =
+          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+                      R"({"type":"soft_object","potential":{"type":"murakami"},)"
+                      R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}})" +
+                          far_balls(n - 1) + R"(]}}], "lights": [)" + light + "]}",
+                      "<test>");
+      const std::vector<TracedObject> objects = traced_objects(scene);
+      const SceneTracers tracers(objects, LipschitzMode::Local);
+      ASSERT_EQ(tracers[0].blob_count(), n);
+      EXPECT_EQ(ShadowBeams(scene, tracers).active(), n > ShadowBeams::kFewBlobs) << n << light;
+    }
+}
+
 TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
   for (const char* light : {R"({"type": "directional", "direction": [0, 0, -1]})",
                             R"({"type": "point", "position": [0, 0, 30]})"})
     for (const char* strength : {"-1", "0.2"}) {
-      const Scene scene =
-          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
-                      R"({"type":"soft_object","potential":{"type":"murakami"},)"
-                      R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
-                      R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
-                          std::string(strength) +
-                          R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}}]}}],)"
-                          R"("lights": [)" +
-                          light + "]}",
-                      "<test>");
+      const Scene scene = parse_scene(
+          R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+          R"({"type":"soft_object","potential":{"type":"murakami"},)"
+          R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}},)"
+          R"({"type":"soft_object","potential":{"type":"murakami"},"strength":)" +
+              std::string(strength) + R"(,"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}})" +
+              far_balls(ShadowBeams::kFewBlobs) +
+              R"(]}}],)"
+              R"("lights": [)" +
+              light + "]}",
+          "<test>");
       const std::vector<TracedObject> objects = traced_objects(scene);
       const SceneTracers tracers(objects, LipschitzMode::Local);
       const ObjectTracer& tr = tracers[0];
