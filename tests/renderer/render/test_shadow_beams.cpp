@@ -1,13 +1,14 @@
 // Shadow lists (render/shadow_beams.h, ObjectTracer::shadow_beam): the shadow rays of a block of
 // pixels towards a directional light take their stretches' blobs from the block's list, built as
 // the frame builds it (the tile from the BVH, its quarters and theirs from their parents', over
-// the points where the rays start). Every such ray must find what the walk of the sum's BVH finds,
-// to the bit: the same answer for a shadow ray (Query::Any, with the same work) and the same first
-// hit (Query::Nearest). The cloud mixes balls, rotated ellipsoids, capsules, a sheared capsule and
-// negative strengths; the points are camera hits on it and on a floor below it, lifted along the
-// normal as shade() lifts them, and the light comes from above and from below (through the cloud
-// onto the floor, and from the floor's side). And the frame, which traces a tile before shading
-// it, gives every pixel the point query's normal.
+// the points where the rays start). Every such ray must find what the walk of the sum's BVH finds:
+// the same answer for a shadow ray (Query::Any; one with few blobs on its way takes it as one
+// stretch, so its work is not the walk's, and less over all rays) and the same first hit, to the
+// bit, with the same work (Query::Nearest). The cloud mixes balls, rotated ellipsoids, capsules, a
+// sheared capsule and negative strengths; the points are camera hits on it and on a floor below it,
+// lifted along the normal as shade() lifts them, and the light comes from above and from below
+// (through the cloud onto the floor, and from the floor's side). And the frame, which traces a tile
+// before shading it, gives every pixel the point query's normal.
 #include <gtest/gtest.h>
 
 #include <cmath>
