@@ -513,13 +513,13 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
       n += ball_term(b, o, d, dd, len, out + n);
       continue;
     }
-    // No sphere test first (within_reach): the lists' blobs already passed a tighter one. A
-    // camera or shadow beam keeps a capsule or ellipsoid only where its outline meets the beam's
-    // pyramid (support_extent), and a ray without a list takes the BVH's segment query, whose
-    // boxes are the supports'. The test then skipped few frames (pov:chain at 320x240: 20,293 of
-    // 142,638, and capsule_terms' own early test finds those) for 53 instructions each:
-    // callgrind, whole process, 1 thread, at 320x240 without it: pov:chain -0.8 %, cloud300
-    // -1.9 %, pov:golfball -0.3 %, cloud3000 -0.3 %. The terms are those the test let through.
+    // No sphere test first (within_reach): it skipped few of the blobs a list or a query gives.
+    // A camera or shadow beam keeps a capsule or ellipsoid only where its outline meets the
+    // beam's pyramid (support_extent); a ray without a list takes the BVH's segment query of the
+    // supports' boxes. On pov:chain at 320x240 it skipped 20,293 of 142,638 frames, for 53
+    // instructions each, and a frame's own tests give those no term (their supports hold none of
+    // the stretch), so the terms are the same. Callgrind, whole process, 1 thread, 320x240,
+    // without it: pov:chain -0.8 %, cloud300 -1.9 %, pov:golfball -0.3 %, cloud3000 -0.3 %.
     n += frame_terms_of(frames_[ids[i]], b, o, d, len, out + n);
   }
   return n;
