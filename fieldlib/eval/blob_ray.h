@@ -60,7 +60,7 @@ class BlobSum {
                    Term* out) const {
     const Blob& b = blobs_[id];
     if (b.inv_r2 > 0) return ball_term(b, o, d, dd, len, out);
-    return terms_of(&id, 1, o, d, len, out);
+    return frame_terms(id, o, d, len, out);
   }
   // The blobs whose support boxes meet the pyramid of cone_items (math/bvh.h), in that tree
   // order; for a sum of at most kListed blobs, which have no BVH query, all of them in the order
@@ -132,6 +132,7 @@ class BlobSum {
     double inv_r2;  // 0 where the blob is no ball
     double c2, c3;
     double reach2 = std::numeric_limits<double>::infinity();
+    double axis2 = 0;  // |axis|^2 of its frame (0 for an ellipsoid): capsule_terms' scale
   };
   // A blob that is no ball, in world space: its support lies within `slack` of the points
   // p0 + s (p1 - p0) + M y, s in [0, 1], |y| <= 1, with M = L^-1 and p0, p1 the axis's ends
@@ -196,6 +197,8 @@ class BlobSum {
             h2,    b.c2, b.c3, std::max(0.0, polynomial_potential(r, b.c2, b.c3))};
     return 1;
   }
+  // The terms of blob `id`, which is no ball (terms_of's, from its frame: a capsule's up to three).
+  int frame_terms(int32_t id, const Vec3& o, const Vec3& d, double len, Term* out) const;
   // gradient()'s sum over ids[0, found), in that order (increasing).
   double sum_gradient(const Program& p, const Vec3& x, const int32_t* ids, int found, Vec3* grad,
                       double* terms) const;

@@ -127,22 +127,6 @@ Vec3 ObjectTracer::box_face_normal(const Vec3& p) const {
   return n;
 }
 
-double ObjectTracer::footprint(const Ray& ray, double t) const {
-  const double f = ray.cone_at(std::abs(t));
-  // Points o + t d are only known to a few ulps of the coordinates' magnitude: a tolerance below
-  // that would be decided by rounding.
-  const double resolvable =
-      64 * std::numeric_limits<double>::epsilon() * (scale_ + max_abs(ray.o) + std::abs(t));
-  return std::max(f > 0 ? f : default_footprint_, resolvable);
-}
-
-Segment ObjectTracer::segment(const Ray& ray, double a, double b) const {
-  // The points o + t d the tracer evaluates are rounded to a few ulps of |o| + |t|.
-  const double pad = 1e-12 * (max_abs(ray.o) + std::max(std::abs(a), std::abs(b)));
-  // The global mode steps by the global bound only: no slopes to derive.
-  return {ray.o + ray.d * a, ray.o + ray.d * b, pad, mode_ == LipschitzMode::Local};
-}
-
 ObjectTracer::SegmentBounds ObjectTracer::segment_bounds(const Ray& ray, double a, double b,
                                                          TraceCounters& work) const {
   ++work.box_evals;

@@ -33,17 +33,18 @@ constexpr double kFirstRadii = 2;
 // finds fewer than kFewTerms twice as long: each query then costs about the same.
 constexpr int kManyTerms = 16;
 constexpr int kFewTerms = 4;
-// A camera ray whose block's list holds more blobs than this sweeps it (first_hit_blobs); one
-// with fewer takes the listed blobs' terms over its whole way at once. Callgrind at 320x240 (1
-// thread), the sweep for every list against only for longer ones: pov:golfball +4 %, pov:chain
-// +4 %, meets1 +1.4 % instructions; 8, 12, 16, 20 and 32 for the whole way's list alone moved
-// meets10, segtrace and blob1000 by under 1 %.
-// A sum with no capsule sweeps every list: a ball's term is inline (BlobSum::terms_of_one), and
-// the sweep reads no blob behind the hit. Callgrind, whole process, 1 thread, sweeping every
-// list against longer ones only: at 640x480 meets10 -4.0 %, meets1 -1.3 %, meets50 -0.8 %,
-// blob1000 -0.4 %; at 320x240 pov:golfball -1.6 %, but pov:chain +1.8 % and cloud300 +0.7 %
-// (capsules: their terms take the call).
-constexpr int kWholeList = 16;
+// A camera ray of a sum of more than BlobSum::kListed blobs sweeps its block's list
+// (first_hit_blobs), whatever its length: the sweep reads no blob behind the hit, and a blob's
+// terms one at a time cost what a list's do (BlobSum::terms_of_one: a ball's inline, a capsule's
+// or ellipsoid's through frame_terms). Only sums with capsules took the short lists' blobs at
+// once, while a capsule's terms took a call of terms_of each (pov:chain +1.8 % with the sweep
+// then); since, sweeping every list against only those over 16 blobs, callgrind, whole
+// process, 1 thread, 320x240: pov:chain -0.6 %, pov:golfball -1.0 %, cloud300 -0.8 %, the same
+// bits (the terms are taken in the list's order either way, and their events ordered alike).
+// A shadow ray with a block's list whose blobs on its way number at most this many takes its way
+// as one stretch (first_hit_blobs): a choice measured on pov:chain and pov:golfball, not a
+// certificate.
+constexpr int kWholeShadowList = 16;
 
 // One thread's buffers, grown to the largest sum traced (no allocation per ray after that).
 struct BlobScratch {
@@ -252,9 +253,9 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // a few, the second and later stretches only computed the same blobs' terms again (pov:blob, 3
   // balls: 2.7 stretches per camera ray, the terms 17 % of the frame).
   //
-  // So does a camera ray with a block's list. A short one's blobs (at most kWholeList) are all
-  // taken at once. A longer one, sorted by `near` (the blobs' least distance from the eye,
-  // blob_beam), is swept: its blobs' terms are taken in that order, each once, only as far as
+  // So does a camera ray with a block's list. A sum's of at most kListed blobs are all taken at
+  // once. A larger sum's, sorted by `near` (the blobs' least distance from the eye, blob_beam),
+  // is swept: its blobs' terms are taken in that order, each once, only as far as
   // the pieces need them. A piece [u0, u1] is read once every blob not yet taken has near - pad
   // beyond t0 + u1: none of their supports reaches back into it (tracer_blob_beam.cpp; the ray's
   // point at t is at distance t from the eye, to rounding within pad). So no blob behind the hit
@@ -263,11 +264,10 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // stretch's over the whole way, rounded otherwise than a list-less ray's stretches: the root
   // agrees with that ray's within the refinement's tolerance, not to the bit. The lists are the
   // blocks' own, the same for any thread count, so the picture's bits are too.
-  const bool sweep = camera_list && blobs_->size() > BlobSum::kListed &&
-                     (n_listed > kWholeList || blobs_->max_terms() == blobs_->size());
+  const bool sweep = camera_list && blobs_->size() > BlobSum::kListed;
   //
   // A shadow ray with a block's list whose blobs on its way (their ranges meeting [t0, t1] on the
-  // list's axis) number at most kWholeList takes its way as one stretch as well: each of those
+  // list's axis) number at most kWholeShadowList takes its way as one stretch as well: each of those
   // blobs' terms once. In stretches of two typical radii (chain's 48 capsules: 3.0 stretches a
   // shadow ray), a blob that two stretches' ends cut had its terms taken twice, and each stretch
   // paid its segment, its scan of the list and its events. The count is a choice, not a
@@ -275,11 +275,11 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // length. A longer list (a floor's under a dense cloud) keeps the stretches, whose first may
   // end the ray (surely_inside) before the farther blobs' terms are taken.
   const auto whole_shadow = [&] {
-    if (n_listed <= kWholeList) return true;
+    if (n_listed <= kWholeShadowList) return true;
     int on_way = 0;
     for (int i = 0; i < n_listed; ++i)
       on_way += listed[i].near <= base + t1 && listed[i].far >= base + t0;
-    return on_way <= kWholeList;
+    return on_way <= kWholeShadowList;
   };
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list ||
                      (held && query == Query::Any && whole_shadow());

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <random>
 #include <string>
@@ -292,6 +293,52 @@ TEST(BlobSum, ListedBlobsArePiecewiseOnePolynomialToo) {
   ASSERT_TRUE(cloud.blobs.has_value());
   EXPECT_EQ(cloud.blobs->size(), BlobSum::kListed);
   expect_pieces_are_polynomials_of_the_field(cloud, 10);
+}
+
+// A capsule's or ellipsoid's terms one blob at a time (terms_of_one: a camera sweep's, through
+// BlobSum::frame_terms) are those of a list's (terms_of, its own inline copy) to the bit, and a
+// stretch that passes clear of a blob's bounding sphere gets no term of it: terms_of takes no
+// sphere test before a frame, so that must come from the frame's own arithmetic.
+TEST(BlobSum, FramedTermsOneAtATimeAreTheListsToTheBit) {
+  Cloud cloud(capsule_cloud(40, 12));
+  ASSERT_TRUE(cloud.blobs.has_value());
+  const BlobSum& sum = *cloud.blobs;
+  ASSERT_GT(sum.size(), BlobSum::kListed);
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<BlobSum::Term> listed(sum.max_terms()), single(sum.max_terms());
+  int compared = 0, clear = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::vector<int32_t> ids;
+    for (int32_t id = 0; id < sum.size(); ++id)
+      if (unit(rng) > -0.5) ids.push_back(id);
+    // From inside the cloud, from near it and from far off (a camera's eye 1e3 away).
+    const double far = trial % 3 == 0 ? 1e3 : trial % 3 == 1 ? 20 : 6;
+    const Vec3 o = normalize({unit(rng), unit(rng), unit(rng)}) * far;
+    const Vec3 d = normalize(Vec3{6 * unit(rng), 6 * unit(rng), 6 * unit(rng)} - o);
+    const double len = far + 12 * (1 + unit(rng)), dd = dot(d, d);
+    const int n = sum.terms_of(ids.data(), static_cast<int>(ids.size()), o, d, len, listed.data());
+    int m = 0;
+    for (const int32_t id : ids) {
+      const int k = sum.terms_of_one(id, o, d, dd, len, single.data() + m);
+      Vec3 centre;
+      const double reach2 = sum.bounding_sphere(id, &centre);
+      const Vec3 oc = o - centre;
+      const Vec3 nearest = oc + d * std::clamp(-dot(oc, d), 0.0, len);
+      if (sum.is_framed(id) && dot(nearest, nearest) > reach2 * (1 + 1e-9)) {
+        ++clear;
+        EXPECT_EQ(k, 0) << "blob " << id << " passed clear of, trial " << trial;
+      }
+      m += k;
+    }
+    ASSERT_EQ(n, m) << "trial " << trial;
+    for (int i = 0; i < n; ++i)
+      ASSERT_EQ(std::memcmp(&listed[i], &single[i], sizeof(BlobSum::Term)), 0)
+          << "term " << i << ", trial " << trial;
+    compared += n;
+  }
+  EXPECT_GT(compared, 10000);
+  EXPECT_GT(clear, 10000);
 }
 
 // Rays exactly along a capsule's axis (its middle part is then constant along the ray: no term of
