@@ -309,6 +309,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
       set_outline(frame, fi, &outline);
     }
     s.capsules_ += frame.inv_axis2 > 0;
+    s.balls_ += blob.inv_r2 > 0;
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
     s.outlines_.push_back(outline);
