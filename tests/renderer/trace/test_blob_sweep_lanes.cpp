@@ -6,6 +6,7 @@
 // path differs.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <random>
