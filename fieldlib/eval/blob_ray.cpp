@@ -310,6 +310,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     }
     blob.axis2 = dot(frame.axis, frame.axis);
     s.capsules_ += frame.inv_axis2 > 0;
+    s.balls_ += blob.inv_r2 > 0;
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
     s.outlines_.push_back(outline);

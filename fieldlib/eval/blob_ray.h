@@ -99,6 +99,8 @@ class BlobSum {
   // For a sum of at most kListed blobs, the order terms() takes them in (empty for more).
   const std::vector<int32_t>& listed() const { return listed_walk_; }
   int size() const { return static_cast<int>(blobs_.size()); }
+  // Whether every blob is a ball (a cloud's): any four of them may go to ball_terms4.
+  bool all_balls() const { return balls_ == size(); }
   // The most terms one stretch can have: one per ellipsoid, three per capsule.
   int max_terms() const { return size() + 2 * capsules_; }
   // The median of the blobs' mean support radii: how long a stretch meets a few of them.
@@ -204,6 +206,7 @@ class BlobSum {
                       double* terms) const;
   BallLanes lanes_ = ball_lanes_scalar;  // ball_terms4's kernel for this CPU
   int capsules_ = 0;                     // frames with an axis
+  int balls_ = 0;                        // blobs that are balls (inv_r2 > 0)
   double typical_radius_ = 0;
 };
 
