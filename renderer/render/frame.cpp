@@ -132,6 +132,7 @@ class FrameTracer {
         plain_(plain_objects(scene)),
         lifts_(object_lifts(scene)),
         aov_means_(!film.normal.empty() || !film.albedo.empty()),
+        aov_planes_(aov_means_ || !film.depth.empty() || !film.steps.empty()),
         misses_(rt.tracers, camera_) {
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt.tracers.tracer(o);
@@ -142,8 +143,10 @@ class FrameTracer {
     sample_offset(0, dx, dy);
     columns_.resize(size_t(film.full_width));
     rows_.resize(size_t(film.full_height));
-    for (int x = 0; x < film.full_width; ++x) columns_[size_t(x)] = camera_.column(x + dx);
-    for (int y = 0; y < film.full_height; ++y) rows_[size_t(y)] = camera_.row(y + dy);
+    for (int x = 0; x < film.full_width; ++x)
+      columns_[size_t(x)] = camera_.column_part(camera_.column(x + dx));
+    for (int y = 0; y < film.full_height; ++y)
+      rows_[size_t(y)] = camera_.row_part(camera_.row(y + dy));
   }
 
   int refined_spp() const { return refined_spp_; }
@@ -453,7 +456,7 @@ class FrameTracer {
   // sets its point in them (samples).
   void pixel(const TracedPixel& tp, ShadowLists* lists, Pass pass, Work& work) const {
     const int x = tp.x, y = tp.y;
-    const bool in_film = window_.contains(x, y);
+    const bool in_film = film_holds(x, y);
     const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
     switch (pass) {
       case Pass::First: {
@@ -495,18 +498,20 @@ class FrameTracer {
       for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sky[k] / spp);
       rgba[3] = static_cast<float>(covered) / spp;
     }
-    const bool in_film = window_.contains(x, y);
+    const bool in_film = film_holds(x, y);
     const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
     const SampleMeans none;  // samples()' 0 / spp
     if (pass == Pass::Refine) {
       std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
-      mean_aovs(i, none);
+      if (aov_planes_) mean_aovs(i, none);
       return;
     }
     if (in_film) {
       std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
-      mean_aovs(i, none);
-      centre_aovs(i, centre, 0);
+      if (aov_planes_) {  // a PNG's film has none: four tests a pixel less
+        mean_aovs(i, none);
+        centre_aovs(i, centre, 0);
+      }
     }
     if (adaptive_) {
       for (int k = 0; k < 3; ++k)
@@ -514,6 +519,11 @@ class FrameTracer {
       adaptive_->set_first(x, y, rgba);
     }
   }
+
+  // Whether the pass's pixel (x, y) is the film's: every pixel a pass visits lies in its area,
+  // which is the data window but for the first pass's apron around it with adaptive
+  // anti-aliasing (render_frame).
+  bool film_holds(int x, int y) const { return !adaptive_ || window_.contains(x, y); }
 
   // The mean over a pixel's samples of the shaded normal and albedo (0 for a sample that meets
   // nothing, as the background adds nothing to the premultiplied colour).
@@ -618,9 +628,10 @@ class FrameTracer {
   const std::atomic<bool>* cancel_;
   const int spp_, refined_spp_;
   const ViewCamera camera_;
-  // A pinhole perspective camera's image-plane coordinates of sample 0 (the pixel's centre) per
-  // full-frame column and row (ViewCamera::column, row), or none: a camera ray's two divisions.
-  std::vector<double> columns_, rows_;
+  // A pinhole perspective camera's ray directions' parts of sample 0 (the pixel's centre) per
+  // full-frame column and row (ViewCamera::column_part, row_part of its column, row), or none: a
+  // camera ray's two divisions, six products and three sums.
+  std::vector<Vec3> columns_, rows_;
   const int objects_;
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
@@ -635,6 +646,8 @@ class FrameTracer {
   // Whether the film has a normal or an albedo plane: without, a sample's shaded normal and
   // albedo are not summed (mean_aovs would write them nowhere).
   const bool aov_means_;
+  // Whether the film has any AOV plane (normal, albedo, Z, steps).
+  const bool aov_planes_;
   const BeamMisses misses_;
   // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
   // sum): a background beam's quarters are then still visited, for the same counters.
