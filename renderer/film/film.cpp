@@ -87,6 +87,7 @@ class FilmPngRows {
 
   void operator()(int y, uint8_t* row) const {
     const float* in = &film_.rgba[size_t(y) * film_.width * 4];
+    if (straight_) return straight_row(in, row);
     for (int x = 0; x < film_.width; ++x, in += 4, row += nc_) {
       if (straight_ ? !(in[3] > 0) : in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
         std::copy(empty_, empty_ + nc_, row);
@@ -101,6 +102,25 @@ class FilmPngRows {
   }
 
  private:
+  // operator()'s loop with straight alpha (RGBA, not flattened), the same bytes: a pixel every
+  // sample of which met something has alpha 1 exactly, and x / 1 is x and png_sample(1) is 255,
+  // so it takes neither the three divisions nor the alpha's rounding (most covered pixels of a
+  // frame at 1 sample; the row loop was 2 % of pov:blob1a's process at 320x240).
+  void straight_row(const float* in, uint8_t* row) const {
+    for (int x = 0; x < film_.width; ++x, in += 4, row += 4) {
+      const float a = in[3];
+      if (a == 1.0f) {
+        for (int k = 0; k < 3; ++k) row[k] = srgb_byte_(in[k]);
+        row[3] = 255;
+      } else if (!(a > 0)) {
+        std::fill_n(row, 4, uint8_t(0));
+      } else {
+        for (int k = 0; k < 3; ++k) row[k] = srgb_byte_(in[k] / a);
+        row[3] = png_sample(a);
+      }
+    }
+  }
+
   const Film& film_;
   const OutputOptions& opt_;
   const FrameInfo& info_;

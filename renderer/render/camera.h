@@ -90,6 +90,14 @@ class ViewCamera {
   Ray pinhole(double column, double row) const {
     return {eye_, normalize(forward_ + right_ * column + up_ * row), cone0_, cone_};
   }
+  // pinhole(column, row) from its two parts, kept per column and per row by the caller: the
+  // direction before it is normalised is column_part(column) + row_part(row), pinhole's very sums
+  // in its order (forward + right * column first), without the six products and three sums a ray.
+  Vec3 column_part(double column) const { return forward_ + right_ * column; }
+  Vec3 row_part(double row) const { return up_ * row; }
+  Ray pinhole(const Vec3& column_part, const Vec3& row_part) const {
+    return {eye_, normalize(column_part + row_part), cone0_, cone_};
+  }
 
   // Where the point p is seen in the frame (single_eye() only), in pixel units as generate()
   // takes them: false for a point not in front of the eye. Approximate (rounding): for estimates

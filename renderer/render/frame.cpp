@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <new>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "render/antialias.h"
@@ -46,8 +48,6 @@ void sample_offset(int s, double& dx, double& dy) {
 
 // A camera ray traced, waiting for its shading.
 struct TracedSample {
-  TracedSample() = default;
-  TracedSample(const Ray& r, const TraceHit& h) : ray(r), hit(h) {}  // for emplace_back
   Ray ray;
   TraceHit hit;
 };
@@ -58,6 +58,33 @@ struct TracedPixel {
   int first, count;
   int block;  // its 4-pixel block in the tile, numbered quarter by quarter (ShadowBeams' levels)
   int point;  // its hit samples' shadow-ray points: Work::points[point, ...), one per hit
+};
+
+// A tile's records (its traced samples, pixels, shadow-ray points) in storage kept from tile to
+// tile, with their own count: a record is written where it stays. (A vector's emplace_back copied
+// each hit's sample, 176 bytes, in an out-of-line call with its growth path: 4 % of the frame's
+// own instructions on pov:blob1a.) room(k) gives the place of the next k records, which count
+// once `n` is raised past them.
+template <class T>
+struct TileRecords {
+  std::vector<T> store;
+  size_t n = 0;
+
+  T* room(size_t k) {
+    if (n + k > store.size()) [[unlikely]]
+      grow(n + k);
+    return store.data() + n;
+  }
+  [[gnu::noinline]] void grow(size_t need) { store.resize(std::max(need, 2 * store.size())); }
+  size_t size() const { return n; }
+  bool empty() const { return n == 0; }
+  void clear() { n = 0; }
+  T* data() { return store.data(); }
+  const T* data() const { return store.data(); }
+  T* begin() { return store.data(); }
+  T* end() { return store.data() + n; }
+  T& operator[](size_t i) { return store[i]; }
+  const T& operator[](size_t i) const { return store[i]; }
 };
 
 struct Work {
@@ -72,10 +99,10 @@ struct Work {
   int beams = 0;  // the slots of `blobs` this tile has taken
   // The tile's camera rays, traced before any is shaded: their hits place the shadow rays'
   // blocks (ShadowBeams).
-  std::vector<TracedSample> samples;
-  std::vector<TracedPixel> pixels;
-  std::vector<ShadowBeams::Point> points;
-  std::vector<int> point_starts;
+  TileRecords<TracedSample> samples;
+  TileRecords<TracedPixel> pixels;
+  TileRecords<ShadowBeams::Point> points;
+  TileRecords<int> point_starts;
   ShadowBeams::Lists shadow_lists;
   TraceHit unmet;  // an unmet beam's ray's answer (FrameTracer::camera_hit)
 };
@@ -105,6 +132,7 @@ class FrameTracer {
         plain_(plain_objects(scene)),
         lifts_(object_lifts(scene)),
         aov_means_(!film.normal.empty() || !film.albedo.empty()),
+        aov_planes_(aov_means_ || !film.depth.empty() || !film.steps.empty()),
         misses_(rt.tracers, camera_) {
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt.tracers.tracer(o);
@@ -115,8 +143,10 @@ class FrameTracer {
     sample_offset(0, dx, dy);
     columns_.resize(size_t(film.full_width));
     rows_.resize(size_t(film.full_height));
-    for (int x = 0; x < film.full_width; ++x) columns_[size_t(x)] = camera_.column(x + dx);
-    for (int y = 0; y < film.full_height; ++y) rows_[size_t(y)] = camera_.row(y + dy);
+    for (int x = 0; x < film.full_width; ++x)
+      columns_[size_t(x)] = camera_.column_part(camera_.column(x + dx));
+    for (int y = 0; y < film.full_height; ++y)
+      rows_[size_t(y)] = camera_.row_part(camera_.row(y + dy));
   }
 
   int refined_spp() const { return refined_spp_; }
@@ -203,47 +233,47 @@ class FrameTracer {
     if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
     const int spp = pass == Pass::First ? spp_ : refined_spp_;
     const int first = static_cast<int>(work.samples.size());
+    // The samples are traced into their places past the tile's others, and counted only where
+    // the pixel has a hit: most of a sparse frame's pixels are its background's, whose places
+    // the next pixel takes again.
+    TracedSample* const sample = work.samples.room(size_t(spp));
     if (spp == 1) {
-      // One sample, traced into locals and copied into work.samples only if it has a hit: most
-      // of a sparse frame's pixels are its background's. A TracedSample to fill (zeroed first)
-      // and its copy cost about 60 instructions a pixel.
       if (cancelled()) return;
-      const Ray ray = camera_ray(x, y, 0, 1);
-      // An unmet beam's ray is read where intersect_unmet put it, not copied out (camera_hit).
-      if (unmet_answers(ray, certified, work))
-        one_sample(x, y, first, ray, work.unmet, pass, work);
+      sample->ray = camera_ray(x, y, 0, 1);
+      // An unmet beam's ray is read where intersect_unmet put it, not copied out (trace_into).
+      if (unmet_answers(sample->ray, certified, work))
+        one_sample(x, y, first, *sample, &work.unmet, pass, work);
       else
-        one_sample(x, y, first, ray,
-                   rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified),
-                   pass, work);
+        one_sample(x, y, first, *sample, &trace_into(*sample, certified), pass, work);
       return;
     }
     bool met = false;  // whether any sample has a hit
     for (int s = 0; s < spp; ++s) {
-      // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away.
-      if (cancelled()) {
-        work.samples.resize(size_t(first));
-        return;
-      }
-      TracedSample& t = work.samples.emplace_back();
+      // A relaxed load per sample costs nothing beside tracing it; the frame is thrown away, and
+      // the pixel's samples are left uncounted.
+      if (cancelled()) return;
+      TracedSample& t = sample[s];
       t.ray = camera_ray(x, y, s, spp);
-      t.hit = camera_hit(t.ray, certified, work);
+      if (unmet_answers(t.ray, certified, work))
+        t.hit = work.unmet;
+      else
+        trace_into(t, certified);
       work.primary.add(t.hit.work);
       met = met || t.hit.hit;
     }
     if (met) {
-      work.pixels.push_back(traced_pixel(x, y, first, spp));
+      work.samples.n += size_t(spp);
+      *work.pixels.room(1) = traced_pixel(x, y, first, spp);
+      ++work.pixels.n;
       return;
     }
     // The background's pixel (94 % of a sparse cloud's frame) is written now, by the code that
     // shades it: its samples have no hit, so no shadow ray and no shadow list (a block's lists
     // are built from its hits alone), and the tile's shading skips it.
-    const TracedSample* sample = work.samples.data() + first;
     Vec3 sky{0, 0, 0};
     if (scene_.sky)
       for (int s = 0; s < spp; ++s) sky += scene_.sky->seen(sample[s].ray.d);
     miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, sample[0].hit, pass);
-    work.samples.resize(size_t(first));
   }
 
   // The pixels `block` of a background beam (background_pixel each). In the first pass without a
@@ -287,19 +317,22 @@ class FrameTracer {
     miss_pixel(x, y, spp, scene_.sky ? spp : 0, sky, none_, pass);
   }
 
-  // trace_pixel's pixel (x, y) of one sample, traced (`ray`, `hit`): kept for shading where it
-  // has a hit, else written now (miss_pixel).
-  [[gnu::always_inline]] void one_sample(int x, int y, int first, const Ray& ray,
-                                         const TraceHit& hit, Pass pass, Work& work) const {
-    work.primary.add(hit.work);
-    if (hit.hit) {
-      work.samples.emplace_back(ray, hit);  // built in place, not copied from a temporary
-      work.pixels.push_back(traced_pixel(x, y, first, 1));
+  // trace_pixel's pixel (x, y) of one sample, traced into `t` (its ray, and its hit unless
+  // `hit` is the thread's unmet answer, work.unmet): kept for shading where it has a hit (copied
+  // into `t` from work.unmet), else written now (miss_pixel).
+  [[gnu::always_inline]] void one_sample(int x, int y, int first, TracedSample& t,
+                                         const TraceHit* hit, Pass pass, Work& work) const {
+    work.primary.add(hit->work);
+    if (hit->hit) {
+      if (hit != &t.hit) t.hit = *hit;
+      ++work.samples.n;
+      *work.pixels.room(1) = traced_pixel(x, y, first, 1);
+      ++work.pixels.n;
       return;
     }
     Vec3 sky{0, 0, 0};
-    if (scene_.sky) sky += scene_.sky->seen(ray.d);
-    miss_pixel(x, y, 1, scene_.sky ? 1 : 0, sky, hit, pass);
+    if (scene_.sky) sky += scene_.sky->seen(t.ray.d);
+    miss_pixel(x, y, 1, scene_.sky ? 1 : 0, sky, *hit, pass);
   }
 
   // Sample s of spp of pixel (x, y): its camera ray. The lens's point is asked for only where the
@@ -321,16 +354,20 @@ class FrameTracer {
     return certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet);
   }
 
-  // A camera ray's nearest hit: an unmet beam's ray's from intersect_unmet where it answers, else
-  // intersect's.
-  TraceHit camera_hit(const Ray& ray, const BeamClear* certified, Work& work) const {
-    if (unmet_answers(ray, certified, work)) return work.unmet;
-    return rt_.embree.intersect(ray, 0, std::numeric_limits<double>::infinity(), certified);
+  // Sample t's camera ray's nearest hit by intersect, made in t.hit itself (the TraceHit that
+  // intersect returns is constructed there, not in a temporary copied in): t.hit.
+  const TraceHit& trace_into(TracedSample& t, const BeamClear* certified) const {
+    static_assert(std::is_trivially_destructible_v<TraceHit>);
+    return *::new (static_cast<void*>(&t.hit)) TraceHit(
+        rt_.embree.intersect(t.ray, 0, std::numeric_limits<double>::infinity(), certified));
   }
 
-  // The traced pixel (x, y) whose samples are work.samples[first, first + spp).
+  // The traced pixel (x, y) whose samples are work.samples[first, first + spp). Full-frame
+  // coordinates are not negative: x % kTile / kBeam is a mask and a shift (signed % and / took
+  // a dozen instructions more a hit).
   static TracedPixel traced_pixel(int x, int y, int first, int spp) {
-    const int bx = (x % kTile) / kBeam, by = (y % kTile) / kBeam;
+    static_assert((kTile & (kTile - 1)) == 0 && kBeam == 4);
+    const int bx = (x & (kTile - 1)) >> 2, by = (y & (kTile - 1)) >> 2;
     const int quarter = (by >> 1) * 2 + (bx >> 1), within = (by & 1) * 2 + (bx & 1);
     return {x, y, first, spp, quarter * 4 + within, 0};
   }
@@ -338,7 +375,7 @@ class FrameTracer {
   // Shades the tile's traced pixels, a 4-pixel block at a time, with the shadow lists of the
   // tile, its quarter and the block, where ShadowBeams has any.
   void shade_tile(Pass pass, Work& work) const {
-    std::vector<TracedPixel>& pixels = work.pixels;
+    TileRecords<TracedPixel>& pixels = work.pixels;
     // The blocks in ShadowBeams' order: a quarter's four blocks after one another. The beams
     // trace them in that order already; only where they do not is the sort paid for.
     const auto by_block = [](const TracedPixel& a, const TracedPixel& b) {
@@ -348,18 +385,16 @@ class FrameTracer {
       std::stable_sort(pixels.begin(), pixels.end(), by_block);
     const bool lists = shadow_beams_.active();
     // The shadow rays' origins lie near the hits: pixel i's in points[starts[i], starts[i + 1]).
-    std::vector<int>& starts = work.point_starts;
-    work.points.clear();
-    starts.clear();
-    // The arrays and bounds read once: the push_backs below would have every pass of the loops
-    // read them again (12 instructions a point of the floor's frame).
+    // Room for every point (one a hit, at most one a sample) and every start, taken once.
     const size_t count = lists ? pixels.size() : 0;
+    int* const starts = work.point_starts.room(count + 1);
+    ShadowBeams::Point* const points = work.points.room(lists ? work.samples.size() : 0);
     const TracedSample* const traced = work.samples.data();
     const SceneObject* const objects = scene_.objects.data();
     const double* const lifts = lifts_.data();
+    int point = 0;
     for (size_t i = 0; i < count; ++i) {
-      const int point = static_cast<int>(work.points.size());
-      starts.push_back(point);
+      starts[i] = point;
       pixels[i].point = point;
       const int first = pixels[i].first, end = first + pixels[i].count;
       for (int s = first; s < end; ++s) {
@@ -370,18 +405,18 @@ class FrameTracer {
         // field's or mesh's offset was taken once for the frame (lifts_: no sqrt a point).
         const double cone0 = t.ray.cone_at(t.hit.t);
         const double lift = t.hit.face > 0 ? -1 : lifts[t.hit.object];
-        work.points.push_back(
-            {p, lift >= 0
-                    ? std::max(lift, cone0)
-                    : ray_offset(t.hit.face > 0 ? face_object(objects[t.hit.object], t.hit.face)
-                                                : objects[t.hit.object],
-                                 p, cone0)});
+        points[point++] = {
+            p, lift >= 0
+                   ? std::max(lift, cone0)
+                   : ray_offset(t.hit.face > 0 ? face_object(objects[t.hit.object], t.hit.face)
+                                               : objects[t.hit.object],
+                                p, cone0)};
       }
     }
-    starts.push_back(static_cast<int>(work.points.size()));
+    starts[count] = point;
     // The lists of `level` over the points of pixels[i0, i1) (a range of the tile's points).
     const auto build = [&](int level, size_t i0, size_t i1) {
-      shadow_beams_.build(level, work.points.data(), starts[i0], starts[i1], work.shadow_lists);
+      shadow_beams_.build(level, points, starts[i0], starts[i1], work.shadow_lists);
     };
     // The pixels of blocks [b0, b1) of 16: from `from` on, where they start.
     const auto end_of = [&](size_t from, int b1) {
@@ -421,7 +456,7 @@ class FrameTracer {
   // sets its point in them (samples).
   void pixel(const TracedPixel& tp, ShadowLists* lists, Pass pass, Work& work) const {
     const int x = tp.x, y = tp.y;
-    const bool in_film = window_.contains(x, y);
+    const bool in_film = film_holds(x, y);
     const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
     switch (pass) {
       case Pass::First: {
@@ -463,18 +498,20 @@ class FrameTracer {
       for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sky[k] / spp);
       rgba[3] = static_cast<float>(covered) / spp;
     }
-    const bool in_film = window_.contains(x, y);
+    const bool in_film = film_holds(x, y);
     const size_t i = in_film ? size_t(y - film_.y0) * film_.width + (x - film_.x0) : 0;
     const SampleMeans none;  // samples()' 0 / spp
     if (pass == Pass::Refine) {
       std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
-      mean_aovs(i, none);
+      if (aov_planes_) mean_aovs(i, none);
       return;
     }
     if (in_film) {
       std::copy(rgba, rgba + 4, &film_.rgba[i * 4]);
-      mean_aovs(i, none);
-      centre_aovs(i, centre, RayWork{});
+      if (aov_planes_) {  // a PNG's film has none: four tests a pixel less
+        mean_aovs(i, none);
+        centre_aovs(i, centre, 0);
+      }
     }
     if (adaptive_) {
       for (int k = 0; k < 3; ++k)
@@ -482,6 +519,11 @@ class FrameTracer {
       adaptive_->set_first(x, y, rgba);
     }
   }
+
+  // Whether the pass's pixel (x, y) is the film's: every pixel a pass visits lies in its area,
+  // which is the data window but for the first pass's apron around it with adaptive
+  // anti-aliasing (render_frame).
+  bool film_holds(int x, int y) const { return !adaptive_ || window_.contains(x, y); }
 
   // The mean over a pixel's samples of the shaded normal and albedo (0 for a sample that meets
   // nothing, as the background adds nothing to the premultiplied colour).
@@ -506,7 +548,10 @@ class FrameTracer {
       if (cancelled()) return false;
       const Ray& ray = work.samples[size_t(tp.first + s)].ray;
       const TraceHit& hit = work.samples[size_t(tp.first + s)].hit;
-      RayWork shadow;
+      // The shadow rays' work goes to the tile's own sum; the centre ray's steps take what it
+      // grew by (integers: exact). A RayWork per sample, zeroed and added in, was 7 words each.
+      RayWork& shadow = work.shadow;
+      const long long before = shadow.evaluations();
       Vec3 normal{0, 0, 0}, albedo{0, 0, 0};  // the background's
       if (hit.hit) {
         if (lists) {
@@ -530,12 +575,11 @@ class FrameTracer {
         sum += scene_.sky->seen(ray.d);  // opaque: a gradient sky is part of the picture
         ++covered;
       }
-      if (s == 0 && aov) centre_aovs(*aov, hit, shadow);
+      if (s == 0 && aov) centre_aovs(*aov, hit, shadow.evaluations() - before);
       if (aov_means_) {
         sums.normal += normal;
         sums.albedo += albedo;
       }
-      work.shadow += shadow;
     }
     if (spp == 1) {  // x / 1 is x to the bit: one sample's pixel takes no divisions
       if (means) *means = sums;
@@ -551,11 +595,12 @@ class FrameTracer {
 
   // The pixel-centre ray's Z and steps, into the planes the film has. The background's depth is
   // +inf.
-  void centre_aovs(size_t i, const TraceHit& hit, const RayWork& shadow) const {
+  // `shadow_evaluations`: those of its shadow rays.
+  void centre_aovs(size_t i, const TraceHit& hit, long long shadow_evaluations) const {
     if (!film_.depth.empty())
       film_.depth[i] = hit.hit ? static_cast<float>(hit.t) : std::numeric_limits<float>::infinity();
     if (!film_.steps.empty())
-      film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow.evaluations());
+      film_.steps[i] = static_cast<float>(hit.work.evaluations() + shadow_evaluations);
   }
 
   // The samples' mean normal and albedo, into the planes the film has.
@@ -583,9 +628,10 @@ class FrameTracer {
   const std::atomic<bool>* cancel_;
   const int spp_, refined_spp_;
   const ViewCamera camera_;
-  // A pinhole perspective camera's image-plane coordinates of sample 0 (the pixel's centre) per
-  // full-frame column and row (ViewCamera::column, row), or none: a camera ray's two divisions.
-  std::vector<double> columns_, rows_;
+  // A pinhole perspective camera's ray directions' parts of sample 0 (the pixel's centre) per
+  // full-frame column and row (ViewCamera::column_part, row_part of its column, row), or none: a
+  // camera ray's two divisions, six products and three sums.
+  std::vector<Vec3> columns_, rows_;
   const int objects_;
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
@@ -600,6 +646,8 @@ class FrameTracer {
   // Whether the film has a normal or an albedo plane: without, a sample's shaded normal and
   // albedo are not summed (mean_aovs would write them nowhere).
   const bool aov_means_;
+  // Whether the film has any AOV plane (normal, albedo, Z, steps).
+  const bool aov_planes_;
   const BeamMisses misses_;
   // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
   // sum): a background beam's quarters are then still visited, for the same counters.

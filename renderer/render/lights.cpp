@@ -118,20 +118,13 @@ Vec3 area_sample(const Light& l, uint64_t seed, int i, int j) {
   return l.position + a.axis1 * u + a.axis2 * v;
 }
 
-bool positional_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out) {
-  const Vec3 v = l.position - origin;
-  out.distance = length(v);
-  if (out.distance == 0) return false;
-  out.to_light = v / out.distance;
-  if (l.type == Light::Type::Spot || l.fade_power > 0) {
-    // The cone and the fading are the surface point's (POV-Ray's); the shadow ray's origin sits a
-    // footprint above it, and the spot's edge is steep enough to show the difference.
-    const Vec3 from_p = l.position - p;
-    const double distance = length(from_p);
-    if (distance == 0) return false;
-    if (!spot_and_fade(l, from_p / distance, distance, out.light)) return false;
-  }
-  return true;
+bool spot_and_fade_at(const Light& l, const Vec3& p, LightArrival& out) {
+  // The cone and the fading are the surface point's (POV-Ray's); the shadow ray's origin sits a
+  // footprint above it, and the spot's edge is steep enough to show the difference.
+  const Vec3 from_p = l.position - p;
+  const double distance = length(from_p);
+  if (distance == 0) return false;
+  return spot_and_fade(l, from_p / distance, distance, out.light);
 }
 
 double area_visibility(const Light& l, const Vec3& origin, double cone0, double cone,

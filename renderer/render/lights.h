@@ -26,9 +26,18 @@ Vec3 area_sample(const Light& l, uint64_t seed, int i, int j);
 // The light `l` (not ambient) at the surface point `p`, whose shadow rays start at `origin`: the
 // direction and distance are taken from `origin`, the spot's cone and the fading at `p`. False
 // when none of it can arrive (outside a spot's cone, or at the light's very position).
-// Inline for the directional light that every shaded point asks about; the others' work is
-// positional_arrival's.
-bool positional_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out);
+// Inline, as it runs for every light at every shaded point; only a spot's cone and the fading are
+// out of line (spot_and_fade_at). Its call cost callgrind 1.25 M instructions of pov:golfball's
+// process at 320x240 (two point lights) and 1.06 M of pov:blob1a's.
+bool spot_and_fade_at(const Light& l, const Vec3& p, LightArrival& out);
+inline bool positional_arrival(const Light& l, const Vec3& p, const Vec3& origin,
+                               LightArrival& out) {
+  const Vec3 v = l.position - origin;
+  out.distance = length(v);
+  if (out.distance == 0) return false;
+  out.to_light = v / out.distance;
+  return !(l.type == Light::Type::Spot || l.fade_power > 0) || spot_and_fade_at(l, p, out);
+}
 inline bool light_arrival(const Light& l, const Vec3& p, const Vec3& origin, LightArrival& out) {
   if (l.type == Light::Type::Ambient) return false;
   out.light = l.color * l.intensity;

@@ -46,25 +46,31 @@ TEST(Camera, OrthographicRaysAreParallelAndLeaveTheViewPlane) {
 }
 
 // FrameTracer traces a pinhole camera's pixel-centre rays from per-column and per-row tables of
-// ViewCamera::column and row: pinhole() of them must be generate()'s ray to the bit, at every
-// pixel of frames of even and odd sizes.
+// ViewCamera::column and row, and of their column_part and row_part: pinhole() of either must be
+// generate()'s ray to the bit, at every pixel of frames of even and odd sizes.
 TEST(Camera, PinholeFromColumnAndRowIsGeneratesRayToTheBit) {
   const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  const auto same_ray = [&](const Ray& a, const Ray& b) {
+    return same(a.o.x, b.o.x) && same(a.o.y, b.o.y) && same(a.o.z, b.o.z) && same(a.d.x, b.d.x) &&
+           same(a.d.y, b.d.y) && same(a.d.z, b.d.z) && same(a.cone0, b.cone0) &&
+           same(a.cone, b.cone);
+  };
   int checked = 0;
   for (const auto& [w, h] : std::vector<std::pair<int, int>>{{320, 240}, {641, 479}, {80, 60}}) {
     const ViewCamera camera(view(Camera::Projection::Perspective), w, h);
     ASSERT_TRUE(camera.single_eye());
-    int differ = 0;
+    int differ = 0, parts_differ = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const Ray a = camera.pinhole(camera.column(x + 0.5), camera.row(y + 0.5));
+        const double column = camera.column(x + 0.5), row = camera.row(y + 0.5);
         const Ray b = camera.generate(x + 0.5, y + 0.5);
-        differ += !(same(a.o.x, b.o.x) && same(a.o.y, b.o.y) && same(a.o.z, b.o.z) &&
-                    same(a.d.x, b.d.x) && same(a.d.y, b.d.y) && same(a.d.z, b.d.z) &&
-                    same(a.cone0, b.cone0) && same(a.cone, b.cone));
+        differ += !same_ray(camera.pinhole(column, row), b);
+        parts_differ +=
+            !same_ray(camera.pinhole(camera.column_part(column), camera.row_part(row)), b);
         ++checked;
       }
     EXPECT_EQ(differ, 0) << w << "x" << h;
+    EXPECT_EQ(parts_differ, 0) << w << "x" << h;
   }
   EXPECT_EQ(checked, 320 * 240 + 641 * 479 + 80 * 60);
 }
