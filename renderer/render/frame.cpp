@@ -14,6 +14,7 @@
 #include "render/beam_misses.h"
 #include "render/camera.h"
 #include "render/cancel.h"
+#include "render/plain_floor.h"
 #include "render/shading.h"
 #include "render/shadow_beams.h"
 
@@ -103,6 +104,7 @@ class FrameTracer {
         adaptive_(adaptive),
         shadow_beams_(scene, rt.tracers),
         plain_(plain_objects(scene)),
+        floor_(scene, rt.embree),
         lifts_(object_lifts(scene)),
         aov_means_(!film.normal.empty() || !film.albedo.empty()),
         misses_(rt.tracers, camera_) {
@@ -516,7 +518,10 @@ class FrameTracer {
         }
         // A plain object's point (shades_plain, asked once per object for the frame) with its
         // block's lists takes shade()'s short way inline: the same bits.
-        const Shaded sh = lists && hit.face <= 0 && plain_[size_t(hit.object)]
+        // The floor's plain points take their per-frame terms (PlainFloor): the same bits.
+        const Shaded sh = lists && hit.object == floor_.object() && hit.face <= 0
+                              ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
+                          : lists && hit.face <= 0 && plain_[size_t(hit.object)]
                               ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
                                                 scene_.objects[size_t(hit.object)].material, shadow,
                                                 cancel_, *lists)
@@ -593,6 +598,8 @@ class FrameTracer {
   // Per scene object, whether its points are shaded the short way (shades_plain; a CSG's faces
   // are asked per point, by shade()).
   const std::vector<char> plain_;
+  // The floor's plain points' terms, or none (object() -1).
+  const PlainFloor floor_;
 
   // Per scene object, its own_lift (shading.h): the offset's first term where it is the object's
   // alone, else -1.
