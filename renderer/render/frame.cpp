@@ -103,8 +103,8 @@ class FrameTracer {
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
         adaptive_(adaptive),
         shadow_beams_(scene, rt.tracers),
-        plain_(plain_objects(scene)),
         floor_(scene, rt.embree),
+        plain_(plain_objects(scene, floor_)),
         lifts_(object_lifts(scene)),
         aov_means_(!film.normal.empty() || !film.albedo.empty()),
         misses_(rt.tracers, camera_) {
@@ -517,16 +517,16 @@ class FrameTracer {
           lists->offset = at.margin;
         }
         // A plain object's point (shades_plain, asked once per object for the frame) with its
-        // block's lists takes shade()'s short way inline: the same bits.
-        // The floor's plain points take their per-frame terms (PlainFloor): the same bits.
-        const Shaded sh = lists && hit.object == floor_.object() && hit.face <= 0
-                              ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
-                          : lists && hit.face <= 0 && plain_[size_t(hit.object)]
-                              ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
-                                                scene_.objects[size_t(hit.object)].material, shadow,
-                                                cancel_, *lists)
-                              : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_, 1,
-                                      1, nullptr, lists);
+        // block's lists takes shade()'s short way inline, the floor's with the terms PlainFloor
+        // took for the frame: the same bits.
+        const char way = lists && hit.face <= 0 ? plain_[size_t(hit.object)] : kLongWay;
+        const Shaded sh =
+            way == kFloorWay   ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
+            : way == kPlainWay ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
+                                                 scene_.objects[size_t(hit.object)].material,
+                                                 shadow, cancel_, *lists)
+                               : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_,
+                                       1, 1, nullptr, lists);
         sum += sh.color;
         ++covered;
         normal = sh.normal;
@@ -576,9 +576,14 @@ class FrameTracer {
     for (size_t o = 0; o < lifts.size(); ++o) lifts[o] = own_lift(scene.objects[o]);
     return lifts;
   }
-  static std::vector<char> plain_objects(const Scene& scene) {
+  // How a point of each object is shaded: shade(), shade_plain_hit or PlainFloor (the floor).
+  static constexpr char kLongWay = 0, kPlainWay = 1, kFloorWay = 2;
+  static std::vector<char> plain_objects(const Scene& scene, const PlainFloor& floor) {
     std::vector<char> plain(scene.objects.size());
-    for (size_t o = 0; o < plain.size(); ++o) plain[o] = shades_plain(scene, scene.objects[o]);
+    for (size_t o = 0; o < plain.size(); ++o)
+      plain[o] = !shades_plain(scene, scene.objects[o]) ? kLongWay
+                 : int(o) == floor.object()             ? kFloorWay
+                                                        : kPlainWay;
     return plain;
   }
 
@@ -595,11 +600,11 @@ class FrameTracer {
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
   const ShadowBeams shadow_beams_;
-  // Per scene object, whether its points are shaded the short way (shades_plain; a CSG's faces
-  // are asked per point, by shade()).
-  const std::vector<char> plain_;
   // The floor's plain points' terms, or none (object() -1).
   const PlainFloor floor_;
+  // Per scene object, whether its points are shaded the short way (shades_plain; a CSG's faces
+  // are asked per point, by shade()), and whether it is the floor's (kFloorWay).
+  const std::vector<char> plain_;
 
   // Per scene object, its own_lift (shading.h): the offset's first term where it is the object's
   // alone, else -1.

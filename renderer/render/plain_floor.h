@@ -32,6 +32,7 @@ class PlainFloor {
     for (const Light& l : scene.lights) {
       Term t;
       t.light = l.color * l.intensity;  // light_arrival's
+      t.shadows = l.shadows;
       if (l.type == Light::Type::Ambient) {
         t.kind = Term::Ambient;
         t.ambient = mul(m_->ambient, t.light);
@@ -71,14 +72,13 @@ class PlainFloor {
     for (size_t li = 0; li < count; ++li) {
       if (cancel_requested(cancel)) break;
       const Term& t = terms[li];
-      const Light& l = scene.lights[li];
       if (t.kind == Term::Ambient) {
         light += t.ambient;
         continue;
       }
       if (t.kind == Term::Directional) {
         if (t.cosine[side] <= 0) continue;
-        if (l.shadows) {
+        if (t.shadows) {
           const BlobBeam* lists = shadow.of(int(li));
           const Ray towards{lifted, t.to_light, cone0, ray.cone};
           bool blocked;
@@ -94,10 +94,11 @@ class PlainFloor {
           if (blocked) continue;
         }
         light += t.diffuse[side];
-        if (l.shadows && highlights) shine += phong_and_specular(m, n, ray.d, t.to_light, t.light);
+        if (t.shadows && highlights) shine += phong_and_specular(m, n, ray.d, t.to_light, t.light);
         continue;
       }
       // Point, spot and area lights: shade_plain's loop, at this point.
+      const Light& l = scene.lights[li];
       LightArrival at;
       if (!light_arrival(l, shadow.p, lifted, at)) continue;
       const double cosine = dot(n, at.to_light);
@@ -119,6 +120,7 @@ class PlainFloor {
   // A light's terms at every point of the floor, per side the normal faces (0: the plane's own).
   struct Term {
     enum Kind { Ambient, Directional, Other } kind = Other;
+    bool shadows = true;
     Vec3 light{0, 0, 0};     // colour * intensity
     Vec3 ambient{0, 0, 0};   // an ambient light's: m.ambient * light
     Vec3 to_light{0, 0, 0};  // a directional light's: -direction
