@@ -521,10 +521,10 @@ class FrameTracer {
         // took for the frame: the same bits.
         const char way = lists && hit.face <= 0 ? plain_[size_t(hit.object)] : kLongWay;
         const Shaded sh =
-            way == kFloorWay   ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
-            : way == kPlainWay ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
-                                                 scene_.objects[size_t(hit.object)].material,
-                                                 shadow, cancel_, *lists)
+            way == kPlainWay   ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
+                                                 scene_.objects[size_t(hit.object)].material, shadow,
+                                                 cancel_, *lists)
+            : way == kFloorWay ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
                                : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_,
                                        1, 1, nullptr, lists);
         sum += sh.color;
