@@ -16,6 +16,7 @@
 #include "render/beam_misses.h"
 #include "render/camera.h"
 #include "render/cancel.h"
+#include "render/plain_floor.h"
 #include "render/shading.h"
 #include "render/shadow_beams.h"
 
@@ -129,7 +130,8 @@ class FrameTracer {
         window_{film.x0, film.y0, film.x0 + film.width, film.y0 + film.height},
         adaptive_(adaptive),
         shadow_beams_(scene, rt.tracers),
-        plain_(plain_objects(scene)),
+        floor_(scene, rt.embree),
+        plain_(plain_objects(scene, floor_)),
         lifts_(object_lifts(scene)),
         aov_means_(!film.normal.empty() || !film.albedo.empty()),
         aov_planes_(aov_means_ || !film.depth.empty() || !film.steps.empty()),
@@ -560,13 +562,16 @@ class FrameTracer {
           lists->offset = at.margin;
         }
         // A plain object's point (shades_plain, asked once per object for the frame) with its
-        // block's lists takes shade()'s short way inline: the same bits.
-        const Shaded sh = lists && hit.face <= 0 && plain_[size_t(hit.object)]
-                              ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
-                                                scene_.objects[size_t(hit.object)].material, shadow,
-                                                cancel_, *lists)
-                              : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_, 1,
-                                      1, nullptr, lists);
+        // block's lists takes shade()'s short way inline, the floor's with the terms PlainFloor
+        // took for the frame: the same bits.
+        const char way = lists && hit.face <= 0 ? plain_[size_t(hit.object)] : kLongWay;
+        const Shaded sh =
+            way == kPlainWay   ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
+                                                 scene_.objects[size_t(hit.object)].material, shadow,
+                                                 cancel_, *lists)
+            : way == kFloorWay ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
+                               : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_,
+                                       1, 1, nullptr, lists);
         sum += sh.color;
         ++covered;
         normal = sh.normal;
@@ -616,9 +621,14 @@ class FrameTracer {
     for (size_t o = 0; o < lifts.size(); ++o) lifts[o] = own_lift(scene.objects[o]);
     return lifts;
   }
-  static std::vector<char> plain_objects(const Scene& scene) {
+  // How a point of each object is shaded: shade(), shade_plain_hit or PlainFloor (the floor).
+  static constexpr char kLongWay = 0, kPlainWay = 1, kFloorWay = 2;
+  static std::vector<char> plain_objects(const Scene& scene, const PlainFloor& floor) {
     std::vector<char> plain(scene.objects.size());
-    for (size_t o = 0; o < plain.size(); ++o) plain[o] = shades_plain(scene, scene.objects[o]);
+    for (size_t o = 0; o < plain.size(); ++o)
+      plain[o] = !shades_plain(scene, scene.objects[o]) ? kLongWay
+                 : int(o) == floor.object()             ? kFloorWay
+                                                        : kPlainWay;
     return plain;
   }
 
@@ -636,8 +646,10 @@ class FrameTracer {
   const PixelRect window_;  // the film's data window
   AdaptivePixels* const adaptive_;
   const ShadowBeams shadow_beams_;
+  // The floor's plain points' terms, or none (object() -1).
+  const PlainFloor floor_;
   // Per scene object, whether its points are shaded the short way (shades_plain; a CSG's faces
-  // are asked per point, by shade()).
+  // are asked per point, by shade()), and whether it is the floor's (kFloorWay).
   const std::vector<char> plain_;
 
   // Per scene object, its own_lift (shading.h): the offset's first term where it is the object's

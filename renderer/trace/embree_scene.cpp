@@ -466,6 +466,11 @@ TraceHit EmbreeScene::nearest(const Ray& ray, double tnear, double tfar, const B
   return h;
 }
 
+EmbreeScene::Floor EmbreeScene::floor() const {
+  if (!impl_->floor) return {};
+  return {impl_->floor, impl_->floor_object, impl_->direct_field};
+}
+
 bool EmbreeScene::unmet(const BeamClear& beam) const {
   // The direct paths only: one field, alone or with a few primitives (a cloud over a floor),
   // which intersect() asks for a camera ray (it starts inside no solid).

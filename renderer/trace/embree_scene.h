@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "scene/primitive.h"
 #include "trace/interiors.h"
 #include "trace/tracer.h"
 
@@ -107,6 +108,16 @@ class EmbreeScene {
 
   // Whether Embree's device and scene were built (false: every ray takes a direct path).
   bool built() const;
+
+  // The direct paths' floor: the scene's one primitive, an unplaced plane, beside its one field
+  // (plane null: none). occluded() tests the plane first, then the field; where the ray's list of
+  // the field is clear (BlobBeam::clear) the field's answer is no, and the plane's test alone
+  // (unplaced_plane_end over [tnear, tfar]) is occluded()'s answer, with no work counted.
+  struct Floor {
+    const Primitive* plane = nullptr;
+    int object = -1, field = -1;
+  };
+  Floor floor() const;
 
  private:
   // intersect() with `inside` null where the ray starts inside no solid (never an empty list).

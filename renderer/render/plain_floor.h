@@ -1,0 +1,137 @@
+// The camera hits on a floor (EmbreeScene::floor: an unplaced plane beside one field), shaded the
+// short way (shades_plain) with the terms that are the same at every point of the plane, taken
+// once for the frame: its normal facing either side, and for each directional light its cosine
+// and diffuse term, for each ambient light its term. A point pays for its shadow rays alone, and
+// a shadow ray whose block's list of the field is clear is answered by the plane's test inline,
+// as occluded() answers it. shade_plain_hit's colour, normal, albedo and counters to the bit (the
+// same operations on the same numbers; floating-point contraction is off in this build). Most of
+// the 1000-blob frame's floor is such points: 171,000 of its 307,200 pixels.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "render/shading.h"
+#include "trace/primitive_trace.h"
+
+namespace softtrace {
+
+class PlainFloor {
+ public:
+  // None (object() -1) unless the scene has a floor whose material shades_plain.
+  PlainFloor(const Scene& scene, const EmbreeScene& rt) : floor_(rt.floor()) {
+    if (!floor_.plane) return;
+    const SceneObject& obj = scene.objects[size_t(floor_.object)];
+    const Vec3 n = floor_.plane->world_normal;
+    if (!shades_plain(scene, obj) || dot(n, n) == 0) return;
+    m_ = &obj.material;
+    normal_[0] = n;  // facing_normal's: the plane's normal, turned to face the viewer
+    normal_[1] = -n;
+    terms_.reserve(scene.lights.size());
+    for (const Light& l : scene.lights) {
+      Term t;
+      t.light = l.color * l.intensity;  // light_arrival's
+      t.shadows = l.shadows;
+      if (l.type == Light::Type::Ambient) {
+        t.kind = Term::Ambient;
+        t.ambient = mul(m_->ambient, t.light);
+      } else if (l.type == Light::Type::Directional && !l.has_area) {
+        t.kind = Term::Directional;
+        t.to_light = -l.direction;
+        for (int side = 0; side < 2; ++side) {
+          t.cosine[side] = dot(normal_[side], t.to_light);
+          t.diffuse[side] = diffuse_light(*m_, t.cosine[side], t.light);
+        }
+      }
+      terms_.push_back(t);
+    }
+    object_ = floor_.object;
+  }
+
+  // The floor's object, or -1.
+  int object() const { return object_; }
+
+  // shade_plain_hit(scene, tracers, rt, ray, hit, material, secondary, cancel, shadow) for a
+  // camera hit on object() (no CSG face), with its block's lists.
+  [[gnu::always_inline]] Shaded shade(const Scene& scene, const EmbreeScene& rt, const Ray& ray,
+                                      const TraceHit& hit, RayWork& secondary,
+                                      const std::atomic<bool>* cancel,
+                                      const ShadowLists& shadow) const {
+    const Material& m = *m_;
+    // facing_normal's test: the hit's normal is the plane's (first_hit's world_normal).
+    const int side = dot(normal_[0], ray.d) > 0;
+    const Vec3 n = normal_[side];
+    const double cone0 = footprint_at(ray, hit);
+    const Vec3 lifted = shadow.p + n * shadow.offset;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    Vec3 light{0, 0, 0}, shine{0, 0, 0};
+    const bool highlights = m.phong > 0 || m.specular > 0;
+    const Term* const terms = terms_.data();
+    const size_t count = terms_.size();
+    for (size_t li = 0; li < count; ++li) {
+      if (cancel_requested(cancel)) break;
+      const Term& t = terms[li];
+      if (t.kind == Term::Ambient) {
+        light += t.ambient;
+        continue;
+      }
+      if (t.kind == Term::Directional) {
+        if (t.cosine[side] <= 0) continue;
+        if (t.shadows) {
+          const BlobBeam* lists = shadow.of(int(li));
+          const Ray towards{lifted, t.to_light, cone0, ray.cone};
+          bool blocked;
+          if (lists && lists[floor_.field].clear) {
+            // occluded(): the plane's test, then a clear list's no (EmbreeScene::Floor).
+            blocked = !std::isnan(unplaced_plane_end(*floor_.plane, towards, 0, kInf));
+            ++secondary.rays;  // add() of no work
+          } else {
+            TraceCounters work;
+            blocked = rt.occluded(towards, 0, kInf, work, lists);
+            secondary.add(work);
+          }
+          if (blocked) continue;
+        }
+        light += t.diffuse[side];
+        if (t.shadows && highlights) shine += phong_and_specular(m, n, ray.d, t.to_light, t.light);
+        continue;
+      }
+      // Point, spot and area lights: shade_plain's loop, at this point.
+      const Light& l = scene.lights[li];
+      LightArrival at;
+      if (!light_arrival(l, shadow.p, lifted, at)) continue;
+      const double cosine = dot(n, at.to_light);
+      if (cosine <= 0) continue;
+      Vec3 arrived = at.light;
+      const double seen = light_visibility(l, at, lifted, cone0, ray.cone, rt, secondary, cancel,
+                                           shadow.of(int(li)));
+      if (seen == 0) continue;
+      if (seen != 1) arrived = at.light * seen;
+      light += diffuse_light(m, cosine, arrived);
+      if (l.shadows && highlights) shine += phong_and_specular(m, n, ray.d, at.to_light, arrived);
+    }
+    Vec3 color = mul(m.color, light);
+    if (highlights && (shine.x != 0 || shine.y != 0 || shine.z != 0)) color += shine;
+    return {color, n, m.color};
+  }
+
+ private:
+  // A light's terms at every point of the floor, per side the normal faces (0: the plane's own).
+  struct Term {
+    enum Kind { Ambient, Directional, Other } kind = Other;
+    bool shadows = true;
+    Vec3 light{0, 0, 0};     // colour * intensity
+    Vec3 ambient{0, 0, 0};   // an ambient light's: m.ambient * light
+    Vec3 to_light{0, 0, 0};  // a directional light's: -direction
+    double cosine[2] = {0, 0};
+    Vec3 diffuse[2];  // diffuse_light(m, cosine, light)
+  };
+  EmbreeScene::Floor floor_;
+  int object_ = -1;
+  const Material* m_ = nullptr;
+  Vec3 normal_[2];
+  std::vector<Term> terms_;
+};
+
+}  // namespace softtrace

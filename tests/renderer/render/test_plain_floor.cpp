@@ -1,0 +1,149 @@
+// The frame shades a camera hit on a plain floor (an unplaced plane beside one blob sum) with
+// PlainFloor: its normal and each directional and ambient light's terms taken once for the frame,
+// and a clear list's shadow ray answered by the plane's test inline. It must give
+// shade_plain_hit's colour, normal, albedo and counters to the bit (test_shade_plain.cpp holds
+// shade_plain_hit to shade()). The floor is seen from above and from below (the normal facing
+// either way), under an ambient light, a directional light with shadows from above, one from below
+// (no light on the upper side), one without shadows, and a point light; with a phong and a
+// specular highlight, and matte. The shadow lists are ShadowBeams' own for each 2x2 block of
+// floor pixels: some clear (beside the cloud), some not (under it).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/plain_floor.h"
+#include "render/shading.h"
+#include "render/shadow_beams.h"
+#include "scene/scene.h"
+
+namespace softtrace {
+namespace {
+
+std::string floor_scene_json(const char* eye, const char* finish) {
+  return std::string(R"({
+  "camera": { "eye": )") +
+         eye + R"(, "target": [0, 0, 0], "fov": 50 },
+  "lights": [
+    { "type": "ambient", "intensity": 0.2 },
+    { "type": "directional", "direction": [0.5, 0.3, -1], "intensity": 0.7 },
+    { "type": "directional", "direction": [-0.2, 0.4, 1], "intensity": 0.3 },
+    { "type": "directional", "direction": [0.1, -0.6, -1], "intensity": 0.2, "shadows": false },
+    { "type": "point", "position": [-8, -6, 14], "intensity": 0.4 }
+  ],
+  "objects": [
+    { "material": )" +
+         finish + R"(,
+      "shape": { "type": "plane", "normal": [0, 0, 1], "distance": -2 } },
+    { "material": { "color": [0.85, 0.45, 0.35] }, "convention": "soft", "iso": 0.5,
+      "field": { "type": "soft_blend", "children": [
+        { "type": "soft_object", "potential": { "type": "murakami" }, "translate": [0, 0, 3],
+          "distance": { "type": "lp_metric", "radii": [5, 5, 5], "n": 2 } },
+        { "type": "soft_object", "potential": { "type": "murakami" }, "translate": [4, 2, 5],
+          "distance": { "type": "lp_metric", "radii": [4, 4, 4], "n": 2 } } ] } }
+  ]
+})";
+}
+
+bool floor_bits_equal(const Vec3& a, const Vec3& b) {
+  return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
+}
+
+struct FloorCounts {
+  int clear = 0, listed = 0, lit = 0, below = 0;
+};
+
+// Every floor pixel of a 64x48 frame, a 2x2 block at a time with its lists, both ways.
+FloorCounts check_floor(const char* eye, const char* finish) {
+  const Scene scene = parse_scene(floor_scene_json(eye, finish), "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const PlainFloor floor(scene, rt.embree);
+  EXPECT_EQ(floor.object(), 0);
+  const ShadowBeams beams(scene, rt.tracers);
+  EXPECT_TRUE(beams.active());
+  const int width = 64, height = 48;
+  const ViewCamera camera(scene.camera, width, height);
+  const SceneObject& obj = scene.objects[0];
+  FloorCounts n;
+  for (int by = 0; by < height; by += 2)
+    for (int bx = 0; bx < width; bx += 2) {
+      std::vector<Ray> rays;
+      std::vector<TraceHit> hits;
+      std::vector<ShadowBeams::Point> points;
+      for (int y = by; y < by + 2; ++y)
+        for (int x = bx; x < bx + 2; ++x) {
+          const Ray ray = camera.generate(x + 0.5, y + 0.5);
+          const TraceHit hit = rt.embree.intersect(ray, 0, std::numeric_limits<double>::infinity());
+          if (!hit.hit || hit.object != 0) continue;
+          const Vec3 p = ray.o + ray.d * hit.t;
+          rays.push_back(ray);
+          hits.push_back(hit);
+          points.push_back({p, ray_offset(obj, p, ray.cone_at(hit.t))});
+        }
+      if (points.empty()) continue;
+      ShadowBeams::Lists lists;
+      const int count = int(points.size());
+      for (int level = 0; level < ShadowBeams::kLevels; ++level)
+        beams.build(level, points.data(), 0, count, lists);
+      ShadowLists view = beams.view(ShadowBeams::kLevels - 1, lists);
+      for (size_t i = 0; i < points.size(); ++i) {
+        view.p = points[i].p;
+        view.offset = points[i].margin;
+        RayWork plain_way, floor_way;
+        const Shaded a = shade_plain_hit(scene, rt.tracers, rt.embree, rays[i], hits[i],
+                                         obj.material, plain_way, nullptr, view);
+        const Shaded b = floor.shade(scene, rt.embree, rays[i], hits[i], floor_way, nullptr, view);
+        EXPECT_TRUE(floor_bits_equal(a.color, b.color))
+            << eye << " " << bx << "," << by << " " << i;
+        EXPECT_TRUE(floor_bits_equal(a.normal, b.normal)) << eye << " " << bx << "," << by;
+        EXPECT_TRUE(floor_bits_equal(a.albedo, b.albedo)) << eye << " " << bx << "," << by;
+        EXPECT_EQ(plain_way.rays, floor_way.rays) << eye << " " << bx << "," << by;
+        EXPECT_EQ(plain_way.evaluations(), floor_way.evaluations()) << eye;
+        EXPECT_EQ(plain_way.entered_box, floor_way.entered_box) << eye;
+        const BlobBeam* first = view.of(1);  // the directional light from above
+        (first && first[1].clear ? n.clear : n.listed)++;
+        n.lit += a.color.x > 0.25;
+        n.below += a.normal.z < 0;
+      }
+    }
+  return n;
+}
+
+const char* const kFloorShiny = R"({ "color": [0.62, 0.6, 0.55], "specular": 0.3, "roughness": 0.05,
+                                 "phong": 0.4, "brilliance": 1.5 })";
+const char* const kFloorMatte = R"({ "color": [0.62, 0.6, 0.55] })";
+
+TEST(PlainFloor, ShadesTheFloorAsShadePlainHitDoes) {
+  for (const char* finish : {kFloorShiny, kFloorMatte}) {
+    const FloorCounts above = check_floor("[16, -30, 14]", finish);
+    EXPECT_GT(above.clear, 200);   // beside the cloud: the plane's test inline
+    EXPECT_GT(above.listed, 100);  // near and under it: occluded()
+    EXPECT_GT(above.lit, 200);
+    EXPECT_EQ(above.below, 0);
+    const FloorCounts below =
+        check_floor("[16, -30, -14]", finish);  // under the floor: its normal turned
+    EXPECT_GT(below.below, 1000);
+  }
+}
+
+TEST(PlainFloor, NoneWithoutAPlainFloor) {
+  // A mirror floor takes shade()'s long way; a floor beside two primitives, Embree's.
+  const Scene mirror = parse_scene(
+      floor_scene_json("[16, -30, 14]", R"({ "color": [1, 1, 1], "reflection": 0.5 })"), "<test>");
+  const TracedScene rt(mirror, LipschitzMode::Local);
+  EXPECT_EQ(PlainFloor(mirror, rt.embree).object(), -1);
+  const Scene plain = parse_scene(R"({
+    "objects": [
+      { "shape": { "type": "plane", "normal": [0, 0, 1], "distance": -2 } },
+      { "shape": { "type": "sphere", "center": [0, 0, 0], "radius": 1 } } ] })",
+                                  "<test>");
+  const TracedScene rt2(plain, LipschitzMode::Local);
+  EXPECT_EQ(PlainFloor(plain, rt2.embree).object(), -1);
+}
+
+}  // namespace
+}  // namespace softtrace
