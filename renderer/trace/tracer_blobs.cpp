@@ -41,6 +41,7 @@ constexpr int kFewTerms = 4;
 // then); since, sweeping every list against only those over 16 blobs, callgrind, whole
 // process, 1 thread, 320x240: pov:chain -0.6 %, pov:golfball -1.0 %, cloud300 -0.8 %, the same
 // bits (the terms are taken in the list's order either way, and their events ordered alike).
+
 // A shadow ray with a block's list whose blobs on its way number at most this many takes its way
 // as one stretch (first_hit_blobs): a choice measured on pov:chain and pov:golfball, not a
 // certificate.
