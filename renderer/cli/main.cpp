@@ -1,7 +1,9 @@
 // softtrace: render, evaluate, compare and benchmark implicit soft-object scenes.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -18,6 +20,10 @@
 using namespace softtrace;
 
 namespace {
+// What --version prints (CLI11 adds the newline).
+constexpr const char kVersionLine[] =
+    "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")";
+
 // --eye, --target and --fov: `render` and `bench` move the camera alike.
 void add_camera_options(CLI::App* command, CameraArgs& view) {
   command->add_option("--eye", view.eye, "Camera eye X,Y,Z (overrides the scene's)")
@@ -75,7 +81,7 @@ CommandLine::CommandLine(const std::string& only) {
   app.option_defaults()->disable_flag_override();
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
-  app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
+  app.set_version_flag("--version", kVersionLine,
                        "Print the version and the commit it was built from");
 
   render = app.add_subcommand("render", "Render a scene to EXR and/or PNG");
@@ -237,6 +243,15 @@ CommandLine::CommandLine(const std::string& only) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `softtrace --version` alone prints the whole parser's line without the parser: setting up
+  // every command's options and CLI11's CallForVersion exception took 1.2 M of such a run's 4.0 M
+  // instructions. Like the parser's answer, it exits 0 whatever the write gave. Anything else with
+  // --version in it goes to the whole parser below.
+  if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
+    std::fputs(kVersionLine, stdout);
+    std::fputc('\n', stdout);
+    return 0;
+  }
   block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
