@@ -1,7 +1,9 @@
 // softtrace: render, evaluate, compare and benchmark implicit soft-object scenes.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -18,6 +20,10 @@
 using namespace softtrace;
 
 namespace {
+// What --version prints (CLI11 adds the newline).
+constexpr const char kVersionLine[] =
+    "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")";
+
 // --eye, --target and --fov: `render` and `bench` move the camera alike.
 void add_camera_options(CLI::App* command, CameraArgs& view) {
   command->add_option("--eye", view.eye, "Camera eye X,Y,Z (overrides the scene's)")
@@ -44,9 +50,10 @@ void add_size_options(CLI::App* command, int& width, int& height, double& scale)
 }
 
 // The command line's parser. Setting up every command's options took 0.9 M instructions at
-// each start; a run that names its command sets up only that command's (the others keep their
-// names and summaries), and anything but a clean parse (an error, --help, --version) is parsed
-// again by the whole parser, so that every message and help text is the one it gives.
+// each start; a run that names its command sets up only that command (each other one, as a CLI11
+// App of its own, cost 30,000 instructions more: a fifth of the rest), and anything but a clean
+// parse (an error, --help, --version) is parsed again by the whole parser, so that every message
+// and help text is the one it gives. A command not set up is null.
 struct CommandLine {
   explicit CommandLine(const std::string& only);  // only this command's options; "": all
 
@@ -62,10 +69,14 @@ struct CommandLine {
   MergeArgs m;
   bool dict = false;
   CLI::App *render, *eval, *mesh, *diff, *bench, *merge, *nodes;
+
+ private:
+  CLI::App* command(const std::string& only, const std::string& name, const std::string& summary) {
+    return only.empty() || only == name ? app.add_subcommand(name, summary) : nullptr;
+  }
 };
 
 CommandLine::CommandLine(const std::string& only) {
-  const bool all = only.empty();
   app.footer(
       "Exit status: 0 success; 2 bad usage or bad input; 128 + the signal when interrupted (130 "
       "SIGINT, 143 SIGTERM); diff: 0 pass, 1 warning, 2 failure, 4 an image it cannot read or "
@@ -75,11 +86,11 @@ CommandLine::CommandLine(const std::string& only) {
   app.option_defaults()->disable_flag_override();
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
-  app.set_version_flag("--version", "softtrace " SOFTTRACE_VERSION " (commit " SOFTTRACE_COMMIT ")",
+  app.set_version_flag("--version", kVersionLine,
                        "Print the version and the commit it was built from");
 
-  render = app.add_subcommand("render", "Render a scene to EXR and/or PNG");
-  if (all || only == "render") {
+  render = command(only, "render", "Render a scene to EXR and/or PNG");
+  if (render) {
     render->add_option("scene", r.scene, "Scene file (JSON with comments)")->required();
     render->add_option("-o,--output", r.outputs,
                        "Output image(s), .exr or .png; repeat for several (default: <scene>.exr)");
@@ -123,17 +134,17 @@ CommandLine::CommandLine(const std::string& only) {
     add_camera_options(render, r.view);
   }
 
-  eval = app.add_subcommand(
-      "eval", "Print 'value gx gy gz' (%.17g) of an object's field for 'x y z' lines");
-  if (all || only == "eval") {
+  eval = command(only, "eval",
+                 "Print 'value gx gy gz' (%.17g) of an object's field for 'x y z' lines");
+  if (eval) {
     eval->add_option("scene", e.scene, "Scene file")->required();
     eval->add_option("--object", e.object, "Object name (default: the first object)");
     eval->add_option("--points", e.points, "File of 'x y z' lines (default: standard input)");
   }
 
-  mesh = app.add_subcommand("mesh",
-                            "Write an object's surface as a triangle mesh (.obj .ply .stl .glb)");
-  if (all || only == "mesh") {
+  mesh =
+      command(only, "mesh", "Write an object's surface as a triangle mesh (.obj .ply .stl .glb)");
+  if (mesh) {
     mesh->add_option("scene", mesh_args.scene, "Scene file")->required();
     mesh->add_option("-o,--output", mesh_args.output, "Output mesh: .obj, .ply, .stl or .glb")
         ->required();
@@ -155,11 +166,11 @@ CommandLine::CommandLine(const std::string& only) {
         ->excludes(mesh_quiet);
   }
 
-  diff = app.add_subcommand(
-      "diff",
+  diff = command(
+      only, "diff",
       "Compare two images as OpenImageIO's idiff does (its single-dash options work too); exit 0 "
       "pass, 1 warning, 2 failure, 4 a file it cannot read or write");
-  if (all || only == "diff") {
+  if (diff) {
     const CLI::Validator threshold = threshold_value();
     diff->add_option("a", d.a, "First image (e.g. the reference)")->required();
     diff->add_option("b", d.b, "Second image")->required();
@@ -203,8 +214,8 @@ CommandLine::CommandLine(const std::string& only) {
     diff->add_flag("-v,-a", "Accepted for idiff scripts; no effect");
   }
 
-  bench = app.add_subcommand("bench", "Measure primary-ray intersection throughput");
-  if (all || only == "bench") {
+  bench = command(only, "bench", "Measure primary-ray intersection throughput");
+  if (bench) {
     bench->add_option("scene", b.scene, "Scene file")->required();
     add_size_options(bench, b.width, b.height, b.scale);
     bench->add_option("--threads", b.threads, "Worker threads (default: all cores)")
@@ -219,17 +230,17 @@ CommandLine::CommandLine(const std::string& only) {
         ->excludes(bench_quiet);
   }
 
-  merge = app.add_subcommand(
-      "merge", "Put tiles (render --tile/--crop EXRs of one frame) together into one image");
-  if (all || only == "merge") {
+  merge = command(only, "merge",
+                  "Put tiles (render --tile/--crop EXRs of one frame) together into one image");
+  if (merge) {
     merge->add_option("tiles", m.tiles, "Tile images (.exr)")->required();
     merge->add_option("-o,--output", m.output, "Merged image (.exr or .png)")->required();
     merge->add_flag("-q,--quiet", m.quiet, "No summary line");
   }
 
-  nodes = app.add_subcommand(
-      "nodes", "List the node types, potentials and radius transforms with their parameters");
-  if (all || only == "nodes") {
+  nodes = command(only, "nodes",
+                  "List the node types, potentials and radius transforms with their parameters");
+  if (nodes) {
     nodes->add_flag("--dict", dict, "Print a libFuzzer dictionary of their names instead");
   }
 }
@@ -237,6 +248,15 @@ CommandLine::CommandLine(const std::string& only) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `softtrace --version` alone prints the whole parser's line without the parser: setting up
+  // every command's options and CLI11's CallForVersion exception took 1.2 M of such a run's 4.0 M
+  // instructions. Like the parser's answer, it exits 0 whatever the write gave. Anything else with
+  // --version in it goes to the whole parser below.
+  if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
+    std::fputs(kVersionLine, stdout);
+    std::fputc('\n', stdout);
+    return 0;
+  }
   block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
@@ -284,13 +304,14 @@ int main(int argc, char** argv) {
   const CommandLine& c = *cli;
   // The watcher runs before any command starts to work: a signal that came while the libraries
   // were loading is taken now.
-  watch_interrupts(*c.render ? on_render_interrupt : exit_on_interrupt);
-  if (*c.render) return run_render(c.r);
-  if (*c.eval) return checked_standard_output(run_eval(c.e), 2);
-  if (*c.mesh) return run_mesh(c.mesh_args);
-  if (*c.diff) return checked_standard_output(run_diff(c.d), 4);  // idiff's "cannot write"
-  if (*c.bench) return checked_standard_output(run_bench(c.b), 2);
-  if (*c.merge) return run_merge(c.m);
-  if (*c.nodes) return checked_standard_output(run_nodes(c.dict), 2);
+  const auto ran = [](const CLI::App* command) { return command && command->parsed(); };
+  watch_interrupts(ran(c.render) ? on_render_interrupt : exit_on_interrupt);
+  if (ran(c.render)) return run_render(c.r);
+  if (ran(c.eval)) return checked_standard_output(run_eval(c.e), 2);
+  if (ran(c.mesh)) return run_mesh(c.mesh_args);
+  if (ran(c.diff)) return checked_standard_output(run_diff(c.d), 4);  // idiff's "cannot write"
+  if (ran(c.bench)) return checked_standard_output(run_bench(c.b), 2);
+  if (ran(c.merge)) return run_merge(c.m);
+  if (ran(c.nodes)) return checked_standard_output(run_nodes(c.dict), 2);
   return 2;
 }

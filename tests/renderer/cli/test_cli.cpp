@@ -88,6 +88,22 @@ TEST(Usage, HelpAndBadOptions) {
             2);
 }
 
+// `--version` alone takes a short path past the parser (main.cpp); with more words the whole
+// parser answers. Both give the same one line on stdout, nothing on stderr, and exit 0.
+TEST(Usage, VersionAloneIsTheParsersAnswer) {
+  const RunResult alone = run_softtrace("--version");
+  const RunResult parsed = run_softtrace("--version --version");
+  EXPECT_EQ(alone.status, 0);
+  EXPECT_EQ(parsed.status, 0);
+  EXPECT_TRUE(std::regex_match(alone.out, std::regex("softtrace [0-9.]+ \\(commit [0-9a-f]+\\)\n")))
+      << alone.out;
+  EXPECT_EQ(alone.out, parsed.out);
+  EXPECT_EQ(alone.err, "");
+  EXPECT_EQ(parsed.err, "");
+  // Not a subcommand's option: refused by the parser as before.
+  EXPECT_EQ(run_softtrace("render --version").status, 2);
+}
+
 // A misspelled subcommand or option is named, with the nearest known one (edit distance <= 2,
 // swaps of neighbours counting 1), on one line with exit 2.
 TEST(Usage, MisspellingsAreNamedWithTheNearestKnownWord) {
