@@ -25,7 +25,6 @@
 #include "render/frame_metadata.h"
 #include "render/threads.h"
 #include "render/tiles.h"
-#include "scene/scene.h"
 
 namespace softtrace {
 
@@ -156,9 +155,6 @@ int run_render(const RenderArgs& a) {
   // main() has started the signal watcher with on_render_interrupt.
   try {
     ThreadsStarting threads(a.threads);
-#ifndef SOFTTRACE_FULL_TEARDOWN
-    keep_scene_documents_until_exit();  // finish_process leaves them to the kernel as the rest
-#endif
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;

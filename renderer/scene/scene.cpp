@@ -1,10 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <memory>
-#include <mutex>
 #include <sstream>
 #include <unordered_set>
 #include <vector>
@@ -240,36 +237,10 @@ Box Scene::bounds() const {
 
 namespace {
 
-std::atomic<bool> g_keep_documents{false};
-std::mutex g_kept_guard;
-// Never destroyed: what it points to stays reachable until the exit.
-std::vector<const json*>* const g_kept = new std::vector<const json*>;
-
-// A load's document, emptied from its leaves up at the load's end (release_json), also on an
-// error's way out, or kept until the exit (keep_scene_documents_until_exit).
-class LoadedDocument {
- public:
-  explicit LoadedDocument(json doc) : doc_(std::make_unique<json>(std::move(doc))) {}
-  LoadedDocument(const LoadedDocument&) = delete;
-  LoadedDocument& operator=(const LoadedDocument&) = delete;
-  ~LoadedDocument() {
-    if (g_keep_documents.load(std::memory_order_relaxed)) {
-      const std::lock_guard<std::mutex> lock(g_kept_guard);
-      g_kept->push_back(doc_.release());
-    } else {
-      release_json(*doc_);
-    }
-  }
-  const json& get() const { return *doc_; }
-
- private:
-  std::unique_ptr<json> doc_;
-};
-
 Scene parse_scene_text(std::shared_ptr<const std::string> text_ptr, const std::string& name) {
   const std::string& text = *text_ptr;
-  const LoadedDocument loaded(parse_json_text(text, name));
-  const json& doc = loaded.get();
+  json doc = parse_json_text(text, name);
+  const ReleasedAtScopeEnd release(doc);
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
   root.check_keys(scene_keys("top level"));
@@ -324,15 +295,6 @@ Scene parse_scene_text(std::shared_ptr<const std::string> text_ptr, const std::s
 
 Scene parse_scene(const std::string& text, const std::string& name) {
   return parse_scene_text(std::make_shared<const std::string>(text), name);
-}
-
-void keep_scene_documents_until_exit() {
-  g_keep_documents = true;
-}
-
-size_t kept_scene_documents() {
-  const std::lock_guard<std::mutex> lock(g_kept_guard);
-  return g_kept->size();
 }
 
 void set_frame(Scene& scene, int frame) {

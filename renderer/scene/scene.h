@@ -193,13 +193,4 @@ constexpr size_t kMaxSceneBytes = size_t(256) << 20;
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& text, const std::string& name);
 
-// For a process that exits once its work is done (the command line's render): from this call on,
-// the JSON document a load reads is left to the exit instead of being freed after the load, where
-// freeing it took 3.8 M of a 1000-component scene's 33.8 M instructions. The documents stay
-// reachable (no leak checker counts them); a sanitizer build does not call this, so that its leak
-// check sees every free.
-void keep_scene_documents_until_exit();
-// How many documents were left so (for tests).
-size_t kept_scene_documents();
-
 }  // namespace softtrace

@@ -45,43 +45,6 @@ TEST(SceneLoading, DefaultsFollowTheConvention) {
 
 // A C++ string may hold a NUL that the file system would end the path at: "x.json\0junk" is
 // refused rather than loaded as x.json. The pixel limit is the command line's and Python's.
-// keep_scene_documents_until_exit (the command line's render) leaves each load's document to the
-// exit, also a failed load's: the scene and the error are those of a load that frees it.
-TEST(SceneLoading, KeptDocumentsGiveTheSameSceneAndError) {
-  const std::string two = std::string(R"({"name":"a","field":)") + kBall +
-                          R"(},{"name":"b","field":{"type":"soft_object","translate":[3,0,0],)" +
-                          R"("distance":{"type":"lp_metric","radii":[1,2,2],"n":2}}})";
-  const std::string bad = std::string(R"({"field":)") + kBall + R"(,"isoo":1})";
-  const auto error_of = [&] {
-    try {
-      scene_with(bad);
-    } catch (const SceneError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  const Scene freed = scene_with(two);
-  const std::string freed_error = error_of();
-  EXPECT_EQ(kept_scene_documents(), 0u);
-
-  keep_scene_documents_until_exit();
-  const Scene kept = scene_with(two);
-  EXPECT_EQ(kept_scene_documents(), 1u);
-  EXPECT_EQ(error_of(), freed_error);
-  EXPECT_NE(freed_error, "no error");
-  EXPECT_EQ(kept_scene_documents(), 2u);
-
-  ASSERT_EQ(kept.objects.size(), freed.objects.size());
-  for (size_t i = 0; i < kept.objects.size(); ++i) {
-    EXPECT_EQ(kept.objects[i].name, freed.objects[i].name);
-    EXPECT_EQ(kept.objects[i].iso, freed.objects[i].iso);
-    EXPECT_EQ(kept.objects[i].bounds.lo.x, freed.objects[i].bounds.lo.x);
-    EXPECT_EQ(kept.objects[i].bounds.hi.x, freed.objects[i].bounds.hi.x);
-  }
-  EXPECT_EQ(kept.camera.eye.x, freed.camera.eye.x);
-  EXPECT_EQ(kept.lights.size(), freed.lights.size());
-}
-
 TEST(SceneLoading, PathsWithNulAndThePixelLimit) {
   const std::string path = std::string(SOFTTRACE_SOURCE_DIR "/scenes/fig000_12b_soft_blend.json");
   EXPECT_NO_THROW(load_scene(path));
