@@ -268,9 +268,9 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   const bool sweep = camera_list && blobs_->size() > BlobSum::kListed;
   //
   // A shadow ray with a block's list whose blobs on its way (their ranges meeting [t0, t1] on the
-  // list's axis) number at most kWholeShadowList takes its way as one stretch as well: each of those
-  // blobs' terms once. In stretches of two typical radii (chain's 48 capsules: 3.0 stretches a
-  // shadow ray), a blob that two stretches' ends cut had its terms taken twice, and each stretch
+  // list's axis) number at most kWholeShadowList takes its way as one stretch as well: each of
+  // those blobs' terms once. In stretches of two typical radii (chain's 48 capsules: 3.0 stretches
+  // a shadow ray), a blob that two stretches' ends cut had its terms taken twice, and each stretch
   // paid its segment, its scan of the list and its events. The count is a choice, not a
   // certificate: each stretch takes the listed blobs whose ranges meet its own, whatever its
   // length. A longer list (a floor's under a dense cloud) keeps the stretches, whose first may

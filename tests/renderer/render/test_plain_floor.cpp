@@ -24,6 +24,17 @@
 namespace softtrace {
 namespace {
 
+// Seven small balls inside the large one, so that the sum has more blobs than
+// ShadowBeams::kFewBlobs and takes shadow lists (a sum of fewer walks its shadow rays whole).
+std::string small_balls() {
+  std::string balls;
+  for (int i = 0; i < 7; ++i)
+    balls += R"(, { "type": "soft_object", "potential": { "type": "murakami" }, "translate": [)" +
+             std::to_string(i - 3) +
+             R"(, 0, 3], "distance": { "type": "lp_metric", "radii": [0.5, 0.5, 0.5], "n": 2 } })";
+  return balls;
+}
+
 std::string floor_scene_json(const char* eye, const char* finish) {
   return std::string(R"({
   "camera": { "eye": )") +
@@ -44,7 +55,8 @@ std::string floor_scene_json(const char* eye, const char* finish) {
         { "type": "soft_object", "potential": { "type": "murakami" }, "translate": [0, 0, 3],
           "distance": { "type": "lp_metric", "radii": [5, 5, 5], "n": 2 } },
         { "type": "soft_object", "potential": { "type": "murakami" }, "translate": [4, 2, 5],
-          "distance": { "type": "lp_metric", "radii": [4, 4, 4], "n": 2 } } ] } }
+          "distance": { "type": "lp_metric", "radii": [4, 4, 4], "n": 2 } })" +
+         small_balls() + R"( ] } }
   ]
 })";
 }
