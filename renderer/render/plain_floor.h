@@ -97,19 +97,9 @@ class PlainFloor {
         if (t.shadows && highlights) shine += phong_and_specular(m, n, ray.d, t.to_light, t.light);
         continue;
       }
-      // Point, spot and area lights: shade_plain's loop, at this point.
-      const Light& l = scene.lights[li];
-      LightArrival at;
-      if (!light_arrival(l, shadow.p, lifted, at)) continue;
-      const double cosine = dot(n, at.to_light);
-      if (cosine <= 0) continue;
-      Vec3 arrived = at.light;
-      const double seen = light_visibility(l, at, lifted, cone0, ray.cone, rt, secondary, cancel,
-                                           shadow.of(int(li)));
-      if (seen == 0) continue;
-      if (seen != 1) arrived = at.light * seen;
-      light += diffuse_light(m, cosine, arrived);
-      if (l.shadows && highlights) shine += phong_and_specular(m, n, ray.d, at.to_light, arrived);
+      // Point, spot and area lights: shade_plain's light, at this point.
+      add_positional_light(scene.lights[li], m, ray.d, shadow.p, n, lifted, cone0, ray.cone, rt,
+                           secondary, cancel, &shadow, int(li), light, shine);
     }
     Vec3 color = mul(m.color, light);
     if (highlights && (shine.x != 0 || shine.y != 0 || shine.z != 0)) color += shine;

@@ -86,6 +86,30 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
   return ray.cone_at(hit.t);
 }
 
+// A point, spot or area light l's diffuse term (into `light`) and highlight (into `shine`) at a
+// shades_plain() point p, normal n facing the viewer along d, its shadow rays leaving from `lifted`
+// with the block's lists of light `li` in `shadow` (or none): shade_plain's and PlainFloor's
+// (plain_floor.h) light.
+[[gnu::always_inline]] inline void add_positional_light(
+    const Light& l, const Material& m, const Vec3& d, const Vec3& p, const Vec3& n,
+    const Vec3& lifted, double cone0, double cone, const EmbreeScene& rt, RayWork& secondary,
+    const std::atomic<bool>* cancel, const ShadowLists* shadow, int li, Vec3& light, Vec3& shine) {
+  LightArrival at;
+  if (!light_arrival(l, p, lifted, at)) return;
+  const double cosine = dot(n, at.to_light);
+  if (cosine <= 0) return;
+  Vec3 arrived = at.light;
+  const double seen = light_visibility(l, at, lifted, cone0, cone, rt, secondary, cancel,
+                                       shadow ? shadow->of(li) : nullptr);
+  if (seen == 0) return;
+  if (seen != 1) arrived = at.light * seen;
+  light += diffuse_light(m, cosine, arrived);
+  // A matte finish's highlights are zero (highlights()), and `shine` is added only where the
+  // finish has some: not summed.
+  if (l.shadows && (m.phong > 0 || m.specular > 0))
+    shine += phong_and_specular(m, n, d, at.to_light, arrived);
+}
+
 // shade()'s light loop and colour for a shades_plain() point at p, normal n facing the viewer
 // along d, its shadow rays leaving from `lifted`: without the blends', the transmitted and the
 // mirror rays' state (130 instructions a point less).
@@ -107,20 +131,8 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
       light += mul(m.ambient, l.color * l.intensity);
       continue;
     }
-    LightArrival at;
-    if (!light_arrival(l, p, lifted, at)) continue;
-    const double cosine = dot(n, at.to_light);
-    if (cosine <= 0) continue;
-    Vec3 arrived = at.light;
-    const double seen = light_visibility(l, at, lifted, cone0, cone, rt, secondary, cancel,
-                                         shadow ? shadow->of(int(li)) : nullptr);
-    if (seen == 0) continue;
-    if (seen != 1) arrived = at.light * seen;
-    light += diffuse_light(m, cosine, arrived);
-    // A matte finish's highlights are zero (highlights()), and `shine` is added below only where
-    // the finish has some: not summed.
-    if (l.shadows && (m.phong > 0 || m.specular > 0))
-      shine += phong_and_specular(m, n, d, at.to_light, arrived);
+    add_positional_light(l, m, d, p, n, lifted, cone0, cone, rt, secondary, cancel, shadow, int(li),
+                         light, shine);
   }
   Vec3 color = mul(m.color, light);
   // A matte finish's shine is zero (highlights()): no three comparisons to find that out.
