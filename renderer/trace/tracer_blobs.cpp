@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "eval/blob_frame_terms.h"
 #include "kernels/potentials.h"
 #include "trace/blob_events.h"
 #include "trace/tracer.h"
@@ -383,7 +384,8 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         }
         continue;
       }
-      const int k = blobs_->terms_of_one(e.id, seg.a, ray.d, dd, len, terms + n);
+      // BlobSum::terms_of_one with a capsule's or ellipsoid's terms inline (blob_frame_terms.h).
+      const int k = blob_frame::terms_of_one(*blobs_, e.id, seg.a, ray.d, dd, len, terms + n);
       // Their events among those ahead, kept in order (of equal events, the one taken first
       // first).
       for (int i = n; i < n + k; ++i) events.add(terms[i].enter, terms[i].exit, i);

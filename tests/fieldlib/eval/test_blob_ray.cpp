@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "eval/blob_frame_terms.h"
 #include "eval/blob_ray.h"
 #include "eval/eval.h"
 #include "kernels/potentials.h"
@@ -295,8 +296,9 @@ TEST(BlobSum, ListedBlobsArePiecewiseOnePolynomialToo) {
   expect_pieces_are_polynomials_of_the_field(cloud, 10);
 }
 
-// A capsule's or ellipsoid's terms one blob at a time (terms_of_one: a camera sweep's, through
-// BlobSum::frame_terms) are those of a list's (terms_of, its own inline copy) to the bit, and a
+// A capsule's or ellipsoid's terms one blob at a time (terms_of_one, through BlobSum::frame_terms,
+// and blob_frame::terms_of_one, the camera sweep's, inline) are those of a list's (terms_of, its
+// own inline copy) to the bit, and a
 // stretch that passes clear of a blob's bounding sphere gets no term of it: terms_of takes no
 // sphere test before a frame, so that must come from the frame's own arithmetic.
 TEST(BlobSum, FramedTermsOneAtATimeAreTheListsToTheBit) {
@@ -306,7 +308,7 @@ TEST(BlobSum, FramedTermsOneAtATimeAreTheListsToTheBit) {
   ASSERT_GT(sum.size(), BlobSum::kListed);
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> unit(-1, 1);
-  std::vector<BlobSum::Term> listed(sum.max_terms()), single(sum.max_terms());
+  std::vector<BlobSum::Term> listed(sum.max_terms()), single(sum.max_terms()), inline_one(3);
   int compared = 0, clear = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     std::vector<int32_t> ids;
@@ -321,6 +323,11 @@ TEST(BlobSum, FramedTermsOneAtATimeAreTheListsToTheBit) {
     int m = 0;
     for (const int32_t id : ids) {
       const int k = sum.terms_of_one(id, o, d, dd, len, single.data() + m);
+      ASSERT_EQ(blob_frame::terms_of_one(sum, id, o, d, dd, len, inline_one.data()), k)
+          << "blob " << id << ", trial " << trial;
+      for (int i = 0; i < k; ++i)
+        ASSERT_EQ(std::memcmp(&inline_one[i], &single[m + i], sizeof(BlobSum::Term)), 0)
+            << "blob " << id << "'s inline term " << i << ", trial " << trial;
       Vec3 centre;
       const double reach2 = sum.bounding_sphere(id, &centre);
       const Vec3 oc = o - centre;
