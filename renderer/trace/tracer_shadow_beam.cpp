@@ -100,9 +100,14 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
                          same(parent->prism.v, p.v);
   if (same_axes) {
     // The parent's prism has the same origin and axes: its numbers are what keep() would compute.
-    for (size_t i = 0; i < parent->entries.size(); ++i) {
-      const BlobBeam::Entry& e = parent->entries[i];
-      const BlobBeam::Across& a = parent->across[i];
+    // The parent's size and data read once: each push_back below may, for all the compiler
+    // knows, write the parent's vectors, which made the loop reload its size every entry.
+    const size_t n_parent = parent->entries.size();
+    const BlobBeam::Entry* const from = parent->entries.data();
+    const BlobBeam::Across* const from_across = parent->across.data();
+    for (size_t i = 0; i < n_parent; ++i) {
+      const BlobBeam::Entry& e = from[i];
+      const BlobBeam::Across& a = from_across[i];
       if (a.x < p.x0 - a.reach || a.x > p.x1 + a.reach || a.y < p.y0 - a.reach ||
           a.y > p.y1 + a.reach || e.far < p.z0)
         continue;
@@ -176,9 +181,13 @@ void ObjectTracer::toward_beam(const Frustum& f, const ShadowPrism& p, const Blo
   const Vec3 normals[4] = {(p.u - p.along * p.x0) / hx0, (p.along * p.x1 - p.u) / hx1,
                            (p.v - p.along * p.y0) / hy0, (p.along * p.y1 - p.v) / hy1};
   const double eye = max_abs(p.origin);
-  for (size_t i = 0; i < parent->entries.size(); ++i) {
-    const BlobBeam::Entry& e = parent->entries[i];
-    const BlobBeam::Across& a = parent->across[i];
+  // The parent's size and data read once, as in shadow_beam.
+  const size_t n_parent = parent->entries.size();
+  const BlobBeam::Entry* const from = parent->entries.data();
+  const BlobBeam::Across* const from_across = parent->across.data();
+  for (size_t i = 0; i < n_parent; ++i) {
+    const BlobBeam::Entry& e = from[i];
+    const BlobBeam::Across& a = from_across[i];
     if (!(a.reach < kInf)) {
       out->entries.push_back(e);
       out->across.push_back(a);
