@@ -1,6 +1,7 @@
 #include "io/file_read.h"
 
-#include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -21,14 +22,19 @@ std::string read_file_bounded(const std::string& path, size_t limit, const std::
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileReadError(path + ": cannot open the " + what + " file");
   std::string bytes;
+  // A regular file's size as the string's first capacity: grown by appends, a 222 KB scene was
+  // copied again at 128 and 256 KB. Only a hint (no size for a device or a pipe, none beyond the
+  // limit, which the read refuses): the read itself decides how much there is.
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size <= limit) bytes.reserve(size_t(size));
   std::vector<char> block(1 << 16);
   while (in) {
     in.read(block.data(), std::streamsize(block.size()));
     const size_t got = size_t(in.gcount());
     bytes.append(block.data(), got);
-    if (at_nul == AtNul::Stop && std::find(block.begin(), block.begin() + std::ptrdiff_t(got),
-                                           '\0') != block.begin() + std::ptrdiff_t(got))
-      break;
+    // memchr, not std::find: the C library's scans 32 bytes a step where std::find took ~3
+    // instructions a byte (0.6 M of a 1000-component scene's load).
+    if (at_nul == AtNul::Stop && std::memchr(block.data(), '\0', got) != nullptr) break;
     if (bytes.size() > limit)
       throw FileReadError(path + ": larger than " + std::to_string(limit >> 20) + " MiB; a " +
                           what + " file may be at most that");

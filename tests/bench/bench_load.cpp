@@ -2,13 +2,19 @@
 // load in under 5 ms): the JSON text parsed and every node built (`parse_scene`), and then the
 // traced objects compiled (programs, the blobs' BVH). The text is what tools/blob_scene.py N
 // writes: murakami spheres in a cube of side 40, indented by one space, numbers of 6 decimals.
+// BM_LoadSceneFile times a scene file of your choosing (SOFTTRACE_BENCH_SCENE=path) from its bytes
+// on disk to a scene ready to trace: read, parsed, every node built and checked, the traced
+// objects compiled (programs, the blobs' BVH), every object's tracer and the Embree scene made,
+// as `softtrace render` makes them before its first ray.
 // Not a test: run build/tests/softtrace_bench --benchmark_filter=Load.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "render/frame.h"
 #include "scene/scene.h"
 #include "scene/traced_objects.h"
 
@@ -55,6 +61,20 @@ void BM_LoadAndCompileScene(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_LoadAndCompileScene)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_LoadSceneFile(benchmark::State& state) {
+  const char* path = std::getenv("SOFTTRACE_BENCH_SCENE");
+  if (!path) {
+    state.SkipWithError("set SOFTTRACE_BENCH_SCENE to a scene file");
+    return;
+  }
+  for (auto _ : state) {
+    const Scene scene = load_scene(path);
+    const TracedScene traced(scene, LipschitzMode::Local);
+    benchmark::DoNotOptimize(&traced);
+  }
+}
+BENCHMARK(BM_LoadSceneFile)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace softtrace

@@ -43,6 +43,19 @@ TEST(Kinds, TableIsWellFormed) {
   }
 }
 
+// find_kind answers from an index of the table: each kind under its own name and group, nothing
+// under another group, a near name or a name with more bytes after a NUL.
+TEST(Kinds, FindKindIsTheTablesOwnEntryInItsGroupOnly) {
+  const KindGroup groups[] = {KindGroup::Node, KindGroup::Potential, KindGroup::RadiusTransform};
+  for (const auto& k : kinds())
+    for (const KindGroup g : groups)
+      EXPECT_EQ(find_kind(k.name, g), g == k.group ? &k : nullptr) << k.name << " " << int(g);
+  EXPECT_EQ(find_kind("soft_objec", KindGroup::Node), nullptr);
+  EXPECT_EQ(find_kind("", KindGroup::Node), nullptr);
+  EXPECT_EQ(find_kind(std::string("murakami\0x", 10), KindGroup::Potential), nullptr);
+  ASSERT_NE(find_kind("murakami", KindGroup::Potential), nullptr);
+}
+
 // libfive's habit: a kind without a sweep case is a kind whose bounds nobody checks.
 TEST(Kinds, SweepHasACaseForEveryKind) {
   std::set<std::string> roots, anywhere;
