@@ -314,6 +314,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     s.balls_ += blob.inv_r2 > 0;
     s.frames_.push_back(frame);
     s.blobs_.push_back(blob);
+    s.adders_ += s.adds(s.size() - 1);
     s.outlines_.push_back(outline);
     next = c.end;
   }

@@ -101,6 +101,12 @@ class BlobSum {
   int size() const { return static_cast<int>(blobs_.size()); }
   // Whether every blob is a ball (a cloud's): any four of them may go to ball_terms4.
   bool all_balls() const { return balls_ == size(); }
+  // Whether blob `id` may add to the sum: its potential c2 r^2 + c3 r^3 is positive for some r in
+  // (0, 1]. One that never does (a negative strength: c2, c3 <= 0) only subtracts, so it can
+  // remove surface but never make any, and its terms' peaks are 0 (Term::peak).
+  bool adds(int id) const { return blobs_[id].c2 > 0 || blobs_[id].c3 > 0; }
+  // Whether some blob only subtracts (!adds).
+  bool subtracts() const { return adders_ < size(); }
   // The most terms one stretch can have: one per ellipsoid, three per capsule.
   int max_terms() const { return size() + 2 * capsules_; }
   // The median of the blobs' mean support radii: how long a stretch meets a few of them.
@@ -207,6 +213,7 @@ class BlobSum {
   BallLanes lanes_ = ball_lanes_scalar;  // ball_terms4's kernel for this CPU
   int capsules_ = 0;                     // frames with an axis
   int balls_ = 0;                        // blobs that are balls (inv_r2 > 0)
+  int adders_ = 0;                       // blobs that may add (adds)
   double typical_radius_ = 0;
 };
 

@@ -80,6 +80,12 @@ struct BlobBeam {
   bool valid = false;  // false: no list (the object is no blob sum, or no frustum holds the rays)
   Vec3 eye;
   std::vector<Entry> entries;
+  // A camera list of a sum of more than BlobSum::kListed blobs, some of whose entries only
+  // subtract (BlobSum::adds; a negative strength's): `sifted`, and `adders` the positions in
+  // `entries`, in order, of those that may add (none, where all of them subtract). A ray's sweep
+  // takes the adders first (first_hit_blobs).
+  bool sifted = false;
+  std::vector<int32_t> adders;
   // A shadow list (ObjectTracer::shadow_beam) instead of a camera list: `near`, `far` are the
   // range of z (ShadowPrism) where the blob's support lies.
   bool parallel = false;

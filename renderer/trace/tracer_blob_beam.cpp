@@ -47,6 +47,8 @@ void side_normals(const Frustum& f, Vec3 (&normals)[4]) {
 void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out) const {
   out->valid = false;
   out->entries.clear();
+  out->sifted = false;
+  out->adders.clear();
   if (!blobs_) return;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec3 normals[4];
@@ -124,6 +126,12 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
                 [](const BlobBeam::Entry& a, const BlobBeam::Entry& b) {
                   return a.near < b.near || (a.near == b.near && a.id < b.id);
                 });
+  }
+  if (out->camera() && blobs_->size() > BlobSum::kListed && blobs_->subtracts()) {
+    const int n = static_cast<int>(out->entries.size());
+    for (int i = 0; i < n; ++i)
+      if (blobs_->adds(out->entries[i].id)) out->adders.push_back(i);
+    out->sifted = static_cast<int>(out->adders.size()) < n;
   }
   out->eye = f.eye;
   out->valid = true;
