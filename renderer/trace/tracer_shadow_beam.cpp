@@ -58,6 +58,26 @@ bool BlobBeam::holds_toward(const Ray& ray, double t1, double* base) const {
   return true;
 }
 
+namespace {
+// Appends to `out` the parent list's entries, each with its Across, that `keeps(entry, across)`
+// holds, in the parent's order: a child list (shadow_beam, toward_beam) is its parent's, thinned.
+// The parent's size and data are read once: each push_back may, for all the compiler knows, write
+// the parent's vectors, which made the loop reload its size every entry (meets10 at 320x240:
+// 230,000 entries, 1.6 M instructions).
+template <class Keeps>
+[[gnu::always_inline]] inline void keep_from_parent(const BlobBeam& parent, Keeps keeps,
+                                                    BlobBeam* out) {
+  const size_t n = parent.entries.size();
+  const BlobBeam::Entry* const entries = parent.entries.data();
+  const BlobBeam::Across* const across = parent.across.data();
+  for (size_t i = 0; i < n; ++i) {
+    if (!keeps(entries[i], across[i])) continue;
+    out->entries.push_back(entries[i]);
+    out->across.push_back(across[i]);
+  }
+}
+}  // namespace
+
 void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, BlobBeam* out) const {
   out->valid = false;
   out->clear = false;
@@ -100,20 +120,13 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
                          same(parent->prism.v, p.v);
   if (same_axes) {
     // The parent's prism has the same origin and axes: its numbers are what keep() would compute.
-    // The parent's size and data read once: each push_back below may, for all the compiler
-    // knows, write the parent's vectors, which made the loop reload its size every entry.
-    const size_t n_parent = parent->entries.size();
-    const BlobBeam::Entry* const from = parent->entries.data();
-    const BlobBeam::Across* const from_across = parent->across.data();
-    for (size_t i = 0; i < n_parent; ++i) {
-      const BlobBeam::Entry& e = from[i];
-      const BlobBeam::Across& a = from_across[i];
-      if (a.x < p.x0 - a.reach || a.x > p.x1 + a.reach || a.y < p.y0 - a.reach ||
-          a.y > p.y1 + a.reach || e.far < p.z0)
-        continue;
-      out->entries.push_back(e);
-      out->across.push_back(a);
-    }
+    keep_from_parent(
+        *parent,
+        [&](const BlobBeam::Entry& e, const BlobBeam::Across& a) {
+          return !(a.x < p.x0 - a.reach || a.x > p.x1 + a.reach || a.y < p.y0 - a.reach ||
+                   a.y > p.y1 + a.reach || e.far < p.z0);
+        },
+        out);
   } else {
     // The prism's sides: x >= x0, x <= x1, y >= y0, y <= y1, each as dot(c - origin, n) >= -pad.
     const Vec3 normals[4] = {p.u, -p.u, p.v, -p.v};
@@ -181,32 +194,22 @@ void ObjectTracer::toward_beam(const Frustum& f, const ShadowPrism& p, const Blo
   const Vec3 normals[4] = {(p.u - p.along * p.x0) / hx0, (p.along * p.x1 - p.u) / hx1,
                            (p.v - p.along * p.y0) / hy0, (p.along * p.y1 - p.v) / hy1};
   const double eye = max_abs(p.origin);
-  // The parent's size and data read once, as in shadow_beam.
-  const size_t n_parent = parent->entries.size();
-  const BlobBeam::Entry* const from = parent->entries.data();
-  const BlobBeam::Across* const from_across = parent->across.data();
-  for (size_t i = 0; i < n_parent; ++i) {
-    const BlobBeam::Entry& e = from[i];
-    const BlobBeam::Across& a = from_across[i];
-    if (!(a.reach < kInf)) {
-      out->entries.push_back(e);
-      out->across.push_back(a);
-      continue;
-    }
-    if (a.x - p.x1 * a.depth > a.reach * hx1 || p.x0 * a.depth - a.x > a.reach * hx0 ||
-        a.y - p.y1 * a.depth > a.reach * hy1 || p.y0 * a.depth - a.y > a.reach * hy0)
-      continue;
-    if (blobs_->is_framed(e.id)) {
-      // blob_beam's slack, 1e-9 (distance + r + eye), with the range's half-width for r.
-      const double slack = 1e-9 * (-0.5 * (e.near + e.far) + 0.5 * (e.far - e.near) + eye);
-      bool outside = false;
-      for (const Vec3& n : normals)
-        outside = outside || blobs_->support_extent(e.id, n) - dot(n, p.origin) < -slack;
-      if (outside) continue;
-    }
-    out->entries.push_back(e);
-    out->across.push_back(a);
-  }
+  keep_from_parent(
+      *parent,
+      [&](const BlobBeam::Entry& e, const BlobBeam::Across& a) {
+        if (!(a.reach < kInf)) return true;
+        if (a.x - p.x1 * a.depth > a.reach * hx1 || p.x0 * a.depth - a.x > a.reach * hx0 ||
+            a.y - p.y1 * a.depth > a.reach * hy1 || p.y0 * a.depth - a.y > a.reach * hy0)
+          return false;
+        if (!blobs_->is_framed(e.id)) return true;
+        // blob_beam's slack, 1e-9 (distance + r + eye), with the range's half-width for r.
+        const double slack = 1e-9 * (-0.5 * (e.near + e.far) + 0.5 * (e.far - e.near) + eye);
+        bool outside = false;
+        for (const Vec3& n : normals)
+          outside = outside || blobs_->support_extent(e.id, n) - dot(n, p.origin) < -slack;
+        return !outside;
+      },
+      out);
   out->valid = true;
 }
 
