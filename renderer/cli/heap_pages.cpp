@@ -1,0 +1,59 @@
+#include "cli/heap_pages.h"
+
+#include <cstdlib>
+
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#include <malloc.h>
+#include <sys/mman.h>
+#if defined(MADV_HUGEPAGE)
+#define SOFTTRACE_HEAP_HUGE_PAGES 1
+#endif
+#endif
+
+namespace softtrace {
+
+#ifdef SOFTTRACE_HEAP_HUGE_PAGES
+
+namespace {
+
+constexpr size_t kHuge = size_t(1) << 21;  // x86-64's transparent huge page
+// Blocks below this come from the heap's top, not from mappings of their own (glibc's default
+// threshold starts at 128 KiB), and a top this large stays the process's when blocks are freed.
+constexpr int kFromHeapBelow = 16 << 20;
+constexpr int kTrimAbove = 32 << 20;
+// glibc's block header: a block handed out at p begins 16 bytes before p, and one of n bytes
+// asked for takes n + 8 rounded up to 16 (the next block's first word is this one's last).
+constexpr size_t kHeader = 16;
+constexpr size_t kMinBlock = 32;
+
+}  // namespace
+
+HeapPages heap_in_huge_pages(size_t bytes) {
+  bytes = (bytes + kHuge - 1) / kHuge * kHuge;
+  if (bytes == 0 || bytes > size_t(kFromHeapBelow) - kHuge) return {};
+  if (!mallopt(M_MMAP_THRESHOLD, kFromHeapBelow) || !mallopt(M_TRIM_THRESHOLD, kTrimAbove))
+    return {};
+  // A block this large comes from the top, which grows to hold it; freed, it is the top again.
+  char* const block = static_cast<char*>(std::malloc(bytes + kHuge));
+  if (!block) return {};
+  const uintptr_t start = reinterpret_cast<uintptr_t>(block);
+  const uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
+  std::free(block);
+  // The front, from the top's start to the boundary, as one block kept for the process's life:
+  // the next block then begins at the boundary.
+  static void* front = nullptr;
+  if (aligned - start >= kMinBlock) front = std::malloc(aligned - start - kHeader / 2);
+  if (aligned - start >= kMinBlock && !front) return {};
+  if (::madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE) != 0) return {};
+  return {aligned, aligned + bytes};
+}
+
+#else
+
+HeapPages heap_in_huge_pages(size_t) {
+  return {};
+}
+
+#endif
+
+}  // namespace softtrace

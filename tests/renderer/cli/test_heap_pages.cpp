@@ -1,0 +1,49 @@
+// The process's heap in huge pages (cli/heap_pages.h): the range advised starts at a 2 MiB
+// boundary, the heap's next block from its top starts exactly there, and the kernel counts the
+// range as eligible for huge pages where it grants them on advice.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cli/heap_pages.h"
+#include "huge_pages.h"
+
+namespace softtrace {
+namespace {
+
+constexpr size_t kHugePage = size_t(1) << 21;
+
+TEST(HeapPages, TheHeapCarvesItsBlocksFromTheAdvisedBoundaryOn) {
+  const HeapPages range = heap_in_huge_pages(3 * (size_t(1) << 20));  // rounds up to 4 MiB
+  if (range.begin == range.end) {
+    GTEST_SKIP() << "this build's C library takes no such advice";
+  }
+  EXPECT_EQ(range.begin % kHugePage, 0u);
+  EXPECT_EQ(range.end - range.begin, 2 * kHugePage);
+  // Blocks of 100 KiB, 5 MB in all: the heap's free lists serve what they hold first, then the
+  // top, whose first block must begin at the boundary (the front before it kept out of use).
+  std::vector<std::unique_ptr<char[]>> blocks;
+  for (int i = 0; i < 50; ++i) blocks.emplace_back(new char[100 << 10]);
+  const bool at_boundary = std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) {
+    return reinterpret_cast<uintptr_t>(b.get()) == range.begin;
+  });
+  EXPECT_TRUE(at_boundary);
+  if (test::huge_pages_on_advice()) {
+    const int eligible = test::thp_eligible(reinterpret_cast<const void*>(range.begin));
+    if (eligible >= 0) {
+      EXPECT_EQ(eligible, 1);
+    }
+  }
+}
+
+TEST(HeapPages, NothingIsAdvisedForNothingOrForMoreThanTheHeapServes) {
+  EXPECT_EQ(heap_in_huge_pages(0).begin, heap_in_huge_pages(0).end);
+  const HeapPages too_big = heap_in_huge_pages(size_t(64) << 20);
+  EXPECT_EQ(too_big.begin, too_big.end);
+}
+
+}  // namespace
+}  // namespace softtrace
