@@ -147,7 +147,8 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
     // every ray of the block, which meets no solid (an empty list's walk answers the same after
     // one stretch, counted in the steps AOV; a clear ray counts none). Its quarters' and blocks'
     // are then clear with no prism (above). The floor's blocks inside the box's shadow but outside
-    // every blob's are (1000 blobs at 640x480: 10,000 of the 50,000 floor points with lists).
+    // every blob's are (1000 blobs at 640x480: the rays of 3,251 of the 41,689 floor points whose
+    // rays entered the box).
     if (list.valid && list.entries.empty()) {
       list.valid = false;
       list.clear = true;
