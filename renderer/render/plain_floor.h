@@ -47,10 +47,13 @@ class PlainFloor {
       terms_.push_back(t);
     }
     object_ = floor_.object;
+    lean_colours();
   }
 
   // The floor's object, or -1.
   int object() const { return object_; }
+  // Whether a point's colour is looked up by which of its shadow rays are blocked (lean_colours).
+  bool lean() const { return !lean_.empty(); }
 
   // shade_plain_hit(scene, tracers, rt, ray, hit, material, secondary, cancel, shadow) for a
   // camera hit on object() (no CSG face), with its block's lists.
@@ -64,46 +67,20 @@ class PlainFloor {
     const Vec3 n = normal_[side];
     const double cone0 = footprint_at(ray, hit);
     const Vec3 lifted = shadow.p + n * shadow.offset;
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    Vec3 light{0, 0, 0}, shine{0, 0, 0};
-    const bool highlights = m.phong > 0 || m.specular > 0;
-    const Term* const terms = terms_.data();
-    const size_t count = terms_.size();
-    for (size_t li = 0; li < count; ++li) {
-      if (cancel_requested(cancel)) break;
-      const Term& t = terms[li];
-      if (t.kind == Term::Ambient) {
-        light += t.ambient;
-        continue;
+    if (lean()) {
+      // Only the shadow rays differ from point to point: which of the lights they find blocked
+      // picks the colour the loop below would sum (lean_colours).
+      unsigned blocked = 0;
+      for (size_t j = 0; j < shadowed_.size(); ++j) {
+        const size_t li = shadowed_[j];
+        if (terms_[li].cosine[side] <= 0) continue;
+        if (cancel_requested(cancel)) break;
+        if (blocked_towards(terms_[li], li, lifted, cone0, ray, rt, secondary, shadow))
+          blocked |= 1u << j;
       }
-      if (t.kind == Term::Directional) {
-        if (t.cosine[side] <= 0) continue;
-        if (t.shadows) {
-          const BlobBeam* lists = shadow.of(int(li));
-          const Ray towards{lifted, t.to_light, cone0, ray.cone};
-          bool blocked;
-          if (lists && lists[floor_.field].clear) {
-            // occluded(): the plane's test, then a clear list's no (EmbreeScene::Floor).
-            blocked = !std::isnan(unplaced_plane_end(*floor_.plane, towards, 0, kInf));
-            ++secondary.rays;  // add() of no work
-          } else {
-            TraceCounters work;
-            blocked = rt.occluded(towards, 0, kInf, work, lists);
-            secondary.add(work);
-          }
-          if (blocked) continue;
-        }
-        light += t.diffuse[side];
-        if (t.shadows && highlights) shine += phong_and_specular(m, n, ray.d, t.to_light, t.light);
-        continue;
-      }
-      // Point, spot and area lights: shade_plain's light, at this point.
-      add_positional_light(scene.lights[li], m, ray.d, shadow.p, n, lifted, cone0, ray.cone, rt,
-                           secondary, cancel, &shadow, int(li), light, shine);
+      return {lean_[size_t(side) << shadowed_.size() | blocked], n, m.color};
     }
-    Vec3 color = mul(m.color, light);
-    if (highlights && (shine.x != 0 || shine.y != 0 || shine.z != 0)) color += shine;
-    return {color, n, m.color};
+    return shade_lights(scene, rt, ray, side, lifted, cone0, secondary, cancel, shadow);
   }
 
  private:
@@ -117,11 +94,107 @@ class PlainFloor {
     double cosine[2] = {0, 0};
     Vec3 diffuse[2];  // diffuse_light(m, cosine, light)
   };
+
+  // shade()'s sum over the lights in their order, at the point lifted to `lifted`. Out of line:
+  // inline, its registers cost every hit of the 1000-blob frame without the floor a few
+  // instructions in the tile's loop (0.95 M of 1,147 M).
+  [[gnu::noinline]] Shaded shade_lights(const Scene& scene, const EmbreeScene& rt, const Ray& ray,
+                                        int side, const Vec3& lifted, double cone0,
+                                        RayWork& secondary, const std::atomic<bool>* cancel,
+                                        const ShadowLists& shadow) const {
+    const Material& m = *m_;
+    const Vec3 n = normal_[side];
+    Vec3 light{0, 0, 0}, shine{0, 0, 0};
+    const bool highlights = m.phong > 0 || m.specular > 0;
+    const Term* const terms = terms_.data();
+    const size_t count = terms_.size();
+    for (size_t li = 0; li < count; ++li) {
+      if (cancel_requested(cancel)) break;
+      const Term& t = terms[li];
+      if (t.kind == Term::Ambient) {
+        light += t.ambient;
+        continue;
+      }
+      if (t.kind == Term::Directional) {
+        if (t.cosine[side] <= 0) continue;
+        if (t.shadows && blocked_towards(t, li, lifted, cone0, ray, rt, secondary, shadow))
+          continue;
+        light += t.diffuse[side];
+        if (t.shadows && highlights) shine += phong_and_specular(m, n, ray.d, t.to_light, t.light);
+        continue;
+      }
+      // Point, spot and area lights: shade_plain's light, at this point.
+      add_positional_light(scene.lights[li], m, ray.d, shadow.p, n, lifted, cone0, ray.cone, rt,
+                           secondary, cancel, &shadow, int(li), light, shine);
+    }
+    Vec3 color = mul(m.color, light);
+    if (highlights && (shine.x != 0 || shine.y != 0 || shine.z != 0)) color += shine;
+    return {color, n, m.color};
+  }
+
+  // Whether directional light li's shadow ray from `lifted` is blocked, its work counted.
+  [[gnu::always_inline]] bool blocked_towards(const Term& t, size_t li, const Vec3& lifted,
+                                              double cone0, const Ray& ray, const EmbreeScene& rt,
+                                              RayWork& secondary, const ShadowLists& shadow) const {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const BlobBeam* lists = shadow.of(int(li));
+    const Ray towards{lifted, t.to_light, cone0, ray.cone};
+    if (lists && lists[floor_.field].clear) {
+      // occluded(): the plane's test, then a clear list's no (EmbreeScene::Floor).
+      ++secondary.rays;  // add() of no work
+      return !std::isnan(unplaced_plane_end(*floor_.plane, towards, 0, kInf));
+    }
+    TraceCounters work;
+    const bool blocked = rt.occluded(towards, 0, kInf, work, lists);
+    secondary.add(work);
+    return blocked;
+  }
+
+  // Where the floor's material has no highlight and its lights are ambient and directional ones
+  // (at most kLean of them with shadows), a point's colour is one of a few, known for the frame:
+  // per side, per set of shadowed lights whose rays are blocked, shade()'s loop's sum over the
+  // lights in their order, the same operations on the same numbers (the same bits). A point then
+  // pays for its shadow rays and a look-up (the 1000-blob frame's floor: the loop's dispatch and
+  // sums were some 60 instructions of a floor point's 460).
+  static constexpr size_t kLean = 3;
+  void lean_colours() {
+    const Material& m = *m_;
+    if (m.phong > 0 || m.specular > 0) return;
+    for (size_t li = 0; li < terms_.size(); ++li) {
+      if (terms_[li].kind == Term::Other) return;
+      if (terms_[li].kind == Term::Directional && terms_[li].shadows) shadowed_.push_back(li);
+    }
+    if (shadowed_.size() > kLean) {
+      shadowed_.clear();
+      return;
+    }
+    const unsigned sets = 1u << shadowed_.size();
+    lean_.resize(2 * sets);
+    for (int side = 0; side < 2; ++side)
+      for (unsigned blocked = 0; blocked < sets; ++blocked) {
+        Vec3 light{0, 0, 0};
+        for (size_t li = 0, j = 0; li < terms_.size(); ++li) {
+          const Term& t = terms_[li];
+          if (t.kind == Term::Ambient) {
+            light += t.ambient;
+            continue;
+          }
+          const bool shut = t.shadows && (blocked >> j++ & 1);
+          if (t.cosine[side] <= 0 || shut) continue;
+          light += t.diffuse[side];
+        }
+        lean_[size_t(side) * sets + blocked] = mul(m.color, light);
+      }
+  }
+
   EmbreeScene::Floor floor_;
   int object_ = -1;
   const Material* m_ = nullptr;
   Vec3 normal_[2];
   std::vector<Term> terms_;
+  // lean_colours': the colours per side and blocked set (bit j: shadowed_[j]'s ray), or none.
+  std::vector<size_t> shadowed_;
+  std::vector<Vec3> lean_;
 };
 
 }  // namespace softtrace

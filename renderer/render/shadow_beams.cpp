@@ -141,9 +141,19 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
       continue;
     }
     const BlobBeam* parent = level > 0 ? &lists.level[level - 1][k * objects_ + o] : nullptr;
-    // A list with no blob is not clear: its rays enter the box and count their stretches (the
-    // steps AOV), which a clear block's would not.
     tracers_[o].shadow_beam(prism, parent, &list);
+    // A list with no blob is clear as well: no blob's support reaches into the prism (the list
+    // keeps every blob whose bounding sphere does, with its slack), so the field is zero along
+    // every ray of the block, which meets no solid (an empty list's walk answers the same after
+    // one stretch, counted in the steps AOV; a clear ray counts none). Its quarters' and blocks'
+    // are then clear with no prism (above). The floor's blocks inside the box's shadow but outside
+    // every blob's are (1000 blobs at 640x480: the rays of 3,251 of the 41,689 floor points whose
+    // rays entered the box).
+    if (list.valid && list.entries.empty()) {
+      list.valid = false;
+      list.clear = true;
+      continue;
+    }
     // The blocks' lists, which their rays take, pick the blobs that may decide them alone.
     if (level == kLevels - 1) tracers_[o].shadow_blockers(&list);
   }

@@ -6,9 +6,10 @@
 // sum's BVH; a ray the list does not hold (BlobBeam::holds) walks as before, so the answers are
 // the walk's to the bit. A block's list of positive blobs also names up to two balls that may
 // block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first. A block whose
-// prism misses the sum's box (or whose parent's does) is clear (BlobBeam::clear): its rays are
-// answered with no trace and no check of their own, which holds because shade() lifts them from
-// the very points given here (ShadowLists::p, offset). Most of a floor's blocks beside a cloud are.
+// prism misses the sum's box or whose list holds no blob (or whose parent's does either) is clear
+// (BlobBeam::clear): its rays are answered with no trace and no check of their own, which holds
+// because shade() lifts them from the very points given here (ShadowLists::p, offset). Most of a
+// floor's blocks beside a cloud are.
 // The shadow rays of a block towards a point or spot light converge on its position: their list
 // is the camera's (ObjectTracer::blob_beam) for the pyramid from the light through the block's
 // lit points, each ray finding its stretches' blobs by their distance from the light

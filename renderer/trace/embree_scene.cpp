@@ -191,10 +191,13 @@ void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
   ctx->blobs = nullptr;
 }
 
-// nearest_primitive's loop over several primitives, or one that is no unplaced plane.
-[[gnu::noinline]] void nearest_of_primitives(const std::vector<GeometryData>& data,
-                                             const std::vector<int>& which, const Ray& ray,
-                                             TraceHit& h) {
+// The nearest hit of the primitives `which` in [0, h.t], into h (hit, t, object, normal; the rest
+// left as it is): intersect()'s direct path's loop, the same tests in the same order, so the same
+// hit to the bit (a tie goes to the first). Out of line: inline, its registers cost a lone
+// field's unmet rays, which have no primitive, some 30 instructions each.
+[[gnu::noinline]] void nearest_primitive(const std::vector<GeometryData>& data,
+                                         const std::vector<int>& which, const Ray& ray,
+                                         TraceHit& h) {
   for (const int o : which) {
     const PrimitiveHit p = first_hit(*data[size_t(o)].object_data->shape, ray, 0, h.t);
     if (!p.hit || p.t >= h.t) continue;
@@ -205,29 +208,19 @@ void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// The nearest hit of the primitives `which` in [0, h.t], into h (hit, t, object, normal; the rest
-// left as it is): intersect()'s direct path's loop, the same tests in the same order, so the same
-// hit to the bit (a tie goes to the first). Out of line: inline, its registers cost a lone
-// field's unmet rays, which have no primitive, some 30 instructions each. A lone unplaced plane
-// (a floor, every unmet ray of its frame) is tested here, the loop's registers saved only in
-// nearest_of_primitives: 112 instructions a ray had been the loop's.
-[[gnu::noinline]] void nearest_primitive(const std::vector<GeometryData>& data,
-                                         const std::vector<int>& which, const Ray& ray,
-                                         TraceHit& h) {
-  if (which.size() == 1) {
-    const int o = which[0];
-    const Primitive& shape = *data[size_t(o)].object_data->shape;
-    if (unplaced_plane(shape)) {  // first_hit's answer, as the loop takes it
-      const double t = unplaced_plane_end(shape, ray, 0, h.t);
-      if (!(t < h.t)) return;  // NaN: none
-      h.hit = true;
-      h.t = t;
-      h.object = o;
-      h.normal = shape.world_normal;
-      return;
-    }
-  }
-  nearest_of_primitives(data, which, ray, h);
+// nearest_primitive for the direct paths' floor (EmbreeScene::Impl::floor: the one primitive, an
+// unplaced plane, the object `object`), without the loop and the look-ups that find it:
+// first_hit's answer, as the loop takes it. Out of line, as nearest_primitive (inline, its
+// registers cost a lone field's unmet rays 4 instructions each): the floor frame's 133,000 unmet
+// rays took 83 instructions each in nearest_primitive's own test of a lone plane, 65 here.
+[[gnu::noinline]] void nearest_floor(const Primitive& floor, int object, const Ray& ray,
+                                     TraceHit& h) {
+  const double t = unplaced_plane_end(floor, ray, 0, h.t);
+  if (!(t < h.t)) return;  // NaN: none
+  h.hit = true;
+  h.t = t;
+  h.object = object;
+  h.normal = floor.world_normal;
 }
 
 // The mesh's triangles as Embree's triangle geometry (copied: Embree pads its buffers).
@@ -489,8 +482,12 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
   // The primitives, as intersect()'s direct path asks them; the field is then searched up to
   // the nearest one's hit, as there (to infinity without one: TraceHit's t).
   hit = TraceHit{};
-  if (!impl_->direct_primitives.empty())
-    nearest_primitive(impl_->data, impl_->direct_primitives, ray, hit);
+  if (!impl_->direct_primitives.empty()) {  // a lone field's asks no more than that
+    if (const Primitive* floor = impl_->floor)
+      nearest_floor(*floor, impl_->floor_object, ray, hit);
+    else
+      nearest_primitive(impl_->data, impl_->direct_primitives, ray, hit);
+  }
   const MarchResult m = impl_->data[size_t(f)].tracer->first_hit(
       ray, 0, hit.t, hit.work, Query::Nearest, beam.depth[f] / cos_forward, &beam.blobs[f]);
   return !m.hit;  // a hit is the ray limit (give_up): intersect() answers and counts

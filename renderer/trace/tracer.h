@@ -94,9 +94,9 @@ struct BlobBeam {
   // the blob's support lies (-|x - origin| grows along each ray, as z along a prism's).
   bool toward = false;
   // A shadow list of a block whose rays meet none of the sum's blobs (render/shadow_beams.cpp: its
-  // prism misses the sum's box): a ray given it has no hit, with no check of its own that it is
-  // one of the block's. The caller vouches for that: its origin within the
-  // margin of one of the points the prism was built from, its direction the light's to the bit
+  // prism misses the sum's box, or its list holds no blob): a ray given it has no hit, with no
+  // check of its own that it is one of the block's. The caller vouches for that: its origin within
+  // the margin of one of the points the prism was built from, its direction the light's to the bit
   // (shade() lifts the very point ShadowBeams took, ShadowLists::p).
   bool clear = false;
   ShadowPrism prism;

@@ -5,13 +5,15 @@
 // shade_plain_hit to shade()). The floor is seen from above and from below (the normal facing
 // either way), under an ambient light, a directional light with shadows from above, one from below
 // (no light on the upper side), one without shadows, and a point light; with a phong and a
-// specular highlight, and matte. The shadow lists are ShadowBeams' own for each 2x2 block of
-// floor pixels: some clear (beside the cloud), some not (under it).
+// specular highlight, and matte; and matte without the point light, where a point's colour is
+// looked up by its blocked shadow rays (PlainFloor::lean). The shadow lists are ShadowBeams' own
+// for each 2x2 block of floor pixels: some clear (beside the cloud), some not (under it).
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/camera.h"
@@ -35,7 +37,7 @@ std::string small_balls() {
   return balls;
 }
 
-std::string floor_scene_json(const char* eye, const char* finish) {
+std::string floor_scene_json(const char* eye, const char* finish, bool point = true) {
   return std::string(R"({
   "camera": { "eye": )") +
          eye + R"(, "target": [0, 0, 0], "fov": 50 },
@@ -43,8 +45,11 @@ std::string floor_scene_json(const char* eye, const char* finish) {
     { "type": "ambient", "intensity": 0.2 },
     { "type": "directional", "direction": [0.5, 0.3, -1], "intensity": 0.7 },
     { "type": "directional", "direction": [-0.2, 0.4, 1], "intensity": 0.3 },
-    { "type": "directional", "direction": [0.1, -0.6, -1], "intensity": 0.2, "shadows": false },
-    { "type": "point", "position": [-8, -6, 14], "intensity": 0.4 }
+    { "type": "directional", "direction": [0.1, -0.6, -1], "intensity": 0.2, "shadows": false })" +
+         std::string(point ? R"(,
+    { "type": "point", "position": [-8, -6, 14], "intensity": 0.4 })"
+                           : "") +
+         R"(
   ],
   "objects": [
     { "material": )" +
@@ -65,16 +70,22 @@ bool floor_bits_equal(const Vec3& a, const Vec3& b) {
   return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
 }
 
+const char* const kFloorShiny = R"({ "color": [0.62, 0.6, 0.55], "specular": 0.3, "roughness": 0.05,
+                                 "phong": 0.4, "brilliance": 1.5 })";
+const char* const kFloorMatte = R"({ "color": [0.62, 0.6, 0.55] })";
+
 struct FloorCounts {
   int clear = 0, listed = 0, lit = 0, below = 0;
 };
 
 // Every floor pixel of a 64x48 frame, a 2x2 block at a time with its lists, both ways.
-FloorCounts check_floor(const char* eye, const char* finish) {
-  const Scene scene = parse_scene(floor_scene_json(eye, finish), "<test>");
+FloorCounts check_floor(const char* eye, const char* finish, bool point = true) {
+  const Scene scene = parse_scene(floor_scene_json(eye, finish, point), "<test>");
   const TracedScene rt(scene, LipschitzMode::Local);
   const PlainFloor floor(scene, rt.embree);
   EXPECT_EQ(floor.object(), 0);
+  // The colour looked up only without highlights and without the point light.
+  EXPECT_EQ(floor.lean(), !point && std::strcmp(finish, kFloorMatte) == 0) << finish;
   const ShadowBeams beams(scene, rt.tracers);
   EXPECT_TRUE(beams.active());
   const int width = 64, height = 48;
@@ -125,19 +136,18 @@ FloorCounts check_floor(const char* eye, const char* finish) {
   return n;
 }
 
-const char* const kFloorShiny = R"({ "color": [0.62, 0.6, 0.55], "specular": 0.3, "roughness": 0.05,
-                                 "phong": 0.4, "brilliance": 1.5 })";
-const char* const kFloorMatte = R"({ "color": [0.62, 0.6, 0.55] })";
-
 TEST(PlainFloor, ShadesTheFloorAsShadePlainHitDoes) {
-  for (const char* finish : {kFloorShiny, kFloorMatte}) {
-    const FloorCounts above = check_floor("[16, -30, 14]", finish);
+  for (const auto& [finish, point] : {std::pair{kFloorShiny, true},
+                                      {kFloorMatte, true},
+                                      {kFloorShiny, false},
+                                      {kFloorMatte, false}}) {
+    const FloorCounts above = check_floor("[16, -30, 14]", finish, point);
     EXPECT_GT(above.clear, 200);   // beside the cloud: the plane's test inline
     EXPECT_GT(above.listed, 100);  // near and under it: occluded()
     EXPECT_GT(above.lit, 200);
     EXPECT_EQ(above.below, 0);
     const FloorCounts below =
-        check_floor("[16, -30, -14]", finish);  // under the floor: its normal turned
+        check_floor("[16, -30, -14]", finish, point);  // under the floor: its normal turned
     EXPECT_GT(below.below, 1000);
   }
 }
