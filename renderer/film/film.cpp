@@ -90,7 +90,12 @@ class FilmPngRows {
     if (straight_) return straight_row(in, row);
     for (int x = 0; x < film_.width; ++x, in += 4, row += nc_) {
       if (straight_ ? !(in[3] > 0) : in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
-        std::copy(empty_, empty_ + nc_, row);
+        // Byte by byte: std::copy of nc_ bytes, a count not known here, was a call of memcpy per
+        // pixel (pov:chain at 640x480: 267,016 of them, 11 M instructions).
+        row[0] = empty_[0];
+        row[1] = empty_[1];
+        row[2] = empty_[2];
+        if (nc_ == 4) row[3] = empty_[3];
         continue;
       }
       // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
