@@ -88,16 +88,33 @@ class FilmPngRows {
   void operator()(int y, uint8_t* row) const {
     const float* in = &film_.rgba[size_t(y) * film_.width * 4];
     if (straight_) return straight_row(in, row);
-    for (int x = 0; x < film_.width; ++x, in += 4, row += nc_) {
-      if (straight_ ? !(in[3] > 0) : in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
-        std::copy(empty_, empty_ + nc_, row);
+    // Over the background. What the loop reads of the members, read once: a byte stored through
+    // `row` may be any of them, for all the compiler knows, and each store had the loop load them
+    // again (the width, nc_, the empty bytes, the background, the table: pov:chain at 640x480,
+    // 17.7 M instructions for its 307,200 pixels). The same values: float(background[k]) is
+    // what each pixel converted.
+    const int width = film_.width, nc = nc_;
+    const uint8_t e0 = empty_[0], e1 = empty_[1], e2 = empty_[2], e3 = empty_[3];
+    const float background[3] = {float(info_.background[0]), float(info_.background[1]),
+                                 float(info_.background[2])};
+    const bool alpha = opt_.png_alpha, flatten = opt_.flatten;
+    const SrgbBytes& srgb = srgb_byte_;
+    for (int x = 0; x < width; ++x, in += 4, row += nc) {
+      if (in[3] == 0 && in[0] == 0 && in[1] == 0 && in[2] == 0) {
+        // Byte by byte: std::copy of nc_ bytes, a count not known here, was a call of memcpy per
+        // pixel (pov:chain at 640x480: 267,016 of them, 11 M instructions).
+        row[0] = e0;
+        row[1] = e1;
+        row[2] = e2;
+        if (nc == 4) row[3] = e3;
         continue;
       }
-      // PNG's alpha is straight: colour divided by coverage (none where nothing was hit).
-      for (int k = 0; k < 3; ++k)
-        row[k] = srgb_byte_(straight_ ? (in[3] > 0 ? in[k] / in[3] : 0.0f)
-                                      : in[k] + float(info_.background[k]) * (1 - in[3]));
-      if (opt_.png_alpha) row[3] = png_sample(opt_.flatten ? 1.0f : in[3]);
+      uint8_t bytes[3];
+      for (int k = 0; k < 3; ++k) bytes[k] = srgb(in[k] + background[k] * (1 - in[3]));
+      row[0] = bytes[0];
+      row[1] = bytes[1];
+      row[2] = bytes[2];
+      if (alpha) row[3] = png_sample(flatten ? 1.0f : in[3]);
     }
   }
 

@@ -488,8 +488,9 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
     else
       nearest_primitive(impl_->data, impl_->direct_primitives, ray, hit);
   }
-  const MarchResult m = impl_->data[size_t(f)].tracer->first_hit(
-      ray, 0, hit.t, hit.work, Query::Nearest, beam.depth[f] / cos_forward, &beam.blobs[f]);
+  // The list holds the ray (from its eye) and no blob (unmet).
+  const MarchResult m = impl_->data[size_t(f)].tracer->first_hit_unlisted(
+      ray, hit.t, beam.depth[f] / cos_forward, hit.work);
   return !m.hit;  // a hit is the ray limit (give_up): intersect() answers and counts
 }
 

@@ -218,6 +218,13 @@ class ObjectTracer {
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                         Query query = Query::Nearest, double clear_to = 0,
                         const BlobBeam* blob_beam = nullptr) const;
+  // first_hit(ray, 0, tfar, work, Query::Nearest, clear_to, list) for a camera ray from the eye
+  // of `list`, a camera list of this blob sum that holds no blob (EmbreeScene::intersect_unmet):
+  // the same answer (a miss, or the ray limit) and the same counters, without the search's own
+  // set-up, which such a ray only passed through (pov:chain at 640x480: 163,248 such rays, some
+  // 300 instructions each).
+  MarchResult first_hit_unlisted(const Ray& ray, double tfar, double clear_to,
+                                 TraceCounters& work) const;
 
   // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
   // certified by the interval of g over boxes around slices of the frustum: the work of the

@@ -207,6 +207,18 @@ MarchResult ObjectTracer::unlisted_stretches(double t0, double t1, TraceCounters
   return {};
 }
 
+MarchResult ObjectTracer::first_hit_unlisted(const Ray& ray, double tfar, double clear_to,
+                                             TraceCounters& work) const {
+  // first_hit's clip and start (tnear = 0, a camera ray), then first_hit_blobs' answer for a
+  // camera list that holds the ray and no blob: its stretches, counted.
+  double t0 = 0, t1 = tfar;
+  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
+  work.entered_box = true;
+  t0 = std::max(t0, clear_to);
+  if (t0 > t1) return {};
+  return unlisted_stretches(t0, t1, work);
+}
+
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
                                           TraceCounters& work, Query query,
                                           const BlobBeam* beam) const {

@@ -3,6 +3,7 @@
 // at every kind of coverage a frame gives (none, whole, a part, and values no frame gives).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -19,16 +20,21 @@ namespace {
 
 // The film's pixels: coverages 0, 1 and parts of it (a pixel some of whose samples met nothing),
 // each with colours from black to beyond white (premultiplied, so at most the coverage in a
-// frame; larger ones are clamped).
+// frame; larger ones are clamped). The last row is a frame's background, which nothing covers:
+// colour and coverage 0 (the rows' own way for such a pixel).
 Film png_rows_film() {
   const float coverages[] = {1.0f,  0.0f, 0.5f,  0.25f, 0.75f, 1e-3f,
                              -0.0f, 1.0f, 0.25f, 1.5f,  NAN,   0.6f};
   const float colours[] = {0.0f, 0.002f, 0.04f, 0.18f, 0.5f, 0.73f, 1.0f, 1.7f, -0.2f, NAN};
-  const int w = 12, h = 10;
+  const int w = 12, h = 11;
   Film film(w, h, AovSelection{});
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float* px = &film.rgba[(size_t(y) * w + x) * 4];
+      if (y == h - 1) {
+        std::fill_n(px, 4, 0.0f);
+        continue;
+      }
       const float a = coverages[x];
       for (int k = 0; k < 3; ++k) {
         const float c = colours[(y + 3 * k) % 10];
