@@ -144,7 +144,7 @@ class FastParser {
   bool object(json& out, int depth) {
     if (depth > kMaxJsonNesting) return false;
     ++p_;
-    out = json::object();
+    out = json(json::value_t::object);  // the initializer-list constructor's checks skipped
     auto& members = out.get_ref<json::object_t&>();
     if (!space() || p_ == end_) return false;
     if (*p_ == '}') {
@@ -175,22 +175,27 @@ class FastParser {
     if (!space() || p_ == end_) return false;
     if (*p_ == ']') {
       ++p_;
-      out = json::array();
+      out = json(json::value_t::array);
       return true;
     }
     const size_t base = items_.size();
     for (;;) {
-      // `value` may grow items_ (a nested array): read into a local, then move it in.
-      json item;
-      if (!value(item, depth) || !space() || p_ == end_) return false;
-      items_.push_back(std::move(item));
+      if (p_ < end_ && (*p_ == '[' || *p_ == '{')) {
+        // `value` may grow items_ (a nested array): read into a local, then move it in.
+        json item;
+        if (!value(item, depth)) return false;
+        items_.push_back(std::move(item));
+      } else if (!value(items_.emplace_back(), depth)) {  // a scalar, read in its place
+        return false;
+      }
+      if (!space() || p_ == end_) return false;
       if (*p_ == ']') {
         ++p_;
         break;
       }
       if (*p_++ != ',' || !space()) return false;
     }
-    out = json::array();
+    out = json(json::value_t::array);
     auto& items = out.get_ref<json::array_t&>();
     items.reserve(items_.size() - base);
     for (size_t i = base; i < items_.size(); ++i) items.push_back(std::move(items_[i]));

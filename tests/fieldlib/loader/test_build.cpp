@@ -149,6 +149,32 @@ TEST(Params, MembersFoundByTheirWholeKey) {
   }
 }
 
+// A blend's children are built one Params at a time; which error a file with several gets must
+// not depend on that: an element that is no object is named before any child is read, as when
+// all the children's Params were made first.
+TEST(Params, ChildrenThatAreNoObjectsFailBeforeAnyChildIsBuilt) {
+  const auto file = std::make_shared<const std::string>("t");
+  const auto j = nlohmann::json::parse(R"({"type": "soft_blend", "children": [
+    {"type": "soft_object", "distance": {"type": "lp_metric", "radii": [1, 1, 1], "n": 2},
+     "potential": {"type": "murakami"}, "translte": [1, 0, 0]}, 7]})");
+  BuildContext ctx;
+  try {
+    build_field(Params(j, "/field", file), ctx);
+    ADD_FAILURE() << "built";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "t: /field/children/1: expected an object, got 7");
+  }
+  // Each element's pointer, its key escaped as objects() escapes it.
+  const nlohmann::json k = {{"a/b", {nlohmann::json::object(), {{"x", 1}}}}};
+  const Params p(k, "/o", file);
+  const nlohmann::json& items = p.object_items("a/b");
+  ASSERT_EQ(items.size(), 2u);
+  const Params second = p.item("a/b", items, 1);
+  EXPECT_EQ(second.where(""), "t: /o/a~1b/1");
+  EXPECT_EQ(second.number("x"), 1);
+  EXPECT_EQ(p.objects("a/b")[1].where("x"), "t: /o/a~1b/1/x");
+}
+
 TEST(Build, Placement) {
   const Spec moved =
       translate(translate(soft_object(lp_metric({1, 1, 1}, 2), wyvill()), {1, 0, 0}), {0, 2, 0});
