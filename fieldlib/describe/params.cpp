@@ -268,28 +268,13 @@ Params Params::object(const std::string& key) const {
 }
 
 std::vector<Params> Params::objects(const std::string& key) const {
-  const json& v = object_items(key);
-  std::vector<Params> out;
-  out.reserve(v.size());
-  for (size_t i = 0; i < v.size(); ++i) out.push_back(item(key, v, i));
-  return out;
-}
-
-const nlohmann::json& Params::object_items(const std::string& key) const {
   const json& v = at(key);
   if (!v.is_array()) fail(key, "expected an array, got " + describe(v));
-  for (size_t i = 0; i < v.size(); ++i)
-    if (!v[i].is_object()) item(key, v, i);  // the constructor's located error
-  return v;
-}
-
-Params Params::item(const std::string& key, const json& items, size_t i) const {
-  const std::string escaped = json_pointer_escape(key);
-  const std::string index = std::to_string(i);
-  std::string pointer;  // one allocation, as in object()
-  pointer.reserve(pointer_.size() + escaped.size() + index.size() + 2);
-  pointer.append(pointer_).append(1, '/').append(escaped).append(1, '/').append(index);
-  return Params(items[i], std::move(pointer), file_);
+  std::vector<Params> out;
+  out.reserve(v.size());
+  const std::string base = pointer_ + "/" + json_pointer_escape(key) + "/";
+  for (size_t i = 0; i < v.size(); ++i) out.emplace_back(v[i], base + std::to_string(i), file_);
+  return out;
 }
 
 void Params::finish() const {

@@ -61,14 +61,6 @@ class Params {
 
   Params object(const std::string& key) const;
   std::vector<Params> objects(const std::string& key) const;  // an array of objects
-  // The array of objects `key`, every element checked as objects() checks them (the first that
-  // is no object fails), without a Params for each: build_children makes one child's Params at a
-  // time, each freed before the next is made, where a 1000-component blend held 1000 of them
-  // (their pointers and read records, half a megabyte of fresh heap) until its last child was
-  // built.
-  const json& object_items(const std::string& key) const;
-  // Element `i` of `items`, the array object_items(key) returned, as objects() makes it.
-  Params item(const std::string& key, const json& items, size_t i) const;
 
   // Errors about a key of this object (or the object itself when key is empty). `key` is a
   // relative JSON pointer ("radii/2"); keys from the scene must be escaped first.

@@ -89,17 +89,14 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
                                     const BuildContext& ctx) {
   BuildContext inner = ctx;
   inner.slot = slot_of(ctx, key).slot;
-  const nlohmann::json& items = p.object_items(key);
+  std::vector<Params> items = p.objects(key);
   // The table's count was checked before `create`; this guards kinds built without the table.
   if (items.size() > kMaxChildren)
     p.fail(key, "expected at most " + std::to_string(kMaxChildren) + " children, got " +
                     std::to_string(items.size()));
   std::vector<NodePtr> out;
   out.reserve(items.size());
-  // One child's Params at a time: its records are freed, and their memory taken again by the
-  // next child's, before the next is built.
-  for (size_t i = 0; i < items.size(); ++i)
-    out.push_back(build_field(p.item(key, items, i), inner));
+  for (const auto& item : items) out.push_back(build_field(item, inner));
   return out;
 }
 

@@ -149,9 +149,8 @@ TEST(Params, MembersFoundByTheirWholeKey) {
   }
 }
 
-// A blend's children are built one Params at a time; which error a file with several gets must
-// not depend on that: an element that is no object is named before any child is read, as when
-// all the children's Params were made first.
+// Which error a file with several gets must not depend on the order the children are built in:
+// an element that is no object is named before any child is read.
 TEST(Params, ChildrenThatAreNoObjectsFailBeforeAnyChildIsBuilt) {
   const auto file = std::make_shared<const std::string>("t");
   const auto j = nlohmann::json::parse(R"({"type": "soft_blend", "children": [
@@ -167,12 +166,11 @@ TEST(Params, ChildrenThatAreNoObjectsFailBeforeAnyChildIsBuilt) {
   // Each element's pointer, its key escaped as objects() escapes it.
   const nlohmann::json k = {{"a/b", {nlohmann::json::object(), {{"x", 1}}}}};
   const Params p(k, "/o", file);
-  const nlohmann::json& items = p.object_items("a/b");
+  const std::vector<Params> items = p.objects("a/b");
   ASSERT_EQ(items.size(), 2u);
-  const Params second = p.item("a/b", items, 1);
-  EXPECT_EQ(second.where(""), "t: /o/a~1b/1");
-  EXPECT_EQ(second.number("x"), 1);
-  EXPECT_EQ(p.objects("a/b")[1].where("x"), "t: /o/a~1b/1/x");
+  EXPECT_EQ(items[1].where(""), "t: /o/a~1b/1");
+  EXPECT_EQ(items[1].number("x"), 1);
+  EXPECT_EQ(items[1].where("x"), "t: /o/a~1b/1/x");
 }
 
 TEST(Build, Placement) {
