@@ -42,8 +42,10 @@ HeapPages heap_in_huge_pages(size_t bytes) {
   // The front, from the top's start to the boundary, as one block kept for the process's life:
   // the next block then begins at the boundary.
   static void* front = nullptr;
-  if (aligned - start >= kMinBlock) front = std::malloc(aligned - start - kHeader / 2);
-  if (aligned - start >= kMinBlock && !front) return {};
+  if (aligned - start >= kMinBlock) {
+    front = std::malloc(aligned - start - kHeader / 2);
+    if (!front) return {};
+  }
   if (::madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE) != 0) return {};
   return {aligned, aligned + bytes};
 }
