@@ -5,7 +5,8 @@
 // shadow ray of a block takes its stretches' blobs from the block's list instead of walking the
 // sum's BVH; a ray the list does not hold (BlobBeam::holds) walks as before, so the answers are
 // the walk's to the bit. A block's list of positive blobs also names up to two balls that may
-// block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first. A block whose
+// block its rays alone (ObjectTracer::shadow_blockers), which each ray asks first; a tile's or a
+// quarter's list that one such ball shuts is its blocks' list, and they build none. A block whose
 // prism misses the sum's box or whose list holds no blob (or whose parent's does either) is clear
 // (BlobBeam::clear): its rays are answered with no trace and no check of their own, which holds
 // because shade() lifts them from the very points given here (ShadowLists::p, offset). Most of a
@@ -71,6 +72,9 @@ class ShadowBeams {
     std::vector<Axes> pyramids;
     std::vector<Slopes> slopes;
     int points = 0;
+    // Per directional light and object ([k * objects + o]): which shut list of the tile or of the
+    // current quarter its blocks take (Lent, build_prism).
+    std::vector<char> lent;
   };
 
   ShadowBeams(const Scene& scene, const SceneTracers& tracers);
@@ -89,10 +93,16 @@ class ShadowBeams {
   }
 
  private:
+  // Whose list a directional light's block takes for an object: its own, or the tile's or its
+  // quarter's, where one blocker shuts that (shut_and_lend), which then lies in the blocks' level.
+  enum Lent : char { kOwn, kTile, kQuarter };
   // The axes about `along` (u across the coordinate axis least aligned with it).
   static Axes axes(const Vec3& along, bool point, const Vec3& position);
   void build_prism(int level, const Axes& a, size_t k, const Point* points, int begin, int end,
                    Lists& lists) const;
+  // Whether one blocker shuts `list` (of light k and object o, the tile's or a quarter's, whose
+  // points' balls' tops reach z1); if so, it moves to the blocks' level (Lists::lent).
+  void shut_and_lend(int level, size_t k, int o, double z1, Lists& lists) const;
   void build_pyramid(int level, const Axes& a, size_t k, const Point* points, int begin, int end,
                      Lists& lists) const;
   const SceneTracers& tracers_;

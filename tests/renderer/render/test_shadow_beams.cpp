@@ -62,9 +62,9 @@ class CloudOverFloor {
     ShadowBeams::Point point;
     Vec3 origin;
   };
-  CloudOverFloor(int cloud, const std::string& light, std::mt19937_64& rng)
-      : width(cloud ? 192 : 96),   // the balls' frame finer (a block's rays must pass near
-        height(cloud ? 128 : 64),  // enough one ball's centre)
+  CloudOverFloor(int cloud, const std::string& light, std::mt19937_64& rng, int finer = 1)
+      : width((cloud ? 192 : 96) * finer),   // the balls' frame finer (a block's rays must pass
+        height((cloud ? 128 : 64) * finer),  // near enough one ball's centre)
         rng_(rng),
         scene_(parse_scene(
             R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
@@ -356,6 +356,70 @@ TEST(ShadowBeams, EveryRayOfAShutBlockIsBlocked) {
   // The floor's blocks under the balls, and the balls' own (133 and 3,192 when written).
   EXPECT_GT(all_shut, 100);
   EXPECT_GT(all_decided, 2000);
+}
+
+// A tile's or a quarter's list that one of its blockers shuts is lent to its blocks, which build
+// none of their own (ShadowBeams::shut_and_lend): right only if it decides every ray the block's
+// own list would, with the same answer and work. A block's list is lent where its rectangle is
+// wider than the balls about the block's points; for each such block, its own list (from the BVH
+// over its own prism, with its own blockers) is built beside it, and every own ray must be
+// blocked by one point through the lent list, as by the walk and, where the own list is shut,
+// with that list's work. Lent blocks must be many over the positive balls, under the three lights.
+TEST(ShadowBeams, ABlockOfAShutTileOrQuarterTakesItsList) {
+  std::mt19937_64 rng(31);
+  int lent = 0, own_shut = 0, rays = 0;
+  for (const char* direction : {"[1, 0.35, -1]", "[-0.3, 0.2, 1]", "[0.2, -1, -0.4]"}) {
+    // Finer still: a quarter or a tile shut by one ball is a small part of its shadow.
+    CloudOverFloor floor(
+        1, std::string(R"({"type": "directional", "direction": )") + direction + "}", rng, 3);
+    const ObjectTracer& tr = floor.tracer();
+    const Vec3 along = -floor.scene().lights[0].direction;
+    floor.for_each_block([&](const BlobBeam* list, const std::vector<CloudOverFloor::Lit>& block) {
+      if (block.empty() || !list[0].valid) return;
+      const ShadowPrism& p = list[0].prism;
+      // The rectangle and depths of the balls about the block's points, as build_prism takes
+      // them (from the tile's origin, which every level shares).
+      ShadowPrism own = p;
+      own.x0 = own.y0 = own.z0 = 1e300;
+      own.x1 = own.y1 = own.z1 = -1e300;
+      for (const CloudOverFloor::Lit& l : block) {
+        const Vec3 q = l.point.p - p.origin;
+        const double m = l.point.margin * (1 + 1e-9);
+        const double x = dot(q, p.u), y = dot(q, p.v), z = dot(q, p.along);
+        own.x0 = std::min(own.x0, x - m), own.x1 = std::max(own.x1, x + m);
+        own.y0 = std::min(own.y0, y - m), own.y1 = std::max(own.y1, y + m);
+        own.z0 = std::min(own.z0, z - m), own.z1 = std::max(own.z1, z + m);
+      }
+      const double span = (own.x1 - own.x0) + (own.y1 - own.y0);
+      if (!((p.x1 - p.x0) + (p.y1 - p.y0) > span * (1 + 1e-6))) return;  // the block's own list
+      ++lent;
+      ASSERT_TRUE(list[0].shut);
+      BlobBeam mine;
+      tr.shadow_beam(own, nullptr, &mine);
+      ASSERT_TRUE(mine.valid);
+      tr.shadow_blockers(&mine);
+      own_shut += mine.shut;
+      for (const CloudOverFloor::Lit& l : block) {
+        const Ray ray{l.origin, along, 0, 0};
+        TraceCounters a, b, c;
+        const MarchResult with = tr.first_hit(ray, 0, 1e3, a, Query::Any, 0, &list[0]);
+        const MarchResult alone = tr.first_hit(ray, 0, 1e3, b, Query::Any, 0, &mine);
+        ASSERT_TRUE(with.hit) << "ray " << rays;
+        ASSERT_EQ(a.evaluations(), 1) << "ray " << rays;
+        ASSERT_TRUE(tr.first_hit(ray, 0, 1e3, c, Query::Any).hit) << "ray " << rays;
+        ASSERT_TRUE(alone.hit) << "ray " << rays;
+        if (mine.shut) {
+          ASSERT_EQ(a.point_evals, b.point_evals) << "ray " << rays;
+          ASSERT_EQ(a.box_evals, b.box_evals) << "ray " << rays;
+        }
+        ++rays;
+      }
+    });
+  }
+  std::printf("lent blocks: %d (%d shut by their own lists), their rays: %d\n", lent, own_shut,
+              rays);
+  EXPECT_GT(lent, 1000);
+  EXPECT_GT(own_shut, lent / 2);
 }
 
 // The shadow rays of a block towards a point or spot light converge on its position: their list
