@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <limits>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 namespace softtrace {
 
@@ -100,19 +105,7 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
   // The prism's rectangle and depth, in locals (the loops then keep them in registers).
   double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, z0 = kInf, z1 = -kInf;
   if (level == 0 && end > begin) {
-    // The tile's points and the objects' boxes on its axes, once for all its prisms.
-    for (int i = begin; i < end; ++i) {
-      // The origin lies within the margin of p (grown by 1e-9: the lift's rounding).
-      const Vec3 q = points[i].p - lists.origin;
-      const double m = points[i].margin * (1 + 1e-9);
-      const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
-      const Extent b{x - m, x + m, y - m, y + m, z - m};
-      balls[i] = b;
-      x0 = std::min(x0, b.x0), x1 = std::max(x1, b.x1);
-      y0 = std::min(y0, b.y0), y1 = std::max(y1, b.y1);
-      z0 = std::min(z0, b.z);
-      z1 = std::max(z1, b.z + (b.x1 - b.x0));
-    }
+    // The objects' boxes and the tile's points on its axes, once for all its prisms.
     for (const int o : blob_objects_) {
       const Box& box = tracers_.object(o).bounds;
       Extent e{kInf, -kInf, kInf, -kInf, -kInf};
@@ -126,6 +119,26 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
         e.z = std::max(e.z, z);
       }
       boxes[o] = e;
+    }
+    if (misses_boxes(a, points, begin, end, lists.origin, boxes)) {
+      for (const int o : blob_objects_) {
+        BlobBeam& list = out[k * objects_ + o];
+        list.valid = list.shut = false;
+        list.clear = true;
+      }
+      return;
+    }
+    for (int i = begin; i < end; ++i) {
+      // The origin lies within the margin of p (grown by 1e-9: the lift's rounding).
+      const Vec3 q = points[i].p - lists.origin;
+      const double m = points[i].margin * (1 + 1e-9);
+      const double x = dot(q, a.u), y = dot(q, a.v), z = dot(q, a.along);
+      const Extent b{x - m, x + m, y - m, y + m, z - m};
+      balls[i] = b;
+      x0 = std::min(x0, b.x0), x1 = std::max(x1, b.x1);
+      y0 = std::min(y0, b.y0), y1 = std::max(y1, b.y1);
+      z0 = std::min(z0, b.z);
+      z1 = std::max(z1, b.z + (b.x1 - b.x0));
     }
   } else {
     for (int i = begin; i < end; ++i) {
@@ -177,6 +190,68 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
     else
       shut_and_lend(level, k, o, z1, lists);
   }
+}
+
+// Whether the tile's prism misses every object's box as build_prism's own test would find it,
+// told from the box that bounds the tile's points in world space, without their balls: a floor's
+// tile beside the cloud's shadow paid three dot products a point (the 1000-blob frame with a
+// floor: 436 such tiles, 111,000 points, 7.8 M instructions). The box of the points (lo, hi) and
+// their largest margin m on an axis w lie within dot(c, w) -+ (|w.x| h.x + |w.y| h.y + |w.z| h.z)
+// -+ m, c and h its centre (from the origin) and half-size, which bounds each point's ball as the
+// loop would compute it; `pad` (1e-10 of the magnitudes) covers the rounding of both sides, far
+// below which either is exact. Asked only where the tile's first point (the axes' origin, so at
+// 0) lies outside every box's rectangle or beyond its depth: a tile on the cloud, or in its
+// shadow, pays one comparison.
+bool ShadowBeams::misses_boxes(const Axes& a, const Point* points, int begin, int end,
+                               const Vec3& origin, const Extent* boxes) const {
+  for (const int o : blob_objects_) {
+    const Extent& e = boxes[o];
+    if (!(e.x0 > 0 || e.x1 < 0 || e.y0 > 0 || e.y1 < 0 || e.z < 0)) return false;
+  }
+  // The least and greatest x, y, z and margin (a Point's four doubles in order): with SSE2, two
+  // to a register, 9 instructions a point against 25 for the scalar loop. A bound needs no
+  // particular order of the comparisons.
+  static_assert(sizeof(Point) == 4 * sizeof(double) &&
+                offsetof(Point, margin) == 3 * sizeof(double));
+  double low[4], high[4];
+#ifdef __SSE2__
+  const double* const first = &points[begin].p.x;
+  __m128d lo_xy = _mm_loadu_pd(first), hi_xy = lo_xy, lo_zm = _mm_loadu_pd(first + 2),
+          hi_zm = lo_zm;
+  for (int i = begin + 1; i < end; ++i) {
+    const double* const p = &points[i].p.x;
+    const __m128d xy = _mm_loadu_pd(p), zm = _mm_loadu_pd(p + 2);
+    lo_xy = _mm_min_pd(lo_xy, xy), hi_xy = _mm_max_pd(hi_xy, xy);
+    lo_zm = _mm_min_pd(lo_zm, zm), hi_zm = _mm_max_pd(hi_zm, zm);
+  }
+  _mm_storeu_pd(low, lo_xy), _mm_storeu_pd(low + 2, lo_zm);
+  _mm_storeu_pd(high, hi_xy), _mm_storeu_pd(high + 2, hi_zm);
+#else
+  std::memcpy(low, &points[begin], sizeof low), std::memcpy(high, &points[begin], sizeof high);
+  for (int i = begin + 1; i < end; ++i) {
+    double p[4];
+    std::memcpy(p, &points[i], sizeof p);
+    for (int c = 0; c < 4; ++c) low[c] = std::min(low[c], p[c]), high[c] = std::max(high[c], p[c]);
+  }
+#endif
+  const double m = high[3] * (1 + 1e-9);
+  const Vec3 lo{low[0], low[1], low[2]}, hi{high[0], high[1], high[2]};
+  const Vec3 c = (lo + hi) * 0.5 - origin, h = (hi - lo) * 0.5;
+  const auto half = [&](const Vec3& w) {
+    return std::abs(w.x) * h.x + std::abs(w.y) * h.y + std::abs(w.z) * h.z + m;
+  };
+  const double cx = dot(c, a.u), cy = dot(c, a.v), cz = dot(c, a.along);
+  const double hx = half(a.u), hy = half(a.v), hz = half(a.along);
+  const double pad = 1e-10 * (max_abs(lo) + max_abs(hi) + max_abs(origin) + m);
+  for (const int o : blob_objects_) {
+    const Box& box = tracers_.object(o).bounds;
+    const Extent& e = boxes[o];
+    const double slack = 1e-9 * (max_abs(box.lo) + max_abs(box.hi) + max_abs(origin)) + pad;
+    if (!(e.x0 > cx + hx + slack || e.x1 < cx - hx - slack || e.y0 > cy + hy + slack ||
+          e.y1 < cy - hy - slack || e.z < cz - hz - slack))
+      return false;
+  }
+  return true;
 }
 
 // A block's shadow rays may take its tile's or its quarter's list instead of its own: that prism

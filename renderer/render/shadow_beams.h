@@ -100,6 +100,9 @@ class ShadowBeams {
   static Axes axes(const Vec3& along, bool point, const Vec3& position);
   void build_prism(int level, const Axes& a, size_t k, const Point* points, int begin, int end,
                    Lists& lists) const;
+  // Whether the tile's points' prism certainly misses every object's box (build_prism's test).
+  bool misses_boxes(const Axes& a, const Point* points, int begin, int end, const Vec3& origin,
+                    const Extent* boxes) const;
   // Whether one blocker shuts `list` (of light k and object o, the tile's or a quarter's, whose
   // points' balls' tops reach z1); if so, it moves to the blocks' level (Lists::lent).
   void shut_and_lend(int level, size_t k, int o, double z1, Lists& lists) const;

@@ -530,6 +530,44 @@ std::string far_balls(int n) {
   return out;
 }
 
+// A tile whose points' balls all lie beside the sum's box, seen along the light, is clear, and one
+// of whose balls reaches into it is not: the tile's first test bounds its points by their box in
+// world space (ShadowBeams::misses_boxes), which must clear only what the balls' own prism would
+// (a margin left out of that bound would clear the second). The light comes from straight above
+// and from straight below (the box's shadow is then its rectangle); the points lie beyond it,
+// beside its face x = hi.x, the last one's ball 0.1 inside the face's plane, or 0.1 beside it.
+TEST(ShadowBeams, ATileBesideTheBoxIsClearOnlyWhereItsBallsMissIt) {
+  for (const char* direction : {"[0, 0, -1]", "[0, 0, 1]"}) {
+    const Scene scene =
+        parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+                    R"({"type":"soft_object","potential":{"type":"murakami"},)"
+                    R"("distance":{"type":"lp_metric","radii":[4,4,4],"n":2}})" +
+                        far_balls(ShadowBeams::kFewBlobs) +
+                        R"(]}}], "lights": [{"type": "directional", )"
+                        R"("direction": )" +
+                        direction + "}]}",
+                    "<test>");
+    const std::vector<TracedObject> objects = traced_objects(scene);
+    const SceneTracers tracers(objects, LipschitzMode::Local);
+    const ShadowBeams beams(scene, tracers);
+    ASSERT_TRUE(beams.active());
+    const Box& box = scene.objects[0].bounds;
+    // 10 beyond the box, where the rays come from.
+    const double z = scene.lights[0].direction.z < 0 ? box.lo.z - 10 : box.hi.z + 10;
+    const auto at = [&](double x, double y) { return Vec3{x, y, z}; };
+    for (const double last : {-0.1, 0.1}) {
+      const double m = 0.2;
+      const ShadowBeams::Point points[] = {
+          {at(box.hi.x + 3, 0), m}, {at(box.hi.x + 2, 1), m}, {at(box.hi.x + m + last, -1), m}};
+      ShadowBeams::Lists lists;
+      for (int level = 0; level < ShadowBeams::kLevels; ++level)
+        beams.build(level, points, 0, 3, lists);
+      const BlobBeam& list = beams.view(ShadowBeams::kLevels - 1, lists).of(0)[0];
+      EXPECT_EQ(list.clear, last > 0) << direction << " " << last;
+    }
+  }
+}
+
 // A sum of at most ShadowBeams::kFewBlobs blobs takes no lists (its shadow rays walk it whole);
 // one more, and it does, for a directional and a point light.
 TEST(ShadowBeams, AFewBlobsTakeNoLists) {
