@@ -195,13 +195,13 @@ void ShadowBeams::build_prism(int level, const Axes& a, size_t k, const Point* p
 // Whether the tile's prism misses every object's box as build_prism's own test would find it,
 // told from the box that bounds the tile's points in world space, without their balls: a floor's
 // tile beside the cloud's shadow paid three dot products a point (the 1000-blob frame with a
-// floor: 436 such tiles, 111,000 points, 7.8 M instructions). The box of the points (lo, hi) and
-// their largest margin m on an axis w lie within dot(c, w) -+ (|w.x| h.x + |w.y| h.y + |w.z| h.z)
-// -+ m, c and h its centre (from the origin) and half-size, which bounds each point's ball as the
-// loop would compute it; `pad` (1e-10 of the magnitudes) covers the rounding of both sides, far
-// below which either is exact. Asked only where the tile's first point (the axes' origin, so at
-// 0) lies outside every box's rectangle or beyond its depth: a tile on the cloud, or in its
-// shadow, pays one comparison.
+// floor: 436 such tiles, 111,000 points; build_prism fell by 6.6 M instructions, this took 1.3 M).
+// The box of the points (lo, hi) and their largest margin m on an axis w lie within dot(c, w) -+
+// (|w.x| h.x + |w.y| h.y + |w.z| h.z) -+ m, c and h its centre (from the origin) and half-size,
+// which bounds each point's ball as the loop would compute it; `pad` (1e-10 of the magnitudes)
+// covers the rounding of both sides, a few ulps of them. Asked only where the tile's first point
+// (the axes' origin, so at 0) lies outside every box's rectangle or beyond its depth: a tile on
+// the cloud, or in its shadow, pays one comparison.
 bool ShadowBeams::misses_boxes(const Axes& a, const Point* points, int begin, int end,
                                const Vec3& origin, const Extent* boxes) const {
   for (const int o : blob_objects_) {
