@@ -344,11 +344,13 @@ class FrameTracer {
       if (floor_box_) {
         pixel.point = static_cast<int>(work.points.size());
         ShadowBeams::Point& at = *work.points.room(1) = shadow_point(t.ray, *hit);
-        ++work.points.n;
-        work.block_starts[pixel.block + 1] = pixel.point + 1;
+        // A pixel written now gives its point to no list: the lists are the records' points'
+        // (the next point takes its place).
         if (hit->object == floor_.object() && hit->face <= 0 &&
             floor_pixel(x, y, t.ray, *hit, at, work))
           return;
+        ++work.points.n;
+        work.block_starts[pixel.block + 1] = pixel.point + 1;
       }
       if (hit != &t.hit) t.hit = *hit;
       ++work.samples.n;
