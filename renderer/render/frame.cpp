@@ -35,6 +35,7 @@ constexpr int kBeamLevels = 3;  // 16, 8, 4
 static_assert(kTile == kBeam << (kBeamLevels - 1));
 // The tile, its quarters and theirs: 1 + 4 + 16 (the sum of 4^level over the levels).
 constexpr int kBeamsPerTile = ((1 << (2 * kBeamLevels)) - 1) / 3;
+constexpr int kBlocksPerTile = 1 << (2 * (kBeamLevels - 1));  // the smallest beams: 16
 
 // Sample s of a pixel: s = 0 is the centre (its hit feeds the AOVs); the rest follow the R2
 // low-discrepancy sequence, so results need no random state.
@@ -103,7 +104,9 @@ struct Work {
   TileRecords<TracedSample> samples;
   TileRecords<TracedPixel> pixels;
   TileRecords<ShadowBeams::Point> points;
-  TileRecords<int> point_starts;
+  // Where each 4-pixel block's points start, the last block's end after them
+  // (FrameTracer::shade_tile): block b's are points[block_starts[b], block_starts[b + 1]).
+  int block_starts[kBlocksPerTile + 1];
   ShadowBeams::Lists shadow_lists;
   TraceHit unmet;  // an unmet beam's ray's answer (FrameTracer::camera_hit)
 };
@@ -136,6 +139,13 @@ class FrameTracer {
         aov_means_(!film.normal.empty() || !film.albedo.empty()),
         aov_planes_(aov_means_ || !film.depth.empty() || !film.steps.empty()),
         misses_(rt.tracers, camera_) {
+    // A floor pixel written as it is traced (floor_pixel) needs the tile's points made as it is
+    // traced, in ShadowBeams' block order: one sample a pixel, the beams' order (a single eye),
+    // one pass, and the floor's lean colours, with lists to build for the other hits.
+    const ObjectTracer* field =
+        floor_.lean() ? rt.tracers.tracer(rt.embree.floor().field) : nullptr;
+    if (field && spp_ == 1 && !adaptive && camera_.single_eye() && shadow_beams_.active())
+      floor_box_ = &field->box();
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt.tracers.tracer(o);
       beams_count_ = beams_count_ || (tracer && !tracer->blob_sum());
@@ -161,6 +171,8 @@ class FrameTracer {
     work.beams = 0;
     work.samples.clear();
     work.pixels.clear();
+    work.points.clear();
+    std::fill_n(work.block_starts, kBlocksPerTile + 1, 0);
     beam(tx, ty, 0, nullptr, nullptr, false, area, pass, work);
     if (!work.pixels.empty()) shade_tile(pass, work);  // a background tile has nothing to shade
   }
@@ -322,13 +334,27 @@ class FrameTracer {
   // trace_pixel's pixel (x, y) of one sample, traced into `t` (its ray, and its hit unless
   // `hit` is the thread's unmet answer, work.unmet): kept for shading where it has a hit (copied
   // into `t` from work.unmet), else written now (miss_pixel).
+  // With floor_box_, its hit's shadow-ray point is made now, and a floor pixel whose point needs
+  // no list is written now (floor_pixel), with no record.
   [[gnu::always_inline]] void one_sample(int x, int y, int first, TracedSample& t,
                                          const TraceHit* hit, Pass pass, Work& work) const {
     work.primary.add(hit->work);
     if (hit->hit) {
+      TracedPixel pixel = traced_pixel(x, y, first, 1);
+      if (floor_box_) {
+        pixel.point = static_cast<int>(work.points.size());
+        ShadowBeams::Point& at = *work.points.room(1) = shadow_point(t.ray, *hit);
+        // A pixel written now gives its point to no list: the lists are the records' points'
+        // (the next point takes its place).
+        if (hit->object == floor_.object() && hit->face <= 0 &&
+            floor_pixel(x, y, t.ray, *hit, at, work))
+          return;
+        ++work.points.n;
+        work.block_starts[pixel.block + 1] = pixel.point + 1;
+      }
       if (hit != &t.hit) t.hit = *hit;
       ++work.samples.n;
-      *work.pixels.room(1) = traced_pixel(x, y, first, 1);
+      *work.pixels.room(1) = pixel;
       ++work.pixels.n;
       return;
     }
@@ -347,6 +373,47 @@ class FrameTracer {
     double lx = 0, ly = 0;
     if (camera_.lens()) lens_sample(x, y, s, spp, lx, ly);
     return camera_.generate(x + dx, y + dy, lx, ly);
+  }
+
+  // The shadow rays' point of a camera hit (ShadowBeams::Point): where shade() lifts them from.
+  // A CSG's face's object, as shade() takes it (the call only for a face); an object's own
+  // field's or mesh's offset was taken once for the frame (lifts_: no sqrt a point).
+  [[gnu::always_inline]] ShadowBeams::Point shadow_point(const Ray& ray,
+                                                         const TraceHit& hit) const {
+    const Vec3 p = ray.o + ray.d * hit.t;
+    const double cone0 = ray.cone_at(hit.t);
+    const double lift = hit.face > 0 ? -1 : lifts_[size_t(hit.object)];
+    if (lift >= 0) return {p, std::max(lift, cone0)};
+    const SceneObject& obj = scene_.objects[size_t(hit.object)];
+    return {p, ray_offset(hit.face > 0 ? face_object(obj, hit.face) : obj, p, cone0)};
+  }
+
+  // The first pass's pixel (x, y) of one sample, a hit on the floor at its point `at`, written
+  // now where none of its shadow rays needs a list (PlainFloor::shade_unlisted): pixel()'s values
+  // to the bit (samples()' sums from 0, the centre ray's Z and steps, the means). False, nothing
+  // written or counted, where one does: it is then shaded with its block's lists. Most of the
+  // 1000-blob frame's floor is such pixels, which then take no record, and a tile of them alone
+  // no list.
+  bool floor_pixel(int x, int y, const Ray& ray, const TraceHit& hit, const ShadowBeams::Point& at,
+                   Work& work) const {
+    RayWork& shadow = work.shadow;
+    const long long before = shadow.evaluations();
+    Shaded sh;
+    if (!floor_.shade_unlisted(ray, hit, at, *floor_box_, shadow, cancel_, sh)) return false;
+    Vec3 sum{0, 0, 0};
+    sum += sh.color;
+    SampleMeans means;
+    if (aov_means_) {
+      means.normal += sh.normal;
+      means.albedo += sh.albedo;
+    }
+    const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);  // no apron: no adaptive
+    float* const rgba = &film_.rgba[i * 4];
+    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k]);
+    rgba[3] = static_cast<float>(1);  // covered
+    centre_aovs(i, hit, shadow.evaluations() - before);
+    mean_aovs(i, means);
+    return true;
   }
 
   // Whether `ray`, of an unmet beam (BeamClear::unmet), has its answer (a primitive's hit or
@@ -386,59 +453,62 @@ class FrameTracer {
     if (!std::is_sorted(pixels.begin(), pixels.end(), by_block))
       std::stable_sort(pixels.begin(), pixels.end(), by_block);
     const bool lists = shadow_beams_.active();
-    // The shadow rays' origins lie near the hits: pixel i's in points[starts[i], starts[i + 1]).
-    // Room for every point (one a hit, at most one a sample) and every start, taken once.
-    const size_t count = lists ? pixels.size() : 0;
-    int* const starts = work.point_starts.room(count + 1);
-    ShadowBeams::Point* const points = work.points.room(lists ? work.samples.size() : 0);
-    const TracedSample* const traced = work.samples.data();
-    const SceneObject* const objects = scene_.objects.data();
-    const double* const lifts = lifts_.data();
-    int point = 0;
-    for (size_t i = 0; i < count; ++i) {
-      starts[i] = point;
-      pixels[i].point = point;
-      const int first = pixels[i].first, end = first + pixels[i].count;
-      for (int s = first; s < end; ++s) {
-        const TracedSample& t = traced[s];
-        if (!t.hit.hit) continue;
-        const Vec3 p = t.ray.o + t.ray.d * t.hit.t;
-        // A CSG's face's object, as shade() takes it (the call only for a face); an object's own
-        // field's or mesh's offset was taken once for the frame (lifts_: no sqrt a point).
-        const double cone0 = t.ray.cone_at(t.hit.t);
-        const double lift = t.hit.face > 0 ? -1 : lifts[t.hit.object];
-        points[point++] = {
-            p, lift >= 0
-                   ? std::max(lift, cone0)
-                   : ray_offset(t.hit.face > 0 ? face_object(objects[t.hit.object], t.hit.face)
-                                               : objects[t.hit.object],
-                                p, cone0)};
-      }
+    int* const block_starts = work.block_starts;
+    if (floor_box_) {  // the points were made as the tile was traced (one_sample), block by block
+      for (int b = 0; b < kBlocksPerTile; ++b)  // a block without points ends where it starts
+        block_starts[b + 1] = std::max(block_starts[b + 1], block_starts[b]);
+    } else if (lists) {
+      made_points(work);
     }
-    starts[count] = point;
-    // The lists of `level` over the points of pixels[i0, i1) (a range of the tile's points).
-    const auto build = [&](int level, size_t i0, size_t i1) {
-      shadow_beams_.build(level, points, starts[i0], starts[i1], work.shadow_lists);
+    // The lists of `level` over the points of blocks [b0, b1).
+    const auto build = [&](int level, int b0, int b1) {
+      shadow_beams_.build(level, work.points.data(), block_starts[b0], block_starts[b1],
+                          work.shadow_lists);
     };
     // The pixels of blocks [b0, b1) of 16: from `from` on, where they start.
     const auto end_of = [&](size_t from, int b1) {
       while (from < pixels.size() && pixels[from].block < b1) ++from;
       return from;
     };
-    if (lists) build(0, 0, pixels.size());
+    if (lists) build(0, 0, kBlocksPerTile);
     size_t i = 0;
     for (int q = 0; q < 4; ++q) {
-      if (lists) build(1, i, end_of(i, (q + 1) * 4));
+      const size_t q_end = end_of(i, (q + 1) * 4);
+      if (i == q_end) continue;  // no pixel of the quarter to shade: no lists of it or its blocks
+      if (lists) build(1, q * 4, (q + 1) * 4);
       for (int b = q * 4; b < (q + 1) * 4; ++b) {
         const size_t b_end = end_of(i, b + 1);
+        if (i == b_end) continue;
         ShadowLists view{};
         if (lists) {
-          build(2, i, b_end);
+          build(2, b, b + 1);
           view = shadow_beams_.view(2, work.shadow_lists);
         }
         for (; i < b_end; ++i) pixel(pixels[i], lists ? &view : nullptr, pass, work);
       }
     }
+  }
+
+  // The tile's traced pixels' shadow-ray points (one a hit, in the pixels' order) and where each
+  // pixel's and each block's start (TracedPixel::point, Work::block_starts).
+  void made_points(Work& work) const {
+    TileRecords<TracedPixel>& pixels = work.pixels;
+    const size_t count = pixels.size();
+    ShadowBeams::Point* const points = work.points.room(work.samples.size());
+    const TracedSample* const traced = work.samples.data();
+    int point = 0;
+    int block = 0;  // the blocks before it start at the points before the pixel's
+    for (size_t i = 0; i < count; ++i) {
+      for (; block <= pixels[i].block; ++block) work.block_starts[block] = point;
+      pixels[i].point = point;
+      const int first = pixels[i].first, end = first + pixels[i].count;
+      for (int s = first; s < end; ++s) {
+        const TracedSample& t = traced[s];
+        if (t.hit.hit) points[point++] = shadow_point(t.ray, t.hit);
+      }
+    }
+    for (; block <= kBlocksPerTile; ++block) work.block_starts[block] = point;
+    work.points.n = size_t(point);
   }
 
   // A tile of a slow field (a blend of thousands of children at many samples) takes minutes:
@@ -498,8 +568,8 @@ class FrameTracer {
   // (from {0, 0, 0}), `covered` how many it has (all or none); the film's background is added when
   // it is written. The normal and albedo means are 0; Z is +inf and steps the centre ray's own
   // (`centre`).
-  void miss_pixel(int x, int y, int spp, int covered, const Vec3& sky, const TraceHit& centre,
-                  Pass pass) const {
+  [[gnu::always_inline]] void miss_pixel(int x, int y, int spp, int covered, const Vec3& sky,
+                                         const TraceHit& centre, Pass pass) const {
     float rgba[4] = {0, 0, 0, 0};  // no sky: 0 / spp, each of them +0
     if (covered) {
       for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sky[k] / spp);
@@ -673,6 +743,9 @@ class FrameTracer {
   // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
   // sum): a background beam's quarters are then still visited, for the same counters.
   bool beams_count_ = false;
+  // The floor's field's box, where a floor pixel may be written as it is traced (floor_pixel):
+  // its shadow rays that miss the box need no list. Else null.
+  const Box* floor_box_ = nullptr;
   const TraceHit none_;  // a background pixel's centre ray's answer: no hit, no work
 };
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "render/shading.h"
+#include "render/shadow_beams.h"
 #include "trace/primitive_trace.h"
 
 namespace softtrace {
@@ -39,6 +40,7 @@ class PlainFloor {
       } else if (l.type == Light::Type::Directional && !l.has_area) {
         t.kind = Term::Directional;
         t.to_light = -l.direction;
+        for (int i = 0; i < 3; ++i) t.inverse[i] = 1 / t.to_light[i];
         for (int side = 0; side < 2; ++side) {
           t.cosine[side] = dot(normal_[side], t.to_light);
           t.diffuse[side] = diffuse_light(*m_, t.cosine[side], t.light);
@@ -83,14 +85,50 @@ class PlainFloor {
     return shade_lights(scene, rt, ray, side, lifted, cone0, secondary, cancel, shadow);
   }
 
+  // shade() of a lean() floor's camera hit whose shadow rays, from its point `at` (ShadowBeams'),
+  // all miss the field's box `box` (its tracer's, ObjectTracer::box), with no list: into `out`,
+  // its rays counted; false, nothing counted, where one of them enters the box (shade() with its
+  // block's lists then answers it). Such a ray's answer and counters are the same with any list
+  // or none: occluded() tests the plane first, and the field's first_hit clips the ray to its box
+  // before anything else and counts nothing for a ray outside it (a clear list's no is the same
+  // no, its ++rays the same ray). So the point needs no list, and the frame writes its pixel as
+  // it traces it (frame.cpp, floor_pixel).
+  [[gnu::always_inline]] bool shade_unlisted(const Ray& ray, const TraceHit& hit,
+                                             const ShadowBeams::Point& at, const Box& box,
+                                             RayWork& secondary, const std::atomic<bool>* cancel,
+                                             Shaded& out) const {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const int side = dot(normal_[0], ray.d) > 0;  // shade()'s steps, in its order
+    const Vec3 n = normal_[side];
+    const double cone0 = footprint_at(ray, hit);
+    const Vec3 lifted = at.p + n * at.margin;
+    unsigned blocked = 0;
+    long long rays = 0;
+    for (size_t j = 0; j < shadowed_.size(); ++j) {
+      const size_t li = shadowed_[j];
+      if (terms_[li].cosine[side] <= 0) continue;
+      if (cancel_requested(cancel)) break;
+      const Term& t = terms_[li];
+      const Ray towards{lifted, t.to_light, cone0, ray.cone};
+      double t0 = 0, t1 = kInf;
+      if (clip_to_slabs(towards, box, t0, t1, [&](int i) { return t.inverse[i]; })) return false;
+      ++rays;  // add() of no work
+      if (!std::isnan(unplaced_plane_end(*floor_.plane, towards, 0, kInf))) blocked |= 1u << j;
+    }
+    secondary.rays += rays;
+    out = {lean_[size_t(side) << shadowed_.size() | blocked], n, m_->color};
+    return true;
+  }
+
  private:
   // A light's terms at every point of the floor, per side the normal faces (0: the plane's own).
   struct Term {
     enum Kind { Ambient, Directional, Other } kind = Other;
     bool shadows = true;
-    Vec3 light{0, 0, 0};     // colour * intensity
-    Vec3 ambient{0, 0, 0};   // an ambient light's: m.ambient * light
-    Vec3 to_light{0, 0, 0};  // a directional light's: -direction
+    Vec3 light{0, 0, 0};            // colour * intensity
+    Vec3 ambient{0, 0, 0};          // an ambient light's: m.ambient * light
+    Vec3 to_light{0, 0, 0};         // a directional light's: -direction
+    double inverse[3] = {0, 0, 0};  // 1 / to_light[i]: clip_to_box's, taken once
     double cosine[2] = {0, 0};
     Vec3 diffuse[2];  // diffuse_light(m, cosine, light)
   };

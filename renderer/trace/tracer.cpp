@@ -56,18 +56,7 @@ SceneTracers::SceneTracers(const std::vector<TracedObject>& objects, LipschitzMo
 }
 
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
-  for (int i = 0; i < 3; ++i) {
-    if (ray.d[i] == 0) {
-      if (ray.o[i] < box.lo[i] || ray.o[i] > box.hi[i]) return false;
-      continue;
-    }
-    const double inv = 1 / ray.d[i];
-    double a = (box.lo[i] - ray.o[i]) * inv, b = (box.hi[i] - ray.o[i]) * inv;
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  return t0 <= t1;
+  return clip_to_slabs(ray, box, t0, t1, [&](int i) { return 1 / ray.d[i]; });
 }
 
 ObjectTracer::ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool complement)

@@ -249,6 +249,9 @@ class ObjectTracer {
   // or pyramid.
   void shadow_blockers(BlobBeam* list) const;
 
+  // The box its rays are clipped to before anything else (first_hit): a ray outside it meets the
+  // solid nowhere and counts no work.
+  const Box& box() const { return target_.bounds; }
   // The radius of the ray's footprint at t, as the searches take it (the tolerances scale by it).
   double resolution(const Ray& ray, double t) const { return footprint(ray, t); }
   // The outward unit normal at p (from the gradient; the inside sign decides the orientation).
@@ -435,5 +438,24 @@ class SceneTracers {
 
 // [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
 bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1);
+// clip_to_box's slabs, each axis's 1 / ray.d[i] (where ray.d[i] != 0) from inverse(i): a caller
+// whose rays share a direction takes its inverses once (PlainFloor's shadow rays), with the same
+// arithmetic, so the same answer.
+template <class Inverse>
+inline bool clip_to_slabs(const Ray& ray, const Box& box, double& t0, double& t1,
+                          const Inverse& inverse) {
+  for (int i = 0; i < 3; ++i) {
+    if (ray.d[i] == 0) {
+      if (ray.o[i] < box.lo[i] || ray.o[i] > box.hi[i]) return false;
+      continue;
+    }
+    const double inv = inverse(i);
+    double a = (box.lo[i] - ray.o[i]) * inv, b = (box.hi[i] - ray.o[i]) * inv;
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t0 <= t1;
+}
 
 }  // namespace softtrace

@@ -8,6 +8,11 @@
 // specular highlight, and matte; and matte without the point light, where a point's colour is
 // looked up by its blocked shadow rays (PlainFloor::lean). The shadow lists are ShadowBeams' own
 // for each 2x2 block of floor pixels: some clear (beside the cloud), some not (under it).
+// A lean floor's point whose shadow rays all miss the cloud's box is shaded with no list
+// (PlainFloor::shade_unlisted) and the frame writes its pixel as it traces it (frame.cpp's
+// floor_pixel): the same colour and counters as with its lists, and the same film as the frame
+// whose pixels all take records (one with anti-aliasing that refines nothing), but for the steps
+// (its point is then no list's, and the other points' lists are narrower).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -76,6 +81,7 @@ const char* const kFloorMatte = R"({ "color": [0.62, 0.6, 0.55] })";
 
 struct FloorCounts {
   int clear = 0, listed = 0, lit = 0, below = 0;
+  int unlisted = 0, declined = 0;  // shade_unlisted's answers and refusals
 };
 
 // Every floor pixel of a 64x48 frame, a 2x2 block at a time with its lists, both ways.
@@ -127,6 +133,23 @@ FloorCounts check_floor(const char* eye, const char* finish, bool point = true) 
         EXPECT_EQ(plain_way.rays, floor_way.rays) << eye << " " << bx << "," << by;
         EXPECT_EQ(plain_way.evaluations(), floor_way.evaluations()) << eye;
         EXPECT_EQ(plain_way.entered_box, floor_way.entered_box) << eye;
+        if (floor.lean()) {
+          RayWork unlisted_way;
+          Shaded c{};
+          if (floor.shade_unlisted(rays[i], hits[i], points[i], rt.tracers.tracer(1)->box(),
+                                   unlisted_way, nullptr, c)) {
+            ++n.unlisted;
+            EXPECT_TRUE(floor_bits_equal(b.color, c.color)) << eye << " " << bx << "," << by;
+            EXPECT_TRUE(floor_bits_equal(b.normal, c.normal)) << eye << " " << bx << "," << by;
+            EXPECT_TRUE(floor_bits_equal(b.albedo, c.albedo)) << eye << " " << bx << "," << by;
+            EXPECT_EQ(floor_way.rays, unlisted_way.rays) << eye << " " << bx << "," << by;
+            EXPECT_EQ(floor_way.evaluations(), unlisted_way.evaluations()) << eye;
+            EXPECT_EQ(floor_way.entered_box, unlisted_way.entered_box) << eye;
+          } else {
+            ++n.declined;
+            EXPECT_EQ(unlisted_way.rays, 0) << eye << " " << bx << "," << by;
+          }
+        }
         const BlobBeam* first = view.of(1);  // the directional light from above
         (first && first[1].clear ? n.clear : n.listed)++;
         n.lit += a.color.x > 0.25;
@@ -149,6 +172,41 @@ TEST(PlainFloor, ShadesTheFloorAsShadePlainHitDoes) {
     const FloorCounts below =
         check_floor("[16, -30, -14]", finish, point);  // under the floor: its normal turned
     EXPECT_GT(below.below, 1000);
+    if (!point && finish == kFloorMatte) {  // lean: most points need no list, some do
+      EXPECT_GT(above.unlisted, 1500);
+      EXPECT_GT(above.declined, 100);
+      EXPECT_GT(below.unlisted, 1000);
+    }
+  }
+}
+
+// The lean floor's frame at one sample (its floor pixels written as they are traced where they
+// need no list) against the same frame with anti-aliasing that refines no pixel (every pixel then
+// takes records and is shaded with its block's lists): the colour, Z, normal and albedo the same
+// bits. Not the steps: the records' lists there are built from the written pixels' points too.
+TEST(PlainFloor, FramesFloorPixelsAsTheirRecordsWould) {
+  for (const char* eye : {"[16, -30, 14]", "[16, -30, -14]"}) {
+    Scene scene = parse_scene(floor_scene_json(eye, kFloorMatte, false), "<test>");
+    const TracedScene rt(scene, LipschitzMode::Local);
+    constexpr int kW = 96, kH = 72;
+    const AovSelection all{true, true, false, true};
+    RenderOptions opt;
+    opt.spp = 1;
+    Film direct(kW, kH, all);
+    ASSERT_TRUE(render_frame(scene, rt, opt, direct, nullptr, nullptr));
+    scene.image.antialias.threshold = 1e9;  // on, and no pixel differs by that much
+    Film records(kW, kH, all);
+    FrameStats stats;
+    ASSERT_TRUE(render_frame(scene, rt, opt, records, nullptr, &stats));
+    EXPECT_EQ(stats.refined_pixels, 0);
+    const auto same = [](const auto& a, const auto& b) {
+      return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+    };
+    EXPECT_FALSE(direct.rgba.empty());
+    EXPECT_TRUE(same(direct.rgba, records.rgba)) << eye;
+    EXPECT_TRUE(same(direct.depth, records.depth)) << eye;
+    EXPECT_TRUE(same(direct.normal, records.normal)) << eye;
+    EXPECT_TRUE(same(direct.albedo, records.albedo)) << eye;
   }
 }
 
