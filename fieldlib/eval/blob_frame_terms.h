@@ -111,7 +111,7 @@ __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, dou
 [[gnu::always_inline]] inline int frame_terms_of(const BlobSum::Frame& f, const BlobSum::Blob& b,
                                                  const Vec3& o, const Vec3& d, double len,
                                                  BlobSum::Term* out) {
-  const Vec3 w = f.L * o + f.k, v = f.L * d;
+  const Vec3 w = f.times(o) + f.k, v = f.times(d);
   if (f.inv_axis2 > 0) return capsule_terms(f, b, w, v, len, out);
   constexpr double kInf = std::numeric_limits<double>::infinity();
   return term(nearest(w, v), -kInf, kInf, len, b, out);
