@@ -131,9 +131,10 @@ class BlobSum {
     // its diagonal product those by the zeros, which are zeros (x is finite), so at most the
     // sign of a zero result differs.
     bool diagonal = false;
-    Vec3 times(const Vec3& x) const {
-      return diagonal ? Vec3{L.r[0].x * x.x, L.r[1].y * x.y, L.r[2].z * x.z} : L * x;
+    Vec3 diagonal_times(const Vec3& x) const {
+      return {L.r[0].x * x.x, L.r[1].y * x.y, L.r[2].z * x.z};
     }
+    Vec3 times(const Vec3& x) const { return diagonal ? diagonal_times(x) : L * x; }
     Vec3 transposed_times(const Vec3& w) const {
       return diagonal ? Vec3{L.r[0].x * w.x, L.r[1].y * w.y, L.r[2].z * w.z}
                       : L.transposed_times(w);
