@@ -55,21 +55,6 @@ SceneTracers::SceneTracers(const std::vector<TracedObject>& objects, LipschitzMo
   }
 }
 
-bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
-  for (int i = 0; i < 3; ++i) {
-    if (ray.d[i] == 0) {
-      if (ray.o[i] < box.lo[i] || ray.o[i] > box.hi[i]) return false;
-      continue;
-    }
-    const double inv = 1 / ray.d[i];
-    double a = (box.lo[i] - ray.o[i]) * inv, b = (box.hi[i] - ray.o[i]) * inv;
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  return t0 <= t1;
-}
-
 ObjectTracer::ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool complement)
     : target_(target),
       inside_sign_(complement ? -target.inside_sign : target.inside_sign),

@@ -434,6 +434,21 @@ class SceneTracers {
 };
 
 // [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
-bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1);
+// Inline: every camera and shadow ray of a blob sum clips once (pov:chain at 640x480: 366,000
+// calls), and the call's set-up was a fifth of its instructions.
+inline bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
+  for (int i = 0; i < 3; ++i) {
+    if (ray.d[i] == 0) {
+      if (ray.o[i] < box.lo[i] || ray.o[i] > box.hi[i]) return false;
+      continue;
+    }
+    const double inv = 1 / ray.d[i];
+    double a = (box.lo[i] - ray.o[i]) * inv, b = (box.hi[i] - ray.o[i]) * inv;
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t0 <= t1;
+}
 
 }  // namespace softtrace
