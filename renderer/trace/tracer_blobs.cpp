@@ -363,15 +363,12 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     } else {
       n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
     }
-    if (query == Query::Any)
-      if (const std::optional<double> u = surely_inside(terms, n, iso, t == t0)) {
-        ++work.point_evals;
-        return MarchResult{true, t + *u};
-      }
     // A stretch whose terms, all taken (no sweep), have peaks summing below iso: every piece
     // would fail its peak test (peaks_below_iso), so its events and pieces are not walked, for
     // the same miss and the same count of work. Most shadow rays leave their lit point so
     // (pov:chain at 640x480: of 193,876 pieces of its 64,045 shadow rays, 893 passed the test).
+    // Before surely_inside, which sums the same peaks in the same order and finds no point
+    // where they are below iso.
     if (!sweep) {
       double peaks = 0;
       for (int i = 0; i < n; ++i) peaks += terms[i].peak;
@@ -382,6 +379,11 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         continue;
       }
     }
+    if (query == Query::Any)
+      if (const std::optional<double> u = surely_inside(terms, n, iso, t == t0)) {
+        ++work.point_evals;
+        return MarchResult{true, t + *u};
+      }
     // Between consecutive events the active terms are fixed: one polynomial. `events` holds
     // those still ahead; a sweep's next blob to take is listed[next].
     BlobEvents events(scratch.enters.data(), scratch.exits.data());
