@@ -435,7 +435,7 @@ class SceneTracers {
 
 // [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
 // Inline: every camera and shadow ray of a blob sum clips once (pov:chain at 640x480: 366,000
-// calls), and the call's set-up was a fifth of its instructions.
+// calls), and the call took about 21 of its 70 instructions (697.04 -> 689.27 M inline).
 inline bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
   for (int i = 0; i < 3; ++i) {
     if (ray.d[i] == 0) {
