@@ -111,7 +111,14 @@ __attribute__((always_inline)) inline bool term(const Nearest& m, double lo, dou
 [[gnu::always_inline]] inline int frame_terms_of(const BlobSum::Frame& f, const BlobSum::Blob& b,
                                                  const Vec3& o, const Vec3& d, double len,
                                                  BlobSum::Term* out) {
-  const Vec3 w = f.L * o + f.k, v = f.L * d;
+  // One test of Frame::diagonal for both products: times() twice tested it twice (pov:sheared,
+  // whose frames are not diagonal, +0.9 M instructions at 320x240).
+  Vec3 w, v;
+  if (f.diagonal) {
+    w = f.diagonal_times(o) + f.k, v = f.diagonal_times(d);
+  } else {
+    w = f.L * o + f.k, v = f.L * d;
+  }
   if (f.inv_axis2 > 0) return capsule_terms(f, b, w, v, len, out);
   constexpr double kInf = std::numeric_limits<double>::infinity();
   return term(nearest(w, v), -kInf, kInf, len, b, out);

@@ -303,6 +303,8 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
     Frame frame;
     Blob blob;
     if (!read_blob(p, c, group.reg, &frame, &blob)) return std::nullopt;
+    frame.diagonal = frame.L.r[0].y == 0 && frame.L.r[0].z == 0 && frame.L.r[1].x == 0 &&
+                     frame.L.r[1].z == 0 && frame.L.r[2].x == 0 && frame.L.r[2].y == 0;
     Outline outline;
     FrameInverse fi;
     if (!(blob.inv_r2 > 0) && frame_inverse(frame, &fi)) {
@@ -479,7 +481,7 @@ double BlobSum::gradient_among(const Program& p, const Vec3& x, int32_t* ids, in
     ids[found] = id;
     if (found < kKept) {
       const double slope = -2 * polynomial_potential_slope(r, b.c2, b.c3);
-      const Vec3 gradient = (ball ? w * l : frame.L.transposed_times(w)) * slope;
+      const Vec3 gradient = (ball ? w * l : frame.transposed_times(w)) * slope;
       kept[found] = {polynomial_potential(r, b.c2, b.c3), gradient.x, gradient.y, gradient.z};
       keys[found] = uint64_t(uint32_t(id)) << 8 | uint64_t(found);
     }
@@ -535,7 +537,7 @@ double BlobSum::sum_gradient(const Program& p, const Vec3& x, const int32_t* fou
     if (reports && sum.terms[found_ids[i]] >= 0) terms[sum.terms[found_ids[i]]] = term;
     // dP/dr times ∇r = -2 L^T q.
     const double slope = -2 * polynomial_potential_slope(r, b.c2, b.c3);
-    g += (ball ? w * l : frame.L.transposed_times(w)) * slope;
+    g += (ball ? w * l : frame.transposed_times(w)) * slope;
   }
   *grad = g;
   return f;

@@ -113,7 +113,7 @@ double LeafBlobs::gradient(const Vec3& x, Vec3* grad) const {
     if (!(r > 0)) continue;
     f += polynomial_potential(r, b.c2, b.c3);
     // dP/dr times ∇r = -2 L^T q.
-    g += frame.L.transposed_times(w) * (-2 * polynomial_potential_slope(r, b.c2, b.c3));
+    g += frame.transposed_times(w) * (-2 * polynomial_potential_slope(r, b.c2, b.c3));
   }
   *grad = g;
   return f;

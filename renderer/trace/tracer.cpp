@@ -55,10 +55,6 @@ SceneTracers::SceneTracers(const std::vector<TracedObject>& objects, LipschitzMo
   }
 }
 
-bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
-  return clip_to_slabs(ray, box, t0, t1, [&](int i) { return 1 / ray.d[i]; });
-}
-
 ObjectTracer::ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool complement)
     : target_(target),
       inside_sign_(complement ? -target.inside_sign : target.inside_sign),

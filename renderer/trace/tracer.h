@@ -436,8 +436,6 @@ class SceneTracers {
   std::vector<std::shared_ptr<const CsgTracer>> csg_;  // per object: a CSG's tracer, or null
 };
 
-// [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
-bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1);
 // clip_to_box's slabs, each axis's 1 / ray.d[i] (where ray.d[i] != 0) from inverse(i): a caller
 // whose rays share a direction takes its inverses once (PlainFloor's shadow rays), with the same
 // arithmetic, so the same answer.
@@ -456,6 +454,13 @@ inline bool clip_to_slabs(const Ray& ray, const Box& box, double& t0, double& t1
     t1 = std::min(t1, b);
   }
   return t0 <= t1;
+}
+
+// [t0, t1] ∩ the parameter range where the ray is inside the box; empty if t0 > t1.
+// Inline: every camera and shadow ray of a blob sum clips once (pov:chain at 640x480: 366,000
+// calls), and the call took about 21 of its 70 instructions (697.04 -> 689.27 M inline).
+inline bool clip_to_box(const Ray& ray, const Box& box, double& t0, double& t1) {
+  return clip_to_slabs(ray, box, t0, t1, [&](int i) { return 1 / ray.d[i]; });
 }
 
 }  // namespace softtrace

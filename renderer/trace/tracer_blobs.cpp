@@ -117,14 +117,21 @@ std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double is
   return std::nullopt;
 }
 
+// Whether `peak`, a sum of terms' peaks (each >= 0: BlobSum::Term), certifies that every piece
+// made of some of those terms fails its own peak test (first_hit_blobs): a piece sums some of
+// them in another order, which rounds them otherwise by less than 1e-15 of the sum per term, and
+// counts at most max_terms() terms; the margin here is larger than both.
+bool peaks_below_iso(double peak, const BlobSum& blobs, double iso) {
+  const double n = blobs.max_terms();
+  return peak * (1 + 1e-12 + 1e-15 * n) + n * 1e-15 < iso;
+}
+
 // Whether the field stays below iso all along the stretch o + u d, u in [0, len], of a camera
 // ray whose list is sifted (BlobBeam::adders), from the terms of its blobs that may add alone:
 // those whose ranges meet [lo, hi], the entries the sweep would take. The field is the sum of all
 // the blobs' potentials, each blob that only subtracts adds at most 0, and each term's peak bounds
 // its potential over its range (BlobSum::Term), so the field stays below the sum of the adders'
-// peaks. Tested as a piece's peaks are (first_hit_blobs), with a larger margin: a piece sums some
-// of these peaks (a subtracting term's is 0) in another order, which rounds them otherwise by
-// less than 1e-15 of the sum per term, and counts at most max_terms() terms. So where this holds,
+// peaks. Tested by peaks_below_iso (a subtracting term's peak is 0). So where this holds,
 // every piece of the sweep would fail its own peak test: the same miss and the same count of
 // work, without taking the subtracting blobs' terms (pov:golfball: a ray through the big ball's
 // support beside its surface takes none of its dimples'). `terms` is scratch.
@@ -139,8 +146,7 @@ bool adders_below_iso(const BlobSum& blobs, const BlobBeam& list, const Vec3& o,
     const int k = blobs.terms_of_one(e.id, o, d, dd, len, terms);
     for (int j = 0; j < k; ++j) peak += terms[j].peak;
   }
-  const double n = blobs.max_terms();
-  return peak * (1 + 1e-12 + 1e-15 * n) + n * 1e-15 < iso;
+  return peaks_below_iso(peak, blobs, iso);
 }
 
 // first_rise_of and refine_rise_of (bernstein.h) for a piece's polynomial, whose degree is 4 or 6
@@ -356,6 +362,22 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       n = blobs_->terms_of(ids, found, seg.a, ray.d, len, terms);
     } else {
       n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
+    }
+    // A stretch whose terms, all taken (no sweep), have peaks summing below iso: every piece
+    // would fail its peak test (peaks_below_iso), so its events and pieces are not walked, for
+    // the same miss and the same count of work. Most shadow rays leave their lit point so
+    // (pov:chain at 640x480: of 193,876 pieces of its 64,045 shadow rays, 893 passed the test).
+    // Before surely_inside, which sums the same peaks in the same order and finds no point
+    // where they are below iso.
+    if (!sweep) {
+      double peaks = 0;
+      for (int i = 0; i < n; ++i) peaks += terms[i].peak;
+      if (peaks_below_iso(peaks, *blobs_, iso)) {
+        t += len;
+        if (n > kManyTerms) s = 0.5 * len;
+        if (n < kFewTerms) s = 2 * len;
+        continue;
+      }
     }
     if (query == Query::Any)
       if (const std::optional<double> u = surely_inside(terms, n, iso, t == t0)) {

@@ -351,6 +351,42 @@ TEST(BlobSum, FramedTermsOneAtATimeAreTheListsToTheBit) {
 // Rays exactly along a capsule's axis (its middle part is then constant along the ray: no term of
 // alpha > 0), exactly across it (the ray stays in one part), through its end caps, and through a
 // zero-length segment, near and from 1e8 away.
+// A frame whose L has zeros off its diagonal (a segment's or an ellipsoid's that no rotation or
+// matrix placed) takes L x and L^T w from the diagonal alone (BlobSum::Frame::diagonal): the rows'
+// values, for every such frame of a capsule cloud, and no frame a rotation or matrix placed is
+// taken so.
+TEST(BlobSum, DiagonalFramesTakeTheRowsValues) {
+  Cloud cloud(capsule_cloud(40, 12));
+  ASSERT_TRUE(cloud.blobs.has_value());
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-10, 10);
+  int diagonal = 0, framed = 0;
+  for (int32_t id = 0; id < cloud.blobs->size(); ++id) {
+    if (!cloud.blobs->is_framed(id)) continue;
+    ++framed;
+    const BlobSum::Frame& f = cloud.blobs->frames()[size_t(id)];
+    BlobSum::Frame rows = f;
+    rows.diagonal = false;
+    diagonal += f.diagonal;
+    for (int trial = 0; trial < 50; ++trial) {
+      const Vec3 x{unit(rng), unit(rng), unit(rng)};
+      const Vec3 a = f.times(x), b = rows.times(x);
+      const Vec3 at = f.transposed_times(x), bt = rows.transposed_times(x);
+      const Vec3 aq = f.q(x), bq = rows.q(x);
+      for (int i = 0; i < 3; ++i) {
+        ASSERT_EQ(a[i], b[i]) << "blob " << id << ", L x";
+        ASSERT_EQ(at[i], bt[i]) << "blob " << id << ", L^T w";
+        ASSERT_EQ(aq[i], bq[i]) << "blob " << id << ", q";
+      }
+    }
+  }
+  // Of the 40 blobs, every fourth is matrix-placed and every third of the rest rotated; of the 20
+  // others, two segments of zero length are balls (no frame taken), and the 18 segments and
+  // ellipsoids left have diagonal frames.
+  EXPECT_EQ(framed, 38);
+  EXPECT_EQ(diagonal, 18);
+}
+
 TEST(BlobSum, CapsulesAlongAndAcrossTheirAxis) {
   Cloud cloud(R"({"type":"soft_blend","children":[
       {"type":"soft_object","potential":{"type":"murakami"},
