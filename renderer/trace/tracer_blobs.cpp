@@ -93,13 +93,12 @@ inline BlobScratch& blob_scratch(const BlobSum& blobs) {
 // ball, whose nearest point to its centre lies behind them: the test there read every term and
 // failed (6 of its 128 M shadow instructions). A ray that does start inside is found by its
 // first piece (Rise::AtStart), for one evaluation as here.
-std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double iso, bool at_start) {
+// `peaks`: the sum of the terms' peaks in their order (first_hit_blobs took it for its own test).
+std::optional<double> surely_inside(const BlobSum::Term* terms, int n, double peaks, double iso,
+                                    bool at_start) {
   int best = -1;
-  double peaks = 0;
-  for (int i = 0; i < n; ++i) {
-    peaks += terms[i].peak;
+  for (int i = 0; i < n; ++i)
     if (best < 0 || terms[i].peak > terms[best].peak) best = i;
-  }
   if (best < 0 || peaks < iso) return std::nullopt;
   const BlobSum::Term& b = terms[best];
   const double u = std::min(std::max(b.mid, b.enter), b.exit);  // its range's point nearest mid
@@ -334,6 +333,13 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   double t = t0;
   double s =
       whole ? t1 - t0 : std::min((t1 - t0) / kFirstStretch, kFirstRadii * blobs_->typical_radius());
+  // Past a stretch of `len` whose terms numbered n: the next one shorter where they were many,
+  // longer where they were few.
+  const auto next_stretch = [&](double len, int n) {
+    t += len;
+    if (n > kManyTerms) s = 0.5 * len;
+    if (n < kFewTerms) s = 2 * len;
+  };
   while (t < t1) {
     if (work.evaluations() >= kMaxSteps) {
       ++work.give_ups;
@@ -367,20 +373,16 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     // would fail its peak test (peaks_below_iso), so its events and pieces are not walked, for
     // the same miss and the same count of work. Most shadow rays leave their lit point so
     // (pov:chain at 640x480: of 193,876 pieces of its 64,045 shadow rays, 893 passed the test).
-    // Before surely_inside, which sums the same peaks in the same order and finds no point
-    // where they are below iso.
-    if (!sweep) {
-      double peaks = 0;
-      for (int i = 0; i < n; ++i) peaks += terms[i].peak;
-      if (peaks_below_iso(peaks, *blobs_, iso)) {
-        t += len;
-        if (n > kManyTerms) s = 0.5 * len;
-        if (n < kFewTerms) s = 2 * len;
-        continue;
-      }
+    // Before surely_inside, which takes the same sum and finds no point where it is below iso.
+    // (A sweep has taken no term yet: n is 0, and so is the sum.)
+    double peaks = 0;
+    for (int i = 0; i < n; ++i) peaks += terms[i].peak;
+    if (!sweep && peaks_below_iso(peaks, *blobs_, iso)) {
+      next_stretch(len, n);
+      continue;
     }
     if (query == Query::Any)
-      if (const std::optional<double> u = surely_inside(terms, n, iso, t == t0)) {
+      if (const std::optional<double> u = surely_inside(terms, n, peaks, iso, t == t0)) {
         ++work.point_evals;
         return MarchResult{true, t + *u};
       }
@@ -456,9 +458,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       for (int i = n; i < n + k; ++i) events.add(terms[i].enter, terms[i].exit, i);
       n += k;
     }
-    t += len;
-    if (n > kManyTerms) s = 0.5 * len;
-    if (n < kFewTerms) s = 2 * len;
+    next_stretch(len, n);
   }
   return {};
 }
