@@ -348,9 +348,6 @@ TEST(BlobSum, FramedTermsOneAtATimeAreTheListsToTheBit) {
   EXPECT_GT(clear, 10000);
 }
 
-// Rays exactly along a capsule's axis (its middle part is then constant along the ray: no term of
-// alpha > 0), exactly across it (the ray stays in one part), through its end caps, and through a
-// zero-length segment, near and from 1e8 away.
 // A frame whose L has zeros off its diagonal (a segment's or an ellipsoid's that no rotation or
 // matrix placed) takes L x and L^T w from the diagonal alone (BlobSum::Frame::diagonal): the rows'
 // values, for every such frame of a capsule cloud, and no frame a rotation or matrix placed is
@@ -387,6 +384,9 @@ TEST(BlobSum, DiagonalFramesTakeTheRowsValues) {
   EXPECT_EQ(diagonal, 18);
 }
 
+// Rays exactly along a capsule's axis (its middle part is then constant along the ray: no term of
+// alpha > 0), exactly across it (the ray stays in one part), through its end caps, and through a
+// zero-length segment, near and from 1e8 away.
 TEST(BlobSum, CapsulesAlongAndAcrossTheirAxis) {
   Cloud cloud(R"({"type":"soft_blend","children":[
       {"type":"soft_object","potential":{"type":"murakami"},
