@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 
+#include "film/plane_memory.h"
+
 #if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
 #include <malloc.h>
 #include <sys/mman.h>
@@ -16,7 +18,6 @@ namespace softtrace {
 
 namespace {
 
-constexpr size_t kHuge = size_t(1) << 21;  // x86-64's transparent huge page
 // Blocks below this come from the heap's top, not from mappings of their own (glibc's default
 // threshold starts at 128 KiB), and a top this large stays the process's when blocks are freed.
 constexpr int kFromHeapBelow = 16 << 20;
@@ -29,15 +30,15 @@ constexpr size_t kMinBlock = 32;
 }  // namespace
 
 HeapPages heap_in_huge_pages(size_t bytes) {
-  bytes = (bytes + kHuge - 1) / kHuge * kHuge;
-  if (bytes == 0 || bytes > size_t(kFromHeapBelow) - kHuge) return {};
+  bytes = huge_page_ceil(bytes);
+  if (bytes == 0 || bytes > size_t(kFromHeapBelow) - kHugePage) return {};
   if (!mallopt(M_MMAP_THRESHOLD, kFromHeapBelow) || !mallopt(M_TRIM_THRESHOLD, kTrimAbove))
     return {};
   // A block this large comes from the top, which grows to hold it; freed, it is the top again.
-  char* const block = static_cast<char*>(std::malloc(bytes + kHuge));
+  char* const block = static_cast<char*>(std::malloc(bytes + kHugePage));
   if (!block) return {};
   const uintptr_t start = reinterpret_cast<uintptr_t>(block);
-  const uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
+  const uintptr_t aligned = huge_page_ceil(start);
   std::free(block);
   // The front, from the top's start to the boundary, as one block kept for the process's life:
   // the next block then begins at the boundary.

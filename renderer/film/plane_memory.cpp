@@ -16,12 +16,7 @@ namespace softtrace {
 
 namespace {
 
-constexpr size_t kHuge = size_t(1) << 21;    // x86-64's transparent huge page
 constexpr size_t kMapped = size_t(1) << 20;  // a plane this large or larger is mapped on its own
-
-size_t mapped_length(size_t bytes) {
-  return (bytes + kHuge - 1) / kHuge * kHuge;
-}
 
 }  // namespace
 
@@ -31,17 +26,17 @@ bool plane_mapped(size_t bytes) {
 
 void* plane_allocate(size_t bytes) {
   if (!plane_mapped(bytes)) return ::operator new(bytes);
-  if (bytes > SIZE_MAX - 2 * kHuge) throw std::bad_alloc();
+  if (bytes > SIZE_MAX - 2 * kHugePage) throw std::bad_alloc();
   // Mapped with a huge page's worth to spare, then the unaligned ends given back: a huge page
   // covers only an aligned 2 MiB of the mapping.
-  const size_t length = mapped_length(bytes);
-  void* const m =
-      ::mmap(nullptr, length + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  const size_t length = huge_page_ceil(bytes);
+  void* const m = ::mmap(nullptr, length + kHugePage, PROT_READ | PROT_WRITE,
+                         MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (m == MAP_FAILED) throw std::bad_alloc();
   const uintptr_t start = reinterpret_cast<uintptr_t>(m);
-  const uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
+  const uintptr_t aligned = huge_page_ceil(start);
   if (aligned > start) ::munmap(m, aligned - start);
-  ::munmap(reinterpret_cast<void*>(aligned + length), start + kHuge - aligned);
+  ::munmap(reinterpret_cast<void*>(aligned + length), start + kHugePage - aligned);
   void* const p = reinterpret_cast<void*>(aligned);
   ::madvise(p, length, MADV_HUGEPAGE);  // advice only: ordinary pages where it is refused
   return p;
@@ -50,7 +45,7 @@ void* plane_allocate(size_t bytes) {
 void plane_free(void* p, size_t bytes) noexcept {
   if (!p) return;
   if (plane_mapped(bytes))
-    ::munmap(p, mapped_length(bytes));
+    ::munmap(p, huge_page_ceil(bytes));
   else
     ::operator delete(p);
 }

@@ -9,9 +9,18 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace softtrace {
+
+// x86-64's transparent huge page, and `x` (a length or an address) rounded up to a whole number
+// of them: a huge page backs only an aligned 2 MiB of advised memory (the planes here, and the
+// heap's advised range, cli/heap_pages.h).
+constexpr size_t kHugePage = size_t(1) << 21;
+constexpr uintptr_t huge_page_ceil(uintptr_t x) {
+  return (x + kHugePage - 1) / kHugePage * kHugePage;
+}
 
 // `bytes` of memory for a plane, aligned for any scalar; throws std::bad_alloc.
 void* plane_allocate(size_t bytes);

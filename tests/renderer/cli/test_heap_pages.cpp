@@ -14,15 +14,15 @@
 namespace softtrace {
 namespace {
 
-constexpr size_t kHugePage = size_t(1) << 21;
+constexpr size_t kTwoMiB = size_t(1) << 21;  // a huge page, told independently of the code
 
 TEST(HeapPages, TheHeapCarvesItsBlocksFromTheAdvisedBoundaryOn) {
   const HeapPages range = heap_in_huge_pages(3 * (size_t(1) << 20));  // rounds up to 4 MiB
   if (range.begin == range.end) {
     GTEST_SKIP() << "this build's C library takes no such advice";
   }
-  EXPECT_EQ(range.begin % kHugePage, 0u);
-  EXPECT_EQ(range.end - range.begin, 2 * kHugePage);
+  EXPECT_EQ(range.begin % kTwoMiB, 0u);
+  EXPECT_EQ(range.end - range.begin, 2 * kTwoMiB);
   // Blocks of 100 KiB, 5 MB in all: the heap's free lists serve what they hold first, then the
   // top, whose first block must begin at the boundary (the front before it kept out of use).
   std::vector<std::unique_ptr<char[]>> blocks;
