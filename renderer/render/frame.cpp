@@ -235,6 +235,7 @@ class FrameTracer {
     }
     BeamClear certified{fr.forward, clear, blobs};
     certified.unmet = rt_.embree.unmet(certified);
+    certified.passable = !certified.unmet && rt_.embree.passable(certified);
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
@@ -416,11 +417,14 @@ class FrameTracer {
     return true;
   }
 
-  // Whether `ray`, of an unmet beam (BeamClear::unmet), has its answer (a primitive's hit or
-  // none, and its counters) from intersect_unmet in the thread's slot, work.unmet. Filled there in
+  // Whether `ray`, of an unmet beam (BeamClear::unmet) or one of a passable beam that passes
+  // between its list's balls (intersect_passing), has its answer (a primitive's hit or none, and
+  // its counters) from intersect_unmet in the thread's slot, work.unmet. Filled there in
   // place: a TraceHit returned by value and copied out stalled on intersect_unmet's stores.
   bool unmet_answers(const Ray& ray, const BeamClear* certified, Work& work) const {
-    return certified && certified->unmet && rt_.embree.intersect_unmet(ray, *certified, work.unmet);
+    if (!certified) return false;
+    if (certified->unmet) return rt_.embree.intersect_unmet(ray, *certified, work.unmet);
+    return certified->passable && rt_.embree.intersect_passing(ray, *certified, work.unmet);
   }
 
   // Sample t's camera ray's nearest hit by intersect, made in t.hit itself (the TraceHit that

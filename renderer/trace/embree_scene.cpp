@@ -474,6 +474,20 @@ bool EmbreeScene::unmet(const BeamClear& beam) const {
   return tracer && tracer->blob_sum() && list.valid && list.camera() && list.entries.empty();
 }
 
+bool EmbreeScene::passable(const BeamClear& beam) const {
+  const int f = impl_->direct_field;
+  if (f < 0 || !beam.blobs) return false;
+  const ObjectTracer* tracer = impl_->data[size_t(f)].tracer;
+  const BlobBeam& list = beam.blobs[f];
+  return tracer && tracer->blob_sum() && list.valid && list.passing > 0;
+}
+
+bool EmbreeScene::intersect_passing(const Ray& ray, const BeamClear& beam, TraceHit& hit) const {
+  const int f = impl_->direct_field;
+  return impl_->data[size_t(f)].tracer->passes_listed_balls(ray, beam.blobs[f]) &&
+         intersect_unmet(ray, beam, hit);
+}
+
 bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHit& hit) const {
   // field_hit's clear_to and list, as intersect() takes them.
   const int f = impl_->direct_field;

@@ -119,6 +119,18 @@ struct BlobBeam {
   // answered as blocked_by would answer it, with the same work, but without its terms.
   bool shut = false;
   double shut_footprint = 0;
+  // A camera list of at most kPassable blobs, all balls, in a sum where none subtracts: per ball,
+  // from the eye, what bounds the peak of a ray's term of it (ObjectTracer::passes_listed_balls,
+  // tracer_blob_beam.cpp), `passing` of them; 0 for any other list.
+  static constexpr int kPassable = 4;
+  struct Passing {
+    Vec3 oc;   // eye - centre
+    double k;  // 1 - |oc|^2 / r^2, raised by a bound of the rounding
+    double inv_r2;
+    double mag;  // |c2| + |c3|
+  };
+  Passing passes[kPassable];
+  int passing = 0;
   // A camera list (ObjectTracer::blob_beam from the eye), neither kind of shadow list.
   bool camera() const { return !parallel && !toward; }
   // Whether the list holds for rays from o: from its eye, to the bit.
@@ -225,6 +237,11 @@ class ObjectTracer {
   // 300 instructions each).
   MarchResult first_hit_unlisted(const Ray& ray, double tfar, double clear_to,
                                  TraceCounters& work) const;
+  // Whether `ray`, a camera ray from the eye of `list` (a camera list of this blob sum with
+  // BlobBeam::passing balls) through its block, passes so far from the list's balls that their
+  // terms' peaks sum below iso (tracer_blob_beam.cpp): first_hit_blobs then reads no piece, and
+  // its answer and counters are first_hit_unlisted's. False where that is not certain.
+  bool passes_listed_balls(const Ray& ray, const BlobBeam& list) const;
 
   // A forward depth before which no ray of the frustum meets the solid (inside the object's box),
   // certified by the interval of g over boxes around slices of the frustum: the work of the
@@ -365,6 +382,9 @@ class ObjectTracer {
   // first_hit_blobs' stretches over [t0, t1] for a camera ray whose list holds no blob: the
   // same stretches, each counted, none read.
   MarchResult unlisted_stretches(double t0, double t1, TraceCounters& work) const;
+  // BlobBeam::passing and passes of the camera list *out from `eye` (eye_scale: its largest
+  // coordinate's magnitude), or passing 0 (tracer_blob_beam.cpp).
+  void passing_balls(const Vec3& eye, double eye_scale, BlobBeam* out) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
   // With `list` (see normal), from its blobs whose ranges of distances hold p's from the eye.
   Vec3 blob_gradient(const Vec3& p, double* terms, const BlobBeam* list) const;

@@ -49,6 +49,7 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
   out->entries.clear();
   out->sifted = false;
   out->adders.clear();
+  out->passing = 0;
   if (!blobs_) return;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec3 normals[4];
@@ -133,8 +134,53 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
       if (blobs_->adds(out->entries[i].id)) out->adders.push_back(i);
     out->sifted = static_cast<int>(out->adders.size()) < n;
   }
+  passing_balls(f.eye, sides.eye_scale, out);
   out->eye = f.eye;
   out->valid = true;
+}
+
+// A ray that passes a ball's centre c at distance D (the line's, d of unit length) has at most
+// the term h2 = 1 - D^2 / r^2 there (BlobSum::ball_term: none where h2 <= 0), and its peak,
+// P(r) = r^2 (c2 + c3 r) at r <= h2 (Term::peak), is at most h2^2 (|c2| + |c3|), as r <= 1. A
+// ray whose bounds sum below iso is read as first_hit_blobs reads it: each piece's peaks sum
+// below iso (its first test, which every piece then fails), so no piece is counted or searched,
+// and each stretch ends as an empty list's, counted, the next no shorter than what is left (as
+// unlisted_stretches; at most kPassable < kManyTerms terms). With b = (eye - c).d, D^2 =
+// |eye - c|^2 - b^2, here from the block's eye - c. What bounds the rounding, all in k, as
+// multiples of |eye - c|^2 / r^2: this D^2's (its cancellation, and d's length, 1 to a few ulps)
+// at most a few ulps of |eye - c|^2; the sweep's, from its stretch's start, on the line to a few
+// ulps of |eye| + t0 (t0 <= |eye - c| + r, or the ball's entry is skipped), at most a few ulps
+// of (|eye| + 3 |eye - c| + r) |eye - c|; 1e-11 is thousands of ulps. Then 1e-12 for h2's own.
+void ObjectTracer::passing_balls(const Vec3& eye, double eye_scale, BlobBeam* out) const {
+  if (!out->camera() || out->entries.size() > size_t(BlobBeam::kPassable) || blobs_->subtracts())
+    return;
+  const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
+  int n = 0;
+  for (const BlobBeam::Entry& e : out->entries) {
+    const BlobSum::Blob& b = blobs[e.id];
+    if (blobs_->is_framed(e.id) || !(b.inv_r2 > 0)) return;
+    const Vec3 oc = eye - b.centre;
+    const double oc2 = dot(oc, oc);
+    const double w = 0.5 * (e.far - e.near);  // r and blob_beam's slack
+    const double rounding = 1e-11 * (oc2 + (eye_scale + w) * std::sqrt(oc2)) * b.inv_r2 + 1e-12;
+    out->passes[n++] = {oc, 1 - oc2 * b.inv_r2 + rounding, b.inv_r2,
+                        std::abs(b.c2) + std::abs(b.c3)};
+  }
+  out->passing = n;
+}
+
+bool ObjectTracer::passes_listed_balls(const Ray& ray, const BlobBeam& list) const {
+  // d of unit length to a few ulps, as k assumes (a camera ray's is normalised).
+  if (!(std::abs(dot(ray.d, ray.d) - 1) < 1e-14)) return false;
+  double peaks = 0;
+  for (int i = 0; i < list.passing; ++i) {
+    const BlobBeam::Passing& p = list.passes[i];
+    const double b = dot(p.oc, ray.d);
+    const double h2 = p.k + b * b * p.inv_r2;
+    if (h2 > 0) peaks += h2 * h2 * p.mag;
+  }
+  // Far above the sum's and the pieces' own rounding (first_hit_blobs: 1e-12 of it, 1e-15 a term).
+  return peaks * (1 + 1e-9) + 1e-9 < target_.iso;
 }
 
 }  // namespace softtrace

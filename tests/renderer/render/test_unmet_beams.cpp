@@ -7,6 +7,11 @@
 // drop a pixel with a hit. The same holds over the cloud with a floor, a ball and a box beside it
 // (the direct path with primitives): an unmet beam's ray gets the primitives' nearest hit as
 // intersect() finds it, with the sum's miss before it counted the same.
+//
+// Passing rays: a beam whose list holds a few balls (EmbreeScene::passable) answers each ray that
+// passes outside all of them (ObjectTracer::passes_listed_balls) as an unmet beam's, through
+// EmbreeScene::intersect_passing. Such a ray must get intersect()'s answer and counters too, and
+// none may be one that meets the sum.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -55,6 +60,9 @@ bool same_unmet_counters(const TraceCounters& a, const TraceCounters& b) {
 // What a walk over every unmet beam's rays of a 128x96 frame saw.
 struct UnmetWalk {
   int rays = 0, unmet_rays = 0, counted = 0;
+  // Rays of passable beams; of them, those that meet the sum, those answered as unmet ones, and
+  // those of these that counted stretches (entered the sum's box).
+  int passable_rays = 0, passable_sum_hits = 0, passing_rays = 0, passing_counted = 0;
   int sum_hits = 0;             // every ray's hits on the sum (object 0)
   std::vector<int> unmet_hits;  // per object, the unmet rays' hits
 };
@@ -94,6 +102,7 @@ void walk_unmet_beams(const Scene& scene, const TracedScene& rt, UnmetWalk& walk
           BeamClear beam{camera.frustum(x4, y4, x4 + 4, y4 + 4).forward, &depth[last],
                          &lists[last]};
           const bool unmet = rt.embree.unmet(beam);
+          const bool passable = !unmet && rt.embree.passable(beam);
           for (int py = y4; py < y4 + 4; ++py)
             for (int px = x4; px < x4 + 4; ++px)
               for (int s = 0; s < 2; ++s) {  // the pixel's centre and a point inside it
@@ -101,12 +110,20 @@ void walk_unmet_beams(const Scene& scene, const TracedScene& rt, UnmetWalk& walk
                 const TraceHit full = rt.embree.intersect(ray, 0, kUnmetFar, &beam);
                 ++walk.rays;
                 walk.sum_hits += full.hit && full.object == 0;
-                if (!unmet) continue;
+                if (!unmet && !passable) continue;
                 TraceHit hit;
                 hit.hit = true;  // to be overwritten
-                ASSERT_TRUE(rt.embree.intersect_unmet(ray, beam, hit))
-                    << "pixel " << px << ", " << py;
-                ++walk.unmet_rays;
+                if (passable) {
+                  ++walk.passable_rays;
+                  walk.passable_sum_hits += full.hit && full.object == 0;
+                  if (!rt.embree.intersect_passing(ray, beam, hit)) continue;
+                  ++walk.passing_rays;
+                  walk.passing_counted += full.work.box_evals > 0;
+                } else {
+                  ASSERT_TRUE(rt.embree.intersect_unmet(ray, beam, hit))
+                      << "pixel " << px << ", " << py;
+                  ++walk.unmet_rays;
+                }
                 ASSERT_NE(full.object, 0) << "pixel (" << px << ", " << py
                                           << "): an unmet beam's ray meets the sum at " << full.t;
                 ASSERT_EQ(hit.hit, full.hit) << "pixel (" << px << ", " << py << ")";
@@ -138,6 +155,10 @@ TEST(UnmetBeams, EveryRayGetsIntersectsAnswer) {
   EXPECT_GT(walk.unmet_rays, walk.rays / 3);
   EXPECT_GT(walk.counted, walk.unmet_rays / 10);
   EXPECT_GT(walk.sum_hits, 20);
+  // Most rays of passable beams pass between the balls; some meet them, and must not be taken so.
+  EXPECT_GT(walk.passing_rays, walk.passable_rays / 2);
+  EXPECT_GT(walk.passable_sum_hits, 20);
+  EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
 }
 
 TEST(UnmetBeams, BesidePrimitivesEveryRayGetsIntersectsAnswer) {
