@@ -65,6 +65,7 @@ ObjectTracer::ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool c
   default_footprint_ = 1e-5 * target.bounds.diagonal();
   if (mode == LipschitzMode::Local && inside_sign_ > 0 && target.iso > 0)
     blobs_ = BlobSum::of(program_);
+  if (blobs_) blocker_reach2_ = blocker_reach2(*blobs_, target.iso);
   const Box& b = target.bounds;
   scale_ = std::max(max_abs(b.lo), max_abs(b.hi));
 }

@@ -327,6 +327,9 @@ class ObjectTracer {
   // Whether the list's blocker entries[i] shuts its block (BlobBeam::shut): sets shut and
   // shut_footprint where it does (tracer_shadow_beam.cpp).
   void shut_by(BlobBeam* list, size_t i) const;
+  // The widest square half-diagonal of a prism's rectangle over which any ball of `blobs` may be
+  // picked as a blocker (shadow_blockers): 0 where none can be (tracer_shadow_beam.cpp).
+  static double blocker_reach2(const BlobSum& blobs, double iso);
   // Whether a held ray of a shut list over [t0, t1], starting at `base` on its axis, is one whose
   // blocked_by answer the list certifies.
   bool shut_decides(const Ray& ray, double t0, double t1, double base, const BlobBeam& list) const;
@@ -400,6 +403,8 @@ class ObjectTracer {
   // Set where the field is a sum of polynomial blobs and the solid is where it reaches iso > 0
   // (in the local mode; the global one keeps the segment tracer as the baseline).
   std::optional<BlobSum> blobs_;
+  // blocker_reach2 of blobs_: a prism's list wider than that has no blocker, and is not searched.
+  double blocker_reach2_ = 0;
 };
 
 // Inline: a blob ray calls each once or twice (first_hit_blobs), and the calls were 2 % of

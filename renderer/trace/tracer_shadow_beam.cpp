@@ -228,6 +228,16 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
   list->shut = false;
   if (!blobs_ || !list->valid || !(list->parallel || list->toward)) return;
   const ShadowPrism& p = list->prism;
+  // A ball is picked (below) only where its r at the rectangle's farthest corner, 1 - (dx^2 +
+  // dy^2) / R^2, lifts it above iso; dx and dy are at least the rectangle's half-sides, so none is
+  // where their squares' sum reaches blocker_reach2 (the rounding of both sides is a few ulps, 1e-9
+  // spares far more), and the list keeps no blocker and is not shut, as the loop would find. A
+  // tile's or a quarter's list asked by shut_and_lend whose prism is wider than the sum's widest
+  // blocker then costs no loop over its entries (meets1 at 320x240: this function 5.14 -> 0.12 M).
+  if (list->parallel) {
+    const double hx = 0.5 * (p.x1 - p.x0), hy = 0.5 * (p.y1 - p.y0);
+    if (!((hx * hx + hy * hy) * (1 - 1e-9) < blocker_reach2_)) return;
+  }
   const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
   const double iso = target_.iso;
   // The rounding of a piece's polynomial (stretch_polynomial's err): (128 + n) ulps of the sum of
@@ -283,6 +293,34 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
   list->blockers.assign(best, best + picked);
   if (list->parallel)
     for (int k = 0; k < picked && !list->shut; ++k) shut_by(list, best_i[k]);
+}
+
+// A ball (c2, c3 >= 0, radius R) is picked only where P(r) = r^2 (c2 + c3 r) > iso at r = 1 -
+// s / R^2, s the square distance across: P increases on [0, 1], so r must exceed lo, the
+// bisection's last point with P(lo) <= iso (1 - 1e-9), below the root even after P's rounding, and
+// s must be below R^2 (1 - lo) (1e-12 more for the rounding of 1 - s / R^2 when lo is near 1). The
+// sum's balls mostly share their strengths: a ball like the one before takes its lo (1000 balls' 30
+// bisection steps each would cost a 1000-blob scene 0.3 M instructions).
+double ObjectTracer::blocker_reach2(const BlobSum& sum, double iso) {
+  const double below = iso * (1 - 1e-9);
+  double widest = 0, c2 = -1, c3 = -1, lo = 1;
+  for (const BlobSum::Blob& b : sum.blobs()) {
+    if (!(b.inv_r2 > 0 && b.c2 >= 0 && b.c3 >= 0)) continue;
+    const auto potential = [&](double r) { return r * r * (b.c2 + b.c3 * r); };
+    if (b.c2 != c2 || b.c3 != c3) {
+      c2 = b.c2, c3 = b.c3, lo = 1;
+      if (potential(1) > below) {
+        double hi = 1;
+        lo = 0;
+        for (int i = 0; i < 30; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (potential(mid) <= below ? lo : hi) = mid;
+        }
+      }
+    }
+    if (lo < 1) widest = std::max(widest, (1 - lo + 1e-12) / b.inv_r2);
+  }
+  return widest;
 }
 
 // Shut blocks. blocked_by decides a ray by one ball's term alone, as a per-ray check: most of a

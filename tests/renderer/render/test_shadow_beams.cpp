@@ -633,6 +633,56 @@ TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
     }
 }
 
+// A list whose prism is wider than any ball's reach is not searched for blockers (ObjectTracer::
+// blocker_reach2): that must never drop a ball the search would pick. A ball of radius 4
+// (Murakami's or Wyvill's, two strengths) with a weaker one far away listed before it (whose reach
+// is the smaller), under a prism centred on it: over half-sides from 0.5 to 3 in steps of 0.002,
+// the ball is picked exactly where its potential at the rectangle's corner exceeds iso by 1e-3 of
+// it, as shadow_blockers' own rule says (a bound 1 % too tight, or the weak ball's taken for the
+// strong one's, drops some).
+TEST(ShadowBeams, AListNarrowerThanABallsReachPicksItAsTheSearchDoes) {
+  for (const char* potential : {"murakami", "wyvill"})
+    for (const char* strength : {"1", "0.6"}) {
+      const auto ball = [&](const char* at, const char* s) {
+        return std::string(R"({"type":"soft_object","potential":{"type":")") + potential +
+               R"("},"strength":)" + s + R"(,"translate":[)" + at +
+               R"(],"distance":{"type":"lp_metric","radii":[4,4,4],"n":2}})";
+      };
+      const Scene scene =
+          parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)" +
+                          ball("-100,0,0", "0.52") + "," + ball("0,0,0", strength) +
+                          far_balls(ShadowBeams::kFewBlobs) + R"(]}}]})",
+                      "<test>");
+      const std::vector<TracedObject> objects = traced_objects(scene);
+      const SceneTracers tracers(objects, LipschitzMode::Local);
+      const ObjectTracer& tr = tracers[0];
+      ASSERT_TRUE(tr.blob_sum());
+      // The rays run along `along` from 10 below the ball's centre (the origin).
+      const Vec3 along = Vec3{0.3, -0.2, 1} / length(Vec3{0.3, -0.2, 1});
+      Vec3 u = cross(along, Vec3{1, 0, 0});
+      u = u / length(u);
+      const Vec3 v = cross(along, u) / length(cross(along, u));
+      int picked = 0, left = 0;
+      for (int i = 0; i <= 1250; ++i) {
+        const double h = 0.5 + 0.002 * i;
+        const ShadowPrism prism{along * -10.0, along, u, v, -h, h, -h, h, -0.1};
+        BlobBeam list;
+        tr.shadow_beam(prism, nullptr, &list);
+        ASSERT_TRUE(list.valid);
+        ASSERT_EQ(list.entries.size(), 1u);
+        tr.shadow_blockers(&list);
+        // The corner at the centre's depth: the ball's potential alone (the others are far).
+        const double f = tr.eval(u * h + v * h, nullptr);
+        if (std::abs(f - 0.5 * (1 + 1e-3)) < 1e-9) continue;  // the rounding decides
+        const bool picks = f > 0.5 * (1 + 1e-3);
+        EXPECT_EQ(!list.blockers.empty(), picks) << potential << " " << strength << " " << h;
+        picked += picks, left += !picks;
+      }
+      EXPECT_GT(picked, 100) << potential << strength;
+      EXPECT_GT(left, 100) << potential << strength;
+    }
+}
+
 // The frame traces a whole tile's camera rays before it shades any (the shadow lists need their
 // hits), and a hit's normal takes the blob list of the 4-pixel beam that traced it
 // (TraceHit::blobs): the next beam of the tile overwrites that list before shading unless the
