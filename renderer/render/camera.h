@@ -59,6 +59,8 @@ class ViewCamera {
 
   // Whether every ray leaves the eye (a pinhole perspective camera): then frustum() holds them.
   bool single_eye() const { return !orthographic_ && aperture_ == 0; }
+  // The rays' origin, where single_eye().
+  const Vec3& eye() const { return eye_; }
   // Whether the rays pass through a lens: only then does generate() read its (lx, ly).
   bool lens() const { return aperture_ > 0; }
 

@@ -145,7 +145,7 @@ class FrameTracer {
     const ObjectTracer* field =
         floor_.lean() ? rt.tracers.tracer(rt.embree.floor().field) : nullptr;
     if (field && spp_ == 1 && !adaptive && camera_.single_eye() && shadow_beams_.active())
-      floor_box_ = &field->box();
+      floor_pixels_ = floor_.unlisted_rays(field->box(), unlisted_);
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt.tracers.tracer(o);
       beams_count_ = beams_count_ || (tracer && !tracer->blob_sum());
@@ -236,6 +236,7 @@ class FrameTracer {
     BeamClear certified{fr.forward, clear, blobs};
     certified.unmet = rt_.embree.unmet(certified);
     certified.passable = !certified.unmet && rt_.embree.passable(certified);
+    certified.reach = reach_;
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
@@ -335,14 +336,14 @@ class FrameTracer {
   // trace_pixel's pixel (x, y) of one sample, traced into `t` (its ray, and its hit unless
   // `hit` is the thread's unmet answer, work.unmet): kept for shading where it has a hit (copied
   // into `t` from work.unmet), else written now (miss_pixel).
-  // With floor_box_, its hit's shadow-ray point is made now, and a floor pixel whose point needs
+  // With floor_pixels_, its hit's shadow-ray point is made now, and a floor pixel whose point needs
   // no list is written now (floor_pixel), with no record.
   [[gnu::always_inline]] void one_sample(int x, int y, int first, TracedSample& t,
                                          const TraceHit* hit, Pass pass, Work& work) const {
     work.primary.add(hit->work);
     if (hit->hit) {
       TracedPixel pixel = traced_pixel(x, y, first, 1);
-      if (floor_box_) {
+      if (floor_pixels_) {
         pixel.point = static_cast<int>(work.points.size());
         ShadowBeams::Point& at = *work.points.room(1) = shadow_point(t.ray, *hit);
         // A pixel written now gives its point to no list: the lists are the records' points'
@@ -397,22 +398,21 @@ class FrameTracer {
   // no list.
   bool floor_pixel(int x, int y, const Ray& ray, const TraceHit& hit, const ShadowBeams::Point& at,
                    Work& work) const {
-    RayWork& shadow = work.shadow;
-    const long long before = shadow.evaluations();
     Shaded sh;
-    if (!floor_.shade_unlisted(ray, hit, at, *floor_box_, shadow, cancel_, sh)) return false;
+    if (!floor_.shade_unlisted(ray, at, unlisted_, work.shadow, cancel_, sh)) return false;
     Vec3 sum{0, 0, 0};
     sum += sh.color;
+    const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);  // no apron: no adaptive
+    float* const rgba = &film_.rgba[i * 4];
+    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k]);
+    rgba[3] = static_cast<float>(1);  // covered
+    if (!aov_planes_) return true;
     SampleMeans means;
     if (aov_means_) {
       means.normal += sh.normal;
       means.albedo += sh.albedo;
     }
-    const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);  // no apron: no adaptive
-    float* const rgba = &film_.rgba[i * 4];
-    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k]);
-    rgba[3] = static_cast<float>(1);  // covered
-    centre_aovs(i, hit, shadow.evaluations() - before);
+    centre_aovs(i, hit, 0);  // its shadow rays evaluate nothing (shade_unlisted)
     mean_aovs(i, means);
     return true;
   }
@@ -458,7 +458,8 @@ class FrameTracer {
       std::stable_sort(pixels.begin(), pixels.end(), by_block);
     const bool lists = shadow_beams_.active();
     int* const block_starts = work.block_starts;
-    if (floor_box_) {  // the points were made as the tile was traced (one_sample), block by block
+    if (floor_pixels_) {  // the points were made as the tile was traced (one_sample), block by
+                          // block
       for (int b = 0; b < kBlocksPerTile; ++b)  // a block without points ends where it starts
         block_starts[b + 1] = std::max(block_starts[b + 1], block_starts[b]);
     } else if (lists) {
@@ -747,9 +748,12 @@ class FrameTracer {
   // Whether a beam's approach may count work (ObjectTracer::clear_depth: a field that is no blob
   // sum): a background beam's quarters are then still visited, for the same counters.
   bool beams_count_ = false;
-  // The floor's field's box, where a floor pixel may be written as it is traced (floor_pixel):
-  // its shadow rays that miss the box need no list. Else null.
-  const Box* floor_box_ = nullptr;
+  // Whether a floor pixel may be written as it is traced (floor_pixel): its shadow rays that
+  // miss the floor's field's box need no list, and unlisted_ holds what they ask of the box.
+  bool floor_pixels_ = false;
+  PlainFloor::UnlistedRays unlisted_;
+  // BeamClear::reach of the camera's rays (single_eye(): pinhole rays from its eye).
+  const double reach_ = camera_.single_eye() ? BeamClear::reach_from(camera_.eye()) : -1;
   const TraceHit none_;  // a background pixel's centre ray's answer: no hit, no work
 };
 

@@ -19,6 +19,9 @@
 namespace softtrace {
 
 class PlainFloor {
+  // The most shadowed lights a lean floor has (lean_colours).
+  static constexpr size_t kLean = 3;
+
  public:
   // None (object() -1) unless the scene has a floor whose material shades_plain.
   PlainFloor(const Scene& scene, const EmbreeScene& rt) : floor_(rt.floor()) {
@@ -85,38 +88,98 @@ class PlainFloor {
     return shade_lights(scene, rt, ray, side, lifted, cone0, secondary, cancel, shadow);
   }
 
+  // What shade_unlisted asks of each shadowed light's ray, taken once for the frame: the rays
+  // from the floor's points towards a light share their direction, so clip_to_slabs' tests
+  // against the field's box differ from point to point only in the ray's origin, and the
+  // plane's test (unplaced_plane_end) in dot(n, o) alone.
+  struct UnlistedRays {
+    struct Light {
+      Vec3 to_light{0, 0, 0};
+      bool along[3] = {false, false, false};  // to_light[i] != 0
+      double inverse[3] = {0, 0, 0};          // 1 / to_light[i] (Term::inverse)
+      // clip_to_slabs' ends of each slab after its swap: where 1 / d[i] > 0 the box's lo then
+      // hi, else hi then lo. Rounding keeps order, so on a box whose lo <= hi (lo - o) * inv <=
+      // (hi - o) * inv exactly where inv > 0: the swap picks these ends at every point, the
+      // same numbers (equal ends: the same either way). Where to_light[i] == 0: lo and hi.
+      double near[3] = {0, 0, 0}, far[3] = {0, 0, 0};
+      double plane_nd = 0;  // unplaced_plane_end's dot(n, d)
+
+      // !clip_to_slabs(ray from o along to_light, box, 0, +inf): clip_to_box's answer, in its
+      // order, without the tests that the frame's direction decides.
+      [[gnu::always_inline]] bool enters(const Vec3& o) const {
+        double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < 3; ++i) {
+          if (!along[i]) {
+            if (o[i] < near[i] || o[i] > far[i]) return false;
+            continue;
+          }
+          t0 = std::max(t0, (near[i] - o[i]) * inverse[i]);
+          t1 = std::min(t1, (far[i] - o[i]) * inverse[i]);
+        }
+        return t0 <= t1;
+      }
+    };
+    Light light[kLean];  // shadowed_'s, in its order
+    size_t count = 0;
+    unsigned lit[2] = {0, 0};  // per side, bit j: shadowed_[j]'s cosine is not <= 0
+  };
+
+  // The frame's UnlistedRays for the field's box `box` (its tracer's, ObjectTracer::box), into
+  // `out`; false where the floor is not lean() or the box is empty (lo > hi on an axis: every
+  // ray's clip then enters it, and every point takes its records).
+  bool unlisted_rays(const Box& box, UnlistedRays& out) const {
+    if (!lean()) return false;
+    for (int i = 0; i < 3; ++i)
+      if (!(box.lo[i] <= box.hi[i])) return false;
+    out.count = shadowed_.size();
+    for (size_t j = 0; j < shadowed_.size(); ++j) {
+      const Term& t = terms_[shadowed_[j]];
+      UnlistedRays::Light& l = out.light[j];
+      l.to_light = t.to_light;
+      for (int i = 0; i < 3; ++i) {
+        l.along[i] = t.to_light[i] != 0;
+        l.inverse[i] = t.inverse[i];
+        const bool ascending = !l.along[i] || t.inverse[i] > 0;
+        l.near[i] = ascending ? box.lo[i] : box.hi[i];
+        l.far[i] = ascending ? box.hi[i] : box.lo[i];
+      }
+      l.plane_nd = dot(floor_.plane->normal, t.to_light);
+      for (int side = 0; side < 2; ++side)
+        if (!(t.cosine[side] <= 0)) out.lit[side] |= 1u << j;
+    }
+    return true;
+  }
+
   // shade() of a lean() floor's camera hit whose shadow rays, from its point `at` (ShadowBeams'),
-  // all miss the field's box `box` (its tracer's, ObjectTracer::box), with no list: into `out`,
-  // its rays counted; false, nothing counted, where one of them enters the box (shade() with its
-  // block's lists then answers it). Such a ray's answer and counters are the same with any list
-  // or none: occluded() tests the plane first, and the field's first_hit clips the ray to its box
-  // before anything else and counts nothing for a ray outside it (a clear list's no is the same
-  // no, its ++rays the same ray). So the point needs no list, and the frame writes its pixel as
-  // it traces it (frame.cpp, floor_pixel).
-  [[gnu::always_inline]] bool shade_unlisted(const Ray& ray, const TraceHit& hit,
-                                             const ShadowBeams::Point& at, const Box& box,
-                                             RayWork& secondary, const std::atomic<bool>* cancel,
-                                             Shaded& out) const {
+  // all miss the field's box (`rays`, unlisted_rays'), with no list: into `out`, its rays counted
+  // (they evaluate nothing); false, nothing counted, where one of them enters the box (shade()
+  // with its block's lists then answers it). Such a ray's answer and counters are the same with
+  // any list or none: occluded() tests the plane first, and the field's first_hit clips the ray
+  // to its box before anything else and counts nothing for a ray outside it (a clear list's no
+  // is the same no, its ++rays the same ray). So the point needs no list, and the frame writes
+  // its pixel as it traces it (frame.cpp, floor_pixel).
+  [[gnu::always_inline]] bool shade_unlisted(const Ray& ray, const ShadowBeams::Point& at,
+                                             const UnlistedRays& rays, RayWork& secondary,
+                                             const std::atomic<bool>* cancel, Shaded& out) const {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     const int side = dot(normal_[0], ray.d) > 0;  // shade()'s steps, in its order
     const Vec3 n = normal_[side];
-    const double cone0 = footprint_at(ray, hit);
     const Vec3 lifted = at.p + n * at.margin;
+    const unsigned lit = rays.lit[side];
     unsigned blocked = 0;
-    long long rays = 0;
-    for (size_t j = 0; j < shadowed_.size(); ++j) {
-      const size_t li = shadowed_[j];
-      if (terms_[li].cosine[side] <= 0) continue;
+    long long count = 0;
+    for (size_t j = 0; j < rays.count; ++j) {
+      if (!(lit >> j & 1)) continue;  // shade()'s cosine <= 0
       if (cancel_requested(cancel)) break;
-      const Term& t = terms_[li];
-      const Ray towards{lifted, t.to_light, cone0, ray.cone};
-      double t0 = 0, t1 = kInf;
-      if (clip_to_slabs(towards, box, t0, t1, [&](int i) { return t.inverse[i]; })) return false;
-      ++rays;  // add() of no work
-      if (!std::isnan(unplaced_plane_end(*floor_.plane, towards, 0, kInf))) blocked |= 1u << j;
+      const UnlistedRays::Light& l = rays.light[j];
+      if (l.enters(lifted)) return false;
+      ++count;  // add() of no work
+      const Ray towards{lifted, l.to_light};
+      if (!std::isnan(unplaced_plane_end(*floor_.plane, towards, l.plane_nd, 0, kInf)))
+        blocked |= 1u << j;
     }
-    secondary.rays += rays;
-    out = {lean_[size_t(side) << shadowed_.size() | blocked], n, m_->color};
+    secondary.rays += count;
+    out = {lean_[size_t(side) << rays.count | blocked], n, m_->color};
     return true;
   }
 
@@ -194,7 +257,6 @@ class PlainFloor {
   // lights in their order, the same operations on the same numbers (the same bits). A point then
   // pays for its shadow rays and a look-up (the 1000-blob frame's floor: the loop's dispatch and
   // sums were some 60 instructions of a floor point's 460).
-  static constexpr size_t kLean = 3;
   void lean_colours() {
     const Material& m = *m_;
     if (m.phong > 0 || m.specular > 0) return;

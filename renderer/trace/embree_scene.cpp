@@ -214,8 +214,8 @@ void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
 // registers cost a lone field's unmet rays 4 instructions each): the floor frame's 133,000 unmet
 // rays took 83 instructions each in nearest_primitive's own test of a lone plane, 65 here.
 [[gnu::noinline]] void nearest_floor(const Primitive& floor, int object, const Ray& ray,
-                                     TraceHit& h) {
-  const double t = unplaced_plane_end(floor, ray, 0, h.t);
+                                     double reach, TraceHit& h) {
+  const double t = unplaced_plane_end_within(floor, ray, 0, h.t, reach);
   if (!(t < h.t)) return;  // NaN: none
   h.hit = true;
   h.t = t;
@@ -394,15 +394,13 @@ TraceHit EmbreeScene::nearest(const Ray& ray, double tnear, double tfar, const B
     return [&] {
       TraceHit h;
       double t = tfar;
-      if (const Primitive* floor = impl_->floor) {  // first_hit's answer, as the loop takes it
-        const double p = unplaced_plane_end(*floor, ray, tnear, t);
-        if (p < t) {  // not NaN
-          t = p;
-          h.hit = true;
-          h.t = p;
-          h.object = impl_->floor_object;
-          h.normal = floor->world_normal;
-        }
+      const Primitive* floor = impl_->floor;
+      bool on_floor = false;  // whether t is the floor's hit, written below unless the field's
+      if (floor) {            // first_hit's answer, as the loop takes it
+        const double reach = beam ? beam->reach : -1;
+        const double p = unplaced_plane_end_within(*floor, ray, tnear, t, reach);
+        on_floor = p < t;  // not NaN
+        if (on_floor) t = p;
       } else {
         for (const int o : impl_->direct_primitives) {
           const Primitive& shape = *impl_->data[o].object_data->shape;
@@ -425,6 +423,11 @@ TraceHit EmbreeScene::nearest(const Ray& ray, double tnear, double tfar, const B
         h.on_box_face = m.on_box_face;
         h.normal = {0, 0, 0};
         h.blobs = list;
+      } else if (on_floor) {
+        h.hit = true;
+        h.t = t;
+        h.object = impl_->floor_object;
+        h.normal = floor->world_normal;
       }
       return h;
     }();
@@ -498,7 +501,7 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
   hit = TraceHit{};
   if (!impl_->direct_primitives.empty()) {  // a lone field's asks no more than that
     if (const Primitive* floor = impl_->floor)
-      nearest_floor(*floor, impl_->floor_object, ray, hit);
+      nearest_floor(*floor, impl_->floor_object, ray, beam.reach, hit);
     else
       nearest_primitive(impl_->data, impl_->direct_primitives, ray, hit);
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene/primitive.h"
+#include "scene/ranges.h"
 #include "trace/interiors.h"
 #include "trace/tracer.h"
 
@@ -47,6 +48,18 @@ struct BeamClear {
   // Otherwise whether its list of the blob sum is short, of balls alone (EmbreeScene::passable):
   // its rays are then traced by EmbreeScene::intersect_passing first.
   bool passable = false;
+  // How far along a ray of the beam its points are surely within kMaxPosition (reach_from), so
+  // that the floor's test skips the point's max_abs there (unplaced_plane_end); -1: no bound.
+  double reach = -1;
+
+  // reach for rays from `eye` whose directions have unit length (a pinhole camera's, normalised):
+  // with M = max_abs(eye) and |t| <= kMaxPosition / 2 - M, each component of o + d * t as rounded
+  // is at most (M + (1 + 1e-15) |t| (1 + 2^-53)) (1 + 2^-53) < kMaxPosition (|d_i| <= 1 but
+  // for the normalisation's few ulps).
+  static double reach_from(const Vec3& eye) {
+    const double m = max_abs(eye);
+    return m <= kMaxPosition / 4 ? kMaxPosition / 2 - m : -1;  // NaN or too far: none
+  }
 };
 
 // An error Embree reported (embree_device.h), in Embree's words: out of memory while building

@@ -40,10 +40,26 @@ inline bool reachable(const Ray& ray, double t, double tnear, double tfar) {
 // goes, and that end's normal is the plane's. Its t if reachable, else NaN. Inline, as are
 // first_hit and occludes for it below: a floor's test on each of a frame's 560,000 camera and
 // shadow rays was mostly the calls' own work.
-inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double tnear, double tfar) {
-  const double nd = dot(s.normal, ray.d);
+// `nd`: dot(s.normal, ray.d), which a caller whose rays share a direction takes once.
+inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double nd, double tnear,
+                                 double tfar) {
   if (nd == 0) return std::numeric_limits<double>::quiet_NaN();  // all inside or all outside
   const double t = (s.distance - dot(s.normal, ray.o)) / nd;
+  return reachable(ray, t, tnear, tfar) ? t : std::numeric_limits<double>::quiet_NaN();
+}
+inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double tnear, double tfar) {
+  return unplaced_plane_end(s, ray, dot(s.normal, ray.d), tnear, tfar);
+}
+// unplaced_plane_end for a ray whose points at |t| <= reach are known to lie within
+// kMaxPosition (a camera beam's rays, BeamClear::reach): reachable's answer without the point's
+// max_abs there. A function of its own: the reach's test in the others' inlined copies cost the
+// cloud frame's shading registers.
+inline double unplaced_plane_end_within(const Primitive& s, const Ray& ray, double tnear,
+                                        double tfar, double reach) {
+  const double nd = dot(s.normal, ray.d);
+  if (nd == 0) return std::numeric_limits<double>::quiet_NaN();
+  const double t = (s.distance - dot(s.normal, ray.o)) / nd;
+  if (t >= tnear && t <= tfar && std::abs(t) <= reach) return t;
   return reachable(ray, t, tnear, tfar) ? t : std::numeric_limits<double>::quiet_NaN();
 }
 inline bool unplaced_plane(const Primitive& s) {

@@ -136,8 +136,9 @@ FloorCounts check_floor(const char* eye, const char* finish, bool point = true) 
         if (floor.lean()) {
           RayWork unlisted_way;
           Shaded c{};
-          if (floor.shade_unlisted(rays[i], hits[i], points[i], rt.tracers.tracer(1)->box(),
-                                   unlisted_way, nullptr, c)) {
+          PlainFloor::UnlistedRays towards;
+          EXPECT_TRUE(floor.unlisted_rays(rt.tracers.tracer(1)->box(), towards));
+          if (floor.shade_unlisted(rays[i], points[i], towards, unlisted_way, nullptr, c)) {
             ++n.unlisted;
             EXPECT_TRUE(floor_bits_equal(b.color, c.color)) << eye << " " << bx << "," << by;
             EXPECT_TRUE(floor_bits_equal(b.normal, c.normal)) << eye << " " << bx << "," << by;
@@ -208,6 +209,52 @@ TEST(PlainFloor, FramesFloorPixelsAsTheirRecordsWould) {
     EXPECT_TRUE(same(direct.normal, records.normal)) << eye;
     EXPECT_TRUE(same(direct.albedo, records.albedo)) << eye;
   }
+}
+
+// The shadow rays' tests that shade_unlisted takes once for the frame (PlainFloor::UnlistedRays)
+// answer as clip_to_box does at every origin: lights whose directions have components of either
+// sign and of none (the slab's two ends swapped, or a slab the ray runs along), from origins on a
+// grid through the cloud's box, on its faces and beside them.
+TEST(PlainFloor, UnlistedRaysEnterTheBoxAsClipToBoxFinds) {
+  std::string json = floor_scene_json("[16, -30, 14]", kFloorMatte, false);
+  const std::string lights =
+      R"({ "type": "directional", "direction": [0.5, 0.3, -1], "intensity": 0.7 },
+    { "type": "directional", "direction": [-0.2, 0.4, 1], "intensity": 0.3 },
+    { "type": "directional", "direction": [0.1, -0.6, -1], "intensity": 0.2, "shadows": false })";
+  const size_t at = json.find(lights);
+  ASSERT_NE(at, std::string::npos);
+  json.replace(at, lights.size(),
+               R"({ "type": "directional", "direction": [0.5, -0.3, -1], "intensity": 0.3 },
+    { "type": "directional", "direction": [0, 0.4, 1], "intensity": 0.3 },
+    { "type": "directional", "direction": [-0.7, 0, -1], "intensity": 0.2 })");
+  const Scene scene = parse_scene(json, "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const PlainFloor floor(scene, rt.embree);
+  ASSERT_TRUE(floor.lean());
+  const Box& box = rt.tracers.tracer(1)->box();
+  PlainFloor::UnlistedRays rays;
+  ASSERT_TRUE(floor.unlisted_rays(box, rays));
+  ASSERT_EQ(rays.count, 3u);
+  int enters = 0, misses = 0;
+  for (size_t j = 0; j < rays.count; ++j) {
+    const PlainFloor::UnlistedRays::Light& l = rays.light[j];
+    EXPECT_TRUE(floor_bits_equal(l.to_light, -scene.lights[j + 1].direction)) << j;
+    for (int ix = -2; ix <= 6; ++ix)
+      for (int iy = -2; iy <= 6; ++iy)
+        for (int iz = -2; iz <= 6; ++iz) {
+          // Quarters of the box's extent from a quarter before lo to a half past hi: the faces
+          // themselves among them.
+          const Vec3 o{box.lo.x + (box.hi.x - box.lo.x) * ix / 4,
+                       box.lo.y + (box.hi.y - box.lo.y) * iy / 4,
+                       box.lo.z + (box.hi.z - box.lo.z) * iz / 4};
+          double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+          const bool clipped = clip_to_box({o, l.to_light}, box, t0, t1);
+          EXPECT_EQ(l.enters(o), clipped) << j << " " << ix << "," << iy << "," << iz;
+          (clipped ? enters : misses)++;
+        }
+  }
+  EXPECT_GT(enters, 500);
+  EXPECT_GT(misses, 500);
 }
 
 TEST(PlainFloor, NoneWithoutAPlainFloor) {

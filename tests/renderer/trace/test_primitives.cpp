@@ -3,6 +3,9 @@
 // infinite plane's reach, the loader's refusals and a rendered shadow.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 
 #include "render/camera.h"
@@ -10,6 +13,7 @@
 #include "render/shading.h"
 #include "scene/primitive_load.h"
 #include "scene/scene.h"
+#include "trace/embree_scene.h"
 #include "trace/primitive_trace.h"
 
 namespace softtrace {
@@ -127,6 +131,43 @@ TEST(Primitives, AnUnplacedPlaneHitsWithItsUnitNormal) {
   EXPECT_NEAR(h.normal.y, n.y, 1e-15);
   EXPECT_NEAR(h.normal.z, n.z, 1e-15);
   EXPECT_NEAR(dot(n, down.o + down.d * h.t), 0.5, 1e-12);  // the plane dot(n, p) = distance
+}
+
+// A camera beam's rays skip the floor point's max_abs where BeamClear::reach vouches for it:
+// unplaced_plane_end_within gives unplaced_plane_end's answer to the bit, also for eyes far out
+// and planes crossed near and beyond kMaxPosition, where the point's test decides.
+TEST(Primitives, AnUnplacedPlaneWithinReachAnswersAsWithout) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int vouched = 0, beyond = 0;
+  for (const double far : {0.0, 1e3, 1e11, 2.4e11, 3e11}) {
+    const Vec3 eye{far, -0.5 * far, 2};
+    const double reach = BeamClear::reach_from(eye);
+    EXPECT_EQ(reach<0, far> kMaxPosition / 4) << far;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec3 d = normalize(Vec3{u(rng), u(rng), u(rng)});
+      // A plane crossed at about 10^[0, 12.3] along the ray, in front or behind, or in front
+      // in [0, 1.2 kMaxPosition], where far eyes' points leave kMaxPosition.
+      const double t = k % 2 ? std::pow(10.0, 12.3 * (0.5 + 0.5 * u(rng))) * (u(rng) < 0.8 ? 1 : -1)
+                             : 0.6 * kMaxPosition * (1 + u(rng));
+      const Vec3 n = normalize(Vec3{u(rng), u(rng), u(rng)});
+      Primitive s = shape_from(kUnplacedPlane);
+      s.normal = n;
+      s.distance = dot(n, eye + d * t);
+      const Ray ray{eye, d};
+      const double inf = std::numeric_limits<double>::infinity();
+      const double a = unplaced_plane_end(s, ray, 0, inf);
+      const double b = unplaced_plane_end_within(s, ray, 0, inf, reach);
+      ASSERT_EQ(std::isnan(a), std::isnan(b)) << far << " " << t;
+      if (!std::isnan(a)) {
+        EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << far << " " << t;
+      }
+      vouched += !std::isnan(b) && std::abs(b) <= reach;
+      beyond += std::isnan(a) && t > 0 && std::abs(t) <= kMaxPosition;
+    }
+  }
+  EXPECT_GT(vouched, 4000);  // the shortcut was taken
+  EXPECT_GT(beyond, 40);     // and points past kMaxPosition were refused
 }
 
 TEST(Primitives, DiscHitsLieOnTheRing) {
