@@ -458,8 +458,7 @@ class FrameTracer {
       std::stable_sort(pixels.begin(), pixels.end(), by_block);
     const bool lists = shadow_beams_.active();
     int* const block_starts = work.block_starts;
-    if (floor_pixels_) {  // the points were made as the tile was traced (one_sample), block by
-                          // block
+    if (floor_pixels_) {  // its points were made as the tile was traced (one_sample), by block
       for (int b = 0; b < kBlocksPerTile; ++b)  // a block without points ends where it starts
         block_starts[b + 1] = std::max(block_starts[b + 1], block_starts[b]);
     } else if (lists) {
