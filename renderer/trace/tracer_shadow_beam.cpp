@@ -19,6 +19,7 @@
 #include <limits>
 #include <vector>
 
+#include "kernels/potentials.h"
 #include "trace/tracer.h"
 #include "trace/tracer_limits.h"
 
@@ -277,7 +278,7 @@ void ObjectTracer::shadow_blockers(BlobBeam* list) const {
       dy = std::max(std::abs(y - p.y0 * depth), std::abs(y - p.y1 * depth));
     }
     const double r = 1 - (dx * dx + dy * dy) * b.inv_r2;
-    if (!(r > 0 && r * r * (b.c2 + b.c3 * r) > iso * (1 + 1e-3))) continue;
+    if (!(r > 0 && polynomial_potential(r, b.c2, b.c3) > iso * (1 + 1e-3))) continue;
     // The ones farthest towards the light (a pyramid's axis is minus the distance from it): most
     // likely ahead of rays that start inside the cloud.
     int k = picked < kBlockers ? picked++ : kBlockers;
@@ -306,15 +307,14 @@ double ObjectTracer::blocker_reach2(const BlobSum& sum, double iso) {
   double widest = 0, c2 = -1, c3 = -1, lo = 1;
   for (const BlobSum::Blob& b : sum.blobs()) {
     if (!(b.inv_r2 > 0 && b.c2 >= 0 && b.c3 >= 0)) continue;
-    const auto potential = [&](double r) { return r * r * (b.c2 + b.c3 * r); };
     if (b.c2 != c2 || b.c3 != c3) {
       c2 = b.c2, c3 = b.c3, lo = 1;
-      if (potential(1) > below) {
+      if (polynomial_potential(1, c2, c3) > below) {
         double hi = 1;
         lo = 0;
         for (int i = 0; i < 30; ++i) {
           const double mid = 0.5 * (lo + hi);
-          (potential(mid) <= below ? lo : hi) = mid;
+          (polynomial_potential(mid, c2, c3) <= below ? lo : hi) = mid;
         }
       }
     }
@@ -364,7 +364,7 @@ void ObjectTracer::shut_by(BlobBeam* list, size_t i) const {
   const double eps1 = 1e-9 + 64 * eps * far * far * b.inv_r2;
   const double r_lo = 1 - (dx * dx + dy * dy) * b.inv_r2 - kDelta - eps1;
   if (!(r_lo >= kDelta)) return;
-  const double potential = r_lo * r_lo * (b.c2 + b.c3 * r_lo);
+  const double potential = polynomial_potential(r_lo, b.c2, b.c3);
   if (!(potential - target_.iso > 2 * list->blockers_err + 1e-12 * (b.c2 + b.c3 + target_.iso)))
     return;
   // Ahead of every ray's origin.
@@ -437,7 +437,7 @@ std::optional<double> ObjectTracer::blocked_by(const Ray& ray, double t0, double
     bool above = true;
     for (const double x : {u - w, u + w}) {  // r is concave along the ray: its least at an end
       const double r = term.h2 - term.alpha * (x - term.mid) * (x - term.mid) - dr;
-      above = above && r > 0 && r * r * (term.c2 + term.c3 * r) - iso > list.blockers_err;
+      above = above && r > 0 && polynomial_potential(r, term.c2, term.c3) - iso > list.blockers_err;
     }
     if (above) return t0 + u;
   }
