@@ -467,22 +467,24 @@ EmbreeScene::Floor EmbreeScene::floor() const {
   return {impl_->floor, impl_->floor_object, impl_->direct_field};
 }
 
-bool EmbreeScene::unmet(const BeamClear& beam) const {
+const BlobBeam* EmbreeScene::direct_blob_list(const BeamClear& beam) const {
   // The direct paths only: one field, alone or with a few primitives (a cloud over a floor),
   // which intersect() asks for a camera ray (it starts inside no solid).
   const int f = impl_->direct_field;
-  if (f < 0 || !beam.blobs) return false;
+  if (f < 0 || !beam.blobs) return nullptr;
   const ObjectTracer* tracer = impl_->data[size_t(f)].tracer;
   const BlobBeam& list = beam.blobs[f];
-  return tracer && tracer->blob_sum() && list.valid && list.camera() && list.entries.empty();
+  return tracer && tracer->blob_sum() && list.valid ? &list : nullptr;
+}
+
+bool EmbreeScene::unmet(const BeamClear& beam) const {
+  const BlobBeam* list = direct_blob_list(beam);
+  return list && list->camera() && list->entries.empty();
 }
 
 bool EmbreeScene::passable(const BeamClear& beam) const {
-  const int f = impl_->direct_field;
-  if (f < 0 || !beam.blobs) return false;
-  const ObjectTracer* tracer = impl_->data[size_t(f)].tracer;
-  const BlobBeam& list = beam.blobs[f];
-  return tracer && tracer->blob_sum() && list.valid && list.passing > 0;
+  const BlobBeam* list = direct_blob_list(beam);
+  return list && list->passing > 0;
 }
 
 bool EmbreeScene::intersect_passing(const Ray& ray, const BeamClear& beam, TraceHit& hit) const {

@@ -149,6 +149,9 @@ class EmbreeScene {
   // intersect() with `inside` null where the ray starts inside no solid (never an empty list).
   TraceHit nearest(const Ray& ray, double tnear, double tfar, const BeamClear* beam,
                    const Interiors* inside) const;
+  // The beam's valid list of the direct paths' field where that field is a blob sum (what
+  // unmet() and passable() ask of), else null.
+  const BlobBeam* direct_blob_list(const BeamClear& beam) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
