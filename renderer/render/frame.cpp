@@ -5,8 +5,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <new>
 #include <optional>
 #include <type_traits>
@@ -19,6 +21,7 @@
 #include "render/plain_floor.h"
 #include "render/shading.h"
 #include "render/shadow_beams.h"
+#include "trace/primitive_trace.h"
 
 namespace softtrace {
 
@@ -146,6 +149,12 @@ class FrameTracer {
         floor_.lean() ? rt.tracers.tracer(rt.embree.floor().field) : nullptr;
     if (field && spp_ == 1 && !adaptive && camera_.single_eye() && shadow_beams_.active())
       floor_pixels_ = floor_.unlisted_rays(field->box(), unlisted_);
+    for (size_t k = 0; floor_pixels_ && k < floor_.lean_count(); ++k) {
+      Vec3 sum{0, 0, 0};  // pixel()'s sum of its one sample, from 0
+      sum += floor_.lean_shaded(int(k)).color;
+      floor_rgba_.push_back({static_cast<float>(sum.x), static_cast<float>(sum.y),
+                             static_cast<float>(sum.z), 1.0f});  // covered
+    }
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt.tracers.tracer(o);
       beams_count_ = beams_count_ || (tracer && !tracer->blob_sum());
@@ -237,6 +246,7 @@ class FrameTracer {
     certified.unmet = rt_.embree.unmet(certified);
     certified.passable = !certified.unmet && rt_.embree.passable(certified);
     certified.reach = reach_;
+    certified.floor_gap = floor_gap_;
     for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
       for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
         trace_pixel(px, py, &certified, pass, work);
@@ -391,30 +401,32 @@ class FrameTracer {
   }
 
   // The first pass's pixel (x, y) of one sample, a hit on the floor at its point `at`, written
-  // now where none of its shadow rays needs a list (PlainFloor::shade_unlisted): pixel()'s values
-  // to the bit (samples()' sums from 0, the centre ray's Z and steps, the means). False, nothing
-  // written or counted, where one does: it is then shaded with its block's lists. Most of the
-  // 1000-blob frame's floor is such pixels, which then take no record, and a tile of them alone
-  // no list.
-  bool floor_pixel(int x, int y, const Ray& ray, const TraceHit& hit, const ShadowBeams::Point& at,
-                   Work& work) const {
-    Shaded sh;
-    if (!floor_.shade_unlisted(ray, at, unlisted_, work.shadow, cancel_, sh)) return false;
-    Vec3 sum{0, 0, 0};
-    sum += sh.color;
+  // now where none of its shadow rays needs a list (PlainFloor::unlisted_colour): pixel()'s values
+  // to the bit (samples()' sums from 0, the centre ray's Z and steps, the means), its colour as
+  // the film stores it taken from floor_rgba_. False, nothing written or counted, where one does:
+  // it is then shaded with its block's lists. Most of the 1000-blob frame's floor is such pixels,
+  // which then take no record, and a tile of them alone no list.
+  [[gnu::always_inline]] bool floor_pixel(int x, int y, const Ray& ray, const TraceHit& hit,
+                                          const ShadowBeams::Point& at, Work& work) const {
+    const int k = floor_.unlisted_colour(ray, at, unlisted_, work.shadow, cancel_);
+    if (k < 0) return false;
     const size_t i = size_t(y - film_.y0) * film_.width + (x - film_.x0);  // no apron: no adaptive
-    float* const rgba = &film_.rgba[i * 4];
-    for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(sum[k]);
-    rgba[3] = static_cast<float>(1);  // covered
-    if (!aov_planes_) return true;
+    std::memcpy(&film_.rgba[i * 4], floor_rgba_[size_t(k)].data(), sizeof(float) * 4);
+    if (aov_planes_) floor_aovs(i, hit, k);
+    return true;
+  }
+
+  // floor_pixel's AOVs at film index i, its colour's index k. Out of line: inline, its registers
+  // cost the frame without a floor's camera rays (beam) some 0.3 M instructions of 1,091 M.
+  [[gnu::noinline]] void floor_aovs(size_t i, const TraceHit& hit, int k) const {
+    const Shaded sh = floor_.lean_shaded(k);
     SampleMeans means;
     if (aov_means_) {
       means.normal += sh.normal;
       means.albedo += sh.albedo;
     }
-    centre_aovs(i, hit, 0);  // its shadow rays evaluate nothing (shade_unlisted)
+    centre_aovs(i, hit, 0);  // its shadow rays evaluate nothing (unlisted_colour)
     mean_aovs(i, means);
-    return true;
   }
 
   // Whether `ray`, of an unmet beam (BeamClear::unmet) or one of a passable beam that passes
@@ -751,8 +763,15 @@ class FrameTracer {
   // miss the floor's field's box need no list, and unlisted_ holds what they ask of the box.
   bool floor_pixels_ = false;
   PlainFloor::UnlistedRays unlisted_;
+  // With floor_pixels_, per colour of the floor's lean colours (PlainFloor::lean_shaded), a
+  // floor pixel's RGBA as the film stores it: pixel()'s one-sample sum, converted, and covered.
+  std::vector<std::array<float, 4>> floor_rgba_;
   // BeamClear::reach of the camera's rays (single_eye(): pinhole rays from its eye).
   const double reach_ = camera_.single_eye() ? BeamClear::reach_from(camera_.eye()) : -1;
+  // BeamClear::floor_gap of the camera's rays (single_eye()), or NaN.
+  const double floor_gap_ = camera_.single_eye() && rt_.embree.floor().plane
+                                ? unplaced_plane_gap(*rt_.embree.floor().plane, camera_.eye())
+                                : std::numeric_limits<double>::quiet_NaN();
   const TraceHit none_;  // a background pixel's centre ray's answer: no hit, no work
 };
 

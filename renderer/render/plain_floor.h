@@ -161,10 +161,21 @@ class PlainFloor {
   [[gnu::always_inline]] bool shade_unlisted(const Ray& ray, const ShadowBeams::Point& at,
                                              const UnlistedRays& rays, RayWork& secondary,
                                              const std::atomic<bool>* cancel, Shaded& out) const {
+    const int k = unlisted_colour(ray, at, rays, secondary, cancel);
+    if (k < 0) return false;
+    out = lean_shaded(k);
+    return true;
+  }
+
+  // shade_unlisted's answer as the index of its colour among lean_colours' (lean_shaded(k)), or
+  // -1 where it declines. The frame writes a pixel from the index alone (frame.cpp's table of
+  // the colours as the film stores them): the colour, normal and albedo are the index's.
+  [[gnu::always_inline]] int unlisted_colour(const Ray& ray, const ShadowBeams::Point& at,
+                                             const UnlistedRays& rays, RayWork& secondary,
+                                             const std::atomic<bool>* cancel) const {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     const int side = dot(normal_[0], ray.d) > 0;  // shade()'s steps, in its order
-    const Vec3 n = normal_[side];
-    const Vec3 lifted = at.p + n * at.margin;
+    const Vec3 lifted = at.p + normal_[side] * at.margin;
     const unsigned lit = rays.lit[side];
     unsigned blocked = 0;
     long long count = 0;
@@ -172,15 +183,21 @@ class PlainFloor {
       if (!(lit >> j & 1)) continue;  // shade()'s cosine <= 0
       if (cancel_requested(cancel)) break;
       const UnlistedRays::Light& l = rays.light[j];
-      if (l.enters(lifted)) return false;
+      if (l.enters(lifted)) return -1;
       ++count;  // add() of no work
       const Ray towards{lifted, l.to_light};
       if (!std::isnan(unplaced_plane_end(*floor_.plane, towards, l.plane_nd, 0, kInf)))
         blocked |= 1u << j;
     }
     secondary.rays += count;
-    out = {lean_[size_t(side) << rays.count | blocked], n, m_->color};
-    return true;
+    return int(size_t(side) << rays.count | blocked);
+  }
+
+  // How many colours lean_colours keeps (2 sides times the shadowed lights' blocked sets), and
+  // the answer of index k < lean_count(): its colour, the side's normal, the material's colour.
+  size_t lean_count() const { return lean_.size(); }
+  Shaded lean_shaded(int k) const {
+    return {lean_[size_t(k)], normal_[size_t(k) >> shadowed_.size()], m_->color};
   }
 
  private:

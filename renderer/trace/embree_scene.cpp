@@ -214,8 +214,8 @@ void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
 // registers cost a lone field's unmet rays 4 instructions each): the floor frame's 133,000 unmet
 // rays took 83 instructions each in nearest_primitive's own test of a lone plane, 65 here.
 [[gnu::noinline]] void nearest_floor(const Primitive& floor, int object, const Ray& ray,
-                                     double reach, TraceHit& h) {
-  const double t = unplaced_plane_end_within(floor, ray, 0, h.t, reach);
+                                     double reach, double gap, TraceHit& h) {
+  const double t = unplaced_plane_end_within(floor, ray, 0, h.t, reach, gap);
   if (!(t < h.t)) return;  // NaN: none
   h.hit = true;
   h.t = t;
@@ -398,7 +398,8 @@ TraceHit EmbreeScene::nearest(const Ray& ray, double tnear, double tfar, const B
       bool on_floor = false;  // whether t is the floor's hit, written below unless the field's
       if (floor) {            // first_hit's answer, as the loop takes it
         const double reach = beam ? beam->reach : -1;
-        const double p = unplaced_plane_end_within(*floor, ray, tnear, t, reach);
+        const double gap = beam ? beam->floor_gap : std::numeric_limits<double>::quiet_NaN();
+        const double p = unplaced_plane_end_within(*floor, ray, tnear, t, reach, gap);
         on_floor = p < t;  // not NaN
         if (on_floor) t = p;
       } else {
@@ -503,7 +504,7 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
   hit = TraceHit{};
   if (!impl_->direct_primitives.empty()) {  // a lone field's asks no more than that
     if (const Primitive* floor = impl_->floor)
-      nearest_floor(*floor, impl_->floor_object, ray, beam.reach, hit);
+      nearest_floor(*floor, impl_->floor_object, ray, beam.reach, beam.floor_gap, hit);
     else
       nearest_primitive(impl_->data, impl_->direct_primitives, ray, hit);
   }

@@ -5,6 +5,7 @@
 // Embree's own triangle geometry.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -51,6 +52,10 @@ struct BeamClear {
   // How far along a ray of the beam its points are surely within kMaxPosition (reach_from), so
   // that the floor's test skips the point's max_abs there (unplaced_plane_end); -1: no bound.
   double reach = -1;
+  // The floor's unplaced_plane_gap from the beam's eye, where the caller took it once for its
+  // rays (every one from that eye: a pinhole camera's), else NaN: the floor's test on each ray
+  // then takes it itself (unplaced_plane_end_within).
+  double floor_gap = std::numeric_limits<double>::quiet_NaN();
 
   // reach for rays from `eye` whose directions have unit length (a pinhole camera's, normalised):
   // with M = max_abs(eye) and |t| <= kMaxPosition / 2 - M, each component of o + d * t as rounded

@@ -41,10 +41,15 @@ inline bool reachable(const Ray& ray, double t, double tnear, double tfar) {
 // first_hit and occludes for it below: a floor's test on each of a frame's 560,000 camera and
 // shadow rays was mostly the calls' own work.
 // `nd`: dot(s.normal, ray.d), which a caller whose rays share a direction takes once.
+// unplaced_plane_gap(s, o): the division's numerator, distance - dot(n, o), the same for every
+// ray from o (a camera's eye: BeamClear::floor_gap).
+inline double unplaced_plane_gap(const Primitive& s, const Vec3& o) {
+  return s.distance - dot(s.normal, o);
+}
 inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double nd, double tnear,
                                  double tfar) {
   if (nd == 0) return std::numeric_limits<double>::quiet_NaN();  // all inside or all outside
-  const double t = (s.distance - dot(s.normal, ray.o)) / nd;
+  const double t = unplaced_plane_gap(s, ray.o) / nd;
   return reachable(ray, t, tnear, tfar) ? t : std::numeric_limits<double>::quiet_NaN();
 }
 inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double tnear, double tfar) {
@@ -54,11 +59,13 @@ inline double unplaced_plane_end(const Primitive& s, const Ray& ray, double tnea
 // kMaxPosition (a camera beam's rays, BeamClear::reach): reachable's answer without the point's
 // max_abs there. A function of its own: the reach's test in the others' inlined copies cost the
 // cloud frame's shading registers.
+// `gap`: unplaced_plane_gap(s, ray.o), which a caller whose rays share their origin takes once,
+// or NaN (taken here).
 inline double unplaced_plane_end_within(const Primitive& s, const Ray& ray, double tnear,
-                                        double tfar, double reach) {
+                                        double tfar, double reach, double gap) {
   const double nd = dot(s.normal, ray.d);
   if (nd == 0) return std::numeric_limits<double>::quiet_NaN();
-  const double t = (s.distance - dot(s.normal, ray.o)) / nd;
+  const double t = (std::isnan(gap) ? unplaced_plane_gap(s, ray.o) : gap) / nd;
   if (t >= tnear && t <= tfar && std::abs(t) <= reach) return t;
   return reachable(ray, t, tnear, tfar) ? t : std::numeric_limits<double>::quiet_NaN();
 }

@@ -135,8 +135,10 @@ TEST(Primitives, AnUnplacedPlaneHitsWithItsUnitNormal) {
 
 // A camera beam's rays skip the floor point's max_abs where BeamClear::reach vouches for it:
 // unplaced_plane_end_within gives unplaced_plane_end's answer to the bit, also for eyes far out
-// and planes crossed near and beyond kMaxPosition, where the point's test decides.
+// and planes crossed near and beyond kMaxPosition, where the point's test decides; so does it with
+// the eye's gap given (unplaced_plane_gap, once for the eye's rays).
 TEST(Primitives, AnUnplacedPlaneWithinReachAnswersAsWithout) {
+  const double kNaN = std::numeric_limits<double>::quiet_NaN();  // the gap taken per ray
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   int vouched = 0, beyond = 0;
@@ -157,10 +159,14 @@ TEST(Primitives, AnUnplacedPlaneWithinReachAnswersAsWithout) {
       const Ray ray{eye, d};
       const double inf = std::numeric_limits<double>::infinity();
       const double a = unplaced_plane_end(s, ray, 0, inf);
-      const double b = unplaced_plane_end_within(s, ray, 0, inf, reach);
+      const double b = unplaced_plane_end_within(s, ray, 0, inf, reach, kNaN);
+      // With the eye's gap taken once for its rays (BeamClear::floor_gap): the same answer.
+      const double c = unplaced_plane_end_within(s, ray, 0, inf, reach, unplaced_plane_gap(s, eye));
       ASSERT_EQ(std::isnan(a), std::isnan(b)) << far << " " << t;
+      ASSERT_EQ(std::isnan(a), std::isnan(c)) << far << " " << t;
       if (!std::isnan(a)) {
         EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << far << " " << t;
+        EXPECT_EQ(std::memcmp(&a, &c, sizeof a), 0) << far << " " << t;
       }
       vouched += !std::isnan(b) && std::abs(b) <= reach;
       beyond += std::isnan(a) && t > 0 && std::abs(t) <= kMaxPosition;
