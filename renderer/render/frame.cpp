@@ -352,15 +352,19 @@ class FrameTracer {
                                          const TraceHit* hit, Pass pass, Work& work) const {
     work.primary.add(hit->work);
     if (hit->hit) {
-      TracedPixel pixel = traced_pixel(x, y, first, 1);
+      // A pixel written now takes no record: its place in the tile is made only for the others.
+      const int point = static_cast<int>(work.points.size());
       if (floor_pixels_) {
-        pixel.point = static_cast<int>(work.points.size());
         ShadowBeams::Point& at = *work.points.room(1) = shadow_point(t.ray, *hit);
         // A pixel written now gives its point to no list: the lists are the records' points'
         // (the next point takes its place).
         if (hit->object == floor_.object() && hit->face <= 0 &&
             floor_pixel(x, y, t.ray, *hit, at, work))
           return;
+      }
+      TracedPixel pixel = traced_pixel(x, y, first, 1);
+      if (floor_pixels_) {
+        pixel.point = point;
         ++work.points.n;
         work.block_starts[pixel.block + 1] = pixel.point + 1;
       }
@@ -396,6 +400,8 @@ class FrameTracer {
     const double cone0 = ray.cone_at(hit.t);
     const double lift = hit.face > 0 ? -1 : lifts_[size_t(hit.object)];
     if (lift >= 0) return {p, std::max(lift, cone0)};
+    // An object's own that has none (a primitive's, a floor's: own_lift -1) needs no look-up.
+    if (hit.face <= 0 && lift < 0) return {p, std::max(unowned_lift(p), cone0)};
     const SceneObject& obj = scene_.objects[size_t(hit.object)];
     return {p, ray_offset(hit.face > 0 ? face_object(obj, hit.face) : obj, p, cone0)};
   }

@@ -42,12 +42,18 @@ inline double own_lift(const SceneObject& obj) {
   return obj.field || obj.mesh ? 1e-4 * obj.bounds.diagonal() : -1.0;
 }
 
+// ray_offset's first term below for an object whose own_lift is < 0 (no field nor mesh: a
+// primitive), by p's size alone; also for a caller that kept own_lift and knows it.
+inline double unowned_lift(const Vec3& p) {
+  return 1e-9 * std::max(1.0, max_abs(p));
+}
+
 // How far from a hit at p on `obj` (the face's object for a CSG) its shadow and mirror rays start
 // along the normal (shade()), the camera ray's footprint there being cone0.
 // Inline: it runs twice for every shaded point (the frame's shadow lists ask it too).
 inline double ray_offset(const SceneObject& obj, const Vec3& p, double cone0) {
   const double own = own_lift(obj);
-  return std::max(!(own < 0) ? own : 1e-9 * std::max(1.0, max_abs(p)), cone0);
+  return std::max(!(own < 0) ? own : unowned_lift(p), cone0);
 }
 
 // The short way, inline so that the frame's loop over its camera hits (frame.cpp, samples) takes
