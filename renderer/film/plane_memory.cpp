@@ -53,11 +53,11 @@ void* plane_allocate(size_t bytes) {
   void* const p = reinterpret_cast<void*>(aligned);
   ::madvise(p, length, MADV_HUGEPAGE);  // advice only: ordinary pages where it is refused
 #if defined(MADV_POPULATE_WRITE)
-  // The pages faulted in now, zeroed by the kernel, on the thread that makes the plane (the
-  // render's worker beside the tracers' build), as the plane's value-initialisation did, not by
-  // the frame's first writes. Advice only: a kernel without it (before Linux 5.14) faults them
-  // then, zero all the same.
-  ::madvise(p, length, MADV_POPULATE_WRITE);
+  // The plane's pages faulted in now, zeroed by the kernel, on the thread that makes it (the
+  // render's worker beside the tracers' build), as its value-initialisation did, not by the
+  // frame's first writes. Advice only: a kernel without it (before Linux 5.14) faults them then,
+  // zero all the same.
+  ::madvise(p, bytes, MADV_POPULATE_WRITE);
 #endif
   return p;
 }
