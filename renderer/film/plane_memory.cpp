@@ -1,6 +1,7 @@
 #include "film/plane_memory.h"
 
 #include <cstdint>
+#include <cstring>
 #include <new>
 
 #if defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
@@ -11,6 +12,18 @@
 #endif
 
 namespace softtrace {
+
+namespace {
+
+// The heap's memory is not zero when it is reused: zeroed here, as the plane's own (std::vector's
+// value-initialisation, which PlaneAllocator::construct leaves out) was.
+void* heap_zeroed(size_t bytes) {
+  void* const p = ::operator new(bytes);
+  std::memset(p, 0, bytes);
+  return p;
+}
+
+}  // namespace
 
 #ifdef SOFTTRACE_PLANE_HUGE_PAGES
 
@@ -25,7 +38,7 @@ bool plane_mapped(size_t bytes) {
 }
 
 void* plane_allocate(size_t bytes) {
-  if (!plane_mapped(bytes)) return ::operator new(bytes);
+  if (!plane_mapped(bytes)) return heap_zeroed(bytes);
   if (bytes > SIZE_MAX - 2 * kHugePage) throw std::bad_alloc();
   // Mapped with a huge page's worth to spare, then the unaligned ends given back: a huge page
   // covers only an aligned 2 MiB of the mapping.
@@ -39,6 +52,13 @@ void* plane_allocate(size_t bytes) {
   ::munmap(reinterpret_cast<void*>(aligned + length), start + kHugePage - aligned);
   void* const p = reinterpret_cast<void*>(aligned);
   ::madvise(p, length, MADV_HUGEPAGE);  // advice only: ordinary pages where it is refused
+#if defined(MADV_POPULATE_WRITE)
+  // The plane's pages faulted in now, zeroed by the kernel, on the thread that makes it (the
+  // render's worker beside the tracers' build), as its value-initialisation did, not by the
+  // frame's first writes. Advice only: a kernel without it (before Linux 5.14) faults them then,
+  // zero all the same.
+  ::madvise(p, bytes, MADV_POPULATE_WRITE);
+#endif
   return p;
 }
 
@@ -57,7 +77,7 @@ bool plane_mapped(size_t) {
 }
 
 void* plane_allocate(size_t bytes) {
-  return ::operator new(bytes);
+  return heap_zeroed(bytes);
 }
 
 void plane_free(void* p, size_t) noexcept {

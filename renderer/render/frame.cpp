@@ -227,7 +227,7 @@ class FrameTracer {
     for (int o = 0; o < objects_; ++o) {
       const ObjectTracer* tracer = rt_.tracers.tracer(o);
       if (tracer && tracer->blob_sum() && !background)  // no ray of a background beam reads it
-        tracer->blob_beam(fr, parent ? parent + o : nullptr, blobs + o);
+        tracer->blob_beam(fr, parent ? parent + o : nullptr, blobs + o, level + 1 == kBeamLevels);
       else
         blobs[o].valid = false;
     }

@@ -251,7 +251,10 @@ class ObjectTracer {
   double clear_depth(const Frustum& f, double from, TraceCounters& work) const;
   // The blobs of frustum f (BlobBeam) into *out, from the BVH or, where given, from the list of a
   // frustum holding f (tracer_blob_beam.cpp). Not valid for a tracer that is no blob sum.
-  void blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out) const;
+  // `passable`: whether its rays may be answered by passes_listed_balls (the frame's 4-pixel
+  // blocks, EmbreeScene::passable): only then are its passes kept (BlobBeam::passing, else 0).
+  void blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out,
+                 bool passable = false) const;
   // The blobs a shadow ray of the prism p may meet (BlobBeam, parallel), into *out, from the BVH
   // or from the list of a prism holding p (tracer_shadow_beam.cpp). Not valid for a tracer that
   // is no blob sum.

@@ -44,7 +44,8 @@ void side_normals(const Frustum& f, Vec3 (&normals)[4]) {
 }
 }  // namespace
 
-void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out) const {
+void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam* out,
+                             bool passable) const {
   out->valid = false;
   out->entries.clear();
   out->sifted = false;
@@ -134,7 +135,9 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
       if (blobs_->adds(out->entries[i].id)) out->adders.push_back(i);
     out->sifted = static_cast<int>(out->adders.size()) < n;
   }
-  passing_balls(f.eye, sides.eye_scale, out);
+  // Only for a block whose rays ask passes_listed_balls: a tile's and a quarter's lists, which no
+  // ray reads, took 0.29 M of its 1.18 M instructions (meets1 640x480).
+  if (passable) passing_balls(f.eye, sides.eye_scale, out);
   out->eye = f.eye;
   out->valid = true;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "film/film.h"
 #include "film/plane_memory.h"
@@ -46,6 +47,20 @@ TEST(PlaneMemory, APlaneIsWritableToItsEndAndCopiesAndGrows) {
   small.clear();
   small.shrink_to_fit();
   EXPECT_TRUE(small.empty());
+}
+
+// A plane's elements are left as its memory came (PlaneAllocator::construct): a small plane's
+// heap block, which last held other values, must be zeroed by plane_allocate.
+TEST(PlaneMemory, ASmallPlaneIsZeroWhereTheHeapHeldOtherValues) {
+  for (int round = 0; round < 3; ++round) {
+    {
+      const std::vector<float> used(100, 7.0f);  // freed: the heap's next block of its size
+      ASSERT_EQ(used.back(), 7.0f);
+    }
+    const FilmPlane small(100);
+    EXPECT_FALSE(plane_mapped(small.size() * sizeof(float)));
+    EXPECT_TRUE(std::all_of(small.begin(), small.end(), [](float v) { return v == 0; }));
+  }
 }
 
 }  // namespace

@@ -96,7 +96,7 @@ void walk_unmet_beams(const Scene& scene, const TracedScene& rt, UnmetWalk& walk
             TraceCounters work;
             const size_t at = size_t(level * objects), up = size_t((level - 1) * objects);
             depth[at] = tracer->clear_depth(fr, level ? depth[up] : 0, work);
-            tracer->blob_beam(fr, level ? &lists[up] : nullptr, &lists[at]);
+            tracer->blob_beam(fr, level ? &lists[up] : nullptr, &lists[at], level == 2);
           }
           const size_t last = size_t(2 * objects);
           BeamClear beam{camera.frustum(x4, y4, x4 + 4, y4 + 4).forward, &depth[last],
