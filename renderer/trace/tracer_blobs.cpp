@@ -409,8 +409,9 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     // same places among the events ahead (an entry's u is at or past the frontier, past every
     // event read; of equal events, those of the blob taken first first, exits before entries,
     // whenever each was taken), so the same pieces with their terms in the same order, and the
-    // same hit. Only the blobs past the hit cost their events, where one at a time, the walk came
-    // back between two entries (its next event's choice and the frontier's test, each time).
+    // same hit. It costs the events of a block's balls past the hit, and saves the walk's return
+    // between two entries (its next event's choice and the frontier's test): callgrind, whole
+    // process, 1 thread, the 1000-blob frame at 640x480 -2.1 %, meets10 -0.7 %.
     const bool four_at_once = sweep && blobs_->all_balls() && n_listed >= 4;
     while (true) {
       const bool exit = events.exit_next();
