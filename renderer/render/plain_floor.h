@@ -88,7 +88,7 @@ class PlainFloor {
     return shade_lights(scene, rt, ray, side, lifted, cone0, secondary, cancel, shadow);
   }
 
-  // What shade_unlisted asks of each shadowed light's ray, taken once for the frame: the rays
+  // What unlisted_colour asks of each shadowed light's ray, taken once for the frame: the rays
   // from the floor's points towards a light share their direction, so clip_to_slabs' tests
   // against the field's box differ from point to point only in the ray's origin, and the
   // plane's test (unplaced_plane_end) in dot(n, o) alone.
@@ -151,25 +151,14 @@ class PlainFloor {
   }
 
   // shade() of a lean() floor's camera hit whose shadow rays, from its point `at` (ShadowBeams'),
-  // all miss the field's box (`rays`, unlisted_rays'), with no list: into `out`, its rays counted
-  // (they evaluate nothing); false, nothing counted, where one of them enters the box (shade()
-  // with its block's lists then answers it). Such a ray's answer and counters are the same with
-  // any list or none: occluded() tests the plane first, and the field's first_hit clips the ray
-  // to its box before anything else and counts nothing for a ray outside it (a clear list's no
-  // is the same no, its ++rays the same ray). So the point needs no list, and the frame writes
-  // its pixel as it traces it (frame.cpp, floor_pixel).
-  [[gnu::always_inline]] bool shade_unlisted(const Ray& ray, const ShadowBeams::Point& at,
-                                             const UnlistedRays& rays, RayWork& secondary,
-                                             const std::atomic<bool>* cancel, Shaded& out) const {
-    const int k = unlisted_colour(ray, at, rays, secondary, cancel);
-    if (k < 0) return false;
-    out = lean_shaded(k);
-    return true;
-  }
-
-  // shade_unlisted's answer as the index of its colour among lean_colours' (lean_shaded(k)), or
-  // -1 where it declines. The frame writes a pixel from the index alone (frame.cpp's table of
-  // the colours as the film stores them): the colour, normal and albedo are the index's.
+  // all miss the field's box (`rays`, unlisted_rays'), with no list: the index of its colour among
+  // lean_colours' (lean_shaded(k) is its answer), its rays counted (they evaluate nothing); -1,
+  // nothing counted, where one of them enters the box (shade() with its block's lists then
+  // answers it). Such a ray's answer and counters are the same with any list or none: occluded()
+  // tests the plane first, and the field's first_hit clips the ray to its box before anything else
+  // and counts nothing for a ray outside it (a clear list's no is the same no, its ++rays the same
+  // ray). So the point needs no list, and the frame writes its pixel as it traces it (frame.cpp,
+  // floor_pixel), from the index alone (its table of the colours as the film stores them).
   [[gnu::always_inline]] int unlisted_colour(const Ray& ray, const ShadowBeams::Point& at,
                                              const UnlistedRays& rays, RayWork& secondary,
                                              const std::atomic<bool>* cancel) const {

@@ -9,7 +9,7 @@
 // looked up by its blocked shadow rays (PlainFloor::lean). The shadow lists are ShadowBeams' own
 // for each 2x2 block of floor pixels: some clear (beside the cloud), some not (under it).
 // A lean floor's point whose shadow rays all miss the cloud's box is shaded with no list
-// (PlainFloor::shade_unlisted) and the frame writes its pixel as it traces it (frame.cpp's
+// (PlainFloor::unlisted_colour) and the frame writes its pixel as it traces it (frame.cpp's
 // floor_pixel): the same colour and counters as with its lists, and the same film as the frame
 // whose pixels all take records (one with anti-aliasing that refines nothing), but for the steps
 // (its point is then no list's, and the other points' lists are narrower).
@@ -81,7 +81,7 @@ const char* const kFloorMatte = R"({ "color": [0.62, 0.6, 0.55] })";
 
 struct FloorCounts {
   int clear = 0, listed = 0, lit = 0, below = 0;
-  int unlisted = 0, declined = 0;  // shade_unlisted's answers and refusals
+  int unlisted = 0, declined = 0;  // unlisted_colour's answers and refusals
 };
 
 // Every floor pixel of a 64x48 frame, a 2x2 block at a time with its lists, both ways.
@@ -135,11 +135,12 @@ FloorCounts check_floor(const char* eye, const char* finish, bool point = true) 
         EXPECT_EQ(plain_way.entered_box, floor_way.entered_box) << eye;
         if (floor.lean()) {
           RayWork unlisted_way;
-          Shaded c{};
           PlainFloor::UnlistedRays towards;
           EXPECT_TRUE(floor.unlisted_rays(rt.tracers.tracer(1)->box(), towards));
-          if (floor.shade_unlisted(rays[i], points[i], towards, unlisted_way, nullptr, c)) {
+          const int k = floor.unlisted_colour(rays[i], points[i], towards, unlisted_way, nullptr);
+          if (k >= 0) {
             ++n.unlisted;
+            const Shaded c = floor.lean_shaded(k);
             EXPECT_TRUE(floor_bits_equal(b.color, c.color)) << eye << " " << bx << "," << by;
             EXPECT_TRUE(floor_bits_equal(b.normal, c.normal)) << eye << " " << bx << "," << by;
             EXPECT_TRUE(floor_bits_equal(b.albedo, c.albedo)) << eye << " " << bx << "," << by;
@@ -211,7 +212,7 @@ TEST(PlainFloor, FramesFloorPixelsAsTheirRecordsWould) {
   }
 }
 
-// The shadow rays' tests that shade_unlisted takes once for the frame (PlainFloor::UnlistedRays)
+// The shadow rays' tests that unlisted_colour takes once for the frame (PlainFloor::UnlistedRays)
 // answer as clip_to_box does at every origin: lights whose directions have components of either
 // sign and of none (the slab's two ends swapped, or a slab the ray runs along), from origins on a
 // grid through the cloud's box, on its faces and beside them.
