@@ -47,6 +47,8 @@ constexpr int kFewTerms = 4;
 // as one stretch (first_hit_blobs): a choice measured on pov:chain and pov:golfball, not a
 // certificate.
 constexpr int kWholeShadowList = 16;
+// The entries whole_shadow's count (first_hit_blobs) reads between its tests of the count so far.
+constexpr int kCountBlock = 8;
 
 // One thread's buffers, grown to the largest sum traced (no allocation per ray after that).
 struct BlobScratch {
@@ -319,11 +321,21 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
   // certificate: each stretch takes the listed blobs whose ranges meet its own, whatever its
   // length. A longer list (a floor's under a dense cloud) keeps the stretches, whose first may
   // end the ray (surely_inside) before the farther blobs' terms are taken.
+  //
+  // The count stops once it passes kWholeShadowList, a block of kCountBlock entries at a time
+  // (the test between blocks, not a branch per entry): the answer is the same, and a long list
+  // lies mostly on its rays' way (meets10 at 640x480: the count read whole lists of 94 % such
+  // entries, 8.9 M instructions, to learn after about 17 of them that the ray goes in stretches).
   const auto whole_shadow = [&] {
     if (n_listed <= kWholeShadowList) return true;
-    int on_way = 0;
-    for (int i = 0; i < n_listed; ++i)
-      on_way += listed[i].near <= base + t1 && listed[i].far >= base + t0;
+    const double way_lo = base + t0, way_hi = base + t1;
+    const auto on = [&](int i) { return listed[i].near <= way_hi && listed[i].far >= way_lo; };
+    int on_way = 0, i = 0;
+    for (; i + kCountBlock <= n_listed; i += kCountBlock) {
+      for (int k = 0; k < kCountBlock; ++k) on_way += on(i + k);
+      if (on_way > kWholeShadowList) return false;
+    }
+    for (; i < n_listed; ++i) on_way += on(i);
     return on_way <= kWholeShadowList;
   };
   const bool whole = blobs_->size() <= BlobSum::kListed || camera_list ||
@@ -361,6 +373,10 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
       // The list's blobs whose ranges on its axis meet the stretch's, in the list's order.
       int32_t* ids = scratch.ids.data();
       int found = 0;
+      // Four entries a turn: the loop's own count and branch were 2 of an entry's 10 instructions
+      // (meets10 at 640x480: 2.27 M entries; callgrind, whole process, -3.9 M; eight a turn
+      // another -0.65 M, for twice the code).
+#pragma GCC unroll 4
       for (int i = 0; i < n_listed; ++i) {
         ids[found] = listed[i].id;
         found += listed[i].near <= hi && listed[i].far >= lo;

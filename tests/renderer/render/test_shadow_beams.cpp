@@ -633,6 +633,49 @@ TEST(ShadowBeams, ANegativeBlobLeavesNoBlocker) {
     }
 }
 
+// A shadow ray whose held list is longer than kWholeShadowList (16) entries takes its way as one
+// stretch where at most 16 of the entries' ranges meet it, and in stretches where more do
+// (first_hit_blobs): the count that decides it stops once it passes 16, a block of entries at a
+// time, and must decide as a count of the whole list. 41 balls in a row, none of whose supports
+// the ray (between two of them) meets, so each stretch is one box evaluation and no more: the
+// ray's way through the box is [-1, 1] on the list's axis, and the list's entries are put on it
+// or past it, the ones on it at the list's start, its end (the last one past the blocks of eight,
+// where the count reads the rest one by one) or spread.
+TEST(ShadowBeams, ALongListsRayGoesInOneStretchWhereAtMost16BlobsAreOnItsWay) {
+  const Scene scene =
+      parse_scene(R"({"objects":[{"iso":0.5,"field":{"type":"soft_blend","children":[)"
+                  R"({"type":"soft_object","potential":{"type":"murakami"},"translate":[90,0,0],)"
+                  R"("distance":{"type":"lp_metric","radii":[1,1,1],"n":2}})" +
+                      far_balls(40) + R"(]}}]})",
+                  "<test>");
+  const std::vector<TracedObject> objects = traced_objects(scene);
+  const SceneTracers tracers(objects, LipschitzMode::Local);
+  const ObjectTracer& tr = tracers[0];
+  ASSERT_TRUE(tr.blob_sum());
+  ASSERT_EQ(tr.blob_count(), 41);
+  const Vec3 along{0, 0, 1};
+  const Ray ray{{205, 0, -10}, along, 0, 0};
+  BlobBeam list;
+  list.valid = true;
+  list.parallel = true;
+  list.prism = ShadowPrism{{0, 0, 0}, along, {1, 0, 0}, {0, 1, 0}, 200, 210, -1, 1, -20};
+  for (const int on_way : {16, 17})
+    for (const int first : {0, 41 - on_way, -1}) {  // -1: every other entry from the end
+      std::vector<bool> on(41, false);
+      for (int k = 0; k < on_way; ++k) on[first < 0 ? 40 - 2 * k : first + k] = true;
+      list.entries.clear();
+      for (int id = 0; id < 41; ++id)
+        list.entries.push_back(on[id] ? BlobBeam::Entry{-5, 5, id} : BlobBeam::Entry{50, 60, id});
+      TraceCounters work;
+      EXPECT_FALSE(tr.first_hit(ray, 0, 1e3, work, Query::Any, 0, &list).hit);
+      EXPECT_EQ(work.point_evals, 0);
+      if (on_way <= 16)
+        EXPECT_EQ(work.box_evals, 1) << on_way << " from " << first;
+      else
+        EXPECT_GT(work.box_evals, 1) << on_way << " from " << first;
+    }
+}
+
 // A list whose prism is wider than any ball's reach is not searched for blockers (ObjectTracer::
 // blocker_reach2): that must never drop a ball the search would pick. A ball of radius 4
 // (Murakami's or Wyvill's, two strengths) with a weaker one far away listed before it (whose reach
