@@ -64,6 +64,19 @@ class BlobEvents {
     return exit_head_ < exit_end_ &&
            (enter_head_ == enter_end_ || exits_[exit_head_].u <= enters_[enter_head_].u);
   }
+  // Whether an event is ahead at or before `limit`: then *exit is exit_next() and the event
+  // next(*exit). The walk's one question per step (first_hit_blobs), in one pass over the heads:
+  // empty(), exit_next() and next()'s u asked apart tested each head's bounds twice and loaded the
+  // lesser head's u again.
+  bool next_by(double limit, bool* exit) const {
+    const bool entries = enter_head_ < enter_end_;
+    if (exit_head_ < exit_end_ && (!entries || exits_[exit_head_].u <= enters_[enter_head_].u)) {
+      *exit = true;
+      return exits_[exit_head_].u <= limit;
+    }
+    *exit = false;
+    return entries && enters_[enter_head_].u <= limit;
+  }
   const BlobEvent& next(bool exit) const {
     return exit ? exits_[exit_head_] : enters_[enter_head_];
   }

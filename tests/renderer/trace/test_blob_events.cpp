@@ -120,4 +120,37 @@ TEST(BlobEvents, ASweepsBlobsTakeTheirPlacesAmongTheEventsAhead) {
   }
 }
 
+// next_by, the walk's one question (first_hit_blobs), asks what empty(), exit_next() and next()
+// answer apart: whether the next event lies at or before a limit, and in which stream. Limits
+// on, between and beyond the events' values, ties between an entry and an exit among them.
+TEST(BlobEvents, NextByAnswersAsTheHeadsDoApart) {
+  std::mt19937_64 rng(27);
+  static constexpr double kLimits[] = {-1, 0, 0.1, 0.25, 0.5, 0.6, 0.75, 1, 2};
+  int ahead = 0, exits = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const int n = 1 + trial % 12;
+    std::vector<BlobSum::Term> terms(n);
+    for (BlobSum::Term& t : terms) t = random_term(rng);
+    std::vector<BlobEvent> enters(n), exits_of(n);
+    BlobEvents events(enters.data(), exits_of.data());
+    for (int i = 0; i < n; ++i) events.add(terms[i].enter, terms[i].exit, i);
+    while (true) {
+      for (const double limit : kLimits) {
+        const bool exit = events.exit_next();
+        const bool expected = !events.empty() && events.next(exit).u <= limit;
+        bool got_exit = !exit;
+        ASSERT_EQ(events.next_by(limit, &got_exit), expected) << "trial " << trial;
+        if (!expected) continue;
+        ASSERT_EQ(got_exit, exit) << "trial " << trial << ", limit " << limit;
+        ++ahead;
+        exits += exit;
+      }
+      if (events.empty()) break;
+      events.pop(events.exit_next());
+    }
+  }
+  EXPECT_GT(exits, 1000);
+  EXPECT_GT(ahead - exits, 1000);
+}
+
 }  // namespace softtrace::test
