@@ -5,19 +5,40 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+
+#include "film/srgb_thresholds.h"
 
 namespace softtrace {
 
 // The sRGB encoding of a linear value clamped to [0, 1] (NaN stays NaN).
 float srgb_encode(float v);
 
+namespace srgb_table {
+
+constexpr uint32_t kOne = 0x3F800000;  // the bits of 1.0f
+constexpr int kShift = 16;
+
+// The float whose bit pattern is `bits`, for the patterns of kSrgbThresholdBits: 0, +inf and
+// positive normal floats, (2^23 + mantissa) 2^(exponent - 150), exact in a double and in the float
+// (std::memcpy, which the lookup uses, is not constexpr).
+constexpr float float_of_bits(uint32_t bits) {
+  if (bits == 0) return 0.0f;
+  if (bits == 0x7F800000) return std::numeric_limits<float>::infinity();
+  double v = double((bits & 0x7FFFFF) | 0x800000);
+  for (int e = int(bits >> 23) - 150; e < 0; ++e) v *= 0.5;
+  for (int e = int(bits >> 23) - 150; e > 0; --e) v *= 2.0;
+  return float(v);
+}
+
+}  // namespace srgb_table
+
 // Exactly png_sample(srgb_encode(v)) for every float v, NaN included (0), found among 255
-// thresholds: threshold k is the smallest float whose sample is k. Non-negative floats order as
-// their bit patterns do, so each threshold is a binary search over the patterns of [0, 1]; the
-// encoding and the rounding never decrease, so the sample is the number of thresholds at or below
-// v (checked against the two functions for every float of [0, 1]). A bucket is the floats
-// sharing their top 16 bits: `start` holds the sample of a bucket's first float, at or below that
-// of any float in it, and the lookup steps up from there (a bucket spans under two samples).
+// thresholds (kSrgbThresholdBits): threshold k is the smallest float whose sample is k, and the
+// sample is the number of thresholds at or below v. Non-negative floats order as their bit
+// patterns do, so a bucket is the floats sharing their top 16 bits: its start is the sample of its
+// first float, at or below that of any float in it, and the lookup steps up from there (a bucket
+// spans under two samples).
 class SrgbBytes {
  public:
   uint8_t operator()(float v) const {
@@ -25,21 +46,35 @@ class SrgbBytes {
     if (v >= 1.0f) return 255;
     uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
-    int k = start_[bits >> kShift];
+    int k = start_[bits >> srgb_table::kShift];
     while (v >= threshold_[k + 1]) ++k;
     return uint8_t(k);
   }
 
-  // The table, built once from srgb_encode and png_sample on first use (thread-safe).
+  // The table, made by the compiler: no process spends its start on it.
   static const SrgbBytes& get();
 
  private:
-  SrgbBytes();
-  static constexpr uint32_t kOne = 0x3F800000;  // the bits of 1.0f
-  static constexpr int kShift = 16;
+  constexpr SrgbBytes() : threshold_{}, start_{} {
+    for (size_t k = 0; k < threshold_.size(); ++k)
+      threshold_[k] = srgb_table::float_of_bits(kSrgbThresholdBits[k]);
+    // Bucket i's first float has the bits i << kShift; its sample is the number of thresholds
+    // after the first at or below it.
+    int k = 0;
+    for (uint32_t i = 0; i < start_.size(); ++i) {
+      while (kSrgbThresholdBits[k + 1] <= i << srgb_table::kShift) ++k;
+      start_[i] = uint8_t(k);
+    }
+  }
+
   std::array<float, 257> threshold_;  // [k]: the smallest float whose sample is k; [256] = +inf
-  std::array<uint8_t, (kOne >> kShift) + 1> start_;
+  std::array<uint8_t, (srgb_table::kOne >> srgb_table::kShift) + 1> start_;
 };
+
+inline const SrgbBytes& SrgbBytes::get() {
+  static constexpr SrgbBytes table;
+  return table;
+}
 
 inline uint8_t srgb_byte(float v) {
   return SrgbBytes::get()(v);

@@ -75,9 +75,9 @@ using EachIndex = std::function<void(size_t count, const std::function<void(size
 using PngRow = std::function<void(int y, uint8_t* row)>;
 
 // Writes a width x height PNG of `channels` (1 to 4: Y, YA, RGB, RGBA) whose rows `row` gives.
-// The rows are made and deflated in bands of a fixed number of rows (set by the width alone, so
-// the file is the same bytes whatever `each` runs on), each band a run of the zlib stream ended by
-// a sync flush; `each` runs the bands. Throws std::runtime_error.
+// The rows are made and deflated in bands of a fixed number of rows (set by the image's size
+// alone, so the file is the same bytes whatever `each` runs on), each band a run of the zlib stream
+// ended by a sync flush; `each` runs the bands. Throws std::runtime_error.
 void write_png(const std::string& path, int width, int height, int channels, bool srgb,
                const PngRow& row, const EachIndex& each = {});
 

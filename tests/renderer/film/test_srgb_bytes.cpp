@@ -1,6 +1,7 @@
 // srgb_byte against the function it replaces, png_sample(srgb_encode(v)): every float of [0, 1]
 // at a stride, and every float between two strided ones where the sample changes (the only places
-// a wrong threshold could show), plus the values outside [0, 1].
+// a wrong threshold could show), plus the values outside [0, 1]. The thresholds are literal data
+// (film/srgb_thresholds.h): this is their proof.
 #include <gtest/gtest.h>
 
 #include <cmath>

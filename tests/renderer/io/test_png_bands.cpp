@@ -82,7 +82,8 @@ std::vector<std::string> chunk_types(const std::string& bytes) {
 
 TEST(PngBands, TheSameBytesInAnyOrderOnAnyThreads) {
   const std::string dir = temp_dir("png_bands_order");
-  // 12 rows a band at this width: 26 bands, the last one short.
+  // 19 rows a band at this size (787 kB of rows, at most about 16 bands): 17 bands, the last one
+  // short.
   const PngPixels img = test_image(641, 307, 4, false);
   const std::string serial = write_with(img, dir + "/serial.png", {});
   const std::string backwards =
