@@ -6,7 +6,6 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <future>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -97,42 +96,10 @@ PixelBounds window_of(const RenderArgs& a, int width, int height) {
   return {0, width, 0, height};
 }
 
-// Starts the frame's worker threads under the cap `threads` (0: none) on a thread of its own,
-// beside what the caller does until capped() (the scene's load): TBB's set-up and its cap took
-// 0.3 ms before the frame, with the other core idle. The caller waits for the cap only; the
-// worker's start goes on beside its next steps. The cap is kept until exit
-// (ThreadLimit::keep_until_exit); a smaller one may be kept after it.
-class ThreadsStarting {
- public:
-  explicit ThreadsStarting(int threads)
-      : capped_(cap_set_.get_future()), starter_([this, threads] {
-          try {
-            // A cap of the cores TBB takes anyway is no cap (a larger one is: it oversubscribes):
-            // not setting it spares TBB's scheduler set-up, 0.2 ms, before the caller goes on.
-            if (threads != default_threads()) limit_threads(threads).keep_until_exit();
-          } catch (...) {
-            cap_set_.set_exception(std::current_exception());  // capped() throws it
-            return;
-          }
-          cap_set_.set_value();
-          start_threads();
-        }) {}
-  ThreadsStarting(const ThreadsStarting&) = delete;
-  ThreadsStarting& operator=(const ThreadsStarting&) = delete;
-  ~ThreadsStarting() { starter_.join(); }
-  // Returns once the cap holds: TBB's parallel loops from here on run under it. Once only.
-  void capped() { capped_.get(); }
-
- private:
-  std::promise<void> cap_set_;
-  std::future<void> capped_;
-  std::thread starter_;  // last: it starts once the others are made
-};
-
 // Ends the process once every output is committed, without the destructors of the scene, the
-// tracers and the film nor TBB's teardown (0.4 ms of CPU on a small frame): what they would free,
-// the kernel takes back at once. A sanitizer build returns instead, so that its leak check sees
-// the whole run.
+// tracers and the film nor the worker threads' end (TBB's teardown took 0.4 ms of CPU on a small
+// frame): what they would free, the kernel takes back at once. A sanitizer build returns instead,
+// so that its leak check sees the whole run.
 #if defined(__SANITIZE_ADDRESS__)
 #define SOFTTRACE_FULL_TEARDOWN 1
 #elif defined(__has_feature)
@@ -154,7 +121,10 @@ int finish_process(int status) {
 int run_render(const RenderArgs& a) {
   // main() has started the signal watcher with on_render_interrupt.
   try {
-    ThreadsStarting threads(a.threads);
+    // The cap, kept until exit (a smaller one may be kept after it), and the frame's worker
+    // threads started beside the scene's load, which they do not wait for (threads.h).
+    if (a.threads) limit_threads(a.threads).keep_until_exit();
+    start_threads();
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
@@ -189,7 +159,6 @@ int run_render(const RenderArgs& a) {
 
     // No more threads than the frame has tiles (the same bits for any count, frame.h): a smaller
     // cap beside --threads' (the process exits after the frame).
-    threads.capped();
     const int tasks = frame_tasks(window.x0, window.y0, window.width(), window.height());
     const int wanted = a.threads ? a.threads : default_threads();
     if (wanted > tasks) limit_threads(tasks).keep_until_exit();

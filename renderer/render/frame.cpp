@@ -1,9 +1,5 @@
 #include "render/frame.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/combinable.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -798,29 +794,25 @@ struct TileGrid {
 // the samples).
 void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass,
               const PixelRect& window, const RenderOptions& opt, Progress* progress,
-              const AdaptivePixels* refined, long weight, tbb::combinable<Work>& work_total) {
+              const AdaptivePixels* refined, long weight, std::vector<Work>& work_total) {
   const TileGrid grid(area);
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, grid.count(), 1),
-      [&](const tbb::blocked_range<int>& tiles) {
-        const FloatingPointMode mode(FloatingPointMode::frames());  // threads.h
-        Work& work = work_total.local();
-        for (int t = tiles.begin(); t < tiles.end(); ++t) {
-          if (opt.cancel && *opt.cancel) return;
-          const int tx = (grid.gx0 + t % grid.tiles_x) * kTile;
-          const int ty = (grid.gy0 + t / grid.tiles_x) * kTile;
-          tracer.tile(tx, ty, area, pass, work);
-          if (progress) {
-            const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
-                                 std::min(tx + kTile, window.x1), std::min(ty + kTile, window.y1)};
-            const long units = seen.empty() ? 0
-                               : refined    ? long(refined->count(seen)) * weight
-                                            : long(seen.x1 - seen.x0) * (seen.y1 - seen.y0);
-            if (units > 0) progress->advance(units);
-          }
+  parallel_each_thread(
+      size_t(grid.count()), int(work_total.size()), [&](size_t t, int thread) {  // threads.h
+        if (opt.cancel && *opt.cancel) return;
+        const FloatingPointMode mode(FloatingPointMode::frames());
+        Work& work = work_total[size_t(thread)];
+        const int tx = (grid.gx0 + int(t) % grid.tiles_x) * kTile;
+        const int ty = (grid.gy0 + int(t) / grid.tiles_x) * kTile;
+        tracer.tile(tx, ty, area, pass, work);
+        if (progress) {
+          const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
+                               std::min(tx + kTile, window.x1), std::min(ty + kTile, window.y1)};
+          const long units = seen.empty() ? 0
+                             : refined    ? long(refined->count(seen)) * weight
+                                          : long(seen.x1 - seen.x0) * (seen.y1 - seen.y0);
+          if (units > 0) progress->advance(units);
         }
-      },
-      tbb::simple_partitioner());
+      });
 }
 
 }  // namespace
@@ -836,7 +828,8 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
   if (scene.image.antialias.on())
     adaptive.emplace(scene.image.antialias, window, film.full_width, film.full_height);
   const FrameTracer tracer(scene, rt, film, opt, adaptive ? &*adaptive : nullptr);
-  tbb::combinable<Work> work_total;
+  // Each thread's own, summed at the end: counts, so the totals are the same for any thread count.
+  std::vector<Work> work_total(static_cast<size_t>(loop_threads()));
   run_pass(tracer, adaptive ? adaptive->apron() : window, FrameTracer::Pass::First, window, opt,
            progress, nullptr, 0, work_total);
   if (adaptive && !(opt.cancel && *opt.cancel)) {
@@ -857,10 +850,10 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
       stats->refined_pixels = adaptive->refined();
       stats->primary_rays += stats->refined_pixels * tracer.refined_spp();
     }
-    work_total.combine_each([&](const Work& w) {
+    for (const Work& w : work_total) {
       stats->primary += w.primary;
       stats->shadow += w.shadow;
-    });
+    }
     stats->steps = stats->primary.evaluations() + stats->shadow.evaluations();
   }
   return !(opt.cancel && *opt.cancel);

@@ -1,9 +1,10 @@
-// Pixel -> beam -> tile -> frame: the frame is a TBB parallel loop over tiles, each tile a nest of
-// beams (blocks of pixels whose approach to each object is certified together). Every pixel
-// depends only on its own rays and its blocks, which are placed in the full frame, so the result
-// is the same bits for any thread count, and a crop of the frame has the same bits as those
-// pixels of the whole frame. With adaptive anti-aliasing the frame is two such loops: every pixel
-// of the data window and a one-pixel apron, then the marked pixels again (render/antialias.h).
+// Pixel -> beam -> tile -> frame: the frame is a parallel loop over tiles (render/threads.h), each
+// tile a nest of beams (blocks of pixels whose approach to each object is certified together).
+// Every pixel depends only on its own rays and its blocks, which are placed in the full frame, so
+// the result is the same bits for any thread count, and a crop of the frame has the same bits as
+// those pixels of the whole frame. With adaptive anti-aliasing the frame is two such loops: every
+// pixel of the data window and a one-pixel apron, then the marked pixels again
+// (render/antialias.h).
 #pragma once
 
 #include <atomic>
@@ -34,7 +35,7 @@ struct RenderOptions {
 struct TracedScene {
   TracedScene(const Scene& scene, LipschitzMode mode)
       : objects(traced_objects(scene)), tracers(objects, mode), embree(tracers, scene.transparent) {
-    if (!embree.built()) start_threads();
+    start_threads();  // the frame's workers, beside what the caller does before the frame
   }
   std::vector<TracedObject> objects;
   SceneTracers tracers;
@@ -49,8 +50,7 @@ struct FrameStats {
 };
 
 // The first pass's parallel tasks over a data window of width x height pixels at (x0, y0) of the
-// frame: the tiles it meets. Threads beyond that only cost their start-up (with two allowed,
-// Embree's build started a TBB worker for a 1x1 frame before its one tile was traced).
+// frame: the tiles it meets. Threads beyond that only cost their start-up.
 int frame_tasks(int x0, int y0, int width, int height);
 
 // Renders the film's data window of its full_width x full_height frame at opt.spp (or

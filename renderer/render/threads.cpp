@@ -1,53 +1,209 @@
 #include "render/threads.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
-#include <tbb/info.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
+#include <pthread.h>
+#include <sched.h>
 
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <exception>
 #include <mutex>
+#include <new>
+#include <thread>
+#include <vector>
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
 #endif
 
 namespace softtrace {
+namespace {
 
-struct ThreadLimit::Control {
-  explicit Control(int threads)
-      : control(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads)) {}
-  tbb::global_control control;
-  Control* kept_before = nullptr;  // the cap kept until exit before this one (keep_until_exit)
+// One parallel loop, on its caller's stack: the caller runs its tasks as thread 0 and up to
+// `helpers` workers join it as threads 1, 2, ... Indices are handed out in order from `next`.
+struct Loop {
+  size_t count = 0;
+  const std::function<void(size_t, int)>* body = nullptr;
+  unsigned mode = 0;         // the caller's floating-point mode, every task's
+  int helpers = 0;           // workers that may join (the pool's mutex guards this and below)
+  int joined = 0;            // workers that have joined: threads 1..joined
+  int running = 0;           // workers in the loop now
+  bool open = true;          // false once the caller has closed it to new workers
+  std::exception_ptr error;  // the first exception of `body`
+  std::condition_variable finished;  // running fell to 0
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stop{false};  // an exception: no task starts after it
 };
 
-ThreadLimit::ThreadLimit() = default;
-ThreadLimit::ThreadLimit(ThreadLimit&&) noexcept = default;
-ThreadLimit& ThreadLimit::operator=(ThreadLimit&&) noexcept = default;
-ThreadLimit::~ThreadLimit() = default;
+// Set while the thread runs a loop's tasks: a loop it starts runs inline.
+thread_local bool t_in_task = false;
+// run_on_threads' count on this thread (0: none).
+thread_local int t_own_threads = 0;
+
+// Runs tasks of `loop` as thread `thread` until none is left or one has thrown.
+void run_tasks(Loop& loop, int thread, std::mutex& guard) {
+  t_in_task = true;
+  for (;;) {
+    if (loop.stop.load(std::memory_order_acquire)) break;
+    const size_t i = loop.next.fetch_add(1, std::memory_order_relaxed);
+    if (i >= loop.count || loop.stop.load(std::memory_order_acquire)) break;
+    try {
+      (*loop.body)(i, thread);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(guard);
+      if (!loop.error) loop.error = std::current_exception();
+      loop.stop.store(true, std::memory_order_release);
+    }
+  }
+  t_in_task = false;
+}
+
+// The worker threads and the loops that want them. Made once and never destroyed: a process
+// that exits (cmd_render's _exit, or exit()) neither joins nor wakes its sleeping workers, and no
+// static destructor pulls the mutex from under them.
+class Pool {
+ public:
+  static Pool& get() {
+    static Pool* const pool = make();
+    return *pool;
+  }
+
+  int threads_for(int own) {
+    const int wanted = own > 0 ? own : default_threads();
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const int cap = cap_locked();
+    return cap > 0 ? (own > 0 ? std::min(own, cap) : cap) : wanted;
+  }
+
+  void add_cap(int threads) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    caps_.push_back(threads);
+  }
+  void remove_cap(int threads) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    caps_.erase(std::find(caps_.begin(), caps_.end(), threads));
+    work_.notify_all();  // a larger cap lets more workers join the open loops
+  }
+
+  void start(int workers) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    spawn_locked(workers);
+  }
+
+  // Runs `loop` on the caller (thread 0) and `loop.helpers` workers at most.
+  void run(Loop& loop) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      spawn_locked(loop.helpers);
+      open_.push_back(&loop);
+    }
+    // Wakes as many as may join; one more than the idle is harmless.
+    for (int i = 0; i < loop.helpers; ++i) work_.notify_one();
+    {
+      const FloatingPointMode callers(loop.mode);
+      run_tasks(loop, 0, mutex_);
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    close_locked(loop);
+    loop.finished.wait(lock, [&] { return loop.running == 0; });
+  }
+
+  std::mutex& guard() { return mutex_; }
+
+ private:
+  static Pool* make() {
+    Pool* pool = new Pool;
+    // A forked child (Python's multiprocessing) has none of the parent's workers: it starts
+    // with an empty pool of its own. The old one is held by `pool` still, never freed.
+    pthread_atfork(nullptr, nullptr, [] { Pool::get().forked(); });
+    return pool;
+  }
+  void forked() {
+    new (&mutex_) std::mutex;
+    new (&work_) std::condition_variable;
+    workers_ = busy_ = 0;
+    open_.clear();
+  }
+
+  int cap_locked() const {
+    return caps_.empty() ? 0 : *std::min_element(caps_.begin(), caps_.end());
+  }
+
+  void spawn_locked(int workers) {
+    for (; workers_ < workers; ++workers_) std::thread([this] { work(); }).detach();
+  }
+
+  void close_locked(Loop& loop) {
+    if (!loop.open) return;
+    loop.open = false;
+    open_.erase(std::find(open_.begin(), open_.end(), &loop));
+  }
+
+  // A worker: sleeps until a loop wants it and the cap allows one more, runs tasks, again.
+  void work() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      work_.wait(lock, [&] {
+        const int cap = cap_locked();
+        return !open_.empty() && (cap == 0 || busy_ < cap - 1);
+      });
+      Loop& loop = *open_.front();
+      const int thread = ++loop.joined;
+      if (loop.joined == loop.helpers) close_locked(loop);
+      ++loop.running;
+      ++busy_;
+      lock.unlock();
+      {
+        const FloatingPointMode callers(loop.mode);
+        run_tasks(loop, thread, mutex_);
+      }
+      lock.lock();
+      --busy_;
+      if (--loop.running == 0) loop.finished.notify_one();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable work_;  // the workers wait here
+  std::deque<Loop*> open_;        // loops that workers may still join, oldest first
+  std::vector<int> caps_;         // the caps held now (ThreadLimit), kept ones included
+  int workers_ = 0;               // started
+  int busy_ = 0;                  // in a loop now, over all loops (the cap counts these)
+};
+
+}  // namespace
+
+ThreadLimit::ThreadLimit(ThreadLimit&& other) noexcept : threads_(other.threads_) {
+  other.threads_ = 0;
+}
+ThreadLimit& ThreadLimit::operator=(ThreadLimit&& other) noexcept {
+  if (this != &other) {
+    if (threads_) Pool::get().remove_cap(threads_);
+    threads_ = other.threads_;
+    other.threads_ = 0;
+  }
+  return *this;
+}
+ThreadLimit::~ThreadLimit() {
+  if (threads_) Pool::get().remove_cap(threads_);
+}
 
 void ThreadLimit::keep_until_exit() {
-  // Held by plain pointers, never destroyed (a static unique_ptr's destructor would release it at
-  // exit, starting the worker all the same); reachable, one from the other, so no leak checker
-  // counts them. Several caps may be kept: TBB takes the smallest.
-  static Control* kept = nullptr;
-  static std::mutex guard;
-  if (!control_) return;
-  const std::lock_guard<std::mutex> lock(guard);
-  control_->kept_before = kept;
-  kept = control_.release();
+  threads_ = 0;  // the pool's list keeps it; nothing removes it
 }
 
 ThreadLimit limit_threads(int threads) {
   ThreadLimit limit;
-  if (threads) limit.control_ = std::make_unique<ThreadLimit::Control>(threads);
+  if (threads > 0) {
+    Pool::get().add_cap(threads);
+    limit.threads_ = threads;
+  }
   return limit;
 }
 
 void start_threads() {
-  // Two tasks, as Embree's build spawned them.
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, 2, 1), [](const tbb::blocked_range<int>&) {},
-      tbb::simple_partitioner());
+  Pool& pool = Pool::get();
+  pool.start(pool.threads_for(t_own_threads) - 1);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -76,33 +232,56 @@ FloatingPointMode::~FloatingPointMode() = default;
 #endif
 
 int default_threads() {
-  return tbb::info::default_concurrency();
+  // Read once, as TBB read it: the process's affinity when it first asks.
+  static const int cores = [] {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+    return std::max(1, int(std::thread::hardware_concurrency()));
+  }();
+  return cores;
 }
 
 void run_on_threads(int threads, const std::function<void()>& work) {
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute(work);
+  struct Own {
+    explicit Own(int threads) : saved(t_own_threads) { t_own_threads = threads; }
+    ~Own() { t_own_threads = saved; }
+    const int saved;
+  } own(threads);
+  work();
+}
+
+int loop_threads() {
+  return t_in_task ? 1 : Pool::get().threads_for(t_own_threads);
+}
+
+void parallel_each_thread(size_t count, int threads,
+                          const std::function<void(size_t i, int thread)>& body) {
+  const int helpers = int(std::min<size_t>(std::min(threads, loop_threads()), count)) - 1;
+  if (helpers <= 0) {
+    // Inline, in order: one thread, or a loop inside a task (its thread is busy with this task,
+    // so waiting for workers could wait on itself).
+    for (size_t i = 0; i < count; ++i) body(i, 0);
+    return;
+  }
+  Loop loop;
+  loop.count = count;
+  loop.body = &body;
+  loop.mode = FloatingPointMode::current();
+  loop.helpers = helpers;
+  Pool::get().run(loop);
+  if (loop.error) std::rethrow_exception(loop.error);
+}
+
+void parallel_each(size_t count, const std::function<void(size_t)>& body) {
+  parallel_each_thread(count, loop_threads(), [&](size_t i, int) { body(i); });
 }
 
 void parallel_ranges(size_t count, size_t grain,
                      const std::function<void(size_t begin, size_t end)>& body) {
-  const unsigned mode = FloatingPointMode::current();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      const FloatingPointMode callers(mode);
-                      body(r.begin(), r.end());
-                    });
-}
-
-void parallel_each(size_t count, const std::function<void(size_t)>& body) {
-  const unsigned mode = FloatingPointMode::current();
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, count, 1),
-      [&](const tbb::blocked_range<size_t>& r) {
-        const FloatingPointMode callers(mode);
-        for (size_t i = r.begin(); i < r.end(); ++i) body(i);
-      },
-      tbb::simple_partitioner());
+  grain = std::max<size_t>(grain, 1);
+  parallel_each((count + grain - 1) / grain,
+                [&](size_t range) { body(range * grain, std::min(count, (range + 1) * grain)); });
 }
 
 }  // namespace softtrace

@@ -1,41 +1,48 @@
-// The frame loop's worker threads (TBB's, frame.cpp): how many there are by default, a cap on
-// them for a command's run, a run of its own on a given number of them, and a parallel loop over
-// ranges for the Python module's batches. TBB stays behind this header, so neither the command
-// line nor the Python module includes it.
+// The frame loop's worker threads (frame.cpp): how many there are by default, a cap on them for a
+// command's run, a run of its own on a given number of them, and parallel loops over indices and
+// ranges (the frame's tiles, an image's bands, the Python module's batches).
+//
+// A small pool of std::threads of our own, not TBB: every process that renders pays for its
+// threads' start, and TBB's cost 2.7 ms of wall time a process on the 2-core KVM guest (a parallel
+// sum of 64 numbers on 2 threads: 7.10 ms wall, 6.73 ms CPU with tbb::parallel_for under a
+// global_control, 4.41 ms and 3.66 ms with two std::threads and an atomic counter, perf stat -r
+// 100), where a frame at 320x240 takes 10-30 ms. Its workers also spin on sched_yield between
+// loops, which costs the other core; ours sleep on a condition variable. Without TBB the program
+// may also carry its own C++ runtime (Debian's libtbb needs the shared one). A frame's tiles are
+// equal tasks handed out in order from one counter, so work stealing buys nothing here.
 #pragma once
 
 #include <cstddef>
 #include <functional>
-#include <memory>
 
 namespace softtrace {
 
-// Caps the worker threads of every parallel loop for as long as it lives (tbb::global_control).
+// Caps the threads of every parallel loop in the process for as long as it lives; with a cap a
+// loop runs on that many threads (the command line's --threads, more than the cores included).
+// Caps held at once, from any threads, all hold: the smallest is the cap.
 class ThreadLimit {
  public:
-  ThreadLimit();  // no cap
-  ThreadLimit(ThreadLimit&&) noexcept;
-  ThreadLimit& operator=(ThreadLimit&&) noexcept;
+  ThreadLimit() = default;  // no cap
+  ThreadLimit(ThreadLimit&& other) noexcept;
+  ThreadLimit& operator=(ThreadLimit&& other) noexcept;
   ~ThreadLimit();
+  ThreadLimit(const ThreadLimit&) = delete;
+  ThreadLimit& operator=(const ThreadLimit&) = delete;
 
-  // Keeps the cap until the process ends, for a command that exits after its work: releasing
-  // TBB's global_control raises the scheduler's limit again, and under a cap of one thread that
-  // started a worker thread just before the exit. Caps kept from several threads all hold; the
-  // smallest is TBB's limit.
+  // Keeps the cap until the process ends, for a command that exits after its work.
   void keep_until_exit();
 
  private:
   friend ThreadLimit limit_threads(int threads);
-  struct Control;
-  std::unique_ptr<Control> control_;
+  int threads_ = 0;  // 0: no cap (or kept: the pool holds it)
 };
 
-// At most `threads` worker threads (0: no cap, all cores) while the result lives.
+// At most `threads` threads (0: no cap, all cores) while the result lives.
 ThreadLimit limit_threads(int threads);
 
-// Starts TBB on the calling thread, if nothing has, with a worker thread where the cap allows
-// one, as Embree's scene build started it: the worker then starts beside what the caller does
-// before its frame (EmbreeScene::built false: no Embree build does it), not at the first tile.
+// Starts the worker threads the loops will want (the cap's or the cores' count less the caller),
+// without waiting for them: they start beside what the caller does before its first loop (the
+// scene's load, the tracers' build), not at the frame's first tile. Started threads are kept.
 void start_threads();
 
 // A floating-point mode (x86's MXCSR; elsewhere none) on the calling thread while it lives, the
@@ -45,11 +52,11 @@ class FloatingPointMode {
   // The calling thread's mode.
   static unsigned current();
   // The frames' mode: the calling thread's with flush-to-zero and denormals-are-zero. Every task
-  // of a frame runs in it (frame.cpp): it is the mode the frames have always had where Embree's
-  // scene build started TBB (TBB's arena keeps the mode of the thread that started it, and
-  // Embree's build sets these), and a denormal flushed or not changes a march's steps. Set per
-  // task, it no longer depends on who started TBB, so the Python module's frames, in an arena of
-  // their own, are the command line's bits.
+  // of a frame runs in it (frame.cpp): it is the mode the frames have always had (TBB's arena,
+  // which ran them until session 33, kept the mode of the thread that started it, and Embree's
+  // scene build, which started it then, sets these), and a denormal flushed or not changes a
+  // march's steps. Set per task, it depends on nobody's start, so the Python module's frames are
+  // the command line's bits.
   static unsigned frames();
   explicit FloatingPointMode(unsigned mode);
   ~FloatingPointMode();
@@ -60,30 +67,40 @@ class FloatingPointMode {
   unsigned saved_ = 0;
 };
 
-// The worker threads a parallel loop uses when nothing caps them (TBB's default concurrency: the
-// cores this process may run on).
+// The cores this process may run on (sched_getaffinity, as TBB's default concurrency): the
+// threads of a parallel loop when nothing caps them.
 int default_threads();
 
-// Runs `work` on the calling thread with at most `threads` worker threads (0: all cores) for the
-// parallel loops it starts (frame.cpp's, parallel_ranges), apart from other callers: unlike
-// limit_threads, which caps the whole process, two such runs at different counts (two Python
-// threads rendering) do not change each other's (a tbb::task_arena of its own). Exceptions of
-// `work` reach the caller.
+// Runs `work` on the calling thread with `threads` threads (0: all cores) for the parallel loops
+// it starts (frame.cpp's, parallel_ranges), apart from other callers: unlike limit_threads, which
+// caps the whole process (and still caps these), two such runs at different counts (two Python
+// threads rendering) do not change each other's. Exceptions of `work` reach the caller.
 void run_on_threads(int threads, const std::function<void()>& work);
 
-// Calls body(begin, end) over [0, count) split into ranges of at least about `grain` (TBB's
-// blocked_range and automatic partitioning), in parallel on the worker threads; each range runs
-// whole on one thread, so a thread_local workspace in `body` is its own for the range, and in the
-// caller's floating-point mode, as parallel_each's tasks (a batch of the Python module's points
-// then gives what the caller's own loop would, whoever started TBB's arena). Returns when every
-// range is done; the first exception of `body` reaches the caller.
+// The threads a parallel loop started now on the calling thread would run on: the count of its
+// run_on_threads, or the cores, under the smallest cap; 1 inside a loop's task.
+int loop_threads();
+
+// Calls body(i) for every i in [0, count), one index per task, handed out in order to the calling
+// thread and up to loop_threads() - 1 workers, each task in the caller's floating-point mode (so
+// that what each computes is what a loop on the caller would give: an image's bands, io/
+// image_file.h's EachIndex). Returns when every task is done. The first exception of `body`
+// reaches the caller once every running task has finished; no task starts after it. A loop
+// started inside a task runs on that task's thread alone, in order (no worker waits on another).
+void parallel_each(size_t count, const std::function<void(size_t)>& body);
+
+// parallel_each, with body(i, thread) also told which of the loop's threads runs the task:
+// `thread` in [0, min(threads, loop_threads())), each running one task at a time, so a total per
+// thread (frame.cpp's Work) needs no lock. `threads` is loop_threads() read before the loop, the
+// size of such totals.
+void parallel_each_thread(size_t count, int threads,
+                          const std::function<void(size_t i, int thread)>& body);
+
+// Calls body(begin, end) over [0, count) split into ranges of `grain` indices (the last one
+// shorter), each range one task of parallel_each: whole on one thread, so a thread_local
+// workspace in `body` is its own for the range, in the caller's floating-point mode (a batch of
+// the Python module's points gives what the caller's own loop would).
 void parallel_ranges(size_t count, size_t grain,
                      const std::function<void(size_t begin, size_t end)>& body);
-
-// Calls body(i) for every i in [0, count), one index per task, on the worker threads, each task in
-// the caller's floating-point mode (a worker otherwise runs in the mode of the thread that started
-// TBB's arena), so that what each computes is what a loop on the caller would give: an image's
-// bands (io/image_file.h's EachIndex). The first exception of `body` reaches the caller.
-void parallel_each(size_t count, const std::function<void(size_t)>& body);
 
 }  // namespace softtrace

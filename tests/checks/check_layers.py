@@ -3,7 +3,7 @@
 
 Each library's folders are layers (with their subfolders: fieldlib/program/ops/ is part of
 program); a file may include its own folder and the folders listed for it below, never one above it. Third-party headers are held to the one room that adapts each library, in the Python
-module (python/, above every layer) too: it reaches TBB through render/threads.h.
+module (python/, above every layer) too: it reaches the worker threads through render/threads.h.
 Usage: check_layers.py [REPO_ROOT]   (exit 1 and one line per violation, file:line: ...)
 """
 import os
@@ -42,8 +42,9 @@ EXTERNAL = [
     # forwarders that open Embree at its first call.
     (re.compile(r"^embree3/"), ["renderer/trace/embree_scene.cpp", "renderer/trace/embree_device.",
                                 "renderer/cli/embree_on_demand.cpp"]),
-    # The frame loop, and the thread limit and default it runs with.
-    (re.compile(r"^tbb/"), ["renderer/render/frame.cpp", "renderer/render/threads.cpp"]),
+    # None: the frame's threads are the renderer's own (render/threads.h); only libembree3 uses
+    # TBB, inside itself.
+    (re.compile(r"^tbb/"), []),
     (re.compile(r"^(Imf|Iex|half\.h|OpenEXR/|Imath)"), ["renderer/io/exr_io.cpp"]),
     (re.compile(r"^png\.h$"), ["renderer/io/png_io.cpp"]),
     (re.compile(r"^OpenImageIO/"), []),

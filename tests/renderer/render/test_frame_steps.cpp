@@ -6,9 +6,11 @@
 // evaluations (FrameStats::steps): each pixel's shadow rays counted, and counted once.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "render/frame.h"
+#include "render/threads.h"
 #include "scene/scene.h"
 #include "sparse_ball_cloud.h"
 
@@ -33,6 +35,37 @@ TEST(FrameSteps, ThePlaneSumsToTheFramesEvaluations) {
   EXPECT_GT(stats.shadow.evaluations(), 300);
   EXPECT_GT(stats.primary.evaluations(), 1000);
   EXPECT_EQ(sum, stats.steps);
+}
+
+// The frame's totals are sums over each thread's own (frame.cpp's Work): counts, so the same at 1,
+// 2 and 8 threads, as the pixels are.
+TEST(FrameSteps, TheTotalsAreTheSameAtAnyThreadCount) {
+  const Scene scene = parse_scene(
+      sparse_ball_cloud(
+          400, 24, R"({"eye": [40, -55, 35], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40})"),
+      "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  constexpr int kW = 96, kH = 72;
+  RenderOptions opt;
+  opt.spp = 1;
+  FrameStats one;
+  Film first(kW, kH, AovSelection{});
+  run_on_threads(1, [&] { ASSERT_TRUE(render_frame(scene, rt, opt, first, nullptr, &one)); });
+  EXPECT_GT(one.shadow.evaluations(), 300);
+  for (const int threads : {2, 8}) {
+    FrameStats many;
+    Film film(kW, kH, AovSelection{});
+    run_on_threads(threads,
+                   [&] { ASSERT_TRUE(render_frame(scene, rt, opt, film, nullptr, &many)); });
+    EXPECT_EQ(many.steps, one.steps) << threads << " threads";
+    EXPECT_EQ(many.primary.evaluations(), one.primary.evaluations()) << threads << " threads";
+    EXPECT_EQ(many.shadow.evaluations(), one.shadow.evaluations()) << threads << " threads";
+    ASSERT_EQ(film.rgba.size(), first.rgba.size());
+    EXPECT_EQ(
+        std::memcmp(film.rgba.data(), first.rgba.data(), film.rgba.size() * sizeof(film.rgba[0])),
+        0)
+        << threads << " threads";
+  }
 }
 
 }  // namespace

@@ -1,4 +1,6 @@
-// The worker threads' loops (render/threads.h): parallel_ranges runs each range in the caller's
+// The worker threads' loops (render/threads.h): every index once at any thread count, the cap
+// and each caller's own count held, the first exception handed to the caller with nothing started
+// after it, a loop inside a task, and parallel_ranges running each range in the caller's
 // floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp).
 #include <gtest/gtest.h>
 
@@ -6,9 +8,13 @@
 #include <xmmintrin.h>
 #endif
 
+#include <atomic>
 #include <chrono>
+#include <future>
+#include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -47,6 +53,192 @@ TEST(ParallelRanges, EachRangeTakesTheCallersFloatingPointMode) {
   for (const unsigned s : seen) EXPECT_EQ(s, mode);
   if (threads.size() < 2)
     GTEST_SKIP() << "every range ran on the calling thread (a loaded machine)";
+#else
+  GTEST_SKIP() << "x86 only";
+#endif
+}
+
+// Counts the tasks running at once, and the most there were: a loop of `count` tasks that each
+// sleep long enough for every thread of the loop to join.
+struct AtOnce {
+  void loop(size_t count) {
+    parallel_each(count, [&](size_t) {
+      const int n = ++now;
+      for (int m = most.load(); n > m && !most.compare_exchange_weak(m, n);) {
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      --now;
+    });
+  }
+  std::atomic<int> now{0}, most{0};
+};
+
+int most_at_once(size_t count) {
+  AtOnce at_once;
+  at_once.loop(count);
+  return at_once.most.load();
+}
+
+TEST(ThreadLoops, EachIndexRunsOnceAtOneTwoAndEightThreads) {
+  for (const int threads : {1, 2, 8}) {
+    constexpr size_t kCount = 2000;  // each a few microseconds long, so that the workers join
+    std::vector<std::atomic<int>> runs(kCount);
+    std::atomic<int> bad_thread{0};
+    run_on_threads(threads, [&] {
+      EXPECT_EQ(loop_threads(), threads);
+      parallel_each_thread(kCount, loop_threads(), [&](size_t i, int thread) {
+        if (thread < 0 || thread >= threads) ++bad_thread;
+        ++runs[i];
+        std::this_thread::sleep_for(std::chrono::microseconds(20));
+      });
+    });
+    for (size_t i = 0; i < kCount; ++i)
+      ASSERT_EQ(runs[i].load(), 1) << threads << " threads, " << i;
+    EXPECT_EQ(bad_thread.load(), 0) << threads << " threads";
+  }
+}
+
+// The cap holds over a run's own larger count, and a run's count holds without a cap: never
+// more tasks at once than either allows. (At least two at once shows the count is not vacuous.)
+// Under the cap, two callers each run their own loops and share its one worker: three at most,
+// though two workers are started by then.
+TEST(ThreadLoops, TheCapAndTheRunsCountHold) {
+  run_on_threads(3, [&] {
+    EXPECT_EQ(loop_threads(), 3);
+    const int most = most_at_once(96);
+    EXPECT_LE(most, 3);
+    EXPECT_GE(most, 2) << "the workers never joined";
+  });
+  {
+    const ThreadLimit cap = limit_threads(2);
+    run_on_threads(8, [&] {
+      EXPECT_EQ(loop_threads(), 2);
+      EXPECT_LE(most_at_once(64), 2);
+    });
+    AtOnce both;
+    const auto loop = [&] { run_on_threads(2, [&] { both.loop(64); }); };
+    std::thread other(loop);
+    loop();
+    other.join();
+    EXPECT_LE(both.most.load(), 3);
+  }
+}
+
+// Index 1 throws at once while every other task sleeps: the caller gets its exception, only after
+// the sleeping tasks have finished, and no task starts once it has been thrown.
+TEST(ThreadLoops, TheFirstExceptionReachesTheCallerAndNothingStartsAfterIt) {
+  for (const int threads : {1, 2, 8}) {
+    std::atomic<bool> thrown{false};
+    std::atomic<int> running{0}, started{0}, late{0};
+    run_on_threads(threads, [&] {
+      try {
+        parallel_each(64, [&](size_t i) {
+          ++started;
+          if (thrown) ++late;
+          if (i == 1) {
+            thrown = true;
+            throw std::runtime_error("index 1");
+          }
+          ++running;
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          --running;
+        });
+        ADD_FAILURE() << "no exception reached the caller";
+      } catch (const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "index 1");
+        EXPECT_EQ(running.load(), 0) << threads << " threads: a task was still running";
+      }
+    });
+    EXPECT_EQ(late.load(), 0) << threads << " threads";
+    EXPECT_LE(started.load(), threads + 1) << threads << " threads";
+  }
+}
+
+// Each task of a loop starts a loop of its own: all finish (a loop never waits on workers busy
+// with the loop around it), every inner index once. On a thread of its own, waited for with a
+// deadline and left behind after it, so that a deadlock fails the test rather than hanging it.
+TEST(ThreadLoops, ALoopInsideATaskFinishes) {
+  constexpr size_t kOuter = 16, kInner = 64;
+  struct Shared {
+    std::vector<std::atomic<int>> runs = std::vector<std::atomic<int>>(kOuter * kInner);
+    std::promise<void> finished;
+  };
+  const auto shared = std::make_shared<Shared>();
+  std::future<void> done = shared->finished.get_future();
+  std::thread([shared] {
+    run_on_threads(2, [&] {
+      parallel_each(kOuter, [&](size_t o) {
+        parallel_each(kInner, [&](size_t i) { ++shared->runs[o * kInner + i]; });
+      });
+    });
+    shared->finished.set_value();
+  }).detach();
+  ASSERT_EQ(done.wait_for(std::chrono::seconds(60)), std::future_status::ready) << "deadlock";
+  for (size_t i = 0; i < shared->runs.size(); ++i) ASSERT_EQ(shared->runs[i].load(), 1) << i;
+}
+
+// Two threads in runs of their own at 1 and 3 threads, both inside their runs at once: each keeps
+// its own count (the first's tasks all on its own thread), and both loops finish.
+TEST(ThreadLoops, TwoCallersKeepTheirOwnCounts) {
+  std::promise<void> one_in, three_in;
+  std::shared_future<void> one_entered = one_in.get_future(), three_entered = three_in.get_future();
+  std::atomic<int> one_elsewhere{0}, three_beyond{0};
+  std::atomic<size_t> one_done{0}, three_done{0};
+  int one_count = 0, three_count = 0;
+  std::thread one([&] {
+    run_on_threads(1, [&] {
+      one_in.set_value();
+      three_entered.wait();
+      one_count = loop_threads();
+      const auto me = std::this_thread::get_id();
+      parallel_each(200, [&](size_t) {
+        if (std::this_thread::get_id() != me) ++one_elsewhere;
+        std::this_thread::sleep_for(std::chrono::microseconds(50));
+        ++one_done;
+      });
+    });
+  });
+  std::thread three([&] {
+    run_on_threads(3, [&] {
+      three_in.set_value();
+      one_entered.wait();
+      three_count = loop_threads();
+      parallel_each_thread(200, three_count, [&](size_t, int thread) {
+        if (thread >= 3) ++three_beyond;
+        std::this_thread::sleep_for(std::chrono::microseconds(50));
+        ++three_done;
+      });
+    });
+  });
+  one.join();
+  three.join();
+  EXPECT_EQ(one_count, 1);
+  EXPECT_EQ(three_count, 3);
+  EXPECT_EQ(one_elsewhere.load(), 0);
+  EXPECT_EQ(three_beyond.load(), 0);
+  EXPECT_EQ(one_done.load(), 200u);
+  EXPECT_EQ(three_done.load(), 200u);
+}
+
+// The frame's loop: each task in the caller's floating-point mode on whichever of the loop's
+// threads runs it (the worker threads start in the usual mode).
+TEST(ThreadLoops, EachThreadsTaskTakesTheCallersFloatingPointMode) {
+#if defined(__x86_64__) || defined(__i386__)
+  const auto control = [] { return _mm_getcsr() & ~0x3Fu; };
+  run_on_threads(2, [&] {
+    const unsigned before = _mm_getcsr();
+    const unsigned mode = (before & ~0x3Fu) | 0x6000u;  // RC = 11: towards zero
+    _mm_setcsr(mode);
+    std::atomic<int> wrong{0}, on_workers{0};
+    parallel_each_thread(64, loop_threads(), [&](size_t, int thread) {
+      std::this_thread::sleep_for(std::chrono::microseconds(300));
+      if (control() != mode) ++wrong;
+      if (thread > 0) ++on_workers;
+    });
+    _mm_setcsr(before);
+    EXPECT_EQ(wrong.load(), 0);
+    if (on_workers == 0) GTEST_SKIP() << "every task ran on the calling thread (a loaded machine)";
+  });
 #else
   GTEST_SKIP() << "x86 only";
 #endif

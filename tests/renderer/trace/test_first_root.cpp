@@ -14,7 +14,6 @@
 // kRaysPerImage, spread over the whole frame), and two renders from issue 36 are checked in full
 // at the sizes where a later root and an invented surface were seen.
 #include <gtest/gtest.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +24,7 @@
 
 #include "render/camera.h"
 #include "render/frame.h"
+#include "render/threads.h"
 #include "scene_files.h"
 #include "tracer_scenes.h"
 
@@ -149,7 +149,8 @@ TEST_P(FirstRoot, EveryPixelHitsTheFirstRoot) {
   // Rows offset by a third of the stride each, so that the checked pixels do not line up in
   // columns.
   const int offset = std::max(1, c.stride / 3);
-  tbb::parallel_for(0, c.height, [&](int y) {
+  parallel_each(size_t(c.height), [&](size_t row) {
+    const int y = int(row);
     if (y % c.stride != 0) return;
     for (int x = (y / c.stride * offset) % c.stride; x < c.width; x += c.stride) {
       PixelResult& r = results[size_t(y) * c.width + x];
