@@ -60,12 +60,17 @@ void load_exr_module() {
   exr();
 }
 
+// The module's errors come back as messages (exr_module.h), thrown here as the program's own.
 ImageFile read_exr(const std::string& path) {
-  return exr().read(path);
+  ImageFile image;
+  const std::string error = exr().read(path, image);
+  if (!error.empty()) throw std::runtime_error(error);
+  return image;
 }
 
 void write_exr(const std::string& path, const ImageFile& image, const ExrExtras& extras) {
-  exr().write(path, image, extras);
+  const std::string error = exr().write(path, image, extras);
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 }  // namespace softtrace

@@ -11,9 +11,17 @@
 
 namespace softtrace {
 
+// softtrace-core carries its own copy of the C++ runtime (renderer/CMakeLists.txt) while the
+// module, like OpenEXR, uses the shared one: two runtimes, so no C++ exception may cross between
+// them (each has its own unwinder and type information). Each function catches every exception
+// of its own and hands back its message, empty on success; the program throws its own
+// std::runtime_error with it, the type exr_io.cpp throws. The strings, vectors and images handed
+// across are allocated by one side and freed by the other: both runtimes' operator new and delete
+// are malloc and free, the C library's, which the process has one of (nothing replaces it: no
+// allocator proxy is linked or preloaded).
 struct ExrFunctions {
-  ImageFile (*read)(const std::string& path);
-  void (*write)(const std::string& path, const ImageFile& image, const ExrExtras& extras);
+  std::string (*read)(const std::string& path, ImageFile& image);
+  std::string (*write)(const std::string& path, const ImageFile& image, const ExrExtras& extras);
 };
 
 }  // namespace softtrace
