@@ -23,7 +23,8 @@ using NodePtr = std::unique_ptr<FieldNode>;
 using PotentialPtr = std::unique_ptr<Potential>;
 
 // Limits that keep hostile scenes from exhausting the stack (evaluation recurses through the
-// tree, also on TBB worker threads with small stacks) or making every evaluation absurdly slow.
+// tree, also on the renderer's worker threads, whose stacks may be smaller than the main thread's)
+// or making every evaluation absurdly slow.
 constexpr int kMaxFieldDepth = 256;
 constexpr size_t kMaxChildren = 10000;
 

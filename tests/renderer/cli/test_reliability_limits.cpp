@@ -1,7 +1,7 @@
 // Hostile scenes too big to commit, generated here: 10,000-deep nesting, 100,000 children,
 // 100,000 nested brackets under an unknown key. Each must give exit status 2, one located line
 // and no output, without overflowing the stack; trees just inside the limits must load, render
-// and evaluate (deep recursion on TBB worker threads included).
+// and evaluate (deep recursion on the frame's worker threads included).
 #include <gtest/gtest.h>
 
 #include <filesystem>
