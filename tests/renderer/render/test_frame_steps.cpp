@@ -17,11 +17,17 @@
 namespace softtrace {
 namespace {
 
-TEST(FrameSteps, ThePlaneSumsToTheFramesEvaluations) {
-  const Scene scene = parse_scene(
+// 400 balls seen from a corner: camera rays that meet several, and shadow rays with work of their
+// own.
+Scene ball_cloud() {
+  return parse_scene(
       sparse_ball_cloud(
           400, 24, R"({"eye": [40, -55, 35], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40})"),
       "<test>");
+}
+
+TEST(FrameSteps, ThePlaneSumsToTheFramesEvaluations) {
+  const Scene scene = ball_cloud();
   const TracedScene rt(scene, LipschitzMode::Local);
   constexpr int kW = 96, kH = 72;
   Film film(kW, kH, AovSelection{false, false, true, false});
@@ -40,10 +46,7 @@ TEST(FrameSteps, ThePlaneSumsToTheFramesEvaluations) {
 // The frame's totals are sums over each thread's own (frame.cpp's Work): counts, so the same at 1,
 // 2 and 8 threads, as the pixels are.
 TEST(FrameSteps, TheTotalsAreTheSameAtAnyThreadCount) {
-  const Scene scene = parse_scene(
-      sparse_ball_cloud(
-          400, 24, R"({"eye": [40, -55, 35], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40})"),
-      "<test>");
+  const Scene scene = ball_cloud();
   const TracedScene rt(scene, LipschitzMode::Local);
   constexpr int kW = 96, kH = 72;
   RenderOptions opt;
