@@ -124,8 +124,11 @@ TEST(ThreadLoops, TheCapAndTheRunsCountHold) {
   }
 }
 
-// Index 1 throws at once while every other task sleeps: the caller gets its exception, only after
-// the sleeping tasks have finished, and no task starts once it has been thrown.
+// Index 1 throws once every other running task is asleep (200 ms each): the caller gets its
+// exception, only after the sleeping tasks have finished, and no task starts once it has been
+// thrown. (`thrown` is set just before the throw, and the loop stops handing out tasks once the
+// exception is caught: the sleeps keep every other thread away from the counter in between, so
+// a task counted late is the loop's fault, not the test's timing.)
 TEST(ThreadLoops, TheFirstExceptionReachesTheCallerAndNothingStartsAfterIt) {
   for (const int threads : {1, 2, 8}) {
     std::atomic<bool> thrown{false};
@@ -136,11 +139,16 @@ TEST(ThreadLoops, TheFirstExceptionReachesTheCallerAndNothingStartsAfterIt) {
           ++started;
           if (thrown) ++late;
           if (i == 1) {
+            // The other threads' first tasks: asleep before the throw (a bounded wait, so that a
+            // loop that never gave them a task fails the assertions below rather than hanging).
+            const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+            while (running.load() < threads - 1 && std::chrono::steady_clock::now() < deadline)
+              std::this_thread::sleep_for(std::chrono::milliseconds(1));
             thrown = true;
             throw std::runtime_error("index 1");
           }
           ++running;
-          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          std::this_thread::sleep_for(std::chrono::milliseconds(200));
           --running;
         });
         ADD_FAILURE() << "no exception reached the caller";
