@@ -60,17 +60,14 @@ class BlobEvents {
 
   bool empty() const { return enter_head_ == enter_end_ && exit_head_ == exit_end_; }
   // Whether the next event (not empty()) is an exit: the lesser head, an exit on a tie.
-  bool exit_next() const {
-    return exit_head_ < exit_end_ &&
-           (enter_head_ == enter_end_ || exits_[exit_head_].u <= enters_[enter_head_].u);
-  }
+  bool exit_next() const { return exit_first(enter_head_ < enter_end_); }
   // Whether an event is ahead at or before `limit`: then *exit is exit_next() and the event
   // next(*exit). The walk's one question per step (first_hit_blobs), in one pass over the heads:
   // empty(), exit_next() and next()'s u asked apart tested each head's bounds twice and loaded the
   // lesser head's u again.
   bool next_by(double limit, bool* exit) const {
     const bool entries = enter_head_ < enter_end_;
-    if (exit_head_ < exit_end_ && (!entries || exits_[exit_head_].u <= enters_[enter_head_].u)) {
+    if (exit_first(entries)) {
       *exit = true;
       return exits_[exit_head_].u <= limit;
     }
@@ -83,6 +80,10 @@ class BlobEvents {
   void pop(bool exit) { ++(exit ? exit_head_ : enter_head_); }
 
  private:
+  // exit_next() given whether an entry is left (`entries`), which next_by also needs.
+  bool exit_first(bool entries) const {
+    return exit_head_ < exit_end_ && (!entries || exits_[exit_head_].u <= enters_[enter_head_].u);
+  }
   // take_all's larger case, apart from the streams' state (given `this`, a call there may keep
   // that state in memory through the whole walk, every store to an event reloading it).
   static void sort_apart(const BlobSum::Term* terms, int n, BlobEventOfBoth* both,
