@@ -53,7 +53,7 @@ class FloatingPointMode {
   static unsigned current();
   // The frames' mode: the calling thread's with flush-to-zero and denormals-are-zero. Every task
   // of a frame runs in it (frame.cpp): it is the mode the frames have always had (TBB's arena,
-  // which ran them until session 33, kept the mode of the thread that started it, and Embree's
+  // which ran them before this pool, kept the mode of the thread that started it, and Embree's
   // scene build, which started it then, sets these), and a denormal flushed or not changes a
   // march's steps. Set per task, it depends on nobody's start, so the Python module's frames are
   // the command line's bits.
