@@ -11,6 +11,7 @@
 #include <mutex>
 #include <new>
 #include <thread>
+#include <utility>
 #include <vector>
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
@@ -20,11 +21,13 @@ namespace softtrace {
 namespace {
 
 // One parallel loop, on its caller's stack: the caller runs its tasks as thread 0 and up to
-// `helpers` workers join it as threads 1, 2, ... Indices are handed out in order from `next`.
+// `helpers` workers join it as threads 1, 2, ... Indices are handed out from `next` in runs
+// (next_run).
 struct Loop {
   size_t count = 0;
   const std::function<void(size_t, int)>* body = nullptr;
   unsigned mode = 0;         // the caller's floating-point mode, every task's
+  size_t share = 2;          // next_run's divisor: twice the loop's threads
   int helpers = 0;           // workers that may join (the pool's mutex guards this and below)
   int joined = 0;            // workers that have joined: threads 1..joined
   int running = 0;           // workers in the loop now
@@ -40,19 +43,37 @@ thread_local bool t_in_task = false;
 // run_on_threads' count on this thread (0: none).
 thread_local int t_own_threads = 0;
 
+// The next run of indices [begin, end) for a thread of `loop`, empty once none is left: a
+// share of what is left, 1 / (2 * threads) of it ("guided" scheduling), so that each thread
+// works through consecutive indices while the others are far away. Handed out one index at a
+// time, the two threads of a frame traced neighbouring tiles at the same moment, and each took
+// 7-14 % more CPU time than alone (molecule and meets1 at 640x480); the shares shrink to one
+// index towards the end, so the threads still finish together.
+std::pair<size_t, size_t> next_run(Loop& loop) {
+  size_t begin = loop.next.load(std::memory_order_relaxed);
+  for (;;) {
+    if (begin >= loop.count) return {begin, begin};
+    const size_t take = std::max<size_t>(1, (loop.count - begin) / loop.share);
+    if (loop.next.compare_exchange_weak(begin, begin + take, std::memory_order_relaxed))
+      return {begin, begin + take};
+  }
+}
+
 // Runs tasks of `loop` as thread `thread` until none is left or one has thrown.
 void run_tasks(Loop& loop, int thread, std::mutex& guard) {
   t_in_task = true;
-  for (;;) {
-    if (loop.stop.load(std::memory_order_acquire)) break;
-    const size_t i = loop.next.fetch_add(1, std::memory_order_relaxed);
-    if (i >= loop.count || loop.stop.load(std::memory_order_acquire)) break;
-    try {
-      (*loop.body)(i, thread);
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(guard);
-      if (!loop.error) loop.error = std::current_exception();
-      loop.stop.store(true, std::memory_order_release);
+  const auto stopped = [&] { return loop.stop.load(std::memory_order_acquire); };
+  while (!stopped()) {
+    const auto [begin, end] = next_run(loop);
+    if (begin == end) break;
+    for (size_t i = begin; i < end && !stopped(); ++i) {
+      try {
+        (*loop.body)(i, thread);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(guard);
+        if (!loop.error) loop.error = std::current_exception();
+        loop.stop.store(true, std::memory_order_release);
+      }
     }
   }
   t_in_task = false;
@@ -269,6 +290,7 @@ void parallel_each_thread(size_t count, int threads,
   loop.body = &body;
   loop.mode = FloatingPointMode::current();
   loop.helpers = helpers;
+  loop.share = 2 * size_t(helpers + 1);
   Pool::get().run(loop);
   if (loop.error) std::rethrow_exception(loop.error);
 }

@@ -9,7 +9,9 @@
 // 100), where a frame at 320x240 takes 10-30 ms. Its workers also spin on sched_yield between
 // loops, which costs the other core; ours sleep on a condition variable. Without TBB the program
 // may also carry its own C++ runtime (Debian's libtbb needs the shared one). A frame's tiles are
-// equal tasks handed out in order from one counter, so work stealing buys nothing here.
+// many small tasks handed out from one counter in runs of consecutive indices (each thread keeps
+// to its own part of the image, as TBB's range splitting kept it), so work stealing buys nothing
+// here.
 #pragma once
 
 #include <cstddef>
@@ -81,10 +83,11 @@ void run_on_threads(int threads, const std::function<void()>& work);
 // run_on_threads, or the cores, under the smallest cap; 1 inside a loop's task.
 int loop_threads();
 
-// Calls body(i) for every i in [0, count), one index per task, handed out in order to the calling
-// thread and up to loop_threads() - 1 workers, each task in the caller's floating-point mode (so
-// that what each computes is what a loop on the caller would give: an image's bands, io/
-// image_file.h's EachIndex). Returns when every task is done. The first exception of `body`
+// Calls body(i) for every i in [0, count), one index per task, handed out to the calling thread
+// and up to loop_threads() - 1 workers in runs of consecutive indices, each run a share of what
+// is left (1 / (2 * threads) of it, down to one index), each task in the caller's floating-point
+// mode (so that what each computes is what a loop on the caller would give: an image's bands,
+// io/image_file.h's EachIndex). Returns when every task is done. The first exception of `body`
 // reaches the caller once every running task has finished; no task starts after it. A loop
 // started inside a task runs on that task's thread alone, in order (no worker waits on another).
 void parallel_each(size_t count, const std::function<void(size_t)>& body);
