@@ -89,8 +89,8 @@ struct TileRecords {
 };
 
 // One thread's own (frame.cpp's run_pass), side by side in one vector: a cache line apiece, so
-// that one thread's counters never share a line with the next's (without it the 2-thread frames
-// of molecule and meets1 took 5-10 % longer).
+// that one thread's counters never share a line with the next's (without it, when the tiles
+// were handed out one at a time, the 2-thread frames of molecule and meets1 took 5-10 % longer).
 struct alignas(64) Work {
   RayWork primary, shadow;
   // Each beam level's certified depth per object ([level * objects + object]).
