@@ -1,5 +1,9 @@
 #include "trace/embree_device.h"
 
+#include <exception>
+#include <new>
+#include <utility>
+
 #include "trace/embree_scene.h"
 
 namespace softtrace {
@@ -57,19 +61,38 @@ void EmbreeDevice::on_error(void* self, RTCError code, const char* message) {
   const std::lock_guard<std::mutex> lock(d->mutex_);
   if (d->code_ != RTC_ERROR_NONE) return;  // the first error is the cause; the rest follow it
   d->code_ = code;
-  d->message_ = message ? message : "";
+  try {
+    d->message_ = message ? message : "";
+  } catch (const std::bad_alloc&) {  // no memory for Embree's words: the kind alone
+    d->message_.clear();
+  }
   d->failed_.store(true, std::memory_order_relaxed);
+}
+
+void EmbreeDevice::fail_in_callback() noexcept {
+  try {
+    throw;
+  } catch (const std::bad_alloc&) {
+    on_error(this, RTC_ERROR_OUT_OF_MEMORY, nullptr);
+  } catch (const std::exception& e) {
+    on_error(this, RTC_ERROR_UNKNOWN, e.what());
+  } catch (...) {
+    on_error(this, RTC_ERROR_UNKNOWN, "an exception of unknown type");
+  }
 }
 
 void EmbreeDevice::check(const char* what) {
   if (!failed()) return;
   const std::lock_guard<std::mutex> lock(mutex_);
   if (code_ == RTC_ERROR_NONE) return;  // another thread's check took it
-  const std::string text = error_text(what, code_, message_);
+  // Forgotten before the text is made: without memory for it, the check throws std::bad_alloc
+  // and the device is clear all the same.
+  const RTCError code = code_;
+  const std::string message = std::move(message_);
   code_ = RTC_ERROR_NONE;
   message_.clear();
   failed_.store(false, std::memory_order_relaxed);
-  throw EmbreeError(text);
+  throw EmbreeError(error_text(what, code, message));
 }
 
 }  // namespace softtrace

@@ -1,9 +1,12 @@
 // An Embree device whose errors become ours. Embree reports an error to the device's error
 // callback (rtcSetDeviceErrorFunction), on the thread of the failing call: ours, or one of its
-// build threads, or inside rtcIntersect1, which catches what our intersect callbacks throw and
-// reports it there instead (the ray would then pass as if it met nothing). No exception may
+// build threads. Our intersect callbacks report theirs the same way (fail_in_callback): they
+// catch what they throw rather than let rtcIntersect1 catch it, since softtrace-core's own C++
+// runtime and libgcc cannot unwind through libembree3's frames, whose handlers are the shared
+// runtime's (the process aborts: tests/renderer/cli/test_core_runtime.cpp). No exception may
 // cross Embree's C code, so the callback only keeps the first error; check() after each call we
-// make throws it as an EmbreeError (embree_scene.h), which the command line reports as one line.
+// make throws it as an EmbreeError (embree_scene.h), which the command line reports as one line;
+// the ray that failed is not used.
 // Included only where Embree is (embree_scene.cpp, and tests that provoke an error).
 #pragma once
 
@@ -33,6 +36,10 @@ class EmbreeDevice {
   // Throws the first error Embree reported since the last check as an EmbreeError naming `what`
   // (what we were doing), and forgets it.
   void check(const char* what);
+  // Records the exception being handled (called in a catch block of one of our callbacks) as the
+  // device's error, as Embree records what a callback throws: std::bad_alloc as out of memory,
+  // any other exception as an error in its own words.
+  void fail_in_callback() noexcept;
 
  private:
   static void on_error(void* self, RTCError code, const char* message);

@@ -45,7 +45,21 @@ struct GeometryData {
   const CsgTracer* csg;        // null but for a CSG
   const TracedObject* object_data;
   int object;
+  EmbreeDevice* device;  // where a callback's exception goes (guarded)
 };
+
+// Runs a callback's body: what it throws (an allocation failure in a tracer's scratch) is caught
+// here and recorded on the device, which the call's check() then throws (embree_device.h), and
+// the callback returns to Embree normally. Embree would catch it itself, but its frames' handlers
+// belong to the shared C++ runtime and softtrace-core unwinds with its own, which aborts.
+template <class Body>
+void guarded(const GeometryData& data, const Body& body) noexcept {
+  try {
+    body();
+  } catch (...) {
+    data.device->fail_in_callback();
+  }
+}
 
 void bounds_callback(const RTCBoundsFunctionArguments* args) {
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
@@ -112,62 +126,74 @@ MarchResult field_hit(const GeometryData& data, const Ray& ray, double tnear, do
 void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  if (ctx->inside && ctx->inside->contains(data->object)) {
-    exit_callback(args, data, ctx);
-    return;
-  }
-  const BlobBeam* list;
-  const MarchResult m =
-      field_hit(*data, ctx->ray, ctx->tnear, ctx->t, ctx->beam, ctx->beam_cos, ctx->work, &list);
-  if (!m.hit || m.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, -1);
-  ctx->blobs = list;
+  guarded(*data, [&] {
+    auto* ctx = reinterpret_cast<RayContext*>(args->context);
+    if (ctx->inside && ctx->inside->contains(data->object)) {
+      exit_callback(args, data, ctx);
+      return;
+    }
+    const BlobBeam* list;
+    const MarchResult m =
+        field_hit(*data, ctx->ray, ctx->tnear, ctx->t, ctx->beam, ctx->beam_cos, ctx->work, &list);
+    if (!m.hit || m.t >= ctx->t) return;
+    record_hit(args, ctx, data->object, m.t, m.on_box_face, Vec3{0, 0, 0}, -1);
+    ctx->blobs = list;
+  });
 }
 
 void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  const BlobBeam* blobs = ctx->shadow_blobs ? &ctx->shadow_blobs[data->object] : nullptr;
-  if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Any, 0, blobs).hit)
-    r->tfar = -INFINITY;
+  guarded(*data, [&] {
+    auto* ctx = reinterpret_cast<RayContext*>(args->context);
+    RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+    const BlobBeam* blobs = ctx->shadow_blobs ? &ctx->shadow_blobs[data->object] : nullptr;
+    if (data->tracer->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work, Query::Any, 0, blobs).hit)
+      r->tfar = -INFINITY;
+  });
 }
 
 void primitive_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  const PrimitiveHit h = first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t);
-  if (!h.hit || h.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, h.t, false, h.normal, -1);
+  guarded(*data, [&] {
+    auto* ctx = reinterpret_cast<RayContext*>(args->context);
+    const PrimitiveHit h = first_hit(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t);
+    if (!h.hit || h.t >= ctx->t) return;
+    record_hit(args, ctx, data->object, h.t, false, h.normal, -1);
+  });
 }
 
 void primitive_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (occludes(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t)) r->tfar = -INFINITY;
+  guarded(*data, [&] {
+    auto* ctx = reinterpret_cast<RayContext*>(args->context);
+    RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+    if (occludes(*data->object_data->shape, ctx->ray, ctx->tnear, ctx->t)) r->tfar = -INFINITY;
+  });
 }
 
 void csg_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  const CsgHit h = data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
-  if (!h.hit || h.t >= ctx->t) return;
-  record_hit(args, ctx, data->object, h.t, false, h.normal, h.face, h.face_point);
+  guarded(*data, [&] {
+    auto* ctx = reinterpret_cast<RayContext*>(args->context);
+    const CsgHit h = data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work);
+    if (!h.hit || h.t >= ctx->t) return;
+    record_hit(args, ctx, data->object, h.t, false, h.normal, h.face, h.face_point);
+  });
 }
 
 // A shadow ray asks the same question as a camera ray: the result's first surface in range.
 void csg_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  auto* ctx = reinterpret_cast<RayContext*>(args->context);
-  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
+  guarded(*data, [&] {
+    auto* ctx = reinterpret_cast<RayContext*>(args->context);
+    RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+    if (data->csg->first_hit(ctx->ray, ctx->tnear, ctx->t, ctx->work).hit) r->tfar = -INFINITY;
+  });
 }
 
 // A mesh's triangles are Embree's own: it calls this for each hit nearer than the closest so far
@@ -176,19 +202,21 @@ void csg_occluded_callback(const RTCOccludedFunctionNArguments* args) {
 void mesh_filter_callback(const RTCFilterFunctionNArguments* args) {
   if (args->N != 1 || !args->valid[0]) return;  // rtcIntersect1 only
   const auto* data = static_cast<const GeometryData*>(args->geometryUserPtr);
-  // Embree hands the context on unchanged: it is the RayContext that intersect() passed.
-  auto* ctx = reinterpret_cast<RayContext*>(const_cast<RTCIntersectContext*>(args->context));
-  RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const RTCHit* hit = reinterpret_cast<const RTCHit*>(args->hit);
-  const MeshHit h =
-      mesh_hit(*data->object_data->mesh, hit->primID, ctx->ray, ray->tfar, hit->u, hit->v);
-  ctx->t = h.t;
-  ctx->object = data->object;
-  ctx->on_box_face = false;
-  ctx->normal = h.normal;
-  ctx->face = -1;
-  ctx->face_point = {0, 0, 0};
-  ctx->blobs = nullptr;
+  guarded(*data, [&] {
+    // Embree hands the context on unchanged: it is the RayContext that intersect() passed.
+    auto* ctx = reinterpret_cast<RayContext*>(const_cast<RTCIntersectContext*>(args->context));
+    RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
+    const RTCHit* hit = reinterpret_cast<const RTCHit*>(args->hit);
+    const MeshHit h =
+        mesh_hit(*data->object_data->mesh, hit->primID, ctx->ray, ray->tfar, hit->u, hit->v);
+    ctx->t = h.t;
+    ctx->object = data->object;
+    ctx->on_box_face = false;
+    ctx->normal = h.normal;
+    ctx->face = -1;
+    ctx->face_point = {0, 0, 0};
+    ctx->blobs = nullptr;
+  });
 }
 
 // The nearest hit of the primitives `which` in [0, h.t], into h (hit, t, object, normal; the rest
@@ -305,8 +333,8 @@ EmbreeScene::EmbreeScene(const SceneTracers& tracers, bool interiors) {
   }
   impl_->data.reserve(tracers.size());  // the callbacks hold pointers into it
   for (int i = 0; i < tracers.size(); ++i)
-    impl_->data.push_back(
-        {tracers.tracer(i), tracers.exit_tracer(i), tracers.csg(i), &tracers.object(i), i});
+    impl_->data.push_back({tracers.tracer(i), tracers.exit_tracer(i), tracers.csg(i),
+                           &tracers.object(i), i, &impl_->device});
   if (!impl_->device.get()) return;
 
   EmbreeDevice& device = impl_->device;
