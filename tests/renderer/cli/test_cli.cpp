@@ -195,7 +195,7 @@ TEST(Eval, MatchesTheFormulas) {
   EXPECT_NE(bad.err.find("bad.txt:2: expected three finite numbers"), std::string::npos) << bad.err;
 }
 
-OIIO::ImageBuf read_image(const std::string& path) {
+OIIO::ImageBuf read_with_oiio(const std::string& path) {
   OIIO::ImageBuf b(path);
   b.read(0, 0, true, OIIO::TypeDesc::FLOAT);
   return b;
@@ -211,8 +211,8 @@ TEST(Render, AovChannelsAndSameBitsForAnyThreadCount) {
   ASSERT_EQ(
       run_softtrace(base + " --threads 2 -o " + dir + "/t2b.exr -o " + dir + "/t2.png").status, 0);
 
-  const OIIO::ImageBuf a = read_image(dir + "/t1.exr"), b = read_image(dir + "/t2.exr"),
-                       c = read_image(dir + "/t2b.exr");
+  const OIIO::ImageBuf a = read_with_oiio(dir + "/t1.exr"), b = read_with_oiio(dir + "/t2.exr"),
+                       c = read_with_oiio(dir + "/t2b.exr");
   const std::vector<std::string> expected = {
       "R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "steps", "albedo.R", "albedo.G", "albedo.B"};
   std::vector<std::string> names = a.spec().channelnames;
