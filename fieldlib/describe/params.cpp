@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -273,7 +274,16 @@ std::vector<Params> Params::objects(const std::string& key) const {
   std::vector<Params> out;
   out.reserve(v.size());
   const std::string base = pointer_ + "/" + json_pointer_escape(key) + "/";
-  for (size_t i = 0; i < v.size(); ++i) out.emplace_back(v[i], base + std::to_string(i), file_);
+  // Each element's pointer in one allocation: `base + std::to_string(i)` made the index's string
+  // and then a second, larger one for the pointer (a blend's 1000 children).
+  char index[24];
+  for (size_t i = 0; i < v.size(); ++i) {
+    char* end = std::to_chars(index, index + sizeof index, i).ptr;
+    std::string pointer;
+    pointer.reserve(base.size() + static_cast<size_t>(end - index));
+    pointer.append(base).append(index, static_cast<size_t>(end - index));
+    out.emplace_back(v[i], std::move(pointer), file_);
+  }
   return out;
 }
 

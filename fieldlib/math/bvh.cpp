@@ -39,9 +39,16 @@ class BinaryBuilder {
  public:
   BinaryBuilder(std::vector<Box> boxes, std::vector<int32_t> ids)
       : boxes_(std::move(boxes)), ids_(std::move(ids)) {
-    centres_.reserve(boxes_.size());
-    for (const Box& b : boxes_) centres_.push_back(b.center());
-    for (auto& k : keys_) k.resize(boxes_.size());
+    for (int axis = 0; axis < 3; ++axis) {
+      centre_[axis].reserve(boxes_.size());
+      keys_[axis].resize(boxes_.size());
+    }
+    for (const Box& b : boxes_) {
+      const Vec3 c = b.center();
+      centre_[0].push_back(c.x);
+      centre_[1].push_back(c.y);
+      centre_[2].push_back(c.z);
+    }
   }
 
   std::vector<Binary> nodes;
@@ -55,7 +62,7 @@ class BinaryBuilder {
     for (int32_t i = first; i < first + count; ++i) {
       box.extend(boxes_[i].lo);  // united(): no item is empty
       box.extend(boxes_[i].hi);
-      centres.extend(centres_[i]);
+      centres.extend({centre_[0][i], centre_[1][i], centre_[2][i]});
     }
     nodes[index].box = box;
     nodes[index].first = first;
@@ -71,9 +78,9 @@ class BinaryBuilder {
   }
 
  private:
+  // x = (centre - lo) / w, the centre's place in the range [lo, lo + w] of the node's centres.
   // An unbounded item's centre may be infinite or NaN: the last bin or the first.
-  static int bin_of(const Box& centres, int axis, double centre) {
-    const double x = (centre - centres.lo[axis]) / (centres.hi[axis] - centres.lo[axis]);
+  static int bin_of(double x) {
     return x >= 1 ? kBins - 1 : x > 0 ? static_cast<int>(x * kBins) : 0;
   }
 
@@ -81,22 +88,25 @@ class BinaryBuilder {
   // increases A_left n_left + A_right n_right. Reorders the range so the first `half` go left;
   // returns half, or 0 where no split is finite (unbounded boxes, equal centres). Each item's
   // bin along each axis is kept from the binning for the partition, and the items' centres from
-  // the start: a 1000-blob scene built its tree in 9.4 M instructions, mostly recomputing them.
+  // the start, axis by axis: the axis is a loop variable, and reading a Vec3's coordinate by it
+  // took a branch per read.
   int32_t sah_split(int32_t first, int32_t count, const Box& centres) {
     double best = std::numeric_limits<double>::infinity();
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const double w = centres.hi[axis] - centres.lo[axis];
+      const double lo = centres.lo[axis], w = centres.hi[axis] - lo;
       if (!(w > 0) || !std::isfinite(w)) continue;
       Box bins[kBins];
       int32_t n[kBins] = {};
       uint32_t occupied = 0;  // bit k: bin k has items
       uint8_t* key = keys_[axis].data();
+      const double* centre = centre_[axis].data() + first;
+      const Box* box = boxes_.data() + first;
       for (int32_t i = 0; i < count; ++i) {
-        const int k = bin_of(centres, axis, centres_[first + i][axis]);
+        const int k = bin_of((centre[i] - lo) / w);
         key[i] = static_cast<uint8_t>(k);
-        bins[k].extend(boxes_[first + i].lo);  // united(), whose empty() test no item needs
-        bins[k].extend(boxes_[first + i].hi);
+        bins[k].extend(box[i].lo);  // united(), whose empty() test no item needs
+        bins[k].extend(box[i].hi);
         ++n[k];
         occupied |= 1u << k;
       }
@@ -124,18 +134,44 @@ class BinaryBuilder {
           best_bin = bin[j];
         }
       }
+      // Two items: on any axis binned (a positive, finite width), one centre is the range's low
+      // end, (lo - lo) / w = 0, bin 0, and the other its high end, w / w = 1, the last bin; the
+      // one split's cost is the two items' own half areas, each times 1, summed in either order,
+      // the same number on every such axis. The first axis's is the only one `cost < best` keeps.
+      if (count == 2) break;
     }
     if (best_axis < 0) return 0;
-    // std::stable_partition's order: the items of the bins up to best_bin, then the others, each
-    // in their order.
-    const uint8_t* key = keys_[best_axis].data();
-    order_.clear();
-    for (int32_t i = 0; i < count; ++i)
-      if (key[i] <= best_bin) order_.push_back(i);
-    const int32_t half = static_cast<int32_t>(order_.size());
-    for (int32_t i = 0; i < count; ++i)
-      if (key[i] > best_bin) order_.push_back(i);
-    permute(first, order_);
+    return partition(first, count, keys_[best_axis].data(), best_bin);
+  }
+
+  // std::stable_partition's order: the items of the bins up to best_bin, then the others, each
+  // in their order. The first move forward in place (an item's new place is never after its
+  // old one, and what stood there has moved already); only the others go through the scratch.
+  int32_t partition(int32_t first, int32_t count, const uint8_t* key, int best_bin) {
+    int32_t half = 0;
+    ids_scratch_.clear();
+    boxes_scratch_.clear();
+    for (auto& c : centres_scratch_) c.clear();
+    for (int32_t i = 0; i < count; ++i) {
+      const int32_t from = first + i;
+      if (key[i] <= best_bin) {
+        const int32_t to = first + half++;
+        if (to == from) continue;
+        ids_[to] = ids_[from];
+        boxes_[to] = boxes_[from];
+        for (int axis = 0; axis < 3; ++axis) centre_[axis][to] = centre_[axis][from];
+      } else {
+        ids_scratch_.push_back(ids_[from]);
+        boxes_scratch_.push_back(boxes_[from]);
+        for (int axis = 0; axis < 3; ++axis) centres_scratch_[axis].push_back(centre_[axis][from]);
+      }
+    }
+    const int32_t at = first + half;
+    std::copy(ids_scratch_.begin(), ids_scratch_.end(), ids_.begin() + at);
+    std::copy(boxes_scratch_.begin(), boxes_scratch_.end(), boxes_.begin() + at);
+    for (int axis = 0; axis < 3; ++axis)
+      std::copy(centres_scratch_[axis].begin(), centres_scratch_[axis].end(),
+                centre_[axis].begin() + at);
     return half;
   }
 
@@ -143,40 +179,34 @@ class BinaryBuilder {
     const Vec3 e = centres.extent();
     const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
     const int32_t half = count / 2;
-    order_.resize(count);
-    std::iota(order_.begin(), order_.end(), 0);
-    std::nth_element(order_.begin(), order_.begin() + half, order_.end(),
-                     [&](int32_t a, int32_t b) {
-                       const double ca = centres_[first + a][axis], cb = centres_[first + b][axis];
-                       return ca < cb || (ca == cb && ids_[first + a] < ids_[first + b]);
-                     });
-    permute(first, order_);
-    return half;
-  }
-
-  void permute(int32_t first, const std::vector<int32_t>& order) {
-    const size_t n = order.size();
-    ids_scratch_.resize(n);
-    boxes_scratch_.resize(n);
-    centres_scratch_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
+    std::vector<int32_t> order(count);
+    std::iota(order.begin(), order.end(), 0);
+    const double* c = centre_[axis].data() + first;
+    std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int32_t a, int32_t b) {
+      return c[a] < c[b] || (c[a] == c[b] && ids_[first + a] < ids_[first + b]);
+    });
+    ids_scratch_.resize(count);
+    boxes_scratch_.resize(count);
+    for (auto& s : centres_scratch_) s.resize(count);
+    for (int32_t i = 0; i < count; ++i) {
       ids_scratch_[i] = ids_[first + order[i]];
       boxes_scratch_[i] = boxes_[first + order[i]];
-      centres_scratch_[i] = centres_[first + order[i]];
+      for (int a = 0; a < 3; ++a) centres_scratch_[a][i] = centre_[a][first + order[i]];
     }
     std::copy(ids_scratch_.begin(), ids_scratch_.end(), ids_.begin() + first);
     std::copy(boxes_scratch_.begin(), boxes_scratch_.end(), boxes_.begin() + first);
-    std::copy(centres_scratch_.begin(), centres_scratch_.end(), centres_.begin() + first);
+    for (int a = 0; a < 3; ++a)
+      std::copy(centres_scratch_[a].begin(), centres_scratch_[a].end(), centre_[a].begin() + first);
+    return half;
   }
 
   std::vector<Box> boxes_;
   std::vector<int32_t> ids_;
-  std::vector<Vec3> centres_;          // boxes_[i].center(), reordered with them
-  std::vector<uint8_t> keys_[3];       // the bin along each axis of sah_split's range
-  std::vector<int32_t> order_;         // scratch of the splits
-  std::vector<int32_t> ids_scratch_;   // scratch of permute
-  std::vector<Box> boxes_scratch_;     // scratch of permute
-  std::vector<Vec3> centres_scratch_;  // scratch of permute
+  std::vector<double> centre_[3];           // boxes_[i].center(), axis by axis, reordered with them
+  std::vector<uint8_t> keys_[3];            // the bin along each axis of sah_split's range
+  std::vector<int32_t> ids_scratch_;        // scratch of the splits
+  std::vector<Box> boxes_scratch_;          // scratch of the splits
+  std::vector<double> centres_scratch_[3];  // scratch of the splits
 };
 
 // Slot c of a node or block: its box, axis by axis. An unused slot gets the empty box.

@@ -1,5 +1,6 @@
 #include "model/placement.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "math/affine.h"
@@ -26,7 +27,12 @@ Mat3 transpose(const Mat3& m) {
 class Placed final : public FieldNode {
  public:
   Placed(NodePtr child, const Mat3& R, const Vec3& t)
-      : child_(std::move(child)), R_(R), Rt_(transpose(R)), t_(t), rotated_(!is_identity(R)) {}
+      : child_(std::move(child)),
+        R_(R),
+        Rt_(transpose(R)),
+        t_(t),
+        back_(Rt_ * (-t_)),
+        rotated_(!is_identity(R)) {}
 
   double eval(const Vec3& p, Vec3* grad) const override {
     const double v = child_->eval(Rt_ * (p - t_), grad);
@@ -58,7 +64,8 @@ class Placed final : public FieldNode {
   }
   Box region(double level, Side side) const override {
     const Box local = child_->region(level, side);
-    return local.bounded() ? transform_box(local, R_, t_) : local;
+    if (!local.bounded()) return local;
+    return rotated_ ? transform_box(local, R_, t_) : translate_box(local, R_, t_);
   }
 
  private:
@@ -66,7 +73,8 @@ class Placed final : public FieldNode {
   NodeBounds box_bounds(const Box& b) const override { return child_->bounds(to_local(b)); }
 
   Box to_local(const Box& b) const {
-    return b.bounded() ? transform_box(b, Rt_, Rt_ * (-t_)) : Box::unbounded();
+    if (!b.bounded()) return Box::unbounded();
+    return rotated_ ? transform_box(b, Rt_, back_) : translate_box(b, Rt_, back_);
   }
 
   static bool is_identity(const Mat3& m) {
@@ -80,6 +88,7 @@ class Placed final : public FieldNode {
   NodePtr child_;
   Mat3 R_, Rt_;
   Vec3 t_;
+  Vec3 back_;  // Rt_ (-t_): to_local's translation, the same expression as it once computed
   bool rotated_;
 };
 
@@ -179,6 +188,18 @@ Box transform_box(const Box& b, const Mat3& R, const Vec3& t) {
     const double pad = 1e-12 * std::max(std::abs(out.lo[i]), std::abs(out.hi[i]));
     out.lo[i] -= pad;
     out.hi[i] += pad;
+  }
+  return out;
+}
+
+Box translate_box(const Box& b, const Mat3& I, const Vec3& t) {
+  Box out;
+  for (int i = 0; i < 3; ++i) {
+    if (t[i] == 0 && (b.lo[i] == 0 || b.hi[i] == 0)) return transform_box(b, I, t);
+    const double lo = b.lo[i] + t[i], hi = b.hi[i] + t[i];
+    const double pad = 1e-12 * std::max(std::abs(lo), std::abs(hi));
+    out.lo[i] = lo - pad;
+    out.hi[i] = hi + pad;
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "describe/kind_info.h"
 #include "eval/eval.h"
 #include "model/program_builder.h"
 
@@ -62,6 +63,31 @@ void collect(const Params& p, std::vector<size_t>& path, std::vector<Material>& 
   }
 }
 
+// Whether collect, from the soft_blend `blend`, would find no material and raise no error: no
+// soft_object under the soft_blends has a "material", and no soft_blend's children hold a
+// non-object (collect's located error). The same walk without its Params and without a copy of
+// the path for each component (a blend of 1000 plain components spent 1.07 M instructions in
+// collect for a list it then dropped), each child's members read in one pass by their names'
+// letters (two searches of its map compared the keys through strlen and memcmp at every step).
+bool plain(const json& blend) {
+  const auto children = blend.find("children");
+  if (children == blend.end() || !children->is_array()) return true;
+  for (const json& c : *children)
+    if (!c.is_object()) return false;
+  for (const json& c : *children) {
+    bool blend_child = false, object = false, material = false;
+    for (auto m = c.begin(); m != c.end(); ++m) {
+      if (same_name(m.key(), "material")) material = true;
+      if (!same_name(m.key(), "type") || !m->is_string()) continue;
+      const std::string& type = m->get_ref<const std::string&>();
+      blend_child = same_name(type, "soft_blend");
+      object = same_name(type, "soft_object");
+    }
+    if (blend_child ? !plain(c) : object && material) return false;
+  }
+  return true;
+}
+
 // Records the nodes that fieldlib builds from the components' JSON objects (by address).
 class FindComponents final : public BuildObserver {
  public:
@@ -116,7 +142,8 @@ NodePtr build_object_field(const Params& field, const BuildContext& ctx,
   std::vector<Material> materials{object_material};
   std::vector<Found> found;
   std::vector<size_t> path;
-  if (type_of(field.raw()) == "soft_blend") collect(field, path, materials, found);
+  if (type_of(field.raw()) == "soft_blend" && !plain(field.raw()))
+    collect(field, path, materials, found);
   if (materials.size() == 1) return build_field(field, ctx);
 
   // fieldlib builds the field without the materials; errors keep their pointers (only the

@@ -208,6 +208,51 @@ TEST(BoxBvh, RelabelledByItsOrderStillReportsWhatAScanFinds) {
   check_against_scan(items, 22);
 }
 
+// The trees themselves, not only their answers: the order of the items and two queries' lists
+// over 400 sets (2 to 3,000 boxes; flat, equal centres, half-infinite and unbounded boxes), hashed
+// (FNV-1a). The value is the build's of 2a904fc, before the split sweeps over per-axis centres and
+// stopped after one axis for two items: a build that changes any split, or the order of a
+// partition, changes the hash. A deliberate change of the tree must say so and set a new value.
+uint64_t tree_fingerprint() {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  const auto mix = [&](uint64_t v) {
+    for (int b = 0; b < 8; ++b) hash = (hash ^ ((v >> (8 * b)) & 0xff)) * 0x100000001b3ULL;
+  };
+  std::vector<int32_t> out;
+  for (int set = 0; set < 400; ++set) {
+    std::mt19937_64 rng(1000 + set);
+    const auto unit = [&] { return static_cast<double>(rng() >> 11) * 0x1p-53; };
+    const int n = set < 100 ? 2 + set % 7 : 1 + static_cast<int>(rng() % 3000);
+    std::vector<Box> boxes;
+    std::vector<int32_t> ids;
+    for (int i = 0; i < n; ++i) {
+      Vec3 c{40 * unit() - 20, 40 * unit() - 20, 40 * unit() - 20};
+      if (set % 5 == 1) c.z = 0;
+      if (set % 7 == 2 && i % 3 == 0) c = {1, 2, 3};
+      Box b = Box::around(c, 0.1 + 5 * unit() * unit());
+      if (set % 11 == 3 && i % 29 == 0) b.hi.x = kInf;
+      if (set % 13 == 4 && i % 31 == 0) b = Box::unbounded();
+      boxes.push_back(b);
+      ids.push_back(static_cast<int32_t>((i * 7919) % n));
+    }
+    BoxBvh bvh;
+    bvh.build(boxes, ids);
+    for (const int32_t id : bvh.tree_order()) mix(static_cast<uint64_t>(id));
+    out.assign(boxes.size(), 0);
+    const int k = bvh.query(Box({-5, -5, -5}, {5, 5, 5}), out.data(), 0);
+    for (int i = 0; i < k; ++i) mix(static_cast<uint64_t>(out[i]));
+    const Vec3 normals[4] = {{1, 0.1, 0}, {-1, 0.1, 0}, {0.1, 1, 0}, {0.1, -1, 0}};
+    const int m = bvh.cone_items({0, 0, -30}, normals, 0.5, out.data());
+    for (int i = 0; i < m; ++i) mix(static_cast<uint64_t>(out[i]));
+    mix(0xffffffffULL);
+  }
+  return hash;
+}
+
+TEST(BoxBvh, TheTreesAreTheSameAsBefore) {
+  EXPECT_EQ(tree_fingerprint(), 0xad5e317d1acef113ULL);
+}
+
 TEST(BoxBvh, EmptyHasNothing) {
   Items none;
   none.boxes = {Box(), Box()};

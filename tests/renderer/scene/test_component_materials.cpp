@@ -54,6 +54,25 @@ TEST(ComponentMaterials, NoneGivenKeepsThePlainObject) {
   EXPECT_EQ(s.objects[0].components, nullptr);
 }
 
+// A blend without materials skips the walk that lists its components (plain(), the common case
+// of a large cloud): a material under a nested blend alone must still be found, and a child that
+// is no object still reported before the blend's other errors, as that walk reports it.
+TEST(ComponentMaterials, AMaterialOnlyUnderANestedBlendIsFound) {
+  const Scene s = scene_of(R"({"type":"soft_blend","children":[)" + ball(-1.5, "") +
+                           R"(,{"type":"soft_blend","children":[)" + ball(1.5, kBlue) + "]}]}");
+  ASSERT_NE(s.objects[0].components, nullptr);
+  EXPECT_EQ(s.objects[0].components->size(), 2);
+}
+
+TEST(ComponentMaterials, AChildThatIsNoObjectIsReportedFirst) {
+  try {
+    scene_of(R"({"type":"soft_blend","colour":1,"children":[)" + ball(0, "") + ",7]}");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(), "s.json: /objects/0/field/children/1: expected an object, got 7");
+  }
+}
+
 TEST(ComponentMaterials, MaterialsAreReadWithTheirFinish) {
   const Scene s = scene_of(R"({"type":"soft_blend","children":[)" + ball(-1.5, kRed) + "," +
                            ball(1.5, kBlue) + "]}");
