@@ -399,15 +399,22 @@ int BlobSum::terms_of(const int32_t* ids, int found, const Vec3& o, const Vec3& 
     const Blob& b = blobs_[ids[i]];
     if (b.inv_r2 > 0) {
       // A run of balls four at a time (a shadow ray's list is mostly balls in a cloud), their
-      // terms kept in the list's order: the same terms as one at a time, to the bit.
-      if (i + 4 <= found && blobs_[ids[i + 1]].inv_r2 > 0 && blobs_[ids[i + 2]].inv_r2 > 0 &&
-          blobs_[ids[i + 3]].inv_r2 > 0) {
-        Term four[4];
+      // terms kept in the list's order: the same terms as one at a time, to the bit. With the
+      // AVX2 kernel a run of three (pov:molecule's whole list, every ray) takes it too, its fourth
+      // lane given the third ball again and that term dropped: one kernel's work where each
+      // ball's was a call of ball_term. Not a run of two: there the kernel cost more than the two
+      // calls (pov:golfball, pov:blob1b).
+      const bool three =
+          i + 3 <= found && blobs_[ids[i + 1]].inv_r2 > 0 && blobs_[ids[i + 2]].inv_r2 > 0;
+      const bool four = three && i + 4 <= found && blobs_[ids[i + 3]].inv_r2 > 0;
+      if (four || (three && lanes_ != ball_lanes_scalar)) {
+        const int run = four ? 4 : 3;
+        Term lanes[4];
         const unsigned has =
-            ball_terms4({ids[i], ids[i + 1], ids[i + 2], ids[i + 3]}, o, d, dd, len, four);
-        for (int k = 0; k < 4; ++k)
-          if (has >> k & 1) out[n++] = four[k];
-        i += 3;
+            ball_terms4({ids[i], ids[i + 1], ids[i + 2], ids[i + run - 1]}, o, d, dd, len, lanes);
+        for (int k = 0; k < run; ++k)
+          if (has >> k & 1) out[n++] = lanes[k];
+        i += run - 1;
         continue;
       }
       n += ball_term(b, o, d, dd, len, out + n);

@@ -661,17 +661,22 @@ class FrameTracer {
           lists->p = at.p;
           lists->offset = at.margin;
         }
-        // A plain object's point (shades_plain, asked once per object for the frame) with its
-        // block's lists takes shade()'s short way inline, the floor's with the terms PlainFloor
-        // took for the frame: the same bits.
-        const char way = lists && hit.face <= 0 ? plain_[size_t(hit.object)] : kLongWay;
-        const Shaded sh =
-            way == kPlainWay   ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit,
-                                                 scene_.objects[size_t(hit.object)].material, shadow,
-                                                 cancel_, *lists)
-            : way == kFloorWay ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
-                               : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_,
-                                       1, 1, nullptr, lists);
+        // A plain object's point (shades_plain, asked once per object for the frame) takes
+        // shade()'s short way inline, with its block's lists or, in a scene without them (few
+        // blobs: the small real scenes), with its point and offset as shadow_point makes them
+        // (shade()'s arithmetic, the object's lift taken once for the frame: no square root a
+        // point); the floor's with its lists and the terms PlainFloor took for the frame. The
+        // same bits as shade().
+        const char way = hit.face <= 0 ? plain_[size_t(hit.object)] : kLongWay;
+        const Material& m = scene_.objects[size_t(hit.object)].material;
+        const Shaded sh = way == kPlainWay && lists
+                              ? shade_plain_hit(scene_, rt_.tracers, rt_.embree, ray, hit, m,
+                                                shadow, cancel_, *lists)
+                          : way == kPlainWay ? unlisted_plain(ray, hit, m, shadow)
+                          : way == kFloorWay && lists
+                              ? floor_.shade(scene_, rt_.embree, ray, hit, shadow, cancel_, *lists)
+                              : shade(scene_, rt_.tracers, rt_.embree, ray, hit, shadow, cancel_, 1,
+                                      1, nullptr, lists);
         sum += sh.color;
         ++covered;
         normal = sh.normal;
@@ -698,6 +703,14 @@ class FrameTracer {
     return true;
   }
 
+  // shade() of a plain object's camera hit (face <= 0) in a frame without shadow lists.
+  [[gnu::always_inline]] Shaded unlisted_plain(const Ray& ray, const TraceHit& hit,
+                                               const Material& m, RayWork& shadow) const {
+    const ShadowBeams::Point at = shadow_point(ray, hit);
+    return shade_plain_at(scene_, rt_.tracers, rt_.embree, ray, hit, m, at.p, at.margin, shadow,
+                          cancel_, nullptr);
+  }
+
   // The pixel-centre ray's Z and steps, into the planes the film has. The background's depth is
   // +inf.
   // `shadow_evaluations`: those of its shadow rays.
@@ -721,7 +734,8 @@ class FrameTracer {
     for (size_t o = 0; o < lifts.size(); ++o) lifts[o] = own_lift(scene.objects[o]);
     return lifts;
   }
-  // How a point of each object is shaded: shade(), shade_plain_hit or PlainFloor (the floor).
+  // How a point of each object is shaded: shade(), shade_plain_hit (shade_plain_at without
+  // lists) or PlainFloor (the floor).
   static constexpr char kLongWay = 0, kPlainWay = 1, kFloorWay = 2;
   static std::vector<char> plain_objects(const Scene& scene, const PlainFloor& floor) {
     std::vector<char> plain(scene.objects.size());

@@ -147,6 +147,20 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
   return {color, n, m.color};
 }
 
+// shade() for a camera ray's hit on a shades_plain object (no CSG face), given the hit's point
+// `p` (ray.o + ray.d * hit.t) and its rays' `offset` (ray_offset(obj, p, cone0)) as shade()
+// takes them (the frame's ShadowBeams::Point: the same arithmetic), with the block's shadow
+// lists, or none (a frame without ShadowBeams: each shadow ray alone, as shade() traces it).
+[[gnu::always_inline]] inline Shaded shade_plain_at(
+    const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
+    const TraceHit& hit, const Material& m, const Vec3& p, double offset, RayWork& secondary,
+    const std::atomic<bool>* cancel, const ShadowLists* shadow) {
+  const Vec3 n = facing_normal(tracers.tracer(hit.object), ray, hit, p, nullptr);
+  const double cone0 = footprint_at(ray, hit);
+  const Vec3 lifted = p + n * offset;
+  return shade_plain(scene, rt, ray.d, p, n, lifted, cone0, ray.cone, m, secondary, cancel, shadow);
+}
+
 // shade() for a camera ray's hit on `obj` (its object, no CSG face), shades_plain, with its
 // block's shadow lists (their point and offset): shade(scene, tracers, rt, ray, hit, secondary,
 // cancel, 1, 1, nullptr, &shadow) to the bit. The frame's loop asks shades_plain once per object
@@ -156,11 +170,8 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
     const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
     const TraceHit& hit, const Material& m, RayWork& secondary, const std::atomic<bool>* cancel,
     const ShadowLists& shadow) {
-  const Vec3 n = facing_normal(tracers.tracer(hit.object), ray, hit, shadow.p, nullptr);
-  const double cone0 = footprint_at(ray, hit);
-  const Vec3 lifted = shadow.p + n * shadow.offset;
-  return shade_plain(scene, rt, ray.d, shadow.p, n, lifted, cone0, ray.cone, m, secondary, cancel,
-                     &shadow);
+  return shade_plain_at(scene, tracers, rt, ray, hit, m, shadow.p, shadow.offset, secondary, cancel,
+                        &shadow);
 }
 
 }  // namespace softtrace

@@ -129,4 +129,52 @@ TEST(BallLanes, TermsOfTakesRunsOfBallsAsOneAtATime) {
   EXPECT_GT(compared, 20000);
 }
 
+TEST(BallLanes, TermsOfTakesShortRunsOfBallsAsOneAtATime) {
+  // Balls with ellipsoids among them (about one child in three), so that lists hold runs of one,
+  // two, three and four or more balls between other blobs: with the AVX2 kernel a run of three
+  // takes it too, its fourth lane given the third ball again and that term dropped. terms_of
+  // against terms_of_one, every run length seen.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::string s = R"({"type":"soft_blend","children":[)";
+  for (int i = 0; i < 36; ++i) {
+    const bool ball = unit(rng) > -0.35;
+    s += std::string(i ? "," : "") + R"({"type":"soft_object","potential":{"type":")" +
+         (i % 5 ? "murakami" : "wyvill") + R"("},"distance":{"type":"lp_metric","n":2,)" +
+         (ball ? R"("radii":[1.5,1.5,1.5]},)" : R"("radii":[1.5,1.1,1.3]},)") + R"("translate":[)" +
+         std::to_string(0.8 * i - 14) + "," + std::to_string(0.3 * std::sin(i)) + ",0]}";
+  }
+  s += "]}";
+  const Program p = compile(*build_from_json(s));
+  const std::optional<BlobSum> sum = BlobSum::of(p);
+  ASSERT_TRUE(sum);
+  const auto ball = [&](int32_t id) { return sum->blobs()[size_t(id)].inv_r2 > 0; };
+  std::vector<BlobSum::Term> batched(sum->max_terms()), single(sum->max_terms());
+  int compared = 0, runs[5] = {0, 0, 0, 0, 0};
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<int32_t> ids;
+    for (int32_t id = 0; id < sum->size(); ++id)
+      if (unit(rng) > -0.4) ids.push_back(id);
+    for (size_t i = 0; i < ids.size();) {  // the list's runs of balls, by length (4: 4 or more)
+      size_t j = i;
+      while (j < ids.size() && ball(ids[j])) ++j;
+      ++runs[std::min<size_t>(j - i, 4)];
+      i = j + 1;
+    }
+    const Vec3 o{-16 + 4 * unit(rng), 1.4 * unit(rng), 1.4 * unit(rng)};
+    const Vec3 d = normalize(Vec3{1, 0.05 * unit(rng), 0.05 * unit(rng)});
+    const double len = 34 * (0.5 + 0.5 * unit(rng)), dd = dot(d, d);
+    const int n =
+        sum->terms_of(ids.data(), static_cast<int>(ids.size()), o, d, len, batched.data());
+    int m = 0;
+    for (const int32_t id : ids) m += sum->terms_of_one(id, o, d, dd, len, single.data() + m);
+    ASSERT_EQ(n, m);
+    for (int i = 0; i < n; ++i)
+      ASSERT_EQ(std::memcmp(&batched[i], &single[i], sizeof(BlobSum::Term)), 0) << "term " << i;
+    compared += n;
+  }
+  EXPECT_GT(compared, 10000);
+  for (int k = 1; k <= 4; ++k) EXPECT_GT(runs[k], 500) << k;
+}
+
 }  // namespace softtrace::test
