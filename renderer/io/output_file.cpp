@@ -166,19 +166,33 @@ std::string create_pending_temp(const std::string& target, const std::string& di
   return tmp;
 }
 
+namespace {
+
+// The descriptor that holds `tmp`'s lock, open since create_pending_temp made the file; -1 when
+// the calling thread has no such pending file.
+int pending_descriptor(const std::string& tmp) {
+  const std::lock_guard<std::mutex> lock(g_pending_mutex);
+  const std::thread::id self = std::this_thread::get_id();
+  for (const auto& p : g_pending)
+    if (p.owner == self && p.tmp == tmp) return p.fd;
+  return -1;
+}
+
+}  // namespace
+
 void commit_temp(const std::string& tmp, const std::string& target, const std::string& display) {
+  // The file's lock holds it open already: synced through that descriptor (fsync syncs the file,
+  // whichever descriptor wrote), it takes no open and close of its own. Another thread's file is
+  // not this one's to sync, rename or remove.
+  const int fd = pending_descriptor(tmp);
+  if (fd < 0) throw std::runtime_error(display + ": not a file this thread is writing");
   try {
     // The target may have become a FIFO or a device since check_output_path.
     require_regular_or_absent<std::runtime_error>(target, display);
     // The writers checked every write and close; the data must also be on the disk before the
     // rename makes it the output (a delayed write error shows in fsync).
-    const int fd = ::open(tmp.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-    const bool synced = fd >= 0 && ::fsync(fd) == 0;
-    const int sync_errno = errno;
-    if (fd >= 0 && ::close(fd) != 0 && synced)
+    if (::fsync(fd) != 0)
       throw std::runtime_error(display + ": cannot write the file: " + std::strerror(errno));
-    if (!synced)
-      throw std::runtime_error(display + ": cannot write the file: " + std::strerror(sync_errno));
   } catch (const std::exception&) {
     ::unlink(tmp.c_str());
     throw;

@@ -31,8 +31,10 @@ std::string create_pending_temp(const std::string& target, const std::string& di
 
 // Renames a finished temporary file over `target` (with a new file's usual permissions), after
 // one fsync of it: the writers only check their writes and close, so this is the output's one
-// sync, and the rename never makes a file the output before its data is on the disk.
-// Throws std::runtime_error naming `display`; the temporary file is then removed.
+// sync, and the rename never makes a file the output before its data is on the disk. `tmp` is a
+// pending file of the calling thread's (create_pending_temp), synced through its lock's
+// descriptor. Throws std::runtime_error naming `display`; the temporary file is then removed
+// (unless it is not the calling thread's pending file: then nothing is touched).
 void commit_temp(const std::string& tmp, const std::string& target, const std::string& display);
 
 // Pending files belong to the thread that created them: a write is one thread's work, and

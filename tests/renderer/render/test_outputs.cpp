@@ -370,6 +370,30 @@ TEST(Outputs, PendingWritesBelongToTheirThread) {
   EXPECT_FALSE(fs::exists(kept));
 }
 
+// A commit syncs through the lock's descriptor of the calling thread's own pending file: another
+// thread's file is refused and left as it is (not renamed, not removed), for its owner to commit.
+TEST(Outputs, ACommitTakesOnlyTheCallingThreadsPendingFile) {
+  const std::string dir = temp_dir("outputs_commit_owner");
+  std::promise<std::string> created;
+  std::promise<void> tried;
+  std::thread writer([&] {
+    const std::string tmp = create_pending_temp(dir + "/theirs.exr", "theirs.exr");
+    std::ofstream(tmp) << "complete";
+    created.set_value(tmp);
+    tried.get_future().wait();
+    commit_temp(tmp, dir + "/theirs.exr", "theirs.exr");
+    forget_pending_writes();
+  });
+  const std::string tmp = created.get_future().get();
+  EXPECT_THROW(commit_temp(tmp, dir + "/theirs.exr", "theirs.exr"), std::runtime_error);
+  EXPECT_TRUE(fs::exists(tmp));
+  EXPECT_FALSE(fs::exists(dir + "/theirs.exr"));
+  tried.set_value();
+  writer.join();
+  EXPECT_EQ(read_file(dir + "/theirs.exr"), "complete");
+  EXPECT_FALSE(fs::exists(tmp));
+}
+
 // The header's scene hash is that of the text parsed: a scene parsed from text, named as no
 // file is, has one, and a file edited after loading does not change it.
 TEST(Outputs, SceneHashIsOfTheParsedText) {
