@@ -71,6 +71,24 @@ void expect_lanes_same_bits(const LaneCase& c, int* found) {
   }
 }
 
+// One random ray along x through a row of blobs: terms_of over `ids` against terms_of_one blob
+// by blob, every term to the bit; adds the terms compared to `compared`.
+void expect_terms_one_at_a_time(const BlobSum& sum, const std::vector<int32_t>& ids,
+                                std::mt19937_64& rng, int& compared) {
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<BlobSum::Term> batched(sum.max_terms()), single(sum.max_terms());
+  const Vec3 o{-16 + 4 * unit(rng), 1.4 * unit(rng), 1.4 * unit(rng)};
+  const Vec3 d = normalize(Vec3{1, 0.05 * unit(rng), 0.05 * unit(rng)});
+  const double len = 34 * (0.5 + 0.5 * unit(rng)), dd = dot(d, d);
+  const int n = sum.terms_of(ids.data(), static_cast<int>(ids.size()), o, d, len, batched.data());
+  int m = 0;
+  for (const int32_t id : ids) m += sum.terms_of_one(id, o, d, dd, len, single.data() + m);
+  ASSERT_EQ(n, m);
+  for (int i = 0; i < n; ++i)
+    ASSERT_EQ(std::memcmp(&batched[i], &single[i], sizeof(BlobSum::Term)), 0) << "term " << i;
+  compared += n;
+}
+
 }  // namespace
 
 TEST(BallLanes, Avx2ChosenWhereLibgccFindsIt) {
@@ -108,23 +126,13 @@ TEST(BallLanes, TermsOfTakesRunsOfBallsAsOneAtATime) {
   ASSERT_TRUE(sum);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1, 1);
-  std::vector<BlobSum::Term> batched(sum->max_terms()), single(sum->max_terms());
   int compared = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     std::vector<int32_t> ids;
     for (int32_t id = 0; id < sum->size(); ++id)
       if (unit(rng) > -0.6) ids.push_back(id);
-    const Vec3 o{-16 + 4 * unit(rng), 1.4 * unit(rng), 1.4 * unit(rng)};
-    const Vec3 d = normalize(Vec3{1, 0.05 * unit(rng), 0.05 * unit(rng)});
-    const double len = 34 * (0.5 + 0.5 * unit(rng)), dd = dot(d, d);
-    const int n =
-        sum->terms_of(ids.data(), static_cast<int>(ids.size()), o, d, len, batched.data());
-    int m = 0;
-    for (const int32_t id : ids) m += sum->terms_of_one(id, o, d, dd, len, single.data() + m);
-    ASSERT_EQ(n, m);
-    for (int i = 0; i < n; ++i)
-      ASSERT_EQ(std::memcmp(&batched[i], &single[i], sizeof(BlobSum::Term)), 0) << "term " << i;
-    compared += n;
+    expect_terms_one_at_a_time(*sum, ids, rng, compared);
+    if (HasFatalFailure()) return;
   }
   EXPECT_GT(compared, 20000);
 }
@@ -149,7 +157,6 @@ TEST(BallLanes, TermsOfTakesShortRunsOfBallsAsOneAtATime) {
   const std::optional<BlobSum> sum = BlobSum::of(p);
   ASSERT_TRUE(sum);
   const auto ball = [&](int32_t id) { return sum->blobs()[size_t(id)].inv_r2 > 0; };
-  std::vector<BlobSum::Term> batched(sum->max_terms()), single(sum->max_terms());
   int compared = 0, runs[5] = {0, 0, 0, 0, 0};
   for (int trial = 0; trial < 2000; ++trial) {
     std::vector<int32_t> ids;
@@ -161,17 +168,8 @@ TEST(BallLanes, TermsOfTakesShortRunsOfBallsAsOneAtATime) {
       ++runs[std::min<size_t>(j - i, 4)];
       i = j + 1;
     }
-    const Vec3 o{-16 + 4 * unit(rng), 1.4 * unit(rng), 1.4 * unit(rng)};
-    const Vec3 d = normalize(Vec3{1, 0.05 * unit(rng), 0.05 * unit(rng)});
-    const double len = 34 * (0.5 + 0.5 * unit(rng)), dd = dot(d, d);
-    const int n =
-        sum->terms_of(ids.data(), static_cast<int>(ids.size()), o, d, len, batched.data());
-    int m = 0;
-    for (const int32_t id : ids) m += sum->terms_of_one(id, o, d, dd, len, single.data() + m);
-    ASSERT_EQ(n, m);
-    for (int i = 0; i < n; ++i)
-      ASSERT_EQ(std::memcmp(&batched[i], &single[i], sizeof(BlobSum::Term)), 0) << "term " << i;
-    compared += n;
+    expect_terms_one_at_a_time(*sum, ids, rng, compared);
+    if (HasFatalFailure()) return;
   }
   EXPECT_GT(compared, 10000);
   for (int k = 1; k <= 4; ++k) EXPECT_GT(runs[k], 500) << k;
