@@ -32,14 +32,7 @@ constexpr size_t kMinBlock = 32;
 HeapPages heap_in_huge_pages(size_t bytes) {
   bytes = huge_page_ceil(bytes);
   if (bytes == 0 || bytes > size_t(kFromHeapBelow) - kHugePage) return {};
-  // Every thread's blocks from this one heap (glibc's main arena), not a fresh arena of 4 KiB
-  // pages for each worker at its first block: a 2-thread render's worker took 80 faults of new
-  // pages at 320x240 and 100 at 640x480 (its scratch, its Work's records, a PNG band's deflate
-  // state), where the load's freed blocks and the advised pages wait here. Small blocks stay each
-  // thread's own without a lock (glibc's per-thread cache); the frame takes few others. A thread
-  // takes its arena at its first block, so this holds for threads started after it.
-  if (!mallopt(M_MMAP_THRESHOLD, kFromHeapBelow) || !mallopt(M_TRIM_THRESHOLD, kTrimAbove) ||
-      !mallopt(M_ARENA_MAX, 1))
+  if (!mallopt(M_MMAP_THRESHOLD, kFromHeapBelow) || !mallopt(M_TRIM_THRESHOLD, kTrimAbove))
     return {};
   // A block this large comes from the top, which grows to hold it; freed, it is the top again.
   char* const block = static_cast<char*>(std::malloc(bytes + kHugePage));

@@ -6,8 +6,7 @@
 // and keep what is freed there, grows the top by `bytes` past its next 2 MiB boundary, keeps the
 // front up to that boundary out of use (virtual memory only: nothing touches it but one header),
 // and advises the kernel to back the rest with huge pages (MADV_HUGEPAGE; its default "madvise"
-// mode grants them only so). The heap then carves its blocks from the boundary on, for every
-// thread started after the call (one arena: a worker's first block took a fresh one). Advice only:
+// mode grants them only so). The heap then carves its blocks from the boundary on. Advice only:
 // where the kernel has no huge pages, or the C library is another, the pages are ordinary ones.
 // The film's planes have their own mappings (film/plane_memory.h).
 #pragma once

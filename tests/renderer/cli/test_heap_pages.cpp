@@ -1,15 +1,11 @@
 // The process's heap in huge pages (cli/heap_pages.h): the range advised starts at a 2 MiB
 // boundary, the heap's next block from its top starts exactly there, and the kernel counts the
-// range as eligible for huge pages where it grants them on advice; a thread started after it
-// takes its blocks from that heap, not from an arena of its own.
+// range as eligible for huge pages where it grants them on advice.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
-#include <thread>
 #include <vector>
 
 #include "cli/heap_pages.h"
@@ -41,28 +37,6 @@ TEST(HeapPages, TheHeapCarvesItsBlocksFromTheAdvisedBoundaryOn) {
       EXPECT_EQ(eligible, 1);
     }
   }
-}
-
-// In a process of its own (gtest re-runs the program for this test alone): a thread's arena is
-// chosen at its first block, and this process's earlier threads may have left arenas to reuse.
-TEST(HeapPages, AThreadStartedAfterTakesItsBlocksFromTheSameHeap) {
-  GTEST_FLAG_SET(death_test_style, "threadsafe");
-  EXPECT_EXIT(
-      {
-        const HeapPages range = heap_in_huge_pages(kTwoMiB);
-        if (range.begin == range.end) std::_Exit(0);  // no such C library: nothing to check
-        bool in_heap = false;
-        std::thread([&] {
-          // Below the heap's end (the program break): a block of another arena lies in a mapping
-          // of its own, far above it.
-          void* block = std::malloc(100 << 10);
-          in_heap =
-              block && reinterpret_cast<uintptr_t>(block) < reinterpret_cast<uintptr_t>(sbrk(0));
-          std::free(block);
-        }).join();
-        std::_Exit(in_heap ? 0 : 1);
-      },
-      testing::ExitedWithCode(0), "");
 }
 
 TEST(HeapPages, NothingIsAdvisedForNothingOrForMoreThanTheHeapServes) {
