@@ -19,6 +19,16 @@ bool is_digit(char c) {
   return c >= '0' && c <= '9';
 }
 
+// The powers of ten a double holds exactly, 10^0 to 10^22 (5^22 < 2^53), and the significands it
+// holds exactly, up to 2^53: the fast path's limits. kFastDigits: a significand still below it
+// takes one more digit without leaving 64 bits.
+constexpr int kFastPower = 22;
+constexpr double kPowersOfTen[kFastPower + 1] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                                 1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                                 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+constexpr std::uint64_t kFastSignificand = std::uint64_t(1) << 53;
+constexpr std::uint64_t kFastDigits = std::uint64_t(1) << 60;
+
 // Recursive descent over the text, building nlohmann's document in place. Depth is bounded by
 // kMaxJsonNesting, as check_json_nesting bounds the located parser's input, so the recursion is.
 // Every `false` means "leave it to the located parser", never "the text is wrong".
@@ -100,30 +110,54 @@ class FastParser {
   // JSON's number grammar. nlohmann types a token without '.', 'e' or 'E' as unsigned (no sign)
   // or signed (a minus) when it fits 64 bits, and otherwise reads it with strtod; from_chars
   // rounds as strtod does (both correctly). What does not fit, either way, is left to it.
+  // A decimal of at most 2^53 in its digits and a power of ten of at most 22 either way is read
+  // as one product or quotient of two exact doubles (Clinger's fast path), which IEEE arithmetic
+  // rounds correctly, so to from_chars' bits: a scene's coordinates are such decimals, and
+  // reading them again in from_chars was a ninth of a 1000-component scene's parse.
   bool number(json& out) {
     const char* start = p_;
     const char* q = p_;
     if (q < end_ && *q == '-') ++q;
     if (q == end_ || !is_digit(*q)) return false;
+    std::uint64_t digits = 0;  // the significand's digits, while it stays below kFastDigits
+    int scale = 0;             // the power of ten they are multiplied by
+    bool exact = true;         // digits (and scale) hold the token's value
+    const auto take = [&](char c) {
+      if (digits >= kFastDigits) exact = false;
+      digits = digits * 10 + std::uint64_t(c - '0');
+    };
     if (*q == '0')
       ++q;
     else
-      while (q < end_ && is_digit(*q)) ++q;
+      while (q < end_ && is_digit(*q)) take(*q++);
     bool integral = true;
     if (q < end_ && *q == '.') {
       integral = false;
       if (++q == end_ || !is_digit(*q)) return false;
-      while (q < end_ && is_digit(*q)) ++q;
+      while (q < end_ && is_digit(*q)) take(*q++), --scale;
     }
     if (q < end_ && (*q == 'e' || *q == 'E')) {
       integral = false;
-      if (++q < end_ && (*q == '+' || *q == '-')) ++q;
+      bool minus = false;
+      if (++q < end_ && (*q == '+' || *q == '-')) minus = *q++ == '-';
       if (q == end_ || !is_digit(*q)) return false;
-      while (q < end_ && is_digit(*q)) ++q;
+      int e = 0;
+      while (q < end_ && is_digit(*q)) {
+        if (e > kFastPower) exact = false;  // stops growing: the token goes to from_chars
+        if (exact) e = e * 10 + (*q - '0');
+        ++q;
+      }
+      scale += minus ? -e : e;
     }
     p_ = q;
     if (integral && *start == '-') return read<std::int64_t>(start, q, out);
     if (integral) return read<std::uint64_t>(start, q, out);
+    if (exact && digits <= kFastSignificand && scale >= -kFastPower && scale <= kFastPower) {
+      const double m = double(digits);
+      const double v = scale < 0 ? m / kPowersOfTen[-scale] : m * kPowersOfTen[scale];
+      out = *start == '-' ? -v : v;
+      return true;
+    }
     double v = 0;
     const auto r = std::from_chars(start, q, v);
     if (r.ec != std::errc() || r.ptr != q || !std::isfinite(v) ||

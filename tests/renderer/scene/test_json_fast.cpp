@@ -207,5 +207,47 @@ TEST(JsonFast, RandomEditsOfASceneKeepTheContract) {
   EXPECT_GT(counts[int(Outcome::Refused)], 1000);
 }
 
+// Decimals at and around the limits of the reading by one product or quotient (2^53 in the
+// digits, 10^22 either way), and random ones of up to 19 digits with a point anywhere and an
+// exponent or none: the same bits as the located parser's, whichever way each was read.
+TEST(JsonFast, DecimalsHaveTheLocatedParsersBits) {
+  const char* limits[] = {"9007199254740992.0",
+                          "9007199254740993.0",
+                          "9007199254740992e22",
+                          "9007199254740992e23",
+                          "1e22",
+                          "1e23",
+                          "1e-22",
+                          "1e-23",
+                          "0.9007199254740993",
+                          "0.1e-21",
+                          "0.1e-22",
+                          "-0.0e5",
+                          "0.0000e-30",
+                          "12345678901234567.8",
+                          "1e00000000000000000000022",
+                          "5e-0",
+                          "0.7136496464611085",
+                          "-14.62543",
+                          "1.7976931348623157e308"};
+  for (const char* n : limits) EXPECT_EQ(check(std::string("[") + n + "]"), Outcome::Fast) << n;
+  std::mt19937_64 rng(7);
+  std::string text = "[";
+  for (int i = 0; i < 20000; ++i) {
+    const int length = 1 + int(rng() % 19);
+    std::string digits;
+    for (int d = 0; d < length; ++d) digits += char('0' + rng() % 10);
+    const size_t zeros = digits.find_first_not_of('0');
+    digits.erase(0, std::min(zeros, digits.size() - 1));  // no leading zeros
+    std::string n = rng() % 2 ? "-" : "";
+    const size_t point = 1 + rng() % digits.size();
+    n += digits.substr(0, point) + "." + (point < digits.size() ? digits.substr(point) : "0");
+    if (rng() % 2) n += "e" + std::to_string(int(rng() % 61) - 30);
+    text += (i ? "," : "") + n;
+  }
+  text += "]";
+  EXPECT_EQ(check(text), Outcome::Fast);
+}
+
 }  // namespace
 }  // namespace softtrace
