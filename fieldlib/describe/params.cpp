@@ -68,10 +68,14 @@ std::string printable(const std::string& text) {
   return out;
 }
 
-std::string json_pointer_escape(const std::string& key) {
-  if (std::none_of(key.begin(), key.end(), [](char c) { return c == '~' || c == '/'; }))
-    return key;  // every key the loader names
-  std::string out;
+namespace {
+
+// `key` escaped for a JSON pointer ('~' as "~0", '/' as "~1"), appended to `out`.
+void append_escaped(std::string& out, const std::string& key) {
+  if (std::none_of(key.begin(), key.end(), [](char c) { return c == '~' || c == '/'; })) {
+    out += key;  // every key the loader names
+    return;
+  }
   for (char c : key) {
     if (c == '~')
       out += "~0";
@@ -80,6 +84,13 @@ std::string json_pointer_escape(const std::string& key) {
     else
       out += c;
   }
+}
+
+}  // namespace
+
+std::string json_pointer_escape(const std::string& key) {
+  std::string out;
+  append_escaped(out, key);
   return out;
 }
 
@@ -261,10 +272,12 @@ std::vector<Vec3> Params::vec3s(const std::string& key) const {
 
 Params Params::object(const std::string& key) const {
   const json& v = at(key);
-  const std::string escaped = json_pointer_escape(key);
-  std::string pointer;  // one allocation: a component's pointer is longer than a short string
-  pointer.reserve(pointer_.size() + 1 + escaped.size());
-  pointer.append(pointer_).append(1, '/').append(escaped);
+  // One allocation: a component's pointer is longer than a short string, and the key is escaped
+  // in place (an escape doubles a character at most) where a copy of it was made first.
+  std::string pointer;
+  pointer.reserve(pointer_.size() + 1 + 2 * key.size());
+  pointer.append(pointer_).append(1, '/');
+  append_escaped(pointer, key);
   return Params(v, std::move(pointer), file_);
 }
 
