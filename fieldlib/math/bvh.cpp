@@ -30,6 +30,25 @@ struct Binary {
   bool leaf() const { return count <= BoxBvh::kLeafItems; }
 };
 
+// b.extend(item.lo) and then b.extend(item.hi), two coordinates at a time: GCC made twelve scalar
+// minima and maxima of it, and it was most of the binning's work. SSE2's min(p, x) answers
+// (p < x) ? p : x, as std::min(x, p) does, and max(p, x) (p > x) ? p : x, as std::max(x, p)
+// does (the second operand where either is NaN or both are zeros of either sign), so the box's
+// bits are extend's.
+inline void extend_by(Box& b, const Box& item) {
+#ifdef __SSE2__
+  const __m128d lo_xy = _mm_loadu_pd(&item.lo.x), hi_xy = _mm_loadu_pd(&item.hi.x);
+  const __m128d lo_z = _mm_load_sd(&item.lo.z), hi_z = _mm_load_sd(&item.hi.z);
+  _mm_storeu_pd(&b.lo.x, _mm_min_pd(hi_xy, _mm_min_pd(lo_xy, _mm_loadu_pd(&b.lo.x))));
+  _mm_storeu_pd(&b.hi.x, _mm_max_pd(hi_xy, _mm_max_pd(lo_xy, _mm_loadu_pd(&b.hi.x))));
+  _mm_store_sd(&b.lo.z, _mm_min_sd(hi_z, _mm_min_sd(lo_z, _mm_load_sd(&b.lo.z))));
+  _mm_store_sd(&b.hi.z, _mm_max_sd(hi_z, _mm_max_sd(lo_z, _mm_load_sd(&b.hi.z))));
+#else
+  b.extend(item.lo);
+  b.extend(item.hi);
+#endif
+}
+
 double half_area(const Box& b) {
   const Vec3 e = b.extent();
   return e.x * e.y + e.y * e.z + e.z * e.x;
@@ -60,8 +79,7 @@ class BinaryBuilder {
     nodes.emplace_back();
     Box box, centres;
     for (int32_t i = first; i < first + count; ++i) {
-      box.extend(boxes_[i].lo);  // united(): no item is empty
-      box.extend(boxes_[i].hi);
+      extend_by(box, boxes_[i]);  // united(): no item is empty
       centres.extend({centre_[0][i], centre_[1][i], centre_[2][i]});
     }
     nodes[index].box = box;
@@ -105,8 +123,7 @@ class BinaryBuilder {
       for (int32_t i = 0; i < count; ++i) {
         const int k = bin_of((centre[i] - lo) / w);
         key[i] = static_cast<uint8_t>(k);
-        bins[k].extend(box[i].lo);  // united(), whose empty() test no item needs
-        bins[k].extend(box[i].hi);
+        extend_by(bins[k], box[i]);  // united(), whose empty() test no item needs
         ++n[k];
         occupied |= 1u << k;
       }
@@ -119,13 +136,13 @@ class BinaryBuilder {
       double right_area[kBins];  // of the occupied bins bin[j..m)
       Box acc;
       for (int j = m - 1; j > 0; --j) {
-        acc = acc.united(bins[bin[j]]);
+        if (!bins[bin[j]].empty()) extend_by(acc, bins[bin[j]]);  // acc.united(the bin)
         right_area[j] = half_area(acc);
       }
       acc = Box();
       int32_t left = 0;
       for (int j = 0; j + 1 < m; ++j) {
-        acc = acc.united(bins[bin[j]]);
+        if (!bins[bin[j]].empty()) extend_by(acc, bins[bin[j]]);
         left += n[bin[j]];
         const double cost = half_area(acc) * left + right_area[j + 1] * (count - left);
         if (cost < best) {
