@@ -23,16 +23,4 @@ nlohmann::json parse_json_located(const std::string& text, const std::string& na
 // time its own destructor runs, which then moves nothing.
 void release_json(nlohmann::json& doc);
 
-// Calls release_json on `doc` when it goes out of scope, also on an error's way out.
-class ReleasedAtScopeEnd {
- public:
-  explicit ReleasedAtScopeEnd(nlohmann::json& doc) : doc_(doc) {}
-  ReleasedAtScopeEnd(const ReleasedAtScopeEnd&) = delete;
-  ReleasedAtScopeEnd& operator=(const ReleasedAtScopeEnd&) = delete;
-  ~ReleasedAtScopeEnd() { release_json(doc_); }
-
- private:
-  nlohmann::json& doc_;
-};
-
 }  // namespace softtrace

@@ -239,8 +239,13 @@ namespace {
 
 Scene parse_scene_text(std::shared_ptr<const std::string> text_ptr, const std::string& name) {
   const std::string& text = *text_ptr;
-  json doc = parse_json_text(text, name);
-  const ReleasedAtScopeEnd release(doc);
+  // Emptied from its leaves up (release_json) when the last owner lets go: the scene, or this
+  // function on an error's way out.
+  const std::shared_ptr<json> document(new json(parse_json_text(text, name)), [](json* d) {
+    release_json(*d);
+    delete d;
+  });
+  const json& doc = *document;
   const auto file = std::make_shared<const std::string>(name);
   const Params root(doc, "", file);
   root.check_keys(scene_keys("top level"));
@@ -248,6 +253,7 @@ Scene parse_scene_text(std::shared_ptr<const std::string> text_ptr, const std::s
   Scene s;
   s.path = name;
   s.text = std::move(text_ptr);
+  s.document = document;
   const bool has_camera = root.has("camera");
   if (has_camera) s.camera = load_camera(root.object("camera"));
   if (root.has("animation")) s.animation = load_animation(root.object("animation"));

@@ -43,6 +43,23 @@ TEST(SceneLoading, DefaultsFollowTheConvention) {
   EXPECT_NEAR(c.objects[0].bounds.hi.y, 1, 1e-9) << "{d <= 0.5} for radius 2";
 }
 
+// The document is the scene's (a render process ends without freeing it): it lives as long as
+// the scene, moved or not, and goes with it.
+TEST(SceneLoading, TheDocumentLivesAsLongAsTheScene) {
+  std::weak_ptr<const void> document;
+  {
+    Scene s = scene_with(std::string(R"({"field":)") + kBall + "}");
+    document = s.document;
+    ASSERT_FALSE(document.expired());
+    const auto& doc = *static_cast<const nlohmann::json*>(s.document.get());
+    EXPECT_EQ(doc.at("objects").at(0).at("field").at("distance").at("n"), 2);
+    const Scene moved = std::move(s);
+    s = scene_with(std::string(R"({"field":)") + kBall + "}");
+    EXPECT_FALSE(document.expired()) << "the moved scene holds it";
+  }
+  EXPECT_TRUE(document.expired());
+}
+
 // A C++ string may hold a NUL that the file system would end the path at: "x.json\0junk" is
 // refused rather than loaded as x.json. The pixel limit is the command line's and Python's.
 TEST(SceneLoading, PathsWithNulAndThePixelLimit) {
