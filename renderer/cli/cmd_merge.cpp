@@ -1,12 +1,8 @@
 // softtrace merge: tiles of one frame (render --tile/--crop/--pixel-bounds outputs) put back
 // together (render/tile_merge.h) and written all or nothing.
-#include <pthread.h>
-
-#include <csignal>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli/commands.h"
@@ -16,27 +12,9 @@
 
 namespace softtrace {
 
-namespace {
-
-// SIGINT/SIGTERM go to a watcher thread that removes the temporary output file, if any, and
-// exits: the lock film.cpp creates temporary files under keeps one from escaping it. A signal
-// after the rename changes nothing: the output is complete.
-void exit_cleanly_on_signals() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  std::thread([set] {
-    int sig;
-    if (sigwait(&set, &sig) == 0) abandon_pending_writes_and_exit(128 + sig);
-  }).detach();
-}
-
-}  // namespace
-
+// SIGINT/SIGTERM: main()'s handler, exit_on_interrupt, removes the temporary output file, if
+// any, and exits (signals.h). A signal after the rename changes nothing: the output is complete.
 int run_merge(const MergeArgs& a) {
-  exit_cleanly_on_signals();
   try {
     check_image_output_path(a.output);
     std::vector<ImageFile> tiles;

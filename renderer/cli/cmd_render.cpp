@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/exr_on_demand.h"
 #include "cli/option_checks.h"
+#include "cli/signals.h"
 #include "describe/params.h"
 #include "film/film.h"
 #include "render/camera.h"
@@ -42,7 +43,8 @@ std::atomic<int> g_signal{0};
 // yet, so exit at once, even in the middle of a long load. Rendering: stop the frame (g_cancel)
 // and write nothing. Writing temporary files: remove them and exit at once. Committing (renaming
 // the finished files over the outputs): nothing, so that all outputs are replaced or none is.
-// The compare-exchanges decide between the watcher and the main thread who owns a transition.
+// The compare-exchanges decide between the handler (on whichever thread the signal interrupts)
+// and the main thread who owns a transition.
 enum Phase : int { kLoading, kRendering, kWriting, kCommitting, kAborting };
 std::atomic<int> g_phase{kLoading};
 
@@ -54,7 +56,7 @@ void on_render_interrupt(int sig) {
   g_cancel = true;
   int phase = kLoading;
   if (g_phase.compare_exchange_strong(phase, kAborting)) {
-    report_error("interrupted; no image written");
+    report_from_handler("softtrace: interrupted; no image written\n");  // report_error's line
     abandon_pending_writes_and_exit(128 + sig);
   }
   phase = kWriting;
@@ -119,12 +121,15 @@ int finish_process(int status) {
 }  // namespace
 
 int run_render(const RenderArgs& a) {
-  // main() has started the signal watcher with on_render_interrupt.
+  // main() has made on_render_interrupt the signals' handler.
   try {
     // The cap, kept until exit (a smaller one may be kept after it), and the frame's worker
     // threads started beside the scene's load, which they do not wait for (threads.h).
     if (a.threads) limit_threads(a.threads).keep_until_exit();
+    // The workers keep the signals blocked, so that the handler runs on this thread.
+    block_interrupts();
     start_threads();
+    unblock_interrupts();
     Scene scene = load_scene(a.scene);
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
@@ -178,7 +183,7 @@ int run_render(const RenderArgs& a) {
     Film& film = *made;
     int loading = kLoading;
     if (!g_phase.compare_exchange_strong(loading, kRendering))
-      for (;;) ::pause();  // the watcher is exiting
+      for (;;) ::pause();  // a handler on another thread is exiting
     film.full_width = scene.image.width;
     film.full_height = scene.image.height;
     film.x0 = window.x0;
@@ -243,7 +248,7 @@ int run_render(const RenderArgs& a) {
       temps.push_back(write_image_temp(o, film, out_opt, info, parallel_each));
     int writing = kWriting;
     if (!g_phase.compare_exchange_strong(writing, kCommitting))
-      for (;;) ::pause();  // the watcher is removing the temporary files and exiting
+      for (;;) ::pause();  // a handler is removing the temporary files and exiting
     for (size_t i = 0; i < outputs.size(); ++i) commit_image(temps[i], outputs[i]);
     forget_pending_writes();
     // A signal from here on is too late to matter: every output is complete.

@@ -2,7 +2,7 @@
 // same folder, with the same arguments. The renderer's shared libraries (the C library and its
 // maths library; OpenEXR and Embree, with the shared C++ runtime and TBB, are opened later, on
 // demand) load before its main() can block anything; a signal then would kill it without a word.
-// A signal mask survives exec, so a signal in that time waits for the renderer's watcher thread
+// A signal mask survives exec, so a signal in that time waits for the renderer's handler
 // (signals.h). Plain libc and linked statically where the build allows: this program's own
 // start-up is the only unguarded moment. A static build normally never gets here:
 // launcher_entry.cpp does the same before the C library starts, and only what it did not expect

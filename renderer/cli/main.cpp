@@ -307,8 +307,8 @@ int main(int argc, char** argv) {
     }
   }
   const CommandLine& c = *cli;
-  // The watcher runs before any command starts to work: a signal that came while the libraries
-  // were loading is taken now.
+  // The handler is in place before any command starts to work: a signal that came while the
+  // libraries were loading is taken now.
   const auto ran = [](const CLI::App* command) { return command && command->parsed(); };
   watch_interrupts(ran(c.render) ? on_render_interrupt : exit_on_interrupt);
   if (ran(c.render)) return run_render(c.r);

@@ -1,10 +1,10 @@
 #include "cli/signals.h"
 
 #include <pthread.h>
+#include <unistd.h>
 
 #include <csignal>
-#include <cstdio>
-#include <thread>
+#include <cstring>
 
 #include "film/film.h"
 
@@ -27,18 +27,33 @@ void block_interrupts() {
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
 }
 
+void unblock_interrupts() {
+  const sigset_t set = interrupts();
+  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+}
+
 void watch_interrupts(void (*on_interrupt)(int sig)) {
-  block_interrupts();
-  std::thread([on_interrupt] {
-    pthread_setname_np(pthread_self(), "signal-watcher");  // for ps, gdb and the tests
-    const sigset_t set = interrupts();
-    int sig;
-    while (sigwait(&set, &sig) == 0) on_interrupt(sig);
-  }).detach();
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  action.sa_mask = interrupts();  // the other signal waits until this one's handler returns
+  action.sa_flags = SA_RESTART;   // a rename or fsync it interrupts (render's commit) goes on
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  unblock_interrupts();
+}
+
+void report_from_handler(const char* line) {
+  // Standard error may be a pipe that takes part of it: the rest follows.
+  for (size_t left = std::strlen(line); left > 0;) {
+    const ssize_t n = ::write(STDERR_FILENO, line, left);
+    if (n <= 0) return;
+    line += n;
+    left -= size_t(n);
+  }
 }
 
 void exit_on_interrupt(int sig) {
-  std::fprintf(stderr, "softtrace: interrupted\n");
+  report_from_handler("softtrace: interrupted\n");
   abandon_pending_writes_and_exit(128 + sig);
 }
 

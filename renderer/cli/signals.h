@@ -1,18 +1,32 @@
-// SIGINT and SIGTERM never reach a signal handler. `softtrace` (launcher.cpp) blocks them before
-// the renderer's shared libraries load, main() blocks them again before anything else (for a
-// renderer started directly), and one watcher thread takes them with sigwait: what a signal does
-// is then ordinary code, which may take locks (film.cpp's pending writes).
+// SIGINT and SIGTERM are blocked from the start: `softtrace` (launcher.cpp) blocks them before
+// the renderer's shared libraries load, and main() blocks them again before anything else (for a
+// renderer started directly). Once the command line is parsed, main() gives them a handler and
+// opens its own thread to them. The handler runs on the thread it interrupts, so what it does must
+// be safe there: atomics, write(2), unlink and _exit, and the pending files' lock, which no thread
+// holds with the signals open (io/output_file.cpp). A watcher thread waiting in sigwait did this
+// as ordinary code, but its start, stack and end cost every process about half a millisecond of
+// CPU. `render`'s frame workers keep them blocked (cmd_render.cpp): the handler runs on the main
+// thread, and the processes measured faster so.
 #pragma once
 
 namespace softtrace {
 
 // Blocks SIGINT and SIGTERM in the calling thread. First thing in main(), before any thread
-// exists, so that every thread inherits the mask and only the watcher receives them.
+// exists, so that threads libraries start inherit the mask.
 void block_interrupts();
 
-// Starts the watcher thread, named "signal-watcher": on_interrupt(sig) runs on it for every
-// signal, at once for one that arrived while the libraries were loading.
+// Unblocks them in the calling thread again (after starting threads that are not to take them).
+void unblock_interrupts();
+
+// Makes on_interrupt(sig) SIGINT's and SIGTERM's handler and unblocks them in the calling thread
+// (threads it starts later inherit that): a signal that arrived while the libraries were loading
+// is taken at once. The handler must be async-signal-safe (above); one signal's handler is never
+// interrupted by the other's, and system calls it interrupts are restarted.
 void watch_interrupts(void (*on_interrupt)(int sig));
+
+// Writes `line` (a constant message with its newline) to standard error as one write(2): the
+// way a handler reports, where stdio is not safe.
+void report_from_handler(const char* line);
 
 // For commands that write nothing but their temporary files: removes those, then
 // "softtrace: interrupted" and exit 128 + sig.

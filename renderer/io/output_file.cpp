@@ -2,6 +2,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -38,11 +40,34 @@ struct Pending {
 };
 
 // The lock is held from creating a file to recording it, so whoever abandons the writes (the
-// signal watcher) sees every file that exists. The list is process-wide for the signal watcher;
-// each thread's writes are its own, so that threads writing at once (Python renders) never
-// remove or forget each other's files.
+// command line's SIGINT/SIGTERM handler, cli/signals.h) sees every file that exists. The list is
+// process-wide for that handler; each thread's writes are its own, so that threads writing at
+// once (Python renders) never remove or forget each other's files.
 std::mutex g_pending_mutex;
 std::vector<Pending> g_pending;
+
+// The pending files' lock, taken with SIGINT and SIGTERM blocked in this thread until it is
+// released: a handler that interrupted its holder would wait for it forever. A handler on another
+// thread waits the moment it is held.
+class PendingLock {
+ public:
+  PendingLock() {
+    sigemptyset(&interrupts_);
+    sigaddset(&interrupts_, SIGINT);
+    sigaddset(&interrupts_, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &interrupts_, &before_);
+    g_pending_mutex.lock();
+  }
+  ~PendingLock() {
+    g_pending_mutex.unlock();
+    pthread_sigmask(SIG_SETMASK, &before_, nullptr);
+  }
+  PendingLock(const PendingLock&) = delete;
+  PendingLock& operator=(const PendingLock&) = delete;
+
+ private:
+  sigset_t interrupts_, before_;
+};
 
 // What a non-regular file is, for the refusal: only regular files are replaced, since renaming
 // over a FIFO or a device node (through a link, /dev/null) would put a regular file in its place.
@@ -156,7 +181,7 @@ std::string create_pending_temp(const std::string& target, const std::string& di
   const fs::path t(target);
   const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
   std::string tmp = (dir / ("." + t.filename().string() + ".XXXXXX")).string();
-  const std::lock_guard<std::mutex> lock(g_pending_mutex);
+  const PendingLock lock;
   const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
   if (fd < 0)
     throw std::runtime_error(display + ": cannot create a file in '" + dir.string() +
@@ -171,7 +196,7 @@ namespace {
 // The descriptor that holds `tmp`'s lock, open since create_pending_temp made the file; -1 when
 // the calling thread has no such pending file.
 int pending_descriptor(const std::string& tmp) {
-  const std::lock_guard<std::mutex> lock(g_pending_mutex);
+  const PendingLock lock;
   const std::thread::id self = std::this_thread::get_id();
   for (const auto& p : g_pending)
     if (p.owner == self && p.tmp == tmp) return p.fd;
@@ -213,7 +238,7 @@ namespace {
 
 // Closes (and with `remove`, first removes) the calling thread's pending files and forgets them.
 void release_own_pending(bool remove) {
-  const std::lock_guard<std::mutex> lock(g_pending_mutex);
+  const PendingLock lock;
   const std::thread::id self = std::this_thread::get_id();
   const auto own = std::stable_partition(g_pending.begin(), g_pending.end(),
                                          [&](const Pending& p) { return p.owner != self; });

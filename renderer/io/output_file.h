@@ -45,7 +45,8 @@ void forget_pending_writes();
 // forgets them.
 void abandon_pending_writes();
 // Removes every thread's pending temporary files, then _exit(status), with no temporary file
-// created in between (the signal watcher's way out while writing, cmd_render.cpp).
+// created in between (an interrupt's handler's way out while writing, cmd_render.cpp): safe in
+// a handler, since no thread holds the list's lock with SIGINT or SIGTERM open.
 [[noreturn]] void abandon_pending_writes_and_exit(int status);
 
 // This process's start (seconds since the epoch), for remove_stale_temporaries.

@@ -243,16 +243,13 @@ TEST(Merge, InterruptedTileLeavesNothingToMerge) {
             tile1.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
-  // Once its main thread blocks SIGINT for the signal watcher, it is past start-up. Libraries
-  // block every signal for a moment while they start threads: SIGHUP blocked too is that.
+  // Once it has a handler for SIGINT (SigCgt), it is past start-up.
   const auto catching = [pid] {
     std::ifstream status("/proc/" + std::to_string(pid) + "/status");
     std::string line;
     while (std::getline(status, line))
-      if (line.rfind("SigBlk:", 0) == 0) {
-        const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
-        return ((mask >> (SIGINT - 1)) & 1) && !((mask >> (SIGHUP - 1)) & 1);
-      }
+      if (line.rfind("SigCgt:", 0) == 0)
+        return ((std::stoull(line.substr(7), nullptr, 16) >> (SIGINT - 1)) & 1) != 0;
     return false;
   };
   for (int i = 0; i < 30000 && !catching(); ++i)
