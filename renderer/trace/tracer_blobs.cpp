@@ -226,9 +226,36 @@ MarchResult ObjectTracer::first_hit_unlisted(const Ray& ray, double tfar, double
   return unlisted_stretches(t0, t1, work);
 }
 
+MarchResult ObjectTracer::few_blobs_shadow(const Ray& ray, bool face, double t0, double t1,
+                                           TraceCounters& work) const {
+  // first_hit_blobs' first turn for such a ray (no list: not held; at most kListed blobs: the
+  // whole way, s = t1 - t0), to the bit: the same stretch, the same terms in the same order and
+  // the same sum of their peaks. Where that turn would give up or leave more of the way (no way
+  // at all, or t short of t1 by rounding), first_hit_blobs takes the ray from the start.
+  if (!(t0 < t1) || work.evaluations() >= kMaxSteps)
+    return first_hit_blobs(ray, face, t0, t1, work, Query::Any, nullptr);
+  const double len = std::min(t0 + (t1 - t0), t1) - t0;
+  if (t0 + len < t1) return first_hit_blobs(ray, face, t0, t1, work, Query::Any, nullptr);
+  const Segment seg = segment(ray, t0, t0 + len);
+  // On the stack: a capsule's terms are at most three (max_terms()); the thread's scratch, looked
+  // up, cost more than most rays' terms.
+  BlobSum::Term terms[3 * BlobSum::kListed];
+  int32_t ids[BlobSum::kListed];
+  const int n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, ids);
+  double peaks = 0;
+  for (int i = 0; i < n; ++i) peaks += terms[i].peak;
+  if (peaks_below_iso(peaks, *blobs_, target_.iso)) {
+    ++work.box_evals;
+    return {};
+  }
+  // Negative blobs near the surface, a ray grazing it, one into the solid: its pieces are read.
+  const TakenTerms taken{terms, n};
+  return first_hit_blobs(ray, face, t0, t1, work, Query::Any, nullptr, &taken);
+}
+
 MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, double t1,
-                                          TraceCounters& work, Query query,
-                                          const BlobBeam* beam) const {
+                                          TraceCounters& work, Query query, const BlobBeam* beam,
+                                          const TakenTerms* taken) const {
   // A camera ray of a block with a list (tracer_blob_beam.cpp), or a shadow ray of a block with
   // one (tracer_shadow_beam.cpp), takes its stretches' blobs from it.
   double base = 0;  // the ray's start on the list's axis
@@ -248,7 +275,7 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
     return MarchResult{true, t0};
   }
   BlobScratch& scratch = blob_scratch(*blobs_);
-  BlobSum::Term* terms = scratch.terms.data();
+  BlobSum::Term* terms = taken ? taken->terms : scratch.terms.data();
   int* active = scratch.active.data();
   const double iso = target_.iso;
 
@@ -383,6 +410,9 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         found += listed[i].near <= hi && listed[i].far >= lo;
       }
       n = blobs_->terms_of(ids, found, seg.a, ray.d, len, terms);
+    } else if (taken) {  // this very stretch's, taken by few_blobs_shadow
+      n = taken->n;
+      taken = nullptr;
     } else {
       n = blobs_->terms(program_, seg.a, ray.d, len, seg.pad, terms, scratch.ids.data());
     }
