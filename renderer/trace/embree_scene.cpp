@@ -554,7 +554,9 @@ bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCount
     const int o = impl_->direct_field;
     const BlobBeam* list = blobs ? &blobs[o] : nullptr;
     if (list && list->clear) return false;  // first_hit's answer, without its call
-    return impl_->data[o].tracer->first_hit(ray, tnear, tfar, work, Query::Any, 0, list).hit;
+    const ObjectTracer& tracer = *impl_->data[o].tracer;
+    if (!list) return tracer.shadow_hit(ray, tnear, tfar, work).hit;
+    return tracer.first_hit(ray, tnear, tfar, work, Query::Any, 0, list).hit;
   }
   RayContext ctx;
   rtcInitIntersectContext(&ctx.rtc);

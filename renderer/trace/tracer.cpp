@@ -327,6 +327,22 @@ double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double 
   return b;
 }
 
+MarchResult ObjectTracer::shadow_hit(const Ray& ray, double tnear, double tfar,
+                                     TraceCounters& work) const {
+  if (!blobs_ || blobs_->size() > BlobSum::kListed)
+    return first_hit(ray, tnear, tfar, work, Query::Any);
+  // first_hit's clip and start (clear_to 0), then few_blobs_shadow for first_hit_blobs. Apart
+  // from first_hit: the test there cost every camera ray and listed shadow ray its branches
+  // (callgrind, pov:golfball at 320x240, +0.5 M).
+  double t0 = tnear, t1 = tfar;
+  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
+  work.entered_box = true;
+  const bool face = t0 > tnear && t0 >= 0;
+  t0 = std::max(t0, 0.0);
+  if (t0 > t1) return {};
+  return few_blobs_shadow(ray, face, t0, t1, work);
+}
+
 MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                                     Query query, double clear_to, const BlobBeam* blob_beam) const {
   // A shadow ray of a block whose prism meets none of the blobs (its caller vouches that it is

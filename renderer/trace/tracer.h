@@ -230,6 +230,9 @@ class ObjectTracer {
   MarchResult first_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work,
                         Query query = Query::Nearest, double clear_to = 0,
                         const BlobBeam* blob_beam = nullptr) const;
+  // first_hit(ray, tnear, tfar, work, Query::Any) for a shadow ray with no list: the same answer
+  // and work, a sum of at most BlobSum::kListed blobs by few_blobs_shadow (tracer_blobs.cpp).
+  MarchResult shadow_hit(const Ray& ray, double tnear, double tfar, TraceCounters& work) const;
   // first_hit(ray, 0, tfar, work, Query::Nearest, clear_to, list) for a camera ray from the eye
   // of `list`, a camera list of this blob sum that holds no blob (EmbreeScene::intersect_unmet):
   // the same answer (a miss, or the ray limit) and the same counters, without the search's own
@@ -383,8 +386,21 @@ class ObjectTracer {
                 TraceCounters& work, Below* below = nullptr) const;
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
   // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
+  // `taken`: the first stretch's terms, already taken (few_blobs_shadow), in a buffer with room
+  // for max_terms(), which the walk then keeps its terms in.
+  struct TakenTerms {
+    BlobSum::Term* terms;
+    int n;
+  };
   MarchResult first_hit_blobs(const Ray& ray, bool face, double t0, double t1, TraceCounters& work,
-                              Query query, const BlobBeam* beam) const;
+                              Query query, const BlobBeam* beam,
+                              const TakenTerms* taken = nullptr) const;
+  // first_hit_blobs for a shadow ray with no list, of a sum of at most BlobSum::kListed blobs,
+  // over [t0, t1] (t0 <= t1, shadow_hit): most such rays leave their lit point with the whole way's
+  // terms' peaks summing below iso, answered here without first_hit_blobs' set-up for the pieces it
+  // then never reads; the others are first_hit_blobs' with the terms taken (tracer_blobs.cpp).
+  MarchResult few_blobs_shadow(const Ray& ray, bool face, double t0, double t1,
+                               TraceCounters& work) const;
   // first_hit_blobs' stretches over [t0, t1] for a camera ray whose list holds no blob: the
   // same stretches, each counted, none read.
   MarchResult unlisted_stretches(double t0, double t1, TraceCounters& work) const;

@@ -296,6 +296,27 @@ TEST(BlobSum, ListedBlobsArePiecewiseOnePolynomialToo) {
   expect_pieces_are_polynomials_of_the_field(cloud, 10);
 }
 
+// A listed sum of balls alone takes its list whole (every ball takes its own support test): the
+// pieces must still be the field's, with no ball left out nor taken twice.
+TEST(BlobSum, ListedBallsArePiecewiseOnePolynomialToo) {
+  std::mt19937_64 rng(35);
+  std::uniform_real_distribution<double> c(-5, 5), r(2, 5);
+  std::string json = R"({"type":"soft_blend","children":[)";
+  for (int i = 0; i < BlobSum::kListed; ++i) {
+    const std::string radius = std::to_string(r(rng));
+    json += (i ? "," : "") + std::string(R"({"type":"soft_object","potential":{"type":")") +
+            (i % 2 ? "wyvill" : "murakami") + R"("},"distance":{"type":"lp_metric","n":2,)" +
+            R"("radii":[)" + radius + "," + radius + "," + radius + R"(]},"translate":[)" +
+            std::to_string(c(rng)) + "," + std::to_string(c(rng)) + "," + std::to_string(c(rng)) +
+            "]}";
+  }
+  Cloud cloud(json + "]}");
+  ASSERT_TRUE(cloud.blobs.has_value());
+  EXPECT_EQ(cloud.blobs->size(), BlobSum::kListed);
+  EXPECT_TRUE(cloud.blobs->all_balls());
+  expect_pieces_are_polynomials_of_the_field(cloud, 10);
+}
+
 // A capsule's or ellipsoid's terms one blob at a time (terms_of_one, through BlobSum::frame_terms,
 // and blob_frame::terms_of_one, the camera sweep's, inline) are those of a list's (terms_of, its
 // own inline copy) to the bit, and a

@@ -207,5 +207,56 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
               rays, met, listed * 16 / rays, worst);
 }
 
+// A sum of at most BlobSum::kListed blobs takes a hit's normal from all its block's list, with no
+// test of the entries' ranges (blob_gradient): the sum keeps the blobs that hold the point, as the
+// point query does, so the normal is the query's to the bit. The tracer scenes' five blobs, seen
+// from outside and from inside, through the blocks' lists of every level.
+TEST(BlobBeams, AFewBlobsNormalFromTheListIsThePointQuerys) {
+  const Scene scene = parse_scene(tracer_scenes::kScenes[tracer_scenes::kBlobs], "<test>");
+  const ObjectTracer tr(trace_target(scene.objects[0]), LipschitzMode::Local);
+  ASSERT_TRUE(tr.blob_sum());
+  ASSERT_LE(tr.blob_count(), BlobSum::kListed);
+  std::mt19937_64 rng(35);
+  std::uniform_real_distribution<double> u(0, 1);
+  constexpr int kW = 64, kH = 48;
+  int normals = 0, fewer = 0;
+  for (const Vec3& eye : {Vec3{30, -40, 20}, Vec3{1, 2, 0.5}}) {
+    const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 60}, kW, kH);
+    BlobBeam level[3];
+    for (int y = 0; y < kH; y += 16)
+      for (int x = 0; x < kW; x += 16) {
+        tr.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &level[0]);
+        for (int q = 0; q < 4; ++q) {
+          const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
+          tr.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &level[0], &level[1]);
+          for (int k = 0; k < 4; ++k) {
+            const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
+            tr.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &level[1], &level[2]);
+            ASSERT_TRUE(level[2].valid);
+            for (int py = y4; py < y4 + 4; ++py)
+              for (int px = x4; px < x4 + 4; ++px) {
+                const Ray ray = camera.generate(px + u(rng), py + u(rng));
+                TraceCounters w;
+                const MarchResult m = tr.first_hit(ray, 0, 1e3, w, Query::Nearest, 0, &level[2]);
+                if (!m.hit) continue;
+                const Vec3 p = ray.o + ray.d * m.t;
+                const Vec3 n_query = tr.normal(p);
+                for (const BlobBeam& list : level) {
+                  const Vec3 n_list = tr.normal(p, nullptr, &list);
+                  ASSERT_EQ(n_list.x, n_query.x) << "pixel " << px << ", " << py;
+                  ASSERT_EQ(n_list.y, n_query.y) << "pixel " << px << ", " << py;
+                  ASSERT_EQ(n_list.z, n_query.z) << "pixel " << px << ", " << py;
+                }
+                ++normals;
+                fewer += level[2].entries.size() < size_t(tr.blob_count());
+              }
+          }
+        }
+      }
+  }
+  EXPECT_GT(normals, 1000);
+  EXPECT_GT(fewer, 100);  // lists that leave some blobs out
+}
+
 }  // namespace
 }  // namespace softtrace
