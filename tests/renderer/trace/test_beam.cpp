@@ -21,6 +21,29 @@ namespace {
 
 using namespace tracer_scenes;
 
+// The frame's nesting of blob beams: a 16-pixel block's beam from no list, its four 8-pixel
+// blocks' from it, and their four 4-pixel blocks' from those. `visit(level, x4, y4)` sees each
+// 4-pixel block with the three levels' beams; it stops at the first fatal failure.
+template <class Visit>
+void for_each_nested_beam(const ObjectTracer& tr, const ViewCamera& camera, int w, int h,
+                          Visit&& visit) {
+  BlobBeam level[3];
+  for (int y = 0; y < h; y += 16)
+    for (int x = 0; x < w; x += 16) {
+      tr.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &level[0]);
+      for (int q = 0; q < 4; ++q) {
+        const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
+        tr.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &level[0], &level[1]);
+        for (int k = 0; k < 4; ++k) {
+          const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
+          tr.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &level[1], &level[2]);
+          visit(level, x4, y4);
+          if (testing::Test::HasFatalFailure()) return;
+        }
+      }
+    }
+}
+
 class Beams : public testing::TestWithParam<int> {};
 
 TEST_P(Beams, NoRayMeetsTheSolidBeforeItsBeamsDepth) {
@@ -140,60 +163,49 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   double worst = 0;  // the largest |list.t - walk.t|, in tolerances
   for (const Vec3& eye : {Vec3{60, -80, 50}, Vec3{2, 3, 1}}) {
     const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 50}, kW, kH);
-    BlobBeam level[3];
-    for (int y = 0; y < kH; y += 16)
-      for (int x = 0; x < kW; x += 16) {
-        tr.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &level[0]);
-        for (int q = 0; q < 4; ++q) {
-          const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
-          tr.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &level[0], &level[1]);
-          for (int k = 0; k < 4; ++k) {
-            const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
-            tr.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &level[1], &level[2]);
-            ASSERT_TRUE(level[2].valid);
-            listed += static_cast<int>(level[2].entries.size());
-            nested += level[2].entries.size() < level[0].entries.size();
-            for (int py = y4; py < y4 + 4; ++py)
-              for (int px = x4; px < x4 + 4; ++px) {
-                const Ray ray = camera.generate(px + u(rng), py + u(rng));
-                // Every blob with a term anywhere on the ray is on the block's list.
-                for (int32_t id = 0; id < blobs.size(); ++id) {
-                  if (blobs.terms_of(&id, 1, ray.o, ray.d, 1e3, terms.data()) == 0) continue;
-                  bool on = false;
-                  for (const BlobBeam::Entry& e : level[2].entries) on = on || e.id == id;
-                  ASSERT_TRUE(on) << "blob " << id << ", ray " << rays;
-                  ++met;
-                }
-                TraceCounters a, b;
-                const MarchResult walk = tr.first_hit(ray, 0, 1e3, a);
-                const MarchResult list = tr.first_hit(ray, 0, 1e3, b, Query::Nearest, 0, &level[2]);
-                ++rays;
-                hits += walk.hit;
-                ASSERT_EQ(list.hit, walk.hit) << "ray " << rays;
-                // The ray sweeps its block's list (tracer_blobs.cpp): its pieces are one
-                // stretch's over the whole way, rounded otherwise than the walk's stretches', and
-                // both roots lie within the refinement's tolerance (kRefine of the footprint)
-                // past the first crossing.
-                if (walk.hit) {
-                  const double tol = tracer_limits::kRefine *
-                                     tr.resolution(ray, std::max(list.t, walk.t)) * (1 + 1e-9);
-                  worst = std::max(worst, std::abs(list.t - walk.t) / tol);
-                  ASSERT_LE(std::abs(list.t - walk.t), tol)
-                      << "ray " << rays << ": " << list.t << " against the walk's " << walk.t;
-                }
-                if (walk.hit) {
-                  // The hit's normal from the list (TraceHit::blobs) is the point query's.
-                  const Vec3 p = ray.o + ray.d * walk.t;
-                  const Vec3 n_query = tr.normal(p), n_list = tr.normal(p, nullptr, &level[2]);
-                  ASSERT_EQ(n_list.x, n_query.x) << "ray " << rays;
-                  ASSERT_EQ(n_list.y, n_query.y) << "ray " << rays;
-                  ASSERT_EQ(n_list.z, n_query.z) << "ray " << rays;
-                  normals += length(n_query) > 0;
-                }
-              }
+    for_each_nested_beam(tr, camera, kW, kH, [&](const BlobBeam(&level)[3], int x4, int y4) {
+      ASSERT_TRUE(level[2].valid);
+      listed += static_cast<int>(level[2].entries.size());
+      nested += level[2].entries.size() < level[0].entries.size();
+      for (int py = y4; py < y4 + 4; ++py)
+        for (int px = x4; px < x4 + 4; ++px) {
+          const Ray ray = camera.generate(px + u(rng), py + u(rng));
+          // Every blob with a term anywhere on the ray is on the block's list.
+          for (int32_t id = 0; id < blobs.size(); ++id) {
+            if (blobs.terms_of(&id, 1, ray.o, ray.d, 1e3, terms.data()) == 0) continue;
+            bool on = false;
+            for (const BlobBeam::Entry& e : level[2].entries) on = on || e.id == id;
+            ASSERT_TRUE(on) << "blob " << id << ", ray " << rays;
+            ++met;
+          }
+          TraceCounters a, b;
+          const MarchResult walk = tr.first_hit(ray, 0, 1e3, a);
+          const MarchResult list = tr.first_hit(ray, 0, 1e3, b, Query::Nearest, 0, &level[2]);
+          ++rays;
+          hits += walk.hit;
+          ASSERT_EQ(list.hit, walk.hit) << "ray " << rays;
+          // The ray sweeps its block's list (tracer_blobs.cpp): its pieces are one
+          // stretch's over the whole way, rounded otherwise than the walk's stretches', and
+          // both roots lie within the refinement's tolerance (kRefine of the footprint)
+          // past the first crossing.
+          if (walk.hit) {
+            const double tol =
+                tracer_limits::kRefine * tr.resolution(ray, std::max(list.t, walk.t)) * (1 + 1e-9);
+            worst = std::max(worst, std::abs(list.t - walk.t) / tol);
+            ASSERT_LE(std::abs(list.t - walk.t), tol)
+                << "ray " << rays << ": " << list.t << " against the walk's " << walk.t;
+          }
+          if (walk.hit) {
+            // The hit's normal from the list (TraceHit::blobs) is the point query's.
+            const Vec3 p = ray.o + ray.d * walk.t;
+            const Vec3 n_query = tr.normal(p), n_list = tr.normal(p, nullptr, &level[2]);
+            ASSERT_EQ(n_list.x, n_query.x) << "ray " << rays;
+            ASSERT_EQ(n_list.y, n_query.y) << "ray " << rays;
+            ASSERT_EQ(n_list.z, n_query.z) << "ray " << rays;
+            normals += length(n_query) > 0;
           }
         }
-      }
+    });
   }
   EXPECT_GT(hits, rays / 10);
   EXPECT_LT(hits, rays);
@@ -222,37 +234,26 @@ TEST(BlobBeams, AFewBlobsNormalFromTheListIsThePointQuerys) {
   int normals = 0, fewer = 0;
   for (const Vec3& eye : {Vec3{30, -40, 20}, Vec3{1, 2, 0.5}}) {
     const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 60}, kW, kH);
-    BlobBeam level[3];
-    for (int y = 0; y < kH; y += 16)
-      for (int x = 0; x < kW; x += 16) {
-        tr.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &level[0]);
-        for (int q = 0; q < 4; ++q) {
-          const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
-          tr.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &level[0], &level[1]);
-          for (int k = 0; k < 4; ++k) {
-            const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
-            tr.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &level[1], &level[2]);
-            ASSERT_TRUE(level[2].valid);
-            for (int py = y4; py < y4 + 4; ++py)
-              for (int px = x4; px < x4 + 4; ++px) {
-                const Ray ray = camera.generate(px + u(rng), py + u(rng));
-                TraceCounters w;
-                const MarchResult m = tr.first_hit(ray, 0, 1e3, w, Query::Nearest, 0, &level[2]);
-                if (!m.hit) continue;
-                const Vec3 p = ray.o + ray.d * m.t;
-                const Vec3 n_query = tr.normal(p);
-                for (const BlobBeam& list : level) {
-                  const Vec3 n_list = tr.normal(p, nullptr, &list);
-                  ASSERT_EQ(n_list.x, n_query.x) << "pixel " << px << ", " << py;
-                  ASSERT_EQ(n_list.y, n_query.y) << "pixel " << px << ", " << py;
-                  ASSERT_EQ(n_list.z, n_query.z) << "pixel " << px << ", " << py;
-                }
-                ++normals;
-                fewer += level[2].entries.size() < size_t(tr.blob_count());
-              }
+    for_each_nested_beam(tr, camera, kW, kH, [&](const BlobBeam(&level)[3], int x4, int y4) {
+      ASSERT_TRUE(level[2].valid);
+      for (int py = y4; py < y4 + 4; ++py)
+        for (int px = x4; px < x4 + 4; ++px) {
+          const Ray ray = camera.generate(px + u(rng), py + u(rng));
+          TraceCounters w;
+          const MarchResult m = tr.first_hit(ray, 0, 1e3, w, Query::Nearest, 0, &level[2]);
+          if (!m.hit) continue;
+          const Vec3 p = ray.o + ray.d * m.t;
+          const Vec3 n_query = tr.normal(p);
+          for (const BlobBeam& list : level) {
+            const Vec3 n_list = tr.normal(p, nullptr, &list);
+            ASSERT_EQ(n_list.x, n_query.x) << "pixel " << px << ", " << py;
+            ASSERT_EQ(n_list.y, n_query.y) << "pixel " << px << ", " << py;
+            ASSERT_EQ(n_list.z, n_query.z) << "pixel " << px << ", " << py;
           }
+          ++normals;
+          fewer += level[2].entries.size() < size_t(tr.blob_count());
         }
-      }
+    });
   }
   EXPECT_GT(normals, 1000);
   EXPECT_GT(fewer, 100);  // lists that leave some blobs out
