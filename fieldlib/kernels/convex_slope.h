@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "kernels/gauge.h"
+#include "math/int_power.h"
 #include "math/interval.h"
 #include "math/vec.h"
 
@@ -22,31 +23,38 @@ namespace softtrace {
 // power of each b_i serves both the sum and the partials (power_sum with its partials takes two).
 // Within a few ulps per term for the integer exponents, by squaring; 0 partials at f = 0 (the
 // subgradient 0).
-inline double power_sum_partials(const double* u, int k, double n, double* partial) {
+// power_sum_partials with the power b^(n-1) as given.
+template <class PowN1>
+double power_sum_partials_with(const double* u, int k, double n, double* partial,
+                               const PowN1& pow_n1) {
   double m = 0;
   for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
   if (!(m > 0)) {
     std::fill(partial, partial + k, 0.0);
     return m;
   }
-  const bool squaring = n <= 65 && n == static_cast<int>(n);
   double s = 0;
   for (int i = 0; i < k; ++i) {
     const double b = u[i] / m;
-    double p = 1;  // b^(n-1)
-    if (squaring) {
-      double x = b;
-      for (int e = static_cast<int>(n) - 1; e; e >>= 1, x *= x)
-        if (e & 1) p *= x;
-    } else {
-      p = std::pow(b, n - 1);
-    }
+    const double p = pow_n1(b);
     s += p * b;
     partial[i] = p;
   }
   const double root = power_root(s, n), scale = root / s;
   for (int i = 0; i < k; ++i) partial[i] *= scale;
   return m * root;
+}
+
+inline double power_sum_partials(const double* u, int k, double n, double* partial) {
+  // The papers' cubes and bars (n = 20) with the exponent known at compile time: the same
+  // multiplications without a test of n per term.
+  if (n == 20)
+    return power_sum_partials_with(u, k, n, partial,
+                                   [](double b) { return pow_by_squaring<19>(b); });
+  const bool squaring = n <= 65 && n == static_cast<int>(n);
+  return power_sum_partials_with(u, k, n, partial, [&](double b) {
+    return squaring ? pow_by_squaring(b, static_cast<int>(n) - 1) : std::pow(b, n - 1);
+  });
 }
 
 // The last segment's two ends of one gauge instruction, keyed by its constants' address: a ray's

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "math/int_power.h"
 #include "math/scratch.h"
 
 namespace softtrace {
@@ -18,19 +19,11 @@ bool by_squaring(double n) {
   return n >= 0.5 && n <= 64 && 2 * n == static_cast<int>(2 * n);
 }
 
-// x^k for an integer k >= 0, by squaring.
-double pow_int(double x, int k) {
-  double r = 1;
-  for (; k; k >>= 1, x *= x)
-    if (k & 1) r *= x;
-  return r;
-}
-
 // x^n for x >= 0.
 double pow_fast(double x, double n) {
   if (by_squaring(n)) {
     const int k = static_cast<int>(n);
-    return k == n ? pow_int(x, k) : pow_int(x, k) * std::sqrt(x);
+    return k == n ? pow_by_squaring(x, k) : pow_by_squaring(x, k) * std::sqrt(x);
   }
   return std::pow(x, n);
 }
@@ -40,9 +33,12 @@ double pow_fast(double x, double n) {
 double scale_root(double m, double s, double n) {
   return m * power_root(s, n);
 }
-}  // namespace
 
-double power_sum(const double* u, int k, double n, double* dfdu) {
+// power_sum with the powers x^n and x^(n-1) as given: pow_fast's, or the same multiplications
+// with the exponent known at compile time (no test of n per term).
+template <class PowN, class PowN1>
+double power_sum_with(const double* u, int k, double n, double* dfdu, const PowN& pow_n,
+                      const PowN1& pow_n1) {
   double m = 0;
   for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
   if (m == 0) {
@@ -50,11 +46,27 @@ double power_sum(const double* u, int k, double n, double* dfdu) {
     return 0;
   }
   double s = 0;
-  for (int i = 0; i < k; ++i) s += pow_fast(u[i] / m, n);
+  for (int i = 0; i < k; ++i) s += pow_n(u[i] / m);
   const double f = scale_root(m, s, n);
   if (dfdu)
-    for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? pow_fast(u[i] / f, n - 1) : 0.0;
+    for (int i = 0; i < k; ++i) dfdu[i] = u[i] > 0 ? pow_n1(u[i] / f) : 0.0;
   return f;
+}
+}  // namespace
+
+double power_sum(const double* u, int k, double n, double* dfdu) {
+  // The papers' cubes and bars (n = 20) by pow_fast's multiplications unrolled; a superquadric's
+  // inner L^1 sum (n = 1) with its partials u^0 = 1, which pow_fast takes from std::pow.
+  if (n == 1)
+    return power_sum_with(
+        u, k, n, dfdu, [](double x) { return x; }, [](double) { return 1.0; });
+  if (n == 20)
+    return power_sum_with(
+        u, k, n, dfdu, [](double x) { return pow_by_squaring<20>(x); },
+        [](double x) { return pow_by_squaring<19>(x); });
+  return power_sum_with(
+      u, k, n, dfdu, [n](double x) { return pow_fast(x, n); },
+      [n](double x) { return pow_fast(x, n - 1); });
 }
 
 void power_sum_lanes(const double* const* u, int k, double n, int lanes, double* f) {
@@ -82,7 +94,7 @@ void power_sum_lanes(const double* const* u, int k, double n, int lanes, double*
       if (e == 1) break;
       for (int l = 0; l < lanes; ++l) b[l] *= b[l];
     }
-    if (half)  // pow_int's product times the root, as pow_fast
+    if (half)  // pow_by_squaring's product times the root, as pow_fast
       for (int l = 0; l < lanes; ++l) r[l] *= h[l];
     for (int l = 0; l < lanes; ++l) s[l] += r[l];
   }
