@@ -327,19 +327,28 @@ double ObjectTracer::first_crossing(const Ray& ray, double a, double ga, double 
   return b;
 }
 
+bool ObjectTracer::enter_box(const Ray& ray, double tnear, double tfar, double clear_to,
+                             TraceCounters& work, double& t0, double& t1, bool& face) const {
+  t0 = tnear;
+  t1 = tfar;
+  if (!clip_to_box(ray, target_.bounds, t0, t1)) return false;
+  work.entered_box = true;
+  // A solid where the ray enters the box from outside it is cut by the box: the hit is its face.
+  face = t0 > tnear && t0 >= clear_to;
+  t0 = std::max(t0, clear_to);
+  return !(t0 > t1);  // a NaN end is not a miss
+}
+
 MarchResult ObjectTracer::shadow_hit(const Ray& ray, double tnear, double tfar,
                                      TraceCounters& work) const {
   if (!blobs_ || blobs_->size() > BlobSum::kListed)
     return first_hit(ray, tnear, tfar, work, Query::Any);
-  // first_hit's clip and start (clear_to 0), then few_blobs_shadow for first_hit_blobs. Apart
+  // first_hit's start (clear_to 0), then few_blobs_shadow for first_hit_blobs. Apart
   // from first_hit: the test there cost every camera ray and listed shadow ray its branches
   // (callgrind, pov:golfball at 320x240, +0.5 M).
-  double t0 = tnear, t1 = tfar;
-  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
-  work.entered_box = true;
-  const bool face = t0 > tnear && t0 >= 0;
-  t0 = std::max(t0, 0.0);
-  if (t0 > t1) return {};
+  double t0, t1;
+  bool face;
+  if (!enter_box(ray, tnear, tfar, 0, work, t0, t1, face)) return {};
   return few_blobs_shadow(ray, face, t0, t1, work);
 }
 
@@ -348,13 +357,9 @@ MarchResult ObjectTracer::first_hit(const Ray& ray, double tnear, double tfar, T
   // A shadow ray of a block whose prism meets none of the blobs (its caller vouches that it is
   // one). The query first: a camera ray pays one comparison.
   if (query == Query::Any && blob_beam && blob_beam->clear) return {};
-  double t0 = tnear, t1 = tfar;
-  if (!clip_to_box(ray, target_.bounds, t0, t1)) return {};
-  work.entered_box = true;
-  // A solid where the ray enters the box from outside it is cut by the box: the hit is its face.
-  const bool face = t0 > tnear && t0 >= clear_to;
-  t0 = std::max(t0, clear_to);
-  if (t0 > t1) return {};
+  double t0, t1;
+  bool face;
+  if (!enter_box(ray, tnear, tfar, clear_to, work, t0, t1, face)) return {};
   if (blobs_) return first_hit_blobs(ray, face, t0, t1, work, query, blob_beam);
   const auto at = [&](double t) { return ray.o + ray.d * t; };
   // g(a) < 0 <= g(b) = gb, ga = g(a) or NaN where not known; ws.view holds [a, b].

@@ -384,6 +384,11 @@ class ObjectTracer {
   };
   double refine(const Ray& ray, double a, double ga, double b, double gb, SegmentBounds rates,
                 TraceCounters& work, Below* below = nullptr) const;
+  // first_hit's and shadow_hit's start: [t0, t1], the part of [tnear, tfar] inside the object's
+  // box from clear_to on, and whether t0 is where the ray enters the box from outside (`face`);
+  // false where no part is left. A ray that meets the box counts as having entered it.
+  bool enter_box(const Ray& ray, double tnear, double tfar, double clear_to, TraceCounters& work,
+                 double& t0, double& t1, bool& face) const;
   // first_hit for a sum of polynomial blobs (tracer_blobs.cpp), over [t0, t1] inside the box.
   // `face`: t0 is where the ray enters the box from outside (a solid there is the box's face).
   // `taken`: the first stretch's terms, already taken (few_blobs_shadow), in a buffer with room
