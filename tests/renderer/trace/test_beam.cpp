@@ -11,6 +11,7 @@
 #include <string>
 
 #include "mixed_blob_cloud.h"
+#include "nested_beams.h"
 #include "render/camera.h"
 #include "scene/traced_objects.h"
 #include "trace/tracer_limits.h"
@@ -20,29 +21,6 @@ namespace softtrace {
 namespace {
 
 using namespace tracer_scenes;
-
-// The frame's nesting of blob beams: a 16-pixel block's beam from no list, its four 8-pixel
-// blocks' from it, and their four 4-pixel blocks' from those. `visit(level, x4, y4)` sees each
-// 4-pixel block with the three levels' beams; it stops at the first fatal failure.
-template <class Visit>
-void for_each_nested_beam(const ObjectTracer& tr, const ViewCamera& camera, int w, int h,
-                          Visit&& visit) {
-  BlobBeam level[3];
-  for (int y = 0; y < h; y += 16)
-    for (int x = 0; x < w; x += 16) {
-      tr.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &level[0]);
-      for (int q = 0; q < 4; ++q) {
-        const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
-        tr.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &level[0], &level[1]);
-        for (int k = 0; k < 4; ++k) {
-          const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
-          tr.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &level[1], &level[2]);
-          visit(level, x4, y4);
-          if (testing::Test::HasFatalFailure()) return;
-        }
-      }
-    }
-}
 
 class Beams : public testing::TestWithParam<int> {};
 
@@ -163,7 +141,7 @@ TEST(BlobBeams, EveryRayOfABlockHitsWhereTheBvhWalkDoes) {
   double worst = 0;  // the largest |list.t - walk.t|, in tolerances
   for (const Vec3& eye : {Vec3{60, -80, 50}, Vec3{2, 3, 1}}) {
     const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 50}, kW, kH);
-    for_each_nested_beam(tr, camera, kW, kH, [&](const BlobBeam(&level)[3], int x4, int y4) {
+    test::for_each_nested_beam(tr, camera, kW, kH, [&](const BlobBeam(&level)[3], int x4, int y4) {
       ASSERT_TRUE(level[2].valid);
       listed += static_cast<int>(level[2].entries.size());
       nested += level[2].entries.size() < level[0].entries.size();
@@ -234,7 +212,7 @@ TEST(BlobBeams, AFewBlobsNormalFromTheListIsThePointQuerys) {
   int normals = 0, fewer = 0;
   for (const Vec3& eye : {Vec3{30, -40, 20}, Vec3{1, 2, 0.5}}) {
     const ViewCamera camera(Camera{eye, {0, 0, 0}, {0, 0, 1}, 60}, kW, kH);
-    for_each_nested_beam(tr, camera, kW, kH, [&](const BlobBeam(&level)[3], int x4, int y4) {
+    test::for_each_nested_beam(tr, camera, kW, kH, [&](const BlobBeam(&level)[3], int x4, int y4) {
       ASSERT_TRUE(level[2].valid);
       for (int py = y4; py < y4 + 4; ++py)
         for (int px = x4; px < x4 + 4; ++px) {

@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "nested_beams.h"
 #include "render/camera.h"
 #include "same_march.h"
 #include "scene/traced_objects.h"
@@ -57,45 +58,36 @@ TEST(BlobSiftedSweep, AddersFirstAnswerAsTheWholeSweep) {
   std::mt19937_64 rng(30);
   std::uniform_real_distribution<double> u(0, 1);
   int rays = 0, hits = 0, sifted = 0, rim = 0;
-  BlobBeam lists[3];
-  for (int y = 0; y < kH; y += 16)
-    for (int x = 0; x < kW; x += 16) {
-      tracer.blob_beam(camera.frustum(x, y, x + 16, y + 16), nullptr, &lists[0]);
-      for (int q = 0; q < 4; ++q) {
-        const int x8 = x + (q & 1) * 8, y8 = y + (q >> 1) * 8;
-        tracer.blob_beam(camera.frustum(x8, y8, x8 + 8, y8 + 8), &lists[0], &lists[1]);
-        for (int k = 0; k < 4; ++k) {
-          const int x4 = x8 + (k & 1) * 4, y4 = y8 + (k >> 1) * 4;
-          tracer.blob_beam(camera.frustum(x4, y4, x4 + 4, y4 + 4), &lists[1], &lists[2]);
-          const BlobBeam& list = lists[2];
-          // The adders are the entries of the one positive ball, in order.
-          int expected = 0;
-          for (size_t i = 0; i < list.entries.size(); ++i)
-            if (sum->adds(list.entries[i].id)) {
-              ASSERT_LT(expected, static_cast<int>(list.adders.size()));
-              EXPECT_EQ(list.adders[expected++], static_cast<int32_t>(i));
-            }
-          EXPECT_EQ(expected, static_cast<int>(list.adders.size()));
-          EXPECT_EQ(list.sifted, expected < static_cast<int>(list.entries.size()));
-          sifted += list.sifted;
-          BlobBeam whole = list;
-          whole.sifted = false;
-          for (int py = y4; py < y4 + 4; ++py)
-            for (int px = x4; px < x4 + 4; ++px) {
-              const Ray ray = camera.generate(px + u(rng), py + u(rng));
-              TraceCounters ws, ww;
-              const MarchResult hs = tracer.first_hit(ray, 0, 1e3, ws, Query::Nearest, 0, &list);
-              const MarchResult hw = tracer.first_hit(ray, 0, 1e3, ww, Query::Nearest, 0, &whole);
-              ++rays;
-              hits += hw.hit;
-              // Through the big ball's support (radius 2.2) but beside its surface (1.556).
-              const double miss_by = length(cross(ray.d, ray.o)) / length(ray.d);
-              rim += !hw.hit && miss_by > 1.6 && miss_by < 2.1;
-              ASSERT_TRUE(test::same_march(hs, ws, hw, ww)) << "ray " << rays;
-            }
-        }
-      }
-    }
+  test::for_each_nested_beam(
+      tracer, camera, kW, kH, [&](const BlobBeam(&lists)[3], int x4, int y4) {
+        const BlobBeam& list = lists[2];
+        // The adders are the entries of the one positive ball, in order.
+        int expected = 0;
+        for (size_t i = 0; i < list.entries.size(); ++i)
+          if (sum->adds(list.entries[i].id)) {
+            ASSERT_LT(expected, static_cast<int>(list.adders.size()));
+            EXPECT_EQ(list.adders[expected++], static_cast<int32_t>(i));
+          }
+        EXPECT_EQ(expected, static_cast<int>(list.adders.size()));
+        EXPECT_EQ(list.sifted, expected < static_cast<int>(list.entries.size()));
+        sifted += list.sifted;
+        BlobBeam whole = list;
+        whole.sifted = false;
+        for (int py = y4; py < y4 + 4; ++py)
+          for (int px = x4; px < x4 + 4; ++px) {
+            const Ray ray = camera.generate(px + u(rng), py + u(rng));
+            TraceCounters ws, ww;
+            const MarchResult hs = tracer.first_hit(ray, 0, 1e3, ws, Query::Nearest, 0, &list);
+            const MarchResult hw = tracer.first_hit(ray, 0, 1e3, ww, Query::Nearest, 0, &whole);
+            ++rays;
+            hits += hw.hit;
+            // Through the big ball's support (radius 2.2) but beside its surface (1.556).
+            const double miss_by = length(cross(ray.d, ray.o)) / length(ray.d);
+            rim += !hw.hit && miss_by > 1.6 && miss_by < 2.1;
+            ASSERT_TRUE(test::same_march(hs, ws, hw, ww)) << "ray " << rays;
+          }
+      });
+  if (HasFatalFailure()) return;
   // Hits through dimples and beside them, misses through the rim, and sifted lists among them.
   EXPECT_GT(hits, rays / 8);
   EXPECT_LT(hits, rays - rays / 8);
