@@ -3,8 +3,8 @@
 #   tools/dev.sh demo   install what is missing, build, render the default scene to out/
 #   tools/dev.sh test   install what is missing, build, run the whole test suite (CTest), then
 #                       the same tests built with AddressSanitizer+UBSan (build-asan/) and the
-#                       fuzzers (build-fuzz/): the scene loader for FUZZ_SECONDS (default 60),
-#                       merge's tile headers and diff's image readers for half of it each
+#                       fuzzers (build-fuzz/): the scene loader for FUZZ_SECONDS (default 60) and,
+#                       beside it, merge's tile headers then diff's image readers for half of it each
 #   tools/dev.sh build  install what is missing and build
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -52,11 +52,11 @@ sanitize() {
 # libFuzzer, three targets: the scene loader and field evaluation (tests/fuzz/fuzz_scene.cpp) for
 # FUZZ_SECONDS, seeded from scenes/ and tests/bad_scenes/, with a dictionary of every kind and
 # parameter name (`softtrace nodes --dict`, from the one list of kinds) plus
-# tests/fuzz/fuzz_scene.dict; then merge's tile headers (tests/fuzz/fuzz_merge_tiles.cpp) and diff's image
-# readers (tests/fuzz/fuzz_diff_images.cpp) for half of FUZZ_SECONDS each, seeded with small EXR
-# tiles and PNGs the plain build renders (and reference_images/ for diff). A crash leaves its
-# input in build-fuzz/crash-*; make it a test (a tests/bad_scenes/ file, a tile or image case)
-# or fix the reader before going on.
+# tests/fuzz/fuzz_scene.dict; beside it, merge's tile headers (tests/fuzz/fuzz_merge_tiles.cpp)
+# then diff's image readers (tests/fuzz/fuzz_diff_images.cpp) for half of FUZZ_SECONDS each,
+# seeded with small EXR tiles and PNGs the plain build renders (and reference_images/ for diff).
+# A crash leaves its input in build-fuzz/crash-*; make it a test (a tests/bad_scenes/ file, a tile
+# or image case) or fix the reader before going on.
 run_fuzzer() {  # NAME SECONDS MAX_LEN [libFuzzer options and corpus folders...]
   local name=$1 seconds=$2 max_len=$3
   shift 3
@@ -89,12 +89,18 @@ fuzz() {
   "$BUILD_DIR/softtrace" nodes --dict >build-fuzz/scene.dict
   cat tests/fuzz/fuzz_scene.dict >>build-fuzz/scene.dict
   fuzz_seeds
-  local seconds=${FUZZ_SECONDS:-60}
+  local seconds=${FUZZ_SECONDS:-60} failed=0 scene_fuzzer
+  # A fuzzer is one process on one CPU: the scene loader's runs beside the other two, which run
+  # one after the other, so that each has a CPU of its own for all its seconds.
   run_fuzzer fuzz_scene "$seconds" 16384 -dict=build-fuzz/scene.dict \
-    build-fuzz/corpus scenes tests/bad_scenes
-  run_fuzzer fuzz_merge_tiles $((seconds / 2)) 65536 build-fuzz/corpus-merge build-fuzz/image-seeds
+    build-fuzz/corpus scenes tests/bad_scenes &
+  scene_fuzzer=$!
+  run_fuzzer fuzz_merge_tiles $((seconds / 2)) 65536 build-fuzz/corpus-merge build-fuzz/image-seeds ||
+    failed=1
   run_fuzzer fuzz_diff_images $((seconds / 2)) 65536 build-fuzz/corpus-diff build-fuzz/image-seeds \
-    reference_images
+    reference_images || failed=1
+  wait "$scene_fuzzer" || failed=1
+  return "$failed"
 }
 
 case "${1:-}" in
