@@ -7,8 +7,6 @@
 
 #include <cmath>
 
-#include "math/int_power.h"
-
 namespace softtrace {
 
 // [1, 4): a polynomial in the mantissa's place in [1, 2) (a Chebyshev interpolant of degree 8 of
@@ -20,18 +18,19 @@ inline double root_20(double s) {
   const bool upper = s >= 2;
   const double m = upper ? s * 0.5 : s;  // exact
   const double u = (m - 1.5) * 2;        // in [-1, 1), exact
-  double r = -0x1.190bfc271c71cp-20;
-  r = r * u + 0x1.e25ddcc8e38e3p-19;
-  r = r * u - 0x1.576a1a9800000p-17;
-  r = r * u + 0x1.38931c50ce38ep-15;
-  r = r * u - 0x1.2ce5e00c8aaaap-13;
-  r = r * u + 0x1.31fb3d1346aaap-11;
-  r = r * u - 0x1.60f7c0a6cee39p-9;
-  r = r * u + 0x1.16a8afff73ecbp-6;
-  r = r * u + 0x1.053e2ff624368p+0;
+  // Estrin's order, not Horner's: the root sits on its callers' critical path, and pairs of
+  // terms then wait on u^2, u^4 and u^8 (about 7 multiplications deep rather than 16).
+  const double u2 = u * u, u4 = u2 * u2, u8 = u4 * u4;
+  const double c01 = 0x1.053e2ff624368p+0 + 0x1.16a8afff73ecbp-6 * u;
+  const double c23 = -0x1.60f7c0a6cee39p-9 + 0x1.31fb3d1346aaap-11 * u;
+  const double c45 = -0x1.2ce5e00c8aaaap-13 + 0x1.38931c50ce38ep-15 * u;
+  const double c67 = -0x1.576a1a9800000p-17 + 0x1.e25ddcc8e38e3p-19 * u;
+  double r = (c01 + c23 * u2) + (c45 + c67 * u2) * u4 - 0x1.190bfc271c71cp-20 * u8;
   if (upper) r *= 0x1.09071f3e983adp+0;  // 2^(1/20)
-  const double r19 = pow_by_squaring<19>(r);
-  return r - (r19 * r - s) / (20 * r19);
+  // r^19 and r^20 from r^4 and r^16 side by side, not r^20 as r^19 r.
+  const double r2 = r * r, r4 = r2 * r2, r8 = r4 * r4, r16 = r8 * r8;
+  const double r19 = r2 * r * r16, r20 = r4 * r16;
+  return r - (r20 - s) / (20 * r19);
 }
 
 }  // namespace softtrace
