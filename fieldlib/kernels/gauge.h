@@ -5,18 +5,23 @@
 #include <cmath>
 
 #include "math/interval.h"
+#include "math/root_20.h"
 
 namespace softtrace {
 
 // s^(1/n) for s >= 0, a power sum's root: n = 1 none, n = 2, 4, 8 or 16 by one to four square
 // roots (each correctly rounded, so within an ulp all told, as std::pow; the papers' bars and
-// cylinders take n = 4 and 8), other n by std::pow.
+// cylinders take n = 4 and 8), n = 20 (their cubes and bars) by root_20, other n by std::pow.
 inline double power_root(double s, double n) {
   if (n == 2) return std::sqrt(s);
   if (n == 1) return s;
+  if (n == 20) return root_20(s);
   if (n == 4) return std::sqrt(std::sqrt(s));
   if (n == 8) return std::sqrt(std::sqrt(std::sqrt(s)));
   if (n == 16) return std::sqrt(std::sqrt(std::sqrt(std::sqrt(s))));
+  // A sum relative to its largest term is exactly 1 wherever the others' powers fall below half
+  // an ulp of it (n = 20: every other term under 0.16 of the largest), and pow(1, y) is 1.
+  if (s == 1) return 1;
   return std::pow(s, 1 / n);
 }
 

@@ -333,9 +333,11 @@ inline M2 overlaps_half(const BoxBvh::Node& n, const QueryBox& q, int h) {
          (load(n.lo[1] + 2 * h) <= q.hi[1]) & (load(n.hi[1] + 2 * h) >= q.lo[1]) &
          (load(n.lo[2] + 2 * h) <= q.hi[2]) & (load(n.hi[2] + 2 * h) >= q.lo[2]);
 }
-// Bit c set where slot c's box overlaps q.
+// Bit c set where slot c's box overlaps q. A node or block of at most two slots (a blend of two
+// soft objects is one such block) leaves the second pair untested: the callers mask it off.
 inline int overlaps(const BoxBvh::Node& n, const QueryBox& q) {
-  return bits(overlaps_half(n, q, 0), overlaps_half(n, q, 1));
+  const M2 none{};
+  return bits(overlaps_half(n, q, 0), n.size > 2 ? overlaps_half(n, q, 1) : none);
 }
 
 // The slab test of the segment a + s (b - a), s in [0, 1], against boxes grown by pad, with the
@@ -352,10 +354,11 @@ class SegmentTest {
       inv_[i] = flat_[i] ? 0 : 1 / (b[i] - a[i]);
     }
   }
-  // Bit c set where the segment meets slot c's box.
+  // Bit c set where the segment meets slot c's box (the second pair untested where the node has
+  // at most two slots, as overlaps()).
   int meets(const BoxBvh::Node& n) const {
-    M2 hit[2];
-    for (int h = 0; h < 2; ++h) {
+    M2 hit[2] = {};
+    for (int h = 0; h < (n.size > 2 ? 2 : 1); ++h) {
       V2 s0 = {0, 0}, s1 = {1, 1};
       M2 inside = {-1, -1};
       for (int i = 0; i < 3; ++i) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "kernels/gauge.h"
 
@@ -53,6 +54,29 @@ TEST(PowerRoot, SquareRootsAreWithinAnUlp) {
   }
   EXPECT_EQ(power_root(0, 8), 0);
   EXPECT_EQ(power_root(1, 16), 1);
+}
+
+// The cubes' and bars' root (n = 20) by root_20 over [1, 4), the sums of up to four terms: within
+// an ulp of the long double root (a faithful rounding) across the range and at its joins, and
+// std::pow's bits outside it.
+TEST(PowerRoot, TwentiethIsWithinAnUlp) {
+  std::mt19937_64 rng(36);
+  std::uniform_real_distribution<double> u(1, 4);
+  std::vector<double> s_values = {1, std::nextafter(1.0, 2), std::nextafter(2.0, 1), 2, 1.5,
+                                  3, std::nextafter(4.0, 1)};
+  for (int i = 0; i < 200000; ++i) s_values.push_back(u(rng));
+  double worst = 0;
+  for (const double s : s_values) {
+    const long double ref = std::pow(static_cast<long double>(s), 1 / 20.0L);
+    const double r = power_root(s, 20);
+    EXPECT_EQ(r, root_20(s));
+    worst = std::max(worst, static_cast<double>(std::abs(r - ref) / ref) / 0x1p-53);
+  }
+  EXPECT_LE(worst, 2) << worst << " half-ulps";
+  EXPECT_EQ(power_root(1, 20), 1);
+  for (const double s : {0.0, 0.5, 4.0, 1e300, HUGE_VAL})
+    EXPECT_EQ(root_20(s), std::pow(s, 0.05)) << "s = " << s;
+  EXPECT_TRUE(std::isnan(root_20(NAN)));
 }
 
 // The batch gives power_sum's bits lane by lane, zeros, infinities and NaN included.
