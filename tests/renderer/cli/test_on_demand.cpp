@@ -15,10 +15,11 @@
 namespace softtrace::test {
 namespace {
 
-// The libraries a render opened, as the loader names them, and its exit status.
+// The libraries a render by softtrace-core opened, as the loader names them, and its exit status
+// (the static softtrace has no loader, and hands EXR and Embree to softtrace-core).
 RunResult render_tracing_libraries(const std::string& scene, const std::string& output) {
   const std::string dir = temp_dir("on_demand");
-  return run_command("LD_DEBUG=files " + std::string(SOFTTRACE_BIN) + " render " +
+  return run_command("LD_DEBUG=files " + std::string(SOFTTRACE_CORE_BIN) + " render " +
                      source_path(scene) + " --width 16 --height 12 -q -o " + dir + "/" + output);
 }
 
