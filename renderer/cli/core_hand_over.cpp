@@ -61,10 +61,22 @@ sigset_t interrupts() {
 
 void hold_standard_error() {
   // Close-on-exec: softtrace-core gets standard error, not these.
-  const int held = ::memfd_create("softtrace-stderr", MFD_CLOEXEC);
+  int held = ::memfd_create("softtrace-stderr", MFD_CLOEXEC);
   // Without it (a kernel before 3.17, no descriptor left) the program prints as it goes, and a
   // hand-over after a warning would show that warning twice.
   if (held < 0) return;
+  // Standard error closed (the file took its number): writes to it fail as they would have.
+  if (held == STDERR_FILENO) {
+    ::close(held);
+    return;
+  }
+  // Standard input or output closed: the file moves above them, which stay closed.
+  if (held < STDERR_FILENO) {
+    const int moved = ::fcntl(held, F_DUPFD_CLOEXEC, STDERR_FILENO + 1);
+    ::close(held);
+    if (moved < 0) return;
+    held = moved;
+  }
   const int saved = ::fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 3);
   if (saved < 0 || ::dup2(held, STDERR_FILENO) < 0) {
     if (saved >= 0) ::close(saved);
