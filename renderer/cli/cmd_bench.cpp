@@ -11,6 +11,7 @@
 
 #include "cli/cmd_common.h"
 #include "cli/commands.h"
+#include "cli/core_hand_over.h"
 #include "commit.h"
 #include "render/camera.h"
 #include "render/frame.h"
@@ -64,6 +65,7 @@ int run_bench(const BenchArgs& a) {
     const auto limit = limit_threads(a.threads);
     const int threads = a.threads ? a.threads : default_threads();
     const TracedScene rt(scene, a.lipschitz);
+    release_standard_error();  // nothing from here on needs softtrace-core (core_hand_over.h)
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     std::vector<FrameTime> frames;

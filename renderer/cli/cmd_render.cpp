@@ -15,6 +15,7 @@
 
 #include "cli/cmd_common.h"
 #include "cli/commands.h"
+#include "cli/core_hand_over.h"
 #include "cli/exr_on_demand.h"
 #include "cli/option_checks.h"
 #include "cli/signals.h"
@@ -179,6 +180,9 @@ int run_render(const RenderArgs& a) {
       else
         made.emplace(window.width(), window.height(), aovs);
     });
+    // Nothing from here on needs softtrace-core: what the static program held is printed now,
+    // before the progress bar asks whether standard error is a terminal.
+    release_standard_error();
     const TracedScene& rt = *traced;
     Film& film = *made;
     int loading = kLoading;

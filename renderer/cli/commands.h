@@ -92,4 +92,8 @@ int run_nodes(bool dict);
 // "softtrace: <message>" on stderr, one line.
 void report_error(const std::string& message);
 
+// The whole command line: parses argv, runs the command, returns the exit status
+// (command_line.cpp).
+int run_command_line(int argc, char** argv);
+
 }  // namespace softtrace

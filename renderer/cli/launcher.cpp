@@ -1,12 +1,9 @@
-// `softtrace`: blocks SIGINT and SIGTERM, then runs the renderer proper, `softtrace-core` in the
-// same folder, with the same arguments. The renderer's shared libraries (the C library and its
-// maths library; OpenEXR and Embree, with the shared C++ runtime and TBB, are opened later, on
-// demand) load before its main() can block anything; a signal then would kill it without a word.
-// A signal mask survives exec, so a signal in that time waits for the renderer's handler
-// (signals.h). Plain libc and linked statically where the build allows: this program's own
-// start-up is the only unguarded moment. A static build normally never gets here:
-// launcher_entry.cpp does the same before the C library starts, and only what it did not expect
-// reaches main(), which then reports it.
+// `softtrace` where the build does not link statically (the sanitizer and fuzzer builds): blocks
+// SIGINT and SIGTERM, then runs the renderer proper, `softtrace-core` in the same folder, with the
+// same arguments. The renderer's shared libraries load before its main() can block anything; a
+// signal then would kill it without a word. A signal mask survives exec, so a signal in that time
+// waits for the renderer's handler (signals.h). Elsewhere `softtrace` is the static program
+// (static_main.cpp), which serves the common render itself.
 #include <unistd.h>
 
 #include <cerrno>

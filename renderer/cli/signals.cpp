@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstring>
 
+#include "cli/core_hand_over.h"
 #include "film/film.h"
 
 namespace softtrace {
@@ -43,6 +44,7 @@ void watch_interrupts(void (*on_interrupt)(int sig)) {
 }
 
 void report_from_handler(const char* line) {
+  release_standard_error();  // what the static program held comes first (core_hand_over.h)
   // Standard error may be a pipe that takes part of it: the rest follows.
   for (size_t left = std::strlen(line); left > 0;) {
     const ssize_t n = ::write(STDERR_FILENO, line, left);

@@ -25,7 +25,7 @@ void unblock_interrupts();
 void watch_interrupts(void (*on_interrupt)(int sig));
 
 // Writes `line` (a constant message with its newline) to standard error as one write(2): the
-// way a handler reports, where stdio is not safe.
+// way a handler reports, where stdio is not safe. Held lines (core_hand_over.h) come first.
 void report_from_handler(const char* line);
 
 // For commands that write nothing but their temporary files: removes those, then

@@ -39,9 +39,9 @@ MAY_INCLUDE = {
 # Third-party headers and the only places that may include them.
 EXTERNAL = [
     # The adapter and the device that turns Embree's errors into ours; the command line's
-    # forwarders that open Embree at its first call.
+    # forwarders that open Embree at its first call, and the static program's that hand over.
     (re.compile(r"^embree3/"), ["renderer/trace/embree_scene.cpp", "renderer/trace/embree_device.",
-                                "renderer/cli/embree_on_demand.cpp"]),
+                                "renderer/cli/embree_on_demand.cpp", "renderer/cli/embree_in_core.cpp"]),
     # None: the frame's threads are the renderer's own (render/threads.h); only libembree3 uses
     # TBB, inside itself.
     (re.compile(r"^tbb/"), []),

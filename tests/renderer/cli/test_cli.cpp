@@ -88,8 +88,8 @@ TEST(Usage, HelpAndBadOptions) {
             2);
 }
 
-// `--version` alone takes a short path past the parser (main.cpp); with more words the whole
-// parser answers. Both give the same one line on stdout, nothing on stderr, and exit 0.
+// `--version` alone takes a short path past the parser (command_line.cpp); with more words the
+// whole parser answers. Both give the same one line on stdout, nothing on stderr, and exit 0.
 TEST(Usage, VersionAloneIsTheParsersAnswer) {
   const RunResult alone = run_softtrace("--version");
   const RunResult parsed = run_softtrace("--version --version");

@@ -147,6 +147,44 @@ TEST_P(Signal, WhileASceneLoadsExitsAtOnce) {
   EXPECT_EQ(read_file(err), "softtrace: interrupted; no image written\n");
 }
 
+// softtrace renders a PNG of one field in its own process, holding standard error until the
+// tracers are built (cli/core_hand_over.h): a signal while it loads or renders prints what was
+// held (here the load's warning) before its line. The signal is sent once the warning is written,
+// to the held file or to standard error (/proc/PID/fd/2 is either).
+TEST_P(Signal, AfterTheLoadsWarningPrintsItThenItsLine) {
+  const int sig = GetParam();
+  const std::string dir = temp_dir("signal_warning_" + std::to_string(sig));
+  const std::string scene = dir + "/../warning_" + std::to_string(sig) + ".json";
+  {
+    std::ofstream f(scene);
+    // A child whose radius modulation fails its side condition near the skeleton (a warning),
+    // then 9,999 overlapping balls (the most a blend takes with it): seconds of work at 64x64.
+    f << R"({"camera":{"eye":[0,-60,0],"target":[0,0,0],"up":[0,0,1]},)"
+      << R"("image":{"width":64,"height":64,"spp":1},"objects":[{"field":)"
+      << R"({"type":"soft_blend","children":[{"type":"soft_object","distance":)"
+      << R"({"type":"lp_metric","radii":[4,4,4],"n":2},"radii":{"type":"T_an","modulation":)"
+      << R"({"type":"lp_metric","radii":[8,8,8],"n":2,"translate":[0.5,0,0]}}})";
+    for (int i = 0; i < 9999; ++i)
+      f << R"(,{"type":"soft_object","translate":[)" << (i % 10) - 4.5 << "," << (i / 10 % 10) - 4.5
+        << "," << (i / 100 % 10) * 0.1
+        << R"(],"distance":{"type":"lp_metric","radii":[10,10,10],"n":2}})";
+    f << "]}}]}";
+  }
+  const std::string err = dir + "/../stderr_warning_" + std::to_string(sig);
+  const pid_t pid = spawn({"render", scene, "-o", dir + "/image.png", "--quiet"}, err);
+  const std::string held = "/proc/" + std::to_string(pid) + "/fd/2";
+  ASSERT_TRUE(wait_until([&] { return catches(pid, sig) && !read_file(held).empty(); }));
+  ASSERT_EQ(::kill(pid, sig), 0);
+  EXPECT_EQ(wait_status(pid), 128 + sig);
+  EXPECT_TRUE(fs::is_empty(dir));
+  const std::string text = read_file(err);
+  EXPECT_EQ(text.rfind("softtrace: warning: " + scene + ": /objects/0/field/children/0/", 0), 0u)
+      << text;
+  const std::string last = "\nsofttrace: interrupted; no image written\n";
+  EXPECT_TRUE(text.size() > last.size() && text.substr(text.size() - last.size()) == last) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << text;
+}
+
 // Other commands stop at once too, with the status and one line: here `eval` waiting to open
 // a FIFO that nobody writes.
 TEST_P(Signal, StopsEval) {

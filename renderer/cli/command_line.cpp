@@ -1,4 +1,5 @@
-// softtrace: render, evaluate, compare and benchmark implicit soft-object scenes.
+// softtrace's command line: render, evaluate, compare and benchmark implicit soft-object scenes.
+// Both programs run it: softtrace-core (core_main.cpp) and the static softtrace (static_main.cpp).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -248,7 +249,7 @@ CommandLine::CommandLine(const std::string& only) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int softtrace::run_command_line(int argc, char** argv) {
   // `softtrace --version` alone prints the whole parser's line without the parser: setting up
   // every command's options and CLI11's CallForVersion exception took 1.2 M of such a run's 4.0 M
   // instructions. Like the parser's answer, it exits 0 whatever the write gave. Anything else with
