@@ -259,7 +259,7 @@ int softtrace::run_command_line(int argc, char** argv) {
     std::fputc('\n', stdout);
     return 0;
   }
-  block_interrupts();  // before anything that takes time (launcher.cpp blocked them even sooner)
+  block_interrupts();  // before anything that takes time (softtrace blocked them even sooner)
   // Before the scene fills the heap: 12 MiB covers a 3000-component scene (7.1 MB at the load's
   // peak, its JSON document's 4.5 MB of it kept with the scene until exit, so that what the
   // compile and the tracers take comes on top).

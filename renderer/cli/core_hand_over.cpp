@@ -49,14 +49,6 @@ void end_hold(bool keep) {
   g_held = g_stderr = -1;
 }
 
-sigset_t interrupts() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  return set;
-}
-
 }  // namespace
 
 void hold_standard_error() {
@@ -88,7 +80,7 @@ void hold_standard_error() {
 }
 
 void release_standard_error() {
-  const sigset_t set = interrupts();
+  const sigset_t set = interrupt_signals();
   sigset_t old;
   pthread_sigmask(SIG_BLOCK, &set, &old);
   end_hold(/*keep=*/true);

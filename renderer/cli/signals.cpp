@@ -11,9 +11,7 @@
 
 namespace softtrace {
 
-namespace {
-
-sigset_t interrupts() {
+sigset_t interrupt_signals() {
   sigset_t set;
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
@@ -21,23 +19,21 @@ sigset_t interrupts() {
   return set;
 }
 
-}  // namespace
-
 void block_interrupts() {
-  const sigset_t set = interrupts();
+  const sigset_t set = interrupt_signals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
 }
 
 void unblock_interrupts() {
-  const sigset_t set = interrupts();
+  const sigset_t set = interrupt_signals();
   pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
 }
 
 void watch_interrupts(void (*on_interrupt)(int sig)) {
   struct sigaction action {};
   action.sa_handler = on_interrupt;
-  action.sa_mask = interrupts();  // the other signal waits until this one's handler returns
-  action.sa_flags = SA_RESTART;   // a rename or fsync it interrupts (render's commit) goes on
+  action.sa_mask = interrupt_signals();  // the other signal waits until this one's handler returns
+  action.sa_flags = SA_RESTART;  // a rename or fsync it interrupts (render's commit) goes on
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   unblock_interrupts();

@@ -1,15 +1,22 @@
-// SIGINT and SIGTERM are blocked from the start: `softtrace` (launcher.cpp) blocks them before
-// the renderer's shared libraries load, and main() blocks them again before anything else (for a
-// renderer started directly). Once the command line is parsed, main() gives them a handler and
-// opens its own thread to them. The handler runs on the thread it interrupts, so what it does must
-// be safe there: atomics, write(2), unlink and _exit, and the pending files' lock, which no thread
-// holds with the signals open (io/output_file.cpp). A watcher thread waiting in sigwait did this
+// SIGINT and SIGTERM are blocked from the start: the static `softtrace` blocks them by plain
+// system calls before its C library starts (launcher_entry.cpp) and keeps them blocked across an
+// exec of softtrace-core; sanitizer builds' launcher.cpp does the same before the renderer's shared
+// libraries load, and the command line blocks them again before anything else (for
+// softtrace-core started directly). Once the command line is parsed, it gives them a handler.
+// The handler runs on the thread it interrupts, so what it does must be safe there: atomics,
+// write(2), unlink and _exit, and the pending files' lock, which no thread holds with the signals
+// open (io/output_file.cpp). A watcher thread waiting in sigwait did this
 // as ordinary code, but its start, stack and end cost every process about half a millisecond of
 // CPU. `render`'s frame workers keep them blocked (cmd_render.cpp): the handler runs on the main
 // thread, and the processes measured faster so.
 #pragma once
 
+#include <csignal>
+
 namespace softtrace {
+
+// The set {SIGINT, SIGTERM}.
+sigset_t interrupt_signals();
 
 // Blocks SIGINT and SIGTERM in the calling thread. First thing in main(), before any thread
 // exists, so that threads libraries start inherit the mask.
