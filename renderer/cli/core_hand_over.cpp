@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "cli/core_path.h"
 #include "cli/signals.h"
 
 namespace softtrace {
@@ -91,19 +92,11 @@ void hand_over_to_core(char** argv) {
   block_interrupts();
   std::fflush(stdout);  // nothing is written there before the decision; kept honest anyway
   char path[PATH_MAX];
-  const ssize_t n = ::readlink("/proc/self/exe", path, sizeof path - 1);
-  static const char kCore[] = "softtrace-core";
-  char* slash = nullptr;
-  if (n > 0) {
-    path[n] = '\0';
-    slash = std::strrchr(path, '/');
-  }
-  if (!slash || (slash - path) + 1 + sizeof kCore > sizeof path) {
+  if (!core_path(path, sizeof path)) {
     end_hold(/*keep=*/true);
     std::fprintf(stderr, "softtrace: cannot find the folder of this program\n");
     ::_exit(2);
   }
-  std::memcpy(slash + 1, kCore, sizeof kCore);
   // softtrace-core gets standard error back and prints again what was held; the memory file
   // closes with the exec, and stays for the error below if the exec fails.
   if (g_held >= 0) ::dup2(g_stderr, STDERR_FILENO);

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "cli/core_path.h"
+
 int main(int, char** argv) {
   sigset_t set;
   sigemptyset(&set);
@@ -20,14 +22,10 @@ int main(int, char** argv) {
   sigprocmask(SIG_BLOCK, &set, nullptr);
 
   char path[PATH_MAX];
-  const ssize_t n = ::readlink("/proc/self/exe", path, sizeof path);
-  char* slash = n > 0 && n < static_cast<ssize_t>(sizeof path) ? std::strrchr(path, '/') : nullptr;
-  static const char kCore[] = "softtrace-core";
-  if (!slash || (slash - path) + 1 + sizeof kCore > sizeof path) {
+  if (!softtrace::core_path(path, sizeof path)) {
     std::fprintf(stderr, "softtrace: cannot find the folder of this program\n");
     return 2;
   }
-  std::memcpy(slash + 1, kCore, sizeof kCore);
   ::execv(path, argv);
   std::fprintf(stderr, "softtrace: cannot run %s: %s\n", path, std::strerror(errno));
   return 2;
