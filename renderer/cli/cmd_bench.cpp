@@ -60,6 +60,7 @@ void print_work(const char* kind, const RayWork& w) {
 int run_bench(const BenchArgs& a) {
   try {
     Scene scene = load_scene(a.scene);
+    hand_over_embree_scene(scene);  // the static program's, before the compile (core_hand_over.h)
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     apply_camera_options(scene, a.view);
     const auto limit = limit_threads(a.threads);

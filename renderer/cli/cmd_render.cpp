@@ -132,6 +132,7 @@ int run_render(const RenderArgs& a) {
     start_threads();
     unblock_interrupts();
     Scene scene = load_scene(a.scene);
+    hand_over_embree_scene(scene);  // the static program's, before the checks and the compile
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
     if (a.antialias) scene.image.antialias.threshold = *a.antialias;

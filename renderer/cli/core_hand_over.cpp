@@ -12,6 +12,8 @@
 
 #include "cli/core_path.h"
 #include "cli/signals.h"
+#include "scene/scene.h"
+#include "trace/direct_paths.h"
 
 namespace softtrace {
 
@@ -21,6 +23,8 @@ namespace {
 // when nothing is held. Plain ints: the handler reads them on the thread they are written on.
 int g_held = -1;
 int g_stderr = -1;
+// The static program's arguments, softtrace-core's; null in softtrace-core.
+char** g_argv = nullptr;
 
 void write_all(int fd, const char* data, size_t size) {
   while (size > 0) {
@@ -52,7 +56,8 @@ void end_hold(bool keep) {
 
 }  // namespace
 
-void hold_standard_error() {
+void hold_standard_error(char** argv) {
+  g_argv = argv;
   // Close-on-exec: softtrace-core gets standard error, not these.
   int held = ::memfd_create("softtrace-stderr", MFD_CLOEXEC);
   // Without it (a kernel before 3.17, no descriptor left) the program prints as it goes, and a
@@ -88,7 +93,7 @@ void release_standard_error() {
   pthread_sigmask(SIG_SETMASK, &old, nullptr);
 }
 
-void hand_over_to_core(char** argv) {
+void hand_over_to_core() {
   block_interrupts();
   std::fflush(stdout);  // nothing is written there before the decision; kept honest anyway
   char path[PATH_MAX];
@@ -100,12 +105,28 @@ void hand_over_to_core(char** argv) {
   // softtrace-core gets standard error back and prints again what was held; the memory file
   // closes with the exec, and stays for the error below if the exec fails.
   if (g_held >= 0) ::dup2(g_stderr, STDERR_FILENO);
-  ::execv(path, argv);
+  ::execv(path, g_argv);
   const int error = errno;
   end_hold(/*keep=*/true);
   std::fprintf(stderr, "softtrace: EXR and Embree need %s: cannot run it: %s\n", path,
                std::strerror(error));
   ::_exit(2);
+}
+
+void hand_over_embree_scene(const Scene& scene) {
+  if (!g_argv) return;
+  // The kinds as traced_objects() makes them: a field object's tracer, a shape's primitive, and
+  // a CSG's or a mesh's own geometry.
+  ObjectKinds kinds;
+  for (const SceneObject& o : scene.objects) {
+    if (o.field)
+      ++kinds.fields;
+    else if (o.shape)
+      ++kinds.primitives;
+    else
+      ++kinds.others;
+  }
+  if (needs_embree_device(kinds, scene.transparent)) hand_over_to_core();
 }
 
 }  // namespace softtrace

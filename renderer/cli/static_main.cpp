@@ -11,12 +11,12 @@
 int main(int argc, char** argv) {
   using namespace softtrace;
   block_interrupts();  // already blocked by the entry; here for a start that skipped it
-  hold_standard_error();
+  hold_standard_error(argv);
   try {
     const int status = run_command_line(argc, argv);
     release_standard_error();
     return status;
   } catch (const NeedsCore&) {
-    hand_over_to_core(argv);
+    hand_over_to_core();
   }
 }

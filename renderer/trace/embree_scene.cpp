@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "trace/csg_trace.h"
+#include "trace/direct_paths.h"
 #include "trace/embree_device.h"
 #include "trace/mesh_hit.h"
 #include "trace/primitive_trace.h"
@@ -13,10 +14,6 @@
 namespace softtrace {
 
 namespace {
-
-// At most this many primitives beside one field are asked directly (EmbreeScene::Impl): each
-// costs its exact test on every ray, where Embree's boxes would cull the bounded ones.
-constexpr size_t kDirectPrimitives = 4;
 
 // Extends Embree's context with what our callbacks report back; Embree passes the pointer to
 // the callbacks unchanged, so the context must be the first member.
@@ -305,23 +302,25 @@ struct EmbreeScene::Impl {
 };
 
 EmbreeScene::EmbreeScene(const SceneTracers& tracers, bool interiors) {
-  // The direct paths (Impl): one field, alone or with at most kDirectPrimitives primitives.
-  int fields = 0, others = 0, field = -1;
+  // The direct paths (Impl): their rule is direct_paths.h's.
+  ObjectKinds kinds;
+  int field = -1;
   std::vector<int> primitives;
   for (int i = 0; i < tracers.size(); ++i) {
     const TracedObject& o = tracers.object(i);
     if (tracers.tracer(i) && !o.mesh) {
-      ++fields;
+      ++kinds.fields;
       field = i;
     } else if (o.shape && !o.mesh && !o.csg()) {
+      ++kinds.primitives;
       primitives.push_back(i);
     } else {
-      ++others;
+      ++kinds.others;
     }
   }
-  const bool direct = fields == 1 && others == 0 && primitives.size() <= kDirectPrimitives;
+  const bool direct = traced_directly(kinds);
   // Embree takes only the rays the direct paths leave: those that start inside a solid.
-  impl_ = std::make_unique<Impl>(!direct || interiors);
+  impl_ = std::make_unique<Impl>(needs_embree_device(kinds, interiors));
   impl_->lone_field = direct && primitives.empty();
   if (direct) {
     impl_->direct_field = field;

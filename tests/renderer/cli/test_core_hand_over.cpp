@@ -105,6 +105,53 @@ TEST(CoreHandOver, AnEmbreeSceneWithoutSofttraceCorePrintsTheLoadsWarningAndOneL
   EXPECT_FALSE(fs::exists(dir + "/image.png"));
 }
 
+// A scene whose tracers would ask for Embree, or one field beside a ball that is not: written to
+// `name`, with a transparent material on the field where `transparent` (its rays may then start
+// inside it, which only Embree takes).
+std::string write_field_scene(const std::string& dir, const std::string& name, bool two_fields,
+                              bool transparent) {
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << R"({"camera":{"eye":[0,-20,5],"target":[0,0,0]},"objects":[)"
+                      << R"({"field":{"type":"soft_object","distance":{"type":"lp_metric",)"
+                      << R"("radii":[4,4,4],"n":2}})"
+                      << (transparent ? R"(,"material":{"transmit":0.5})" : "") << "},"
+                      << (two_fields ? R"({"field":{"type":"soft_object","distance":)"
+                                       R"({"type":"lp_metric","radii":[1,1,1],"n":2,)"
+                                       R"("translate":[6,0,0]}}})"
+                                     : R"({"shape":{"type":"sphere","radius":1,)"
+                                       R"("center":[6,0,0]}})")
+                      << "]}";
+  return path;
+}
+
+// The static program hands a scene its tracers would send to Embree to softtrace-core right after
+// the load (trace/direct_paths.h), before the output's checks and the tracers: without
+// softtrace-core, an output in a missing folder gives the hand-over's line, where a scene the
+// direct paths trace gives the output's. (Handed over at rtcNewDevice, after the tracers, the
+// first would have named the folder too.)
+TEST(CoreHandOver, AnEmbreeSceneIsHandedOverBeforeTheOutputsChecks) {
+  if (!static_program()) GTEST_SKIP() << "softtrace is the launcher in this build";
+  const std::string dir = softtrace_alone("hand_over_early");
+  const std::string core_missing = "softtrace: EXR and Embree need " + dir +
+                                   "/softtrace-core: cannot run it: No such file or directory\n";
+  const std::string output = dir + "/missing/image.png";
+  const std::string folder_missing =
+      "softtrace: " + output + ": the folder '" + dir + "/missing' does not exist\n";
+  const auto run = [&](const std::string& scene) {
+    return run_command(dir + "/softtrace render " + scene + " --width 40 --height 30 -q -o " +
+                       output);
+  };
+  const RunResult two_fields = run(write_field_scene(dir, "two_fields.json", true, false));
+  EXPECT_EQ(two_fields.status, 2);
+  EXPECT_EQ(two_fields.err, core_missing);
+  const RunResult transparent = run(write_field_scene(dir, "transparent.json", false, true));
+  EXPECT_EQ(transparent.status, 2);
+  EXPECT_EQ(transparent.err, core_missing);
+  const RunResult direct = run(write_field_scene(dir, "direct.json", false, false));
+  EXPECT_EQ(direct.status, 2);
+  EXPECT_EQ(direct.err, folder_missing);
+}
+
 // Through softtrace-core, the same image and the same standard error as softtrace-core's own:
 // the warning the static program's load printed before it handed over is not repeated.
 TEST(CoreHandOver, AnEmbreeSceneRendersThroughSofttraceCoreWithItsBytesAndOneWarning) {
