@@ -1,9 +1,11 @@
 // The static softtrace's Embree: the rtc* functions the tracer calls (trace/embree_scene.cpp and
 // trace/embree_device.cpp). Embree is a shared library, which a static program cannot open, and a
 // scene the direct paths trace never asks for a device (EmbreeScene); one that does is handed to
-// softtrace-core (core_hand_over.h), which opens Embree on demand (embree_on_demand.cpp). Every
-// other function takes a device, or a scene or geometry made from one, so none can be called
-// here: each ends the process, the mark of a broken build rather than of a scene.
+// softtrace-core, which opens Embree on demand (embree_on_demand.cpp), right after its load, by
+// the rule EmbreeScene reads (core_hand_over.h, trace/direct_paths.h). rtcNewDevice hands over
+// too, should a scene pass that check. Every other function takes a device, or a scene or
+// geometry made from one, so none can be called here: each ends the process, the mark of a broken
+// build rather than of a scene.
 #include <embree3/rtcore.h>
 
 #include <cstdio>
