@@ -1,9 +1,9 @@
 // What the static `softtrace` cannot do itself and hands to `softtrace-core` beside it: EXR (read
 // and written through softtrace-exr.so) and Embree (libembree3), both shared libraries that a
 // static program cannot open (glibc's static dlopen cannot load the C++ libraries safely). The
-// need shows late: an EXR texture while the scene loads, Embree once the scene is loaded (its
-// objects' kinds, trace/direct_paths.h). Until the tracers are built the static program holds
-// what it writes to standard error, so that a hand-over drops it (softtrace-core prints the
+// need shows late: once the scene is loaded, Embree (its objects' kinds, trace/direct_paths.h)
+// and a default .exr output (cli/exr_in_core.cpp). Until the tracers are built the static program
+// holds what it writes to standard error, so that a hand-over drops it (softtrace-core prints the
 // load's warnings again) and nothing is printed twice; softtrace-core itself never holds nor
 // hands over, and these calls find nothing held and no arguments kept there.
 #pragma once
