@@ -27,13 +27,12 @@ constexpr int kTrimAbove = 32 << 20;
 constexpr size_t kHeader = 16;
 constexpr size_t kMinBlock = 32;
 
-}  // namespace
+// Set once heap_in_huge_pages has set the thresholds, which hold for every thread's arena.
+bool g_thresholds_set = false;
 
-HeapPages heap_in_huge_pages(size_t bytes) {
-  bytes = huge_page_ceil(bytes);
-  if (bytes == 0 || bytes > size_t(kFromHeapBelow) - kHugePage) return {};
-  if (!mallopt(M_MMAP_THRESHOLD, kFromHeapBelow) || !mallopt(M_TRIM_THRESHOLD, kTrimAbove))
-    return {};
+// The calling thread's heap's top grown by `bytes` (whole huge pages) past its next 2 MiB
+// boundary, the front up to the boundary kept in `front` for the process's life, the rest advised.
+HeapPages advise_top(size_t bytes, void*& front) {
   // A block this large comes from the top, which grows to hold it; freed, it is the top again.
   char* const block = static_cast<char*>(std::malloc(bytes + kHugePage));
   if (!block) return {};
@@ -42,7 +41,6 @@ HeapPages heap_in_huge_pages(size_t bytes) {
   std::free(block);
   // The front, from the top's start to the boundary, as one block kept for the process's life:
   // the next block then begins at the boundary.
-  static void* front = nullptr;
   if (aligned - start >= kMinBlock) {
     front = std::malloc(aligned - start - kHeader / 2);
     if (!front) return {};
@@ -51,9 +49,39 @@ HeapPages heap_in_huge_pages(size_t bytes) {
   return {aligned, aligned + bytes};
 }
 
+}  // namespace
+
+HeapPages heap_in_huge_pages(size_t bytes) {
+  bytes = huge_page_ceil(bytes);
+  if (bytes == 0 || bytes > size_t(kFromHeapBelow) - kHugePage) return {};
+  if (!mallopt(M_MMAP_THRESHOLD, kFromHeapBelow) || !mallopt(M_TRIM_THRESHOLD, kTrimAbove))
+    return {};
+  g_thresholds_set = true;
+  static void* front = nullptr;
+  return advise_top(bytes, front);
+}
+
+HeapPages thread_heap_in_huge_pages(size_t bytes) {
+  bytes = huge_page_ceil(bytes);
+  // Without the process's thresholds a freed top of the arena would be trimmed, its advice lost.
+  if (!g_thresholds_set || bytes == 0 || bytes > size_t(kFromHeapBelow) - kHugePage) return {};
+  thread_local void* front = nullptr;
+  const HeapPages range = advise_top(bytes, front);
+#if defined(MADV_POPULATE_WRITE)
+  // Advice only, as the huge pages are: a kernel without it faults the page at first touch.
+  if (range.end > range.begin)
+    ::madvise(reinterpret_cast<void*>(range.begin), kHugePage, MADV_POPULATE_WRITE);
+#endif
+  return range;
+}
+
 #else
 
 HeapPages heap_in_huge_pages(size_t) {
+  return {};
+}
+
+HeapPages thread_heap_in_huge_pages(size_t) {
   return {};
 }
 

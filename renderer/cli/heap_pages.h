@@ -24,4 +24,13 @@ struct HeapPages {
 // Once, at the program's start, before the work that fills the heap; `bytes` rounds up to 2 MiB.
 HeapPages heap_in_huge_pages(size_t bytes);
 
+// The same for the calling thread's own heap, on a worker thread at its start, after the
+// process's heap_in_huge_pages: glibc gives each thread that allocates a malloc arena of its own
+// (one arena shared by all made fig12b's frames contend for its lock, session 34), and each fresh
+// 4 KiB page of it cost a fault: meets1's worker touched 150 (its frame's scratch, its PNG bands'
+// deflate state), 1.6-2.0 ms of CPU on this guest, where a huge page is one fault of 0.15-0.3 ms.
+// The first huge page is also filled now (MADV_POPULATE_WRITE), while the caller loads the
+// scene, not at the frame's first tile.
+HeapPages thread_heap_in_huge_pages(size_t bytes);
+
 }  // namespace softtrace

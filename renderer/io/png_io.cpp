@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/adler32.h"
 #include "io/image_io.h"
 
 namespace softtrace {
@@ -150,7 +151,7 @@ constexpr size_t kIdatBytes = size_t(1) << 20;
 // A band of rows, filtered and deflated: a run of the image's zlib stream (raw deflate).
 struct DeflatedBand {
   std::vector<unsigned char> data;
-  uLong adler = 1;   // Adler-32 of the filtered bytes, for the stream's trailer
+  uLong adler = 1;   // Adler-32 of the filtered bytes, for the stream's trailer (adler32.h)
   uLong length = 0;  // filtered bytes
   bool ok = false;
 };
@@ -217,7 +218,7 @@ void deflate_band(const PngRow& row, int y0, int y1, size_t row_bytes, bool last
   const unsigned char* band = history + history_bytes;
   const size_t band_bytes = rows_bytes - history_bytes;
   out.length = uLong(band_bytes);
-  out.adler = adler32(adler32(0, nullptr, 0), band, uInt(band_bytes));
+  out.adler = adler32_of(1, band, band_bytes);
   if (!scratch.fresh_stream()) return;
   z_stream& z = scratch.z;
   const size_t window = std::min<size_t>(history_bytes, size_t(1) << 15);

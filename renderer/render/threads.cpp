@@ -106,8 +106,9 @@ class Pool {
     work_.notify_all();  // a larger cap lets more workers join the open loops
   }
 
-  void start(int workers) {
+  void start(int workers, void (*on_start)()) {
     const std::lock_guard<std::mutex> lock(mutex_);
+    if (on_start) on_start_ = on_start;
     spawn_locked(workers);
   }
 
@@ -151,7 +152,11 @@ class Pool {
   }
 
   void spawn_locked(int workers) {
-    for (; workers_ < workers; ++workers_) std::thread([this] { work(); }).detach();
+    for (; workers_ < workers; ++workers_)
+      std::thread([this, on_start = on_start_] {
+        if (on_start) on_start();
+        work();
+      }).detach();
   }
 
   void close_locked(Loop& loop) {
@@ -190,6 +195,7 @@ class Pool {
   std::vector<int> caps_;         // the caps held now (ThreadLimit), kept ones included
   int workers_ = 0;               // started
   int busy_ = 0;                  // in a loop now, over all loops (the cap counts these)
+  void (*on_start_)() = nullptr;  // what a new worker runs first (start_threads)
 };
 
 }  // namespace
@@ -222,9 +228,9 @@ ThreadLimit limit_threads(int threads) {
   return limit;
 }
 
-void start_threads() {
+void start_threads(void (*on_start)()) {
   Pool& pool = Pool::get();
-  pool.start(pool.threads_for(t_own_threads) - 1);
+  pool.start(pool.threads_for(t_own_threads) - 1, on_start);
 }
 
 #if defined(__x86_64__) || defined(__i386__)

@@ -45,7 +45,9 @@ ThreadLimit limit_threads(int threads);
 // Starts the worker threads the loops will want (the cap's or the cores' count less the caller),
 // without waiting for them: they start beside what the caller does before its first loop (the
 // scene's load, the tracers' build), not at the frame's first tile. Started threads are kept.
-void start_threads();
+// `on_start`, where given, runs first on each worker started from then on (the command line's:
+// the worker's heap filled while the caller loads the scene).
+void start_threads(void (*on_start)() = nullptr);
 
 // A floating-point mode (x86's MXCSR; elsewhere none) on the calling thread while it lives, the
 // mode before it restored after, also when the body throws.

@@ -1,7 +1,8 @@
 // The worker threads' loops (render/threads.h): every index once at any thread count, the cap
 // and each caller's own count held, the first exception handed to the caller with nothing started
-// after it, a loop inside a task, and parallel_ranges running each range in the caller's
-// floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp).
+// after it, a loop inside a task, parallel_ranges running each range in the caller's
+// floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp), and
+// start_threads' hook run first on each worker it starts.
 #include <gtest/gtest.h>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -269,6 +270,36 @@ TEST(ThreadLoops, EachThreadsTaskTakesTheCallersFloatingPointMode) {
 #else
   GTEST_SKIP() << "x86 only";
 #endif
+}
+
+// start_threads' hook, in a process of its own (a death-test child: the pool is the process's,
+// and a worker started by an earlier test would not run it): it runs on each worker started, on
+// that worker, before any task of a loop.
+thread_local bool t_hooked = false;
+std::atomic<int> g_hooks{0};
+void hook() {
+  t_hooked = true;
+  ++g_hooks;
+}
+
+TEST(ThreadLoops, EachStartedWorkerRunsTheStartHookBeforeItsTasks) {
+  EXPECT_EXIT(
+      {
+        std::atomic<int> unhooked{0};
+        const std::thread::id caller = std::this_thread::get_id();
+        run_on_threads(3, [&] {
+          start_threads(&hook);
+          parallel_each(200, [&](size_t) {
+            if (std::this_thread::get_id() != caller && !t_hooked) ++unhooked;
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+          });
+        });
+        // The two workers may start after the loop on a busy machine: waited for, 10 s at most.
+        for (int i = 0; i < 1000 && g_hooks.load() < 2; ++i)
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        std::exit(g_hooks.load() == 2 && !t_hooked && unhooked.load() == 0 ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 }  // namespace
