@@ -163,6 +163,7 @@ bool adders_below_iso(const BlobSum& blobs, const BlobBeam& list, const Vec3& o,
   const BlobBeam::Across* a = list.across.data();
   const int n = static_cast<int>(list.entries.size());
   int kept = 0;
+#pragma GCC unroll 4
   for (int i = 0; i < n; ++i) {
     const double dx = a[i].x - across[0], dy = a[i].y - across[1];
     if (dx * dx + dy * dy <= a[i].reach * a[i].reach) out[kept++] = entries[i];
