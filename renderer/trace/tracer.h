@@ -138,18 +138,19 @@ struct BlobBeam {
   // Whether the list holds for `ray` over [0, t1], and where on the entries' axis the ray starts:
   // its point at t is at distance t from a camera list's eye (*base = 0), at z = *base + t in a
   // shadow list's prism, at minus the distance *base + t from a toward list's point
-  // (tracer_shadow_beam.cpp; t1 at most the distance to it).
-  bool holds(const Ray& ray, double* base,
-             double t1 = std::numeric_limits<double>::infinity()) const {
+  // (tracer_shadow_beam.cpp; t1 at most the distance to it). A shadow list's ray also gives its
+  // origin's x and y on the prism's axes in `across`, where asked (first_hit_blobs' line filter).
+  bool holds(const Ray& ray, double* base, double t1 = std::numeric_limits<double>::infinity(),
+             double (*across)[2] = nullptr) const {
     if (camera()) {
       *base = 0;
       return from(ray.o);
     }
-    return valid && (toward ? holds_toward(ray, t1, base) : holds_shadow(ray, base));
+    return valid && (toward ? holds_toward(ray, t1, base) : holds_shadow(ray, base, across));
   }
 
  private:
-  bool holds_shadow(const Ray& ray, double* base) const;
+  bool holds_shadow(const Ray& ray, double* base, double (*across)[2]) const;
   bool holds_toward(const Ray& ray, double t1, double* base) const;
 };
 

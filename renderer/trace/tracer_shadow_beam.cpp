@@ -25,7 +25,7 @@
 
 namespace softtrace {
 
-bool BlobBeam::holds_shadow(const Ray& ray, double* base) const {
+bool BlobBeam::holds_shadow(const Ray& ray, double* base, double (*across)[2]) const {
   const ShadowPrism& p = prism;
   // The list's rays share their direction to the bit: a directional light's.
   if (ray.d.x != p.along.x || ray.d.y != p.along.y || ray.d.z != p.along.z) return false;
@@ -33,6 +33,10 @@ bool BlobBeam::holds_shadow(const Ray& ray, double* base) const {
   const double x = dot(q, p.u), y = dot(q, p.v), z = dot(q, p.along);
   if (!(x >= p.x0 && x <= p.x1 && y >= p.y0 && y <= p.y1 && z >= p.z0)) return false;
   *base = z;
+  if (across) {
+    (*across)[0] = x;
+    (*across)[1] = y;
+  }
   return true;
 }
 
