@@ -291,11 +291,13 @@ void for_surface_points(F&& fn) {
 }
 
 TEST(SurfaceDefined, SurfaceStaysAtHalf) {  // [TA-3], [TS-2]
-  for (const auto& [type, f] : {std::pair<const char*, const char*>{"T_an", kFa},
-                                {"T_al", kFa},
-                                {"T_sn", kFs},
-                                {"T_sr", kFs}}) {
-    const auto n = modulated(type, f);
+  // A pair, not a structured binding: C++17 lets no lambda capture a binding (clang refuses it).
+  for (const auto& type_and_field : {std::pair<const char*, const char*>{"T_an", kFa},
+                                     {"T_al", kFa},
+                                     {"T_sn", kFs},
+                                     {"T_sr", kFs}}) {
+    const char* type = type_and_field.first;
+    const auto n = modulated(type, type_and_field.second);
     for_surface_points([&](const Vec3& p) { EXPECT_NEAR(n->value(p), 0.5, 1e-9) << type; });
   }
 }

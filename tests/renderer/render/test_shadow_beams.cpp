@@ -435,8 +435,8 @@ TEST(ShadowBeams, EveryShadowRayTowardsAPointLightFindsWhatTheBvhWalkDoes) {
   const char* lights[] = {
       R"({"type": "point", "position": [30, -20, 60]})",
       R"({"type": "point", "position": [3, 2, -23]})",
-      R"({"type": "spot", "position": [-70, -40, 10], "point_at": [0, 0, -10], "radius": 40,)"
-      R"( "falloff": 60})",
+      (R"({"type": "spot", "position": [-70, -40, 10], "point_at": [0, 0, -10], "radius": 40,)"
+       R"( "falloff": 60})"),  // one light in two lines, in parentheses for clang's warning
       // Two: the second's lists (each light's pyramids are the tile's own).
       R"({"type": "point", "position": [30, -20, 60]}, {"type": "point", "position": [-40, 10, 50]})"};
   for (const int cloud : {0, 1})
