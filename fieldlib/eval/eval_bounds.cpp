@@ -98,7 +98,8 @@ class Walker {
         __builtin_prefetch(&p_.code[ahead.begin]);
         __builtin_prefetch(&p_.code[ahead.end - 1]);
       }
-      if (indexed && j + 2 < last) {
+      // Not without constants: an offset from a null K is undefined (clang's UBSan says so).
+      if (indexed && io_.K && j + 2 < last) {
         const double* k = io_.K + p_.code[g.children[kept[j + 2]].begin].a;
         for (int line = 0; line < 3; ++line) __builtin_prefetch(k + 8 * line);
       }
