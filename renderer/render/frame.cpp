@@ -65,18 +65,24 @@ struct TracedPixel {
 // tile, with their own count: a record is written where it stays. (A vector's emplace_back copied
 // each hit's sample, 176 bytes, in an out-of-line call with its growth path: 4 % of the frame's
 // own instructions on pov:blob1a.) room(k) gives the place of the next k records, which count
-// once `n` is raised past them.
+// once `n` is raised past them. The store's size is kept as a count (`held`): from the vector's
+// ends it was a division by the record's size (a multiplication and two more instructions) at
+// every camera ray's room.
 template <class T>
 struct TileRecords {
   std::vector<T> store;
   size_t n = 0;
+  size_t held = 0;  // store.size()
 
   T* room(size_t k) {
-    if (n + k > store.size()) [[unlikely]]
+    if (n + k > held) [[unlikely]]
       grow(n + k);
     return store.data() + n;
   }
-  [[gnu::noinline]] void grow(size_t need) { store.resize(std::max(need, 2 * store.size())); }
+  [[gnu::noinline]] void grow(size_t need) {
+    store.resize(std::max(need, 2 * store.size()));
+    held = store.size();
+  }
   size_t size() const { return n; }
   bool empty() const { return n == 0; }
   void clear() { n = 0; }
@@ -246,17 +252,26 @@ class FrameTracer {
     certified.passable = !certified.unmet && rt_.embree.passable(certified);
     certified.reach = reach_;
     certified.floor_gap = floor_gap_;
-    for (int py = std::max(y, area.y0); py < std::min(y + size, area.y1); ++py)
-      for (int px = std::max(x, area.x0); px < std::min(x + size, area.x1); ++px)
-        trace_pixel(px, py, &certified, pass, work);
+    const int px0 = std::max(x, area.x0), px1 = std::min(x + size, area.x1);
+    const int py0 = std::max(y, area.y0), py1 = std::min(y + size, area.y1);
+    // The common block, a first pass of one sample a pixel, with both known to the pixels' loop:
+    // its tests of the pass and the count go from every pixel.
+    if (pass == Pass::First && spp_ == 1) {
+      for (int py = py0; py < py1; ++py)
+        for (int px = px0; px < px1; ++px) trace_pixel(px, py, &certified, Pass::First, work, 1);
+      return;
+    }
+    for (int py = py0; py < py1; ++py)
+      for (int px = px0; px < px1; ++px) trace_pixel(px, py, &certified, pass, work);
   }
 
   // The camera rays of pixel (x, y) of the pass, traced into work.samples (none where the pass
   // leaves the pixel alone; a pixel cancelled part way is left out, never shaded).
+  // `known_spp`: the pass's samples a pixel where the caller knows them (0: not known).
   [[gnu::always_inline]] void trace_pixel(int x, int y, const BeamClear* certified, Pass pass,
-                                          Work& work) const {
+                                          Work& work, int known_spp = 0) const {
     if (pass == Pass::Refine && !adaptive_->refine(x, y)) return;
-    const int spp = pass == Pass::First ? spp_ : refined_spp_;
+    const int spp = known_spp ? known_spp : pass == Pass::First ? spp_ : refined_spp_;
     const int first = static_cast<int>(work.samples.size());
     // The samples are traced into their places past the tile's others, and counted only where
     // the pixel has a hit: most of a sparse frame's pixels are its background's, whose places

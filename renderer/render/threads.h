@@ -10,8 +10,9 @@
 // loops, which costs the other core; ours sleep on a condition variable. Without TBB the program
 // may also carry its own C++ runtime (Debian's libtbb needs the shared one). A frame's tiles are
 // many small tasks handed out from one counter in runs of consecutive indices (each thread keeps
-// to its own part of the image, as TBB's range splitting kept it), so work stealing buys nothing
-// here.
+// to its own part of the image, as TBB's range splitting kept it); only once the counter has none
+// left does a thread take the back half of another's run, so that a thread held up in a task
+// (another process on its vCPU) strands none of the frame's tiles.
 #pragma once
 
 #include <cstddef>
@@ -87,9 +88,11 @@ int loop_threads();
 
 // Calls body(i) for every i in [0, count), one index per task, handed out to the calling thread
 // and up to loop_threads() - 1 workers in runs of consecutive indices, each run a share of what
-// is left (1 / (2 * threads) of it, down to one index), each task in the caller's floating-point
-// mode (so that what each computes is what a loop on the caller would give: an image's bands,
-// io/image_file.h's EachIndex). Returns when every task is done. The first exception of `body`
+// is left (1 / (2 * threads) of it, down to one index), and once none is left, a thread done
+// with its run takes the back half of the longest run still waiting (a thread held up in a task
+// holds up no other index); each task in the caller's floating-point mode (so that what each
+// computes is what a loop on the caller would give: an image's bands, io/image_file.h's
+// EachIndex). Returns when every task is done. The first exception of `body`
 // reaches the caller once every running task has finished; no task starts after it. A loop
 // started inside a task runs on that task's thread alone, in order (no worker waits on another).
 void parallel_each(size_t count, const std::function<void(size_t)>& body);

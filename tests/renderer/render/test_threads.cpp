@@ -9,6 +9,7 @@
 #include <xmmintrin.h>
 #endif
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <future>
@@ -116,6 +117,34 @@ TEST(ThreadLoops, EachThreadWorksThroughStretchesOfConsecutiveIndices) {
   for (size_t i = 1; i < kCount; ++i) stretches += owner[i] != owner[i - 1];
   if (stretches == 1) GTEST_SKIP() << "the worker never joined (a loaded machine)";
   EXPECT_LE(stretches, 64u);
+}
+
+// A thread held up in its first task leaves the rest of its run to the other: the task waits
+// (a bounded wait, so that the loop without stealing fails rather than hangs) until every other
+// index has run, which the other thread can do only by taking the held-up thread's run.
+TEST(ThreadLoops, AThreadHeldUpInATaskHoldsUpNoOtherIndex) {
+  constexpr size_t kCount = 64;
+  std::atomic<int> done{0};
+  std::atomic<bool> all_while_held{false};
+  std::vector<int> owner(kCount, -1);
+  run_on_threads(2, [&] {
+    parallel_each_thread(kCount, loop_threads(), [&](size_t i, int thread) {
+      owner[i] = thread;  // each index once: its own element
+      if (i == 0) {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (done.load() < int(kCount) - 1 && std::chrono::steady_clock::now() < deadline)
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        all_while_held = done.load() == int(kCount) - 1;
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
+      ++done;
+    });
+  });
+  if (std::count(owner.begin(), owner.end(), owner[0]) == int(kCount))
+    GTEST_SKIP() << "the worker never joined (a loaded machine)";
+  EXPECT_TRUE(all_while_held.load());
+  EXPECT_EQ(done.load(), int(kCount) - 1);
 }
 
 // The cap holds over a run's own larger count, and a run's count holds without a cap: never
