@@ -212,20 +212,32 @@ class FastParser {
     int next = 0;
   };
 
-  // The slot of the text at p_ in its depth's ring, or -1.
+  // The slot of the text at p_ in its depth's ring, or -1. The texts' ends are compared first:
+  // distinct objects of one shape (a cloud's segments) share their first bytes, not their last.
   int seen_before(int depth) const {
     if (size_t(depth) >= seen_.size()) return -1;
     const size_t left = size_t(end_ - p_);
     for (int i = 0; i < kSeenPerDepth; ++i) {
       const Seen& s = seen_[depth].seen[i];
-      if (s.text && s.size <= left && std::memcmp(s.text, p_, s.size) == 0) return i;
+      if (!s.text || s.size > left) continue;
+      if (s.size >= sizeof(std::uint64_t)) {
+        std::uint64_t a, b;
+        std::memcpy(&a, s.text + s.size - sizeof a, sizeof a);
+        std::memcpy(&b, p_ + s.size - sizeof b, sizeof b);
+        if (a != b) continue;
+      }
+      if (std::memcmp(s.text, p_, s.size) == 0) return i;
     }
     return -1;
   }
 
+  // In the ring's next slot that holds no value, if any: a text met again stays while objects
+  // met once pass (a cloud's potential between its distinct distances).
   void remember(int depth, const char* start) {
     if (size_t(depth) >= seen_.size()) seen_.resize(depth + 1);
     SeenRing& ring = seen_[depth];
+    for (int tries = 1; tries < kSeenPerDepth && ring.seen[ring.next].value; ++tries)
+      ring.next = (ring.next + 1) % kSeenPerDepth;
     Seen& s = ring.seen[ring.next];
     ring.next = (ring.next + 1) % kSeenPerDepth;
     s.text = start;

@@ -278,6 +278,13 @@ TEST(JsonFast, RepeatedObjectsAreTheValuesTheirTextsSay) {
              R"(.25,-1,2]})";
   cloud += "]}";
   EXPECT_EQ(check(cloud), Outcome::Fast);
+  // A repeated object between distinct ones, more of them than a ring holds (it stays there).
+  std::string segments = "[";
+  for (int i = 0; i < 20; ++i)
+    segments +=
+        std::string(i ? "," : "") + R"({"p":{"t":"m"},"d":{"x":)" + std::to_string(i % 7) + R"(}})";
+  segments += "]";
+  EXPECT_EQ(check(segments), Outcome::Fast);
   // Repeated objects at the deepest level the parsers take, and one past it.
   for (const int depth : {kMaxJsonNesting, kMaxJsonNesting + 1}) {
     const std::string open(depth - 1, '['), close(depth - 1, ']');
