@@ -297,6 +297,11 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
   BlobSum s;
   s.group_ = g;
   s.lanes_ = has_avx2() ? ball_lanes_avx2 : ball_lanes_scalar;
+  // Each child's parts in place: grown by doubling, a 1000-blob sum's vectors were copied ten
+  // times over.
+  s.frames_.reserve(group.children.size());
+  s.blobs_.reserve(group.children.size());
+  s.outlines_.reserve(group.children.size());
   int32_t next = 1;  // the children's code must tile the program between the Group and the Sum
   for (const Group::Child& c : group.children) {
     if (c.begin != next) return std::nullopt;
@@ -329,6 +334,7 @@ std::optional<BlobSum> BlobSum::of(const Program& p) {
   // sqrt(3 / |L|_F^2) = sqrt(3 / Σ 1/a_i^2) for radii a_i, rotations aside: a mean of the radii
   // (a ball's radius for a ball).
   std::vector<double> radii;
+  radii.reserve(s.frames_.size());
   for (const Frame& f : s.frames_)
     radii.push_back(std::sqrt(
         3 / (dot(f.L.r[0], f.L.r[0]) + dot(f.L.r[1], f.L.r[1]) + dot(f.L.r[2], f.L.r[2]))));

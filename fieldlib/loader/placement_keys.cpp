@@ -53,6 +53,27 @@ void read_matrix(const Params& p, Mat3* A, Vec3* t) {
 
 }  // namespace
 
+bool place_translated(NodePtr& node, const nlohmann::json& j, const KindInfo& kind) {
+  const nlohmann::json* translate = nullptr;
+  for (const auto& [key, value] : j.get_ref<const nlohmann::json::object_t&>()) {
+    if (same_name(key, "translate")) translate = &value;
+    if (same_name(key, "matrix") || same_name(key, "rotate") ||
+        (same_name(key, "scale") && !find_param(kind, "scale")))
+      return false;
+  }
+  if (!translate) return true;
+  const nlohmann::json& v = *translate;
+  if (!v.is_array() || v.size() != 3) return false;
+  Vec3 t;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number()) return false;
+    t[i] = v[i].get<double>();
+    if (!(std::abs(t[i]) <= kMaxMagnitude)) return false;
+  }
+  if (t.x != 0 || t.y != 0 || t.z != 0) node = place(std::move(node), Mat3(), t);
+  return true;
+}
+
 NodePtr apply_placement(NodePtr node, const Params& p, const KindInfo& kind) {
   const bool own_scale = find_param(kind, "scale") != nullptr;
   const bool has_matrix = p.has("matrix"), has_scale = !own_scale && p.has("scale");

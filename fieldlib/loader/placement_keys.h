@@ -12,4 +12,10 @@ namespace softtrace {
 // a kind with a parameter of its own named `scale` (offset) keeps that name.
 NodePtr apply_placement(NodePtr node, const Params& p, const KindInfo& kind);
 
+// apply_placement's answer for a node object `j` whose one placement key is `translate`, three
+// numbers of magnitude at most 1e150, read from the JSON without a Params' records (a blend's
+// copied component, whose other keys its first sibling's build has read); false, `node` left
+// as it was, for any other placement, which apply_placement then builds or names the error of.
+bool place_translated(NodePtr& node, const nlohmann::json& j, const KindInfo& kind);
+
 }  // namespace softtrace

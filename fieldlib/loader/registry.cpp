@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "describe/building.h"
 #include "loader/placement_keys.h"
@@ -32,9 +33,104 @@ const ParamSpec& slot_of(const BuildContext& ctx, const std::string& key) {
   return *spec;
 }
 
+// Warnings given on this thread: a node whose build warned is not copied to its siblings, whose
+// own warnings would name their own places.
+thread_local unsigned long warnings_given = 0;
+
+// A node as its kind makes it, before its placement.
+struct Unplaced {
+  NodePtr node;
+  const KindInfo* kind;
+};
+
+Unplaced build_unplaced(const Params& p, const BuildContext& ctx) {
+  const KindInfo& kind = kind_of(p, KindGroup::Node, "node type");
+  const Family wanted = resolve(ctx.slot, ctx.convention);
+  const Family given = resolve(kind.family, ctx.convention);
+  if (!fits(wanted, given))
+    p.fail("", std::string("expected ") + family_phrase(wanted) + ", got '" + kind.name + "' (" +
+                   family_phrase(given) + ")");
+  if (ctx.depth >= kMaxFieldDepth)
+    p.fail("", "field nodes nested deeper than " + std::to_string(kMaxFieldDepth) + " levels");
+  check_params(kind, p, true);
+  BuildContext inner = ctx;
+  ++inner.depth;
+  inner.kind = &kind;
+  return {kind.create_node(p, inner), &kind};
+}
+
+NodePtr placed(Unplaced u, const Params& p, const BuildContext& ctx) {
+  NodePtr node = apply_placement(std::move(u.node), p, *u.kind);
+  p.finish();
+  if (ctx.observer) ctx.observer->built(p, *node);
+  return node;
+}
+
+// Whether a and b are the same JSON to the bit: nlohmann's == takes 2 for 2.0 and -0.0 for 0.0,
+// which a kind may read apart (an integer parameter, a sign).
+bool identical(const nlohmann::json& a, const nlohmann::json& b) {
+  using json = nlohmann::json;
+  if (a.type() != b.type()) return false;
+  switch (a.type()) {
+    case json::value_t::object: {
+      const auto &x = a.get_ref<const json::object_t&>(), &y = b.get_ref<const json::object_t&>();
+      if (x.size() != y.size()) return false;
+      for (auto i = x.begin(), j = y.begin(); i != x.end(); ++i, ++j)
+        if (i->first != j->first || !identical(i->second, j->second)) return false;
+      return true;
+    }
+    case json::value_t::array: {
+      const auto &x = a.get_ref<const json::array_t&>(), &y = b.get_ref<const json::array_t&>();
+      if (x.size() != y.size()) return false;
+      for (size_t i = 0; i < x.size(); ++i)
+        if (!identical(x[i], y[i])) return false;
+      return true;
+    }
+    case json::value_t::number_float:
+      return std::memcmp(a.get_ptr<const double*>(), b.get_ptr<const double*>(), sizeof(double)) ==
+             0;
+    case json::value_t::number_integer:
+      return *a.get_ptr<const json::number_integer_t*>() ==
+             *b.get_ptr<const json::number_integer_t*>();
+    case json::value_t::number_unsigned:
+      return *a.get_ptr<const json::number_unsigned_t*>() ==
+             *b.get_ptr<const json::number_unsigned_t*>();
+    case json::value_t::string:
+      return *a.get_ptr<const std::string*>() == *b.get_ptr<const std::string*>();
+    case json::value_t::boolean:
+    case json::value_t::null:
+      return a == b;
+    case json::value_t::binary:
+    case json::value_t::discarded:
+      return false;
+  }
+  return false;
+}
+
+// Whether the node object `b` would build what `a` built as `kind` before its placement: the
+// same members, each identical but the placement's, which build_unplaced does not read
+// (check_params only names them; a kind's own "scale" is compared).
+bool alike_but_placed(const nlohmann::json& a, const nlohmann::json& b, const KindInfo& kind) {
+  using json = nlohmann::json;
+  if (!a.is_object() || !b.is_object()) return false;
+  const auto &x = a.get_ref<const json::object_t&>(), &y = b.get_ref<const json::object_t&>();
+  if (x.size() != y.size()) return false;
+  for (auto i = x.begin(), j = y.begin(); i != x.end(); ++i, ++j) {
+    const std::string& key = i->first;
+    if (key != j->first) return false;
+    if (identical(i->second, j->second)) continue;
+    const bool placement = (same_name(key, "translate") || same_name(key, "rotate") ||
+                            same_name(key, "matrix") || same_name(key, "scale")) &&
+                           !find_param(kind, key);
+    if (!placement) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void warn(const BuildContext& ctx, const std::string& line) {
+  ++warnings_given;
   if (ctx.warn)
     ctx.warn(line);
   else
@@ -61,22 +157,7 @@ NodePtr build_radius_transform(const Params& r, NodePtr d, PotentialPtr P,
 }
 
 NodePtr build_field(const Params& p, const BuildContext& ctx) {
-  const KindInfo& kind = kind_of(p, KindGroup::Node, "node type");
-  const Family wanted = resolve(ctx.slot, ctx.convention);
-  const Family given = resolve(kind.family, ctx.convention);
-  if (!fits(wanted, given))
-    p.fail("", std::string("expected ") + family_phrase(wanted) + ", got '" + kind.name + "' (" +
-                   family_phrase(given) + ")");
-  if (ctx.depth >= kMaxFieldDepth)
-    p.fail("", "field nodes nested deeper than " + std::to_string(kMaxFieldDepth) + " levels");
-  check_params(kind, p, true);
-  BuildContext inner = ctx;
-  ++inner.depth;
-  inner.kind = &kind;
-  NodePtr node = apply_placement(kind.create_node(p, inner), p, kind);
-  p.finish();
-  if (ctx.observer) ctx.observer->built(p, *node);
-  return node;
+  return placed(build_unplaced(p, ctx), p, ctx);
 }
 
 NodePtr build_node(const Params& p, const std::string& key, const BuildContext& ctx) {
@@ -96,7 +177,38 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
                     std::to_string(items.size()));
   std::vector<NodePtr> out;
   out.reserve(items.size());
-  for (const auto& item : items) out.push_back(build_field(item, inner));
+  // A cloud's components often differ only in their placement: where the next child is alike but
+  // placed (every other member identical), a copy of this one's unplaced node is kept, and each
+  // alike child after it is that copy placed by its own keys. Everything else the full build
+  // does to such a child gives what it gave the first (the same members, kind and context), so
+  // its errors are its placement's alone, at its own place, as the full build would give them.
+  // Not where someone observes the nodes built, nor past a warning (each would name its child).
+  NodePtr copy;
+  const KindInfo* copy_kind = nullptr;
+  const nlohmann::json* copy_of = nullptr;
+  for (size_t i = 0; i < items.size(); ++i) {
+    const Params& item = items[i];
+    if (copy && alike_but_placed(*copy_of, item.raw(), *copy_kind)) {
+      NodePtr node = copy->clone();
+      if (!place_translated(node, item.raw(), *copy_kind))
+        node = apply_placement(std::move(node), item, *copy_kind);
+      out.push_back(std::move(node));
+      continue;
+    }
+    copy = nullptr;
+    const unsigned long warned = warnings_given;
+    Unplaced u = build_unplaced(item, inner);
+    const bool next_alike = !inner.observer && i + 1 < items.size() &&
+                            alike_but_placed(item.raw(), items[i + 1].raw(), *u.kind);
+    NodePtr kept = next_alike ? u.node->clone() : nullptr;
+    const KindInfo* kind = u.kind;
+    out.push_back(placed(std::move(u), item, inner));
+    if (kept && warnings_given == warned) {
+      copy = std::move(kept);
+      copy_kind = kind;
+      copy_of = &item.raw();
+    }
+  }
   return out;
 }
 

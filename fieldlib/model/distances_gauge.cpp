@@ -47,6 +47,7 @@ class LpMetric final : public FieldNode {
   int compile(ProgramBuilder& b, int reg) const override {
     return b.single(Op::LpMetric, reg, LpMetricOp::constants(m_));
   }
+  NodePtr clone() const override { return std::make_unique<LpMetric>(*this); }
   Box region(double level, Side side) const override {
     return side == Side::Below ? scaled_box(m_.a, level) : Box::unbounded();
   }

@@ -61,6 +61,11 @@ class FieldNode : public Oracle {
   // methods above; nodes with instructions of their own override it.
   virtual int compile(ProgramBuilder& b, int reg) const;
 
+  // A node equal to this one, for a blend's sibling built from the same parameters but its
+  // placement (a cloud of equal blobs: registry.cpp copies the first instead of building each
+  // again); null for the kinds that make no copy, whose siblings are each built in full.
+  virtual std::unique_ptr<FieldNode> clone() const { return nullptr; }
+
   double value(const Vec3& p) const { return eval(p, nullptr); }
   Vec3 gradient(const Vec3& p) const {
     Vec3 g;

@@ -28,6 +28,7 @@ class Blanc final : public Potential {
   double lipschitz() const override { return blanc_lipschitz(s_); }
   PotentialType type() const override { return PotentialType::Blanc; }
   double parameter() const override { return s_; }
+  std::unique_ptr<Potential> clone() const override { return std::make_unique<Blanc>(*this); }
 
  private:
   double s_;
@@ -41,6 +42,9 @@ class FixedPotential final : public Potential {
   double eval(double d, double* dP) const override { return P(d, dP); }
   double lipschitz() const override { return Lipschitz(); }
   PotentialType type() const override { return T; }
+  std::unique_ptr<Potential> clone() const override {
+    return std::make_unique<FixedPotential>(*this);
+  }
 };
 
 // 1 - 4/9 d^6 + 17/9 d^4 - 22/9 d^2   — Wyvill et al., docs/math.md §3.3

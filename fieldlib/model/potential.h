@@ -19,6 +19,8 @@ class Potential {
   // Which potential this is, and its constant (Blanc's s).
   virtual PotentialType type() const = 0;
   virtual double parameter() const { return 0; }
+  // An equal potential, for a copied soft object (FieldNode::clone).
+  virtual std::unique_ptr<Potential> clone() const = 0;
 
   // The program instruction that computes this potential.
   Op op() const;

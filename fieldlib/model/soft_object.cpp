@@ -51,6 +51,11 @@ class SoftObject final : public FieldNode {
     if (P_->op() == Op::Blanc) i.a = b.consts(BlancOp::constants(P_->parameter()));
     return b.emit(i);
   }
+  NodePtr clone() const override {
+    NodePtr d = d_->clone();
+    if (!d) return nullptr;
+    return std::make_unique<SoftObject>(std::move(d), P_->clone());
+  }
 
  private:
   // P over d's range, and sup|P'| there times d's bound.

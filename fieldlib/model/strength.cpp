@@ -46,6 +46,11 @@ class Strength final : public ScaledNode {
     i.a = b.consts(StrengthOp::constants(s_));
     return b.emit(i);
   }
+  NodePtr clone() const override {
+    NodePtr child = child_->clone();
+    if (!child) return nullptr;
+    return std::make_unique<Strength>(std::move(child), s_);
+  }
 
  private:
   NodeBounds box_bounds(const Box& b) const override {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <system_error>
 #include <vector>
 
@@ -178,6 +179,73 @@ class FastParser {
 
   bool object(json& out, int depth) {
     if (depth > kMaxJsonNesting) return false;
+    const int again = seen_before(depth);
+    if (again >= 0 && seen_[depth].seen[again].value) {
+      const Seen& s = seen_[depth].seen[again];
+      out = *s.value;
+      p_ += s.size;
+      return true;
+    }
+    const char* start = p_;
+    if (!members(out, depth)) return false;
+    // Found again by its place: the deeper objects read meanwhile may have moved the rings.
+    if (again >= 0)
+      seen_[depth].seen[again].value = std::make_unique<json>(out);
+    else
+      remember(depth, start);
+    return true;
+  }
+
+  // An object's text read before at the same depth (its bytes from the '{' on, the same bytes
+  // the same value), and that value once read twice: a blend's components repeat their
+  // potential and distance objects word for word, and a copy of the value costs the allocations
+  // of a parse without its scanning. The value is a copy because the document's values move
+  // while the arrays that hold them are made.
+  struct Seen {
+    const char* text = nullptr;
+    size_t size = 0;
+    std::unique_ptr<json> value;
+  };
+  static constexpr int kSeenPerDepth = 4;
+  struct SeenRing {
+    Seen seen[kSeenPerDepth];
+    int next = 0;
+  };
+
+  // The slot of the text at p_ in its depth's ring, or -1. The texts' ends are compared first:
+  // distinct objects of one shape (a cloud's segments) share their first bytes, not their last.
+  int seen_before(int depth) const {
+    if (size_t(depth) >= seen_.size()) return -1;
+    const size_t left = size_t(end_ - p_);
+    for (int i = 0; i < kSeenPerDepth; ++i) {
+      const Seen& s = seen_[depth].seen[i];
+      if (!s.text || s.size > left) continue;
+      if (s.size >= sizeof(std::uint64_t)) {
+        std::uint64_t a, b;
+        std::memcpy(&a, s.text + s.size - sizeof a, sizeof a);
+        std::memcpy(&b, p_ + s.size - sizeof b, sizeof b);
+        if (a != b) continue;
+      }
+      if (std::memcmp(s.text, p_, s.size) == 0) return i;
+    }
+    return -1;
+  }
+
+  // In the ring's next slot that holds no value, if any: a text met again stays while objects
+  // met once pass (a cloud's potential between its distinct distances).
+  void remember(int depth, const char* start) {
+    if (size_t(depth) >= seen_.size()) seen_.resize(depth + 1);
+    SeenRing& ring = seen_[depth];
+    for (int tries = 1; tries < kSeenPerDepth && ring.seen[ring.next].value; ++tries)
+      ring.next = (ring.next + 1) % kSeenPerDepth;
+    Seen& s = ring.seen[ring.next];
+    ring.next = (ring.next + 1) % kSeenPerDepth;
+    s.text = start;
+    s.size = size_t(p_ - start);
+    s.value = nullptr;
+  }
+
+  bool members(json& out, int depth) {
     ++p_;
     out = json(json::value_t::object);  // the initializer-list constructor's checks skipped
     auto& members = out.get_ref<json::object_t&>();
@@ -243,7 +311,8 @@ class FastParser {
 
   const char* p_;
   const char* end_;
-  std::vector<json> items_;  // the items of the arrays being read, innermost last
+  std::vector<json> items_;     // the items of the arrays being read, innermost last
+  std::vector<SeenRing> seen_;  // by depth
 };
 
 }  // namespace

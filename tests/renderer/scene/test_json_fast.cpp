@@ -11,6 +11,7 @@
 
 #include "describe/params.h"
 #include "scene/json_fast.h"
+#include "scene/json_nesting.h"
 #include "scene/json_text.h"
 
 namespace softtrace {
@@ -247,6 +248,49 @@ TEST(JsonFast, DecimalsHaveTheLocatedParsersBits) {
   }
   text += "]";
   EXPECT_EQ(check(text), Outcome::Fast);
+}
+
+// An object's text met again at the same depth is read as a copy of its first value: the texts
+// here repeat in turns longer than the parser keeps, at other depths, as prefixes of longer
+// objects, with other number types and spacing, and nested in repeated objects.
+TEST(JsonFast, RepeatedObjectsAreTheValuesTheirTextsSay) {
+  const char* texts[] = {
+      R"([{"a":1},{"a":1},{"a":1},{"a":1.0},{"a":1},{"a":-0.0},{"a":0.0},{"a":-0.0},{"a":0}])",
+      R"([{"a":1},{"a":1},{"a":1,"b":2},{"a":1,"b":2},{"a":1},{"a":1 },{"a":1}])",
+      R"([{"b":2},{"a":{"b":2}},{"b":2},[{"b":2},{"b":2}],{"a":{"b":2}},{"a":{"b":2}},{"b":2}])",
+      R"({"x":{"s":"}"},"y":{"s":"}"},"z":{"s":"}","t":1},"w":{"s":"}"}})",
+      R"([{"a":/* c */1},{"a":/* c */1},{"a":/* c */1},{"a":/* d */1},{"a":1}])"};
+  for (const char* t : texts) EXPECT_EQ(check(t), Outcome::Fast) << t;
+  // Six objects in turn, then their repeats: more than a depth's ring holds.
+  std::string turns = "[";
+  for (int round = 0; round < 4; ++round)
+    for (int k = 0; k < 6; ++k)
+      turns += "{\"k\":" + std::to_string(k) + ",\"v\":[" + std::to_string(k) + ".5]},";
+  turns.back() = ']';
+  EXPECT_EQ(check(turns), Outcome::Fast);
+  // A cloud of balls: the potential and the distance repeat, the placement does not.
+  std::string cloud = R"({"children":[)";
+  for (int i = 0; i < 50; ++i)
+    cloud += std::string(i ? "," : "") +
+             R"({"type":"soft_object","potential":{"type":"murakami"},"distance":{"type":)" +
+             R"("lp_metric","radii":[0.7136496464611085,0.7136496464611085,0.7)" +
+             (i == 30 ? "2" : "1") + R"(36496464611085],"n":2},"translate":[)" + std::to_string(i) +
+             R"(.25,-1,2]})";
+  cloud += "]}";
+  EXPECT_EQ(check(cloud), Outcome::Fast);
+  // A repeated object between distinct ones, more of them than a ring holds (it stays there).
+  std::string segments = "[";
+  for (int i = 0; i < 20; ++i)
+    segments +=
+        std::string(i ? "," : "") + R"({"p":{"t":"m"},"d":{"x":)" + std::to_string(i % 7) + R"(}})";
+  segments += "]";
+  EXPECT_EQ(check(segments), Outcome::Fast);
+  // Repeated objects at the deepest level the parsers take, and one past it.
+  for (const int depth : {kMaxJsonNesting, kMaxJsonNesting + 1}) {
+    const std::string open(depth - 1, '['), close(depth - 1, ']');
+    const std::string deep = open + R"({"a":1},{"a":1},{"a":1})" + close;
+    EXPECT_EQ(check(deep), depth <= kMaxJsonNesting ? Outcome::Fast : Outcome::Refused) << depth;
+  }
 }
 
 }  // namespace
