@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -390,31 +391,47 @@ class SegmentTest {
 // its own reach of `apex` (the shadow rays of a block of points towards a distant light).
 class ConeTest {
  public:
-  ConeTest(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4]) : apex_(apex) {
-    for (int i = 0; i < 4; ++i) n_[i] = normals[i], pad_[i] = pads[i];
+  ConeTest(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4]) {
+    for (int k = 0; k < 4; ++k) {
+      for (int i = 0; i < 3; ++i) {
+        const double w = normals[k][i];
+        const size_t row = i * sizeof(double) * BoxBvh::kWidth;
+        side_[k][i] = w > 0 ? offsetof(BoxBvh::Node, hi) + row : offsetof(BoxBvh::Node, lo) + row;
+        normal_[k][i] = V2{w, w};
+        moves_[k][i] = w != 0 ? ~M2{} : M2{};
+      }
+      below_[k] = V2{-pads[k], -pads[k]};
+    }
+    for (int i = 0; i < 3; ++i) apex_[i] = V2{apex[i], apex[i]};
   }
-  // Bit c set where slot c's box is inside no plane's outside.
+  // Bit c set where slot c's box is inside no plane's outside. The sides' offsets and the lanes'
+  // constants are taken once per query, not at every node, plane and axis with a branch each
+  // (meets10 at 640x480: the shadow lists' and camera lists' walks 27.07 -> 22.16 M
+  // instructions). An axis a normal does not move along adds +0 (its term masked off, 0 times
+  // infinity included) where it added nothing: the same sum but for the sign of a zero, which no
+  // comparison sees.
   int meets(const BoxBvh::Node& n) const {
+    const char* const node = reinterpret_cast<const char*>(&n);
     M2 in[2];
     for (int h = 0; h < 2; ++h) {
       in[h] = M2{-1, -1};
       for (int k = 0; k < 4; ++k) {
-        const Vec3& normal = n_[k];
         V2 reach = {0, 0};
         for (int i = 0; i < 3; ++i) {
-          if (normal[i] == 0) continue;
-          const double* side = normal[i] > 0 ? n.hi[i] : n.lo[i];
-          reach += (load(side + 2 * h) - apex_[i]) * normal[i];
+          const V2 side = load(reinterpret_cast<const double*>(node + side_[k][i]) + 2 * h);
+          const M2 term = reinterpret_cast<M2>((side - apex_[i]) * normal_[k][i]) & moves_[k][i];
+          reach += reinterpret_cast<V2>(term);
         }
-        in[h] &= reach >= -pad_[k];
+        in[h] &= reach >= below_[k];
       }
     }
     return bits(in[0], in[1]);
   }
 
  private:
-  Vec3 apex_, n_[4];
-  double pad_[4];
+  size_t side_[4][3];  // the byte offset in a node of plane k's farthest side along axis i
+  V2 normal_[4][3], apex_[3], below_[4];
+  M2 moves_[4][3];  // all ones where normal k moves along axis i
 };
 }  // namespace
 
