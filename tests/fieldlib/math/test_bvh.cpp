@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "math/bvh.h"
+#include "math/cpu_avx2.h"
 
 namespace softtrace::test {
 
@@ -134,7 +135,8 @@ TEST(BoxBvh, ReportsExactlyTheItemsAScanFinds) {
 // in the order of the tree: pyramids from random apexes, some with a normal along an axis or
 // across one (a shadow prism's sides: u is across the axis least aligned with the light), so a
 // box unbounded along such an axis is neither kept nor dropped by a 0 times infinity; some with a
-// pad per plane.
+// pad per plane; in both of the node test's forms (two slots at a time, and four with AVX2 where
+// the CPU has it).
 TEST(BoxBvh, ConeItemsAreTheScansInTreeOrder) {
   const Items items = random_items(700, 17);
   const std::vector<int32_t> order = items.bvh.tree_order();
@@ -176,6 +178,15 @@ TEST(BoxBvh, ConeItemsAreTheScansInTreeOrder) {
     const int end = q % 4 == 1 ? items.bvh.cone_items(apex, normals, pads, out.data())
                                : items.bvh.cone_items(apex, normals, pad, out.data());
     EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + end), want) << "query " << q;
+    // Each of the node test's two forms, whichever the overloads above chose.
+    const int pairs =
+        items.bvh.cone_items(apex, normals, pads, out.data(), BoxBvh::ConeLanes::kPairs);
+    EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + pairs), want) << "query " << q;
+    if (cpu_has_avx2()) {
+      const int four =
+          items.bvh.cone_items(apex, normals, pads, out.data(), BoxBvh::ConeLanes::kFour);
+      EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + four), want) << "query " << q;
+    }
     kept += end;
     dropped += static_cast<int>(order.size()) - end;
   }
