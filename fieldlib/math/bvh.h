@@ -48,6 +48,12 @@ class BoxBvh {
   // not pass through one point (a prism's sides, each pads[i] from `apex`).
   int cone_items(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4],
                  int32_t* out) const;
+  // The same with a node's four slots tested two at a time (SSE2) or all four at once (AVX2,
+  // only where cpu_has_avx2()): the same items in the same order. The overloads above take the
+  // four where the CPU has them.
+  enum class ConeLanes { kPairs, kFour };
+  int cone_items(const Vec3& apex, const Vec3 (&normals)[4], const double (&pads)[4], int32_t* out,
+                 ConeLanes lanes) const;
 
   static constexpr int kWidth = 4;
   static constexpr int kLeafItems = 16;

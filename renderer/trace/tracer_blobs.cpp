@@ -16,6 +16,7 @@
 #include "eval/blob_frame_terms.h"
 #include "kernels/potentials.h"
 #include "trace/blob_events.h"
+#include "trace/shadow_list_lanes.h"
 #include "trace/tracer.h"
 #include "trace/tracer_limits.h"
 
@@ -152,23 +153,6 @@ bool adders_below_iso(const BlobSum& blobs, const BlobBeam& list, const Vec3& o,
     for (int j = 0; j < k; ++j) peak += terms[j].peak;
   }
   return peaks_below_iso(peak, blobs, iso);
-}
-
-// The entries of a shadow prism's list whose bounding spheres a ray along the prism's axis from
-// (x, y) = across passes within reach of, into `out`, in the list's order; their count
-// (first_hit_blobs). Out of line: inline, its registers cost the camera sweep's loop.
-[[gnu::noinline]] int entries_on_line(const BlobBeam& list, const double (&across)[2],
-                                      BlobBeam::Entry* out) {
-  const BlobBeam::Entry* entries = list.entries.data();
-  const BlobBeam::Across* a = list.across.data();
-  const int n = static_cast<int>(list.entries.size());
-  int kept = 0;
-#pragma GCC unroll 4
-  for (int i = 0; i < n; ++i) {
-    const double dx = a[i].x - across[0], dy = a[i].y - across[1];
-    if (dx * dx + dy * dy <= a[i].reach * a[i].reach) out[kept++] = entries[i];
-  }
-  return kept;
 }
 
 // first_rise_of and refine_rise_of (bernstein.h) for a piece's polynomial, whose degree is 4 or 6

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "math/bvh.h"
+#include "math/cpu_avx2.h"
 
 namespace softtrace::test {
 
@@ -131,8 +132,11 @@ TEST(BoxBvh, ReportsExactlyTheItemsAScanFinds) {
 // Equal centres leave the surface-area heuristic nothing to split; boxes nested like onion
 // layers make it cut one item at a time, so the tree's depth must be capped for the walk's stack.
 // cone_items against the scalar test of every item's farthest corner along each plane's normal,
-// in the order of the tree: pyramids from random apexes, some with a normal along an axis (so a
-// box unbounded across it is neither kept nor dropped by a 0 times infinity).
+// in the order of the tree: pyramids from random apexes, some with a normal along an axis or
+// across one (a shadow prism's sides: u is across the axis least aligned with the light), so a
+// box unbounded along such an axis is neither kept nor dropped by a 0 times infinity; some with a
+// pad per plane; in both of the node test's forms (two slots at a time, and four with AVX2 where
+// the CPU has it).
 TEST(BoxBvh, ConeItemsAreTheScansInTreeOrder) {
   const Items items = random_items(700, 17);
   const std::vector<int32_t> order = items.bvh.tree_order();
@@ -145,25 +149,44 @@ TEST(BoxBvh, ConeItemsAreTheScansInTreeOrder) {
     Vec3 normals[4];
     for (Vec3& n : normals) n = normalize({u(rng), u(rng), u(rng)});
     if (q % 3 == 0) normals[q % 4] = {0, 0, q % 2 ? 1.0 : -1.0};
+    if (q % 3 == 1) {
+      normals[q % 4][q % 5 % 3] = 0;
+      normals[q % 4] = normalize(normals[q % 4]);
+      normals[(q + 1) % 4] = -normals[q % 4];
+    }
     const double pad = q % 2 ? 0 : 1e-6;
+    double pads[4] = {pad, pad, pad, pad};
+    if (q % 4 == 1)
+      for (double& p : pads) p = 2 * (u(rng) + 1);
     std::vector<bool> in(items.ids.size() + 1, false);  // by id
     for (size_t i = 0; i < items.boxes.size(); ++i) {
       const Box& b = items.boxes[i];
       if (b.empty()) continue;
       bool inside = true;
-      for (const Vec3& n : normals) {
+      for (int p = 0; p < 4; ++p) {
+        const Vec3& n = normals[p];
         double reach = 0;
         for (int k = 0; k < 3; ++k)
           if (n[k] != 0) reach += ((n[k] > 0 ? b.hi[k] : b.lo[k]) - apex[k]) * n[k];
-        inside = inside && reach >= -pad;
+        inside = inside && reach >= -pads[p];
       }
       if (inside) in[items.ids[i]] = true;
     }
     std::vector<int32_t> want;
     for (const int32_t id : order)
       if (in[id]) want.push_back(id);
-    const int end = items.bvh.cone_items(apex, normals, pad, out.data());
+    const int end = q % 4 == 1 ? items.bvh.cone_items(apex, normals, pads, out.data())
+                               : items.bvh.cone_items(apex, normals, pad, out.data());
     EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + end), want) << "query " << q;
+    // Each of the node test's two forms, whichever the overloads above chose.
+    const int pairs =
+        items.bvh.cone_items(apex, normals, pads, out.data(), BoxBvh::ConeLanes::kPairs);
+    EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + pairs), want) << "query " << q;
+    if (cpu_has_avx2()) {
+      const int four =
+          items.bvh.cone_items(apex, normals, pads, out.data(), BoxBvh::ConeLanes::kFour);
+      EXPECT_EQ(std::vector<int32_t>(out.begin(), out.begin() + four), want) << "query " << q;
+    }
     kept += end;
     dropped += static_cast<int>(order.size()) - end;
   }
