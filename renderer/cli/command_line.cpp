@@ -18,6 +18,7 @@
 #include "cli/signals.h"
 #include "cli/standard_output.h"
 #include "commit.h"
+#include "film/plane_memory.h"
 
 using namespace softtrace;
 
@@ -263,7 +264,11 @@ int softtrace::run_command_line(int argc, char** argv) {
   // Before the scene fills the heap: 12 MiB covers a 3000-component scene (7.1 MB at the load's
   // peak, its JSON document's 4.5 MB of it kept with the scene until exit, so that what the
   // compile and the tracers take comes on top).
-  heap_in_huge_pages(size_t(12) << 20);
+  const HeapPages heap = heap_in_huge_pages(size_t(12) << 20);
+  // In the heaps' huge pages a 320x240 frame's RGBA plane (1.2 MB) takes no 2 MiB page of its own
+  // (film/plane_memory.h). Only where the heap took the advice: elsewhere a mapping of its own
+  // is the one that asks for huge pages.
+  if (heap.end > heap.begin) planes_from_heap_below(size_t(3) << 19);
   // `diff` takes idiff's single-dash options (-fail, -failpercent, ...) as the double-dash ones.
   std::vector<std::string> args(argv, argv + argc);
   // Help names the program as users call it, wherever it lies (the launcher execs this one as

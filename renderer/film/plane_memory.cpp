@@ -1,5 +1,7 @@
 #include "film/plane_memory.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -30,11 +32,16 @@ void* heap_zeroed(size_t bytes) {
 namespace {
 
 constexpr size_t kMapped = size_t(1) << 20;  // a plane this large or larger is mapped on its own
+std::atomic<size_t> g_mapped_from{kMapped};  // planes_from_heap_below's
 
 }  // namespace
 
 bool plane_mapped(size_t bytes) {
-  return bytes >= kMapped;
+  return bytes >= g_mapped_from.load(std::memory_order_relaxed);
+}
+
+void planes_from_heap_below(size_t bytes) {
+  g_mapped_from.store(std::max(bytes, kMapped), std::memory_order_relaxed);
 }
 
 void* plane_allocate(size_t bytes) {
@@ -75,6 +82,8 @@ void plane_free(void* p, size_t bytes) noexcept {
 bool plane_mapped(size_t) {
   return false;
 }
+
+void planes_from_heap_below(size_t) {}
 
 void* plane_allocate(size_t bytes) {
   return heap_zeroed(bytes);

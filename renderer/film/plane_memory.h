@@ -5,7 +5,9 @@
 // the kernel's default "madvise" mode grants them only so): one fault per 2 MiB, and the same
 // 1.2 MB zeroed in 69 instead of 283 µs here. Where the kernel has none to give, the pages are
 // ordinary ones, as before. Smaller planes, builds under AddressSanitizer (which watches only its
-// own heap) and systems without huge pages take the ordinary heap.
+// own heap) and systems without huge pages take the ordinary heap. A process whose heaps are in
+// huge pages already (the command line's, cli/heap_pages.h) raises the bound for its planes
+// (planes_from_heap_below).
 #pragma once
 
 #include <cstddef>
@@ -30,6 +32,12 @@ void* plane_allocate(size_t bytes);
 void plane_free(void* p, size_t bytes) noexcept;
 // Whether plane_allocate(bytes) maps the plane on its own (asking for huge pages).
 bool plane_mapped(size_t bytes);
+// Planes below `bytes` (1 MiB at least, the default) come from the heap from now on: for a process
+// whose heaps are in huge pages, where a 320x240 frame's RGBA plane (1.2 MB) then lies in its
+// thread's huge page, made already (the heap's first, or the worker's, filled at its start),
+// instead of a 2 MiB page zeroed for it alone and four system calls. Once, before any plane is
+// made: plane_free tells how a plane was made from its size, by the rule in force.
+void planes_from_heap_below(size_t bytes);
 
 template <class T>
 struct PlaneAllocator {

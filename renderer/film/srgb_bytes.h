@@ -19,6 +19,18 @@ namespace srgb_table {
 constexpr uint32_t kOne = 0x3F800000;  // the bits of 1.0f
 constexpr int kShift = 16;
 
+// Whether the floats of every bucket (a run sharing their bits above kShift) reach at most one
+// threshold past the bucket's first float: then a sample is its bucket's start or one more. Two
+// consecutive thresholds in one bucket break it unless the first is the bucket's first float.
+constexpr bool at_most_one_step() {
+  for (size_t k = 0; k + 1 < 257; ++k) {
+    const uint32_t t = kSrgbThresholdBits[k], next = kSrgbThresholdBits[k + 1];
+    if (t >> kShift == next >> kShift && (t & ((1u << kShift) - 1)) != 0) return false;
+  }
+  return true;
+}
+static_assert(at_most_one_step(), "a bucket's lookup steps at most once (SrgbBytes)");
+
 // The float whose bit pattern is `bits`, for the patterns of kSrgbThresholdBits: 0, +inf and
 // positive normal floats, (2^23 + mantissa) 2^(exponent - 150), exact in a double and in the float
 // (std::memcpy, which the lookup uses, is not constexpr).
@@ -37,8 +49,10 @@ constexpr float float_of_bits(uint32_t bits) {
 // thresholds (kSrgbThresholdBits): threshold k is the smallest float whose sample is k, and the
 // sample is the number of thresholds at or below v. Non-negative floats order as their bit
 // patterns do, so a bucket is the floats sharing their top 16 bits: its start is the sample of its
-// first float, at or below that of any float in it, and the lookup steps up from there (a bucket
-// spans under two samples).
+// first float, at or below that of any float in it, and the lookup steps up from there. No bucket
+// holds two thresholds past its first float (at_most_one_step), so the step is one comparison
+// added, not a loop, whose exit branch a frame's gradients mispredicted: pov:molecule's 320x240
+// rows took 46,266 mispredicted branches (callgrind's model), now 789.
 class SrgbBytes {
  public:
   uint8_t operator()(float v) const {
@@ -46,9 +60,8 @@ class SrgbBytes {
     if (v >= 1.0f) return 255;
     uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
-    int k = start_[bits >> srgb_table::kShift];
-    while (v >= threshold_[k + 1]) ++k;
-    return uint8_t(k);
+    const int k = start_[bits >> srgb_table::kShift];
+    return uint8_t(k + (v >= threshold_[k + 1]));
   }
 
   // The table, made by the compiler: no process spends its start on it.

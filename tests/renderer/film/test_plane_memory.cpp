@@ -1,9 +1,11 @@
 // The film's planes: one of 1 MiB or more is mapped on its own at a 2 MiB boundary, zeroed, and
-// the kernel may back it with huge pages (smaps' THPeligible); a small one comes from the heap.
+// the kernel may back it with huge pages (smaps' THPeligible); a small one comes from the heap,
+// and so does one below the bound a process whose heaps are in huge pages sets.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 #include "film/film.h"
@@ -61,6 +63,33 @@ TEST(PlaneMemory, ASmallPlaneIsZeroWhereTheHeapHeldOtherValues) {
     EXPECT_FALSE(plane_mapped(small.size() * sizeof(float)));
     EXPECT_TRUE(std::all_of(small.begin(), small.end(), [](float v) { return v == 0; }));
   }
+}
+
+// Below the bound the command line sets (planes_from_heap_below), a 320x240 frame's RGBA plane
+// (1.2 MB) comes from the heap, zeroed where the heap's freed block of its size held other values;
+// a plane at the bound is still mapped on its own. In a process of its own (a death-test child):
+// the bound holds for the process's life.
+TEST(PlaneMemory, BelowTheProcessesBoundAFramesPlaneComesFromTheHeapZeroed) {
+  const size_t rgba_bytes = size_t(320) * 240 * 4 * sizeof(float), bound = size_t(3) << 19;
+  if (!plane_mapped(rgba_bytes)) {
+    GTEST_SKIP() << "no huge pages in this build";
+  }
+  EXPECT_EXIT(
+      {
+        planes_from_heap_below(bound);
+        bool ok = !plane_mapped(rgba_bytes) && plane_mapped(bound);
+        {
+          const std::vector<float> used(rgba_bytes / sizeof(float), 7.0f);
+          ok = ok && used.back() == 7.0f;
+        }
+        const Film film(320, 240, AovSelection{});
+        ok = ok && std::all_of(film.rgba.begin(), film.rgba.end(), [](float v) { return v == 0; });
+        // A heap block begins after its header, never at a 2 MiB boundary, where a mapped plane
+        // always does.
+        ok = ok && reinterpret_cast<uintptr_t>(film.rgba.data()) % (size_t(1) << 21) != 0;
+        std::exit(ok ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 }  // namespace
