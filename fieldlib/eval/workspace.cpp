@@ -11,8 +11,9 @@ void grow(std::vector<T>& v, size_t n) {
 }
 }  // namespace
 
-void Workspace::grow_to(const Program& p) {
-  const size_t slots_n = std::max<int32_t>(p.slots, 1), regs_n = p.regs;
+void Workspace::grow_to(const WorkspaceNeed& n) {
+  const size_t slots_n = std::max(n.slots, held_.slots), regs_n = std::max(n.regs, held_.regs);
+  const size_t children_n = std::max(n.children, held_.children);
   grow(ends, GaugeEnds::kTable);
   grow(slots, slots_n * kBatch);
   grow(regs, regs_n * 3 * kBatch);
@@ -26,10 +27,15 @@ void Workspace::grow_to(const Program& p) {
   grow(seg_pads, regs_n);
   grow(slopes, slots_n);
   grow(quiet, slots_n);
-  grow(kept, size_t(p.children) + 1);
-  grow(marks, size_t(p.children) + 1);
-  if (view.code.capacity() < p.code.size()) view.code.reserve(p.code.size());
-  if (view.args.capacity() < p.args.size()) view.args.reserve(p.args.size());
+  grow(kept, children_n);
+  grow(marks, children_n);
+  if (view.code.capacity() < n.code) view.code.reserve(n.code);
+  if (view.args.capacity() < n.args) view.args.reserve(n.args);
+  held_.slots = slots_n;
+  held_.regs = regs_n;
+  held_.children = children_n;
+  held_.code = std::max(n.code, held_.code);
+  held_.args = std::max(n.args, held_.args);
 }
 
 }  // namespace softtrace

@@ -37,7 +37,7 @@ Workspace& ObjectTracer::workspace() const {
   // One per thread, shared by every object's tracer: evaluations do not allocate once it has grown
   // to the largest program.
   thread_local Workspace ws;
-  ws.fit(program_);
+  ws.fit(need_);
   return ws;
 }
 
@@ -59,6 +59,7 @@ ObjectTracer::ObjectTracer(const TraceTarget& target, LipschitzMode mode, bool c
     : target_(target),
       inside_sign_(complement ? -target.inside_sign : target.inside_sign),
       program_(*target_.program),
+      need_(program_),
       mode_(mode) {
   global_L_ = target.lipschitz;
   g_empty_ = -inside_sign_ * target.iso;

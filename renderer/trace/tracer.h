@@ -420,6 +420,7 @@ class ObjectTracer {
   TraceTarget target_;
   double inside_sign_;      // the target's, or its opposite for the complement
   const Program& program_;  // *target_.program
+  WorkspaceNeed need_;      // program_'s, for workspace()'s fit
   LipschitzMode mode_;
   double global_L_;
   double default_footprint_;  // for rays without a cone: 1e-5 of the object's box diagonal

@@ -1385,6 +1385,42 @@ TEST(Program, AWorkspaceGrowsForALargerProgram) {
   EXPECT_GE(ws.kept.size(), static_cast<size_t>(large.prog.children) + 1);
 }
 
+// A need taken once (the tracer's) fits as its program does, and each of its sizes alone grows
+// the buffers that size sets: a need larger in one size only is not taken for one already fitted.
+TEST(Program, AWorkspaceFitsANeedTakenOnce) {
+  const Blobs small(10, 3), large(1000, 3);
+  Workspace ws;
+  ws.fit(WorkspaceNeed(small.prog));
+  const WorkspaceNeed big(large.prog);
+  ws.fit(big);
+  EXPECT_GE(ws.slots.size(), big.slots * kBatch);
+  EXPECT_GE(ws.regs.size(), big.regs * 3 * kBatch);
+  EXPECT_GE(ws.kept.size(), big.children);
+  EXPECT_GE(ws.view.code.capacity(), big.code);
+  EXPECT_GE(ws.view.args.capacity(), big.args);
+  ws.fit(WorkspaceNeed(small.prog));  // never shrinks
+  EXPECT_GE(ws.slots.size(), big.slots * kBatch);
+  for (int size = 0; size < 5; ++size) {
+    WorkspaceNeed one = big;
+    size_t* field[5] = {&one.slots, &one.regs, &one.children, &one.code, &one.args};
+    *field[size] *= 2;
+    ws.fit(one);
+    EXPECT_GE(ws.slots.size(), one.slots * kBatch) << size;
+    EXPECT_GE(ws.regs.size(), one.regs * 3 * kBatch) << size;
+    EXPECT_GE(ws.points.size(), one.regs) << size;
+    EXPECT_GE(ws.ivals.size(), one.slots) << size;
+    EXPECT_GE(ws.marks.size(), one.children) << size;
+    EXPECT_GE(ws.view.code.capacity(), one.code) << size;
+    EXPECT_GE(ws.view.args.capacity(), one.args) << size;
+  }
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-20, 20);
+  for (int i = 0; i < 100; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    ASSERT_NEAR(value_pruned(large.prog, p, ws), large.node->value(p), 1e-12) << i;
+  }
+}
+
 // Along a segment, the pass reports how far from its start no support has begun (POV-Ray's first
 // support entry): the field is exactly 0 there, entry included (the tracer takes g there as known),
 // and for spheres the bound is tight: just past it the field is positive.
