@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "describe/building.h"
+#include "loader/placement_keys.h"
 
 namespace softtrace {
 
@@ -130,7 +131,6 @@ void check_value(const Params& p, const ParamSpec& spec, const json& v) {
 }  // namespace
 
 void check_params(const KindInfo& kind, const Params& p, bool placement) {
-  static const char* const kPlacement[] = {"translate", "rotate", "scale", "matrix"};
   const json& j = p.raw();
   // Each spec's value, found by the pass over the keys that checks them: a search of the
   // object's map per spec compared every spec's name with the keys again.
@@ -141,7 +141,7 @@ void check_params(const KindInfo& kind, const Params& p, bool placement) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
     bool ok = same_name(key, "type");
-    for (const char* k : kPlacement) ok = ok || (placement && same_name(key, k));
+    ok = ok || (placement && is_placement_key(key));
     for (size_t i = 0; i < specs; ++i)
       if (same_name(key, kind.params[i].name)) {
         ok = true;
@@ -150,7 +150,7 @@ void check_params(const KindInfo& kind, const Params& p, bool placement) {
     if (ok) continue;
     // The list is built only for the message: every node of a scene passes here.
     std::vector<std::string> known = {"type"};
-    if (placement) known.insert(known.end(), std::begin(kPlacement), std::end(kPlacement));
+    if (placement) known.insert(known.end(), std::begin(kPlacementKeys), std::end(kPlacementKeys));
     for (const auto& spec : kind.params) known.push_back(spec.name);
     p.fail(json_pointer_escape(key), unknown_key_message(key, known));
   }

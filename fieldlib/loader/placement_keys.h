@@ -8,6 +8,16 @@
 
 namespace softtrace {
 
+// The placement keys above: check_params accepts them beside a kind's own parameters (and
+// suggests them for a misspelled key); a blend's copied children may differ in them alone.
+inline constexpr const char* kPlacementKeys[] = {"translate", "rotate", "scale", "matrix"};
+
+inline bool is_placement_key(const std::string& key) {
+  for (const char* name : kPlacementKeys)
+    if (same_name(key, name)) return true;
+  return false;
+}
+
 // `node` wrapped in the placement p describes (itself when p has none). `kind` is the node's:
 // a kind with a parameter of its own named `scale` (offset) keeps that name.
 NodePtr apply_placement(NodePtr node, const Params& p, const KindInfo& kind);

@@ -119,10 +119,7 @@ bool alike_but_placed(const nlohmann::json& a, const nlohmann::json& b, const Ki
     const std::string& key = i->first;
     if (key != j->first) return false;
     if (identical(i->second, j->second)) continue;
-    const bool placement = (same_name(key, "translate") || same_name(key, "rotate") ||
-                            same_name(key, "matrix") || same_name(key, "scale")) &&
-                           !find_param(kind, key);
-    if (!placement) return false;
+    if (!is_placement_key(key) || find_param(kind, key)) return false;
   }
   return true;
 }
