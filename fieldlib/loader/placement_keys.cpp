@@ -53,14 +53,15 @@ void read_matrix(const Params& p, Mat3* A, Vec3* t) {
 
 }  // namespace
 
-bool place_translated(NodePtr& node, const nlohmann::json& j, const KindInfo& kind) {
-  const nlohmann::json* translate = nullptr;
-  for (const auto& [key, value] : j.get_ref<const nlohmann::json::object_t&>()) {
-    if (same_name(key, "translate")) translate = &value;
+bool placed_by_translation_only(const nlohmann::json& j, const KindInfo& kind) {
+  for (const auto& [key, value] : j.get_ref<const nlohmann::json::object_t&>())
     if (same_name(key, "matrix") || same_name(key, "rotate") ||
         (same_name(key, "scale") && !find_param(kind, "scale")))
       return false;
-  }
+  return true;
+}
+
+bool place_translated(NodePtr& node, const nlohmann::json* translate) {
   if (!translate) return true;
   const nlohmann::json& v = *translate;
   if (!v.is_array() || v.size() != 3) return false;

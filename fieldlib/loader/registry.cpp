@@ -67,20 +67,21 @@ NodePtr placed(Unplaced u, const Params& p, const BuildContext& ctx) {
 }
 
 // Whether a and b are the same JSON to the bit: nlohmann's == takes 2 for 2.0 and -0.0 for 0.0,
-// which a kind may read apart (an integer parameter, a sign).
+// which a kind may read apart (an integer parameter, a sign). Each value is read through its
+// pointer, no checked accessor: every child of a cloud is compared member by member.
 bool identical(const nlohmann::json& a, const nlohmann::json& b) {
   using json = nlohmann::json;
   if (a.type() != b.type()) return false;
   switch (a.type()) {
     case json::value_t::object: {
-      const auto &x = a.get_ref<const json::object_t&>(), &y = b.get_ref<const json::object_t&>();
+      const auto &x = *a.get_ptr<const json::object_t*>(), &y = *b.get_ptr<const json::object_t*>();
       if (x.size() != y.size()) return false;
       for (auto i = x.begin(), j = y.begin(); i != x.end(); ++i, ++j)
         if (i->first != j->first || !identical(i->second, j->second)) return false;
       return true;
     }
     case json::value_t::array: {
-      const auto &x = a.get_ref<const json::array_t&>(), &y = b.get_ref<const json::array_t&>();
+      const auto &x = *a.get_ptr<const json::array_t*>(), &y = *b.get_ptr<const json::array_t*>();
       if (x.size() != y.size()) return false;
       for (size_t i = 0; i < x.size(); ++i)
         if (!identical(x[i], y[i])) return false;
@@ -109,17 +110,21 @@ bool identical(const nlohmann::json& a, const nlohmann::json& b) {
 
 // Whether the node object `b` would build what `a` built as `kind` before its placement: the
 // same members, each identical but the placement's, which build_unplaced does not read
-// (check_params only names them; a kind's own "scale" is compared).
-bool alike_but_placed(const nlohmann::json& a, const nlohmann::json& b, const KindInfo& kind) {
+// (check_params only names them; a kind's own "scale" is compared). `translate` is set to b's
+// own "translate" member, or null where it has none: the copy's placement is read from it.
+bool alike_but_placed(const nlohmann::json& a, const nlohmann::json& b, const KindInfo& kind,
+                      const nlohmann::json** translate) {
   using json = nlohmann::json;
-  if (!a.is_object() || !b.is_object()) return false;
-  const auto &x = a.get_ref<const json::object_t&>(), &y = b.get_ref<const json::object_t&>();
-  if (x.size() != y.size()) return false;
-  for (auto i = x.begin(), j = y.begin(); i != x.end(); ++i, ++j) {
+  *translate = nullptr;
+  const auto *x = a.get_ptr<const json::object_t*>(), *y = b.get_ptr<const json::object_t*>();
+  if (!x || !y || x->size() != y->size()) return false;
+  for (auto i = x->begin(), j = y->begin(); i != x->end(); ++i, ++j) {
     const std::string& key = i->first;
     if (key != j->first) return false;
+    const bool translation = same_name(key, "translate");
+    if (translation) *translate = &j->second;
     if (identical(i->second, j->second)) continue;
-    if (!is_placement_key(key) || find_param(kind, key)) return false;
+    if (!(translation || is_placement_key(key)) || find_param(kind, key)) return false;
   }
   return true;
 }
@@ -183,11 +188,15 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
   NodePtr copy;
   const KindInfo* copy_kind = nullptr;
   const nlohmann::json* copy_of = nullptr;
+  // The alike children have the copy's keys: whether `translate` is their one placement key is
+  // asked once, of the copy's object.
+  bool translated_only = false;
+  const nlohmann::json* translate = nullptr;
   for (size_t i = 0; i < items.size(); ++i) {
     const Params& item = items[i];
-    if (copy && alike_but_placed(*copy_of, item.raw(), *copy_kind)) {
+    if (copy && alike_but_placed(*copy_of, item.raw(), *copy_kind, &translate)) {
       NodePtr node = copy->clone();
-      if (!place_translated(node, item.raw(), *copy_kind))
+      if (!translated_only || !place_translated(node, translate))
         node = apply_placement(std::move(node), item, *copy_kind);
       out.push_back(std::move(node));
       continue;
@@ -196,7 +205,7 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
     const unsigned long warned = warnings_given;
     Unplaced u = build_unplaced(item, inner);
     const bool next_alike = !inner.observer && i + 1 < items.size() &&
-                            alike_but_placed(item.raw(), items[i + 1].raw(), *u.kind);
+                            alike_but_placed(item.raw(), items[i + 1].raw(), *u.kind, &translate);
     NodePtr kept = next_alike ? u.node->clone() : nullptr;
     const KindInfo* kind = u.kind;
     out.push_back(placed(std::move(u), item, inner));
@@ -204,6 +213,7 @@ std::vector<NodePtr> build_children(const Params& p, const std::string& key,
       copy = std::move(kept);
       copy_kind = kind;
       copy_of = &item.raw();
+      translated_only = placed_by_translation_only(*copy_of, *kind);
     }
   }
   return out;

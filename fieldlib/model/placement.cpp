@@ -58,7 +58,7 @@ class Placed final : public FieldNode {
     Instr i{rotated_ ? Op::Place : Op::Translate};
     i.in = reg;
     i.out = b.new_reg();
-    i.a = b.consts(rotated_ ? PlaceOp::constants(t_, Rt_) : TranslateOp::constants(t_));
+    i.a = rotated_ ? b.consts(PlaceOp::constants(t_, Rt_)) : b.consts(TranslateOp::constants(t_));
     b.emit(i);
     return b.compile(*child_, i.out);
   }

@@ -2,6 +2,7 @@
 // through ProgramBuilder (FieldNode::compile), or one oracle instruction that calls it back.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
@@ -26,6 +27,12 @@ class ProgramBuilder {
   int new_reg() { return prog_.regs++; }
   int consts(std::initializer_list<double> c);
   int consts(const std::vector<double>& c);
+  template <size_t N>
+  int consts(const std::array<double, N>& c) {
+    const int at = static_cast<int>(prog_.consts.size());
+    prog_.consts.insert(prog_.consts.end(), c.begin(), c.end());
+    return at;
+  }
   int emit(const Instr& i);
   // One instruction of `op` over `in` (a point register for a distance, a value slot for an op
   // over one slot) with the constants `c` in its struct's layout (program/ops/) and `n` where that

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -40,7 +41,8 @@ inline void place_segment(const Instr& in, const BoundsIO& io, bool rotate) {
 // Register out = register in - t.
 struct TranslateOp : RegisterToRegister {
   static constexpr bool kZeroWhenQuiet = false;
-  static std::vector<double> constants(const Vec3& t) { return {t.x, t.y, t.z}; }
+  // An array, not a vector: every translated child of a cloud is compiled with one.
+  static std::array<double, 3> constants(const Vec3& t) { return {t.x, t.y, t.z}; }
   static Vec3 load(const double* c) { return {c[0], c[1], c[2]}; }
 
   static void values(const Instr& in, const LaneIO& io) {

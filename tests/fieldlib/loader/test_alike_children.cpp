@@ -90,6 +90,39 @@ TEST(AlikeChildren, TheCopiesAreTheFullBuildsNodes) {
   }
 }
 
+// The copies' placement is read from `translate` alone only where that is their one placement
+// key: a scale or a rotation they share goes through the full placement, copy by copy.
+TEST(AlikeChildren, ASharedScaleOrRotationPlacesEveryCopy) {
+  for (const char* key : {"scale", "rotate"}) {
+    std::vector<json> alike(6, ball(1.5, "murakami"));
+    for (int i = 0; i < 6; ++i) {
+      alike[i]["translate"] = {2.5 * i, 0.5 * i, -i};
+      if (std::string(key) == "scale")
+        alike[i]["scale"] = {2, 1, 0.5};
+      else
+        alike[i]["rotate"] = {{"axis", {1, 2, 3}}, {"deg", 40}};
+    }
+    std::vector<json> apart = alike;
+    for (size_t i = 0; i < apart.size(); i += 2) apart[i]["strength"] = 1.0;
+    const NodePtr a = build_json(blend(alike)), b = build_json(blend(apart));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> at(-4, 16);
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 p{at(rng), at(rng) / 2, -at(rng) / 2};
+      Vec3 ga, gb;
+      ASSERT_EQ(a->eval(p, &ga), b->eval(p, &gb)) << key << " " << k;
+      ASSERT_EQ(ga.x, gb.x) << key << " " << k;
+      ASSERT_EQ(ga.y, gb.y) << key << " " << k;
+      ASSERT_EQ(ga.z, gb.z) << key << " " << k;
+    }
+    const Box ra = a->region(0.5, Side::Above), rb = b->region(0.5, Side::Above);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(ra.lo[i], rb.lo[i]) << key;
+      EXPECT_EQ(ra.hi[i], rb.hi[i]) << key;
+    }
+  }
+}
+
 TEST(AlikeChildren, AChildsPlacementErrorIsItsOwn) {
   std::vector<json> c(4, ball(1, "murakami"));
   for (int i = 0; i < 4; ++i) c[i]["translate"] = {i, 0, 0};
