@@ -10,6 +10,7 @@
 #include "trace/embree_device.h"
 #include "trace/mesh_hit.h"
 #include "trace/primitive_trace.h"
+#include "trace/unmet_rays.h"
 
 namespace softtrace {
 
@@ -539,6 +540,27 @@ bool EmbreeScene::intersect_unmet(const Ray& ray, const BeamClear& beam, TraceHi
   const MarchResult m = impl_->data[size_t(f)].tracer->first_hit_unlisted(
       ray, hit.t, beam.depth[f] / cos_forward, hit.work);
   return !m.hit;  // a hit is the ray limit (give_up): intersect() answers and counts
+}
+
+bool EmbreeScene::unmet_rays(const BeamClear& beam, const Vec3& eye, UnmetRays* out) const {
+  if ((!beam.unmet && !beam.passable) || !impl_->direct_primitives.empty()) return false;
+  const int f = impl_->direct_field;
+  const BlobBeam& list = beam.blobs[f];
+  if (!list.from(eye)) return false;
+  const ObjectTracer* tracer = impl_->data[size_t(f)].tracer;
+  const Box& box = tracer->box();
+  *out = UnmetRays{};
+  out->eye = eye;
+  out->forward = beam.forward;
+  out->box = box;
+  out->lo_from_eye = box.lo - eye;
+  out->hi_from_eye = box.hi - eye;
+  out->depth = beam.depth[f];
+  if (!beam.unmet) {
+    out->passes = tracer;
+    out->list = &list;
+  }
+  return true;
 }
 
 bool EmbreeScene::occluded(const Ray& ray, double tnear, double tfar, TraceCounters& work,

@@ -17,6 +17,8 @@
 
 namespace softtrace {
 
+struct UnmetRays;  // unmet_rays.h
+
 struct TraceHit {
   // User-provided, so that a TraceHit made for each ray is filled field by field: the implicit
   // constructor was folded into a clear of all 112 bytes then the non-zero fields, which GCC
@@ -136,6 +138,11 @@ class EmbreeScene {
   // way, so its answer and counters are the empty list's. False, `hit` then to be overwritten,
   // where that is not certain, and where intersect_unmet is false.
   bool intersect_passing(const Ray& ray, const BeamClear& beam, TraceHit& hit) const;
+  // For a beam that is unmet() or passable() in a scene of its blob sum alone (no primitive: every
+  // answer is no hit), whose list holds rays from `eye`: its rays' answers, as intersect_unmet and
+  // intersect_passing give them, with what they share taken once (unmet_rays.h). False, `out`
+  // then meaningless, for any other beam.
+  bool unmet_rays(const BeamClear& beam, const Vec3& eye, UnmetRays* out) const;
 
   // Whether Embree's device and scene were built (false: every ray takes a direct path).
   bool built() const;

@@ -12,6 +12,11 @@
 // passes outside all of them (ObjectTracer::passes_listed_balls) as an unmet beam's, through
 // EmbreeScene::intersect_passing. Such a ray must get intersect()'s answer and counters too, and
 // none may be one that meets the sum.
+//
+// A block's rays answered together (EmbreeScene::unmet_rays, UnmetRays::answer, frame.cpp's
+// unmet_pixel): for a lone sum, each ray of an unmet or passable beam must be answered exactly
+// where intersect_unmet or intersect_passing answers it, with the same counters; beside
+// primitives no beam is prepared so.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -25,6 +30,7 @@
 #include "scene/scene.h"
 #include "sparse_ball_cloud.h"
 #include "trace/primitive_trace.h"
+#include "trace/unmet_rays.h"
 
 namespace softtrace {
 namespace {
@@ -63,7 +69,9 @@ struct UnmetWalk {
   // Rays of passable beams; of them, those that meet the sum, those answered as unmet ones, and
   // those of these that counted stretches (entered the sum's box).
   int passable_rays = 0, passable_sum_hits = 0, passing_rays = 0, passing_counted = 0;
-  int sum_hits = 0;             // every ray's hits on the sum (object 0)
+  int sum_hits = 0;  // every ray's hits on the sum (object 0)
+  // Rays of blocks that EmbreeScene::unmet_rays prepared, and those UnmetRays::answer answered.
+  int prepared_rays = 0, block_answers = 0;
   std::vector<int> unmet_hits;  // per object, the unmet rays' hits
 };
 
@@ -101,8 +109,12 @@ void walk_unmet_beams(const Scene& scene, const TracedScene& rt, UnmetWalk& walk
           const size_t last = size_t(2 * objects);
           BeamClear beam{camera.frustum(x4, y4, x4 + 4, y4 + 4).forward, &depth[last],
                          &lists[last]};
-          const bool unmet = rt.embree.unmet(beam);
-          const bool passable = !unmet && rt.embree.passable(beam);
+          beam.unmet = rt.embree.unmet(beam);
+          beam.passable = !beam.unmet && rt.embree.passable(beam);
+          const bool unmet = beam.unmet, passable = beam.passable;
+          UnmetRays together;
+          const bool prepared = rt.embree.unmet_rays(beam, camera.eye(), &together);
+          ASSERT_EQ(prepared, (unmet || passable) && objects == 1);
           for (int py = y4; py < y4 + 4; ++py)
             for (int px = x4; px < x4 + 4; ++px)
               for (int s = 0; s < 2; ++s) {  // the pixel's centre and a point inside it
@@ -113,15 +125,29 @@ void walk_unmet_beams(const Scene& scene, const TracedScene& rt, UnmetWalk& walk
                 if (!unmet && !passable) continue;
                 TraceHit hit;
                 hit.hit = true;  // to be overwritten
+                TraceCounters counters;
+                counters.point_evals = -1;  // to be overwritten
+                const bool answered = prepared && together.answer(ray, counters);
+                walk.prepared_rays += prepared;
+                walk.block_answers += answered;
+                if (answered) {
+                  ASSERT_FALSE(full.hit) << "pixel (" << px << ", " << py << ")";
+                  ASSERT_TRUE(same_unmet_counters(counters, full.work))
+                      << "pixel (" << px << ", " << py << "): box evaluations "
+                      << counters.box_evals << " against intersect's " << full.work.box_evals;
+                }
                 if (passable) {
                   ++walk.passable_rays;
                   walk.passable_sum_hits += full.hit && full.object == 0;
-                  if (!rt.embree.intersect_passing(ray, beam, hit)) continue;
+                  const bool passing = rt.embree.intersect_passing(ray, beam, hit);
+                  ASSERT_EQ(answered, prepared && passing) << "pixel (" << px << ", " << py << ")";
+                  if (!passing) continue;
                   ++walk.passing_rays;
                   walk.passing_counted += full.work.box_evals > 0;
                 } else {
                   ASSERT_TRUE(rt.embree.intersect_unmet(ray, beam, hit))
                       << "pixel " << px << ", " << py;
+                  ASSERT_EQ(answered, prepared) << "pixel (" << px << ", " << py << ")";
                   ++walk.unmet_rays;
                 }
                 ASSERT_NE(full.object, 0) << "pixel (" << px << ", " << py
@@ -159,6 +185,9 @@ TEST(UnmetBeams, EveryRayGetsIntersectsAnswer) {
   EXPECT_GT(walk.passing_rays, walk.passable_rays / 2);
   EXPECT_GT(walk.passable_sum_hits, 20);
   EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
+  // Every unmet ray and every passing one answered together too; the others of their blocks not.
+  EXPECT_EQ(walk.block_answers, walk.unmet_rays + walk.passing_rays);
+  EXPECT_EQ(walk.prepared_rays, walk.unmet_rays + walk.passable_rays);
 }
 
 TEST(UnmetBeams, BesidePrimitivesEveryRayGetsIntersectsAnswer) {
@@ -242,6 +271,57 @@ TEST(UnmetBeams, OverAFloorAloneEveryRayGetsIntersectsAnswer) {
   EXPECT_GT(shadow_rays, 3000);
   EXPECT_GT(below, shadow_rays / 4);
   EXPECT_GT(blocked - below, 20);
+}
+
+// UnmetRays::answer against first_hit_unlisted, the sum's clip and stretches as intersect_unmet
+// asks them, over rays from one eye in every direction around the sum's box and clear depths
+// before, inside and past it, and rays along a slab: the same counters. (A second stretch, where
+// rounding leaves the first short, needs t0 + (t1 - t0) to round below t1: no ray here took one.)
+TEST(UnmetBeams, BlockAnswersAreTheUnlistedSearchs) {
+  const Scene scene = parse_scene(unmet_sparse_cloud(40), "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const ObjectTracer* tracer = rt.tracers.tracer(0);
+  const Box& box = tracer->box();
+  UnmetRays together;
+  together.eye = {70, -95, 60};
+  together.forward = normalize(box.center() - together.eye);
+  together.box = box;
+  together.lo_from_eye = box.lo - together.eye;
+  together.hi_from_eye = box.hi - together.eye;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double far = length(box.extent()) + length(box.center() - together.eye);
+  int answered = 0, missed = 0, cleared = 0;
+  for (int i = 0; i < 200000; ++i) {
+    together.depth = i % 3 == 0 ? 0 : far * u(rng);
+    const Vec3 towards{box.lo.x - 5 + (box.extent().x + 10) * u(rng),
+                       box.lo.y - 5 + (box.extent().y + 10) * u(rng),
+                       box.lo.z - 5 + (box.extent().z + 10) * u(rng)};
+    Vec3 d = normalize(towards - together.eye);
+    if (i % 97 == 0) d.z = 0;  // a slab the ray runs along
+    const Ray ray{together.eye, d, 0, 0};
+    TraceCounters counters;
+    counters.point_evals = -1;  // to be overwritten
+    if (!together.answer(ray, counters)) {
+      ASSERT_FALSE(dot(ray.d, together.forward) > 0) << "ray " << i;
+      continue;
+    }
+    TraceCounters own;
+    const double clear_to = together.depth / dot(ray.d, together.forward);
+    const MarchResult m = tracer->first_hit_unlisted(ray, kUnmetFar, clear_to, own);
+    ASSERT_FALSE(m.hit) << "ray " << i;
+    ASSERT_TRUE(same_unmet_counters(counters, own))
+        << "ray " << i << ": box evaluations " << counters.box_evals << " against " << own.box_evals
+        << ", entered " << counters.entered_box << " against " << own.entered_box;
+    ++answered;
+    missed += !own.entered_box;
+    cleared += own.entered_box && own.box_evals == 0;
+  }
+  // Not vacuous: rays beside the box, rays whose clear depth is past it, the others counted.
+  EXPECT_GT(answered, 150000);
+  EXPECT_GT(missed, 1000);
+  EXPECT_GT(cleared, 1000);
+  EXPECT_GT(answered - missed - cleared, 50000);
 }
 
 // The frame (both shortcuts) against each pixel-centre ray traced alone: the same hit mask.
