@@ -71,6 +71,21 @@ namespace {
 // first huge page, filled at its start), what takes more has a second.
 constexpr size_t kWorkerHeapBytes = size_t(4) << 20;
 
+void worker_start() {
+  thread_heap_in_huge_pages(kWorkerHeapBytes);
+}
+
+// A frame's PNG bands of at most this many pixels are the main thread's alone: on the 2-vCPU guest
+// a worker asleep since the frame's end woke for them late (a thread's wake here takes 0.7-4.3
+// ms), and their loop took longer with it than without: molecule at 320x240 2.61 against 1.21 ms,
+// meets1 at 640x480 3.94 against 2.82 ms (medians of 20 processes; docs/performance.md, session
+// 39). A larger image's bands are worth its wake.
+constexpr long kPngAloneUpTo = 640 * 480;
+
+bool is_png_output(const std::string& path) {
+  return !is_exr_path(path);
+}
+
 int interrupted_status() {
   return 128 + g_signal.load();
 }
@@ -135,7 +150,7 @@ int run_render(const RenderArgs& a) {
     // The workers keep the signals blocked, so that the handler runs on this thread. Each puts its
     // heap in huge pages while this thread loads the scene (heap_pages.h).
     block_interrupts();
-    start_threads([] { thread_heap_in_huge_pages(kWorkerHeapBytes); });
+    start_threads(worker_start);
     unblock_interrupts();
     Scene scene = load_scene(a.scene);
     hand_over_embree_scene(scene);  // the static program's, before the checks and the compile
@@ -232,6 +247,15 @@ int run_render(const RenderArgs& a) {
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;
     FrameStats stats;
+    // The workers end after their last loop, so that the exit has one thread to end, not a
+    // sleeping one to wake first (threads.h): after the frame's loops (two with adaptive
+    // anti-aliasing, frame.h), and in a frame of more than kPngAloneUpTo pixels after its PNGs'
+    // bands too.
+    const int frame_loops = scene.image.antialias.on() ? 2 : 1;
+    const bool png_alone = long(film.width) * film.height <= kPngAloneUpTo;
+    end_threads_after_loops(
+        frame_loops +
+        (png_alone ? 0 : int(std::count_if(outputs.begin(), outputs.end(), is_png_output))));
     const bool complete = render_frame(scene, rt, opt, film, &progress, &stats);
     progress.finish();
     if (!complete) {

@@ -50,6 +50,14 @@ ThreadLimit limit_threads(int threads);
 // the worker's heap filled while the caller loads the scene).
 void start_threads(void (*on_start)() = nullptr);
 
+// Ends the started workers once `loops` more loops that workers may join have opened (0: now):
+// from then on a worker that finds no open loop it may join ends (after its tasks in the last of
+// them, if it joined it; one asleep is woken), by the thread's exit alone, without the C library's
+// teardown of the thread; later loops run on their callers alone. For a process whose next `loops`
+// loops are its last with workers before it exits: its exit then ends one thread, not a sleeping
+// one it must wake first.
+void end_threads_after_loops(int loops);
+
 // A floating-point mode (x86's MXCSR; elsewhere none) on the calling thread while it lives, the
 // mode before it restored after, also when the body throws.
 class FloatingPointMode {
