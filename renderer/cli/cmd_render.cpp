@@ -71,6 +71,21 @@ namespace {
 // first huge page, filled at its start), what takes more has a second.
 constexpr size_t kWorkerHeapBytes = size_t(4) << 20;
 
+void worker_start() {
+  thread_heap_in_huge_pages(kWorkerHeapBytes);
+}
+
+// A frame's PNG bands of at most this many pixels are the main thread's alone: on the 2-vCPU guest
+// a worker asleep since the frame's end woke for them late (a thread's wake here takes 0.7-4.3
+// ms), and their loop took longer with it than without: molecule at 320x240 2.61 against 1.21 ms,
+// meets1 at 640x480 3.94 against 2.82 ms (medians of 20 processes; docs/performance.md, session
+// 39). A larger image's bands are worth its wake.
+constexpr long kPngAloneUpTo = 640 * 480;
+
+bool is_png_output(const std::string& path) {
+  return !is_exr_path(path);
+}
+
 int interrupted_status() {
   return 128 + g_signal.load();
 }
@@ -126,16 +141,31 @@ int finish_process(int status) {
 
 }  // namespace
 
+// Before the parse: a thread's first run comes 0.7-4.3 ms after its start on the 2-vCPU guest,
+// and the parse's 0.5-0.8 ms are that much more of its way to the frame. Arguments that ask for one
+// thread (read as the parser will read them; a guess that misses costs time, not results) start
+// none: a worker started and ended again cost a --threads 1 render 0.1-1.3 ms of CPU
+// (docs/performance.md, session 39).
+void start_render_thread(const std::vector<std::string>& args) {
+  for (size_t i = 2; i < args.size(); ++i)
+    if (args[i] == "--threads=1" ||
+        (args[i] == "--threads" && i + 1 < args.size() && args[i + 1] == "1"))
+      return;
+  start_first_thread(worker_start);
+}
+
 int run_render(const RenderArgs& a) {
   // main() has made on_render_interrupt the signals' handler.
   try {
     // The cap, kept until exit (a smaller one may be kept after it), and the frame's worker
-    // threads started beside the scene's load, which they do not wait for (threads.h).
+    // threads started beside the scene's load, which they do not wait for (threads.h). The first
+    // was started before the parse (start_render_thread); with one thread it ends now.
     if (a.threads) limit_threads(a.threads).keep_until_exit();
+    if (loop_threads() == 1) end_threads_after_loops(0);
     // The workers keep the signals blocked, so that the handler runs on this thread. Each puts its
     // heap in huge pages while this thread loads the scene (heap_pages.h).
     block_interrupts();
-    start_threads([] { thread_heap_in_huge_pages(kWorkerHeapBytes); });
+    start_threads(worker_start);
     unblock_interrupts();
     Scene scene = load_scene(a.scene);
     hand_over_embree_scene(scene);  // the static program's, before the checks and the compile
@@ -175,6 +205,7 @@ int run_render(const RenderArgs& a) {
     const int tasks = frame_tasks(window.x0, window.y0, window.width(), window.height());
     const int wanted = a.threads ? a.threads : default_threads();
     if (wanted > tasks) limit_threads(tasks).keep_until_exit();
+    if (loop_threads() == 1) end_threads_after_loops(0);
 
     const auto start = std::chrono::steady_clock::now();
     // The film's planes are zeroed as they are made, a page fault per 4 KiB of fresh memory (300
@@ -232,6 +263,15 @@ int run_render(const RenderArgs& a) {
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;
     FrameStats stats;
+    // The workers end after their last loop, so that the exit has one thread to end, not a
+    // sleeping one to wake first (threads.h): after the frame's loops (two with adaptive
+    // anti-aliasing, frame.h), and in a frame of more than kPngAloneUpTo pixels after its PNGs'
+    // bands too.
+    const int frame_loops = scene.image.antialias.on() ? 2 : 1;
+    const bool png_alone = long(film.width) * film.height <= kPngAloneUpTo;
+    end_threads_after_loops(
+        frame_loops +
+        (png_alone ? 0 : int(std::count_if(outputs.begin(), outputs.end(), is_png_output))));
     const bool complete = render_frame(scene, rt, opt, film, &progress, &stats);
     progress.finish();
     if (!complete) {

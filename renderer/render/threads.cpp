@@ -2,6 +2,8 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -149,6 +151,27 @@ void run_tasks(Loop& loop, int thread, std::mutex& guard) {
   t_in_task = false;
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+#define SOFTTRACE_THREADS_TEARDOWN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define SOFTTRACE_THREADS_TEARDOWN 1
+#endif
+#endif
+#if defined(__SANITIZE_THREAD__)
+#define SOFTTRACE_THREADS_TEARDOWN 1
+#endif
+
+// A worker's end (end_threads_after_loops): the thread's exit system call alone, none of the C
+// library's teardown (its stack, its thread-local objects, its malloc cache), which the process
+// that ends next takes back at once. A sanitizer build returns through the C library, so that the
+// leak check knows the thread's memory.
+void end_this_thread() {
+#if !defined(SOFTTRACE_THREADS_TEARDOWN) && defined(__linux__)
+  ::syscall(SYS_exit, 0);
+#endif
+}
+
 // The worker threads and the loops that want them. Made once and never destroyed: a process
 // that exits (cmd_render's _exit, or exit()) neither joins nor wakes its sleeping workers, and no
 // static destructor pulls the mutex from under them.
@@ -188,6 +211,7 @@ class Pool {
       const std::lock_guard<std::mutex> lock(mutex_);
       spawn_locked(loop.helpers);
       open_.push_back(&loop);
+      if (end_after_loops_ > 0 && --end_after_loops_ == 0) ending_ = true;
     }
     // Wakes as many as may join; one more than the idle is harmless.
     for (int i = 0; i < loop.helpers; ++i) work_.notify_one();
@@ -198,6 +222,15 @@ class Pool {
     std::unique_lock<std::mutex> lock(mutex_);
     close_locked(loop);
     loop.finished.wait(lock, [&] { return loop.running == 0; });
+  }
+
+  void end_after_loops(int loops) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    end_after_loops_ = std::max(loops, 0);
+    if (loops <= 0) {
+      ending_ = true;
+      work_.notify_all();
+    }
   }
 
   std::mutex& guard() { return mutex_; }
@@ -214,6 +247,8 @@ class Pool {
     new (&mutex_) std::mutex;
     new (&work_) std::condition_variable;
     workers_ = busy_ = 0;
+    end_after_loops_ = 0;
+    ending_ = false;
     open_.clear();
   }
 
@@ -224,9 +259,16 @@ class Pool {
   void spawn_locked(int workers) {
     for (; workers_ < workers; ++workers_)
       std::thread([this, on_start = on_start_] {
-        if (on_start) on_start();
+        if (on_start && !ends_at_once()) on_start();
         work();
       }).detach();
+  }
+
+  // Whether a worker starting now would end at once (end_threads_after_loops): then its start
+  // hook (a heap's huge page filled) would be for nothing.
+  bool ends_at_once() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return ending_ && open_.empty();
   }
 
   void close_locked(Loop& loop) {
@@ -239,10 +281,16 @@ class Pool {
   void work() {
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
-      work_.wait(lock, [&] {
+      const auto wanted = [&] {
         const int cap = cap_locked();
         return !open_.empty() && (cap == 0 || busy_ < cap - 1);
-      });
+      };
+      work_.wait(lock, [&] { return ending_ || wanted(); });
+      if (!wanted()) {
+        lock.unlock();
+        end_this_thread();
+        return;
+      }
       Loop& loop = *open_.front();
       const int thread = ++loop.joined;
       if (loop.joined == loop.helpers) close_locked(loop);
@@ -265,6 +313,8 @@ class Pool {
   std::vector<int> caps_;         // the caps held now (ThreadLimit), kept ones included
   int workers_ = 0;               // started
   int busy_ = 0;                  // in a loop now, over all loops (the cap counts these)
+  int end_after_loops_ = 0;       // end_threads_after_loops: loops to open before ending_
+  bool ending_ = false;           // a worker that no open loop wants ends
   void (*on_start_)() = nullptr;  // what a new worker runs first (start_threads)
 };
 
@@ -296,6 +346,14 @@ ThreadLimit limit_threads(int threads) {
     limit.threads_ = threads;
   }
   return limit;
+}
+
+void end_threads_after_loops(int loops) {
+  Pool::get().end_after_loops(loops);
+}
+
+void start_first_thread(void (*on_start)()) {
+  if (default_threads() > 1) Pool::get().start(1, on_start);
 }
 
 void start_threads(void (*on_start)()) {

@@ -50,6 +50,20 @@ ThreadLimit limit_threads(int threads);
 // the worker's heap filled while the caller loads the scene).
 void start_threads(void (*on_start)() = nullptr);
 
+// Ends the started workers once `loops` more loops that workers may join have opened (0: now):
+// from then on a worker that finds no open loop it may join ends (after its tasks in the last of
+// them, if it joined it; one asleep is woken), by the thread's exit alone, without the C library's
+// teardown of the thread; later loops run on their callers alone. For a process whose next `loops`
+// loops are its last with workers before it exits: its exit then ends one thread, not a sleeping
+// one it must wake first.
+void end_threads_after_loops(int loops);
+
+// Starts one worker where the process may run on more than one core and none is started yet,
+// before the loops' count is known (a command line's, before its parse), `on_start` as in
+// start_threads; start_threads later starts the rest, and end_threads_after_loops(0) ends it where
+// the count turns out to be 1.
+void start_first_thread(void (*on_start)() = nullptr);
+
 // A floating-point mode (x86's MXCSR; elsewhere none) on the calling thread while it lives, the
 // mode before it restored after, also when the body throws.
 class FloatingPointMode {

@@ -1,8 +1,10 @@
 // The worker threads' loops (render/threads.h): every index once at any thread count, the cap
 // and each caller's own count held, the first exception handed to the caller with nothing started
 // after it, a loop inside a task, parallel_ranges running each range in the caller's
-// floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp), and
-// start_threads' hook run first on each worker it starts.
+// floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp),
+// start_threads' hook run first on each worker it starts, and the workers' end after a given number
+// of loops or at once (a one-shot render's: cmd_render.cpp), one started before the count is known.
+#include <dirent.h>
 #include <gtest/gtest.h>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -327,6 +329,81 @@ TEST(ThreadLoops, EachStartedWorkerRunsTheStartHookBeforeItsTasks) {
         for (int i = 0; i < 1000 && g_hooks.load() < 2; ++i)
           std::this_thread::sleep_for(std::chrono::milliseconds(10));
         std::exit(g_hooks.load() == 2 && !t_hooked && unhooked.load() == 0 ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+// The process's threads now, from /proc/self/task.
+int threads_now() {
+  DIR* dir = opendir("/proc/self/task");
+  if (!dir) return -1;
+  int n = 0;
+  while (const dirent* entry = readdir(dir))
+    if (entry->d_name[0] != '.') ++n;
+  closedir(dir);
+  return n;
+}
+
+// Waits (10 s at most, for a loaded machine) until the process has `threads` threads.
+bool threads_become(int threads) {
+  for (int i = 0; i < 1000 && threads_now() != threads; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  return threads_now() == threads;
+}
+
+// In processes of their own (death-test children, which start with one thread and no worker):
+// told to end after the next loop, the worker is gone after it, whether it joined the loop or was
+// only woken by it, and a later loop still runs every index, on its caller.
+TEST(ThreadLoops, WorkersEndAfterTheLoopsTheyWereGiven) {
+  EXPECT_EXIT(
+      {
+        bool ok = true;
+        run_on_threads(2, [&] {
+          start_threads();
+          ok = ok && threads_now() == 2;
+          end_threads_after_loops(2);
+          for (int loop = 0; loop < 2; ++loop) {
+            std::atomic<int> ran{0};
+            parallel_each(100, [&](size_t) {
+              ++ran;
+              std::this_thread::sleep_for(std::chrono::microseconds(200));
+            });
+            ok = ok && ran.load() == 100;
+            // Not before the second loop: the first leaves the worker asleep, not ended.
+            if (loop == 0) ok = ok && threads_now() == 2;
+          }
+          ok = ok && threads_become(1);
+          std::atomic<int> later{0};
+          parallel_each(100, [&](size_t) { ++later; });
+          ok = ok && later.load() == 100 && threads_now() == 1;
+        });
+        std::exit(ok ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+// A command line's first worker, started before its count is known: one where the process may
+// use more than one core (the count's later start_threads adds the rest), ended at once where the
+// count turns out to be 1.
+TEST(ThreadLoops, TheFirstWorkerStartsAloneAndEndsAtOnceWhenTheCountIsOne) {
+  if (default_threads() < 2) GTEST_SKIP() << "one core: no first worker";
+  EXPECT_EXIT(
+      {
+        bool ok = true;
+        start_first_thread();
+        ok = ok && threads_now() == 2;
+        start_first_thread();  // one started already: no second
+        ok = ok && threads_now() == 2;
+        run_on_threads(3, [&] {
+          start_threads();
+          ok = ok && threads_now() == 3;
+        });
+        limit_threads(1).keep_until_exit();
+        end_threads_after_loops(0);
+        ok = ok && threads_become(1);
+        std::atomic<int> ran{0};
+        parallel_each(100, [&](size_t) { ++ran; });
+        std::exit(ok && ran.load() == 100 ? 0 : 1);
       },
       ::testing::ExitedWithCode(0), "");
 }
