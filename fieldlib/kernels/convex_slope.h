@@ -23,10 +23,10 @@ namespace softtrace {
 // power of each b_i serves both the sum and the partials (power_sum with its partials takes two).
 // Within a few ulps per term for the integer exponents, by squaring; 0 partials at f = 0 (the
 // subgradient 0).
-// power_sum_partials with the power b^(n-1) as given.
-template <class PowN1>
-double power_sum_partials_with(const double* u, int k, double n, double* partial,
-                               const PowN1& pow_n1) {
+// power_sum_partials with the power b^(n-1) and the root s^(1/n) as given.
+template <class PowN1, class Root>
+double power_sum_partials_with(const double* u, int k, double* partial, const PowN1& pow_n1,
+                               const Root& root_n) {
   double m = 0;
   for (int i = 0; i < k; ++i) m = std::max(m, u[i]);
   if (!(m > 0)) {
@@ -40,21 +40,27 @@ double power_sum_partials_with(const double* u, int k, double n, double* partial
     s += p * b;
     partial[i] = p;
   }
-  const double root = power_root(s, n), scale = root / s;
+  const double root = root_n(s), scale = root / s;
   for (int i = 0; i < k; ++i) partial[i] *= scale;
   return m * root;
 }
 
 inline double power_sum_partials(const double* u, int k, double n, double* partial) {
   // The papers' cubes and bars (n = 20) with the exponent known at compile time: the same
-  // multiplications without a test of n per term.
+  // multiplications without a test of n per term, and power_root's n = 20 branch, root_20,
+  // inline without its tests of n (the out-of-line call was 28.8 M of Fig. 12(b)'s instructions
+  // at 640x480, 62 a root).
   if (n == 20)
-    return power_sum_partials_with(u, k, n, partial,
-                                   [](double b) { return pow_by_squaring<19>(b); });
+    return power_sum_partials_with(
+        u, k, partial, [](double b) { return pow_by_squaring<19>(b); },
+        [](double s) { return root_20(s); });
   const bool squaring = n <= 65 && n == static_cast<int>(n);
-  return power_sum_partials_with(u, k, n, partial, [&](double b) {
-    return squaring ? pow_by_squaring(b, static_cast<int>(n) - 1) : std::pow(b, n - 1);
-  });
+  return power_sum_partials_with(
+      u, k, partial,
+      [&](double b) {
+        return squaring ? pow_by_squaring(b, static_cast<int>(n) - 1) : std::pow(b, n - 1);
+      },
+      [n](double s) { return power_root(s, n); });
 }
 
 // The last segment's two ends of one gauge instruction, keyed by its constants' address: a ray's

@@ -22,18 +22,24 @@
 
 namespace softtrace {
 
-// A non-increasing potential `pot` of distance slot in.in, with |P'| in `slope` over the
-// distance's interval: P over [d] and its slope bound (0 where d >= 1); along a segment dP/dt =
-// P'(d) d' with P' in -slope, and 0 while d >= 1.
-template <class P>
-void potential_bounds(const Instr& in, const BoundsIO& io, P pot, Interval slope) {
+// A non-increasing potential of distance slot in.in, its values lo = P(d.hi) and hi = P(max(0,
+// d.lo)) at the ends of the distance's interval [d], with |P'| in `slope` over it: P over [d] and
+// its slope bound (0 where d >= 1); along a segment dP/dt = P'(d) d' with P' in -slope, and 0
+// while d >= 1.
+inline void potential_bounds_of(const Instr& in, const BoundsIO& io, double lo, double hi,
+                                Interval slope) {
   const Interval d = io.I[in.in];
-  const double lo = pot(d.hi), hi = pot(std::max(0.0, d.lo));
   io.I[in.out] = {std::max(0.0, lo - 0x1p-50), std::min(1.0, hi + 0x1p-50)};
   io.L[in.out] = flat_product(d.lo >= 1 ? 0.0 : slope.hi, io.L[in.in]);
   if (!io.segment) return;
   io.D[in.out] = -slope * io.D[in.in];
   io.Q[in.out] = io.quiet_potential(in.in);
+}
+// The same with the values from the kernel `pot`.
+template <class P>
+void potential_bounds(const Instr& in, const BoundsIO& io, P pot, Interval slope) {
+  const Interval d = io.I[in.in];
+  potential_bounds_of(in, io, pot(d.hi), pot(std::max(0.0, d.lo)), slope);
 }
 
 // The potentials' point value and gradient from their kernel `pot(d, &dP)`.
@@ -67,10 +73,12 @@ struct BlancOp : SlotToSlot {
   }
   static void bounds(const Instr& in, const BoundsIO& io) {
     const double s = load(io.K + in.a);
-    // Without slopes only the Lipschitz bound is wanted: the global one costs nothing.
-    potential_bounds(
-        in, io, [s](double d) { return blanc(d, s, nullptr); },
-        io.slopes ? blanc_slope_range(s, io.I[in.in]) : Interval(0, blanc_lipschitz(s)));
+    // Without slopes only the Lipschitz bound is wanted: the global one costs nothing. With them,
+    // each end's value and slope from one kernel call (blanc_ends).
+    double lo, hi;
+    Interval slope(0, blanc_lipschitz(s));
+    blanc_ends(s, io.I[in.in], &lo, &hi, io.slopes ? &slope : nullptr);
+    potential_bounds_of(in, io, lo, hi, slope);
   }
 };
 

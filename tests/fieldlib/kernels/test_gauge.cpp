@@ -1,11 +1,13 @@
-// power_sum and its batched form (fieldlib/gauge.h).
+// power_sum, its batched form (fieldlib/gauge.h) and its form with partials (convex_slope.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "kernels/convex_slope.h"
 #include "kernels/gauge.h"
+#include "math/int_power.h"
 
 namespace softtrace::test {
 
@@ -105,6 +107,28 @@ TEST(PowerSum, LanesGiveTheSingleCallsBits) {
           EXPECT_EQ(f[l], want) << "n = " << n << ", k = " << k << ", lane " << l;
       }
     }
+  }
+}
+
+// power_sum_partials at n = 20, its powers and root inline with the exponent fixed, gives the
+// bits of the run-time forms (pow_by_squaring(b, 19), power_root(s, 20)) for f and every partial.
+TEST(PowerSum, PartialsAtTwentyGiveTheRunTimeFormsBits) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 3);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int k = 1 + trial % 3;
+    double v[3];
+    for (int i = 0; i < k; ++i) v[i] = u(rng);
+    if (trial % 7 == 0) v[0] = 0;
+    if (trial % 11 == 0) v[k - 1] = 1e-300;
+    if (trial == 13) std::fill(v, v + k, 0.0);
+    double got[3], want[3];
+    const double f = power_sum_partials(v, k, 20, got);
+    const double g = power_sum_partials_with(
+        v, k, want, [](double b) { return pow_by_squaring(b, 19); },
+        [](double s) { return power_root(s, 20); });
+    ASSERT_EQ(f, g) << "trial " << trial;
+    for (int i = 0; i < k; ++i) ASSERT_EQ(got[i], want[i]) << "trial " << trial << ", term " << i;
   }
 }
 

@@ -92,6 +92,33 @@ TEST_P(Blanc, LanesGiveTheKernelsBits) {
   }
 }
 
+// The bounds' one call per end: the values and the slope range of the four calls apart, bit for
+// bit, for ends below 0, past 1, at -0, NaN, and an empty interval.
+TEST_P(Blanc, EndsGiveTheSeparateCallsBits) {
+  const double s = GetParam();
+  std::vector<double> d;
+  for (int i = -30; i <= 260; i += 7) d.push_back(i / 200.0);
+  for (const double e :
+       {0.5, std::nextafter(0.5, 0.0), std::nextafter(0.5, 1.0), 1.0, std::nextafter(1.0, 0.0),
+        1e-300, -0.0, 0.0, double(NAN), double(INFINITY), -double(INFINITY)})
+    d.push_back(e);
+  const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  for (const double lo : d)
+    for (const double hi : d) {
+      const Interval I{lo, hi};
+      double least, most;
+      Interval slope;
+      blanc_ends(s, I, &least, &most, &slope);
+      const Interval want = blanc_slope_range(s, I);
+      ASSERT_TRUE(same(least, blanc(hi, s, nullptr))) << lo << " " << hi;
+      ASSERT_TRUE(same(most, blanc(std::max(0.0, lo), s, nullptr))) << lo << " " << hi;
+      ASSERT_TRUE(same(slope.lo, want.lo) && same(slope.hi, want.hi)) << lo << " " << hi;
+      double least_only, most_only;
+      blanc_ends(s, I, &least_only, &most_only, nullptr);
+      ASSERT_TRUE(same(least_only, least) && same(most_only, most)) << lo << " " << hi;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Softness, Blanc, testing::Values(0.0, 0.25, 0.5, 1.0, 3.0, 20.0));
 
 TEST(Wyvill, RequirementsAndBound) {
