@@ -119,9 +119,10 @@ struct BlobBeam {
   // answered as blocked_by would answer it, with the same work, but without its terms.
   bool shut = false;
   double shut_footprint = 0;
-  // A camera list of at most kPassable blobs, all balls, in a sum where none subtracts: per ball,
-  // from the eye, what bounds the peak of a ray's term of it (ObjectTracer::passes_listed_balls,
-  // tracer_blob_beam.cpp), `passing` of them; 0 for any other list.
+  // A camera list of at most kPassable blobs, each a ball or one that only subtracts: per ball
+  // that adds, from the eye, what bounds the peak of a ray's term of it
+  // (ObjectTracer::passes_listed_balls, tracer_blob_beam.cpp), `passing` of them; 0 for any
+  // other list.
   static constexpr int kPassable = 4;
   struct Passing {
     Vec3 oc;   // eye - centre

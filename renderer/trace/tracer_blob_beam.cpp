@@ -154,12 +154,15 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
 // at most a few ulps of |eye - c|^2; the sweep's, from its stretch's start, on the line to a few
 // ulps of |eye| + t0 (t0 <= |eye - c| + r, or the ball's entry is skipped), at most a few ulps
 // of (|eye| + 3 |eye - c| + r) |eye - c|; 1e-11 is thousands of ulps. Then 1e-12 for h2's own.
+// A blob that only subtracts (BlobSum::adds) gives terms whose peaks are 0, so it adds nothing to
+// any piece's peak sum: it takes no bound, whatever its shape (pov:old_syntax's negative ball
+// among three positive ones).
 void ObjectTracer::passing_balls(const Vec3& eye, double eye_scale, BlobBeam* out) const {
-  if (!out->camera() || out->entries.size() > size_t(BlobBeam::kPassable) || blobs_->subtracts())
-    return;
+  if (!out->camera() || out->entries.size() > size_t(BlobBeam::kPassable)) return;
   const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
   int n = 0;
   for (const BlobBeam::Entry& e : out->entries) {
+    if (!blobs_->adds(e.id)) continue;
     const BlobSum::Blob& b = blobs[e.id];
     if (blobs_->is_framed(e.id) || !(b.inv_r2 > 0)) return;
     const Vec3 oc = eye - b.centre;

@@ -181,6 +181,59 @@ TEST(UnmetBeams, BesidePrimitivesEveryRayGetsIntersectsAnswer) {
   EXPECT_GT(walk.sum_hits, 20);
 }
 
+// Three positive balls about a negative one (pov:old_syntax's blob, a sum of at most kListed
+// blobs, whose rays take their whole way at once), seen close up, and the sparse cloud with every
+// fifth ball negative (more than kListed blobs: camera rays sweep their lists). A ball that only
+// subtracts takes no bound in passing_balls (its terms' peaks are 0), so a beam whose list holds
+// one is passable too: each of its passing rays must still get intersect()'s answer and counters.
+std::string few_balls_with_a_subtracting_one() {
+  std::string children;
+  const double centres[4][3] = {
+      {0.649519, -0.375, 0}, {-0.32476, 0.1875, 0.64952}, {-0.32476, 0.1875, -0.64952}, {0, 0, 0}};
+  for (int i = 0; i < 4; ++i)
+    children += std::string(i ? "," : "") +
+                R"({"type": "soft_object", "potential": {"type": "murakami"}, "strength": )" +
+                (i == 3 ? "-0.5" : "1") + R"(, "distance": {"type": "lp_metric", "radii": )" +
+                (i == 3 ? "[0.6, 0.6, 0.6]" : "[1, 1, 1]") + R"(, "n": 2}, "translate": [)" +
+                std::to_string(centres[i][0]) + "," + std::to_string(centres[i][1]) + "," +
+                std::to_string(centres[i][2]) + "]}";
+  return R"({"camera": {"eye": [0.3, -6, 0.2], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 37},
+    "image": {"spp": 1},
+    "lights": [{"type": "point", "position": [-15, -25, 30], "shadows": true}],
+    "objects": [{"iso": 0.6, "field": {"type": "soft_blend", "children": [)" +
+         children + "]}}]}";
+}
+
+std::string cloud_with_subtracting_balls(int n) {
+  std::string scene = unmet_sparse_cloud(n);
+  // Every fifth child's potential is given a negative strength (the others keep 1).
+  const std::string potential = R"("potential": {"type": "murakami"},)";
+  size_t at = 0;
+  for (int i = 0; (at = scene.find(potential, at)) != std::string::npos; ++i) {
+    at += potential.size();
+    if (i % 5 == 0) scene.insert(at, R"( "strength": -1.5,)");
+  }
+  return scene;
+}
+
+TEST(UnmetBeams, ListsWithSubtractingBallsPassAsTheSearchAnswers) {
+  for (const std::string& text :
+       {few_balls_with_a_subtracting_one(), cloud_with_subtracting_balls(400)}) {
+    const Scene scene = parse_scene(text, "<test>");
+    const TracedScene rt(scene, LipschitzMode::Local);
+    const ObjectTracer* tracer = rt.tracers.tracer(0);
+    ASSERT_TRUE(tracer && tracer->blob_sum());
+    UnmetWalk walk;
+    walk_unmet_beams(scene, rt, walk);
+    // Not vacuous: beams whose lists hold a negative ball are passable, most of their rays pass,
+    // some meet the sum (and must not be passed), and some passing rays enter the sum's box.
+    EXPECT_GT(walk.passable_rays, 200);
+    EXPECT_GT(walk.passing_rays, walk.passable_rays / 3);
+    EXPECT_GT(walk.passable_sum_hits, 20);
+    EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
+  }
+}
+
 // A cloud cut by a floor alone, tilted (its world normal not the default's): intersect() and
 // occluded() test the one unplaced plane directly (EmbreeScene's floor), intersect_unmet through
 // the primitives' loop (nearest_primitive). Every unmet ray gets the same answer from both; every
