@@ -119,18 +119,25 @@ struct BlobBeam {
   // answered as blocked_by would answer it, with the same work, but without its terms.
   bool shut = false;
   double shut_footprint = 0;
-  // A camera list of at most kPassable blobs, all balls, in a sum where none subtracts: per ball,
-  // from the eye, what bounds the peak of a ray's term of it (ObjectTracer::passes_listed_balls,
-  // tracer_blob_beam.cpp), `passing` of them; 0 for any other list.
+  // A camera list of at most kPassable blobs: per blob that adds, from the eye, what bounds the
+  // peak of a ray's terms of it (ObjectTracer::passes_listed_balls, tracer_blob_beam.cpp),
+  // `passing` of them; 0 for any other list.
   static constexpr int kPassable = 4;
   struct Passing {
-    Vec3 oc;   // eye - centre
-    double k;  // 1 - |oc|^2 / r^2, raised by a bound of the rounding
-    double inv_r2;
+    // A ball's: eye - centre, and 1 - |oc|^2 / r^2 raised by a bound of the rounding. A capsule's
+    // or an ellipsoid's: the eye in its frame, L eye + k, and the bound of the rounding alone.
+    Vec3 oc;
+    double k;
+    union {
+      double inv_r2;  // a ball's
+      int frame;      // a framed blob's id (a member more made every list longer: the balls'
+                      // lists' rays +0.5 % of pov:molecule's and meets1's processes)
+    };
     double mag;  // |c2| + |c3|
   };
   Passing passes[kPassable];
   int passing = 0;
+  int passing_framed = 0;  // the last of the `passing`: the balls' loop takes the others alone
   // A camera list (ObjectTracer::blob_beam from the eye), neither kind of shadow list.
   bool camera() const { return !parallel && !toward; }
   // Whether the list holds for rays from o: from its eye, to the bit.
@@ -412,7 +419,7 @@ class ObjectTracer {
   MarchResult unlisted_stretches(double t0, double t1, TraceCounters& work) const;
   // BlobBeam::passing and passes of the camera list *out from `eye` (eye_scale: its largest
   // coordinate's magnitude), or passing 0 (tracer_blob_beam.cpp).
-  void passing_balls(const Vec3& eye, double eye_scale, BlobBeam* out) const;
+  void passing_balls(const Frustum& f, double eye_scale, BlobBeam* out) const;
   // ∇f at p for a sum of polynomial blobs, from the blobs that hold p (tracer_blobs.cpp).
   // With `list` (see normal), from its blobs whose ranges of distances hold p's from the eye.
   Vec3 blob_gradient(const Vec3& p, double* terms, const BlobBeam* list) const;

@@ -51,6 +51,7 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
   out->sifted = false;
   out->adders.clear();
   out->passing = 0;
+  out->passing_framed = 0;
   if (!blobs_) return;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec3 normals[4];
@@ -137,7 +138,7 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
   }
   // Only for a block whose rays ask passes_listed_balls: a tile's and a quarter's lists, which no
   // ray reads, took 0.29 M of its 1.18 M instructions (meets1 640x480).
-  if (passable) passing_balls(f.eye, sides.eye_scale, out);
+  if (passable) passing_balls(f, sides.eye_scale, out);
   out->eye = f.eye;
   out->valid = true;
 }
@@ -154,32 +155,96 @@ void ObjectTracer::blob_beam(const Frustum& f, const BlobBeam* parent, BlobBeam*
 // at most a few ulps of |eye - c|^2; the sweep's, from its stretch's start, on the line to a few
 // ulps of |eye| + t0 (t0 <= |eye - c| + r, or the ball's entry is skipped), at most a few ulps
 // of (|eye| + 3 |eye - c| + r) |eye - c|; 1e-11 is thousands of ulps. Then 1e-12 for h2's own.
-void ObjectTracer::passing_balls(const Vec3& eye, double eye_scale, BlobBeam* out) const {
-  if (!out->camera() || out->entries.size() > size_t(BlobBeam::kPassable) || blobs_->subtracts())
-    return;
+// A blob that only subtracts (BlobSum::adds) gives terms whose peaks are 0, so it adds nothing to
+// any piece's peak sum: it takes no bound, whatever its shape (pov:old_syntax's negative ball
+// among three positive ones).
+//
+// A capsule or an ellipsoid (a frame: r = 1 - |q|^2, q = L x + k less its nearest point s axis,
+// s in [0, 1]; axis = 0 for an ellipsoid): along the ray, L x + k = q0 + t w with q0 = L eye + k
+// and w = L d, so r <= 1 - D^2, D the distance from that line to the segment [0, axis], which is
+// the distance from q0 to the segment [0, axis] both taken across w (passes_listed_balls). Each
+// of its up to three terms (its end balls' and its middle's) then peaks at most (1 - D^2)^2
+// (|c2| + |c3|), and a piece holds at most one of them (their ranges only touch, and of equal
+// events exits come first: blob_events.h). The rounding: the sweep's w and v come from the
+// stretch's start, within eye + (|eye - c| + R) d of a term's blob (c, R its bounding sphere),
+// and each r errs by a few ulps of (1 + |w|^2 + |axis|^2) (blob_frame_terms.h); this D^2 by a
+// few ulps of (|q0| + |axis|)^2. Both are below a few ulps of the square of scale = 1 +
+// |L|_F (|eye| + |eye - c| + R) + |k| + |axis|, and 1e-11 of that is thousands of ulps.
+//
+// A list with a capsule or an ellipsoid keeps its passes only where a ray through one of the
+// block's corners passes: their test costs a ray some 100 instructions, and where a block lies
+// within such a blob's silhouette none of its rays passes (pov:blob1a, whose two capsules of
+// radius 4 cross the frame: +2.3 % of its process with every block's rays tested). A choice,
+// not a certificate: each ray of a passable block is still tested on its own.
+void ObjectTracer::passing_balls(const Frustum& f, double eye_scale, BlobBeam* out) const {
+  if (!out->camera() || out->entries.size() > size_t(BlobBeam::kPassable)) return;
+  const Vec3& eye = f.eye;
   const std::vector<BlobSum::Blob>& blobs = blobs_->blobs();
-  int n = 0;
+  // Balls first, then the framed blobs (passes_listed_balls' two loops).
+  BlobBeam::Passing framed[BlobBeam::kPassable];
+  int n = 0, n_framed = 0;
   for (const BlobBeam::Entry& e : out->entries) {
+    if (!blobs_->adds(e.id)) continue;
     const BlobSum::Blob& b = blobs[e.id];
-    if (blobs_->is_framed(e.id) || !(b.inv_r2 > 0)) return;
+    const double mag = std::abs(b.c2) + std::abs(b.c3);
+    if (blobs_->is_framed(e.id)) {
+      const BlobSum::Frame& frame = blobs_->frames()[e.id];
+      Vec3 c;
+      const double reach2 = blobs_->bounding_sphere(e.id, &c);
+      if (!std::isfinite(reach2)) return;
+      const double norm =
+          std::sqrt(dot(frame.L.r[0], frame.L.r[0]) + dot(frame.L.r[1], frame.L.r[1]) +
+                    dot(frame.L.r[2], frame.L.r[2]));
+      const double scale = 1 + norm * (length(eye) + length(eye - c) + std::sqrt(reach2)) +
+                           length(frame.k) + length(frame.axis);
+      if (!std::isfinite(scale)) return;
+      BlobBeam::Passing& pass = framed[n_framed++];
+      pass.oc = frame.times(eye) + frame.k;
+      pass.k = 1e-11 * scale * scale;
+      pass.frame = e.id;
+      pass.mag = mag;
+      continue;
+    }
+    if (!(b.inv_r2 > 0)) return;
     const Vec3 oc = eye - b.centre;
     const double oc2 = dot(oc, oc);
     const double w = 0.5 * (e.far - e.near);  // r and blob_beam's slack
     const double rounding = 1e-11 * (oc2 + (eye_scale + w) * std::sqrt(oc2)) * b.inv_r2 + 1e-12;
-    out->passes[n++] = {oc, 1 - oc2 * b.inv_r2 + rounding, b.inv_r2,
-                        std::abs(b.c2) + std::abs(b.c3)};
+    out->passes[n++] = {oc, 1 - oc2 * b.inv_r2 + rounding, {b.inv_r2}, mag};
   }
+  for (int i = 0; i < n_framed; ++i) out->passes[n++] = framed[i];
   out->passing = n;
+  out->passing_framed = n_framed;
+  if (n_framed == 0) return;
+  for (const Vec3& corner : f.corner)
+    if (passes_listed_balls({eye, normalize(corner), 0, 0}, *out)) return;
+  out->passing = 0;
+  out->passing_framed = 0;
 }
 
 bool ObjectTracer::passes_listed_balls(const Ray& ray, const BlobBeam& list) const {
   // d of unit length to a few ulps, as k assumes (a camera ray's is normalised).
   if (!(std::abs(dot(ray.d, ray.d) - 1) < 1e-14)) return false;
   double peaks = 0;
-  for (int i = 0; i < list.passing; ++i) {
+  const int balls = list.passing - list.passing_framed;
+  for (int i = 0; i < balls; ++i) {
     const BlobBeam::Passing& p = list.passes[i];
     const double b = dot(p.oc, ray.d);
     const double h2 = p.k + b * b * p.inv_r2;
+    if (h2 > 0) peaks += h2 * h2 * p.mag;
+  }
+  for (int i = balls; i < list.passing; ++i) {
+    // q0 and the axis across w = L d: their distance is D (passing_balls).
+    const BlobBeam::Passing& p = list.passes[i];
+    const BlobSum::Frame& f = blobs_->frames()[p.frame];
+    const Vec3 w = f.times(ray.d);
+    const double ww = dot(w, w);
+    if (!(ww > 0)) return false;
+    const Vec3 q = p.oc - w * (dot(p.oc, w) / ww), axis = f.axis - w * (dot(f.axis, w) / ww);
+    const double aa = dot(axis, axis);
+    const double s = aa > 0 ? std::clamp(dot(q, axis) / aa, 0.0, 1.0) : 0.0;
+    const Vec3 gap = q - axis * s;
+    const double h2 = 1 - dot(gap, gap) + p.k;
     if (h2 > 0) peaks += h2 * h2 * p.mag;
   }
   // Far above the sum's and the pieces' own rounding (first_hit_blobs: 1e-12 of it, 1e-15 a term).

@@ -19,6 +19,7 @@
 // primitives no beam is prepared so.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -208,6 +209,156 @@ TEST(UnmetBeams, BesidePrimitivesEveryRayGetsIntersectsAnswer) {
   EXPECT_GT(walk.unmet_hits[3], 50);                   // the box
   EXPECT_GT(walk.unmet_hits[4], 50);                   // the ball in front
   EXPECT_GT(walk.sum_hits, 20);
+}
+
+// Three positive balls about a negative one (pov:old_syntax's blob, a sum of at most kListed
+// blobs, whose rays take their whole way at once), seen close up, and the sparse cloud with every
+// fifth ball negative (more than kListed blobs: camera rays sweep their lists). A ball that only
+// subtracts takes no bound in passing_balls (its terms' peaks are 0), so a beam whose list holds
+// one is passable too: each of its passing rays must still get intersect()'s answer and counters.
+std::string few_balls_with_a_subtracting_one() {
+  std::string children;
+  const double centres[4][3] = {
+      {0.649519, -0.375, 0}, {-0.32476, 0.1875, 0.64952}, {-0.32476, 0.1875, -0.64952}, {0, 0, 0}};
+  for (int i = 0; i < 4; ++i)
+    children += std::string(i ? "," : "") +
+                R"({"type": "soft_object", "potential": {"type": "murakami"}, "strength": )" +
+                (i == 3 ? "-0.5" : "1") + R"(, "distance": {"type": "lp_metric", "radii": )" +
+                (i == 3 ? "[0.6, 0.6, 0.6]" : "[1, 1, 1]") + R"(, "n": 2}, "translate": [)" +
+                std::to_string(centres[i][0]) + "," + std::to_string(centres[i][1]) + "," +
+                std::to_string(centres[i][2]) + "]}";
+  return R"({"camera": {"eye": [0.3, -6, 0.2], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 37},
+    "image": {"spp": 1},
+    "lights": [{"type": "point", "position": [-15, -25, 30], "shadows": true}],
+    "objects": [{"iso": 0.6, "field": {"type": "soft_blend", "children": [)" +
+         children + "]}}]}";
+}
+
+std::string cloud_with_subtracting_balls(int n) {
+  std::string scene = unmet_sparse_cloud(n);
+  // Every fifth child's potential is given a negative strength (the others keep 1).
+  const std::string potential = R"("potential": {"type": "murakami"},)";
+  size_t at = 0;
+  for (int i = 0; (at = scene.find(potential, at)) != std::string::npos; ++i) {
+    at += potential.size();
+    if (i % 5 == 0) scene.insert(at, R"( "strength": -1.5,)");
+  }
+  return scene;
+}
+
+TEST(UnmetBeams, ListsWithSubtractingBallsPassAsTheSearchAnswers) {
+  for (const std::string& text :
+       {few_balls_with_a_subtracting_one(), cloud_with_subtracting_balls(400)}) {
+    const Scene scene = parse_scene(text, "<test>");
+    const TracedScene rt(scene, LipschitzMode::Local);
+    const ObjectTracer* tracer = rt.tracers.tracer(0);
+    ASSERT_TRUE(tracer && tracer->blob_sum());
+    UnmetWalk walk;
+    walk_unmet_beams(scene, rt, walk);
+    // Not vacuous: beams whose lists hold a negative ball are passable, most of their rays pass,
+    // some meet the sum (and must not be passed), and some passing rays enter the sum's box.
+    EXPECT_GT(walk.passable_rays, 200);
+    EXPECT_GT(walk.passing_rays, walk.passable_rays / 3);
+    EXPECT_GT(walk.passable_sum_hits, 20);
+    EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
+  }
+}
+
+// Capsules and ellipsoids (passing_balls' framed blobs): pov:sheared's blob (frames placed by
+// matrices, one negative ellipsoid), a candle's (frames that only translate and scale, negative
+// balls), both sums of at most kListed blobs, and a ring of 12 capsules and 12 balls (more than
+// kListed: camera rays sweep their lists). Each passing ray of their passable beams must still get
+// intersect()'s answer and counters.
+std::string framed_blobs_scene(const std::string& camera, const std::string& children, double iso) {
+  return R"({"camera": )" + camera + R"(, "image": {"spp": 1},
+    "lights": [{"type": "point", "position": [8, -12, 14], "shadows": true}],
+    "objects": [{"iso": )" +
+         std::to_string(iso) + R"(, "field": {"type": "soft_blend", "children": [)" + children +
+         "]}}]}";
+}
+
+std::string sheared_blob() {
+  return framed_blobs_scene(
+      R"({"eye": [0, -11, 6], "target": [0, 0, 0.5], "up": [0, 0, 1], "fov": 34.5})",
+      R"({"type": "soft_object", "potential": {"type": "murakami"},
+       "distance": {"type": "segment", "p0": [-2, 0, 0], "p1": [2, 0, 0], "radius": 0.9},
+       "matrix": [[0.8137976813493738, 0.5130302149885031, -0.46984631039295416, -1.4095389311788626],
+                  [-0.29619813272602386, 1.4095389311788626, 0.17101007166283433, 0.5130302149885031],
+                  [0.275, 0.0, 0.47631397208144133, 1.1]]},
+      {"type": "soft_object", "potential": {"type": "murakami"}, "strength": 1.2,
+       "distance": {"type": "segment", "p0": [0, 0, -1.5], "p1": [0, 0, 1.5], "radius": 0.8},
+       "matrix": [[1.3626411834226344, 0.5918355285391821, -0.33285989699489416, 0],
+                  [-0.49596083075111147, 0.35523471239766546, 0.5999792953429918, 0],
+                  [0.4648800879147694, -0.6408197576765439, 0.7636992484163723, 0]]},
+      {"type": "soft_object", "potential": {"type": "murakami"},
+       "distance": {"type": "lp_metric", "radii": [2.64, 1.32, 0.792], "n": 2},
+       "translate": [2.238333837391833, -0.28259800492351705, -0.55],
+       "rotate": {"axis": [0, 0, -1], "deg": 20}},
+      {"type": "soft_object", "potential": {"type": "murakami"}, "strength": 1.5,
+       "distance": {"type": "lp_metric", "radii": [1, 1, 1], "n": 2},
+       "matrix": [[0.9396926207859084, 0.8118664537186229, 0.10260604299770061, -2.0072114086391024],
+                  [-0.3420201433256687, 0.7686825491230741, 0.2819077862357725, 1.7947429791000802],
+                  [0.44, 0.0, 1.1, -1.1]]},
+      {"type": "soft_object", "potential": {"type": "murakami"}, "strength": -1.5,
+       "distance": {"type": "lp_metric", "radii": [0.7, 0.7, 0.77], "n": 2},
+       "translate": [0.4698463103929542, -0.17101007166283436, 0.22],
+       "rotate": {"axis": [0, 0, -1], "deg": 20}})",
+      0.5);
+}
+
+std::string candle_blob() {
+  return framed_blobs_scene(
+      R"({"eye": [0, -9, 5.5], "target": [0, 0, 2.2], "up": [0, 0, 1], "fov": 32})",
+      R"({"type": "soft_object", "potential": {"type": "murakami"}, "strength": 2,
+       "distance": {"type": "segment", "p0": [0, 0, 0], "p1": [0, 0, 3.2], "radius": 1.7}},
+      {"type": "soft_object", "potential": {"type": "murakami"}, "strength": -2.5,
+       "distance": {"type": "lp_metric", "radii": [1, 1, 1], "n": 2}, "translate": [0, 0, 3.55]},
+      {"type": "soft_object", "potential": {"type": "murakami"}, "strength": 1.2,
+       "distance": {"type": "lp_metric", "radii": [0.5, 0.5, 0.95], "n": 2},
+       "translate": [0.95, -0.55, 2.35]},
+      {"type": "soft_object", "potential": {"type": "murakami"}, "strength": 1.1,
+       "distance": {"type": "segment", "p0": [-1.6, 0.4, 0.3], "p1": [-0.6, -0.8, 1.9],
+                    "radius": 0.5}})",
+      0.6);
+}
+
+std::string ring_of_capsules_and_balls() {
+  std::string children;
+  constexpr double kPi = 3.141592653589793;
+  for (int i = 0; i < 12; ++i) {
+    const double a0 = 2 * kPi * i / 12, a1 = 2 * kPi * (i + 1) / 12;
+    const auto at = [](double a) {
+      return "[" + std::to_string(4 * std::cos(a)) + "," + std::to_string(4 * std::sin(a)) + "," +
+             std::to_string(0.3 * std::sin(3 * a)) + "]";
+    };
+    children += std::string(i ? "," : "") +
+                R"({"type": "soft_object", "potential": {"type": "murakami"},
+        "distance": {"type": "segment", "p0": )" +
+                at(a0) + R"(, "p1": )" + at(a1) +
+                R"(, "radius": 0.55}}, {"type": "soft_object", "potential": {"type": "murakami"},
+        "strength": 0.8, "distance": {"type": "lp_metric", "radii": [0.8, 0.8, 0.8], "n": 2},
+        "translate": )" +
+                at(a0) + "}";
+  }
+  return framed_blobs_scene(
+      R"({"eye": [0, -12, 9], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 30.5})", children, 0.4);
+}
+
+TEST(UnmetBeams, ListsOfCapsulesAndEllipsoidsPassAsTheSearchAnswers) {
+  for (const std::string& text : {sheared_blob(), candle_blob(), ring_of_capsules_and_balls()}) {
+    const Scene scene = parse_scene(text, "<test>");
+    const TracedScene rt(scene, LipschitzMode::Local);
+    const ObjectTracer* tracer = rt.tracers.tracer(0);
+    ASSERT_TRUE(tracer && tracer->blob_sum());
+    UnmetWalk walk;
+    walk_unmet_beams(scene, rt, walk);
+    // Not vacuous: beams whose lists hold capsules or ellipsoids are passable, many of their rays
+    // pass, some meet the sum (and must not be passed), and some passing rays enter its box.
+    EXPECT_GT(walk.passable_rays, 200);
+    EXPECT_GT(walk.passing_rays, walk.passable_rays / 4);
+    EXPECT_GT(walk.passable_sum_hits, 20);
+    EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
+  }
 }
 
 // A cloud cut by a floor alone, tilted (its world normal not the default's): intersect() and
