@@ -246,22 +246,28 @@ std::string cloud_with_subtracting_balls(int n) {
   return scene;
 }
 
+// Walks `text`'s unmet beams (walk_unmet_beams checks each passing ray against intersect()) and
+// checks the walk was not vacuous: its passable beams hold more than 200 rays, more than
+// 1/`passing_share` of them pass, some meet the sum (and must not be passed), and some passing
+// rays enter the sum's box.
+void expect_passable_beams_walked(const std::string& text, int passing_share) {
+  const Scene scene = parse_scene(text, "<test>");
+  const TracedScene rt(scene, LipschitzMode::Local);
+  const ObjectTracer* tracer = rt.tracers.tracer(0);
+  ASSERT_TRUE(tracer && tracer->blob_sum());
+  UnmetWalk walk;
+  walk_unmet_beams(scene, rt, walk);
+  EXPECT_GT(walk.passable_rays, 200);
+  EXPECT_GT(walk.passing_rays, walk.passable_rays / passing_share);
+  EXPECT_GT(walk.passable_sum_hits, 20);
+  EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
+}
+
+// Beams whose lists hold a negative ball are passable, and most of their rays pass.
 TEST(UnmetBeams, ListsWithSubtractingBallsPassAsTheSearchAnswers) {
   for (const std::string& text :
-       {few_balls_with_a_subtracting_one(), cloud_with_subtracting_balls(400)}) {
-    const Scene scene = parse_scene(text, "<test>");
-    const TracedScene rt(scene, LipschitzMode::Local);
-    const ObjectTracer* tracer = rt.tracers.tracer(0);
-    ASSERT_TRUE(tracer && tracer->blob_sum());
-    UnmetWalk walk;
-    walk_unmet_beams(scene, rt, walk);
-    // Not vacuous: beams whose lists hold a negative ball are passable, most of their rays pass,
-    // some meet the sum (and must not be passed), and some passing rays enter the sum's box.
-    EXPECT_GT(walk.passable_rays, 200);
-    EXPECT_GT(walk.passing_rays, walk.passable_rays / 3);
-    EXPECT_GT(walk.passable_sum_hits, 20);
-    EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
-  }
+       {few_balls_with_a_subtracting_one(), cloud_with_subtracting_balls(400)})
+    expect_passable_beams_walked(text, 3);
 }
 
 // Capsules and ellipsoids (passing_balls' framed blobs): pov:sheared's blob (frames placed by
@@ -344,21 +350,10 @@ std::string ring_of_capsules_and_balls() {
       R"({"eye": [0, -12, 9], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 30.5})", children, 0.4);
 }
 
+// Beams whose lists hold capsules or ellipsoids are passable, and many of their rays pass.
 TEST(UnmetBeams, ListsOfCapsulesAndEllipsoidsPassAsTheSearchAnswers) {
-  for (const std::string& text : {sheared_blob(), candle_blob(), ring_of_capsules_and_balls()}) {
-    const Scene scene = parse_scene(text, "<test>");
-    const TracedScene rt(scene, LipschitzMode::Local);
-    const ObjectTracer* tracer = rt.tracers.tracer(0);
-    ASSERT_TRUE(tracer && tracer->blob_sum());
-    UnmetWalk walk;
-    walk_unmet_beams(scene, rt, walk);
-    // Not vacuous: beams whose lists hold capsules or ellipsoids are passable, many of their rays
-    // pass, some meet the sum (and must not be passed), and some passing rays enter its box.
-    EXPECT_GT(walk.passable_rays, 200);
-    EXPECT_GT(walk.passing_rays, walk.passable_rays / 4);
-    EXPECT_GT(walk.passable_sum_hits, 20);
-    EXPECT_GT(walk.passing_counted, walk.passing_rays / 10);
-  }
+  for (const std::string& text : {sheared_blob(), candle_blob(), ring_of_capsules_and_balls()})
+    expect_passable_beams_walked(text, 4);
 }
 
 // A cloud cut by a floor alone, tilted (its world normal not the default's): intersect() and
