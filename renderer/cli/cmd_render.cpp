@@ -141,27 +141,12 @@ int finish_process(int status) {
 
 }  // namespace
 
-// Before the parse: a thread's first run comes 0.7-4.3 ms after its start on the 2-vCPU guest,
-// and the parse's 0.5-0.8 ms are that much more of its way to the frame. Arguments that ask for one
-// thread (read as the parser will read them; a guess that misses costs time, not results) start
-// none: a worker started and ended again cost a --threads 1 render 0.1-1.3 ms of CPU
-// (docs/performance.md, session 39).
-void start_render_thread(const std::vector<std::string>& args) {
-  for (size_t i = 2; i < args.size(); ++i)
-    if (args[i] == "--threads=1" ||
-        (args[i] == "--threads" && i + 1 < args.size() && args[i + 1] == "1"))
-      return;
-  start_first_thread(worker_start);
-}
-
 int run_render(const RenderArgs& a) {
   // main() has made on_render_interrupt the signals' handler.
   try {
     // The cap, kept until exit (a smaller one may be kept after it), and the frame's worker
-    // threads started beside the scene's load, which they do not wait for (threads.h). The first
-    // was started before the parse (start_render_thread); with one thread it ends now.
+    // threads started beside the scene's load, which they do not wait for (threads.h).
     if (a.threads) limit_threads(a.threads).keep_until_exit();
-    if (loop_threads() == 1) end_threads_after_loops(0);
     // The workers keep the signals blocked, so that the handler runs on this thread. Each puts its
     // heap in huge pages while this thread loads the scene (heap_pages.h).
     block_interrupts();
@@ -205,7 +190,6 @@ int run_render(const RenderArgs& a) {
     const int tasks = frame_tasks(window.x0, window.y0, window.width(), window.height());
     const int wanted = a.threads ? a.threads : default_threads();
     if (wanted > tasks) limit_threads(tasks).keep_until_exit();
-    if (loop_threads() == 1) end_threads_after_loops(0);
 
     const auto start = std::chrono::steady_clock::now();
     // The film's planes are zeroed as they are made, a page fault per 4 KiB of fresh memory (300

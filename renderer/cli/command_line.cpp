@@ -284,9 +284,6 @@ int softtrace::run_command_line(int argc, char** argv) {
   const bool asks_help = std::any_of(args.begin() + 1, args.end(), [](const std::string& a) {
     return a == "-h" || a == "--help" || a == "--help-all" || a == "--version";
   });
-  // The frame's first worker, while the parse runs (the signals blocked above, so it keeps them
-  // blocked, as run_render's workers do).
-  if (argc > 1 && !asks_help && args[1] == "render") start_render_thread(args);
   std::unique_ptr<CommandLine> cli, tried;
   if (argc > 1 && !asks_help &&
       std::find(std::begin(kCommands), std::end(kCommands), args[1]) != std::end(kCommands)) {

@@ -35,9 +35,6 @@ struct RenderArgs {
   std::optional<double> antialias;  // the adaptive anti-aliasing threshold, over the scene's
 };
 int run_render(const RenderArgs& a);
-// `render`'s first worker thread, started before its arguments `args` (argv's) are parsed
-// (threads.h start_first_thread), which run_render ends at once where its count turns out to be 1.
-void start_render_thread(const std::vector<std::string>& args);
 // What SIGINT/SIGTERM do to `render` (signals.h), by phase: see cmd_render.cpp.
 void on_render_interrupt(int sig);
 

@@ -259,16 +259,9 @@ class Pool {
   void spawn_locked(int workers) {
     for (; workers_ < workers; ++workers_)
       std::thread([this, on_start = on_start_] {
-        if (on_start && !ends_at_once()) on_start();
+        if (on_start) on_start();
         work();
       }).detach();
-  }
-
-  // Whether a worker starting now would end at once (end_threads_after_loops): then its start
-  // hook (a heap's huge page filled) would be for nothing.
-  bool ends_at_once() {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return ending_ && open_.empty();
   }
 
   void close_locked(Loop& loop) {
@@ -350,10 +343,6 @@ ThreadLimit limit_threads(int threads) {
 
 void end_threads_after_loops(int loops) {
   Pool::get().end_after_loops(loops);
-}
-
-void start_first_thread(void (*on_start)()) {
-  if (default_threads() > 1) Pool::get().start(1, on_start);
 }
 
 void start_threads(void (*on_start)()) {

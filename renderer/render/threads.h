@@ -58,12 +58,6 @@ void start_threads(void (*on_start)() = nullptr);
 // one it must wake first.
 void end_threads_after_loops(int loops);
 
-// Starts one worker where the process may run on more than one core and none is started yet,
-// before the loops' count is known (a command line's, before its parse), `on_start` as in
-// start_threads; start_threads later starts the rest, and end_threads_after_loops(0) ends it where
-// the count turns out to be 1.
-void start_first_thread(void (*on_start)() = nullptr);
-
 // A floating-point mode (x86's MXCSR; elsewhere none) on the calling thread while it lives, the
 // mode before it restored after, also when the body throws.
 class FloatingPointMode {

@@ -3,7 +3,7 @@
 // after it, a loop inside a task, parallel_ranges running each range in the caller's
 // floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp),
 // start_threads' hook run first on each worker it starts, and the workers' end after a given number
-// of loops or at once (a one-shot render's: cmd_render.cpp), one started before the count is known.
+// of loops (a one-shot render's: cmd_render.cpp).
 #include <dirent.h>
 #include <gtest/gtest.h>
 
@@ -378,32 +378,6 @@ TEST(ThreadLoops, WorkersEndAfterTheLoopsTheyWereGiven) {
           ok = ok && later.load() == 100 && threads_now() == 1;
         });
         std::exit(ok ? 0 : 1);
-      },
-      ::testing::ExitedWithCode(0), "");
-}
-
-// A command line's first worker, started before its count is known: one where the process may
-// use more than one core (the count's later start_threads adds the rest), ended at once where the
-// count turns out to be 1.
-TEST(ThreadLoops, TheFirstWorkerStartsAloneAndEndsAtOnceWhenTheCountIsOne) {
-  if (default_threads() < 2) GTEST_SKIP() << "one core: no first worker";
-  EXPECT_EXIT(
-      {
-        bool ok = true;
-        start_first_thread();
-        ok = ok && threads_now() == 2;
-        start_first_thread();  // one started already: no second
-        ok = ok && threads_now() == 2;
-        run_on_threads(3, [&] {
-          start_threads();
-          ok = ok && threads_now() == 3;
-        });
-        limit_threads(1).keep_until_exit();
-        end_threads_after_loops(0);
-        ok = ok && threads_become(1);
-        std::atomic<int> ran{0};
-        parallel_each(100, [&](size_t) { ++ran; });
-        std::exit(ok && ran.load() == 100 ? 0 : 1);
       },
       ::testing::ExitedWithCode(0), "");
 }
