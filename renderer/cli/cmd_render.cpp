@@ -77,10 +77,11 @@ void worker_start() {
 
 // A frame's PNG bands of at most this many pixels are the main thread's alone: on the 2-vCPU guest
 // a worker asleep since the frame's end woke for them late (a thread's wake here takes 0.7-4.3
-// ms), and their loop took longer with it than without: molecule at 320x240 2.61 against 1.21 ms,
-// meets1 at 640x480 3.94 against 2.82 ms (medians of 20 processes; docs/performance.md, session
-// 39). A larger image's bands are worth its wake.
-constexpr long kPngAloneUpTo = 640 * 480;
+// ms), and at 320x240 their loop took longer with it than without (molecule: 2.61 against 1.21 ms,
+// medians of 20 processes at load 5-10). At 640x480 the worker's help won on an idle guest (meets1
+// 17.8 against 18.7 ms a process, meets10 39.5 against 40.7 ms, 25 alternating processes), though
+// not under load (meets1's bands 3.94 against 2.82 ms): docs/performance.md, session 39.
+constexpr long kPngAloneUpTo = 320 * 240;
 
 bool is_png_output(const std::string& path) {
   return !is_exr_path(path);
