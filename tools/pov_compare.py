@@ -11,7 +11,11 @@ sphere and cylinder components, tools/pov_cloud.py); `real` names the whole real
 exact in softtrace, against POV-Ray's blob of the closest `murakami` fit: not the same surface, so
 its IoU is reported but not held to 0.999. Both renderers get the same size, 1 sample per pixel and the same
 number of threads. Rounds are interleaved (every case once, then again) so that a load spike on a
-shared machine hits every case alike; the medians over --repeat rounds are reported.
+shared machine hits every case alike; the medians over --repeat rounds are reported. Every timed
+process starts after the same idle pause (--settle), and the two renderers take turns at going
+first: on a virtual machine a process that starts right after a burst of CPU work (POV-Ray's trace,
+or a busy loop) runs several milliseconds slower than one after an idle second (docs/performance.md
+measures it), so without the pause whichever renderer ran second would pay for the first.
 
 Per case it prints the silhouettes' IoU (alpha >= 0.5 in softtrace's PNG and POV's +UA PNG), the
 colours' mean difference (the largest of premultiplied linear R, G, B per pixel, in 1/255), each
@@ -29,7 +33,7 @@ blob*.pov samples), python3-pil and gnuplot-nox when missing.
 usage: tools/pov_compare.py [--cases blob10,blob100,blob1000,blob10000,fig12b|real|pov:NAME,cloudN,
                                    meetsK,segtrace]
            [--width 160] [--height 120] [--threads 2] [--repeat 3] [--max-gradient 0.4]
-           [--build build] [--work DIR] [--json results.json] [--plot time_per_ray.png]
+           [--settle 1.0] [--build build] [--work DIR] [--json results.json] [--plot time_per_ray.png]
 """
 import argparse
 import json
@@ -84,8 +88,10 @@ def check_pil():
                  "itself (tools/pov_compare.py) or with /usr/bin/python3" % sys.executable)
 
 
-def timed(cmd):
-    """Runs cmd; returns (wall seconds, user+system CPU seconds, stdout+stderr text)."""
+def timed(cmd, settle):
+    """Runs cmd after `settle` idle seconds; returns (wall seconds, user+system CPU seconds,
+    stdout+stderr text)."""
+    time.sleep(settle)
     t0 = time.perf_counter()
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     out = p.stdout.read()
@@ -168,7 +174,7 @@ def pov_case_path(name):
 def povray(a, pov, png):
     wall, cpu, text = timed(["povray", "+I" + pov, "+O" + png, "+W%d" % a.width,
                              "+H%d" % a.height, "+UA", "+WT%d" % a.threads, "-D", "-A",
-                             "+FN8", "-V", "+GS"])
+                             "+FN8", "-V", "+GS"], a.settle)
     m = re.search(r"Trace Time:.*\(([\d.]+) seconds\)", text)
     if not m:
         sys.exit("pov_compare: no Trace Time in POV-Ray's statistics:\n" + text[-2000:])
@@ -181,8 +187,8 @@ def softtrace(a, scene, png):
     exe = os.path.join(a.build, "softtrace")
     common = ["--width", str(a.width), "--height", str(a.height), "--threads", str(a.threads)]
     wall, cpu, _ = timed([exe, "render", scene, "-o", png, "--png-alpha", "--spp", "1",
-                          "--quiet"] + common)
-    _, _, text = timed([exe, "bench", scene, "--repeat", "1", "--json", "--quiet"] + common)
+                          "--quiet"] + common, a.settle)
+    _, _, text = timed([exe, "bench", scene, "--repeat", "1", "--json", "--quiet"] + common, 0)
     bench = json.loads(text)
     return {"frame_s": bench["best_s"], "process_s": wall, "process_cpu_s": cpu,
             "primary": bench["primary"], "shadow": bench["shadow"], "commit": bench["commit"]}
@@ -254,6 +260,8 @@ def main():
     ap.add_argument("--max-gradient", type=float, default=0.4,
                     help="POV's max_gradient for fig12b (it reports 0.354 found at 640x480)")
     ap.add_argument("--accuracy", type=float, default=0.001, help="POV's isosurface accuracy")
+    ap.add_argument("--settle", type=float, default=1.0,
+                    help="idle seconds before every timed process (default 1)")
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--work", default="/tmp/pov_compare", help="scenes and images go here")
     ap.add_argument("--json", help="also write the results here")
@@ -271,13 +279,15 @@ def main():
     for r in range(a.repeat):
         for c in cases:
             print("round %d/%d: %s" % (r + 1, a.repeat, c), file=sys.stderr)
-            runs[c]["st"].append(softtrace(a, bases[c] + ".json", bases[c] + "_st.png"))
-            runs[c]["pov"].append(povray(a, bases[c] + ".pov", bases[c] + "_pov.png"))
+            turns = [("st", lambda: softtrace(a, bases[c] + ".json", bases[c] + "_st.png")),
+                     ("pov", lambda: povray(a, bases[c] + ".pov", bases[c] + "_pov.png"))]
+            for who, run in (turns if r % 2 == 0 else reversed(turns)):
+                runs[c][who].append(run())
 
     results = []
     rays = a.width * a.height
-    print("%dx%d, 1 spp, %d threads, medians of %d interleaved rounds" % (
-        a.width, a.height, a.threads, a.repeat))
+    print("%dx%d, 1 spp, %d threads, medians of %d interleaved rounds, %g s idle before each process"
+          % (a.width, a.height, a.threads, a.repeat, a.settle))
     print("%-10s %6s %6s %9s %9s %9s %9s %8s %8s %8s %8s" % (
         "case", "IoU", "mean", "st frame", "st proc", "pov trace", "pov proc", "trace/", "proc/",
         "evals/", "us/ray"))
