@@ -529,32 +529,22 @@ class FrameTracer {
     } else if (lists) {
       made_points(work);
     }
-    // The lists of `level` over the points of blocks [b0, b1).
-    const auto build = [&](int level, int b0, int b1) {
-      shadow_beams_.build(level, work.points.data(), block_starts[b0], block_starts[b1],
-                          work.shadow_lists);
-    };
     // The pixels of blocks [b0, b1) of 16: from `from` on, where they start.
     const auto end_of = [&](size_t from, int b1) {
       while (from < pixels.size() && pixels[from].block < b1) ++from;
       return from;
     };
-    if (lists) build(0, 0, kBlocksPerTile);
+    // Each block's lists (and its quarter's and the tile's) are built when its first shadow ray
+    // asks for them.
+    ShadowListsOnDemand on_demand(shadow_beams_, work.points.data(), block_starts,
+                                  work.shadow_lists);
     size_t i = 0;
-    for (int q = 0; q < 4; ++q) {
-      const size_t q_end = end_of(i, (q + 1) * 4);
-      if (i == q_end) continue;  // no pixel of the quarter to shade: no lists of it or its blocks
-      if (lists) build(1, q * 4, (q + 1) * 4);
-      for (int b = q * 4; b < (q + 1) * 4; ++b) {
-        const size_t b_end = end_of(i, b + 1);
-        if (i == b_end) continue;
-        ShadowLists view{};
-        if (lists) {
-          build(2, b, b + 1);
-          view = shadow_beams_.view(2, work.shadow_lists);
-        }
-        for (; i < b_end; ++i) pixel(pixels[i], lists ? &view : nullptr, pass, work);
-      }
+    for (int b = 0; b < kBlocksPerTile; ++b) {
+      const size_t b_end = end_of(i, b + 1);
+      if (i == b_end) continue;
+      ShadowLists view{};
+      if (lists) view = on_demand.view(b);
+      for (; i < b_end; ++i) pixel(pixels[i], lists ? &view : nullptr, pass, work);
     }
   }
 

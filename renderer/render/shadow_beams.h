@@ -115,4 +115,38 @@ class ShadowBeams {
   std::vector<int> blob_objects_;  // the objects that are sums of polynomial blobs
 };
 
+// A tile's lists built as its shadow rays first ask for them (ShadowLists::pending): a block's,
+// and its quarter's and the tile's above it, when one of the block's points casts a shadow ray,
+// instead of every level of every block with points before its pixels are shaded. A block whose
+// points all face away from the lights casts none (a cloud's dark side: meets10 at 640x480 has
+// 91,001 hits and 52,466 shadow rays), and needs no list. The lists built are the ones the frame's
+// order would build, from the same points in the same order (a tile's first, then a quarter's,
+// then its blocks'), so each ray gets the same list; a level skipped leaves nothing a later one
+// reads (a quarter's list is rebuilt for each quarter, a block's for each block).
+class ShadowListsOnDemand {
+ public:
+  // The tile's points (block b's are points[starts[b], starts[b + 1])), whose lists go in `lists`.
+  ShadowListsOnDemand(const ShadowBeams& beams, const ShadowBeams::Point* points, const int* starts,
+                      ShadowBeams::Lists& lists)
+      : beams_(beams), points_(points), starts_(starts), lists_(lists) {}
+  // The view of block b (of the tile's 16, a quarter's four after one another), its lists built
+  // when a shadow ray first asks.
+  ShadowLists view(int b) {
+    wanted_ = b;
+    ShadowLists v = beams_.view(ShadowBeams::kLevels - 1, lists_);
+    v.pending = this;
+    return v;
+  }
+  // Builds what block wanted_'s lists need; the blocks' level's lists.
+  const BlobBeam* build();
+
+ private:
+  const ShadowBeams& beams_;
+  const ShadowBeams::Point* points_;
+  const int* starts_;
+  ShadowBeams::Lists& lists_;
+  bool tile_ = false;
+  int quarter_ = -1, block_ = -1, wanted_ = -1;
+};
+
 }  // namespace softtrace

@@ -86,6 +86,26 @@ class CloudOverFloor {
   // its points. Stops at the first fatal failure.
   template <class Check>
   void for_each_block(Check&& check, int light = 0) {
+    for_each_tile([&](const std::vector<ShadowBeams::Point>& points, const int(&start)[17],
+                      const std::vector<Lit>(&by_block)[16]) {
+      beams_.build(0, points.data(), 0, start[16], lists_);
+      for (int q = 0; q < 4; ++q) {
+        beams_.build(1, points.data(), start[q * 4], start[q * 4 + 4], lists_);
+        for (int k = 0; k < 4; ++k) {
+          const int b = q * 4 + k;
+          beams_.build(2, points.data(), start[b], start[b + 1], lists_);
+          const ShadowLists view = beams_.view(2, lists_);
+          check(view.of(light), by_block[b]);
+          if (::testing::Test::HasFatalFailure()) return;
+        }
+      }
+    });
+  }
+
+  // check(points, start, by_block): a tile's points, block b's points[start[b], start[b + 1]),
+  // which are by_block[b]'s. Stops at the first fatal failure.
+  template <class Check>
+  void for_each_tile(Check&& check) {
     for (int y = 0; y < height; y += 16)
       for (int x = 0; x < width; x += 16) {
         std::vector<Lit> by_block[16];
@@ -103,17 +123,8 @@ class CloudOverFloor {
           for (const Lit& l : by_block[b]) points_.push_back(l.point);
           start[b + 1] = static_cast<int>(points_.size());
         }
-        beams_.build(0, points_.data(), 0, start[16], lists_);
-        for (int q = 0; q < 4; ++q) {
-          beams_.build(1, points_.data(), start[q * 4], start[q * 4 + 4], lists_);
-          for (int k = 0; k < 4; ++k) {
-            const int b = q * 4 + k;
-            beams_.build(2, points_.data(), start[b], start[b + 1], lists_);
-            const ShadowLists view = beams_.view(2, lists_);
-            check(view.of(light), by_block[b]);
-            if (::testing::Test::HasFatalFailure()) return;
-          }
-        }
+        check(points_, start, by_block);
+        if (::testing::Test::HasFatalFailure()) return;
       }
   }
 
@@ -792,6 +803,93 @@ TEST(ShadowBeams, AShadowRaysStretchesTakeTheBlobsItsLinePassesAsTheWholeList) {
       EXPECT_GT(passed_by, rays / 2) << direction;
       EXPECT_GT(hits, rays / 30) << direction;
     }
+}
+
+// Two lists the same: every member a shadow ray or a list built from it may read.
+void expect_same_list(const BlobBeam& a, const BlobBeam& b, int block) {
+  ASSERT_EQ(a.valid, b.valid) << "block " << block;
+  ASSERT_EQ(a.clear, b.clear) << "block " << block;
+  ASSERT_EQ(a.shut, b.shut) << "block " << block;
+  if (!a.valid && !a.shut) return;  // no list: its members are what the last build left
+  ASSERT_EQ(a.parallel, b.parallel) << "block " << block;
+  ASSERT_EQ(a.toward, b.toward) << "block " << block;
+  const ShadowPrism &p = a.prism, &q = b.prism;
+  ASSERT_TRUE(p.x0 == q.x0 && p.x1 == q.x1 && p.y0 == q.y0 && p.y1 == q.y1 && p.z0 == q.z0 &&
+              p.z1 == q.z1 && p.origin.x == q.origin.x && p.origin.y == q.origin.y &&
+              p.origin.z == q.origin.z)
+      << "block " << block;
+  ASSERT_EQ(a.entries.size(), b.entries.size()) << "block " << block;
+  for (size_t i = 0; i < a.entries.size(); ++i)
+    ASSERT_TRUE(a.entries[i].near == b.entries[i].near && a.entries[i].far == b.entries[i].far &&
+                a.entries[i].id == b.entries[i].id)
+        << "block " << block << " entry " << i;
+  ASSERT_EQ(a.across.size(), b.across.size()) << "block " << block;
+  for (size_t i = 0; i < a.across.size(); ++i)
+    ASSERT_TRUE(a.across[i].x == b.across[i].x && a.across[i].y == b.across[i].y &&
+                a.across[i].reach == b.across[i].reach && a.across[i].depth == b.across[i].depth)
+        << "block " << block << " entry " << i;
+  ASSERT_EQ(a.blockers, b.blockers) << "block " << block;
+  // Read only with blockers, and with a shut list (shadow_blockers leaves them otherwise).
+  if (!a.blockers.empty()) {
+    ASSERT_EQ(a.blockers_err, b.blockers_err) << "block " << block;
+  }
+  if (a.shut) {
+    ASSERT_EQ(a.shut_footprint, b.shut_footprint) << "block " << block;
+  }
+}
+
+// The frame builds a block's lists when its first shadow ray asks for them (ShadowListsOnDemand:
+// a block whose points all face away from the lights casts none), and the tile's and its
+// quarter's with them. Whichever blocks ask, and whichever quarters have no block that asks, each
+// block that does gets the lists the tile-quarter-blocks order builds, member by member, for a
+// directional and a point light together: over the mixed cloud, and over the positive balls
+// finer, whose tiles and quarters lend their shut lists to their blocks (Lists::lent: the state a
+// skipped quarter or block must not leave wrong).
+TEST(ShadowBeams, ABlocksListsBuiltOnDemandAreTheOnesBuiltInOrder) {
+  std::mt19937_64 rng(41);
+  int asked = 0, skipped = 0, shut = 0, clear = 0, toward = 0;
+  for (const int cloud : {0, 1}) {
+    CloudOverFloor floor(cloud,
+                         R"({"type": "directional", "direction": [1, 0.35, -1]},
+                            {"type": "point", "position": [30, -20, 60]})",
+                         rng, cloud == 1 ? 3 : 1);
+    const ShadowBeams& beams = floor.beams();
+    ShadowBeams::Lists in_order, on_demand_lists;
+    std::bernoulli_distribution asks(0.5), quarter_asks(0.7);
+    floor.for_each_tile([&](const std::vector<ShadowBeams::Point>& points, const int(&start)[17],
+                            const std::vector<CloudOverFloor::Lit>(&)[16]) {
+      ShadowListsOnDemand on_demand(beams, points.data(), start, on_demand_lists);
+      beams.build(0, points.data(), 0, start[16], in_order);
+      for (int q = 0; q < 4; ++q) {
+        beams.build(1, points.data(), start[q * 4], start[q * 4 + 4], in_order);
+        const bool quarter = quarter_asks(rng);
+        for (int b = q * 4; b < q * 4 + 4; ++b) {
+          beams.build(2, points.data(), start[b], start[b + 1], in_order);
+          const ShadowLists want = beams.view(2, in_order);
+          const ShadowLists got = on_demand.view(b);
+          if (!quarter || !asks(rng)) {
+            ++skipped;
+            continue;
+          }
+          ++asked;
+          for (int light = 0; light < 2; ++light)
+            for (int o = 0; o < want.objects; ++o) {
+              const BlobBeam& a = want.of(light)[o];
+              expect_same_list(a, got.of(light)[o], b);
+              if (::testing::Test::HasFatalFailure()) return;
+              shut += a.shut, clear += a.clear, toward += a.valid && a.toward;
+            }
+        }
+      }
+    });
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
+  }
+  std::printf("blocks asked: %d, not asked: %d; lists shut: %d, clear: %d, towards: %d\n", asked,
+              skipped, shut, clear, toward);
+  EXPECT_GT(asked, 1000);
+  EXPECT_GT(shut, 100);
+  EXPECT_GT(clear, 100);
+  EXPECT_GT(toward, 100);
 }
 
 // The frame traces a whole tile's camera rays before it shades any (the shadow lists need their
