@@ -1,7 +1,8 @@
 // The scene's load's blocks from the programs' arena (cli/load_arena.h): inside a scope, the
-// calling thread's small blocks come from the chunks, distinct, aligned and writable, and deleting
-// them leaves them be; outside it, on other threads and for large blocks, the C library's as
-// before. The replaced operator new is global to the executable, hence an executable of its own.
+// calling thread's small blocks come from the chunks, distinct, aligned and writable, those
+// deleted with their size taken again; outside it, on other threads and for large blocks, the C
+// library's as before. The replaced operator new is global to the executable, hence an executable
+// of its own.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -61,6 +62,32 @@ TEST(LoadArena, OtherBlocksAreTheLibrarys) {
   EXPECT_FALSE(load_arena_holds(large.get()));
   EXPECT_FALSE(load_arena_holds(other_thread.get()));
   EXPECT_FALSE(load_arena_holds(after.get()));
+}
+
+// A block deleted with its size inside the scope is the next one of its size class (the load's
+// temporaries would otherwise grow the heap past its huge pages); one deleted after the scope is
+// left alone.
+TEST(LoadArena, ABlockFreedInTheScopeIsTakenAgain) {
+  // Addresses as numbers: a freed block's pointer is not to be used, only compared.
+  const auto address = [](const void* p) { return reinterpret_cast<uintptr_t>(p); };
+  uintptr_t after = 0;
+  {
+    const LoadArena arena;
+    void* const first = ::operator new(40);
+    const uintptr_t freed = address(first);
+    ::operator delete(first, 40);
+    EXPECT_EQ(address(::operator new(48)), freed) << "the same size class (48 bytes)";
+    void* const kept = ::operator new(24);
+    after = address(kept);
+    EXPECT_NE(address(::operator new(24)), after);
+    ::operator delete(kept, 24);
+    EXPECT_EQ(address(::operator new(24)), after);
+    after = address(::operator new(24));
+  }
+  // Deleted out of the scope: left alone, not taken by the next scope.
+  ::operator delete(reinterpret_cast<void*>(after), 24);
+  const LoadArena arena;
+  EXPECT_NE(address(::operator new(24)), after);
 }
 
 TEST(LoadArena, ScopesNest) {
