@@ -18,6 +18,7 @@
 #include "cli/core_hand_over.h"
 #include "cli/exr_on_demand.h"
 #include "cli/heap_pages.h"
+#include "cli/load_arena.h"
 #include "cli/option_checks.h"
 #include "cli/signals.h"
 #include "describe/params.h"
@@ -153,7 +154,12 @@ int run_render(const RenderArgs& a) {
     block_interrupts();
     start_threads(worker_start);
     unblock_interrupts();
-    Scene scene = load_scene(a.scene);
+    // The load's blocks from the arena (load_arena.h): the scene and its document stay until
+    // exit, which does not free them.
+    Scene scene = [&] {
+      const LoadArena arena;
+      return load_scene(a.scene);
+    }();
     hand_over_embree_scene(scene);  // the static program's, before the checks and the compile
     apply_image_size(scene, a.scene, a.width, a.height, a.scale);
     if (a.spp) scene.image.spp = a.spp;
