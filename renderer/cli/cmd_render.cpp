@@ -75,6 +75,15 @@ void worker_start() {
   thread_heap_in_huge_pages(kWorkerHeapBytes);
 }
 
+// A frame's PNG of at most this many pixels is deflated after the frame, on the main thread alone
+// (the worker has ended by then): at 320x240 its bands deflated while the frame's last tiles were
+// traced made the frame and the write 3.1-3.6 ms longer (molecule, three rounds of 30 processes at
+// load 12), where the bands alone take about 1.1 ms. Above it they are deflated as the tiles finish
+// their rows, not after the frame on the main thread and a worker woken for them (2.8-8 ms of the
+// write under load): meets10 at 640x480 took 1.0-5.9 ms less a process in five rounds of 30
+// (docs/performance.md, session 40).
+constexpr long kPngAloneUpTo = 320 * 240;
+
 bool is_png_output(const std::string& path) {
   return !is_exr_path(path);
 }
@@ -239,19 +248,19 @@ int run_render(const RenderArgs& a) {
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;
-    // The PNG's bands (the same for every PNG output) are deflated by the threads that trace the
-    // frame, each as soon as the tiles over its rows are done: a band at the frame's end was a
-    // wait of about 1.1 ms at 320x240 and 2.8 ms at 640x480 on the main thread alone, and a worker
-    // woken for them after the frame took about as long to wake (docs/performance.md, session 39).
+    // Above kPngAloneUpTo pixels the PNG's bands (the same for every PNG output) are deflated by
+    // the threads that trace the frame, each as soon as the tiles over its rows are done.
     std::unique_ptr<PngBands> png;
-    if (std::any_of(outputs.begin(), outputs.end(), is_png_output)) {
+    if (long(film.width) * film.height > kPngAloneUpTo &&
+        std::any_of(outputs.begin(), outputs.end(), is_png_output)) {
       png = film_png_bands(film, out_opt, info);
       opt.pixels_final = [&png](int y0, int y1, int width) { png->pixels_final(y0, y1, width); };
     }
     FrameStats stats;
     // The workers end after their last loop, so that the exit has one thread to end, not a
     // sleeping one to wake first (threads.h): after the frame's loops (two with adaptive
-    // anti-aliasing, frame.h), which leave the PNG's bands done.
+    // anti-aliasing, frame.h), which leave a large frame's PNG bands done and a small one's to
+    // this thread.
     end_threads_after_loops(scene.image.antialias.on() ? 2 : 1);
     const bool complete = render_frame(scene, rt, opt, film, &progress, &stats);
     progress.finish();
