@@ -76,12 +76,13 @@ void worker_start() {
   thread_heap_in_huge_pages(kWorkerHeapBytes);
 }
 
-// A frame's PNG bands of at most this many pixels are the main thread's alone: on the 2-vCPU guest
-// a worker asleep since the frame's end woke for them late (a thread's wake here takes 0.7-4.3
-// ms), and at 320x240 their loop took longer with it than without (molecule: 2.61 against 1.21 ms,
-// medians of 20 processes at load 5-10). At 640x480 the worker's help won on an idle guest (meets1
-// 17.8 against 18.7 ms a process, meets10 39.5 against 40.7 ms, 25 alternating processes), though
-// not under load (meets1's bands 3.94 against 2.82 ms): docs/performance.md, session 39.
+// A frame's PNG of at most this many pixels is deflated after the frame, on the main thread alone
+// (the worker has ended by then): at 320x240 its bands deflated while the frame's last tiles were
+// traced made the frame and the write 3.1-3.6 ms longer (molecule, three rounds of 30 processes at
+// load 12), where the bands alone take about 1.1 ms. Above it they are deflated as the tiles finish
+// their rows, not after the frame on the main thread and a worker woken for them (2.8-8 ms of the
+// write under load): meets10 at 640x480 took 1.0-5.9 ms less a process in five rounds of 30
+// (docs/performance.md, session 40).
 constexpr long kPngAloneUpTo = 320 * 240;
 
 bool is_png_output(const std::string& path) {
@@ -253,16 +254,20 @@ int run_render(const RenderArgs& a) {
     RenderOptions opt;
     opt.lipschitz = a.lipschitz;
     opt.cancel = &g_cancel;
+    // Above kPngAloneUpTo pixels the PNG's bands (the same for every PNG output) are deflated by
+    // the threads that trace the frame, each as soon as the tiles over its rows are done.
+    std::unique_ptr<PngBands> png;
+    if (long(film.width) * film.height > kPngAloneUpTo &&
+        std::any_of(outputs.begin(), outputs.end(), is_png_output)) {
+      png = film_png_bands(film, out_opt, info);
+      opt.pixels_final = [&png](int y0, int y1, int width) { png->pixels_final(y0, y1, width); };
+    }
     FrameStats stats;
     // The workers end after their last loop, so that the exit has one thread to end, not a
     // sleeping one to wake first (threads.h): after the frame's loops (two with adaptive
-    // anti-aliasing, frame.h), and in a frame of more than kPngAloneUpTo pixels after its PNGs'
-    // bands too.
-    const int frame_loops = scene.image.antialias.on() ? 2 : 1;
-    const bool png_alone = long(film.width) * film.height <= kPngAloneUpTo;
-    end_threads_after_loops(
-        frame_loops +
-        (png_alone ? 0 : int(std::count_if(outputs.begin(), outputs.end(), is_png_output))));
+    // anti-aliasing, frame.h), which leave a large frame's PNG bands done and a small one's to
+    // this thread.
+    end_threads_after_loops(scene.image.antialias.on() ? 2 : 1);
     const bool complete = render_frame(scene, rt, opt, film, &progress, &stats);
     progress.finish();
     if (!complete) {
@@ -287,7 +292,7 @@ int run_render(const RenderArgs& a) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<std::string> temps;
     for (const auto& o : outputs)
-      temps.push_back(write_image_temp(o, film, out_opt, info, parallel_each));
+      temps.push_back(write_image_temp(o, film, out_opt, info, parallel_each, png.get()));
     int writing = kWriting;
     if (!g_phase.compare_exchange_strong(writing, kCommitting))
       for (;;) ::pause();  // a handler is removing the temporary files and exiting

@@ -180,8 +180,14 @@ AovSelection parse_aovs(const std::string& list) {
   return a;
 }
 
+std::unique_ptr<PngBands> film_png_bands(const Film& film, const OutputOptions& opt,
+                                         const FrameInfo& info) {
+  const FilmPngRows rows(film, opt, info);
+  return std::make_unique<PngBands>(film.width, film.height, rows.channels(), rows);
+}
+
 std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
-                             const FrameInfo& info, const EachIndex& each) {
+                             const FrameInfo& info, const EachIndex& each, PngBands* png) {
   const std::string target = resolve_output_target(path);
   remove_stale_temporaries(target, process_start_time());
   const std::string tmp = create_pending_temp(target, path);
@@ -189,9 +195,10 @@ std::string write_image_temp(const std::string& path, const Film& film, const Ou
     if (is_exr_path(path)) {
       ExrExtras extras;
       write_exr(tmp, exr_image(film, opt, info, extras), extras);
+    } else if (png) {
+      write_png(tmp, true, *png, each);
     } else {
-      const FilmPngRows rows(film, opt, info);
-      write_png(tmp, film.width, film.height, rows.channels(), true, rows, each);
+      write_png(tmp, true, *film_png_bands(film, opt, info), each);
     }
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": " + e.what());  // the caller abandons the pending file

@@ -4,12 +4,14 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "film/plane_memory.h"
 #include "io/image_file.h"
 #include "io/output_file.h"
+#include "io/png_bands.h"
 #include "math/vec.h"
 
 namespace softtrace {
@@ -69,15 +71,24 @@ AovSelection parse_aovs(const std::string& list);
 void check_image_output_path(const std::string& path);
 bool is_exr_path(const std::string& path);
 
+// The film's PNG (8-bit sRGB, RGB over the background or, with png_alpha, RGBA) as bands of rows
+// to deflate (io/png_bands.h): a render counts the pixels its tiles make final, so that a band is
+// deflated as soon as its rows are, while the frame goes on. The film, `opt` and `info` must
+// outlive the bands.
+std::unique_ptr<PngBands> film_png_bands(const Film& film, const OutputOptions& opt,
+                                         const FrameInfo& info);
+
 // Writes the film to a pending temporary file beside `path`'s target (stale temporary files of
 // that target are removed first) and returns the temporary file's path; commit_image renames it
 // over the target. EXR: R,G,B,A (+ Z, N.X,N.Y,N.Z, steps, albedo.R,albedo.G,albedo.B as selected)
 // with the standard and softtrace header attributes (README "Usage"). PNG: 8-bit sRGB, RGB over the
 // background or, with png_alpha, RGBA; its rows are converted and deflated in bands that `each`
-// runs (io/image_file.h: the command line passes its worker threads; the same bytes either way).
-// Throws std::runtime_error.
+// runs (io/image_file.h: the command line passes its worker threads; the same bytes either way),
+// those of `png` where given (film_png_bands of the same film, options and info: some of its bands
+// deflated already; it may serve several outputs). Throws std::runtime_error.
 std::string write_image_temp(const std::string& path, const Film& film, const OutputOptions& opt,
-                             const FrameInfo& info, const EachIndex& each = {});
+                             const FrameInfo& info, const EachIndex& each = {},
+                             PngBands* png = nullptr);
 void commit_image(const std::string& tmp, const std::string& path);
 
 }  // namespace softtrace

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "io/adler32.h"
 #include "io/image_io.h"
+#include "io/png_bands.h"
 
 namespace softtrace {
 
@@ -131,115 +131,13 @@ void write_png(const std::string& path, const ImageFile& img, bool srgb) {
 
 namespace {
 
-// A band's filtered rows are about this many bytes: 10 bands at 320x240 with alpha, so two or more
-// threads share the converting and deflating evenly.
-constexpr size_t kBandBytes = size_t(1) << 15;
-// A larger image takes larger bands, up to about this many bytes: each band pays a deflateReset
-// (its hash table cleared) and its history's deflateSetDictionary, 6.5 M instructions for the 38
-// bands of 32 KiB at 640x480 with alpha. A band and its history stay within zlib's 64 KiB window
-// buffer: beyond it deflate slides the window and rehashes its tables (fill_window, 7.3 M with
-// bands of 77 kB).
-constexpr size_t kLargestBandBytes = size_t(56) << 10;
-constexpr size_t kMostBands = 16;
-// The rows before a band that it takes as its history (deflateSetDictionary, at most 32 KiB):
-// without them a band's first rows find no matches above them, and 320x240 files were up to 7 %
-// larger than one stream's; with 2 they are -1.5 to +2.6 %.
-constexpr int kHistoryRows = 2;
 // IDAT chunks of at most this many bytes (the PNG limit is 2^31 - 1).
 constexpr size_t kIdatBytes = size_t(1) << 20;
 
-// A band of rows, filtered and deflated: a run of the image's zlib stream (raw deflate).
-struct DeflatedBand {
-  std::vector<unsigned char> data;
-  uLong adler = 1;   // Adler-32 of the filtered bytes, for the stream's trailer (adler32.h)
-  uLong length = 0;  // filtered bytes
-  bool ok = false;
-};
-
-// A thread's buffers for its bands, kept from one band to the next: each band's own filtered rows
-// (zeroed, then written over), deflate state (some 270 KB) and output buffer (the bound, 36 KB at
-// 640x480, kept until the file was written) took fresh memory, a page fault per 4 KiB, 205 of a
-// 640x480 process's 250 in the PNG. deflateReset is deflateEnd then deflateInit2 without
-// freeing the state (zlib.h): the same stream.
-struct BandScratch {
-  std::vector<unsigned char> rows, out;
-  z_stream z{};
-  bool z_made = false;
-  bool busy = false;  // a band of this thread's in progress
-  BandScratch() = default;
-  BandScratch(const BandScratch&) = delete;
-  BandScratch& operator=(const BandScratch&) = delete;
-  ~BandScratch() {
-    if (z_made) deflateEnd(&z);
-  }
-  // A raw deflate stream at level 1, as new.
-  bool fresh_stream() {
-    if (z_made) return deflateReset(&z) == Z_OK;
-    z_made = deflateInit2(&z, 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) == Z_OK;
-    return z_made;
-  }
-};
-
-// At least `n` bytes of `v`, whose contents the caller writes over.
-unsigned char* at_least(std::vector<unsigned char>& v, size_t n) {
-  if (v.size() < n) v.resize(n);
-  return v.data();
-}
-
-// Rows [y0, y1), each its filter byte (0: None, as libpng's simplified writer's FAST flag chose)
-// and its samples, deflated at zlib's level 1 (a 320x240 render's image in 1.07 ms instead of
-// 1.33 at the level 3 that flag took, its file 7 % larger). A band but the last ends with a sync
-// flush, on a byte boundary, so that the next band's blocks follow it in one stream (as pigz joins
-// its pieces); the last ends the stream.
-void deflate_band(const PngRow& row, int y0, int y1, size_t row_bytes, bool last,
-                  DeflatedBand& out) {
-  // A row that ran parallel tasks could start another band on this thread before this one ends:
-  // that one takes buffers of its own.
-  thread_local BandScratch kept;
-  BandScratch spare;
-  BandScratch& scratch = kept.busy ? spare : kept;
-  scratch.busy = true;
-  struct Release {
-    BandScratch& s;
-    ~Release() { s.busy = false; }
-  } release{scratch};
-  // The rows before the band first, as its history: made again here, they give the band's first
-  // rows the matches one stream would find above them.
-  const int p0 = std::max(0, y0 - kHistoryRows);
-  const size_t rows_bytes = (row_bytes + 1) * size_t(y1 - p0);
-  unsigned char* const rows = at_least(scratch.rows, rows_bytes);
-  for (int y = p0; y < y1; ++y) {
-    unsigned char* r = &rows[(row_bytes + 1) * size_t(y - p0)];
-    r[0] = 0;
-    row(y, r + 1);
-  }
-  const unsigned char* history = rows;
-  const size_t history_bytes = (row_bytes + 1) * size_t(y0 - p0);
-  const unsigned char* band = history + history_bytes;
-  const size_t band_bytes = rows_bytes - history_bytes;
-  out.length = uLong(band_bytes);
-  out.adler = adler32_of(1, band, band_bytes);
-  if (!scratch.fresh_stream()) return;
-  z_stream& z = scratch.z;
-  const size_t window = std::min<size_t>(history_bytes, size_t(1) << 15);
-  if (window > 0 &&
-      deflateSetDictionary(&z, history + history_bytes - window, uInt(window)) != Z_OK)
-    return;
-  // deflateBound is for one whole stream; a sync flush adds an empty stored block (5 bytes).
-  const size_t bound = deflateBound(&z, uLong(band_bytes)) + 16;
-  z.next_in = const_cast<unsigned char*>(band);
-  z.avail_in = uInt(band_bytes);
-  z.next_out = at_least(scratch.out, bound);
-  z.avail_out = uInt(bound);
-  const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
-  out.ok = last ? status == Z_STREAM_END : status == Z_OK && z.avail_in == 0 && z.avail_out > 0;
-  out.data.assign(scratch.out.data(), scratch.out.data() + (bound - z.avail_out));
-}
-
 // The header and chunks libpng's simplified writer wrote (IHDR, then sRGB, or gAMA 1/2.2 where
 // the samples are not sRGB), the zlib stream of the bands in IDAT chunks, and IEND.
-bool write_png_chunks(PngCall& w, FILE* f, int width, int height, int nc, bool srgb,
-                      const std::vector<DeflatedBand>& bands) {
+bool write_png_chunks(PngCall& w, FILE* f, bool srgb, const PngBands& bands) {
+  const int width = bands.width(), height = bands.height(), nc = bands.channels();
   if (setjmp(png_jmpbuf(w.png))) return false;
   png_init_io(w.png, f);
   png_set_IHDR(
@@ -254,14 +152,15 @@ bool write_png_chunks(PngCall& w, FILE* f, int width, int height, int nc, bool s
   // The zlib stream: its header (deflate, 32 KiB window, level 1's "fastest"), the bands' runs,
   // and the Adler-32 of all the filtered bytes, big-endian.
   static const unsigned char kHeader[2] = {0x78, 0x01};
-  uLong adler = bands[0].adler;
-  for (size_t b = 1; b < bands.size(); ++b)
-    adler = adler32_combine(adler, bands[b].adler, z_off_t(bands[b].length));
+  uLong adler = bands.adler(0);
+  for (size_t b = 1; b < bands.count(); ++b)
+    adler = adler32_combine(adler, bands.adler(b), z_off_t(bands.length(b)));
   const unsigned char trailer[4] = {
       static_cast<unsigned char>(adler >> 24), static_cast<unsigned char>(adler >> 16),
       static_cast<unsigned char>(adler >> 8), static_cast<unsigned char>(adler)};
   std::vector<std::pair<const unsigned char*, size_t>> pieces{{kHeader, 2}};
-  for (const auto& b : bands) pieces.emplace_back(b.data.data(), b.data.size());
+  for (size_t b = 0; b < bands.count(); ++b)
+    pieces.emplace_back(bands.data(b).data(), bands.data(b).size());
   pieces.emplace_back(trailer, 4);
   size_t left = 0;
   for (const auto& p : pieces) left += p.second;
@@ -287,29 +186,18 @@ bool write_png_chunks(PngCall& w, FILE* f, int width, int height, int nc, bool s
 
 void write_png(const std::string& path, int width, int height, int nc, bool srgb, const PngRow& row,
                const EachIndex& each) {
-  if (nc < 1 || nc > 4) throw std::runtime_error("a PNG holds 1 to 4 channels");
-  if (width < 1 || height < 1) throw std::runtime_error("a PNG holds at least one pixel");
-  const size_t row_bytes = size_t(width) * nc;
-  const size_t band_bytes =
-      std::clamp((row_bytes + 1) * size_t(height) / kMostBands, kBandBytes, kLargestBandBytes);
-  const int band_rows = int(std::clamp<size_t>(band_bytes / (row_bytes + 1), 1, size_t(height)));
-  std::vector<DeflatedBand> bands(size_t((height + band_rows - 1) / band_rows));
-  const auto band = [&](size_t b) {
-    const int y0 = int(b) * band_rows, y1 = std::min(height, y0 + band_rows);
-    deflate_band(row, y0, y1, row_bytes, b + 1 == bands.size(), bands[b]);
-  };
-  if (each)
-    each(bands.size(), band);
-  else
-    for (size_t b = 0; b < bands.size(); ++b) band(b);
-  if (!std::all_of(bands.begin(), bands.end(), [](const DeflatedBand& b) { return b.ok; }))
-    throw std::runtime_error("cannot deflate the PNG's rows");
+  PngBands bands(width, height, nc, row);
+  write_png(path, srgb, bands, each);
+}
+
+void write_png(const std::string& path, bool srgb, PngBands& bands, const EachIndex& each) {
+  if (!bands.deflate_rest(each)) throw std::runtime_error("cannot deflate the PNG's rows");
   // The whole file in one write: stdio's own buffer is a block (4 KiB here), a system call for
   // each (24 for a 95 kB image at 640x480). The chunks' frames, the header's and the trailer's
   // bytes take under 128 bytes and 12 bytes per IDAT chunk; a file that outgrew the estimate would
   // only take a second write.
   size_t deflated = 0;
-  for (const auto& b : bands) deflated += b.data.size();
+  for (size_t b = 0; b < bands.count(); ++b) deflated += bands.data(b).size();
   const size_t file_bytes = 128 + deflated + 12 * (deflated / kIdatBytes + 1);
   const std::unique_ptr<char[]> file_buffer(new char[file_bytes]);  // outlives the FILE
   FILE* f = std::fopen(path.c_str(), "wb");
@@ -318,7 +206,7 @@ void write_png(const std::string& path, int width, int height, int nc, bool srgb
   PngCall w("cannot write the PNG");
   w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w, on_png_error, on_png_warning);
   if (w.png) w.info = png_create_info_struct(w.png);
-  const bool written = w.info && write_png_chunks(w, f, width, height, nc, srgb, bands);
+  const bool written = w.info && write_png_chunks(w, f, srgb, bands);
   png_destroy_write_struct(w.png ? &w.png : nullptr, w.info ? &w.info : nullptr);
   // A full disk may show only when the buffer is flushed (or when the data reaches the disk: in
   // commit_temp, output_file.h, which syncs every output once before its rename).

@@ -851,27 +851,30 @@ struct TileGrid {
 // Runs `pass` over the full-frame tiles that meet `area`, one tile per task; a cancel is noticed
 // before the next sample (FrameTracer::samples). Progress counts in first-pass pixels: the data
 // window's pixels, then, with `refined`, each pixel traced again as `weight` of them (its share of
-// the samples).
-void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass,
+// the samples). The frame's `last` pass tells opt.pixels_final of each tile's pixels.
+void run_pass(const FrameTracer& tracer, const PixelRect& area, FrameTracer::Pass pass, bool last,
               const PixelRect& window, const RenderOptions& opt, Progress* progress,
               const AdaptivePixels* refined, long weight, std::vector<Work>& work_total) {
   const TileGrid grid(area);
   parallel_each_thread(
       size_t(grid.count()), int(work_total.size()), [&](size_t t, int thread) {  // threads.h
         if (opt.cancel && *opt.cancel) return;
-        const FloatingPointMode mode(FloatingPointMode::frames());
-        Work& work = work_total[size_t(thread)];
         const int tx = (grid.gx0 + int(t) % grid.tiles_x) * kTile;
         const int ty = (grid.gy0 + int(t) / grid.tiles_x) * kTile;
-        tracer.tile(tx, ty, area, pass, work);
-        if (progress) {
-          const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
-                               std::min(tx + kTile, window.x1), std::min(ty + kTile, window.y1)};
-          const long units = seen.empty() ? 0
-                             : refined    ? long(refined->count(seen)) * weight
-                                          : long(seen.x1 - seen.x0) * (seen.y1 - seen.y0);
-          if (units > 0) progress->advance(units);
+        const PixelRect seen{std::max(tx, window.x0), std::max(ty, window.y0),
+                             std::min(tx + kTile, window.x1), std::min(ty + kTile, window.y1)};
+        {
+          const FloatingPointMode mode(FloatingPointMode::frames());
+          tracer.tile(tx, ty, area, pass, work_total[size_t(thread)]);
+          if (progress) {
+            const long units = seen.empty() ? 0
+                               : refined    ? long(refined->count(seen)) * weight
+                                            : long(seen.x1 - seen.x0) * (seen.y1 - seen.y0);
+            if (units > 0) progress->advance(units);
+          }
         }
+        if (last && opt.pixels_final && !seen.empty() && !(opt.cancel && *opt.cancel))
+          opt.pixels_final(seen.y0 - window.y0, seen.y1 - window.y0, seen.x1 - seen.x0);
       });
 }
 
@@ -890,16 +893,16 @@ bool render_frame(const Scene& scene, const TracedScene& rt, const RenderOptions
   const FrameTracer tracer(scene, rt, film, opt, adaptive ? &*adaptive : nullptr);
   // Each thread's own, summed at the end: counts, so the totals are the same for any thread count.
   std::vector<Work> work_total(static_cast<size_t>(loop_threads()));
-  run_pass(tracer, adaptive ? adaptive->apron() : window, FrameTracer::Pass::First, window, opt,
-           progress, nullptr, 0, work_total);
+  run_pass(tracer, adaptive ? adaptive->apron() : window, FrameTracer::Pass::First, !adaptive,
+           window, opt, progress, nullptr, 0, work_total);
   if (adaptive && !(opt.cancel && *opt.cancel)) {
     adaptive->decide();
     // A pixel traced again costs depth^2 first-pass pixels' samples; the time left counts them
     // from now on.
     const long weight = long(scene.image.antialias.depth) * scene.image.antialias.depth;
     if (progress) progress->add_total(long(adaptive->refined()) * weight);
-    run_pass(tracer, window, FrameTracer::Pass::Refine, window, opt, progress, &*adaptive, weight,
-             work_total);
+    run_pass(tracer, window, FrameTracer::Pass::Refine, true, window, opt, progress, &*adaptive,
+             weight, work_total);
   }
 
   if (stats) {

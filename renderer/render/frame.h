@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 
 #include "film/film.h"
 #include "render/progress.h"
@@ -26,6 +27,11 @@ struct RenderOptions {
   // Samples per pixel; 0: the scene's. A caller sharing the scene between threads (Python)
   // passes its own here rather than writing it into the scene.
   int spp = 0;
+  // Told of the pixels each tile of the frame's last pass has made final, on the tile's thread, in
+  // the caller's floating-point mode: `width` pixels of each of the data window's rows [y0, y1)
+  // (0: its top row); every pixel once in a frame not cancelled. The command line's PNG deflates
+  // the bands whose rows are final while the other tiles are traced (io/png_bands.h).
+  std::function<void(int y0, int y1, int width)> pixels_final;
 };
 
 // What a frame is traced with: the objects as the tracers take them, every object's tracer and
