@@ -153,7 +153,10 @@ BeamMisses::Outline BeamMisses::outline_of(const Vec3& eye, const Box& box) {
       // A point q of the padded box has n . (q - eye) >= least - |n|_1 pad and |q - eye| >= gap
       // - pad; a ray's point eye + t d with n . d < -limit |d| has n . (q - eye) < -limit |q -
       // eye| <= -2 (|n|_1 pad + max(0, -least)), below that: it is never in the box.
-      const double limit = 2 * (n1 * pad + std::max(0.0, -least)) / (gap - pad);
+      // The corners', the directions' and beyond()'s products' rounding are far below 1e-12 of
+      // them: taken into the limit here, once.
+      const double limit =
+          2 * (n1 * pad + std::max(0.0, -least)) / (gap - pad) + 1e-12 * max_abs(n);
       out.side[out.sides++] = {n, limit};
     }
   return out;
@@ -164,16 +167,18 @@ bool BeamMisses::beyond(const Outline& outline, const Frustum& f) {
       f.eye.z != outline.eye.z)
     return false;
   // A ray's direction is a positive combination of the corners (up to rounding), so n . d <
-  // -limit |d| holds for it where it holds for each corner with |corner|_1 >= |corner|; the
-  // corners', the directions' and these products' rounding are far below 1e-12 of them.
-  double reach[4];
-  for (int k = 0; k < 4; ++k)
-    reach[k] = std::abs(f.corner[k].x) + std::abs(f.corner[k].y) + std::abs(f.corner[k].z);
+  // -limit |d| holds for it where it holds for each corner c with |c|_1 >= |c|. Most beams asked
+  // lie inside the outline, where each side fails at the first corner: the others' sums are
+  // taken only when needed.
+  const auto reach = [&f](int k) {
+    return std::abs(f.corner[k].x) + std::abs(f.corner[k].y) + std::abs(f.corner[k].z);
+  };
+  const double first = reach(0);
   for (int s = 0; s < outline.sides; ++s) {
     const Outline::Side& side = outline.side[s];
-    const double bound = side.limit + 1e-12 * max_abs(side.n);
-    int k = 0;
-    while (k < 4 && dot(f.corner[k], side.n) < -bound * reach[k]) ++k;
+    if (!(dot(f.corner[0], side.n) < -side.limit * first)) continue;
+    int k = 1;
+    while (k < 4 && dot(f.corner[k], side.n) < -side.limit * reach(k)) ++k;
     if (k == 4) return true;
   }
   return false;
