@@ -105,6 +105,7 @@ BeamMisses::BeamMisses(const SceneTracers& tracers, const ViewCamera& camera) {
   };
   if (each_.empty()) {
     outline(all_);
+    outline_ = outline_of(camera.eye(), all_);
   } else {
     for (const Box& box : each_) outline(box);
   }
@@ -114,7 +115,7 @@ bool BeamMisses::misses(const Frustum& f, int x0, int y0, int x1, int y1) const 
   if (never_) return false;
   if (all_.empty()) return true;  // no object: every ray misses
   for (const Seen& s : seen_)
-    if (x0 <= s.x1 && s.x0 <= x1 && y0 <= s.y1 && s.y0 <= y1) return false;
+    if (x0 <= s.x1 && s.x0 <= x1 && y0 <= s.y1 && s.y0 <= y1) return beyond(outline_, f);
   BeamSide sides[5];
   sides_of(f, sides);
   if (past_any(sides, f.eye, all_)) return true;
@@ -122,6 +123,65 @@ bool BeamMisses::misses(const Frustum& f, int x0, int y0, int x1, int y1) const 
   for (const Box& box : each_)
     if (!past_any(sides, f.eye, box)) return false;
   return true;
+}
+
+BeamMisses::Outline BeamMisses::outline_of(const Vec3& eye, const Box& box) {
+  Outline out;
+  out.eye = eye;
+  if (box.empty() || !box.bounded()) return out;
+  // A lower bound of the eye's distance from the box; the box is taken padded by `pad`, which
+  // holds clip_to_box's rounding (a few ulps of the coordinates, as beam_misses.h says) many
+  // times over.
+  double gap = 0;
+  for (int i = 0; i < 3; ++i) gap = std::max({gap, box.lo[i] - eye[i], eye[i] - box.hi[i]});
+  const double scale = max_abs(eye) + std::max(max_abs(box.lo), max_abs(box.hi));
+  const double pad = 1e-7 * scale;
+  if (!(gap > 4 * pad)) return out;
+  const Vec3 centre = box.center() - eye;
+  for (int axis = 0; axis < 3 && out.sides < 6; ++axis)
+    for (int c = 0; c < 8 && out.sides < 6; ++c) {
+      if (c & (1 << axis)) continue;
+      Vec3 n = cross(box.corner(c) - eye, box.corner(c | 1 << axis) - eye);
+      if (dot(n, centre) < 0) n = -n;
+      const double n1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+      if (!(n1 > 0)) continue;
+      double least = dot(box.corner(0) - eye, n);
+      for (int k = 1; k < 8; ++k) least = std::min(least, dot(box.corner(k) - eye, n));
+      // An edge of the silhouette leaves every corner on its plane's side (the two of its own on
+      // the plane, up to rounding); another edge's plane cuts the box and separates nothing.
+      if (least < -1e-12 * n1 * scale) continue;
+      // A point q of the padded box has n . (q - eye) >= least - |n|_1 pad and |q - eye| >= gap
+      // - pad; a ray's point eye + t d with n . d < -limit |d| has n . (q - eye) < -limit |q -
+      // eye| <= -2 (|n|_1 pad + max(0, -least)), below that: it is never in the box.
+      // The corners', the directions' and beyond()'s products' rounding are far below 1e-12 of
+      // them: taken into the limit here, once.
+      const double limit =
+          2 * (n1 * pad + std::max(0.0, -least)) / (gap - pad) + 1e-12 * max_abs(n);
+      out.side[out.sides++] = {n, limit};
+    }
+  return out;
+}
+
+bool BeamMisses::beyond(const Outline& outline, const Frustum& f) {
+  if (outline.sides == 0 || f.eye.x != outline.eye.x || f.eye.y != outline.eye.y ||
+      f.eye.z != outline.eye.z)
+    return false;
+  // A ray's direction is a positive combination of the corners (up to rounding), so n . d <
+  // -limit |d| holds for it where it holds for each corner c with |c|_1 >= |c|. Most beams asked
+  // lie inside the outline, where each side fails at the first corner: the others' sums are
+  // taken only when needed.
+  const auto reach = [&f](int k) {
+    return std::abs(f.corner[k].x) + std::abs(f.corner[k].y) + std::abs(f.corner[k].z);
+  };
+  const double first = reach(0);
+  for (int s = 0; s < outline.sides; ++s) {
+    const Outline::Side& side = outline.side[s];
+    if (!(dot(f.corner[0], side.n) < -side.limit * first)) continue;
+    int k = 1;
+    while (k < 4 && dot(f.corner[k], side.n) < -side.limit * reach(k)) ++k;
+    if (k == 4) return true;
+  }
+  return false;
 }
 
 bool BeamMisses::misses_box(const Frustum& f, const Box& box) {

@@ -43,6 +43,23 @@ class BeamMisses {
   // Whether `f` misses `box` so (exposed for the tests).
   static bool misses_box(const Frustum& f, const Box& box);
 
+  // The planes through an eye outside a box and the box's silhouette edges (the hexagon, or
+  // rectangle, it is seen as): a beam all of whose rays leave one of them on the outside, with
+  // the margin of beam_misses.h, misses the box. This is the test where the beam meets the box's
+  // padded rectangle on screen (`seen_`), whose corners lie outside the hexagon.
+  struct Outline {
+    struct Side {
+      Vec3 n;        // the box on its positive side
+      double limit;  // a ray of direction d with n . d < -limit |d| misses the box
+    };
+    Vec3 eye{0, 0, 0};
+    int sides = 0;
+    Side side[6];
+  };
+  static Outline outline_of(const Vec3& eye, const Box& box);
+  // Whether every ray of `f` (from outline.eye) lies past one of its sides so.
+  static bool beyond(const Outline& outline, const Frustum& f);
+
  private:
   // An object without a finite box, or one across the eye's plane: no beam is certified.
   bool never_ = false;
@@ -53,6 +70,7 @@ class BeamMisses {
     double x0, y0, x1, y1;
   };
   std::vector<Seen> seen_;
+  Outline outline_;  // all_'s seen from the camera's eye, where each_ is empty
 };
 
 }  // namespace softtrace

@@ -365,7 +365,8 @@ class FrameTracer {
     if (cancelled()) return;
     const Ray ray = camera_ray(x, y, 0, 1);
     TraceCounters counters;
-    if (!unmet.answer(ray, counters)) {
+    // A pinhole's ray leaves the camera's eye, the block's frustum's, for which `unmet` was made.
+    if (!unmet.answer_from_eye(ray, counters)) {
       trace_pixel(x, y, &searched, Pass::First, work, 1);
       return;
     }

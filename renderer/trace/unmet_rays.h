@@ -38,19 +38,26 @@ struct UnmetRays {
 
   // Whether `ray` is answered so, with no hit; then `work` holds its counters (from zero).
   bool answer(const Ray& ray, TraceCounters& work) const {
-    const double cos_forward = dot(ray.d, forward);
-    if (!(cos_forward > 0) || ray.o.x != eye.x || ray.o.y != eye.y || ray.o.z != eye.z)
-      return false;
+    if (ray.o.x != eye.x || ray.o.y != eye.y || ray.o.z != eye.z) return false;
+    return answer_from_eye(ray, work);
+  }
+
+  // answer() for a ray whose origin is `eye`: a caller whose rays all leave the eye (a pinhole
+  // camera's, whose eye the block's list was made for) skips its three tests a ray.
+  bool answer_from_eye(const Ray& ray, TraceCounters& work) const {
+    const Vec3& d = ray.d;
+    const double cos_forward = dot(d, forward);
+    if (!(cos_forward > 0)) return false;
     if (passes && !passes->passes_listed_balls(ray, *list)) return false;
     work = TraceCounters{};
     // clip_to_box from 0 to tfar.
     double t0 = 0, t1 = tfar;
     for (int i = 0; i < 3; ++i) {
-      if (ray.d[i] == 0) {
+      if (d[i] == 0) {
         if (eye[i] < box.lo[i] || eye[i] > box.hi[i]) return true;
         continue;
       }
-      const double inv = 1 / ray.d[i];
+      const double inv = 1 / d[i];
       double a = lo_from_eye[i] * inv, b = hi_from_eye[i] * inv;
       if (a > b) std::swap(a, b);
       t0 = std::max(t0, a);
@@ -58,7 +65,9 @@ struct UnmetRays {
     }
     if (!(t0 <= t1)) return true;
     work.entered_box = true;
-    t0 = std::max(t0, depth / cos_forward);
+    // A depth of 0 (a blob sum's beams certify none) leaves t0, which is never below +0, as it
+    // is: its division is not made.
+    if (depth != 0) t0 = std::max(t0, depth / cos_forward);
     if (t0 > t1) return true;
     // ObjectTracer::unlisted_stretches: the way as one stretch, and where rounding leaves t
     // short of t1, another twice as long.

@@ -421,8 +421,9 @@ TEST(UnmetBeams, OverAFloorAloneEveryRayGetsIntersectsAnswer) {
 
 // UnmetRays::answer against first_hit_unlisted, the sum's clip and stretches as intersect_unmet
 // asks them, over rays from one eye in every direction around the sum's box and clear depths
-// before, inside and past it, and rays along a slab: the same counters. (A second stretch, where
-// rounding leaves the first short, needs t0 + (t1 - t0) to round below t1: no ray here took one.)
+// before, inside and past it, and rays along a slab: the same counters. A second stretch, where
+// rounding leaves the first short, needs t0 + (t1 - t0) to round below t1, so t0 below t1 / 2:
+// the rays from an eye inside the box, with clear depths short of its sides, take some.
 TEST(UnmetBeams, BlockAnswersAreTheUnlistedSearchs) {
   const Scene scene = parse_scene(unmet_sparse_cloud(40), "<test>");
   const TracedScene rt(scene, LipschitzMode::Local);
@@ -468,6 +469,28 @@ TEST(UnmetBeams, BlockAnswersAreTheUnlistedSearchs) {
   EXPECT_GT(missed, 1000);
   EXPECT_GT(cleared, 1000);
   EXPECT_GT(answered - missed - cleared, 50000);
+
+  together.eye = box.center() + box.extent() * 0.1;
+  together.lo_from_eye = box.lo - together.eye;
+  together.hi_from_eye = box.hi - together.eye;
+  int inside = 0, stretched = 0;
+  for (int i = 0; i < 20000; ++i) {
+    together.depth = i % 5 == 0 ? 0 : 0.3 * box.extent().x * u(rng);
+    const Vec3 d = normalize(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
+    const Ray ray{together.eye, d, 0, 0};
+    TraceCounters counters;
+    if (!together.answer(ray, counters)) continue;
+    TraceCounters own;
+    const double clear_to = together.depth / dot(ray.d, together.forward);
+    ASSERT_FALSE(tracer->first_hit_unlisted(ray, kUnmetFar, clear_to, own).hit) << "ray " << i;
+    ASSERT_TRUE(same_unmet_counters(counters, own))
+        << "ray " << i << " from inside: box evaluations " << counters.box_evals << " against "
+        << own.box_evals;
+    ++inside;
+    stretched += own.box_evals > 1;
+  }
+  EXPECT_GT(inside, 5000);
+  EXPECT_GT(stretched, 20);
 }
 
 // The frame (both shortcuts) against each pixel-centre ray traced alone: the same hit mask.
