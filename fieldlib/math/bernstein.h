@@ -68,50 +68,76 @@ inline constexpr Weights kWeights{};
 template <int D>
 Rise first_rise_of(const double* a, double err, double tol, double finest) {
   const auto& weight = bernstein_detail::kWeights.w[D];
+  // The piece searched now stays in registers: a halving goes on with its left half (searched
+  // first) and stacks only the right one, read back once the left's are done. The same pieces in
+  // the same order as stacking both halves and popping the left at once, and `top` counts what
+  // that stack held below the popped piece, so the depth's limit passes the same pieces
+  // undecided. Every loop over the coefficients is unrolled by pragma, so that each is a
+  // constant index before GCC decides which arrays stay in memory: left to its late unrolling,
+  // `row` and the pieces stayed on the stack, written and read in pairs that straddled each
+  // other's stores, and a halving waited on failed store forwardings (perf, meets10 at 640x480:
+  // most of this function's time on the loads after those stores).
   struct Piece {
     double lo, hi, b[D + 1];
   };
   constexpr int kDepth = 64;
   Piece stack[kDepth];
   int top = 0, undecided = 0;
-  Piece& whole = stack[top++];
-  whole.lo = 0;
-  whole.hi = 1;
+  double lo = 0, hi = 1, row[D + 1];
+#pragma GCC unroll 8
   for (int i = 0; i <= D; ++i) {
     double s = 0;
+#pragma GCC unroll 8
     for (int j = 0; j <= i; ++j) s += weight[i][j] * a[j];
-    whole.b[i] = s;
+    row[i] = s;
   }
-  if (whole.b[0] >= 0) return {Rise::AtStart, 0, 0};
-  while (top > 0) {
-    --top;
-    const double lo = stack[top].lo, hi = stack[top].hi;
-    double row[D + 1];
-    std::copy(stack[top].b, stack[top].b + D + 1, row);
-    if (*std::max_element(row, row + D + 1) + err < 0) continue;
-    bool rising = true;
-    for (int i = 0; i < D && rising; ++i) rising = row[i + 1] - row[i] > 2 * err;
-    if (row[D] >= 0 && (rising || hi - lo <= tol)) return {Rise::Bracket, lo, hi, undecided};
-    if (rising && row[D] < 0) continue;  // rises to a negative end (and the hull allowed it)
-    if (hi - lo <= finest || top + 2 > kDepth) {
-      ++undecided;
+  if (row[0] >= 0) return {Rise::AtStart, 0, 0};
+  while (true) {
+    // max_element's value: the first of the largest, as its `<` keeps it.
+    double most = row[0];
+#pragma GCC unroll 8
+    for (int i = 1; i <= D; ++i) most = std::max(most, row[i]);
+    // Whether the piece goes on: halved into the left half, or none (the next is popped).
+    bool halve = false;
+    if (!(most + err < 0)) {
+      // Every difference taken (no exit at the first that fails): the same answer, without a
+      // branch per coefficient.
+      bool rising = true;
+#pragma GCC unroll 8
+      for (int i = 0; i < D; ++i) rising &= row[i + 1] - row[i] > 2 * err;
+      if (row[D] >= 0 && (rising || hi - lo <= tol)) return {Rise::Bracket, lo, hi, undecided};
+      // Not rising to a negative end (which the hull allowed): halved, unless too fine or deep.
+      if (!(rising && row[D] < 0)) {
+        halve = !(hi - lo <= finest || top + 2 > kDepth);
+        undecided += !halve;
+      }
+    }
+    if (halve) {
+      // de Casteljau at the middle: the left half's coefficients are the first of each row, the
+      // right half's the last.
+      Piece& right = stack[top++];
+      const double mid = 0.5 * (lo + hi);
+      right.lo = mid;
+      right.hi = hi;
+      double left[D + 1];
+#pragma GCC unroll 8
+      for (int k = 0; k <= D; ++k) {
+        left[k] = row[0];
+        right.b[D - k] = row[D - k];
+#pragma GCC unroll 8
+        for (int i = 0; i < D - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
+      }
+#pragma GCC unroll 8
+      for (int i = 0; i <= D; ++i) row[i] = left[i];
+      hi = mid;
       continue;
     }
-    // de Casteljau at the middle: the left half's coefficients are the first of each row, the
-    // right half's the last. The right half takes the popped piece's place, the left goes above
-    // it (searched first).
-    Piece& right = stack[top];
-    Piece& left = stack[top + 1];
-    left.lo = lo;
-    left.hi = 0.5 * (lo + hi);
-    right.lo = left.hi;
-    right.hi = hi;
-    for (int k = 0; k <= D; ++k) {
-      left.b[k] = row[0];
-      right.b[D - k] = row[D - k];
-      for (int i = 0; i < D - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
-    }
-    top += 2;
+    if (top == 0) break;
+    const Piece& next = stack[--top];
+    lo = next.lo;
+    hi = next.hi;
+#pragma GCC unroll 8
+    for (int i = 0; i <= D; ++i) row[i] = next.b[i];
   }
   return {Rise::Clear, 1, 1, undecided};
 }

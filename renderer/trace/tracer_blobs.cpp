@@ -498,8 +498,13 @@ MarchResult ObjectTracer::first_hit_blobs(const Ray& ray, bool face, double t0, 
         const BlobEvent ev = events.next(exit);
         events.pop(exit);
         const double u1 = ev.u;
+        // The hit's fields returned one by one: `return *hit` copied the optional in words that
+        // straddled the bytes and word it was built from, two failed store forwardings a hit
+        // (perf, meets10 at 640x480: 2 % of this function's time on that load). A piece's hit
+        // never gave up.
         if (u1 > u0 && n_active > 0)
-          if (const auto hit = piece(t, u0, u1 - u0, n_active)) return *hit;
+          if (const auto hit = piece(t, u0, u1 - u0, n_active))
+            return MarchResult{true, hit->t, hit->on_box_face};
         u0 = std::max(u0, u1);
         if (!exit) {
           active[n_active++] = ev.index;
