@@ -17,9 +17,9 @@
 #define SOFTTRACE_LOAD_ARENA 1
 #endif
 
-namespace softtrace {
-
 #if SOFTTRACE_LOAD_ARENA
+
+namespace softtrace {
 
 namespace {
 
