@@ -24,7 +24,7 @@ class LoadArena {
   LoadArena& operator=(const LoadArena&) = delete;
 
  private:
-  bool outer_active_;
+  [[maybe_unused]] bool outer_active_;  // a sanitizer build has no arena to restore
 };
 
 // Larger blocks are the load's few big vectors (a 1000-component blend's list of children), which
