@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "math/own_lines.h"
 #include "program/ops/op_io.h"
 #include "program/program.h"
 
@@ -56,6 +57,11 @@ struct WorkspaceNeed {
 // Scratch memory of one thread's evaluations.
 class Workspace {
  public:
+  // Cache lines of their own: the main thread's buffers shared lines with the program's blocks
+  // that the other threads read (math/own_lines.h).
+  template <class T>
+  using Lines = std::vector<T, OwnLines<T>>;
+
   // Grows the buffers to what `p` needs (allocating only when it needs more than before). Called
   // before every single-point evaluation: a program no larger than those fitted before costs a
   // few comparisons, inline (the tracer fits before every point it evaluates: out of line, the
@@ -70,28 +76,28 @@ class Workspace {
   }
 
   // values
-  std::vector<double> slots;  // slot s, lane l at [s * kBatch + l]
-  std::vector<double> regs;   // register r, axis i, lane l at [(r * 3 + i) * kBatch + l]
-  std::vector<Vec3> points;   // register r at [r] (one point; the slots then hold slot s at [s])
+  Lines<double> slots;  // slot s, lane l at [s * kBatch + l]
+  Lines<double> regs;   // register r, axis i, lane l at [(r * 3 + i) * kBatch + l]
+  Lines<Vec3> points;   // register r at [r] (one point; the slots then hold slot s at [s])
   // gradient
   using Dual = softtrace::Dual;  // a value and its gradient (program/ops/op_io.h)
   using Frame = LocalFrame;      // a point register and its Jacobian
-  std::vector<Dual> duals;
-  std::vector<Frame> frames;
+  Lines<Dual> duals;
+  Lines<Frame> frames;
   // bounds
-  std::vector<Interval> ivals;
-  std::vector<double> lips;
-  std::vector<Box> boxes;
-  std::vector<Vec3> segs;        // register r's segment ends at [2r], [2r + 1] (segment bounds)
-  std::vector<double> seg_pads;  // how far the computed points may stray from that segment
-  std::vector<Interval> slopes;  // each slot's derivative along the segment
+  Lines<Interval> ivals;
+  Lines<double> lips;
+  Lines<Box> boxes;
+  Lines<Vec3> segs;        // register r's segment ends at [2r], [2r + 1] (segment bounds)
+  Lines<double> seg_pads;  // how far the computed points may stray from that segment
+  Lines<Interval> slopes;  // each slot's derivative along the segment
   // On a segment, over the first fraction quiet[s] of it, slot s is a distance >= 1 or a field
   // that is exactly 0 (a potential of such a distance, a sum of such fields): no support begins.
-  std::vector<double> quiet;
-  std::vector<GaugeEnds> ends;  // the convex gauges' last segment ends (GaugeEnds::kTable)
-  std::vector<int32_t> kept;    // pruning's stack of chosen children
-  std::vector<int32_t> marks;   // where each kept child's code starts in the view
-  ProgramView view;             // the last pruned program (bounds, prune)
+  Lines<double> quiet;
+  Lines<GaugeEnds> ends;  // the convex gauges' last segment ends (GaugeEnds::kTable)
+  Lines<int32_t> kept;    // pruning's stack of chosen children
+  Lines<int32_t> marks;   // where each kept child's code starts in the view
+  ProgramView view;       // the last pruned program (bounds, prune)
 
  private:
   void grow_to(const WorkspaceNeed& n);

@@ -5,8 +5,8 @@
 namespace softtrace {
 
 namespace {
-template <class T>
-void grow(std::vector<T>& v, size_t n) {
+template <class V>
+void grow(V& v, size_t n) {
   if (v.size() < n) v.resize(n);
 }
 }  // namespace

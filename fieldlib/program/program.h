@@ -21,6 +21,7 @@
 
 #include "math/box.h"
 #include "math/bvh.h"
+#include "math/own_lines.h"
 #include "program/oracle.h"
 
 namespace softtrace {
@@ -128,8 +129,9 @@ struct Program {
 // lists. Its constants, groups and oracle nodes are the base program's.
 struct ProgramView {
   const Program* base = nullptr;
-  std::vector<Instr> code;
-  std::vector<int32_t> args;
+  // Written at every bounds pass by its thread: on lines of their own (math/own_lines.h).
+  std::vector<Instr, OwnLines<Instr>> code;
+  std::vector<int32_t, OwnLines<int32_t>> args;
   int32_t result = 0;
 };
 

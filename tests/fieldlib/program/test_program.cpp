@@ -47,7 +47,8 @@ struct Blobs {
   }
 };
 
-int count_ops(const std::vector<Instr>& code, Op op) {
+template <class Code>
+int count_ops(const Code& code, Op op) {
   int n = 0;
   for (const Instr& i : code) n += i.op == op;
   return n;
@@ -1418,6 +1419,45 @@ TEST(Program, AWorkspaceFitsANeedTakenOnce) {
   for (int i = 0; i < 100; ++i) {
     const Vec3 p{u(rng), u(rng), u(rng)};
     ASSERT_NEAR(value_pruned(large.prog, p, ws), large.node->value(p), 1e-12) << i;
+  }
+}
+
+// A thread's workspace is written at every evaluation while the other threads read the program
+// beside it on the heap: a buffer sharing a cache line with the program's children or args cost
+// Fig. 12(b)'s 2-thread process 10-55 % more CPU, by how long the command line was. Each buffer
+// begins on a line and fills its last one, so no other block's bytes lie on its lines.
+TEST(Program, AWorkspaceSharesNoCacheLine) {
+  const Blobs small(10, 3);
+  constexpr uintptr_t kLine = 64;
+  std::vector<std::vector<double>> around;  // small blocks the heap may place beside them
+  for (int i = 0; i < 64; ++i) around.emplace_back(1 + i % 5);
+  Workspace ws;
+  ws.fit(small.prog);
+  for (int i = 0; i < 64; ++i) around.emplace_back(1 + i % 5);
+  struct Buffer {
+    uintptr_t begin, end;
+    const char* name;
+  };
+  const auto lines = [](const auto& v, const char* name) {
+    const uintptr_t begin = reinterpret_cast<uintptr_t>(v.data());
+    return Buffer{begin, begin + v.capacity() * sizeof(v[0]), name};
+  };
+  const Buffer buffers[] = {
+      lines(ws.slots, "slots"),    lines(ws.regs, "regs"),     lines(ws.points, "points"),
+      lines(ws.duals, "duals"),    lines(ws.frames, "frames"), lines(ws.ivals, "ivals"),
+      lines(ws.lips, "lips"),      lines(ws.boxes, "boxes"),   lines(ws.segs, "segs"),
+      lines(ws.seg_pads, "pads"),  lines(ws.slopes, "slopes"), lines(ws.quiet, "quiet"),
+      lines(ws.ends, "ends"),      lines(ws.kept, "kept"),     lines(ws.marks, "marks"),
+      lines(ws.view.code, "code"), lines(ws.view.args, "args")};
+  for (const Buffer& b : buffers) {
+    ASSERT_LT(b.begin, b.end) << b.name;
+    EXPECT_EQ(b.begin % kLine, 0u) << b.name;
+    const uintptr_t last_line = (b.end - 1) / kLine;
+    for (const auto& block : around) {
+      const uintptr_t q = reinterpret_cast<uintptr_t>(block.data());
+      const uintptr_t q_end = q + block.size() * sizeof(double);
+      EXPECT_TRUE(q / kLine > last_line || (q_end - 1) / kLine < b.begin / kLine) << b.name;
+    }
   }
 }
 
