@@ -25,9 +25,8 @@ struct OwnLines {
   T* allocate(size_t n) {
     return static_cast<T*>(::operator new(bytes(n), std::align_val_t(kLine)));
   }
-  void deallocate(T* p, size_t n) noexcept {
-    ::operator delete(p, bytes(n), std::align_val_t(kLine));
-  }
+  // The unsized form: clang declares the sized one only under -fsized-deallocation.
+  void deallocate(T* p, size_t) noexcept { ::operator delete(p, std::align_val_t(kLine)); }
   template <class U>
   bool operator==(const OwnLines<U>&) const noexcept {
     return true;
