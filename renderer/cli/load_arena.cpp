@@ -39,6 +39,12 @@ struct Chunk {
 Chunk g_chunks[kMaxChunks];
 std::atomic<int> g_chunk_count{0};
 std::mutex g_grow;
+// The chunks' hull [g_lowest, g_highest), which only widens: each bound written under g_grow
+// before the count (release), so a delete that sees a chunk counted sees a hull holding it. A
+// block outside it (the library's taken before the first chunk or after the last, another
+// thread's) is told by two comparisons, without the table's loop; one inside still asks the table
+// (the library's large blocks of the load lie between chunks).
+std::atomic<uintptr_t> g_lowest{UINTPTR_MAX}, g_highest{0};
 
 thread_local bool t_active = false;
 thread_local char* t_next = nullptr;
@@ -53,6 +59,9 @@ thread_local void* t_freed[kClasses] = {};
 bool held(const void* p) {
   const uintptr_t a = reinterpret_cast<uintptr_t>(p);
   const int n = g_chunk_count.load(std::memory_order_acquire);
+  if (a < g_lowest.load(std::memory_order_relaxed) ||
+      a >= g_highest.load(std::memory_order_relaxed))
+    return false;
   for (int i = 0; i < n; ++i)
     if (a - g_chunks[i].begin < g_chunks[i].end - g_chunks[i].begin) return true;
   return false;
@@ -67,6 +76,10 @@ bool grow() {
   if (!chunk) return false;
   g_chunks[n] = {reinterpret_cast<uintptr_t>(chunk),
                  reinterpret_cast<uintptr_t>(chunk) + kChunkBytes};
+  if (g_chunks[n].begin < g_lowest.load(std::memory_order_relaxed))
+    g_lowest.store(g_chunks[n].begin, std::memory_order_relaxed);
+  if (g_chunks[n].end > g_highest.load(std::memory_order_relaxed))
+    g_highest.store(g_chunks[n].end, std::memory_order_relaxed);
   g_chunk_count.store(n + 1, std::memory_order_release);
   t_next = chunk;
   t_end = chunk + kChunkBytes;

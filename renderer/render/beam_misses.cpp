@@ -69,6 +69,11 @@ bool past_any(const BeamSide (&sides)[5], const Vec3& eye, const Box& box) {
 }  // namespace
 
 BeamMisses::BeamMisses(const SceneTracers& tracers, const ViewCamera& camera) {
+  // Without one eye there is no beam (ViewCamera::frustum), nor an outline to see the boxes by.
+  if (!camera.single_eye()) {
+    never_ = true;
+    return;
+  }
   std::vector<Box> boxes;
   for (int i = 0; i < tracers.size(); ++i) {
     const TracedObject& o = tracers.object(i);
@@ -127,7 +132,6 @@ bool BeamMisses::misses(const Frustum& f, int x0, int y0, int x1, int y1) const 
 
 BeamMisses::Outline BeamMisses::outline_of(const Vec3& eye, const Box& box) {
   Outline out;
-  out.eye = eye;
   if (box.empty() || !box.bounded()) return out;
   // A lower bound of the eye's distance from the box; the box is taken padded by `pad`, which
   // holds clip_to_box's rounding (a few ulps of the coordinates, as beam_misses.h says) many
@@ -163,9 +167,7 @@ BeamMisses::Outline BeamMisses::outline_of(const Vec3& eye, const Box& box) {
 }
 
 bool BeamMisses::beyond(const Outline& outline, const Frustum& f) {
-  if (outline.sides == 0 || f.eye.x != outline.eye.x || f.eye.y != outline.eye.y ||
-      f.eye.z != outline.eye.z)
-    return false;
+  if (outline.sides == 0) return false;
   // A ray's direction is a positive combination of the corners (up to rounding), so n . d <
   // -limit |d| holds for it where it holds for each corner c with |c|_1 >= |c|. Most beams asked
   // lie inside the outline, where each side fails at the first corner: the others' sums are

@@ -25,8 +25,9 @@ namespace softtrace {
 class BeamMisses {
  public:
   // The scene's objects' boxes: for each object its box (Embree's and a CSG's) and its field's
-  // (where its tracer clips rays). `camera` (single_eye()): where the boxes are seen, so that a
-  // beam where one may be seen is not tested at all.
+  // (where its tracer clips rays). `camera`: where the boxes are seen, so that a beam where one
+  // may be seen is not tested at all, and the eye every beam's rays leave; a camera without one
+  // (orthographic, or with a lens) has no beams, and none is certified.
   BeamMisses(const SceneTracers& tracers, const ViewCamera& camera);
 
   // Whether no ray of `f` (from its eye at t >= 0, in a direction a convex combination of its
@@ -36,8 +37,9 @@ class BeamMisses {
   // by two pixels), the answer is false without the test (which would mostly fail there).
   bool misses(const Frustum& f, int x0, int y0, int x1, int y1) const;
   // Whether misses() may ever say true: false where an object has no finite box or one across
-  // the eye's plane (a floor's, whose box holds the eye), so that a caller asks nothing of
-  // each beam (the call was 0.07 % of the floor frame's process).
+  // the eye's plane (a floor's, whose box holds the eye), or where the camera has no single eye,
+  // so that a caller asks nothing of each beam (the call was 0.07 % of the floor frame's
+  // process).
   bool ever() const { return !never_; }
 
   // Whether `f` misses `box` so (exposed for the tests).
@@ -52,12 +54,12 @@ class BeamMisses {
       Vec3 n;        // the box on its positive side
       double limit;  // a ray of direction d with n . d < -limit |d| misses the box
     };
-    Vec3 eye{0, 0, 0};
     int sides = 0;
     Side side[6];
   };
   static Outline outline_of(const Vec3& eye, const Box& box);
-  // Whether every ray of `f` (from outline.eye) lies past one of its sides so.
+  // Whether every ray of `f` lies past one of its sides so; `f`'s eye must be the one the outline
+  // was made for (outline_of's), as every beam of the camera's is (misses()).
   static bool beyond(const Outline& outline, const Frustum& f);
 
  private:

@@ -539,13 +539,13 @@ class FrameTracer {
     // asks for them.
     ShadowListsOnDemand on_demand(shadow_beams_, work.points.data(), block_starts,
                                   work.shadow_lists);
+    ShadowListsOnDemand* const by_blocks = lists ? &on_demand : nullptr;
     size_t i = 0;
     for (int b = 0; b < kBlocksPerTile; ++b) {
       const size_t b_end = end_of(i, b + 1);
       if (i == b_end) continue;
-      ShadowLists view{};
-      if (lists) view = on_demand.view(b);
-      for (; i < b_end; ++i) pixel(pixels[i], lists ? &view : nullptr, pass, work);
+      if (lists) on_demand.block(b);
+      for (; i < b_end; ++i) pixel(pixels[i], by_blocks, pass, work);
     }
   }
 
@@ -587,7 +587,7 @@ class FrameTracer {
   // `lists`: the shadow lists of the pixel's 4-pixel block (none without ShadowBeams); each hit
   // sets its point in them (samples). Inlined in shade_tile's loop: with samples() built twice,
   // GCC left it out of line, a call a pixel (4.4 M of the floor frame's instructions).
-  [[gnu::always_inline]] void pixel(const TracedPixel& tp, ShadowLists* lists, Pass pass,
+  [[gnu::always_inline]] void pixel(const TracedPixel& tp, ShadowListsOnDemand* lists, Pass pass,
                                     Work& work) const {
     const int x = tp.x, y = tp.y;
     const bool in_film = film_holds(x, y);
@@ -677,8 +677,8 @@ class FrameTracer {
   // set-up, spilled registers and sums go (callgrind, 1000 blobs at 640x480, every pixel of its
   // floor frame a hit: 9.8 M of the floor frame's 1,385 M, 5.7 M of the cloud frame's 1,159 M).
   template <bool kOne = false>
-  [[gnu::always_inline]] bool samples(const TracedPixel& tp, ShadowLists* lists, const size_t* aov,
-                                      Work& work, float rgba[4],
+  [[gnu::always_inline]] bool samples(const TracedPixel& tp, ShadowListsOnDemand* lists,
+                                      const size_t* aov, Work& work, float rgba[4],
                                       SampleMeans* means = nullptr) const {
     const int spp = kOne ? 1 : tp.count;
     int point = tp.point;
@@ -695,11 +695,7 @@ class FrameTracer {
       const long long before = shadow.evaluations();
       Vec3 normal{0, 0, 0}, albedo{0, 0, 0};  // the background's
       if (hit.hit) {
-        if (lists) {
-          const ShadowBeams::Point& at = work.points[size_t(point++)];
-          lists->p = at.p;
-          lists->offset = at.margin;
-        }
+        if (lists) lists->at(work.points[size_t(point++)]);
         // A plain object's point (shades_plain, asked once per object for the frame) takes
         // shade()'s short way inline, with its block's lists or, in a scene without them (few
         // blobs: the small real scenes), with its point and offset as shadow_point makes them

@@ -69,26 +69,19 @@ inline double light_visibility(const Light& l, const LightArrival& at, const Vec
   return blocked ? 0 : 1;
 }
 
-// The shadow lists of a block of pixels (render/shadow_beams.h), for shade(): per scene light
-// its lists' slot (-1: none), each slot one list per object; and the shaded point with its rays'
-// offset as ShadowBeams took them (shade() lifts its shadow rays' origin from these very numbers,
-// so a clear list's rays are its block's by construction: BlobBeam::clear).
-// A block's lists may be built only when its first shadow ray asks for them (`pending`,
-// ShadowListsOnDemand): `lists` is then set, once, by the first of() with a slot.
-class ShadowListsOnDemand;
-const BlobBeam* lists_on_demand(ShadowListsOnDemand& pending);  // render/shadow_beams.cpp
+// The shadow lists of a block of pixels (render/shadow_beams.h): per scene light its lists' slot
+// (-1: none), each slot one list per object; and the shaded point with its rays' offset as
+// ShadowBeams took them (shade() lifts its shadow rays' origin from these very numbers, so a
+// clear list's rays are its block's by construction: BlobBeam::clear). shade() takes them from
+// their owner, which builds a block's when its first shadow ray asks (ShadowListsOnDemand).
 struct ShadowLists {
   const int* slot;
-  // Mutable: shade() holds the block's view as const, and its first shadow ray builds the lists.
-  mutable const BlobBeam* lists;
+  const BlobBeam* lists;
   int objects;
   Vec3 p;
   double offset;
-  mutable ShadowListsOnDemand* pending = nullptr;
   const BlobBeam* of(int light) const {
-    if (slot[light] < 0) return nullptr;
-    if (pending) lists = lists_on_demand(*pending), pending = nullptr;
-    return lists + size_t(slot[light]) * objects;
+    return slot[light] < 0 ? nullptr : lists + size_t(slot[light]) * objects;
   }
 };
 

@@ -65,13 +65,13 @@ class PlainFloor {
   [[gnu::always_inline]] Shaded shade(const Scene& scene, const EmbreeScene& rt, const Ray& ray,
                                       const TraceHit& hit, RayWork& secondary,
                                       const std::atomic<bool>* cancel,
-                                      const ShadowLists& shadow) const {
+                                      ShadowListsOnDemand& shadow) const {
     const Material& m = *m_;
     // facing_normal's test: the hit's normal is the plane's (first_hit's world_normal).
     const int side = dot(normal_[0], ray.d) > 0;
     const Vec3 n = normal_[side];
     const double cone0 = footprint_at(ray, hit);
-    const Vec3 lifted = shadow.p + n * shadow.offset;
+    const Vec3 lifted = shadow.p() + n * shadow.offset();
     if (lean()) {
       // Only the shadow rays differ from point to point: which of the lights they find blocked
       // picks the colour the loop below would sum (lean_colours).
@@ -208,7 +208,7 @@ class PlainFloor {
   [[gnu::noinline]] Shaded shade_lights(const Scene& scene, const EmbreeScene& rt, const Ray& ray,
                                         int side, const Vec3& lifted, double cone0,
                                         RayWork& secondary, const std::atomic<bool>* cancel,
-                                        const ShadowLists& shadow) const {
+                                        ShadowListsOnDemand& shadow) const {
     const Material& m = *m_;
     const Vec3 n = normal_[side];
     Vec3 light{0, 0, 0}, shine{0, 0, 0};
@@ -231,7 +231,7 @@ class PlainFloor {
         continue;
       }
       // Point, spot and area lights: shade_plain's light, at this point.
-      add_positional_light(scene.lights[li], m, ray.d, shadow.p, n, lifted, cone0, ray.cone, rt,
+      add_positional_light(scene.lights[li], m, ray.d, shadow.p(), n, lifted, cone0, ray.cone, rt,
                            secondary, cancel, &shadow, int(li), light, shine);
     }
     Vec3 color = mul(m.color, light);
@@ -242,7 +242,8 @@ class PlainFloor {
   // Whether directional light li's shadow ray from `lifted` is blocked, its work counted.
   [[gnu::always_inline]] bool blocked_towards(const Term& t, size_t li, const Vec3& lifted,
                                               double cone0, const Ray& ray, const EmbreeScene& rt,
-                                              RayWork& secondary, const ShadowLists& shadow) const {
+                                              RayWork& secondary,
+                                              ShadowListsOnDemand& shadow) const {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     const BlobBeam* lists = shadow.of(int(li));
     const Ray towards{lifted, t.to_light, cone0, ray.cone};

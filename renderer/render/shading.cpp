@@ -49,7 +49,7 @@ std::vector<ComponentMaterials::Weight>& component_weights() {
                                        const EmbreeScene& rt, const Ray& ray, const TraceHit& hit,
                                        RayWork& secondary, const std::atomic<bool>* cancel,
                                        int level, double weight, const Interiors* interiors,
-                                       const ShadowLists* shadow, const ObjectTracer* tracer,
+                                       ShadowListsOnDemand* shadow, const ObjectTracer* tracer,
                                        const SceneObject& obj, const Vec3& p) {
   // A field's gradient walk also gives its components' values, which weigh their materials below
   // (`terms`).
@@ -70,7 +70,7 @@ std::vector<ComponentMaterials::Weight>& component_weights() {
   // A primitive's hit is exact to rounding: its rays leave by the footprint, or by 1e-9 of the
   // coordinates' magnitude (an infinite plane's box says nothing of the scale). A mesh's is
   // Embree's float test: its rays leave as a field's do.
-  const double offset = shadow ? shadow->offset : ray_offset(obj, p, cone0);
+  const double offset = shadow ? shadow->offset() : ray_offset(obj, p, cone0);
   // Ambient occlusion's rays, and in scenes without transparency every ray, start that far along
   // the normal.
   const Vec3 lifted = p + n * offset;
@@ -310,13 +310,13 @@ std::vector<ComponentMaterials::Weight>& component_weights() {
 
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel, int level,
-             double weight, const Interiors* interiors, const ShadowLists* shadow) {
+             double weight, const Interiors* interiors, ShadowListsOnDemand* shadow) {
   const ObjectTracer* tracer = tracers.tracer(hit.object);
   // A CSG's hit is on one of its operands: the face's material is that operand's.
   const SceneObject& obj =
       hit.face > 0 ? face_object(scene.objects[hit.object], hit.face) : scene.objects[hit.object];
   // With shadow lists, the point as ShadowBeams took it (the same arithmetic, its very bits).
-  const Vec3 p = shadow ? shadow->p : ray.o + ray.d * hit.t;
+  const Vec3 p = shadow ? shadow->p() : ray.o + ray.d * hit.t;
   if (!shades_plain(scene, obj))
     return shade_general(scene, tracers, rt, ray, hit, secondary, cancel, level, weight, interiors,
                          shadow, tracer, obj, p);
@@ -324,7 +324,7 @@ Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene&
   // is done by the short way.
   const Vec3 n = facing_normal(tracer, ray, hit, p, nullptr);
   const double cone0 = footprint_at(ray, hit);
-  const Vec3 lifted = p + n * (shadow ? shadow->offset : ray_offset(obj, p, cone0));
+  const Vec3 lifted = p + n * (shadow ? shadow->offset() : ray_offset(obj, p, cone0));
   return shade_plain(scene, rt, ray.d, p, n, lifted, cone0, ray.cone, obj.material, secondary,
                      cancel, shadow);
 }

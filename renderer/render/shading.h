@@ -9,6 +9,7 @@
 #include "render/cancel.h"
 #include "render/finish.h"
 #include "render/lights.h"
+#include "render/shadow_beams.h"
 #include "scene/scene.h"
 #include "trace/embree_scene.h"
 #include "trace/tracer.h"
@@ -28,12 +29,12 @@ struct Shaded {
 // a mirror or transmitted ray whose weight would fall below adc_bailout is not traced.
 // `interiors`: the ray's interior list (trace/interiors.h; none for a camera ray), which its
 // shadow, mirror and transmitted rays take on. `shadow`: the shadow lists of the camera ray's
-// block of pixels (lights.h), or none; with them, the hit's point and its rays' offset are taken
-// from `shadow` (the frame computed them for the lists, by the same arithmetic).
+// block of pixels (shadow_beams.h), or none; with them, the hit's point and its rays' offset are
+// taken from `shadow` (the frame computed them for the lists, by the same arithmetic).
 Shaded shade(const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
              const TraceHit& hit, RayWork& secondary, const std::atomic<bool>* cancel = nullptr,
              int level = 1, double weight = 1, const Interiors* interiors = nullptr,
-             const ShadowLists* shadow = nullptr);
+             ShadowListsOnDemand* shadow = nullptr);
 
 // The least offset of a hit's rays on `obj` where it is the object's alone: 1e-4 of a field's or
 // a mesh's box diagonal; -1 for a primitive, whose offset depends on the point (ray_offset). The
@@ -99,7 +100,8 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
 [[gnu::always_inline]] inline void add_positional_light(
     const Light& l, const Material& m, const Vec3& d, const Vec3& p, const Vec3& n,
     const Vec3& lifted, double cone0, double cone, const EmbreeScene& rt, RayWork& secondary,
-    const std::atomic<bool>* cancel, const ShadowLists* shadow, int li, Vec3& light, Vec3& shine) {
+    const std::atomic<bool>* cancel, ShadowListsOnDemand* shadow, int li, Vec3& light,
+    Vec3& shine) {
   LightArrival at;
   if (!light_arrival(l, p, lifted, at)) return;
   const double cosine = dot(n, at.to_light);
@@ -124,7 +126,7 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
                                                  const Vec3& lifted, double cone0, double cone,
                                                  const Material& m, RayWork& secondary,
                                                  const std::atomic<bool>* cancel,
-                                                 const ShadowLists* shadow) {
+                                                 ShadowListsOnDemand* shadow) {
   Vec3 light{0, 0, 0}, shine{0, 0, 0};
   // The lights' array and count read once: the shadow ray's call between two lights would have
   // the loop read the vector again (10 instructions a point of the floor's frame).
@@ -154,7 +156,7 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
 [[gnu::always_inline]] inline Shaded shade_plain_at(
     const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
     const TraceHit& hit, const Material& m, const Vec3& p, double offset, RayWork& secondary,
-    const std::atomic<bool>* cancel, const ShadowLists* shadow) {
+    const std::atomic<bool>* cancel, ShadowListsOnDemand* shadow) {
   const Vec3 n = facing_normal(tracers.tracer(hit.object), ray, hit, p, nullptr);
   const double cone0 = footprint_at(ray, hit);
   const Vec3 lifted = p + n * offset;
@@ -169,9 +171,9 @@ inline double footprint_at(const Ray& ray, const TraceHit& hit) {
 [[gnu::always_inline]] inline Shaded shade_plain_hit(
     const Scene& scene, const SceneTracers& tracers, const EmbreeScene& rt, const Ray& ray,
     const TraceHit& hit, const Material& m, RayWork& secondary, const std::atomic<bool>* cancel,
-    const ShadowLists& shadow) {
-  return shade_plain_at(scene, tracers, rt, ray, hit, m, shadow.p, shadow.offset, secondary, cancel,
-                        &shadow);
+    ShadowListsOnDemand& shadow) {
+  return shade_plain_at(scene, tracers, rt, ray, hit, m, shadow.p(), shadow.offset(), secondary,
+                        cancel, &shadow);
 }
 
 }  // namespace softtrace

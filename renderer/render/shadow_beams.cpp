@@ -346,18 +346,14 @@ void ShadowBeams::build_pyramid(int level, const Axes& light, size_t k, const Po
   }
 }
 
-const BlobBeam* ShadowListsOnDemand::build() {
+void ShadowListsOnDemand::build() {
   static_assert(ShadowBeams::kLevels == 3);
   const int b = wanted_, q = b / 4;
   if (!tile_) beams_.build(0, points_, starts_[0], starts_[16], lists_), tile_ = true;
   if (quarter_ != q)
     beams_.build(1, points_, starts_[q * 4], starts_[q * 4 + 4], lists_), quarter_ = q;
-  if (block_ != b) beams_.build(2, points_, starts_[b], starts_[b + 1], lists_), block_ = b;
-  return lists_.level[ShadowBeams::kLevels - 1].data();
-}
-
-const BlobBeam* lists_on_demand(ShadowListsOnDemand& pending) {
-  return pending.build();
+  beams_.build(2, points_, starts_[b], starts_[b + 1], lists_), block_ = b;
+  view_.lists = lists_.level[ShadowBeams::kLevels - 1].data();
 }
 
 }  // namespace softtrace

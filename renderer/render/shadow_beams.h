@@ -86,8 +86,8 @@ class ShadowBeams {
   // 0) from the sums' BVHs. `points` are the tile's at every level: a quarter's and a block's are
   // ranges of them. A block with no points gets no lists.
   void build(int level, const Point* points, int begin, int end, Lists& lists) const;
-  // The lists of `level` as shade() takes them; the caller sets the shaded point (one of the
-  // block's, as given to build()) in ShadowLists::p and offset.
+  // The lists of `level` seen as a block's (ShadowListsOnDemand's for shade()); the caller sets
+  // the shaded point (one of the block's, as given to build()) in ShadowLists::p and offset.
   ShadowLists view(int level, const Lists& lists) const {
     return {slot_.data(), lists.level[level].data(), objects_, {0, 0, 0}, 0};
   }
@@ -115,36 +115,52 @@ class ShadowBeams {
   std::vector<int> blob_objects_;  // the objects that are sums of polynomial blobs
 };
 
-// A tile's lists built as its shadow rays first ask for them (ShadowLists::pending): a block's,
-// and its quarter's and the tile's above it, when one of the block's points casts a shadow ray,
-// instead of every level of every block with points before its pixels are shaded. A block whose
-// points all face away from the lights casts none (a cloud's dark side: meets10 at 640x480 has
-// 91,001 hits and 52,466 shadow rays), and needs no list. The lists built are the ones the frame's
-// order would build, from the same points in the same order (a tile's first, then a quarter's,
-// then its blocks'), so each ray gets the same list; a level skipped leaves nothing a later one
-// reads (a quarter's list is rebuilt for each quarter, a block's for each block).
+// A tile's lists as shade() takes them, block by block, each built when its shadow rays first ask
+// for them (of()): a block's, and its quarter's and the tile's above it, when one of the block's
+// points casts a shadow ray, instead of every level of every block with points before its pixels
+// are shaded. A block whose points all face away from the lights casts none (a cloud's dark side:
+// meets10 at 640x480 has 91,001 hits and 52,466 shadow rays), and needs no list. The lists built
+// are the ones the frame's order would build, from the same points in the same order (a tile's
+// first, then a quarter's, then its blocks'), so each ray gets the same list; a level skipped
+// leaves nothing a later one reads (a quarter's list is rebuilt for each quarter, a block's for
+// each block).
 class ShadowListsOnDemand {
  public:
   // The tile's points (block b's are points[starts[b], starts[b + 1])), whose lists go in `lists`.
   ShadowListsOnDemand(const ShadowBeams& beams, const ShadowBeams::Point* points, const int* starts,
                       ShadowBeams::Lists& lists)
-      : beams_(beams), points_(points), starts_(starts), lists_(lists) {}
-  // The view of block b (of the tile's 16, a quarter's four after one another), its lists built
-  // when a shadow ray first asks.
-  ShadowLists view(int b) {
-    wanted_ = b;
-    ShadowLists v = beams_.view(ShadowBeams::kLevels - 1, lists_);
-    v.pending = this;
-    return v;
+      : beams_(beams),
+        points_(points),
+        starts_(starts),
+        lists_(lists),
+        view_(beams.view(ShadowBeams::kLevels - 1, lists)) {}
+  // Block b's points are shaded next (of the tile's 16, a quarter's four after one another): before
+  // the first of().
+  void block(int b) { wanted_ = b; }
+  // The point shaded next, one of the block's as given to ShadowBeams (ShadowLists::p, offset).
+  void at(const ShadowBeams::Point& point) {
+    view_.p = point.p;
+    view_.offset = point.margin;
   }
-  // Builds what block wanted_'s lists need; the blocks' level's lists.
-  const BlobBeam* build();
+  const Vec3& p() const { return view_.p; }
+  double offset() const { return view_.offset; }
+  // The block's lists of scene light `light`, one per object (ShadowLists::of), built first where
+  // this is the block's first shadow ray towards a light with lists.
+  const BlobBeam* of(int light) {
+    if (view_.slot[light] < 0) return nullptr;
+    if (block_ != wanted_) build();
+    return view_.of(light);
+  }
 
  private:
+  // Builds what block wanted_'s lists need, and points the view at the blocks' level.
+  void build();
+
   const ShadowBeams& beams_;
   const ShadowBeams::Point* points_;
   const int* starts_;
   ShadowBeams::Lists& lists_;
+  ShadowLists view_;
   bool tile_ = false;
   int quarter_ = -1, block_ = -1, wanted_ = -1;
 };

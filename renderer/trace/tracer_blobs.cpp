@@ -19,6 +19,7 @@
 #include "trace/shadow_list_lanes.h"
 #include "trace/tracer.h"
 #include "trace/tracer_limits.h"
+#include "trace/unlisted_stretches.h"
 
 namespace softtrace {
 
@@ -212,22 +213,13 @@ Vec3 ObjectTracer::blob_gradient(const Vec3& p, double* terms, const BlobBeam* l
 }
 
 MarchResult ObjectTracer::unlisted_stretches(double t0, double t1, TraceCounters& work) const {
-  // first_hit_blobs' loop below with no blob on the list: a camera list's ray takes the whole
-  // way as one stretch, counted, and, where rounding leaves t short of t1, another twice as
-  // long (fewer than kFewTerms terms) -- the steps AOV counts each.
+  // first_hit_blobs' loop below with no blob on the list (its stretches after one of fewer than
+  // kFewTerms terms twice as long).
   static_assert(kFewTerms > 0);
-  double t = t0, s = t1 - t0;
-  while (t < t1) {
-    if (work.evaluations() >= kMaxSteps) {
-      ++work.give_ups;
-      return {true, t, false, true};
-    }
-    const double len = std::min(t + s, t1) - t;
-    ++work.box_evals;
-    t += len;
-    s = 2 * len;
-  }
-  return {};
+  double t = t0;
+  if (count_unlisted_stretches(t, t1, work)) return {};
+  ++work.give_ups;
+  return {true, t, false, true};
 }
 
 MarchResult ObjectTracer::first_hit_unlisted(const Ray& ray, double tfar, double clear_to,

@@ -19,7 +19,7 @@
 #include "math/box.h"
 #include "math/vec.h"
 #include "trace/tracer.h"
-#include "trace/tracer_limits.h"
+#include "trace/unlisted_stretches.h"
 
 namespace softtrace {
 
@@ -69,20 +69,9 @@ struct UnmetRays {
     // is: its division is not made.
     if (depth != 0) t0 = std::max(t0, depth / cos_forward);
     if (t0 > t1) return true;
-    // ObjectTracer::unlisted_stretches: the way as one stretch, and where rounding leaves t
-    // short of t1, another twice as long.
-    double t = t0, s = t1 - t0;
-    int stretches = 0;
-    while (t < t1) {
-      if (stretches >= tracer_limits::kMaxSteps)
-        return false;  // the ray limit: intersect() answers it
-      const double len = std::min(t + s, t1) - t;
-      ++stretches;
-      t += len;
-      s = 2 * len;
-    }
-    work.box_evals = stretches;
-    return true;
+    // ObjectTracer::unlisted_stretches' count, from work's zero evaluations; at the ray limit
+    // intersect() answers the ray (its give-up).
+    return count_unlisted_stretches(t0, t1, work);
   }
 };
 

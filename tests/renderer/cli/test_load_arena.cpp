@@ -5,6 +5,7 @@
 // of its own.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -13,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/heap_pages.h"
 #include "cli/load_arena.h"
 #include "describe/params.h"
 #include "scene/scene.h"
@@ -62,6 +64,38 @@ TEST(LoadArena, OtherBlocksAreTheLibrarys) {
   EXPECT_FALSE(load_arena_holds(large.get()));
   EXPECT_FALSE(load_arena_holds(other_thread.get()));
   EXPECT_FALSE(load_arena_holds(after.get()));
+}
+
+// Large blocks taken inside the scope between chunks lie within the chunks' hull, which holds
+// every chunk's blocks, and are still the library's: the hull alone decides only for the blocks
+// outside it.
+TEST(LoadArena, LargeBlocksBetweenChunksAreTheLibrarys) {
+  // The programs' heap (cli/heap_pages.h): the chunks and the large blocks from its top, in the
+  // order they are taken.
+  heap_in_huge_pages(size_t(12) << 20);
+  const auto address = [](const void* p) { return reinterpret_cast<uintptr_t>(p); };
+  std::vector<char*> small;
+  std::vector<std::unique_ptr<char[]>> large;
+  {
+    const LoadArena arena;
+    // Two chunks' worth of small blocks, a large one after every hundred.
+    for (int i = 0; i < 4200; ++i) {
+      small.push_back(new char[kLoadArenaLargestBlock / 2]);
+      if (i % 100 == 0) large.emplace_back(new char[kLoadArenaLargestBlock + 1 + size_t(i)]);
+    }
+  }
+  uintptr_t lowest = UINTPTR_MAX, highest = 0;
+  for (const char* b : small) {
+    ASSERT_TRUE(load_arena_holds(b));
+    lowest = std::min(lowest, address(b));
+    highest = std::max(highest, address(b));
+  }
+  int between = 0;
+  for (const std::unique_ptr<char[]>& b : large) {
+    EXPECT_FALSE(load_arena_holds(b.get()));
+    between += lowest < address(b.get()) && address(b.get()) < highest;
+  }
+  EXPECT_GT(between, 0);  // where the hull's test alone would say held
 }
 
 // A block deleted with its size inside the scope is the next one of its size class (the load's

@@ -15,6 +15,7 @@
 // (its point is then no list's, and the other points' lists are narrower).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -114,14 +115,15 @@ FloorCounts check_floor(const char* eye, const char* finish, bool point = true) 
           points.push_back({p, ray_offset(obj, p, ray.cone_at(hit.t))});
         }
       if (points.empty()) continue;
+      // The points as a tile's first block: the tile's, its quarter's and its block's lists are
+      // all of them.
       ShadowBeams::Lists lists;
-      const int count = int(points.size());
-      for (int level = 0; level < ShadowBeams::kLevels; ++level)
-        beams.build(level, points.data(), 0, count, lists);
-      ShadowLists view = beams.view(ShadowBeams::kLevels - 1, lists);
+      int starts[17] = {0};
+      std::fill(starts + 1, starts + 17, int(points.size()));
+      ShadowListsOnDemand view(beams, points.data(), starts, lists);
+      view.block(0);
       for (size_t i = 0; i < points.size(); ++i) {
-        view.p = points[i].p;
-        view.offset = points[i].margin;
+        view.at(points[i]);
         RayWork plain_way, floor_way;
         const Shaded a = shade_plain_hit(scene, rt.tracers, rt.embree, rays[i], hits[i],
                                          obj.material, plain_way, nullptr, view);

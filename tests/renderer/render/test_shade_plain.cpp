@@ -6,14 +6,15 @@
 // light; a mirror beside them is no plain object.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
-#include <vector>
 
 #include "film/film.h"
 #include "render/camera.h"
 #include "render/frame.h"
 #include "render/shading.h"
+#include "render/shadow_beams.h"
 #include "scene/scene.h"
 
 namespace softtrace {
@@ -58,8 +59,12 @@ TEST(ShadePlain, EveryPlainHitIsShadedAsShadeDoes) {
 
   const int width = 96, height = 72;
   const ViewCamera camera(scene.camera, width, height);
-  // No shadow lists (every slot -1): both shadings trace each shadow ray alone, the same rays.
-  const std::vector<int> no_lists(scene.lights.size(), -1);
+  // The scene's shadow lists, of a block of the one point shaded: a sum of two blobs takes none
+  // (ShadowBeams::kFewBlobs), so both shadings trace each shadow ray alone, the same rays.
+  const ShadowBeams beams(scene, rt.tracers);
+  ShadowBeams::Lists block_lists;
+  int starts[17] = {0};
+  std::fill(starts + 1, starts + 17, 1);
   int plain_hits[4] = {0, 0, 0, 0}, lit = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -69,8 +74,10 @@ TEST(ShadePlain, EveryPlainHitIsShadedAsShadeDoes) {
       const SceneObject& obj = scene.objects[size_t(hit.object)];
       if (!shades_plain(scene, obj)) continue;
       const Vec3 p = ray.o + ray.d * hit.t;
-      const ShadowLists lists{no_lists.data(), nullptr, int(rt.tracers.size()), p,
-                              ray_offset(obj, p, ray.cone_at(hit.t))};
+      const ShadowBeams::Point point{p, ray_offset(obj, p, ray.cone_at(hit.t))};
+      ShadowListsOnDemand lists(beams, &point, starts, block_lists);
+      lists.block(0);
+      lists.at(point);
       RayWork long_way, short_way;
       const Shaded a =
           shade(scene, rt.tracers, rt.embree, ray, hit, long_way, nullptr, 1, 1, nullptr, &lists);
@@ -85,7 +92,7 @@ TEST(ShadePlain, EveryPlainHitIsShadedAsShadeDoes) {
       RayWork alone, alone_short;
       const Shaded c = shade(scene, rt.tracers, rt.embree, ray, hit, alone);
       const Shaded d = shade_plain_at(scene, rt.tracers, rt.embree, ray, hit, obj.material, p,
-                                      lists.offset, alone_short, nullptr, nullptr);
+                                      point.margin, alone_short, nullptr, nullptr);
       ASSERT_TRUE(same_bits(c.color, d.color)) << x << "," << y;
       ASSERT_TRUE(same_bits(c.normal, d.normal)) << x << "," << y;
       ASSERT_TRUE(same_bits(c.albedo, d.albedo)) << x << "," << y;
