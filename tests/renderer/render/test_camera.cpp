@@ -8,6 +8,7 @@
 #include "cli_util.h"
 #include "io/image_file.h"
 #include "render/camera.h"
+#include "render/frame_metadata.h"
 #include "scene/scene.h"
 
 namespace softtrace::test {
@@ -113,6 +114,15 @@ TEST(Camera, AspectStretchesTheViewAcross) {
   ASSERT_TRUE(stretched.pixel_of(stretched.generate(31.5, 200.25).d * 7 + c.eye, px, py));
   EXPECT_NEAR(px, 31.5, 1e-9);
   EXPECT_NEAR(py, 200.25, 1e-9);
+  // The EXR's world_to_ndc (row vectors) puts that point at the same place in the frame.
+  Scene scene;
+  scene.camera = c;
+  const auto m = frame_info(scene, 320, 240, false).world_to_ndc;
+  const Vec3 p = stretched.generate(31.5, 200.25).d * 7 + c.eye;
+  double ndc[4];
+  for (int j = 0; j < 4; ++j) ndc[j] = p.x * m[j] + p.y * m[4 + j] + p.z * m[8 + j] + m[12 + j];
+  EXPECT_NEAR(ndc[0] / ndc[3], 31.5 / 320, 1e-6);
+  EXPECT_NEAR(ndc[1] / ndc[3], 200.25 / 240, 1e-6);
 }
 
 TEST(Camera, ThinLensRaysMeetInTheFocalPlane) {
