@@ -31,11 +31,13 @@ py::dict camera_of(const Camera& c) {
       projection = "orthographic";
       break;
   }
-  return py::dict(py::arg("projection") = projection, py::arg("eye") = vec(c.eye),
-                  py::arg("target") = vec(c.target), py::arg("up") = vec(c.up),
-                  py::arg("fov") = c.fov, py::arg("aperture") = c.aperture,
-                  py::arg("focal_distance") = c.focal_distance,
-                  py::arg("blur_samples") = c.blur_samples);
+  py::dict d(py::arg("projection") = projection, py::arg("eye") = vec(c.eye),
+             py::arg("target") = vec(c.target), py::arg("up") = vec(c.up), py::arg("fov") = c.fov);
+  if (c.aspect > 0) d["aspect"] = c.aspect;  // absent: the image's
+  d["aperture"] = c.aperture;
+  d["focal_distance"] = c.focal_distance;
+  d["blur_samples"] = c.blur_samples;
+  return d;
 }
 
 py::dict light_of(const Light& l) {

@@ -15,9 +15,7 @@ needs -o). POV-Ray's y-up left-handed frame becomes softtrace's z-up
 right-handed one by swapping y and z, which keeps the picture unmirrored (tools/povsdl/affine.py).
 POV-Ray's `angle` is horizontal, softtrace's `fov` vertical. docs/pov.md has the details.
 
-What it carries only approximately (a camera whose right/up ratio is not the image's aspect:
-POV-Ray's default right, 1.33, on a 4:3 image) is converted with a warning, `SCENE.pov:LINE:COL:
-warning: ...`. Anything it cannot carry is refused with one line, `SCENE.pov:LINE:COL: what`, and exit status 2;
+Anything it cannot carry is refused with one line, `SCENE.pov:LINE:COL: what`, and exit status 2;
 the output file is then left as it was.
 
 usage: tools/pov2softtrace.py SCENE.pov [-o SCENE.json] [--width 320] [--height 240]
@@ -106,9 +104,9 @@ def main(argv=None):
     except OSError as e:
         print("%s: cannot read: %s" % (a.scene, e.strerror), file=sys.stderr)
         return 2
-    warnings, meshes = [], []
+    meshes = []
     try:
-        scene = convert(a.scene, text, a.width, a.height, warnings, meshes)
+        scene = convert(a.scene, text, a.width, a.height, meshes)
     except PovError as e:
         print("%s:%d:%d: %s" % (a.scene, e.line, e.col, e.message), file=sys.stderr)
         return 2
@@ -120,8 +118,6 @@ def main(argv=None):
         scene["image"]["antialias"] = {"threshold": a.antialias, "depth": a.antialias_depth}
         if a.antialias_gamma is not None:
             scene["image"]["antialias"]["gamma"] = a.antialias_gamma
-    for line, col, message in warnings:
-        print("%s:%d:%d: warning: %s" % (a.scene, line, col, message), file=sys.stderr)
     out = "// Converted from %s by tools/pov2softtrace.py\n%s\n" % (
         os.path.basename(a.scene), dumps(scene))
     if a.output:

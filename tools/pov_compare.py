@@ -141,7 +141,7 @@ def write_case(case, a, work):
                 text = f.read()
         meshes = []
         try:
-            sc = convert(source, text, a.width, a.height, None, meshes)
+            sc = convert(source, text, a.width, a.height, meshes)
         except PovError as e:
             sys.exit("%s:%d:%d: %s" % (source, e.line, e.col, e.message))
         for obj in pov2softtrace.mesh_objects(sc["objects"]):  # OBJ files beside the scene

@@ -35,7 +35,7 @@ class Scene(_native.Scene):
     """A scene: camera, image settings, background, lights and objects (docs/scene-format.md).
 
     Settings read as plain values, with every key of the file format (camera: projection, eye,
-    target, up, fov, aperture, focal_distance, blur_samples; image: width, height, spp,
+    target, up, fov, aperture, focal_distance, blur_samples, and aspect when given; image: width, height, spp,
     max_trace_level, and antialias and ambient_occlusion when on; a light: the keys its entry gave, as given, and its defaults), and change by
     assignment, checked as in a file (a refused value raises SceneError and leaves the scene as
     it was)::

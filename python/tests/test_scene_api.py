@@ -118,6 +118,9 @@ def test_settings_are_checked_and_copied_on_write():
         scene.camera = dict(camera, fov=200)
     assert e.value.pointer == "/camera/fov"
     assert scene.camera["fov"] == 30  # a refused value changes nothing
+    scene.camera = dict(camera, fov=30, aspect=1.33)  # kept only when given
+    assert scene.camera["aspect"] == 1.33 and "aspect" not in other.camera
+    scene.camera = dict(camera, fov=30)
     scene.width, scene.height, scene.spp = 20, 10, 2
     assert scene.image == {"width": 20, "height": 10, "spp": 2, "max_trace_level": 5}
     assert softtrace.render(scene)["rgba"].shape == (10, 20, 4)
@@ -251,7 +254,7 @@ def test_settings_read_back_every_key_and_assign_back_unchanged():
     # reads as the file's keys, all of them, so `scene.x = dict(scene.x, ...)` keeps the others.
     scene = softtrace.load_scene(SHAPES_SCENE)
     scene.width, scene.height = 32, 24
-    scene.camera = dict(scene.camera, projection="orthographic", aperture=0.5,
+    scene.camera = dict(scene.camera, projection="orthographic", aspect=1.5, aperture=0.5,
                         focal_distance=40, blur_samples=2)
     scene.max_trace_level = 3
     scene.image = dict(scene.image, antialias={"threshold": 0.3, "depth": 2},

@@ -40,7 +40,7 @@ class ViewCamera {
         orthographic_(c.projection == Camera::Projection::Orthographic),
         width_(width),
         height_(height),
-        aspect_(static_cast<double>(width) / height),
+        aspect_(c.aspect > 0 ? c.aspect : static_cast<double>(width) / height),
         aperture_(c.aperture) {
     forward_ = normalize(c.target - c.eye);
     right_ = normalize(cross(forward_, c.up));
@@ -55,6 +55,11 @@ class ViewCamera {
     // in scene units for parallel rays.
     cone_ = orthographic_ ? 0 : tan_half_ / height;
     cone0_ = orthographic_ ? half_height_ / height : 0;
+    // A stretched view's pixels are not square: half the narrower side.
+    if (c.aspect > 0 && aspect_ / width < 1.0 / height) {
+      cone_ *= aspect_ * height / width;
+      cone0_ *= aspect_ * height / width;
+    }
   }
 
   // Whether every ray leaves the eye (a pinhole perspective camera): then frustum() holds them.
@@ -130,7 +135,7 @@ class ViewCamera {
   Vec3 eye_, forward_, right_, up_;
   bool orthographic_;
   int width_, height_;
-  double aspect_;  // width / height, once (a division a camera ray)
+  double aspect_;  // the view's width / height, once (a division a camera ray)
   double aperture_, focus_ = 0, tan_half_ = 0, half_height_ = 0, cone_ = 0, cone0_ = 0;
 };
 

@@ -52,7 +52,7 @@ FrameInfo frame_info(const Scene& scene, int full_width, int full_height, bool w
                                   {r[2], u[2], f[2], 0},
                                   {-dot(c.eye, r), -dot(c.eye, u), -dot(c.eye, f), 1}};
   const double t = std::tan(0.5 * c.fov * M_PI / 180.0);
-  const double aspect = double(full_width) / full_height;
+  const double aspect = c.aspect > 0 ? c.aspect : double(full_width) / full_height;
   // x_ndc = 0.5 + 0.5 x/(z t aspect), y_ndc = 0.5 - 0.5 y/(z t): homogeneous with w = z.
   const Matrix perspective = {
       {0.5 / (t * aspect), 0, 0, 0}, {0, -0.5 / t, 0, 0}, {0.5, 0.5, 0, 1}, {0, 0, 1, 0}};

@@ -40,6 +40,7 @@ Camera load_camera(const Params& p) {
   c.target = p.vec3("target");
   c.up = p.vec3("up", c.up);
   c.fov = p.number("fov", c.fov);
+  c.aspect = p.positive("aspect", c.aspect);
   c.aperture = p.number("aperture", c.aperture);
   c.focal_distance = p.number("focal_distance", c.focal_distance);
   c.blur_samples = p.integer("blur_samples", 1, 4096, c.blur_samples);

@@ -30,6 +30,9 @@ struct Camera {
   enum class Projection { Perspective, Orthographic };
   Vec3 eye, target, up{0, 0, 1};
   double fov = 30;  // vertical, degrees
+  // The view's width / height; 0: the image's (square pixels). Another stretches the picture
+  // across, as POV-Ray's right/up ratio does when it is not the image's.
+  double aspect = 0;
   Projection projection = Projection::Perspective;
   double aperture = 0;        // the lens's diameter; 0: a pinhole
   double focal_distance = 0;  // along the view; 0: the target's

@@ -56,6 +56,8 @@ CameraProblem camera_problem(const Camera& c) {
     return {"eye", std::string("expected an eye ") + kPositionRule + " (rays start there)"};
   if (!(c.fov > 0 && c.fov < 180))
     return {"fov", "expected a vertical field of view in (0, 180) degrees"};
+  if (!(c.aspect == 0 || (c.aspect >= 1 / kMaxAspect && c.aspect <= kMaxAspect)))
+    return {"aspect", "expected a view's width / height from 1/16384 to 16384"};
   const Vec3 view = c.target - c.eye;
   if (!(max_abs(view) > 0)) return {"target", "expected a target different from the eye"};
   const double distance = scaled_length(view);

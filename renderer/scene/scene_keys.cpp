@@ -8,7 +8,8 @@ const std::vector<SceneKeyList>& scene_key_lists() {
   static const std::vector<SceneKeyList> lists = {
       {"top level", {"camera", "image", "background", "lights", "objects", "animation"}},
       {"camera",
-       {"projection", "eye", "target", "up", "fov", "aperture", "focal_distance", "blur_samples"}},
+       {"projection", "eye", "target", "up", "fov", "aspect", "aperture", "focal_distance",
+        "blur_samples"}},
       {"image", {"width", "height", "spp", "max_trace_level", "antialias", "ambient_occlusion"}},
       {"antialias", {"threshold", "depth", "gamma"}},
       {"ambient_occlusion", {"samples", "distance"}},

@@ -8,6 +8,7 @@
 #include "cli_util.h"
 #include "io/image_file.h"
 #include "render/camera.h"
+#include "render/frame_metadata.h"
 #include "scene/scene.h"
 
 namespace softtrace::test {
@@ -73,6 +74,55 @@ TEST(Camera, PinholeFromColumnAndRowIsGeneratesRayToTheBit) {
     EXPECT_EQ(parts_differ, 0) << w << "x" << h;
   }
   EXPECT_EQ(checked, 320 * 240 + 641 * 479 + 80 * 60);
+}
+
+// `aspect` (POV-Ray's right/up ratio) sets the view's width whatever the image's: a 320x240
+// image of aspect 1.33 spans tan(fov/2) * 1.33 to each side, not * 4/3, and the rows are as
+// without it. Its pixels are narrower than high, so the cone is half a pixel's width.
+TEST(Camera, AspectStretchesTheViewAcross) {
+  for (const auto projection :
+       {Camera::Projection::Perspective, Camera::Projection::Orthographic}) {
+    Camera c = view(projection);
+    const ViewCamera square(c, 320, 240);
+    c.aspect = 1.33;
+    const ViewCamera stretched(c, 320, 240);
+    const Vec3 forward = normalize(c.target - c.eye);
+    const Vec3 right = normalize(cross(forward, c.up)), up = cross(right, forward);
+    const double t = std::tan(20 * M_PI / 180);
+    const double half = projection == Camera::Projection::Orthographic
+                            ? t * length(c.target - c.eye)
+                            : t;  // the half height on the plane at distance 1
+    const auto across = [&](const Ray& r) {
+      return projection == Camera::Projection::Orthographic ? dot(r.o - c.eye, right)
+                                                            : dot(r.d, right) / dot(r.d, forward);
+    };
+    const auto along_up = [&](const Ray& r) {
+      return projection == Camera::Projection::Orthographic ? dot(r.o - c.eye, up)
+                                                            : dot(r.d, up) / dot(r.d, forward);
+    };
+    EXPECT_NEAR(across(stretched.generate(320, 100)), half * 1.33, 1e-12);
+    EXPECT_NEAR(across(square.generate(320, 100)), half * 4 / 3, 1e-12);
+    EXPECT_NEAR(along_up(stretched.generate(17, 0)), half, 1e-12);
+    EXPECT_NEAR(along_up(stretched.generate(17, 0)), along_up(square.generate(17, 0)), 1e-12);
+    const Ray centre = stretched.generate(160, 120), plain = square.generate(160, 120);
+    EXPECT_NEAR(centre.cone0 + centre.cone, (plain.cone0 + plain.cone) * 1.33 / (4.0 / 3), 1e-15);
+  }
+  Camera c = view(Camera::Projection::Perspective);
+  c.aspect = 1.33;
+  const ViewCamera stretched(c, 320, 240);
+  double px = 0, py = 0;
+  ASSERT_TRUE(stretched.pixel_of(stretched.generate(31.5, 200.25).d * 7 + c.eye, px, py));
+  EXPECT_NEAR(px, 31.5, 1e-9);
+  EXPECT_NEAR(py, 200.25, 1e-9);
+  // The EXR's world_to_ndc (row vectors) puts that point at the same place in the frame.
+  Scene scene;
+  scene.camera = c;
+  const auto m = frame_info(scene, 320, 240, false).world_to_ndc;
+  const Vec3 p = stretched.generate(31.5, 200.25).d * 7 + c.eye;
+  double ndc[4];
+  for (int j = 0; j < 4; ++j) ndc[j] = p.x * m[j] + p.y * m[4 + j] + p.z * m[8 + j] + m[12 + j];
+  EXPECT_NEAR(ndc[0] / ndc[3], 31.5 / 320, 1e-6);
+  EXPECT_NEAR(ndc[1] / ndc[3], 200.25 / 240, 1e-6);
 }
 
 TEST(Camera, ThinLensRaysMeetInTheFocalPlane) {
@@ -214,6 +264,8 @@ TEST(Camera, BadCameraKeysAreRefusedAtTheirPointers) {
       {R"("aperture": -1)", "/camera/aperture: expected an aperture >= 0"},
       {R"("focal_distance": -2)", "/camera/focal_distance: expected a focal distance >= 0"},
       {R"("blur_samples": 0)", "/camera/blur_samples"},
+      {R"("aspect": 0)", "/camera/aspect"},
+      {R"("aspect": 16385)", "/camera/aspect: expected a view's width / height from 1/16384"},
       {R"("projection": "orthographic", "fov": 179.9999999)",
        "/camera/fov: expected an orthographic"},
   };

@@ -23,7 +23,7 @@ const char* kKeysBall =
 // Between them, every key of every list, at the places `kWhere` names.
 const std::string kEveryKeyCameras = std::string(R"({
   "camera": {"projection": "perspective", "eye": [10, 0, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 40,
-             "aperture": 0.1, "focal_distance": 9, "blur_samples": 2},
+             "aspect": 1.5, "aperture": 0.1, "focal_distance": 9, "blur_samples": 2},
   "image": {"width": 8, "height": 6, "spp": 2, "max_trace_level": 3,
             "antialias": {"threshold": 0.3, "depth": 2, "gamma": 2.2},
             "ambient_occlusion": {"samples": 4, "distance": 2}},
