@@ -55,6 +55,31 @@ inline void extend_by(Box& b, const Box& item) {
 #endif
 }
 
+// extend_by for an item whose lo lies below its hi on every axis (no NaN, no flat axis): the
+// minimum of the los and the maximum of the his alone, half the instructions. With lo < hi,
+// min(hi, min(lo, p)) is min(lo, p) (hi wins only below it, and it is at most lo) and
+// max(hi, max(lo, p)) is max(hi, p), operands and all, so the bits are extend_by's; a flat axis
+// would not do (lo = +0, hi = -0 makes the first max +0 and this one -0). Such items' union,
+// a bin's or a node's box, is such a box again.
+inline void extend_by_ordered(Box& b, const Box& item) {
+#ifdef __SSE2__
+  _mm_storeu_pd(&b.lo.x, _mm_min_pd(_mm_loadu_pd(&item.lo.x), _mm_loadu_pd(&b.lo.x)));
+  _mm_storeu_pd(&b.hi.x, _mm_max_pd(_mm_loadu_pd(&item.hi.x), _mm_loadu_pd(&b.hi.x)));
+  _mm_store_sd(&b.lo.z, _mm_min_sd(_mm_load_sd(&item.lo.z), _mm_load_sd(&b.lo.z)));
+  _mm_store_sd(&b.hi.z, _mm_max_sd(_mm_load_sd(&item.hi.z), _mm_load_sd(&b.hi.z)));
+#else
+  extend_by(b, item);
+#endif
+}
+
+// Every box's lo below its hi on every axis: where it holds, extend_by_ordered gives the bits of
+// extend_by, and a bin that took an item is never empty.
+bool all_ordered(const std::vector<Box>& boxes) {
+  for (const Box& b : boxes)
+    if (!(b.lo.x < b.hi.x && b.lo.y < b.hi.y && b.lo.z < b.hi.z)) return false;
+  return true;
+}
+
 double half_area(const Box& b) {
   const Vec3 e = b.extent();
   return e.x * e.y + e.y * e.z + e.z * e.x;
@@ -62,46 +87,85 @@ double half_area(const Box& b) {
 
 class BinaryBuilder {
  public:
-  BinaryBuilder(std::vector<Box> boxes, std::vector<int32_t> ids)
-      : boxes_(std::move(boxes)), ids_(std::move(ids)) {
+  BinaryBuilder(std::vector<Box> boxes, std::vector<int32_t> ids) {
+    Items& at_root = items_[0];
+    at_root.boxes = std::move(boxes);
+    at_root.ids = std::move(ids);
+    const size_t n = at_root.ids.size();
     for (int axis = 0; axis < 3; ++axis) {
-      centre_[axis].reserve(boxes_.size());
-      keys_[axis].resize(boxes_.size());
+      at_root.centre[axis].reserve(n);
+      keys_[axis].resize(n);
+      items_[1].centre[axis].resize(n);
     }
-    for (const Box& b : boxes_) {
+    items_[1].boxes.resize(n);
+    items_[1].ids.resize(n);
+    nodes.reserve(2 * n - 1);  // a binary tree of n leaves
+    for (const Box& b : at_root.boxes) {
       const Vec3 c = b.center();
-      centre_[0].push_back(c.x);
-      centre_[1].push_back(c.y);
-      centre_[2].push_back(c.z);
+      at_root.centre[0].push_back(c.x);
+      at_root.centre[1].push_back(c.y);
+      at_root.centre[2].push_back(c.z);
     }
   }
 
   std::vector<Binary> nodes;
-  const std::vector<Box>& boxes() const { return boxes_; }
-  const std::vector<int32_t>& ids() const { return ids_; }
+  // The items in the order of the tree's leaves, once build() has returned.
+  const std::vector<Box>& boxes() const { return items_[0].boxes; }
+  const std::vector<int32_t>& ids() const { return items_[0].ids; }
 
+  // kOrdered: every item's lo lies below its hi (all_ordered), and the boxes are united by
+  // extend_by_ordered.
+  template <bool kOrdered>
   int32_t build(int32_t first, int32_t count, int depth) {
     const int32_t index = static_cast<int32_t>(nodes.size());
     nodes.emplace_back();
+    const Items& in = items_[depth & 1];
     Box box, centres;
     for (int32_t i = first; i < first + count; ++i) {
-      extend_by(box, boxes_[i]);  // united(): no item is empty
-      centres.extend({centre_[0][i], centre_[1][i], centre_[2][i]});
+      extend<kOrdered>(box, in.boxes[i]);  // united(): no item is empty
+      centres.extend({in.centre[0][i], in.centre[1][i], in.centre[2][i]});
     }
     nodes[index].box = box;
     nodes[index].first = first;
     nodes[index].count = count;
-    if (count == 1) return index;
-    int32_t half = depth < kSahDepth ? sah_split(first, count, centres) : 0;
-    if (half <= 0 || half >= count) half = median_split(first, count, centres);
-    const int32_t left = build(first, half, depth + 1);
-    const int32_t right = build(first + half, count - half, depth + 1);
+    if (count == 1) {
+      if (depth & 1) {  // a leaf's item ends in the first arrays
+        items_[0].ids[first] = in.ids[first];
+        items_[0].boxes[first] = in.boxes[first];
+      }
+      return index;
+    }
+    Items& out = items_[~depth & 1];
+    int32_t half = depth < kSahDepth ? sah_split<kOrdered>(in, first, count, centres, out) : 0;
+    if (half <= 0) half = median_split(in, first, count, centres, out);
+    const int32_t left = build<kOrdered>(first, half, depth + 1);
+    const int32_t right = build<kOrdered>(first + half, count - half, depth + 1);
     nodes[index].left = left;
     nodes[index].right = right;
     return index;
   }
 
  private:
+  // The items' ids, boxes and centres (axis by axis: the axis is a loop variable, and reading a
+  // Vec3's coordinate by it took a branch per read). A node at depth d finds its items in
+  // items_[d & 1] and hands them to its children split in the other: each item is written once a
+  // level, where a split in place moved the right side's items through a scratch and back (a
+  // copy per array and node, five calls of memcpy, mostly for a few items).
+  struct Items {
+    std::vector<int32_t> ids;
+    std::vector<Box> boxes;
+    std::vector<double> centre[3];
+  };
+
+  template <bool kOrdered>
+  static void extend(Box& b, const Box& item) {
+    if (kOrdered) {
+      extend_by_ordered(b, item);
+    } else {
+      extend_by(b, item);
+    }
+  }
+
   // x = (centre - lo) / w, the centre's place in the range [lo, lo + w] of the node's centres.
   // An unbounded item's centre may be infinite or NaN: the last bin or the first.
   static int bin_of(double x) {
@@ -109,14 +173,15 @@ class BinaryBuilder {
   }
 
   // The binned surface-area heuristic: the split between bins along an axis that least
-  // increases A_left n_left + A_right n_right. Reorders the range so the first `half` go left;
-  // returns half, or 0 where no split is finite (unbounded boxes, equal centres). Each item's
-  // bin along each axis is kept from the binning for the partition, and the items' centres from
-  // the start, axis by axis: the axis is a loop variable, and reading a Vec3's coordinate by it
-  // took a branch per read.
-  int32_t sah_split(int32_t first, int32_t count, const Box& centres) {
+  // increases A_left n_left + A_right n_right. Writes the range's items to `out`, the first
+  // `half` those that go left; returns half, or 0 where no split is finite (unbounded boxes,
+  // equal centres), with nothing written. Each item's bin along each axis is kept from the
+  // binning for the partition.
+  template <bool kOrdered>
+  int32_t sah_split(const Items& in, int32_t first, int32_t count, const Box& centres, Items& out) {
     double best = std::numeric_limits<double>::infinity();
     int best_axis = -1, best_bin = 0;
+    int32_t best_left = 0;
     for (int axis = 0; axis < 3; ++axis) {
       const double lo = centres.lo[axis], w = centres.hi[axis] - lo;
       if (!(w > 0) || !std::isfinite(w)) continue;
@@ -124,12 +189,12 @@ class BinaryBuilder {
       int32_t n[kBins] = {};
       uint32_t occupied = 0;  // bit k: bin k has items
       uint8_t* key = keys_[axis].data();
-      const double* centre = centre_[axis].data() + first;
-      const Box* box = boxes_.data() + first;
+      const double* centre = in.centre[axis].data() + first;
+      const Box* box = in.boxes.data() + first;
       for (int32_t i = 0; i < count; ++i) {
         const int k = bin_of((centre[i] - lo) / w);
         key[i] = static_cast<uint8_t>(k);
-        extend_by(bins[k], box[i]);  // united(), whose empty() test no item needs
+        extend<kOrdered>(bins[k], box[i]);  // united(), whose empty() test no item needs
         ++n[k];
         occupied |= 1u << k;
       }
@@ -142,19 +207,20 @@ class BinaryBuilder {
       double right_area[kBins];  // of the occupied bins bin[j..m)
       Box acc;
       for (int j = m - 1; j > 0; --j) {
-        if (!bins[bin[j]].empty()) extend_by(acc, bins[bin[j]]);  // acc.united(the bin)
+        if (kOrdered || !bins[bin[j]].empty()) extend<kOrdered>(acc, bins[bin[j]]);  // united()
         right_area[j] = half_area(acc);
       }
       acc = Box();
       int32_t left = 0;
       for (int j = 0; j + 1 < m; ++j) {
-        if (!bins[bin[j]].empty()) extend_by(acc, bins[bin[j]]);
+        if (kOrdered || !bins[bin[j]].empty()) extend<kOrdered>(acc, bins[bin[j]]);
         left += n[bin[j]];
         const double cost = half_area(acc) * left + right_area[j + 1] * (count - left);
         if (cost < best) {
           best = cost;
           best_axis = axis;
           best_bin = bin[j];
+          best_left = left;
         }
       }
       // Two items: on any axis binned (a positive, finite width), one centre is the range's low
@@ -164,72 +230,46 @@ class BinaryBuilder {
       if (count == 2) break;
     }
     if (best_axis < 0) return 0;
-    return partition(first, count, keys_[best_axis].data(), best_bin);
+    partition(in, first, count, keys_[best_axis].data(), best_bin, best_left, out);
+    return best_left;
   }
 
-  // std::stable_partition's order: the items of the bins up to best_bin, then the others, each
-  // in their order. The first move forward in place (an item's new place is never after its
-  // old one, and what stood there has moved already); only the others go through the scratch.
-  int32_t partition(int32_t first, int32_t count, const uint8_t* key, int best_bin) {
-    int32_t half = 0;
-    ids_scratch_.clear();
-    boxes_scratch_.clear();
-    for (auto& c : centres_scratch_) c.clear();
+  // std::stable_partition's order: the items of the bins up to best_bin (`half` of them), then
+  // the others, each in their order.
+  static void partition(const Items& in, int32_t first, int32_t count, const uint8_t* key,
+                        int best_bin, int32_t half, Items& out) {
+    int32_t left = first, right = first + half;
     for (int32_t i = 0; i < count; ++i) {
       const int32_t from = first + i;
-      if (key[i] <= best_bin) {
-        const int32_t to = first + half++;
-        if (to == from) continue;
-        ids_[to] = ids_[from];
-        boxes_[to] = boxes_[from];
-        for (int axis = 0; axis < 3; ++axis) centre_[axis][to] = centre_[axis][from];
-      } else {
-        ids_scratch_.push_back(ids_[from]);
-        boxes_scratch_.push_back(boxes_[from]);
-        for (int axis = 0; axis < 3; ++axis) centres_scratch_[axis].push_back(centre_[axis][from]);
-      }
+      const int32_t to = key[i] <= best_bin ? left++ : right++;
+      move(in, from, out, to);
     }
-    const int32_t at = first + half;
-    std::copy(ids_scratch_.begin(), ids_scratch_.end(), ids_.begin() + at);
-    std::copy(boxes_scratch_.begin(), boxes_scratch_.end(), boxes_.begin() + at);
-    for (int axis = 0; axis < 3; ++axis)
-      std::copy(centres_scratch_[axis].begin(), centres_scratch_[axis].end(),
-                centre_[axis].begin() + at);
-    return half;
   }
 
-  int32_t median_split(int32_t first, int32_t count, const Box& centres) {
+  static void move(const Items& in, int32_t from, Items& out, int32_t to) {
+    out.ids[to] = in.ids[from];
+    out.boxes[to] = in.boxes[from];
+    for (int axis = 0; axis < 3; ++axis) out.centre[axis][to] = in.centre[axis][from];
+  }
+
+  static int32_t median_split(const Items& in, int32_t first, int32_t count, const Box& centres,
+                              Items& out) {
     const Vec3 e = centres.extent();
     const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
     const int32_t half = count / 2;
     std::vector<int32_t> order(count);
     std::iota(order.begin(), order.end(), 0);
-    const double* c = centre_[axis].data() + first;
+    const double* c = in.centre[axis].data() + first;
+    const int32_t* ids = in.ids.data() + first;
     std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int32_t a, int32_t b) {
-      return c[a] < c[b] || (c[a] == c[b] && ids_[first + a] < ids_[first + b]);
+      return c[a] < c[b] || (c[a] == c[b] && ids[a] < ids[b]);
     });
-    ids_scratch_.resize(count);
-    boxes_scratch_.resize(count);
-    for (auto& s : centres_scratch_) s.resize(count);
-    for (int32_t i = 0; i < count; ++i) {
-      ids_scratch_[i] = ids_[first + order[i]];
-      boxes_scratch_[i] = boxes_[first + order[i]];
-      for (int a = 0; a < 3; ++a) centres_scratch_[a][i] = centre_[a][first + order[i]];
-    }
-    std::copy(ids_scratch_.begin(), ids_scratch_.end(), ids_.begin() + first);
-    std::copy(boxes_scratch_.begin(), boxes_scratch_.end(), boxes_.begin() + first);
-    for (int a = 0; a < 3; ++a)
-      std::copy(centres_scratch_[a].begin(), centres_scratch_[a].end(), centre_[a].begin() + first);
+    for (int32_t i = 0; i < count; ++i) move(in, first + order[i], out, first + i);
     return half;
   }
 
-  std::vector<Box> boxes_;
-  std::vector<int32_t> ids_;
-  std::vector<double> centre_[3];           // boxes_[i].center(), axis by axis, reordered with them
-  std::vector<uint8_t> keys_[3];            // the bin along each axis of sah_split's range
-  std::vector<int32_t> ids_scratch_;        // scratch of the splits
-  std::vector<Box> boxes_scratch_;          // scratch of the splits
-  std::vector<double> centres_scratch_[3];  // scratch of the splits
+  Items items_[2];
+  std::vector<uint8_t> keys_[3];  // the bin along each axis of sah_split's range
 };
 
 // Slot c of a node or block: its box, axis by axis. An unused slot gets the empty box.
@@ -258,22 +298,23 @@ int32_t add_leaf(const Binary& leaf, const BinaryBuilder& builder,
   return ~(first_block << BoxBvh::kBlockBits | (count - 1));
 }
 
-// Binary node b's subtree as nodes of four: the two children, then the largest slot of more than
-// one item replaced by its two children until there are four (the order of the tree kept). A
-// slot of at most kLeafItems items is then a leaf: splitting such slots while a node has room
-// keeps the small trees' walks (a few blobs, long stretches of rays) as selective as before.
-int32_t collapse(const std::vector<Binary>& bin, int32_t b, const BinaryBuilder& builder,
-                 std::vector<BoxBvh::Node>& out, std::vector<BoxBvh::Node>& blocks) {
-  std::vector<int32_t> slots;
+// The slots of the node of four made of binary node b's subtree: the two children, then the
+// largest slot of more than one item replaced by its two children until there are four (the
+// order of the tree kept). Returns how many. A slot of at most kLeafItems items is then a leaf:
+// splitting such slots while a node has room keeps the small trees' walks (a few blobs, long
+// stretches of rays) as selective as before.
+int slots_of(const std::vector<Binary>& bin, int32_t b, int32_t (&slots)[BoxBvh::kWidth]) {
+  int size = 0;
   if (bin[b].count == 1) {
-    slots = {b};  // a tree of one item
+    slots[size++] = b;  // a tree of one item
   } else {
-    slots = {bin[b].left, bin[b].right};
+    slots[size++] = bin[b].left;
+    slots[size++] = bin[b].right;
   }
-  while (static_cast<int>(slots.size()) < BoxBvh::kWidth) {
+  while (size < BoxBvh::kWidth) {
     int widest = -1;
     double area = -1;
-    for (int i = 0; i < static_cast<int>(slots.size()); ++i) {
+    for (int i = 0; i < size; ++i) {
       const Binary& s = bin[slots[i]];
       const double a = half_area(s.box);
       if (s.count > 1 && (widest < 0 || a > area || std::isnan(a))) {
@@ -283,13 +324,23 @@ int32_t collapse(const std::vector<Binary>& bin, int32_t b, const BinaryBuilder&
     }
     if (widest < 0) break;
     const int32_t w = slots[widest];
-    slots[widest] = bin[w].right;
-    slots.insert(slots.begin() + widest, bin[w].left);
+    for (int i = size; i > widest + 1; --i) slots[i] = slots[i - 1];
+    slots[widest] = bin[w].left;
+    slots[widest + 1] = bin[w].right;
+    ++size;
   }
+  return size;
+}
+
+// Binary node b's subtree as nodes of four (slots_of), their leaves' items in blocks.
+int32_t collapse(const std::vector<Binary>& bin, int32_t b, const BinaryBuilder& builder,
+                 std::vector<BoxBvh::Node>& out, std::vector<BoxBvh::Node>& blocks) {
+  int32_t slots[BoxBvh::kWidth];
+  const int size = slots_of(bin, b, slots);
   const int32_t index = static_cast<int32_t>(out.size());
   out.emplace_back();
   BoxBvh::Node node{};
-  node.size = static_cast<int32_t>(slots.size());
+  node.size = size;
   for (int c = 0; c < BoxBvh::kWidth; ++c)
     set_box(node, c, c < node.size ? bin[slots[c]].box : Box());
   for (int c = 0; c < node.size; ++c) {
@@ -483,7 +534,11 @@ void BoxBvh::build(const std::vector<Box>& boxes, const std::vector<int32_t>& id
   if (kept_ids.empty()) return;
   const int32_t count = static_cast<int32_t>(kept_ids.size());
   BinaryBuilder builder(std::move(kept_boxes), std::move(kept_ids));
-  builder.build(0, count, 0);
+  if (all_ordered(builder.boxes())) {
+    builder.build<true>(0, count, 0);
+  } else {
+    builder.build<false>(0, count, 0);
+  }
   if (count <= kWidth)
     add_leaf(builder.nodes[0], builder, blocks_);
   else

@@ -276,6 +276,50 @@ TEST(BoxBvh, TheTreesAreTheSameAsBefore) {
   EXPECT_EQ(tree_fingerprint(), 0xad5e317d1acef113ULL);
 }
 
+// The build unites boxes whose lo lies below their hi on every axis by their los' minimum and
+// their his' maximum alone; any other set takes the full union. Sets with flat boxes (lo = hi on
+// an axis, zeros of either sign among them), NaN coordinates and infinite ones, hashed as above:
+// the value is the build's before that shortcut (d0921e0), so a set that took it wrongly (a NaN
+// box's bins and costs differ) changes the hash.
+uint64_t unordered_fingerprint() {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  const auto mix = [&](uint64_t v) {
+    for (int b = 0; b < 8; ++b) hash = (hash ^ ((v >> (8 * b)) & 0xff)) * 0x100000001b3ULL;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<int32_t> out;
+  for (int set = 0; set < 60; ++set) {
+    std::mt19937_64 rng(5000 + set);
+    const auto unit = [&] { return static_cast<double>(rng() >> 11) * 0x1p-53; };
+    const int n = 2 + static_cast<int>(rng() % 600);
+    std::vector<Box> boxes;
+    std::vector<int32_t> ids;
+    for (int i = 0; i < n; ++i) {
+      const Vec3 c{40 * unit() - 20, 40 * unit() - 20, 40 * unit() - 20};
+      Box b = Box::around(c, 0.1 + 5 * unit() * unit());
+      if (i % 7 == set % 7) b.lo.y = b.hi.y;  // flat along y
+      if (i % 11 == 1) b.lo.z = b.hi.z = set % 2 ? 0.0 : -0.0;
+      if (set % 3 == 0 && i % 13 == 2) b.lo.x = nan;
+      if (set % 3 == 1 && i % 17 == 3) b.hi.y = nan;
+      if (set % 5 == 2 && i % 19 == 4) b.hi.x = kInf;
+      boxes.push_back(b);
+      ids.push_back(static_cast<int32_t>((i * 7919) % n));
+    }
+    BoxBvh bvh;
+    bvh.build(boxes, ids);
+    for (const int32_t id : bvh.tree_order()) mix(static_cast<uint64_t>(id));
+    out.assign(boxes.size(), 0);
+    const int k = bvh.query(Box({-5, -5, -5}, {5, 5, 5}), out.data(), 0);
+    for (int i = 0; i < k; ++i) mix(static_cast<uint64_t>(out[i]));
+    mix(0xffffffffULL);
+  }
+  return hash;
+}
+
+TEST(BoxBvh, TheTreesOfFlatAndNaNBoxesAreTheSameAsBefore) {
+  EXPECT_EQ(unordered_fingerprint(), 0x9f3ea5dbb5a251beULL);
+}
+
 TEST(BoxBvh, EmptyHasNothing) {
   Items none;
   none.boxes = {Box(), Box()};
