@@ -236,12 +236,27 @@ TEST(BoxBvh, RelabelledByItsOrderStillReportsWhatAScanFinds) {
 // (FNV-1a). The value is the build's of 2a904fc, before the split sweeps over per-axis centres and
 // stopped after one axis for two items: a build that changes any split, or the order of a
 // partition, changes the hash. A deliberate change of the tree must say so and set a new value.
-uint64_t tree_fingerprint() {
+// FNV-1a over a set's tree: the order of its items and a box query's list.
+struct TreeHash {
   uint64_t hash = 0xcbf29ce484222325ULL;
-  const auto mix = [&](uint64_t v) {
-    for (int b = 0; b < 8; ++b) hash = (hash ^ ((v >> (8 * b)) & 0xff)) * 0x100000001b3ULL;
-  };
   std::vector<int32_t> out;
+
+  void mix(uint64_t v) {
+    for (int b = 0; b < 8; ++b) hash = (hash ^ ((v >> (8 * b)) & 0xff)) * 0x100000001b3ULL;
+  }
+  BoxBvh add_tree(const std::vector<Box>& boxes, const std::vector<int32_t>& ids) {
+    BoxBvh bvh;
+    bvh.build(boxes, ids);
+    for (const int32_t id : bvh.tree_order()) mix(static_cast<uint64_t>(id));
+    out.assign(boxes.size(), 0);
+    const int k = bvh.query(Box({-5, -5, -5}, {5, 5, 5}), out.data(), 0);
+    for (int i = 0; i < k; ++i) mix(static_cast<uint64_t>(out[i]));
+    return bvh;
+  }
+};
+
+uint64_t tree_fingerprint() {
+  TreeHash h;
   for (int set = 0; set < 400; ++set) {
     std::mt19937_64 rng(1000 + set);
     const auto unit = [&] { return static_cast<double>(rng() >> 11) * 0x1p-53; };
@@ -258,18 +273,13 @@ uint64_t tree_fingerprint() {
       boxes.push_back(b);
       ids.push_back(static_cast<int32_t>((i * 7919) % n));
     }
-    BoxBvh bvh;
-    bvh.build(boxes, ids);
-    for (const int32_t id : bvh.tree_order()) mix(static_cast<uint64_t>(id));
-    out.assign(boxes.size(), 0);
-    const int k = bvh.query(Box({-5, -5, -5}, {5, 5, 5}), out.data(), 0);
-    for (int i = 0; i < k; ++i) mix(static_cast<uint64_t>(out[i]));
+    const BoxBvh bvh = h.add_tree(boxes, ids);
     const Vec3 normals[4] = {{1, 0.1, 0}, {-1, 0.1, 0}, {0.1, 1, 0}, {0.1, -1, 0}};
-    const int m = bvh.cone_items({0, 0, -30}, normals, 0.5, out.data());
-    for (int i = 0; i < m; ++i) mix(static_cast<uint64_t>(out[i]));
-    mix(0xffffffffULL);
+    const int m = bvh.cone_items({0, 0, -30}, normals, 0.5, h.out.data());
+    for (int i = 0; i < m; ++i) h.mix(static_cast<uint64_t>(h.out[i]));
+    h.mix(0xffffffffULL);
   }
-  return hash;
+  return h.hash;
 }
 
 TEST(BoxBvh, TheTreesAreTheSameAsBefore) {
@@ -282,12 +292,8 @@ TEST(BoxBvh, TheTreesAreTheSameAsBefore) {
 // the value is the build's before that shortcut (d0921e0), so a set that took it wrongly (a NaN
 // box's bins and costs differ) changes the hash.
 uint64_t unordered_fingerprint() {
-  uint64_t hash = 0xcbf29ce484222325ULL;
-  const auto mix = [&](uint64_t v) {
-    for (int b = 0; b < 8; ++b) hash = (hash ^ ((v >> (8 * b)) & 0xff)) * 0x100000001b3ULL;
-  };
+  TreeHash h;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::vector<int32_t> out;
   for (int set = 0; set < 60; ++set) {
     std::mt19937_64 rng(5000 + set);
     const auto unit = [&] { return static_cast<double>(rng() >> 11) * 0x1p-53; };
@@ -305,15 +311,10 @@ uint64_t unordered_fingerprint() {
       boxes.push_back(b);
       ids.push_back(static_cast<int32_t>((i * 7919) % n));
     }
-    BoxBvh bvh;
-    bvh.build(boxes, ids);
-    for (const int32_t id : bvh.tree_order()) mix(static_cast<uint64_t>(id));
-    out.assign(boxes.size(), 0);
-    const int k = bvh.query(Box({-5, -5, -5}, {5, 5, 5}), out.data(), 0);
-    for (int i = 0; i < k; ++i) mix(static_cast<uint64_t>(out[i]));
-    mix(0xffffffffULL);
+    h.add_tree(boxes, ids);
+    h.mix(0xffffffffULL);
   }
-  return hash;
+  return h.hash;
 }
 
 TEST(BoxBvh, TheTreesOfFlatAndNaNBoxesAreTheSameAsBefore) {
