@@ -3,9 +3,14 @@
 // after it, a loop inside a task, parallel_ranges running each range in the caller's
 // floating-point mode, as parallel_each runs each task (tests/renderer/io/test_png_bands.cpp),
 // start_threads' hook run first on each worker it starts, and the workers' end after a given number
-// of loops (a one-shot render's: cmd_render.cpp).
+// of loops (a one-shot render's: cmd_render.cpp), and a worker's first run on another CPU than its
+// creator's.
 #include <dirent.h>
 #include <gtest/gtest.h>
+#include <sched.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
@@ -380,6 +385,58 @@ TEST(ThreadLoops, WorkersEndAfterTheLoopsTheyWereGiven) {
         std::exit(ok ? 0 : 1);
       },
       ::testing::ExitedWithCode(0), "");
+}
+
+// Where a worker's start hook ran, and the worker.
+std::atomic<int> g_first_cpu{-1};
+std::atomic<pid_t> g_worker{0};
+void record_first_cpu() {
+  g_first_cpu = sched_getcpu();
+  g_worker = static_cast<pid_t>(syscall(SYS_gettid));
+}
+
+// A worker's start, its hook included, runs on another of the process's CPUs than its creator's
+// (a scheduler that packs a new thread onto its creator's CPU made it wait there), and the worker
+// has all of them again after it. In processes of their own (forked: no worker yet); a child whose
+// creator ran on another CPU after the spawn than before cannot tell and is tried again.
+TEST(ThreadLoops, AWorkerStartsOnAnotherCpuThanItsCreatorThenMayRunOnAny) {
+  cpu_set_t all;
+  ASSERT_EQ(sched_getaffinity(0, sizeof all, &all), 0);
+  if (CPU_COUNT(&all) < 2) GTEST_SKIP() << "the process may run on one CPU only";
+  int status = 2;
+  for (int attempt = 0; attempt < 20 && status == 2; ++attempt) {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      int code = 1;
+      run_on_threads(2, [&] {
+        const int before = sched_getcpu();
+        start_threads(&record_first_cpu);
+        const int after = sched_getcpu();
+        // Busy while the worker starts, as a scene's load is: a worker placed on this CPU would
+        // wait for it. 10 s at most, for a loaded machine.
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (g_worker.load() == 0 && std::chrono::steady_clock::now() < give_up) {
+        }
+        bool freed = false;
+        for (int i = 0; i < 1000 && g_worker.load() != 0 && !freed; ++i) {
+          cpu_set_t now;
+          freed =
+              sched_getaffinity(g_worker.load(), sizeof now, &now) == 0 && CPU_EQUAL(&now, &all);
+          if (!freed) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        if (before != after)
+          code = 2;
+        else
+          code = g_worker.load() != 0 && g_first_cpu.load() != before && freed ? 0 : 1;
+      });
+      std::_Exit(code);
+    }
+    int child_status = 0;
+    ASSERT_EQ(waitpid(child, &child_status, 0), child);
+    status = WIFEXITED(child_status) ? WEXITSTATUS(child_status) : 1;
+  }
+  EXPECT_EQ(status, 0);
 }
 
 }  // namespace
