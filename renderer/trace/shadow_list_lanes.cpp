@@ -9,6 +9,8 @@
 
 #include <cstddef>
 
+#include "math/cpu_avx2.h"
+
 #ifdef __SSE2__
 #include <immintrin.h>
 #endif
@@ -104,13 +106,11 @@ __attribute__((target("avx2"))) int entries_on_line_four(const BlobBeam& list,
   }
   return kept;
 }
-#endif
 
-#ifdef __SSE2__
 namespace {
 // Asked once, as the program starts: a function's static cost every call its guard's test and
 // the registers saved for its first call's path (22 instructions a shadow ray).
-const bool four_lanes = BlobSum::has_avx2();
+const bool four_lanes = cpu_has_avx2();
 }  // namespace
 #endif
 
